@@ -1,0 +1,52 @@
+//! Command-line interface (clap): the commands and their dispatch.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand};
+
+use crate::CliError;
+use crate::commands;
+
+/// flexrig: flexible-multibody impact simulator — compliant joint (CJ) versus compliant link (CL).
+///
+/// Without a command, runs the main job on the bundled defaults and says where its output is.
+#[derive(Debug, Parser)]
+#[command(name = "flexrig", version, about, long_about = None)]
+pub struct Cli {
+    /// The command to run; none runs the default job.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+/// The `flexrig` commands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Peak force of the lumped two-mass impact (paper Eq. 10–14) by the exact energy balance,
+    /// the n = 1 closed form, or time integration.
+    Impact(commands::impact::ImpactArgs),
+    /// The paper's Fig. 6: η(γ) = f_max(γ)/f_max(1) for the eight design cases, n = 1 and n = 2.
+    Fig6(commands::fig6::Fig6Args),
+    /// Least-squares fit of the Hertz law f = k δ^n to compression data (CSV).
+    Fit(commands::fit::FitArgs),
+    /// Finite-element Euler–Bernoulli beam: natural frequencies and static deflection.
+    #[command(subcommand)]
+    Beam(commands::beam::BeamCommand),
+    /// Check the Pseudo-Rigid-Body model (γ, K_Θ) against the corotational FE beam.
+    Prb(commands::prb::PrbArgs),
+}
+
+/// Where the default job writes its files.
+pub const DEFAULT_OUT_DIR: &str = "out";
+
+/// Runs the parsed command line, writing the report to `out`.
+pub fn run(cli: &Cli, out: &mut dyn Write) -> Result<(), CliError> {
+    match &cli.command {
+        None => commands::default_job(&PathBuf::from(DEFAULT_OUT_DIR), out),
+        Some(Command::Impact(args)) => commands::impact::run(args, out),
+        Some(Command::Fig6(args)) => commands::fig6::run(args, out),
+        Some(Command::Fit(args)) => commands::fit::run(args, out),
+        Some(Command::Beam(cmd)) => commands::beam::run(cmd, out),
+        Some(Command::Prb(args)) => commands::prb::run(args, out),
+    }
+}

@@ -1,0 +1,73 @@
+//! The CLI's error type: every failure names what went wrong and maps to an exit code
+//! (2 for bad input, 1 for a failure while running or writing).
+
+use std::path::PathBuf;
+
+/// Everything a `flexrig` command can fail with.
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    /// A command-line argument is outside its allowed range.
+    #[error("invalid argument {arg} = {value}: {allowed}")]
+    InvalidArgument {
+        /// The flag, e.g. `--m-h`.
+        arg: String,
+        /// The rejected value, as given.
+        value: String,
+        /// What is allowed.
+        allowed: String,
+    },
+    /// An error from the contact crate (parameters, CSV data, fitting).
+    #[error(transparent)]
+    Contact(#[from] flexrig_contact::ContactError),
+    /// An error from the lumped impact model.
+    #[error(transparent)]
+    Lumped(#[from] flexrig_lumped::LumpedError),
+    /// An error from the beam crate.
+    #[error(transparent)]
+    Beam(#[from] flexrig_beam::BeamError),
+    /// An input file could not be read.
+    #[error("cannot read {path}: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// An output file or directory could not be written.
+    #[error("cannot write {path}: {source}")]
+    Write {
+        /// The file or directory.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// A figure could not be drawn.
+    #[error("cannot draw {path}: {message}")]
+    Plot {
+        /// The SVG file.
+        path: PathBuf,
+        /// What the plotting backend reported.
+        message: String,
+    },
+}
+
+impl CliError {
+    /// Process exit code: 2 for bad input (arguments, parameters, data files), 1 otherwise.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            CliError::InvalidArgument { .. } | CliError::Read { .. } => 2,
+            CliError::Contact(e) if e.is_input_error() => 2,
+            CliError::Lumped(e) if e.is_input_error() => 2,
+            CliError::Beam(e) if e.is_input_error() => 2,
+            _ => 1,
+        }
+    }
+
+    /// Wraps an I/O error of writing `path`.
+    pub fn write(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        CliError::Write {
+            path: path.into(),
+            source,
+        }
+    }
+}
