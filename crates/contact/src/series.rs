@@ -151,6 +151,16 @@ impl SeriesCompliance {
         newton_in_log(upper, lower, residual)
     }
 
+    /// Upper bound [N] on the force at which the stored energy reaches `energy` [J]: the smaller
+    /// of the two single-spring solutions √(2 E k_δ) and ((n + 1) E)^{n/(n+1)} k_c^{1/(n+1)}
+    /// (U exceeds each of its two parts). The true force is at least the bound at E/2.
+    pub fn force_bound_at_energy(&self, energy: f64) -> f64 {
+        let (k_d, k_c, n) = (self.k_delta, self.contact.k(), self.contact.n());
+        let f_link = (2.0 * energy * k_d).sqrt();
+        let f_contact = (energy * (n + 1.0)).powf(n / (n + 1.0)) * k_c.powf(1.0 / (n + 1.0));
+        f_link.min(f_contact)
+    }
+
     /// Force f [N] at which the stored energy U(f) equals `energy` [J] ≥ 0 — the peak force of an
     /// undamped impact with kinetic energy `energy` (see flexrig-lumped). No closed-form shortcut
     /// for n = 1 (that one is checked against it).
@@ -162,21 +172,19 @@ impl SeriesCompliance {
             };
         }
         let (k_d, k_c, n) = (self.k_delta, self.contact.k(), self.contact.n());
-        // Single-spring solutions: each is an upper bound on f (U exceeds each part).
-        let f_link = (2.0 * energy * k_d).sqrt();
-        let f_contact = (energy * (n + 1.0)).powf(n / (n + 1.0)) * k_c.powf(1.0 / (n + 1.0));
-        let upper = f_link.min(f_contact);
+        let upper = self.force_bound_at_energy(energy);
         // At the root one part holds at least half the energy.
-        let lower = (energy * k_d).sqrt().min(
-            (0.5 * energy * (n + 1.0)).powf(n / (n + 1.0)) * k_c.powf(1.0 / (n + 1.0)),
-        );
+        let lower = self.force_bound_at_energy(0.5 * energy);
         let residual = |f: f64| {
             let ul = 0.5 * f * f / k_d;
             let dc = (f / k_c).powf(1.0 / n);
             let uc = f * dc / (n + 1.0);
             let u = ul + uc;
             // h(s) = ln(U/E), h'(s) = f U'(f)/U.
-            (((u - energy) / energy).ln_1p(), (f * f / k_d + f * dc / n) / u)
+            (
+                ((u - energy) / energy).ln_1p(),
+                (f * f / k_d + f * dc / n) / u,
+            )
         };
         newton_in_log(upper, lower, residual)
     }

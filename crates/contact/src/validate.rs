@@ -64,9 +64,17 @@ mod tests {
     #[test]
     fn errors_name_field_value_and_range() {
         let e = positive("k_c", -1.0).unwrap_err().to_string();
-        assert!(e.contains("k_c") && e.contains("-1") && e.contains("> 0"), "{e}");
-        let e = in_left_open("gamma", 1.5, 0.0, 1.0).unwrap_err().to_string();
-        assert!(e.contains("gamma") && e.contains("1.5") && e.contains("(0, 1]"), "{e}");
+        assert!(
+            e.contains("k_c") && e.contains("-1") && e.contains("> 0"),
+            "{e}"
+        );
+        let e = in_left_open("gamma", 1.5, 0.0, 1.0)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("gamma") && e.contains("1.5") && e.contains("(0, 1]"),
+            "{e}"
+        );
         assert!(positive("m", f64::NAN).is_err());
         assert!(non_negative("c", f64::INFINITY).is_err());
         assert!(finite("x", f64::NEG_INFINITY).is_err());

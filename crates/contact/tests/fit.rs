@@ -23,7 +23,12 @@ fn synthetic(k: f64, n: f64, sigma: f64, rng: &mut StdRng) -> Vec<CompressionPoi
 #[test]
 fn noise_free_data_are_recovered_exactly() {
     let mut rng = StdRng::seed_from_u64(1);
-    for (k, n) in [(7.359e7, 1.961), (9.642e7, 2.002), (1.311e7, 1.817), (2e5, 1.0)] {
+    for (k, n) in [
+        (7.359e7, 1.961),
+        (9.642e7, 2.002),
+        (1.311e7, 1.817),
+        (2e5, 1.0),
+    ] {
         let fit = fit_hertz(&synthetic(k, n, 0.0, &mut rng)).unwrap();
         assert_close("k", fit.k, k, 1e-9);
         assert_close("n", fit.n, n, 1e-10);

@@ -36,15 +36,31 @@ fn integrate_from_zero(g: impl Fn(f64) -> f64, x: f64) -> f64 {
 
 #[test]
 fn hertz_force_energy_and_indentation() {
-    for (k, n) in [(1.311e7, 1.817), (7.359e7, 1.961), (9.642e7, 2.002), (5e7, 1.5), (1e5, 1.0)] {
+    for (k, n) in [
+        (1.311e7, 1.817),
+        (7.359e7, 1.961),
+        (9.642e7, 2.002),
+        (5e7, 1.5),
+        (1e5, 1.0),
+    ] {
         let h = Hertz::new(k, n).unwrap();
         for delta in [1e-6, 3e-4, 2e-3] {
             let f = h.force(delta, 0.0);
             assert_close("indentation(force(δ))", h.indentation(f), delta, 1e-14);
             let quad = integrate_from_zero(|s| h.force(s, 0.0), delta);
-            assert_close("energy vs quadrature of the force", h.energy(delta), quad, 1e-10);
+            assert_close(
+                "energy vs quadrature of the force",
+                h.energy(delta),
+                quad,
+                1e-10,
+            );
             let fd = central_difference(|d| h.force(d, 0.0), delta, 1e-6);
-            assert_close("stiffness vs finite difference", h.stiffness(delta, 0.0), fd, 1e-8);
+            assert_close(
+                "stiffness vs finite difference",
+                h.stiffness(delta, 0.0),
+                fd,
+                1e-8,
+            );
             // Damping-free laws ignore the rate.
             assert_eq!(h.force(delta, 5.0), f);
         }
@@ -78,7 +94,12 @@ fn damped_hertz_derivatives_and_no_adhesion() {
             let fd_c = central_difference(|r| law.force(delta, r), rate, 1e-6);
             assert_close("∂f/∂δ", law.stiffness(delta, rate), fd_k, 1e-7);
             assert_close("∂f/∂δ̇", law.damping(delta, rate), fd_c, 1e-7);
-            assert_close("elastic part", law.elastic_energy(delta), h.energy(delta), 1e-15);
+            assert_close(
+                "elastic part",
+                law.elastic_energy(delta),
+                h.energy(delta),
+                1e-15,
+            );
         }
         // Fast separation: 1 + χ δ̇ < 0 would pull; the law clamps to zero, derivatives too.
         let pulling = -2.0 / law.chi().max(1e-9);
@@ -92,10 +113,20 @@ fn damped_hertz_derivatives_and_no_adhesion() {
 fn restitution_formulas() {
     let h = Hertz::new(1e8, 1.5).unwrap();
     let hc = DampedHertz::hunt_crossley(h, 0.8, 2.0).unwrap();
-    assert_close("Hunt–Crossley χ = 3(1−e)/(2v0)", hc.chi(), 3.0 * 0.2 / 4.0, 1e-15);
+    assert_close(
+        "Hunt–Crossley χ = 3(1−e)/(2v0)",
+        hc.chi(),
+        3.0 * 0.2 / 4.0,
+        1e-15,
+    );
     assert_eq!(hc.model(), DampingModel::HuntCrossley);
     let ln = DampedHertz::lankarani_nikravesh(h, 0.8, 2.0).unwrap();
-    assert_close("Lankarani–Nikravesh χ = 3(1−e²)/(4v0)", ln.chi(), 3.0 * 0.36 / 8.0, 1e-15);
+    assert_close(
+        "Lankarani–Nikravesh χ = 3(1−e²)/(4v0)",
+        ln.chi(),
+        3.0 * 0.36 / 8.0,
+        1e-15,
+    );
     // e = 1 is elastic.
     assert_eq!(DampedHertz::hunt_crossley(h, 1.0, 2.0).unwrap().chi(), 0.0);
     assert!(DampedHertz::hunt_crossley(h, 1.2, 2.0).is_err());
@@ -108,11 +139,26 @@ fn adams_step_and_impact() {
     // STEP end values, midpoint, C¹ continuity at the ends.
     assert_eq!(cubic_step(-1.0, 0.0, 2.0, 1.0, 5.0), 2.0);
     assert_eq!(cubic_step(2.0, 0.0, 2.0, 1.0, 5.0), 5.0);
-    assert_close("STEP midpoint", cubic_step(0.5, 0.0, 2.0, 1.0, 5.0), 3.5, 1e-15);
-    assert_abs("STEP slope at x0", cubic_step_slope(1e-12, 0.0, 2.0, 1.0, 5.0), 0.0, 1e-10);
+    assert_close(
+        "STEP midpoint",
+        cubic_step(0.5, 0.0, 2.0, 1.0, 5.0),
+        3.5,
+        1e-15,
+    );
+    assert_abs(
+        "STEP slope at x0",
+        cubic_step_slope(1e-12, 0.0, 2.0, 1.0, 5.0),
+        0.0,
+        1e-10,
+    );
     for x in [0.1, 0.37, 0.8] {
         let fd = central_difference(|s| cubic_step(s, 0.0, 2.0, 1.0, 5.0), x, 1e-6);
-        assert_close("STEP slope", cubic_step_slope(x, 0.0, 2.0, 1.0, 5.0), fd, 1e-8);
+        assert_close(
+            "STEP slope",
+            cubic_step_slope(x, 0.0, 2.0, 1.0, 5.0),
+            fd,
+            1e-8,
+        );
     }
     let law = AdamsImpact::new(1e8, 2.2, 1e3, 1e-4).unwrap();
     // Full damping beyond d, ramped below it.
@@ -140,6 +186,8 @@ fn invalid_parameters_name_the_field() {
     assert!(e.contains("n = 0") && e.contains("(0, 10]"), "{e}");
     let e = Hertz::new(f64::NAN, 2.0).unwrap_err().to_string();
     assert!(e.contains("NaN"), "{e}");
-    let e = AdamsImpact::new(1e8, 20.0, 1.0, 1.0).unwrap_err().to_string();
+    let e = AdamsImpact::new(1e8, 20.0, 1.0, 1.0)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("exponent"), "{e}");
 }

@@ -14,7 +14,10 @@ fn bundled_materials_are_the_papers_fits() {
         ("skinned_iron", 9.642e7, 2.002, 4.008),
     ] {
         let mat = m.get(name).unwrap();
-        assert_eq!((mat.hertz.k(), mat.hertz.n(), mat.block_mass_kg), (k, n, mass));
+        assert_eq!(
+            (mat.hertz.k(), mat.hertz.n(), mat.block_mass_kg),
+            (k, n, mass)
+        );
     }
     assert_eq!(m.all().len(), 3);
 }

@@ -21,8 +21,12 @@ fn linear_contact_is_the_closed_form() {
 fn energy_is_the_integral_of_force_over_displacement() {
     // U(f(δ)) = ∫₀^δ f(s) ds, with the integral by composite Simpson on a graded mesh (an
     // independent path: it only calls the force solve).
-    for (k_delta, k_c, n) in [(1e8, 1e8, 2.0), (2e2, 1e8, 2.0), (1e4, 7.359e7, 1.961), (1e6, 1e5, 1.5)]
-    {
+    for (k_delta, k_c, n) in [
+        (1e8, 1e8, 2.0),
+        (2e2, 1e8, 2.0),
+        (1e4, 7.359e7, 1.961),
+        (1e6, 1e5, 1.5),
+    ] {
         let s = series(k_delta, k_c, n);
         let delta = 1e-3;
         let m = 4000;
@@ -48,7 +52,12 @@ fn tangents_match_finite_differences() {
             let fd = central_difference(|x| s.energy(x), f, 1e-6);
             assert_close("dU/df", s.energy_slope(f), fd, 1e-8);
             // dU/df = f dδ/df: the work of the force.
-            assert_close("dU/df = f δ'(f)", s.energy_slope(f), f * s.compliance(f), 1e-14);
+            assert_close(
+                "dU/df = f δ'(f)",
+                s.energy_slope(f),
+                f * s.compliance(f),
+                1e-14,
+            );
         }
     }
 }

@@ -1,0 +1,380 @@
+//! Time integration of the two-mass impact from first contact to the peak or to separation, with
+//! an adaptive 8th-order Runge–Kutta method ([`dop853`]), dense output, and event location of
+//! the peak (δ̇ = 0) and of separation (δ = 0).
+//!
+//! Two formulations of μ δ̈ = −f(δ) (paper Eq. 10–12) are offered:
+//!
+//! - [`Formulation::Indentation`] (default): the state is (δ_c, δ̇). The force is explicit,
+//!   f = k_c δ_c^n, and the total displacement δ = f/k_δ + δ_c, so
+//!   δ̇_c = δ̇ / (1 + n k_c δ_c^{n−1}/k_δ),  μ δ̈ = −f:
+//!   one `powf` per evaluation.
+//! - [`Formulation::Displacement`]: the state is (δ, δ̇) and every evaluation solves the series
+//!   compliance δ = f/k_δ + (f/k_c)^{1/n} for f by Newton's method (Eq. 6–9).
+//!
+//! Both are checked against the exact energy solution ([`crate::peak_exact`]).
+
+pub mod dop853;
+mod tableau;
+
+use flexrig_contact::validate;
+use serde::{Deserialize, Serialize};
+
+use crate::LumpedError;
+use crate::model::{ImpactModel, Peak};
+use dop853::{DenseOutput, Dop853, Dop853Options, OdeSystem, StepFailure, find_root};
+
+/// Which state variables the integrator carries.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Formulation {
+    /// State (δ_c, δ̇): explicit force, one `powf` per evaluation.
+    #[default]
+    Indentation,
+    /// State (δ, δ̇): a Newton solve of the series compliance per evaluation.
+    Displacement,
+}
+
+/// Where the integration stops.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum StopAt {
+    /// At maximum compression (δ̇ = 0): enough for the peak force.
+    Peak,
+    /// At separation (δ = 0 again): the whole contact.
+    #[default]
+    Separation,
+}
+
+/// Settings of [`integrate`]. `rtol` is the integrator's relative tolerance; the absolute
+/// tolerances are `rtol` times the scales of the state (an upper bound of the peak indentation
+/// or displacement, and v0).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct OdeOptions {
+    /// Relative tolerance, in [1e-14, 1e-1].
+    pub rtol: f64,
+    /// State variables.
+    pub formulation: Formulation,
+    /// Stop condition.
+    pub stop: StopAt,
+    /// Record the state at every accepted step and at the events.
+    pub record_trace: bool,
+}
+
+/// Default relative tolerance: peak errors of about 1e-11 (see the tests).
+pub const DEFAULT_RTOL: f64 = 1e-10;
+
+impl OdeOptions {
+    /// Options with relative tolerance `rtol` ∈ [1e-14, 1e-1], the indentation formulation, stop at
+    /// separation, no trace.
+    pub fn new(rtol: f64) -> Result<Self, LumpedError> {
+        Ok(OdeOptions {
+            rtol: validate::in_closed("rtol", rtol, 1e-14, 1e-1)?,
+            formulation: Formulation::Indentation,
+            stop: StopAt::Separation,
+            record_trace: false,
+        })
+    }
+
+    /// With another formulation.
+    pub fn formulation(mut self, formulation: Formulation) -> Self {
+        self.formulation = formulation;
+        self
+    }
+
+    /// With another stop condition.
+    pub fn stop(mut self, stop: StopAt) -> Self {
+        self.stop = stop;
+        self
+    }
+
+    /// With or without a trace.
+    pub fn record_trace(mut self, record: bool) -> Self {
+        self.record_trace = record;
+        self
+    }
+}
+
+/// One sample of the impact.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TracePoint {
+    /// Time since first contact [s].
+    pub t: f64,
+    /// Total displacement δ [m].
+    pub delta: f64,
+    /// Contact indentation δ_c [m].
+    pub indentation: f64,
+    /// Approach speed δ̇ [m/s].
+    pub velocity: f64,
+    /// Contact force f [N].
+    pub force: f64,
+}
+
+/// What one step of the impact integration reached (events are part of the step result).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum StepOutcome {
+    /// An ordinary step.
+    Advanced,
+    /// The step contained the peak, at the given point.
+    Peak(TracePoint),
+    /// The step contained separation, at the given point.
+    Separation(TracePoint),
+}
+
+/// Result of [`integrate`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OdeSolution {
+    /// Peak state.
+    pub peak: Peak,
+    /// Time from first contact to the peak [s].
+    pub t_peak: f64,
+    /// Contact duration [s]; `None` when stopped at the peak.
+    pub contact_duration: Option<f64>,
+    /// Separation speed [m/s] (equals v0 for an elastic contact); `None` when stopped at the peak.
+    pub separation_speed: Option<f64>,
+    /// Right-hand-side evaluations.
+    pub rhs_evals: usize,
+    /// Accepted steps.
+    pub steps: usize,
+    /// Rejected steps.
+    pub rejected_steps: usize,
+    /// The trace (empty unless asked for).
+    pub trace: Vec<TracePoint>,
+}
+
+/// State (δ_c, δ̇) with the explicit force.
+struct IndentationSystem {
+    k_c: f64,
+    n: f64,
+    inv_k_delta: f64,
+    inv_mu: f64,
+}
+
+impl IndentationSystem {
+    /// (f, ∂f/∂δ_c) at indentation `dc`, with the limits at δ_c = 0 (n k_c for n = 1).
+    fn force_and_stiffness(&self, dc: f64) -> (f64, f64) {
+        if dc > 0.0 {
+            let f = self.k_c * dc.powf(self.n);
+            (f, self.n * f / dc)
+        } else if self.n == 1.0 {
+            (0.0, self.k_c)
+        } else if self.n < 1.0 {
+            (0.0, f64::INFINITY)
+        } else {
+            (0.0, 0.0)
+        }
+    }
+}
+
+impl OdeSystem<2> for IndentationSystem {
+    fn rhs(&self, _t: f64, y: &[f64; 2]) -> [f64; 2] {
+        let (f, k_tangent) = self.force_and_stiffness(y[0]);
+        [
+            y[1] / (1.0 + k_tangent * self.inv_k_delta),
+            -f * self.inv_mu,
+        ]
+    }
+}
+
+/// State (δ, δ̇) with the force from the series-compliance solve.
+struct DisplacementSystem<'a> {
+    model: &'a ImpactModel,
+    inv_mu: f64,
+}
+
+impl OdeSystem<2> for DisplacementSystem<'_> {
+    fn rhs(&self, _t: f64, y: &[f64; 2]) -> [f64; 2] {
+        [y[1], -self.model.spring().force(y[0]) * self.inv_mu]
+    }
+}
+
+/// Integrates the impact from first contact (δ = 0, δ̇ = v0) to the peak or to separation.
+pub fn integrate(model: &ImpactModel, options: &OdeOptions) -> Result<OdeSolution, LumpedError> {
+    let options = OdeOptions::new(options.rtol)?
+        .formulation(options.formulation)
+        .stop(options.stop)
+        .record_trace(options.record_trace);
+    let spring = model.spring();
+    let inv_mu = 1.0 / model.reduced_mass();
+    // Scales for the absolute tolerances: the force at which either spring alone would store the
+    // impact energy bounds f_max from above (no exact solve involved).
+    let f_bound = spring
+        .force_bound_at_energy(model.impact_energy())
+        .max(f64::MIN_POSITIVE);
+    // Time for the approach speed to cover the bound on the peak displacement (the quarter period
+    // is about 1.6 of it): the largest step allowed.
+    let time_scale = spring.displacement(f_bound) / model.v0();
+    match options.formulation {
+        Formulation::Indentation => {
+            let contact = spring.contact();
+            let system = IndentationSystem {
+                k_c: contact.k(),
+                n: contact.n(),
+                inv_k_delta: 1.0 / spring.k_delta(),
+                inv_mu,
+            };
+            let scale = [spring.indentation(f_bound), model.v0()];
+            let observe = |t: f64, y: &[f64; 2]| {
+                let (f, _) = system.force_and_stiffness(y[0]);
+                TracePoint {
+                    t,
+                    delta: y[0].max(0.0) + f * system.inv_k_delta,
+                    indentation: y[0].max(0.0),
+                    velocity: y[1],
+                    force: f,
+                }
+            };
+            run(&system, scale, time_scale, &options, observe)
+        }
+        Formulation::Displacement => {
+            let system = DisplacementSystem { model, inv_mu };
+            let scale = [spring.displacement(f_bound), model.v0()];
+            let observe = |t: f64, y: &[f64; 2]| {
+                let f = spring.force(y[0]);
+                TracePoint {
+                    t,
+                    delta: y[0].max(0.0),
+                    indentation: spring.indentation(f),
+                    velocity: y[1],
+                    force: f,
+                }
+            };
+            run(&system, scale, time_scale, &options, observe)
+        }
+    }
+}
+
+/// The integration loop shared by both formulations: step, look for the events on the dense
+/// output, record, stop.
+fn run(
+    system: &impl OdeSystem<2>,
+    scale: [f64; 2],
+    time_scale: f64,
+    options: &OdeOptions,
+    observe: impl Fn(f64, &[f64; 2]) -> TracePoint,
+) -> Result<OdeSolution, LumpedError> {
+    let rtol = options.rtol;
+    let mut solver = Dop853::new(
+        system,
+        0.0,
+        [0.0, scale[1]], // first contact: δ = 0, δ̇ = v0 (= the velocity scale)
+        Dop853Options {
+            rtol,
+            atol: [rtol * scale[0], rtol * scale[1]],
+            first_step: None,
+            max_step: time_scale,
+            max_steps: 1_000_000,
+        },
+    );
+    let mut trace = Vec::new();
+    if options.record_trace {
+        trace.push(observe(0.0, solver.y()));
+    }
+    let mut peak: Option<TracePoint> = None;
+    loop {
+        solver
+            .step(system)
+            .map_err(|e| integration_error(e, rtol))?;
+        let outcome = detect_event(&mut solver, system, peak.is_some(), &observe);
+        match outcome {
+            StepOutcome::Advanced => {
+                if options.record_trace {
+                    trace.push(observe(solver.t(), solver.y()));
+                }
+            }
+            StepOutcome::Peak(p) => {
+                peak = Some(p);
+                if options.record_trace {
+                    trace.push(p);
+                }
+                if options.stop == StopAt::Peak {
+                    return Ok(finish(&solver, p, None, trace));
+                }
+                // The same step may also reach separation (very coarse tolerances only).
+                if let StepOutcome::Separation(s) =
+                    detect_event(&mut solver, system, true, &observe)
+                {
+                    if options.record_trace {
+                        trace.push(s);
+                    }
+                    return Ok(finish(&solver, p, Some(s), trace));
+                }
+                if options.record_trace {
+                    trace.push(observe(solver.t(), solver.y()));
+                }
+            }
+            StepOutcome::Separation(s) => {
+                if options.record_trace {
+                    trace.push(s);
+                }
+                let p = peak.expect("separation is only looked for after the peak");
+                return Ok(finish(&solver, p, Some(s), trace));
+            }
+        }
+    }
+}
+
+/// Looks for the next event in the last accepted step: the peak (δ̇ crosses 0 downwards) before it
+/// was found, separation (the displacement state crosses 0 downwards) after.
+fn detect_event<const N: usize>(
+    solver: &mut Dop853<N>,
+    system: &impl OdeSystem<N>,
+    after_peak: bool,
+    observe: &impl Fn(f64, &[f64; N]) -> TracePoint,
+) -> StepOutcome {
+    let component = if after_peak { 0 } else { 1 };
+    let (before, after) = (solver.y_old()[component], solver.y()[component]);
+    if !(before > 0.0 && after <= 0.0) {
+        return StepOutcome::Advanced;
+    }
+    let dense: DenseOutput<N> = solver.dense_output(system);
+    let (a, b) = (dense.t_start(), dense.t_end());
+    let t_tol = 4.0 * f64::EPSILON * b.abs();
+    let t = find_root(|t| dense.eval(t)[component], a, before, b, after, t_tol);
+    let point = observe(t, &dense.eval(t));
+    if after_peak {
+        StepOutcome::Separation(point)
+    } else {
+        StepOutcome::Peak(point)
+    }
+}
+
+fn finish<const N: usize>(
+    solver: &Dop853<N>,
+    peak: TracePoint,
+    separation: Option<TracePoint>,
+    trace: Vec<TracePoint>,
+) -> OdeSolution {
+    let stats = solver.stats();
+    OdeSolution {
+        peak: Peak {
+            f_max: peak.force,
+            delta_max: peak.delta,
+            indentation_max: peak.indentation,
+            link_deflection_max: peak.delta - peak.indentation,
+        },
+        t_peak: peak.t,
+        contact_duration: separation.map(|s| s.t),
+        separation_speed: separation.map(|s| -s.velocity),
+        rhs_evals: stats.rhs_evals,
+        steps: stats.accepted,
+        rejected_steps: stats.rejected,
+        trace,
+    }
+}
+
+fn integration_error(failure: StepFailure, rtol: f64) -> LumpedError {
+    let (t, reason) = match failure {
+        StepFailure::StepTooSmall { t, h } => (
+            t,
+            format!(
+                "step size {h:e} s fell below the resolution of t; try a looser rtol than {rtol:e}"
+            ),
+        ),
+        StepFailure::NonFinite { t } => (t, "the state became non-finite".to_string()),
+        StepFailure::TooManySteps { t, max_steps } => (
+            t,
+            format!("more than {max_steps} steps; try a looser rtol than {rtol:e}"),
+        ),
+    };
+    LumpedError::IntegrationFailed { t, reason }
+}

@@ -1,0 +1,118 @@
+//! Time integration of the impact against the exact energy solution, the n = 1 closed form and
+//! conservation laws.
+
+use flexrig_contact::tolerance::{assert_close, relative_error};
+use flexrig_contact::{Hertz, SeriesCompliance};
+use flexrig_lumped::ode::{Formulation, OdeOptions, StopAt, integrate};
+use flexrig_lumped::{ImpactModel, peak_analytic, peak_exact};
+
+fn model(k_delta: f64, k_c: f64, n: f64) -> ImpactModel {
+    let spring = SeriesCompliance::new(k_delta, Hertz::new(k_c, n).unwrap()).unwrap();
+    ImpactModel::new(4.0, 2.3222, spring, 2.0).unwrap()
+}
+
+const EXPONENTS: [f64; 4] = [1.0, 1.5, 2.0, 2.5];
+const RATIOS: [f64; 5] = [1e-6, 1e-4, 1e-2, 1.0, 1e2];
+
+#[test]
+fn peak_converges_to_the_exact_solution() {
+    for formulation in [Formulation::Indentation, Formulation::Displacement] {
+        for n in EXPONENTS {
+            for ratio in RATIOS {
+                let m = model(1e8 * ratio, 1e8, n);
+                let exact = peak_exact(&m);
+                let mut errors = Vec::new();
+                for rtol in [1e-5, 1e-8, 1e-12] {
+                    let options = OdeOptions::new(rtol).unwrap().formulation(formulation);
+                    let sol = integrate(&m, &options).unwrap();
+                    errors.push(relative_error(sol.peak.f_max, exact.f_max, 0.0));
+                }
+                let label = format!("{formulation:?} n = {n} k_δ/k_c = {ratio:e}: {errors:?}");
+                assert!(errors[2] <= 1e-9, "tightest tolerance: {label}");
+                assert!(errors[1] <= 1e-6, "rtol 1e-8: {label}");
+                assert!(errors[2] <= errors[0].max(1e-13), "no convergence: {label}");
+            }
+        }
+    }
+}
+
+#[test]
+fn linear_contact_lasts_half_a_period() {
+    for ratio in RATIOS {
+        let m = model(1e8 * ratio, 1e8, 1.0);
+        let closed = peak_analytic(&m).unwrap();
+        let sol = integrate(&m, &OdeOptions::new(1e-12).unwrap()).unwrap();
+        let duration = sol.contact_duration.unwrap();
+        assert_close(
+            "contact duration vs π√(μ/k_o)",
+            duration,
+            closed.contact_duration,
+            1e-9,
+        );
+        assert_close("t_peak vs (π/2)√(μ/k_o)", sol.t_peak, closed.t_peak, 1e-9);
+    }
+}
+
+#[test]
+fn elastic_impact_is_symmetric_and_conserves_energy() {
+    for n in EXPONENTS {
+        for ratio in [1e-4, 1.0] {
+            let m = model(1e8 * ratio, 1e8, n);
+            let options = OdeOptions::new(1e-12).unwrap().record_trace(true);
+            let sol = integrate(&m, &options).unwrap();
+            let label = format!("n = {n}, k_δ/k_c = {ratio:e}");
+            // Conservative and time-reversible: the rebound takes as long as the compression,
+            // and the masses separate at the approach speed.
+            assert_close(
+                &label,
+                sol.contact_duration.unwrap(),
+                2.0 * sol.t_peak,
+                1e-9,
+            );
+            assert_close(&label, sol.separation_speed.unwrap(), m.v0(), 1e-9);
+            // Energy along the trace: ½ μ δ̇² + U(f) = ½ μ v0².
+            let e0 = m.impact_energy();
+            for p in &sol.trace {
+                let e = 0.5 * m.reduced_mass() * p.velocity.powi(2) + m.spring().energy(p.force);
+                assert!(
+                    relative_error(e, e0, 0.0) < 1e-9,
+                    "{label}: t = {:e}, E = {e:e}",
+                    p.t
+                );
+            }
+            assert!(sol.trace.len() > 3);
+            assert!(
+                sol.trace.windows(2).all(|w| w[1].t > w[0].t),
+                "trace is time-ordered"
+            );
+            let peak_point = sol.trace.iter().find(|p| p.t == sol.t_peak).unwrap();
+            assert!(
+                peak_point.velocity.abs() < 1e-9 * m.v0(),
+                "δ̇ = 0 at the peak"
+            );
+        }
+    }
+}
+
+#[test]
+fn stopping_at_the_peak_saves_work() {
+    let m = model(2e2, 1e8, 2.0);
+    let full = integrate(&m, &OdeOptions::new(1e-10).unwrap()).unwrap();
+    let half = integrate(&m, &OdeOptions::new(1e-10).unwrap().stop(StopAt::Peak)).unwrap();
+    assert_eq!(half.peak.f_max, full.peak.f_max);
+    assert!(half.contact_duration.is_none());
+    assert!(
+        half.rhs_evals < full.rhs_evals,
+        "{} vs {}",
+        half.rhs_evals,
+        full.rhs_evals
+    );
+}
+
+#[test]
+fn invalid_tolerance_is_rejected() {
+    for rtol in [0.0, -1.0, 1.0, f64::NAN, 1e-16] {
+        let e = OdeOptions::new(rtol).unwrap_err().to_string();
+        assert!(e.contains("rtol"), "{e}");
+    }
+}
