@@ -1,0 +1,229 @@
+//! Assembly of the global residual and its Jacobian over the free DOFs.
+//!
+//! Residual (one entry per DOF, constrained ones hold the reactions):
+//! r(q, q̇, q̈) = f_int(q) + f_damp(q, q̇) + f_in(q, q̇, q̈) + f_root − f_ext,
+//! with f_damp = a₀ M(q) q̇ + a₁ Σ Bᵀ K_l B q̇ (Rayleigh), f_root = k_θ θ₀ + c_θ θ̇₀ + J_hub θ̈₀,
+//! point masses m q̈ and rotary inertias J θ̈ added at their nodes.
+//! Jacobian J = c_k ∂r/∂q + c_v ∂r/∂q̇ + c_a ∂r/∂q̈ (the ∂/∂q of the a₁ damping term is
+//! neglected; it only slows Newton when a₁ > 0).
+
+use nalgebra::{Matrix6, Vector6};
+
+use crate::banded::BandMatrix;
+use crate::corotational::corotational_element;
+use crate::element::{consistent_inertia, linear_stiffness, lumped_mass};
+use crate::model::{BeamModel, Kinematics, MassMatrix};
+
+/// Half-bandwidth of the node-ordered system (one element spans 6 consecutive DOFs).
+pub const HALF_BANDWIDTH: usize = 5;
+
+/// Weights of the Jacobian J = c_k ∂r/∂q + c_v ∂r/∂q̇ + c_a ∂r/∂q̈.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JacobianWeights {
+    /// Weight of ∂r/∂q.
+    pub stiffness: f64,
+    /// Weight of ∂r/∂q̇.
+    pub velocity: f64,
+    /// Weight of ∂r/∂q̈.
+    pub acceleration: f64,
+}
+
+/// A zero band matrix for the free DOFs of `model`.
+pub fn band_for(model: &BeamModel) -> BandMatrix {
+    BandMatrix::zeros(model.n_free(), HALF_BANDWIDTH, HALF_BANDWIDTH)
+}
+
+/// Kinematic input of an evaluation: displacements, and for dynamics velocities and
+/// accelerations (all with one entry per DOF).
+#[derive(Debug, Clone, Copy)]
+pub struct Kinematic<'a> {
+    /// q [m, rad].
+    pub q: &'a [f64],
+    /// q̇, or `None` in statics.
+    pub v: Option<&'a [f64]>,
+    /// q̈, or `None` in statics.
+    pub a: Option<&'a [f64]>,
+}
+
+fn gather(x: &[f64], e: usize) -> Vector6<f64> {
+    Vector6::from_column_slice(&x[3 * e..3 * e + 6])
+}
+
+/// Assembles r = f_int + f_damp + f_in + f_root − f_ext into `r` and, if `jac` is given, the
+/// weighted Jacobian into the band matrix (over free DOFs; it is cleared first). Returns the
+/// sum of the element strain energies (plus the root spring) [J].
+pub fn assemble(
+    model: &BeamModel,
+    kin: Kinematic<'_>,
+    f_ext: &[f64],
+    r: &mut [f64],
+    mut jac: Option<(&mut BandMatrix, JacobianWeights)>,
+) -> f64 {
+    let nfix = model.n_fixed();
+    let sec = *model.section();
+    let l = model.element_length();
+    let damping = model.spec().damping;
+    let dynamic = kin.v.is_some() && kin.a.is_some();
+    let nonlinear = model.kinematics() == Kinematics::Corotational;
+    let lumped = model.spec().mass == MassMatrix::Lumped;
+    r.iter_mut().zip(f_ext).for_each(|(ri, fi)| *ri = -fi);
+    if let Some((band, _)) = jac.as_mut() {
+        band.clear();
+    }
+    let k_lin = linear_stiffness(l, sec.ea(), sec.ei());
+    let m_lump = lumped_mass(l, sec.rho_a());
+    let mut energy = 0.0;
+    for e in 0..model.n_elements() {
+        let p = gather(kin.q, e);
+        let (mut f, mut kt, kmat) = if nonlinear {
+            let ce = corotational_element(l, sec.ea(), sec.ei(), &p);
+            energy += ce.strain_energy;
+            (ce.force, ce.tangent, ce.material)
+        } else {
+            let f = k_lin * p;
+            energy += 0.5 * p.dot(&f);
+            (f, k_lin, k_lin)
+        };
+        let mut cv = Matrix6::zeros();
+        let mut ca = Matrix6::zeros();
+        if dynamic {
+            let pv = gather(kin.v.unwrap(), e);
+            let pa = gather(kin.a.unwrap(), e);
+            if damping.beta_stiffness > 0.0 {
+                f += kmat * pv * damping.beta_stiffness;
+                cv += kmat * damping.beta_stiffness;
+            }
+            if lumped {
+                for d in 0..6 {
+                    f[d] += m_lump[d] * (pa[d] + damping.alpha_mass * pv[d]);
+                    ca[(d, d)] = m_lump[d];
+                    cv[(d, d)] += damping.alpha_mass * m_lump[d];
+                }
+            } else {
+                let acc = pa + pv * damping.alpha_mass;
+                let inert = consistent_inertia(
+                    l,
+                    sec.rho_a(),
+                    [p[2], p[5]],
+                    [pv[2], pv[5]],
+                    &acc,
+                    nonlinear,
+                );
+                f += inert.force;
+                ca = inert.mass;
+                cv += inert.d_dv + inert.mass * damping.alpha_mass;
+                kt += inert.d_dq;
+            }
+        }
+        for d in 0..6 {
+            r[3 * e + d] += f[d];
+        }
+        if let Some((band, w)) = jac.as_mut() {
+            for d in 0..6 {
+                let gd = 3 * e + d;
+                if gd < nfix {
+                    continue;
+                }
+                for k in 0..6 {
+                    let gk = 3 * e + k;
+                    if gk < nfix {
+                        continue;
+                    }
+                    let v = w.stiffness * kt[(d, k)]
+                        + w.velocity * cv[(d, k)]
+                        + w.acceleration * ca[(d, k)];
+                    band.add(gd - nfix, gk - nfix, v);
+                }
+            }
+        }
+    }
+    // Root spring, damper and hub inertia on θ₀.
+    let (k_theta, c_theta, j_hub) = model.root().spring_damper_inertia();
+    if nfix == 2 {
+        let mut f = k_theta * kin.q[2];
+        energy += 0.5 * k_theta * kin.q[2] * kin.q[2];
+        let (mut cv, mut ca) = (0.0, 0.0);
+        if dynamic {
+            let (v, a) = (kin.v.unwrap()[2], kin.a.unwrap()[2]);
+            f += c_theta * v + j_hub * (a + damping.alpha_mass * v);
+            cv = c_theta + damping.alpha_mass * j_hub;
+            ca = j_hub;
+        }
+        r[2] += f;
+        if let Some((band, w)) = jac.as_mut() {
+            band.add(
+                0,
+                0,
+                w.stiffness * k_theta + w.velocity * cv + w.acceleration * ca,
+            );
+        }
+    }
+    // Point masses and rotary inertias.
+    if dynamic {
+        let (v, a) = (kin.v.unwrap(), kin.a.unwrap());
+        for pm in &model.spec().point_masses {
+            for (d, m) in [(0, pm.mass), (1, pm.mass), (2, pm.inertia)] {
+                let g = 3 * pm.node + d;
+                r[g] += m * (a[g] + damping.alpha_mass * v[g]);
+                if g >= nfix
+                    && let Some((band, w)) = jac.as_mut()
+                {
+                    band.add(
+                        g - nfix,
+                        g - nfix,
+                        w.acceleration * m + w.velocity * damping.alpha_mass * m,
+                    );
+                }
+            }
+        }
+    }
+    energy
+}
+
+/// Kinetic energy ½ q̇ᵀ M(q) q̇ of the beam, its point masses and the hub [J].
+pub fn kinetic_energy(model: &BeamModel, q: &[f64], v: &[f64]) -> f64 {
+    let sec = model.section();
+    let l = model.element_length();
+    let nonlinear = model.kinematics() == Kinematics::Corotational;
+    let mut t = 0.0;
+    for e in 0..model.n_elements() {
+        let pv = gather(v, e);
+        match model.spec().mass {
+            MassMatrix::Lumped => {
+                let m = lumped_mass(l, sec.rho_a());
+                t += 0.5 * (0..6).map(|d| m[d] * pv[d] * pv[d]).sum::<f64>();
+            }
+            MassMatrix::Consistent => {
+                // f_in with a = q̇ and θ̇ = 0 gives M(q) q̇.
+                let p = gather(q, e);
+                let inert =
+                    consistent_inertia(l, sec.rho_a(), [p[2], p[5]], [0.0; 2], &pv, nonlinear);
+                t += 0.5 * pv.dot(&inert.force);
+            }
+        }
+    }
+    for pm in &model.spec().point_masses {
+        let g = 3 * pm.node;
+        t += 0.5
+            * (pm.mass * (v[g] * v[g] + v[g + 1] * v[g + 1]) + pm.inertia * v[g + 2] * v[g + 2]);
+    }
+    let (_, _, j_hub) = model.root().spring_damper_inertia();
+    t + 0.5 * j_hub * v[2] * v[2]
+}
+
+/// Strain energy of the elements and the root spring [J].
+pub fn strain_energy(model: &BeamModel, q: &[f64]) -> f64 {
+    let zeros = vec![0.0; q.len()];
+    let mut r = vec![0.0; q.len()];
+    assemble(
+        model,
+        Kinematic {
+            q,
+            v: None,
+            a: None,
+        },
+        &zeros,
+        &mut r,
+        None,
+    )
+}

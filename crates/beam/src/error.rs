@@ -1,0 +1,97 @@
+//! The error type of the beam crate.
+
+/// Errors of the beam crate; every variant names the offending field or the failing solver step.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BeamError {
+    /// A model parameter is out of its allowed range.
+    #[error("invalid {field} = {value}: {allowed}")]
+    InvalidParameter {
+        /// Name of the parameter (the CLI flag or the struct field).
+        field: String,
+        /// The rejected value, as given.
+        value: String,
+        /// What is allowed.
+        allowed: String,
+    },
+    /// Newton–Raphson did not converge.
+    #[error(
+        "{solver}: Newton did not converge at load level {load_level:.4} after {iterations} \
+         iterations (residual {residual:.3e}); try more load steps or a smaller time step"
+    )]
+    NotConverged {
+        /// Which solver (e.g. "corotational static solve", "generalized-α step").
+        solver: String,
+        /// Fraction of the load reached (statics) or 1 (dynamics).
+        load_level: f64,
+        /// Iterations spent at that level.
+        iterations: usize,
+        /// The last residual norm, in N.
+        residual: f64,
+    },
+    /// A system matrix is singular (e.g. a static load on a pinned root without a spring).
+    #[error("singular {what} at free degree of freedom {dof}: {hint}")]
+    Singular {
+        /// Which matrix.
+        what: String,
+        /// The free DOF index at which the zero pivot appeared.
+        dof: usize,
+        /// The likely cause.
+        hint: String,
+    },
+    /// The state became non-finite (NaN or infinite).
+    #[error("non-finite {what}: the solution diverged")]
+    NonFinite {
+        /// What became non-finite.
+        what: String,
+    },
+    /// The eigen-solver failed.
+    #[error("eigen-solver failed: {0}")]
+    Eigen(String),
+}
+
+impl BeamError {
+    /// True when the error is caused by bad input (exit code 2 in the CLI).
+    pub fn is_input_error(&self) -> bool {
+        matches!(self, BeamError::InvalidParameter { .. })
+    }
+
+    /// Shorthand for [`BeamError::InvalidParameter`].
+    pub fn invalid(
+        field: impl Into<String>,
+        value: impl ToString,
+        allowed: impl Into<String>,
+    ) -> Self {
+        BeamError::InvalidParameter {
+            field: field.into(),
+            value: value.to_string(),
+            allowed: allowed.into(),
+        }
+    }
+}
+
+/// Checks that `value` is finite and > 0.
+pub(crate) fn positive(field: &str, value: f64) -> Result<f64, BeamError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(BeamError::invalid(field, value, "a finite number > 0"))
+    }
+}
+
+/// Checks that `value` is finite and ≥ 0.
+pub(crate) fn non_negative(field: &str, value: f64) -> Result<f64, BeamError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(BeamError::invalid(field, value, "a finite number ≥ 0"))
+    }
+}
+
+/// Checks that `value` is finite.
+pub(crate) fn finite(field: &str, value: f64) -> Result<f64, BeamError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(BeamError::invalid(field, value, "a finite number"))
+    }
+}

@@ -1,0 +1,43 @@
+//! flexrig-beam: a planar finite-element Euler–Bernoulli beam that replaces the ADAMS flexible
+//! link of the paper (§VI).
+//!
+//! * [`section`]: the cross-section (EA, EI, ρA) from a material and a rectangle or given directly.
+//! * [`model`]: the validated, serialisable [`BeamModel`] (mesh, root support, point masses,
+//!   kinematics, mass lumping, Rayleigh damping) and the [`NodalLoads`] applied to it.
+//! * [`element`]: the linear two-node Hermite-cubic element (stiffness) and the element inertia
+//!   (consistent, rotation-invariant, or lumped mass).
+//! * [`corotational`]: the corotational element for large displacement and rotation with its
+//!   analytic tangent.
+//! * [`banded`]: a banded LU factorisation (partial pivoting), O(N) per solve.
+//! * [`statics`], [`modal`], [`dynamics`] (generalized-α), [`energy`]: the solvers.
+//! * [`prb`]: the Pseudo-Rigid-Body (γ, K_Θ) fit to the corotational tip path (Howell's method).
+//! * [`canonical`]: canonical problems and their published references, shared by tests, benches
+//!   and the CLI.
+//!
+//! Every length is in m, force in N, moment in N·m, mass in kg, time in s, angle in rad.
+//! Degrees of freedom: node `i` (0 at the root, `N` at the tip) carries `(u, v, θ)` at indices
+//! `3i, 3i+1, 3i+2`; u is along the undeformed beam axis (x), v transverse (y), θ the section
+//! rotation (counter-clockwise).
+
+pub mod assembly;
+pub mod banded;
+pub mod canonical;
+pub mod corotational;
+pub mod dynamics;
+pub mod element;
+pub mod energy;
+mod error;
+pub mod modal;
+pub mod model;
+pub mod prb;
+pub mod section;
+pub mod statics;
+
+pub use dynamics::{GeneralizedAlpha, State, StepReport, Workspace};
+pub use error::BeamError;
+pub use modal::{ModalAnalysis, ModalDirection, modal_analysis};
+pub use model::{
+    BeamModel, BeamSpec, Kinematics, MassMatrix, NodalLoads, PointMass, Rayleigh, RootSupport,
+};
+pub use section::{Material, Section};
+pub use statics::{StaticOptions, StaticSolution, solve_static};

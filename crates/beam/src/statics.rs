@@ -1,0 +1,219 @@
+//! Static solution: one banded solve K q = F for the linear model; Newton–Raphson with load
+//! stepping for the corotational model.
+//!
+//! Corotational: for load levels λ_k = k/K (k = 1..K) solve r(q) = f_int(q) − λ_k F = 0 by
+//! Newton, K_t Δq = −r, starting from the converged state of the previous level. Converged when
+//! ‖r‖∞ ≤ tol·max(‖λ_k F‖∞, ‖f_int‖∞) (reactions excluded) or ‖Δq‖∞ ≤ tol·L.
+
+use crate::BeamError;
+use crate::assembly::{JacobianWeights, Kinematic, assemble, band_for};
+use crate::model::{BeamModel, Kinematics, NodalLoads};
+
+/// Newton settings for the static solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StaticOptions {
+    load_steps: usize,
+    max_iterations: usize,
+    tolerance: f64,
+}
+
+impl StaticOptions {
+    /// `load_steps` ≥ 1 load increments, at most `max_iterations` ≥ 1 Newton iterations per
+    /// increment, relative `tolerance` in (0, 1e-2].
+    pub fn new(
+        load_steps: usize,
+        max_iterations: usize,
+        tolerance: f64,
+    ) -> Result<Self, BeamError> {
+        if load_steps == 0 || load_steps > 1_000_000 {
+            return Err(BeamError::invalid(
+                "load-steps",
+                load_steps,
+                "an integer from 1 to 1000000",
+            ));
+        }
+        if max_iterations == 0 {
+            return Err(BeamError::invalid(
+                "max_iterations",
+                max_iterations,
+                "an integer ≥ 1",
+            ));
+        }
+        if !(tolerance > 0.0 && tolerance <= 1e-2) {
+            return Err(BeamError::invalid(
+                "tolerance",
+                tolerance,
+                "a number in (0, 1e-2]",
+            ));
+        }
+        Ok(StaticOptions {
+            load_steps,
+            max_iterations,
+            tolerance,
+        })
+    }
+    /// `load_steps` increments, 30 iterations, tolerance 1e-10.
+    pub fn with_load_steps(load_steps: usize) -> Result<Self, BeamError> {
+        Self::new(load_steps, 30, 1e-10)
+    }
+}
+
+/// A converged static solution.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StaticSolution {
+    /// Displacements, one entry per DOF [m, rad].
+    pub q: Vec<f64>,
+    /// Total Newton iterations (1 for the linear model).
+    pub iterations: usize,
+    /// Final residual ‖r‖∞ over the free DOFs [N].
+    pub residual: f64,
+    /// Load level reached (1 when converged).
+    pub load_level: f64,
+    /// Reactions at the constrained root DOFs [N, N·m].
+    pub reactions: Vec<f64>,
+}
+
+impl StaticSolution {
+    /// (u, v, θ) of node `i`.
+    pub fn node(&self, i: usize) -> (f64, f64, f64) {
+        (self.q[3 * i], self.q[3 * i + 1], self.q[3 * i + 2])
+    }
+}
+
+/// Solves the static problem under the dead `loads`.
+pub fn solve_static(
+    model: &BeamModel,
+    loads: &NodalLoads,
+    options: &StaticOptions,
+) -> Result<StaticSolution, BeamError> {
+    let start = NodalLoads::zeros(model);
+    solve_static_from(model, &start, &vec![0.0; model.n_dofs()], loads, options)
+}
+
+/// Continuation: from the equilibrium `q_start` under `start` to the equilibrium under `loads`,
+/// with the loads interpolated linearly over the load steps (used to trace load paths).
+pub fn solve_static_from(
+    model: &BeamModel,
+    start: &NodalLoads,
+    q_start: &[f64],
+    loads: &NodalLoads,
+    options: &StaticOptions,
+) -> Result<StaticSolution, BeamError> {
+    loads.check(model)?;
+    start.check(model)?;
+    let n = model.n_dofs();
+    if q_start.len() != n || q_start.iter().any(|x| !x.is_finite()) {
+        return Err(BeamError::invalid(
+            "q_start",
+            format!("{} entries", q_start.len()),
+            format!("{n} finite entries"),
+        ));
+    }
+    let nfix = model.n_fixed();
+    let mut q = q_start.to_vec();
+    let f_start = start.as_slice();
+    let mut r = vec![0.0; n];
+    let mut band = band_for(model);
+    let w = JacobianWeights {
+        stiffness: 1.0,
+        velocity: 0.0,
+        acceleration: 0.0,
+    };
+    let steps = match model.kinematics() {
+        Kinematics::Linear => 1,
+        Kinematics::Corotational => options.load_steps,
+    };
+    let f_full = loads.as_slice();
+    let f_scale = f_full[nfix..]
+        .iter()
+        .chain(&f_start[nfix..])
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let mut f = vec![0.0; n];
+    let mut total_iterations = 0;
+    let mut residual = 0.0;
+    let mut dq = vec![0.0; n - nfix];
+    for step in 1..=steps {
+        let lambda = step as f64 / steps as f64;
+        for i in 0..n {
+            f[i] = f_start[i] + lambda * (f_full[i] - f_start[i]);
+        }
+        let mut converged = false;
+        let mut iterations = 0;
+        while iterations < options.max_iterations {
+            let kin = Kinematic {
+                q: &q,
+                v: None,
+                a: None,
+            };
+            assemble(model, kin, &f, &mut r, Some((&mut band, w)));
+            residual = r[nfix..].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            if !residual.is_finite() {
+                return Err(BeamError::NonFinite {
+                    what: "static residual".into(),
+                });
+            }
+            let f_int_scale = r[nfix..]
+                .iter()
+                .zip(&f[nfix..])
+                .fold(0.0f64, |m, (ri, fi)| m.max((ri + fi).abs()));
+            let scale = f_scale.max(f_int_scale);
+            if iterations > 0 && residual <= options.tolerance * scale {
+                converged = true;
+                break;
+            }
+            if scale == 0.0 {
+                converged = true;
+                break;
+            }
+            band.factorize("tangent stiffness")?;
+            dq.iter_mut().zip(&r[nfix..]).for_each(|(d, ri)| *d = -ri);
+            band.solve_in_place(&mut dq);
+            iterations += 1;
+            let mut dmax = 0.0f64;
+            for (qi, d) in q[nfix..].iter_mut().zip(&dq) {
+                *qi += d;
+                dmax = dmax.max(d.abs());
+            }
+            if model.kinematics() == Kinematics::Linear {
+                converged = true;
+                break;
+            }
+            if dmax <= options.tolerance * 1e-3 * model.length() {
+                // increment at round-off level: accept after one last residual evaluation
+                let kin = Kinematic {
+                    q: &q,
+                    v: None,
+                    a: None,
+                };
+                assemble(model, kin, &f, &mut r, None);
+                residual = r[nfix..].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                converged = true;
+                break;
+            }
+        }
+        total_iterations += iterations;
+        if !converged {
+            return Err(BeamError::NotConverged {
+                solver: "corotational static solve".into(),
+                load_level: lambda,
+                iterations,
+                residual,
+            });
+        }
+    }
+    // Final residual and reactions.
+    let kin = Kinematic {
+        q: &q,
+        v: None,
+        a: None,
+    };
+    assemble(model, kin, f_full, &mut r, None);
+    residual = r[nfix..].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    Ok(StaticSolution {
+        reactions: r[..nfix].to_vec(),
+        q,
+        iterations: total_iterations,
+        residual,
+        load_level: 1.0,
+    })
+}
