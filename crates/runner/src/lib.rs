@@ -8,5 +8,6 @@ pub mod cli;
 pub mod commands;
 pub mod error;
 pub mod output;
+pub mod plots;
 
 pub use error::CliError;

@@ -1,0 +1,185 @@
+//! `flexrig impact`: the peak force of the lumped two-mass impact (paper Eq. 10–14).
+
+use std::io::Write;
+
+use clap::{Args, ValueEnum};
+use flexrig_contact::{Hertz, SeriesCompliance};
+use flexrig_lumped::ode::{DEFAULT_RTOL, OdeOptions, integrate};
+use flexrig_lumped::prb::PrbLink;
+use flexrig_lumped::{ImpactModel, Peak, peak_analytic, peak_exact};
+use serde_json::json;
+
+use crate::CliError;
+use crate::output::{left_open_arg, line, non_negative_arg, positive_arg, print_json};
+
+/// How the peak is computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Method {
+    /// Energy balance ½ μ v0² = U(f_max): exact for any Hertz exponent.
+    Exact,
+    /// Closed form f_max = v0 √(k_o μ) (Eq. 13): only for n = 1.
+    Analytic,
+    /// Time integration (8th-order adaptive Runge–Kutta) from contact to separation.
+    Ode,
+}
+
+impl Method {
+    fn name(self) -> &'static str {
+        match self {
+            Method::Exact => "exact",
+            Method::Analytic => "analytic",
+            Method::Ode => "ode",
+        }
+    }
+}
+
+/// Arguments of `flexrig impact`.
+#[derive(Debug, Args)]
+#[command(allow_negative_numbers = true)]
+pub struct ImpactArgs {
+    /// Human (operator) mass m_h [kg].
+    #[arg(long = "m-h", value_name = "KG")]
+    pub m_h: f64,
+    /// Effective robot mass m_eff [kg]; or give --gamma, --m-r and --m-e for m_eff = m_e + γ m_r/3.
+    #[arg(long = "m-eff", value_name = "KG", required_unless_present_all = ["gamma", "m_r", "m_e"], conflicts_with_all = ["gamma", "m_r", "m_e"])]
+    pub m_eff: Option<f64>,
+    /// PRB characteristic radius γ ∈ (0, 1] (1: compliant joint, 2/3: compliant link).
+    #[arg(long, value_name = "G", requires_all = ["m_r", "m_e"])]
+    pub gamma: Option<f64>,
+    /// Robot link mass m_r [kg] (with --gamma).
+    #[arg(long = "m-r", value_name = "KG", requires_all = ["gamma", "m_e"])]
+    pub m_r: Option<f64>,
+    /// Payload (end mass) m_e [kg] (with --gamma).
+    #[arg(long = "m-e", value_name = "KG", requires_all = ["gamma", "m_r"])]
+    pub m_e: Option<f64>,
+    /// Link lateral stiffness k_δ [N/m].
+    #[arg(long = "k-delta", value_name = "N_PER_M")]
+    pub k_delta: f64,
+    /// Contact stiffness k_c [N/m^n].
+    #[arg(long = "k-c", value_name = "K")]
+    pub k_c: f64,
+    /// Hertz exponent n.
+    #[arg(long, value_name = "N")]
+    pub n: f64,
+    /// Approach speed v0 [m/s].
+    #[arg(long, value_name = "M_PER_S")]
+    pub v0: f64,
+    /// Solution method.
+    #[arg(long, value_enum, default_value_t = Method::Exact)]
+    pub method: Method,
+    /// Relative tolerance of the ode method.
+    #[arg(long, value_name = "R", default_value_t = DEFAULT_RTOL)]
+    pub rtol: f64,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The validated impact of the arguments.
+pub fn model(args: &ImpactArgs) -> Result<ImpactModel, CliError> {
+    let m_h = positive_arg("--m-h", args.m_h)?;
+    let m_eff = match (args.m_eff, args.gamma, args.m_r, args.m_e) {
+        (Some(m_eff), ..) => positive_arg("--m-eff", m_eff)?,
+        (None, Some(gamma), Some(m_r), Some(m_e)) => PrbLink::new(
+            left_open_arg("--gamma", gamma, 0.0, 1.0)?,
+            positive_arg("--m-r", m_r)?,
+            non_negative_arg("--m-e", m_e)?,
+        )?
+        .effective_mass(),
+        _ => {
+            return Err(CliError::InvalidArgument {
+                arg: "--m-eff".into(),
+                value: "(missing)".into(),
+                allowed: "give --m-eff, or all of --gamma, --m-r and --m-e".into(),
+            });
+        }
+    };
+    let k_delta = positive_arg("--k-delta", args.k_delta)?;
+    let k_c = positive_arg("--k-c", args.k_c)?;
+    let n = left_open_arg("--n", args.n, 0.0, flexrig_contact::MAX_EXPONENT)?;
+    let v0 = positive_arg("--v0", args.v0)?;
+    let spring = SeriesCompliance::new(k_delta, Hertz::new(k_c, n)?)?;
+    Ok(ImpactModel::new(m_h, m_eff, spring, v0)?)
+}
+
+/// Runs `flexrig impact`.
+pub fn run(args: &ImpactArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let model = model(args)?;
+    let mut report = json!({
+        "method": args.method.name(),
+        "m_h_kg": model.m_h(),
+        "m_eff_kg": model.m_eff(),
+        "mu_kg": model.reduced_mass(),
+        "impact_energy_j": model.impact_energy(),
+    });
+    let peak: Peak = match args.method {
+        Method::Exact => peak_exact(&model),
+        Method::Analytic => {
+            let a = peak_analytic(&model)?;
+            report["k_o_n_per_m"] = json!(a.k_o);
+            report["t_peak_s"] = json!(a.t_peak);
+            report["contact_duration_s"] = json!(a.contact_duration);
+            a.peak
+        }
+        Method::Ode => {
+            let options = OdeOptions::new(args.rtol).map_err(|_| CliError::InvalidArgument {
+                arg: "--rtol".into(),
+                value: args.rtol.to_string(),
+                allowed: "must lie in [1e-14, 0.1]".into(),
+            })?;
+            let sol = integrate(&model, &options)?;
+            report["rtol"] = json!(args.rtol);
+            report["t_peak_s"] = json!(sol.t_peak);
+            report["contact_duration_s"] = json!(sol.contact_duration);
+            report["separation_speed_mps"] = json!(sol.separation_speed);
+            report["rhs_evals"] = json!(sol.rhs_evals);
+            report["steps"] = json!(sol.steps);
+            report["rejected_steps"] = json!(sol.rejected_steps);
+            sol.peak
+        }
+    };
+    report["f_max_n"] = json!(peak.f_max);
+    report["delta_max_m"] = json!(peak.delta_max);
+    report["indentation_max_m"] = json!(peak.indentation_max);
+    report["link_deflection_max_m"] = json!(peak.link_deflection_max);
+    if args.json {
+        return print_json(out, &report);
+    }
+    print_text(out, &report)
+}
+
+fn print_text(out: &mut dyn Write, report: &serde_json::Value) -> Result<(), CliError> {
+    let rows: [(&str, &str, &str); 14] = [
+        ("method", "method", ""),
+        ("peak force f_max", "f_max_n", "N"),
+        ("peak displacement δ_max", "delta_max_m", "m"),
+        ("  contact indentation δ_c", "indentation_max_m", "m"),
+        ("  link deflection δ_l", "link_deflection_max_m", "m"),
+        ("effective mass m_eff", "m_eff_kg", "kg"),
+        ("reduced mass μ", "mu_kg", "kg"),
+        ("impact energy ½μv0²", "impact_energy_j", "J"),
+        ("overall stiffness k_o", "k_o_n_per_m", "N/m"),
+        ("time to peak", "t_peak_s", "s"),
+        ("contact duration", "contact_duration_s", "s"),
+        ("separation speed", "separation_speed_mps", "m/s"),
+        ("right-hand-side evaluations", "rhs_evals", ""),
+        ("steps (rejected)", "steps", ""),
+    ];
+    for (label, key, unit) in rows {
+        let Some(value) = report.get(key) else {
+            continue;
+        };
+        let text = match value {
+            serde_json::Value::Number(x) if key == "steps" => {
+                format!("{x} ({})", report["rejected_steps"])
+            }
+            serde_json::Value::Number(x) if x.is_f64() => {
+                format!("{:.10e}", x.as_f64().unwrap_or(f64::NAN))
+            }
+            serde_json::Value::String(s) => s.clone(),
+            other => other.to_string(),
+        };
+        line(out, format!("{label:<30} {text} {unit}"))?;
+    }
+    Ok(())
+}

@@ -1,0 +1,81 @@
+//! Output helpers: files are written completely or not at all (a temporary file in the same
+//! directory, renamed into place), and JSON goes to the report writer.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use crate::CliError;
+
+/// Creates `dir` (and parents) if needed.
+pub fn ensure_dir(dir: &Path) -> Result<(), CliError> {
+    std::fs::create_dir_all(dir).map_err(|e| CliError::write(dir, e))
+}
+
+/// Writes `bytes` to `path` atomically: a half-written file is never left at `path`.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+    let tmp = temporary_sibling(path);
+    let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(CliError::write(path, e));
+    }
+    Ok(())
+}
+
+fn temporary_sibling(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
+}
+
+/// Writes `value` as pretty JSON and a newline to the report.
+pub fn print_json(out: &mut dyn Write, value: &serde_json::Value) -> Result<(), CliError> {
+    let text = serde_json::to_string_pretty(value).expect("a serde_json::Value always serialises");
+    writeln!(out, "{text}").map_err(|e| CliError::write("<stdout>", e))
+}
+
+/// Writes one line of text to the report.
+pub fn line(out: &mut dyn Write, text: impl std::fmt::Display) -> Result<(), CliError> {
+    writeln!(out, "{text}").map_err(|e| CliError::write("<stdout>", e))
+}
+
+/// Checks that a command-line number is finite and > 0, naming the flag otherwise.
+pub fn positive_arg(flag: &str, value: f64) -> Result<f64, CliError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(CliError::InvalidArgument {
+            arg: flag.into(),
+            value: value.to_string(),
+            allowed: "must be a finite number > 0".into(),
+        })
+    }
+}
+
+/// Checks that a command-line number is finite and ≥ 0, naming the flag otherwise.
+pub fn non_negative_arg(flag: &str, value: f64) -> Result<f64, CliError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(CliError::InvalidArgument {
+            arg: flag.into(),
+            value: value.to_string(),
+            allowed: "must be a finite number >= 0".into(),
+        })
+    }
+}
+
+/// Checks that a command-line number lies in (lo, hi], naming the flag otherwise.
+pub fn left_open_arg(flag: &str, value: f64, lo: f64, hi: f64) -> Result<f64, CliError> {
+    if value.is_finite() && value > lo && value <= hi {
+        Ok(value)
+    } else {
+        Err(CliError::InvalidArgument {
+            arg: flag.into(),
+            value: value.to_string(),
+            allowed: format!("must lie in ({lo}, {hi}]"),
+        })
+    }
+}

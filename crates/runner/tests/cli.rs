@@ -1,0 +1,275 @@
+//! End-to-end tests of the `flexrig` binary: JSON output against independent references, files
+//! written, and bad input rejected with exit code 2 and the flag named.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn flexrig(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_flexrig"))
+        .args(args)
+        .output()
+        .expect("the flexrig binary runs")
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = flexrig(args);
+    assert!(
+        out.status.success(),
+        "{args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("valid JSON on stdout")
+}
+
+fn scratch_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("flexrig-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    ((a - b) / b).abs()
+}
+
+const FIG6_CJ: [&str; 15] = [
+    "impact",
+    "--m-h",
+    "4",
+    "--gamma",
+    "1",
+    "--m-r",
+    "10",
+    "--m-e",
+    "0.1",
+    "--k-delta",
+    "1e8",
+    "--k-c",
+    "1e8",
+    "--v0",
+    "2",
+];
+
+#[test]
+fn impact_methods_agree_with_the_references() {
+    // references.md: 19222.55775 N (n = 1) and 2296.617006 N (n = 2).
+    for (n, reference) in [("1", 19222.55775), ("2", 2296.617006)] {
+        for method in ["exact", "ode"] {
+            let mut args = FIG6_CJ.to_vec();
+            args.extend(["--n", n, "--method", method, "--rtol", "1e-12", "--json"]);
+            let v = json(&args);
+            assert_eq!(v["method"], method);
+            let f = v["f_max_n"].as_f64().unwrap();
+            assert!(rel(f, reference) < 5e-10, "{method} n = {n}: {f}");
+            assert!(v["delta_max_m"].as_f64().unwrap() > 0.0);
+            if method == "ode" {
+                let t_peak = v["t_peak_s"].as_f64().unwrap();
+                let duration = v["contact_duration_s"].as_f64().unwrap();
+                assert!(rel(duration, 2.0 * t_peak) < 1e-8);
+                assert!(v["rhs_evals"].as_u64().unwrap() > 0);
+            }
+        }
+    }
+    let mut args = FIG6_CJ.to_vec();
+    args.extend(["--n", "1", "--method", "analytic", "--json"]);
+    let v = json(&args);
+    assert!(rel(v["f_max_n"].as_f64().unwrap(), 19222.55775) < 5e-10);
+}
+
+#[test]
+fn impact_text_report() {
+    let mut args = FIG6_CJ.to_vec();
+    args.extend(["--n", "2"]);
+    let out = flexrig(&args);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains("peak force f_max") && text.contains("2.2966170057e3"),
+        "{text}"
+    );
+}
+
+#[test]
+fn bad_impact_input_names_the_flag_and_exits_2() {
+    let base = [
+        "impact",
+        "--m-h",
+        "4",
+        "--m-eff",
+        "1",
+        "--k-delta",
+        "1e8",
+        "--k-c",
+        "1e8",
+        "--n",
+        "2",
+        "--v0",
+        "2",
+    ];
+    for (flag, bad) in [
+        ("--m-h", "-4"),
+        ("--m-eff", "0"),
+        ("--k-delta", "NaN"),
+        ("--k-c", "inf"),
+        ("--n", "0"),
+        ("--n", "-1"),
+        ("--v0", "0"),
+    ] {
+        let mut args = base.to_vec();
+        let i = args.iter().position(|a| *a == flag).unwrap();
+        args[i + 1] = bad;
+        let out = flexrig(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{flag} {bad}: {err}");
+        assert!(err.contains(flag) && err.contains("must"), "{err}");
+        assert!(out.stdout.is_empty(), "no half report on stdout");
+    }
+    let mut args = FIG6_CJ.to_vec();
+    args.extend(["--n", "2"]);
+    args[4] = "1.5"; // --gamma
+    let out = flexrig(&args);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--gamma"));
+    // analytic needs n = 1
+    let mut args = base.to_vec();
+    args.extend(["--method", "analytic"]);
+    let out = flexrig(&args);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("n = 1"));
+    // rtol out of range
+    let mut args = base.to_vec();
+    args.extend(["--method", "ode", "--rtol", "0"]);
+    let out = flexrig(&args);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--rtol"));
+    // missing mass
+    let out = flexrig(&[
+        "impact",
+        "--m-h",
+        "4",
+        "--k-delta",
+        "1",
+        "--k-c",
+        "1",
+        "--n",
+        "1",
+        "--v0",
+        "1",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+}
+
+#[test]
+fn fig6_writes_csv_and_svg_and_reports_the_papers_etas() {
+    let dir = scratch_dir("fig6");
+    let v = json(&[
+        "fig6",
+        "--out",
+        dir.to_str().unwrap(),
+        "--points",
+        "11",
+        "--json",
+    ]);
+    let cases = v["cases"].as_array().unwrap();
+    assert_eq!(cases.len(), 16);
+    for c in cases {
+        assert_eq!(c["gamma"].as_array().unwrap().len(), 11);
+        assert_eq!(c["eta"].as_array().unwrap().len(), 11);
+        let (m_h, m_e, n) = (
+            c["m_h"].as_f64().unwrap(),
+            c["m_e"].as_f64().unwrap(),
+            c["n"].as_f64().unwrap(),
+        );
+        let eta = c["eta_at_2_3"].as_f64().unwrap();
+        // The paper's η(2/3) = 0.89 (m_h = 4) and 0.82 (m_h = 1000) for m_e = 0.1, n = 1.
+        if m_e == 0.1 && n == 1.0 {
+            let paper = if m_h == 4.0 { 0.89 } else { 0.82 };
+            assert!((eta - paper).abs() < 0.005, "{c}");
+        }
+    }
+    let csv = std::fs::read_to_string(dir.join("fig6.csv")).unwrap();
+    assert!(csv.starts_with("m_h_kg,k_delta_n_per_m,m_e_kg,n,gamma,eta\n"));
+    assert_eq!(csv.lines().count(), 1 + 16 * 11);
+    let svg = std::fs::read_to_string(dir.join("fig6.svg")).unwrap();
+    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    assert!(svg.contains("η(2/3)=0.892 (n=1)"), "marked and labelled");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn fig6_rejects_too_few_points() {
+    let out = flexrig(&["fig6", "--points", "1", "--out", "/nonexistent/never"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--points"));
+}
+
+#[test]
+fn fit_recovers_a_known_law_from_a_csv() {
+    let dir = scratch_dir("fit");
+    let path = dir.join("data.csv");
+    let mut text = String::from("indentation_m,force_n\n");
+    for i in 1..=40 {
+        let d = 1e-4 * i as f64;
+        // Deterministic ±0.5 N "noise" with zero mean.
+        let noise = if i % 2 == 0 { 0.5 } else { -0.5 };
+        text.push_str(&format!("{d},{}\n", 7.359e7 * d.powf(1.961) + noise));
+    }
+    std::fs::write(&path, text).unwrap();
+    let v = json(&["fit", path.to_str().unwrap(), "--json"]);
+    let (k, n) = (v["k"].as_f64().unwrap(), v["n"].as_f64().unwrap());
+    let (k_se, n_se) = (
+        v["k_stderr"].as_f64().unwrap(),
+        v["n_stderr"].as_f64().unwrap(),
+    );
+    assert!((n - 1.961).abs() < 4.0 * n_se, "{v}");
+    assert!((k - 7.359e7).abs() < 4.0 * k_se, "{v}");
+    assert!(v["r2"].as_f64().unwrap() > 0.999);
+
+    let bad = dir.join("bad.csv");
+    std::fs::write(&bad, "indentation_m,force_n\n0.001,1\n0.002,oops\n").unwrap();
+    let out = flexrig(&["fit", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("line 3"));
+    std::fs::write(&bad, "").unwrap();
+    let out = flexrig(&["fit", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let out = flexrig(&["fit", dir.join("missing.csv").to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("missing.csv"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn default_job_runs_and_says_where_its_output_is() {
+    let dir = scratch_dir("default");
+    let out = Command::new(env!("CARGO_BIN_EXE_flexrig"))
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains("out/fig6.svg") || text.contains("out\\fig6.svg"),
+        "{text}"
+    );
+    assert!(dir.join("out/fig6.csv").exists() && dir.join("out/fig6.svg").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn every_command_has_help() {
+    for cmd in [
+        &["--help"][..],
+        &["impact", "--help"],
+        &["fig6", "--help"],
+        &["fit", "--help"],
+    ] {
+        let out = flexrig(cmd);
+        assert!(out.status.success(), "{cmd:?}");
+        assert!(!out.stdout.is_empty());
+    }
+}
