@@ -11,11 +11,14 @@
 //! (1 − α_m) â_{n+1} + α_m â_n = (1 − α_f) q̈_{n+1} + α_f q̈_n,
 //! q_{n+1} = q_n + h q̇_n + h² ((½ − β) â_n + β â_{n+1}),
 //! q̇_{n+1} = q̇_n + h ((1 − γ) â_n + γ â_{n+1}).
-//! Newton on q_{n+1} with the analytic Jacobian
+//! Newton on q_{n+1} (corrections scaled so that no rotation changes by more than
+//! [`crate::statics::MAX_ROTATION_INCREMENT`] per iteration: the corotational forces and the
+//! inertia are 2π-periodic in the nodal rotations, and an unlimited first iteration can land on
+//! a spurious solution with a node turned by 2π) with the analytic Jacobian
 //! S = ∂r/∂q + (γ/(βh)) ∂r/∂q̇ + ((1 − α_m)/((1 − α_f) β h²)) ∂r/∂q̈ (banded LU, O(N)).
-//! The step h may change every step (â_n is carried over; a change of h costs one step of
-//! first-order local error in the α-shifted acceleration, negligible when the rig only shrinks h
-//! at contact onset). The linear model needs one solve per step and reuses the factorisation
+//! The step h may change every step: â_n ≈ q̈(t_n + (α_m − α_f) h), so on a change from h to h′
+//! its offset is rescaled, â_n ← q̈_n + (â_n − q̈_n) h′/h, which keeps second order even when
+//! h changes every step (tested). The linear model needs one solve per step and reuses the factorisation
 //! while h is unchanged.
 
 use crate::BeamError;
@@ -101,6 +104,7 @@ pub struct State {
     /// q̈ [m/s², rad/s²].
     pub a: Vec<f64>,
     a_aux: Vec<f64>,
+    h_prev: Option<f64>,
     f_prev: Vec<f64>,
     external_work: f64,
     initial_energy: f64,
@@ -183,6 +187,7 @@ impl State {
             q: q0,
             v: v0,
             a_aux: a.clone(),
+            h_prev: None,
             a,
             f_prev: loads.as_slice().to_vec(),
             external_work: 0.0,
@@ -279,6 +284,16 @@ impl GeneralizedAlpha {
             velocity: g / (b * h),
             acceleration: (1.0 - am) / ((1.0 - af) * b * h * h),
         };
+        // â_n approximates q̈(t_n + (α_m − α_f) h): rescale its offset from q̈_n when h changes.
+        if let Some(hp) = state.h_prev
+            && hp != h
+        {
+            let r = h / hp;
+            for (ah, a) in state.a_aux.iter_mut().zip(&state.a) {
+                *ah = a + (*ah - a) * r;
+            }
+        }
+        state.h_prev = Some(h);
         // Predictor â_{n+1} = â_n.
         for i in 0..n {
             ws.q_new[i] = state.q[i] + h * state.v[i] + 0.5 * h * h * state.a_aux[i];
@@ -343,10 +358,11 @@ impl GeneralizedAlpha {
                 *d = -ri;
             }
             ws.band.solve_in_place(&mut ws.dq);
+            let s = crate::statics::rotation_limiter(&ws.dq, nfix);
             last = 0.0;
             for (qi, d) in ws.q_new[nfix..].iter_mut().zip(&ws.dq) {
-                *qi += d;
-                last = last.max(d.abs());
+                *qi += s * d;
+                last = last.max((s * d).abs());
             }
             if !last.is_finite() {
                 return Err(BeamError::NonFinite {

@@ -14,8 +14,9 @@
 //! section).
 //!
 //! **K_Θ.** Moment balance about the pin: K_Θ Θ = (PL²/EI) cos Θ. K_Θ is the least-squares slope
-//! through the origin over the traced points with Θ ≤ Θ_max (points uniform in PL²/EI):
-//! K_Θ = Σ Θᵢ Φᵢ cos Θᵢ / Σ Θᵢ², Φ = PL²/EI.
+//! through the origin over 0 < Θ ≤ Θ_max, uniform in Θ (trapezoidal weights wᵢ):
+//! K_Θ = Σ wᵢ Θᵢ Φᵢ cos Θᵢ / Σ wᵢ Θᵢ², Φ = PL²/EI (Howell's book quotes 2.67617; this
+//! continuous fit gives ≈ 2.70, depending on the weighting).
 //!
 //! **Small-deflection limit.** From the smallest traced load: γ₀ = (b/L)/θ_tip (→ 2/3) and
 //! K_Θ0 = Φ/θ_tip (→ 2).
@@ -177,12 +178,20 @@ pub fn fit_prb(path: &[TipPoint], measure: ErrorMeasure) -> Result<PrbFit, BeamE
         best.0
     };
     let th_max = theta_max(path, gamma, measure);
+    // least squares uniform in Θ: trapezoidal weights wᵢ = (Θᵢ₊₁ − Θᵢ₋₁)/2
+    let thetas: Vec<f64> = path
+        .iter()
+        .map(|p| prb_angle_and_error(p, gamma, measure).0)
+        .collect();
     let (mut num, mut den) = (0.0, 0.0);
-    for p in path {
-        let (th, _) = prb_angle_and_error(p, gamma, measure);
+    for (i, p) in path.iter().enumerate() {
+        let th = thetas[i];
         if th <= th_max {
-            num += th * p.load_index * th.cos();
-            den += th * th;
+            let lo = if i == 0 { 0.0 } else { thetas[i - 1] };
+            let hi = thetas.get(i + 1).copied().unwrap_or(th).min(th_max);
+            let w = 0.5 * (hi - lo);
+            num += w * th * p.load_index * th.cos();
+            den += w * th * th;
         }
     }
     let p0 = path[0];

@@ -2,12 +2,33 @@
 //! stepping for the corotational model.
 //!
 //! Corotational: for load levels λ_k = k/K (k = 1..K) solve r(q) = f_int(q) − λ_k F = 0 by
-//! Newton, K_t Δq = −r, starting from the converged state of the previous level. Converged when
+//! Newton, K_t Δq = −r (Δq scaled so no rotation changes by more than 0.5 rad), starting from the converged state of the previous level. Converged when
 //! ‖r‖∞ ≤ tol·max(‖λ_k F‖∞, ‖f_int‖∞) (reactions excluded) or ‖Δq‖∞ ≤ tol·L.
 
 use crate::BeamError;
 use crate::assembly::{JacobianWeights, Kinematic, assemble, band_for};
 use crate::model::{BeamModel, Kinematics, NodalLoads};
+
+/// Largest change of a nodal rotation in one Newton iteration [rad]; larger corrections are
+/// scaled down as a whole (damped Newton). The corotational element is 2π-periodic in the nodal
+/// rotations, so an unlimited step can converge to a node turned by a full turn.
+pub const MAX_ROTATION_INCREMENT: f64 = 0.5;
+
+/// Scale factor s ≤ 1 so that s·Δq changes no rotation DOF by more than
+/// [`MAX_ROTATION_INCREMENT`] (`dq` over the free DOFs, the first of which is global DOF `nfix`).
+pub fn rotation_limiter(dq: &[f64], nfix: usize) -> f64 {
+    let mut worst = 0.0f64;
+    for (i, d) in dq.iter().enumerate() {
+        if (i + nfix) % 3 == 2 {
+            worst = worst.max(d.abs());
+        }
+    }
+    if worst > MAX_ROTATION_INCREMENT {
+        MAX_ROTATION_INCREMENT / worst
+    } else {
+        1.0
+    }
+}
 
 /// Newton settings for the static solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -169,10 +190,11 @@ pub fn solve_static_from(
             dq.iter_mut().zip(&r[nfix..]).for_each(|(d, ri)| *d = -ri);
             band.solve_in_place(&mut dq);
             iterations += 1;
+            let s = rotation_limiter(&dq, nfix);
             let mut dmax = 0.0f64;
             for (qi, d) in q[nfix..].iter_mut().zip(&dq) {
-                *qi += d;
-                dmax = dmax.max(d.abs());
+                *qi += s * d;
+                dmax = dmax.max((s * d).abs());
             }
             if model.kinematics() == Kinematics::Linear {
                 converged = true;
