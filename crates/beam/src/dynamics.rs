@@ -358,7 +358,11 @@ impl GeneralizedAlpha {
                 *d = -ri;
             }
             ws.band.solve_in_place(&mut ws.dq);
-            let s = crate::statics::rotation_limiter(&ws.dq, nfix);
+            let s = if linear {
+                1.0
+            } else {
+                crate::statics::rotation_limiter(&ws.dq, nfix)
+            };
             last = 0.0;
             for (qi, d) in ws.q_new[nfix..].iter_mut().zip(&ws.dq) {
                 *qi += s * d;

@@ -190,7 +190,11 @@ pub fn solve_static_from(
             dq.iter_mut().zip(&r[nfix..]).for_each(|(d, ri)| *d = -ri);
             band.solve_in_place(&mut dq);
             iterations += 1;
-            let s = rotation_limiter(&dq, nfix);
+            let s = if model.kinematics() == Kinematics::Linear {
+                1.0
+            } else {
+                rotation_limiter(&dq, nfix)
+            };
             let mut dmax = 0.0f64;
             for (qi, d) in q[nfix..].iter_mut().zip(&dq) {
                 *qi += s * d;

@@ -1,4 +1,5 @@
 //! The one tolerance helper of the beam tests.
+#![allow(dead_code)]
 
 /// Asserts |got/want − 1| ≤ rel, naming `what`.
 #[track_caller]
