@@ -16,7 +16,11 @@ const RATIOS: [f64; 5] = [1e-6, 1e-4, 1e-2, 1.0, 1e2];
 
 #[test]
 fn peak_converges_to_the_exact_solution() {
-    for formulation in [Formulation::Indentation, Formulation::Displacement] {
+    for formulation in [
+        Formulation::Auto,
+        Formulation::Indentation,
+        Formulation::Displacement,
+    ] {
         for n in EXPONENTS {
             for ratio in RATIOS {
                 let m = model(1e8 * ratio, 1e8, n);

@@ -81,6 +81,8 @@ pub struct Dop853<const N: usize> {
     k: [[f64; N]; STAGES_EXTENDED],
     dense_ready: bool,
     last_rejected: bool,
+    /// (h, err) of the previous rejected attempt from the current point, if any.
+    rejected_attempt: Option<(f64, f64)>,
     stats: Dop853Stats,
 }
 
@@ -148,6 +150,7 @@ impl<const N: usize> Dop853<N> {
             k: [[0.0; N]; STAGES_EXTENDED],
             dense_ready: false,
             last_rejected: false,
+            rejected_attempt: None,
             stats,
         };
         s.h = match options.first_step {
@@ -286,12 +289,14 @@ impl<const N: usize> Dop853<N> {
                 self.h = h * factor;
                 self.dense_ready = false;
                 self.last_rejected = false;
+                self.rejected_attempt = None;
                 self.stats.accepted += 1;
                 return Ok(());
             }
             self.stats.rejected += 1;
             self.last_rejected = true;
-            self.h = h * (SAFETY * err.powf(-1.0 / 8.0)).max(MIN_FACTOR);
+            self.h = h * rejection_factor(h, err, self.rejected_attempt);
+            self.rejected_attempt = Some((h, err));
         }
     }
 
@@ -346,6 +351,22 @@ impl<const N: usize> Dop853<N> {
             y_old: self.y_old,
             coeffs,
         }
+    }
+}
+
+/// Step reduction after a rejected step of size `h` with error `err` > 1.
+///
+/// The textbook factor assumes the error scales like h^8. Where the solution is not smooth on
+/// the scale of the step (first contact, a stiffness knee, separation) it scales with a lower
+/// power and that factor needs many rejections to get there. After two rejections from the same
+/// point the observed order p = ln(err₁/err₂)/ln(h₁/h₂) (clamped to [1, 8]) is used instead.
+fn rejection_factor(h: f64, err: f64, previous: Option<(f64, f64)>) -> f64 {
+    match previous {
+        Some((h_prev, err_prev)) if h_prev > h && err_prev > err => {
+            let order = ((err_prev / err).ln() / (h_prev / h).ln()).clamp(1.0, 8.0);
+            (SAFETY * err.powf(-1.0 / order)).clamp(0.01, SAFETY)
+        }
+        _ => (SAFETY * err.powf(-1.0 / 8.0)).max(MIN_FACTOR),
     }
 }
 

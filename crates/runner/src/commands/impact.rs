@@ -4,7 +4,7 @@ use std::io::Write;
 
 use clap::{Args, ValueEnum};
 use flexrig_contact::{Hertz, SeriesCompliance};
-use flexrig_lumped::ode::{DEFAULT_RTOL, OdeOptions, integrate};
+use flexrig_lumped::ode::{DEFAULT_RTOL, Formulation, OdeOptions, integrate};
 use flexrig_lumped::prb::PrbLink;
 use flexrig_lumped::{ImpactModel, Peak, peak_analytic, peak_exact};
 use serde_json::json;
@@ -29,6 +29,27 @@ impl Method {
             Method::Exact => "exact",
             Method::Analytic => "analytic",
             Method::Ode => "ode",
+        }
+    }
+}
+
+/// State variables of the ode method (see `flexrig_lumped::ode::Formulation`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum FormulationArg {
+    /// Displacement state when the link deflection dominates, indentation state otherwise.
+    Auto,
+    /// State (δ_c, δ̇): explicit force.
+    Indentation,
+    /// State (δ, δ̇): a Newton solve of the series compliance per evaluation.
+    Displacement,
+}
+
+impl From<FormulationArg> for Formulation {
+    fn from(f: FormulationArg) -> Self {
+        match f {
+            FormulationArg::Auto => Formulation::Auto,
+            FormulationArg::Indentation => Formulation::Indentation,
+            FormulationArg::Displacement => Formulation::Displacement,
         }
     }
 }
@@ -67,6 +88,9 @@ pub struct ImpactArgs {
     /// Solution method.
     #[arg(long, value_enum, default_value_t = Method::Exact)]
     pub method: Method,
+    /// State variables of the ode method: auto, indentation (δ_c, δ̇) or displacement (δ, δ̇).
+    #[arg(long, value_enum, default_value_t = FormulationArg::Auto)]
+    pub formulation: FormulationArg,
     /// Relative tolerance of the ode method.
     #[arg(long, value_name = "R", default_value_t = DEFAULT_RTOL)]
     pub rtol: f64,
@@ -127,7 +151,11 @@ pub fn run(args: &ImpactArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 value: args.rtol.to_string(),
                 allowed: "must lie in [1e-14, 0.1]".into(),
             })?;
+            let formulation = Formulation::from(args.formulation);
+            let options = options.formulation(formulation);
             let sol = integrate(&model, &options)?;
+            report["formulation"] =
+                json!(format!("{:?}", formulation.resolve(&model)).to_lowercase());
             report["rtol"] = json!(args.rtol);
             report["t_peak_s"] = json!(sol.t_peak);
             report["contact_duration_s"] = json!(sol.contact_duration);
