@@ -229,6 +229,58 @@ impl<const N: usize> Dop853<N> {
         (100.0 * h0).min(h1).min(self.options.max_step)
     }
 
+    /// The state reached by one step of the method from the start of the last accepted step to
+    /// `t_target` ∈ (t_old, t] (11 evaluations). About an order of magnitude more accurate than
+    /// the 7th-order dense output (measured on the impact peak); the integrator's own state is
+    /// unchanged.
+    pub fn restep_to(&mut self, system: &impl OdeSystem<N>, t_target: f64) -> [f64; N] {
+        let h = t_target - self.t_old;
+        if !(h > 0.0) {
+            return self.y_old;
+        }
+        let mut k = [[0.0; N]; STAGES];
+        k[0] = self.k[0];
+        for s in 1..STAGES {
+            let ys: [f64; N] = std::array::from_fn(|i| {
+                self.y_old[i] + h * (0..s).map(|j| A[s][j] * k[j][i]).sum::<f64>()
+            });
+            k[s] = system.rhs(self.t_old + C[s] * h, &ys);
+        }
+        self.stats.rhs_evals += STAGES - 1;
+        std::array::from_fn(|i| {
+            self.y_old[i] + h * (0..STAGES).map(|j| B[j] * k[j][i]).sum::<f64>()
+        })
+    }
+
+    /// Goes back to the start of the last accepted step (its end state is discarded), keeping the
+    /// proposed step size and the counters.
+    pub fn rewind(&mut self) {
+        self.t = self.t_old;
+        self.y = self.y_old;
+        self.f = self.k[0];
+        self.dense_ready = false;
+        self.rejected_attempt = None;
+    }
+
+    /// Advances by one accepted step that does not go past `t_end`, landing on it exactly when
+    /// within reach.
+    pub fn step_until(
+        &mut self,
+        system: &impl OdeSystem<N>,
+        t_end: f64,
+    ) -> Result<(), StepFailure> {
+        let remaining = t_end - self.t;
+        if self.h >= remaining {
+            self.h = remaining;
+            self.step(system)?;
+            if self.h_prev == remaining {
+                self.t = t_end;
+            }
+            return Ok(());
+        }
+        self.step(system)
+    }
+
     /// Advances by one accepted step (retrying with smaller steps as needed).
     pub fn step(&mut self, system: &impl OdeSystem<N>) -> Result<(), StepFailure> {
         loop {

@@ -386,9 +386,11 @@ fn run(
                     return Ok(finish(&solver, p, None, trace));
                 }
                 // The same step may also reach separation (very coarse tolerances only).
-                if let StepOutcome::Separation(s) =
+                if let StepOutcome::Separation(located) =
                     detect_event(&mut solver, system, true, &observe)
                 {
+                    let s = land_on_separation(&mut solver, system, located.t, &observe)
+                        .map_err(|e| integration_error(e, rtol))?;
                     if options.record_trace {
                         trace.push(s);
                     }
@@ -398,7 +400,9 @@ fn run(
                     trace.push(observe(solver.t(), solver.y()));
                 }
             }
-            StepOutcome::Separation(s) => {
+            StepOutcome::Separation(located) => {
+                let s = land_on_separation(&mut solver, system, located.t, &observe)
+                    .map_err(|e| integration_error(e, rtol))?;
                 if options.record_trace {
                     trace.push(s);
                 }
@@ -426,12 +430,30 @@ fn detect_event<const N: usize>(
     let (a, b) = (dense.t_start(), dense.t_end());
     let t_tol = 4.0 * f64::EPSILON * b.abs();
     let t = find_root(|t| dense.eval(t)[component], a, before, b, after, t_tol);
-    let point = observe(t, &dense.eval(t));
     if after_peak {
-        StepOutcome::Separation(point)
-    } else {
-        StepOutcome::Peak(point)
+        // Only the time matters here: `land_on_separation` integrates up to it.
+        return StepOutcome::Separation(observe(t, &dense.eval(t)));
     }
+    // The peak state by a genuine step of the method to the located time (more accurate than
+    // the interpolant).
+    StepOutcome::Peak(observe(t, &solver.restep_to(system, t)))
+}
+
+/// The step that found separation straddled it, and past separation the force is only a
+/// continuation whose smoothness the error estimate cannot be trusted on. So go back to the start
+/// of that step and integrate, with error control, exactly up to the located separation time:
+/// every step then lies in contact.
+fn land_on_separation<const N: usize>(
+    solver: &mut Dop853<N>,
+    system: &impl OdeSystem<N>,
+    t_separation: f64,
+    observe: &impl Fn(f64, &[f64; N]) -> TracePoint,
+) -> Result<TracePoint, StepFailure> {
+    solver.rewind();
+    while solver.t() < t_separation {
+        solver.step_until(system, t_separation)?;
+    }
+    Ok(observe(solver.t(), solver.y()))
 }
 
 fn finish<const N: usize>(
