@@ -10,8 +10,8 @@
 use nalgebra::{Matrix6, Vector6};
 
 use crate::banded::BandMatrix;
-use crate::corotational::corotational_element;
-use crate::element::{consistent_inertia, linear_stiffness, lumped_mass};
+use crate::corotational::corotational_element_trig;
+use crate::element::{consistent_inertia, consistent_inertia_trig, linear_stiffness, lumped_mass};
 use crate::model::{BeamModel, Kinematics, MassMatrix};
 
 /// Half-bandwidth of the node-ordered system (one element spans 6 consecutive DOFs).
@@ -73,10 +73,25 @@ pub fn assemble(
     let k_lin = linear_stiffness(l, sec.ea(), sec.ei());
     let m_lump = lumped_mass(l, sec.rho_a());
     let mut energy = 0.0;
+    // (sin θ, cos θ) of the element's first node, carried over from the previous element
+    let mut trig_next = if nonlinear {
+        kin.q[2].sin_cos()
+    } else {
+        (0.0, 1.0)
+    };
     for e in 0..model.n_elements() {
         let p = gather(kin.q, e);
+        let trig = [
+            trig_next,
+            if nonlinear {
+                p[5].sin_cos()
+            } else {
+                (0.0, 1.0)
+            },
+        ];
+        trig_next = trig[1];
         let (mut f, mut kt, kmat) = if nonlinear {
-            let ce = corotational_element(l, sec.ea(), sec.ei(), &p);
+            let ce = corotational_element_trig(l, sec.ea(), sec.ei(), &p, trig);
             energy += ce.strain_energy;
             (ce.force, ce.tangent, ce.material)
         } else {
@@ -101,14 +116,8 @@ pub fn assemble(
                 }
             } else {
                 let acc = pa + pv * damping.alpha_mass;
-                let inert = consistent_inertia(
-                    l,
-                    sec.rho_a(),
-                    [p[2], p[5]],
-                    [pv[2], pv[5]],
-                    &acc,
-                    nonlinear,
-                );
+                let inert =
+                    consistent_inertia_trig(l, sec.rho_a(), trig, [pv[2], pv[5]], &acc, nonlinear);
                 f += inert.force;
                 ca = inert.mass;
                 cv += inert.d_dv + inert.mass * damping.alpha_mass;

@@ -114,13 +114,21 @@ impl BandMatrix {
                 let k = self.idx(i, j);
                 self.data[k] /= d;
             }
-            for c in j + 1..=cend {
-                let ajc = self.data[self.idx(j, c)];
-                if ajc != 0.0 {
-                    for i in j + 1..=last {
-                        let lij = self.data[self.idx(i, j)];
-                        let k = self.idx(i, c);
-                        self.data[k] -= lij * ajc;
+            let nl = last - j;
+            if nl > 0 {
+                // column j's multipliers (rows j+1..=last) are contiguous, and so is each
+                // column c's segment of the same rows: split the storage and update by slices
+                let lstart = self.idx(j + 1, j);
+                let (head, tail) = self.data.split_at_mut((j + 1) * self.ld);
+                let l = &head[lstart..lstart + nl];
+                for c in j + 1..=cend {
+                    let base = (c - j - 1) * self.ld + self.kl + self.ku + j - c;
+                    let ajc = tail[base];
+                    if ajc != 0.0 {
+                        let seg = &mut tail[base + 1..base + 1 + nl];
+                        for (x, li) in seg.iter_mut().zip(l) {
+                            *x -= li * ajc;
+                        }
                     }
                 }
             }

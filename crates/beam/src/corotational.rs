@@ -31,18 +31,26 @@ pub struct CorotationalElement {
 /// Evaluates an element of undeformed length `l0` along x with axial stiffness `ea`, bending
 /// stiffness `ei`, at element displacements `p` = (u₁, v₁, θ₁, u₂, v₂, θ₂).
 pub fn corotational_element(l0: f64, ea: f64, ei: f64, p: &Vector6<f64>) -> CorotationalElement {
+    corotational_element_trig(l0, ea, ei, p, [p[2].sin_cos(), p[5].sin_cos()])
+}
+
+/// [`corotational_element`] with the nodal (sin θᵢ, cos θᵢ) given (the assembly computes them
+/// once per node). θ̄ᵢ = atan2(sin θᵢ cos β − cos θᵢ sin β, cos θᵢ cos β + sin θᵢ sin β).
+pub fn corotational_element_trig(
+    l0: f64,
+    ea: f64,
+    ei: f64,
+    p: &Vector6<f64>,
+    trig: [(f64, f64); 2],
+) -> CorotationalElement {
     let dx = l0 + p[3] - p[0];
     let dy = p[4] - p[1];
     let l = dx.hypot(dy);
     let (c, s) = (dx / l, dy / l);
-    let beta = dy.atan2(dx);
-    let local_angle = |theta: f64| {
-        let d = theta - beta;
-        d.sin().atan2(d.cos())
-    };
+    let local_angle = |(sn, cs): (f64, f64)| (sn * c - cs * s).atan2(cs * c + sn * s);
     let ub = l - l0;
-    let t1 = local_angle(p[2]);
-    let t2 = local_angle(p[5]);
+    let t1 = local_angle(trig[0]);
+    let t2 = local_angle(trig[1]);
     let kl = Matrix3::new(
         ea / l0,
         0.0,

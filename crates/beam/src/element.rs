@@ -87,14 +87,33 @@ pub fn consistent_inertia(
     acc: &Vector6<f64>,
     nonlinear: bool,
 ) -> ElementInertia {
-    let (th, om) = if nonlinear {
-        (theta, omega)
+    consistent_inertia_trig(
+        l,
+        rho_a,
+        [theta[0].sin_cos(), theta[1].sin_cos()],
+        omega,
+        acc,
+        nonlinear,
+    )
+}
+
+/// [`consistent_inertia`] with the nodal (sin θᵢ, cos θᵢ) given.
+pub fn consistent_inertia_trig(
+    l: f64,
+    rho_a: f64,
+    trig: [(f64, f64); 2],
+    omega: [f64; 2],
+    acc: &Vector6<f64>,
+    nonlinear: bool,
+) -> ElementInertia {
+    let (trig, om) = if nonlinear {
+        (trig, omega)
     } else {
-        ([0.0, 0.0], [0.0, 0.0])
+        ([(0.0, 1.0), (0.0, 1.0)], [0.0, 0.0])
     };
     let t = [
-        Vector2::new(th[0].cos(), th[0].sin()),
-        Vector2::new(th[1].cos(), th[1].sin()),
+        Vector2::new(trig[0].1, trig[0].0),
+        Vector2::new(trig[1].1, trig[1].0),
     ];
     let n = [Vector2::new(-t[0].y, t[0].x), Vector2::new(-t[1].y, t[1].x)];
     let e: [Vector2<f64>; 6] = [

@@ -1,0 +1,106 @@
+//! Criterion benchmarks of the beam solvers (figures in docs/performance-beam.md).
+//!
+//! * `transient/corotational_32_x1000`: 1000 generalized-α steps (ρ∞ = 0.8, h = 1e-4 s) of the
+//!   CL link (polypropylene, L = 0.34 m, 64 × 2.6 mm, 0.1 kg tip payload), 32 corotational
+//!   elements, free vibration started with a tip speed of 1 m/s in the first mode.
+//! * `static/elastica_PL2_EI_5_32`: the corotational large-deflection static solve, PL²/EI = 5,
+//!   32 elements, 10 load steps.
+//! * `step_scaling/N`: cost of one corotational transient step for N = 8 … 512.
+//! * `modal/linear_32`: the first 4 bending modes with 32 elements (dense faer eigensolver).
+
+use std::hint::black_box;
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use flexrig_beam::canonical::elastica_problem;
+use flexrig_beam::*;
+
+fn link(elements: usize) -> BeamModel {
+    let mat = Material::new(1.5e9, 905.0).unwrap();
+    let sec = Section::rectangular(&mat, 0.064, 0.0026).unwrap();
+    let mut spec = BeamSpec::cantilever(0.34, sec, elements, Kinematics::Corotational);
+    spec.point_masses.push(PointMass {
+        node: elements,
+        mass: 0.1,
+        inertia: 0.0,
+    });
+    BeamModel::new(spec).unwrap()
+}
+
+fn start(model: &BeamModel) -> State {
+    let r = modal_analysis(model, 1, ModalDirection::Transverse).unwrap();
+    let phi = &r.shapes[0];
+    let s = 1.0 / phi[3 * model.tip_node() + 1];
+    let v: Vec<f64> = phi.iter().map(|x| x * s).collect();
+    let loads = NodalLoads::zeros(model);
+    State::new(model, vec![0.0; model.n_dofs()], v, 0.0, &loads).unwrap()
+}
+
+fn transient(c: &mut Criterion) {
+    let model = link(32);
+    let s0 = start(&model);
+    let loads = NodalLoads::zeros(&model);
+    let ga = GeneralizedAlpha::new(0.8).unwrap();
+    c.bench_function("transient/corotational_32_x1000", |b| {
+        b.iter(|| {
+            let mut s = s0.clone();
+            let mut ws = Workspace::new(&model);
+            for _ in 0..1000 {
+                ga.step(&model, &mut s, &mut ws, 1e-4, &loads).unwrap();
+            }
+            black_box(s.q[3 * 32 + 1])
+        })
+    });
+}
+
+fn statics(c: &mut Criterion) {
+    let (model, loads) = elastica_problem(5.0, 32).unwrap();
+    let opts = StaticOptions::with_load_steps(10).unwrap();
+    c.bench_function("static/elastica_PL2_EI_5_32", |b| {
+        b.iter(|| black_box(solve_static(&model, &loads, &opts).unwrap().iterations))
+    });
+}
+
+fn scaling(c: &mut Criterion) {
+    let mut g = c.benchmark_group("step_scaling");
+    for n in [8usize, 16, 32, 64, 128, 256, 512] {
+        let model = link(n);
+        let s0 = start(&model);
+        let loads = NodalLoads::zeros(&model);
+        let ga = GeneralizedAlpha::new(0.8).unwrap();
+        g.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+            let mut s = s0.clone();
+            let mut ws = Workspace::new(&model);
+            let mut k = 0;
+            b.iter(|| {
+                // restart every 1000 steps so the state stays in the same regime
+                if k == 1000 {
+                    s = s0.clone();
+                    k = 0;
+                }
+                k += 1;
+                black_box(
+                    ga.step(&model, &mut s, &mut ws, 1e-4, &loads)
+                        .unwrap()
+                        .iterations,
+                )
+            })
+        });
+    }
+    g.finish();
+}
+
+fn modal(c: &mut Criterion) {
+    let model = link(32).with_kinematics(Kinematics::Linear);
+    c.bench_function("modal/linear_32", |b| {
+        b.iter(|| {
+            black_box(
+                modal_analysis(&model, 4, ModalDirection::Transverse)
+                    .unwrap()
+                    .omegas[0],
+            )
+        })
+    });
+}
+
+criterion_group!(benches, transient, statics, scaling, modal);
+criterion_main!(benches);
