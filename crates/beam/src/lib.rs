@@ -19,6 +19,9 @@
 //! `3i, 3i+1, 3i+2`; u is along the undeformed beam axis (x), v transverse (y), θ the section
 //! rotation (counter-clockwise).
 
+// Index loops mirror the equations (DOF i, node j) in the numerics.
+#![allow(clippy::needless_range_loop)]
+
 pub mod assembly;
 pub mod banded;
 pub mod canonical;

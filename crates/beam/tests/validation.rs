@@ -1,6 +1,8 @@
 //! Linear model, modal and static validation against the published references
 //! (shared/notes/references.md).
 
+#![allow(clippy::needless_range_loop)]
+
 mod common;
 use common::{assert_rel, order};
 
