@@ -134,7 +134,7 @@ pub fn eta_references() -> Vec<EtaReference> {
         EtaReference {
             case: case(1000.0),
             n: 1.0,
-            eta: 0.822_876_170_262_476_0,
+            eta: 0.822_876_170_262_476,
             reference_accuracy: 1e-14,
             source: "mpmath, 30 digits: η = √(μ(2/3)/μ(1)) (Eq. 14)",
         },
