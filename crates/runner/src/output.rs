@@ -41,41 +41,12 @@ pub fn line(out: &mut dyn Write, text: impl std::fmt::Display) -> Result<(), Cli
     writeln!(out, "{text}").map_err(|e| CliError::write("<stdout>", e))
 }
 
-/// Checks that a command-line number is finite and > 0, naming the flag otherwise.
+/// A command-line number that must be finite and > 0 (the error names the flag).
 pub fn positive_arg(flag: &str, value: f64) -> Result<f64, CliError> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(CliError::InvalidArgument {
-            arg: flag.into(),
-            value: value.to_string(),
-            allowed: "must be a finite number > 0".into(),
-        })
-    }
+    Ok(flexrig_contact::validate::positive(flag, value)?)
 }
 
-/// Checks that a command-line number is finite and ≥ 0, naming the flag otherwise.
+/// A command-line number that must be finite and ≥ 0 (the error names the flag).
 pub fn non_negative_arg(flag: &str, value: f64) -> Result<f64, CliError> {
-    if value.is_finite() && value >= 0.0 {
-        Ok(value)
-    } else {
-        Err(CliError::InvalidArgument {
-            arg: flag.into(),
-            value: value.to_string(),
-            allowed: "must be a finite number >= 0".into(),
-        })
-    }
-}
-
-/// Checks that a command-line number lies in (lo, hi], naming the flag otherwise.
-pub fn left_open_arg(flag: &str, value: f64, lo: f64, hi: f64) -> Result<f64, CliError> {
-    if value.is_finite() && value > lo && value <= hi {
-        Ok(value)
-    } else {
-        Err(CliError::InvalidArgument {
-            arg: flag.into(),
-            value: value.to_string(),
-            allowed: format!("must lie in ({lo}, {hi}]"),
-        })
-    }
+    Ok(flexrig_contact::validate::non_negative(flag, value)?)
 }

@@ -3,6 +3,7 @@
 use std::io::Write;
 
 use clap::{Args, ValueEnum};
+use flexrig_contact::validate::{in_left_open, non_negative, positive};
 use flexrig_contact::{Hertz, SeriesCompliance};
 use flexrig_lumped::ode::{DEFAULT_RTOL, Formulation, OdeOptions, integrate};
 use flexrig_lumped::prb::PrbLink;
@@ -10,7 +11,7 @@ use flexrig_lumped::{ImpactModel, Peak, peak_analytic, peak_exact};
 use serde_json::json;
 
 use crate::CliError;
-use crate::output::{left_open_arg, line, non_negative_arg, positive_arg, print_json};
+use crate::output::{line, print_json};
 
 /// How the peak is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -101,13 +102,13 @@ pub struct ImpactArgs {
 
 /// The validated impact of the arguments.
 pub fn model(args: &ImpactArgs) -> Result<ImpactModel, CliError> {
-    let m_h = positive_arg("--m-h", args.m_h)?;
+    let m_h = positive("--m-h", args.m_h)?;
     let m_eff = match (args.m_eff, args.gamma, args.m_r, args.m_e) {
-        (Some(m_eff), ..) => positive_arg("--m-eff", m_eff)?,
+        (Some(m_eff), ..) => positive("--m-eff", m_eff)?,
         (None, Some(gamma), Some(m_r), Some(m_e)) => PrbLink::new(
-            left_open_arg("--gamma", gamma, 0.0, 1.0)?,
-            positive_arg("--m-r", m_r)?,
-            non_negative_arg("--m-e", m_e)?,
+            in_left_open("--gamma", gamma, 0.0, 1.0)?,
+            positive("--m-r", m_r)?,
+            non_negative("--m-e", m_e)?,
         )?
         .effective_mass(),
         _ => {
@@ -118,10 +119,10 @@ pub fn model(args: &ImpactArgs) -> Result<ImpactModel, CliError> {
             });
         }
     };
-    let k_delta = positive_arg("--k-delta", args.k_delta)?;
-    let k_c = positive_arg("--k-c", args.k_c)?;
-    let n = left_open_arg("--n", args.n, 0.0, flexrig_contact::MAX_EXPONENT)?;
-    let v0 = positive_arg("--v0", args.v0)?;
+    let k_delta = positive("--k-delta", args.k_delta)?;
+    let k_c = positive("--k-c", args.k_c)?;
+    let n = in_left_open("--n", args.n, 0.0, flexrig_contact::MAX_EXPONENT)?;
+    let v0 = positive("--v0", args.v0)?;
     let spring = SeriesCompliance::new(k_delta, Hertz::new(k_c, n)?)?;
     Ok(ImpactModel::new(m_h, m_eff, spring, v0)?)
 }
