@@ -276,3 +276,31 @@ fn hub_torque_does_work_that_is_accounted() {
     // trapezoidal work vs energy: O(h²) mismatch
     assert!(e.dissipated.abs() < 1e-3 * e.external_work.abs(), "{e:?}");
 }
+
+#[test]
+fn rayleigh_damping_gives_the_modal_damping_ratio() {
+    // proportional damping keeps the first mode decoupled: exact response of the modal
+    // coordinate with ζ = a₀/(2ω) + a₁ω/2, v_tip(t) = V e^{−ζωt} sin(ω_d t)/ω_d
+    let mut spec = BeamSpec::cantilever(1.0, unit_section(), 8, Kinematics::Linear);
+    spec.damping = Rayleigh {
+        alpha_mass: 0.2,
+        beta_stiffness: 1e-3,
+    };
+    let m = BeamModel::new(spec).unwrap();
+    let omega = modal_analysis(&m, 1, ModalDirection::Transverse)
+        .unwrap()
+        .omegas[0];
+    let zeta = 0.2 / (2.0 * omega) + 1e-3 * omega / 2.0;
+    let wd = omega * (1.0 - zeta * zeta).sqrt();
+    let v0 = mode1_velocity(&m, 1.0);
+    let period = 2.0 * std::f64::consts::PI / omega;
+    let steps = 900;
+    let t_end = 2.25 * period;
+    let s = run(&m, v0, 1.0, t_end / steps as f64, steps, |_| {});
+    let exact = (-zeta * omega * t_end).exp() * (wd * t_end).sin() / wd;
+    let got = s.q[3 * 8 + 1];
+    assert!(
+        (got - exact).abs() < 1e-3 * exact.abs(),
+        "tip {got} vs {exact} (ζ = {zeta})"
+    );
+}
