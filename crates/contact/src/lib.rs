@@ -7,6 +7,8 @@
 //! - [`AdamsImpact`]: the ADAMS IMPACT function with its cubic STEP damping ramp.
 //! - [`SeriesCompliance`]: a link spring in series with the contact (paper Eq. 6–9): the force at
 //!   a given total displacement, the stored energy, and the force at a given energy.
+//! - [`DomeBlockContact`]: the [`ContactCallback`] the test rig calls each step — the
+//!   parry3d-f64 penetration of the dome into the block, then the contact law.
 //! - [`fit_hertz`]: least-squares (k, n) with R² and standard errors from compression data.
 //!
 //! Every law implements [`ContactLaw`]; all are plain `Send + Sync` data, so many simulations can
@@ -23,6 +25,7 @@
 //! ```
 
 mod damped;
+mod dome_block;
 mod error;
 mod fit;
 mod hertz;
@@ -33,7 +36,11 @@ mod series;
 pub mod tolerance;
 pub mod validate;
 
+/// The parry3d-f64 math types used by [`ContactCallback`] (glam `DVec3`, `DPose3`).
+pub use parry3d_f64::math;
+
 pub use damped::{DampedHertz, DampingModel};
+pub use dome_block::{BodyKinematics, ContactCallback, ContactSample, DomeBlockContact};
 pub use error::ContactError;
 pub use fit::{CSV_HEADER, CompressionPoint, HertzFit, fit_hertz, parse_compression_csv};
 pub use hertz::{Hertz, HertzSpec, MAX_EXPONENT};

@@ -1,0 +1,151 @@
+//! The contact callback the test rig calls each step: a spherical dome (on the robot's payload)
+//! against a skinned cuboid block (on the operator's pendulum), with the penetration from
+//! parry3d-f64 and the force from any [`ContactLaw`].
+//!
+//! Conventions: the normal `n` points from the dome into the block; the indentation is
+//! δ = −(signed distance) ≥ 0 in contact; its rate is δ̇ = (v_dome − v_block)·n at the contact
+//! point. The force on the block is +f n and on the dome −f n, both applied at the contact point
+//! (the midpoint of the two surface points). Ball–cuboid queries in parry are analytic, so δ is
+//! exact to round-off.
+
+use parry3d_f64::math::{Pose, Vector};
+use parry3d_f64::query;
+use parry3d_f64::shape::{Ball, Cuboid};
+
+use crate::{ContactError, ContactLaw, validate};
+
+/// Pose and velocity of a rigid body (or of a beam node's section).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyKinematics {
+    /// Pose of the body frame in the world.
+    pub pose: Pose,
+    /// Point [m, world] whose velocity is `linvel` (e.g. the centre of mass).
+    pub reference_point: Vector,
+    /// Velocity of `reference_point` [m/s, world].
+    pub linvel: Vector,
+    /// Angular velocity [rad/s, world].
+    pub angvel: Vector,
+}
+
+impl BodyKinematics {
+    /// Velocity [m/s] of the body point at world position `p`.
+    pub fn velocity_at(&self, p: Vector) -> Vector {
+        self.linvel + self.angvel.cross(p - self.reference_point)
+    }
+}
+
+/// One evaluation of the contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactSample {
+    /// Indentation δ ≥ 0 [m].
+    pub indentation: f64,
+    /// Indentation rate δ̇ [m/s] (> 0 while approaching).
+    pub rate: f64,
+    /// Force magnitude f ≥ 0 [N].
+    pub force: f64,
+    /// Unit normal from the dome into the block (direction of the force on the block).
+    pub normal: Vector,
+    /// Where the force acts [m, world].
+    pub point: Vector,
+}
+
+impl ContactSample {
+    /// Force on the block [N, world]: +f n.
+    pub fn force_on_block(&self) -> Vector {
+        self.normal * self.force
+    }
+
+    /// Force on the dome [N, world]: −f n.
+    pub fn force_on_dome(&self) -> Vector {
+        -self.normal * self.force
+    }
+}
+
+/// A contact model the rig calls each step (no global state; one per simulation).
+pub trait ContactCallback: Send + Sync + std::fmt::Debug {
+    /// Signed gap between the surfaces [m] (negative when penetrating); used to predict onset.
+    fn gap(&self, dome: &Pose, block: &Pose) -> f64;
+
+    /// The contact force, or `None` when the surfaces do not touch.
+    fn evaluate(&self, dome: &BodyKinematics, block: &BodyKinematics) -> Option<ContactSample>;
+}
+
+/// A spherical dome of radius `radius` against a cuboid block, with a contact law.
+#[derive(Debug)]
+pub struct DomeBlockContact {
+    dome: Ball,
+    dome_offset: Pose,
+    block: Cuboid,
+    block_offset: Pose,
+    law: Box<dyn ContactLaw>,
+}
+
+impl DomeBlockContact {
+    /// Dome of radius `dome_radius` [m] centred at `dome_offset` in the dome body's frame; block
+    /// with half extents `block_half_extents` [m] centred at `block_offset` in the block body's
+    /// frame.
+    pub fn new(
+        dome_radius: f64,
+        dome_offset: Pose,
+        block_half_extents: Vector,
+        block_offset: Pose,
+        law: Box<dyn ContactLaw>,
+    ) -> Result<Self, ContactError> {
+        validate::positive("dome_radius", dome_radius)?;
+        for (name, v) in [
+            ("block_half_extents.x", block_half_extents.x),
+            ("block_half_extents.y", block_half_extents.y),
+            ("block_half_extents.z", block_half_extents.z),
+        ] {
+            validate::positive(name, v)?;
+        }
+        Ok(DomeBlockContact {
+            dome: Ball::new(dome_radius),
+            dome_offset,
+            block: Cuboid::new(block_half_extents),
+            block_offset,
+            law,
+        })
+    }
+
+    /// The contact law.
+    pub fn law(&self) -> &dyn ContactLaw {
+        self.law.as_ref()
+    }
+
+    fn contact(&self, dome: &Pose, block: &Pose, prediction: f64) -> Option<query::Contact> {
+        let dome_pose = *dome * self.dome_offset;
+        let block_pose = *block * self.block_offset;
+        // Ball–cuboid is always supported by the default dispatcher.
+        query::contact(&dome_pose, &self.dome, &block_pose, &self.block, prediction)
+            .ok()
+            .flatten()
+    }
+}
+
+impl ContactCallback for DomeBlockContact {
+    fn gap(&self, dome: &Pose, block: &Pose) -> f64 {
+        match self.contact(dome, block, f64::MAX) {
+            Some(c) => c.dist,
+            None => f64::INFINITY,
+        }
+    }
+
+    fn evaluate(&self, dome: &BodyKinematics, block: &BodyKinematics) -> Option<ContactSample> {
+        let c = self.contact(&dome.pose, &block.pose, 0.0)?;
+        if c.dist >= 0.0 {
+            return None;
+        }
+        let indentation = -c.dist;
+        let normal = c.normal1;
+        let point = (c.point1 + c.point2) * 0.5;
+        let rate = (dome.velocity_at(point) - block.velocity_at(point)).dot(normal);
+        Some(ContactSample {
+            indentation,
+            rate,
+            force: self.law.force(indentation, rate),
+            normal,
+            point,
+        })
+    }
+}

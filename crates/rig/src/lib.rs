@@ -1,0 +1,1 @@
+//! rig (work in progress)
