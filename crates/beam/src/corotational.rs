@@ -11,7 +11,7 @@
 //! f = Bᵀ (N, M₁, M₂),
 //! K_t = Bᵀ K_l B + (N/l) z zᵀ + ((M₁ + M₂)/l²)(r zᵀ + z rᵀ)  (Crisfield 1991, §7.3).
 
-use nalgebra::{Matrix3, Matrix6, SMatrix, Vector3, Vector6};
+use nalgebra::{Matrix6, Vector3, Vector6};
 
 /// Result of one corotational element evaluation.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,40 +51,43 @@ pub fn corotational_element_trig(
     let ub = l - l0;
     let t1 = local_angle(trig[0]);
     let t2 = local_angle(trig[1]);
-    let kl = Matrix3::new(
-        ea / l0,
-        0.0,
-        0.0,
-        0.0,
-        4.0 * ei / l0,
-        2.0 * ei / l0,
-        0.0,
-        2.0 * ei / l0,
-        4.0 * ei / l0,
-    );
-    let local = Vector3::new(ub, t1, t2);
-    let fl = kl * local;
-    let r = Vector6::new(-c, -s, 0.0, c, s, 0.0);
-    let z = Vector6::new(s, -c, 0.0, -s, c, 0.0);
-    let mut b = SMatrix::<f64, 3, 6>::zeros();
+    let (ka, kb) = (ea / l0, ei / l0);
+    let n_ax = ka * ub;
+    let m1 = kb * (4.0 * t1 + 2.0 * t2);
+    let m2 = kb * (2.0 * t1 + 4.0 * t2);
+    let r = [-c, -s, 0.0, c, s, 0.0];
+    let z = [s, -c, 0.0, -s, c, 0.0];
+    // rows 2 and 3 of B: b₁ = e₃ − z/l, b₂ = e₆ − z/l
+    let mut b1 = [0.0; 6];
+    let mut b2 = [0.0; 6];
     for j in 0..6 {
-        b[(0, j)] = r[j];
-        b[(1, j)] = -z[j] / l;
-        b[(2, j)] = -z[j] / l;
+        b1[j] = -z[j] / l;
+        b2[j] = -z[j] / l;
     }
-    b[(1, 2)] += 1.0;
-    b[(2, 5)] += 1.0;
-    let force = b.transpose() * fl;
-    let material = b.transpose() * kl * b;
-    let rz = r * z.transpose();
-    let tangent = material
-        + (z * z.transpose()) * (fl[0] / l)
-        + (rz + rz.transpose()) * ((fl[1] + fl[2]) / (l * l));
+    b1[2] += 1.0;
+    b2[5] += 1.0;
+    let mut force = Vector6::zeros();
+    for j in 0..6 {
+        force[j] = r[j] * n_ax + b1[j] * m1 + b2[j] * m2;
+    }
+    // Bᵀ K_l B = (EA/l₀) r rᵀ + (EI/l₀)(4 b₁b₁ᵀ + 2 b₁b₂ᵀ + 2 b₂b₁ᵀ + 4 b₂b₂ᵀ)
+    let (kn, km) = (n_ax / l, (m1 + m2) / (l * l));
+    let mut material = Matrix6::zeros();
+    let mut tangent = Matrix6::zeros();
+    for i in 0..6 {
+        let (p1, p2) = (4.0 * b1[i] + 2.0 * b2[i], 2.0 * b1[i] + 4.0 * b2[i]);
+        for j in 0..6 {
+            let km_ij = ka * r[i] * r[j] + kb * (p1 * b1[j] + p2 * b2[j]);
+            material[(i, j)] = km_ij;
+            tangent[(i, j)] = km_ij + kn * z[i] * z[j] + km * (r[i] * z[j] + z[i] * r[j]);
+        }
+    }
+    let local = Vector3::new(ub, t1, t2);
     CorotationalElement {
         force,
         tangent,
         material,
-        strain_energy: 0.5 * fl.dot(&local),
+        strain_energy: 0.5 * (n_ax * ub + m1 * t1 + m2 * t2),
         local,
     }
 }
