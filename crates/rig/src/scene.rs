@@ -1,0 +1,351 @@
+//! Scene files (TOML): one run of the drop-pendulum test bed. See `docs/scenes.md`.
+//!
+//! A [`SceneFile`] is what the TOML holds; [`Scene::from_file`] validates it against the
+//! materials file and derives every physical quantity once ([`Scene`] is immutable). Errors name
+//! the field path (`robot.thickness_m`), the value and what is allowed.
+
+use flexrig_contact::validate::{non_negative, positive};
+use flexrig_contact::{ContactLaw, DampedHertz, Hertz, Materials};
+use serde::{Deserialize, Serialize};
+
+use crate::RigError;
+use crate::error::invalid;
+
+/// Compliant joint (rigid link on a torsion spring) or compliant link (flexible beam).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Design {
+    /// Rigid link on a torsion spring k_θr (paper Fig. 1a).
+    Cj,
+    /// Flexible beam clamped at the robot axis (paper Fig. 1b).
+    Cl,
+}
+
+/// How the run starts.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", tag = "from", deny_unknown_fields)]
+pub enum Start {
+    /// Released at rest from `release_angle_deg` (from the vertical, away from the robot).
+    Release {
+        /// Release angle [deg], in (0, 170].
+        release_angle_deg: f64,
+    },
+    /// At the instant of contact, with the swing speed of a release from `release_angle_deg`
+    /// (energy of the compound pendulum): the swing is not integrated.
+    Contact {
+        /// Release angle [deg] whose swing speed is used, in (0, 170].
+        release_angle_deg: f64,
+    },
+}
+
+impl Start {
+    /// The release angle [deg].
+    pub fn release_angle_deg(&self) -> f64 {
+        match *self {
+            Start::Release { release_angle_deg } | Start::Contact { release_angle_deg } => {
+                release_angle_deg
+            }
+        }
+    }
+}
+
+/// The operator pendulum: a light arm with the skinned block at its end.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OperatorSpec {
+    /// Pivot to block centre [m].
+    pub arm_length_m: f64,
+    /// Mass of the arm, a uniform rod from the pivot to the block centre [kg].
+    pub arm_mass_kg: f64,
+    /// Block material in the materials file (sets its Hertz law and, by default, its mass).
+    pub block_material: String,
+    /// Block mass [kg]; default: the material's block mass.
+    #[serde(default)]
+    pub block_mass_kg: Option<f64>,
+    /// Block size [m]: along the arm's swing axis (x), the strike direction (y), vertical (z).
+    pub block_size_m: [f64; 3],
+    /// How the run starts.
+    pub start: Start,
+}
+
+/// The robot link with its payload, force sensor and dome.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RobotSpec {
+    /// CJ or CL.
+    pub design: Design,
+    /// Link length, axis to payload [m].
+    pub length_m: f64,
+    /// Link width (in the plane of the strike for CJ) [m].
+    pub width_m: f64,
+    /// Link thickness (the bending direction of the CL) [m].
+    pub thickness_m: f64,
+    /// Young's modulus of the link [Pa].
+    pub youngs_modulus_pa: f64,
+    /// Density of the link [kg/m³].
+    pub density_kg_m3: f64,
+    /// Payload at the tip, including force sensor and dome [kg].
+    pub payload_kg: f64,
+    /// Dome radius [m].
+    pub dome_radius_m: f64,
+    /// Distance from the link axis to the dome apex, towards the operator [m].
+    pub dome_standoff_m: f64,
+    /// CJ torsion spring k_θr [N·m/rad]; default 3EI/L (Eq. 3).
+    #[serde(default)]
+    pub torsion_spring_nm_per_rad: Option<f64>,
+    /// CL: number of beam elements.
+    #[serde(default = "default_beam_elements")]
+    pub beam_elements: usize,
+}
+
+fn default_beam_elements() -> usize {
+    16
+}
+
+/// Damping added to the Hertz law of the block material.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", tag = "model", deny_unknown_fields)]
+pub enum DampingSpec {
+    /// No damping (default).
+    None,
+    /// Hunt–Crossley with restitution `restitution` at the impact speed.
+    HuntCrossley {
+        /// Coefficient of restitution ∈ [0, 1].
+        restitution: f64,
+    },
+    /// Lankarani–Nikravesh with restitution `restitution` at the impact speed.
+    LankaraniNikravesh {
+        /// Coefficient of restitution ∈ [0, 1].
+        restitution: f64,
+    },
+}
+
+/// The contact law between dome and block.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// Hertz stiffness [N/m^n]; default: the block material's fit.
+    #[serde(default)]
+    pub k: Option<f64>,
+    /// Hertz exponent; default: the block material's fit.
+    #[serde(default)]
+    pub n: Option<f64>,
+    /// Damping.
+    #[serde(default = "no_damping")]
+    pub damping: DampingSpec,
+}
+
+fn no_damping() -> DampingSpec {
+    DampingSpec::None
+}
+
+/// Step policy.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    /// Step during the free swing [s].
+    pub swing_step_s: f64,
+    /// Steps per estimated contact duration.
+    pub contact_steps: usize,
+    /// Cap on the number of steps.
+    #[serde(default = "default_max_steps")]
+    pub max_steps: usize,
+}
+
+fn default_max_steps() -> usize {
+    10_000_000
+}
+
+/// When the run stops.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", tag = "at", deny_unknown_fields)]
+pub enum StopSpec {
+    /// At the peak contact force.
+    Peak,
+    /// When the dome and the block separate.
+    Separation,
+    /// After a fixed simulated time.
+    Duration {
+        /// Simulated time [s].
+        duration_s: f64,
+    },
+}
+
+/// What is recorded.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RecordSpec {
+    /// Sensor sampling rate [Hz], independent of the step.
+    pub sample_rate_hz: f64,
+}
+
+/// The scene file as written in TOML.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Short name.
+    pub name: String,
+    /// What the scene is and why its values were chosen.
+    #[serde(default)]
+    pub description: String,
+    /// Gravitational acceleration [m/s²] (acts along −z).
+    pub gravity_mps2: f64,
+    /// The operator pendulum.
+    pub operator: OperatorSpec,
+    /// The robot link.
+    pub robot: RobotSpec,
+    /// The contact law.
+    pub contact: ContactSpec,
+    /// Step policy.
+    pub solver: SolverSpec,
+    /// Stop condition.
+    pub stop: StopSpec,
+    /// Sensors.
+    pub record: RecordSpec,
+}
+
+/// A validated scene with its derived quantities.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// The file it came from.
+    pub file: SceneFile,
+    /// Block mass [kg].
+    pub block_mass_kg: f64,
+    /// Elastic Hertz law of the contact.
+    pub hertz: Hertz,
+    /// Link mass m_r = ρ w t L [kg].
+    pub link_mass_kg: f64,
+    /// Bending stiffness of the link in its compliant direction, EI = E w t³/12 [N·m²].
+    pub link_ei: f64,
+    /// CJ torsion spring k_θr [N·m/rad].
+    pub torsion_spring: f64,
+}
+
+impl Scene {
+    /// Parses a scene from TOML text and validates it.
+    pub fn from_toml_str(text: &str, materials: &Materials) -> Result<Self, RigError> {
+        let file: SceneFile =
+            toml::from_str(text).map_err(|e| RigError::SceneSyntax(e.to_string()))?;
+        Self::from_file(file, materials)
+    }
+
+    /// Validates a parsed scene.
+    pub fn from_file(file: SceneFile, materials: &Materials) -> Result<Self, RigError> {
+        positive("gravity_mps2", file.gravity_mps2)?;
+        let op = &file.operator;
+        positive("operator.arm_length_m", op.arm_length_m)?;
+        non_negative("operator.arm_mass_kg", op.arm_mass_kg)?;
+        for (i, axis) in ["x", "y", "z"].iter().enumerate() {
+            positive(&format!("operator.block_size_m.{axis}"), op.block_size_m[i])?;
+        }
+        let angle = op.start.release_angle_deg();
+        if !(angle.is_finite() && angle > 0.0 && angle <= 170.0) {
+            return Err(invalid(
+                "operator.start.release_angle_deg",
+                angle,
+                "must lie in (0, 170] degrees",
+            ));
+        }
+        let material = materials.get(&op.block_material).map_err(|_| {
+            invalid(
+                "operator.block_material",
+                &op.block_material,
+                &format!(
+                    "must be one of the materials file: {}",
+                    materials
+                        .all()
+                        .iter()
+                        .map(|m| m.name.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            )
+        })?;
+        let block_mass_kg = match op.block_mass_kg {
+            Some(m) => positive("operator.block_mass_kg", m)?,
+            None => material.block_mass_kg,
+        };
+        if op.block_size_m[2] * 0.5 >= op.arm_length_m {
+            return Err(invalid(
+                "operator.block_size_m.z",
+                op.block_size_m[2],
+                "half the block height must be less than operator.arm_length_m",
+            ));
+        }
+
+        let r = &file.robot;
+        positive("robot.length_m", r.length_m)?;
+        positive("robot.width_m", r.width_m)?;
+        positive("robot.thickness_m", r.thickness_m)?;
+        positive("robot.youngs_modulus_pa", r.youngs_modulus_pa)?;
+        positive("robot.density_kg_m3", r.density_kg_m3)?;
+        non_negative("robot.payload_kg", r.payload_kg)?;
+        positive("robot.dome_radius_m", r.dome_radius_m)?;
+        positive("robot.dome_standoff_m", r.dome_standoff_m)?;
+        if r.beam_elements == 0 || r.beam_elements > 4096 {
+            return Err(invalid("robot.beam_elements", r.beam_elements, "must lie in [1, 4096]"));
+        }
+        let link_mass_kg = r.density_kg_m3 * r.width_m * r.thickness_m * r.length_m;
+        let link_ei = r.youngs_modulus_pa * r.width_m * r.thickness_m.powi(3) / 12.0;
+        let torsion_spring = match r.torsion_spring_nm_per_rad {
+            Some(k) => positive("robot.torsion_spring_nm_per_rad", k)?,
+            None => 3.0 * link_ei / r.length_m,
+        };
+
+        let c = &file.contact;
+        let k = match c.k {
+            Some(k) => positive("contact.k", k)?,
+            None => material.hertz.k(),
+        };
+        let n = c.n.unwrap_or(material.hertz.n());
+        let hertz = Hertz::named(k, n, "contact.k", "contact.n")?;
+        match c.damping {
+            DampingSpec::None => {}
+            DampingSpec::HuntCrossley { restitution }
+            | DampingSpec::LankaraniNikravesh { restitution } => {
+                if !(0.0..=1.0).contains(&restitution) {
+                    return Err(invalid(
+                        "contact.damping.restitution",
+                        restitution,
+                        "must lie in [0, 1]",
+                    ));
+                }
+            }
+        }
+
+        let s = &file.solver;
+        positive("solver.swing_step_s", s.swing_step_s)?;
+        if s.contact_steps < 4 {
+            return Err(invalid("solver.contact_steps", s.contact_steps, "must be at least 4"));
+        }
+        if s.max_steps == 0 {
+            return Err(invalid("solver.max_steps", s.max_steps, "must be at least 1"));
+        }
+        if let StopSpec::Duration { duration_s } = file.stop {
+            positive("stop.duration_s", duration_s)?;
+        }
+        positive("record.sample_rate_hz", file.record.sample_rate_hz)?;
+
+        Ok(Scene {
+            block_mass_kg,
+            hertz,
+            link_mass_kg,
+            link_ei,
+            torsion_spring,
+            file,
+        })
+    }
+
+    /// The contact law for an impact at approach speed `v0` [m/s] (damping models need it).
+    pub fn contact_law(&self, v0: f64) -> Result<Box<dyn ContactLaw>, RigError> {
+        Ok(match self.file.contact.damping {
+            DampingSpec::None => Box::new(self.hertz),
+            DampingSpec::HuntCrossley { restitution } => {
+                Box::new(DampedHertz::hunt_crossley(self.hertz, restitution, v0)?)
+            }
+            DampingSpec::LankaraniNikravesh { restitution } => {
+                Box::new(DampedHertz::lankarani_nikravesh(self.hertz, restitution, v0)?)
+            }
+        })
+    }
+}

@@ -1,0 +1,217 @@
+//! The Rapier world of the test bed: the operator pendulum (and, for CJ, the rigid robot link) as
+//! reduced-coordinate (multibody) revolute joints on a fixed ground, with the pitfalls of
+//! `notes/rapier.md` avoided: default joint damping zeroed, one solver iteration (plain
+//! symplectic Euler: substeps would hold our forces constant over a step while moving the
+//! bodies, which gains energy), no CCD, no sleeping, exact masses (no colliders; explicit mass
+//! properties), the spring torque applied by us each step.
+
+use flexrig_contact::{BodyKinematics, ContactSample};
+use flexrig_contact::math::{Pose, Vector};
+use rapier3d_f64::glamx::DQuat;
+use rapier3d_f64::parry::mass_properties::MassProperties;
+use rapier3d_f64::prelude::{
+    MultibodyJointHandle, PhysicsWorld, RevoluteJointBuilder, RigidBodyBuilder, RigidBodyHandle,
+};
+
+use crate::geometry::{OperatorGeometry, RobotGeometry};
+
+/// A revolute joint of the world, with its axis.
+#[derive(Debug, Clone, Copy)]
+struct Hinge {
+    body: RigidBodyHandle,
+    joint: MultibodyJointHandle,
+    axis: Vector,
+    pivot: Vector,
+}
+
+/// The Rapier side of the rig.
+pub struct RapierRig {
+    world: PhysicsWorld,
+    operator: Hinge,
+    robot: Option<Hinge>,
+}
+
+impl std::fmt::Debug for RapierRig {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RapierRig").finish_non_exhaustive()
+    }
+}
+
+/// Angle and rate of a hinge.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HingeState {
+    /// Joint angle [rad].
+    pub angle: f64,
+    /// Joint rate [rad/s].
+    pub rate: f64,
+}
+
+impl RapierRig {
+    /// The operator on its pivot (axis x) and, if `robot` is given, the rigid robot link on the
+    /// robot axis (z through the origin).
+    pub fn new(gravity: f64, operator: &OperatorGeometry, robot: Option<&RobotGeometry>) -> Self {
+        let mut world = PhysicsWorld::new();
+        world.gravity = Vector::new(0.0, 0.0, -gravity);
+        let p = &mut world.integration_parameters;
+        p.num_solver_iterations = 1;
+        p.max_ccd_substeps = 0;
+        let ground = world.insert_body(RigidBodyBuilder::fixed());
+
+        let op_body = world.insert_body(
+            RigidBodyBuilder::dynamic()
+                .translation(operator.pivot)
+                .additional_mass_properties(MassProperties::new(
+                    Vector::new(0.0, 0.0, -operator.com_distance),
+                    operator.mass,
+                    operator.inertia_com,
+                ))
+                .can_sleep(false),
+        );
+        let op_joint = world
+            .insert_multibody_joint(
+                ground,
+                op_body,
+                RevoluteJointBuilder::new(Vector::X).local_anchor1(operator.pivot),
+            )
+            .expect("a joint between the ground and a new body forms no cycle");
+        let operator_hinge = Hinge {
+            body: op_body,
+            joint: op_joint,
+            axis: Vector::X,
+            pivot: operator.pivot,
+        };
+
+        let robot_hinge = robot.map(|r| {
+            let body = world.insert_body(
+                RigidBodyBuilder::dynamic()
+                    .additional_mass_properties(MassProperties::new(
+                        Vector::new(r.com_x, 0.0, 0.0),
+                        r.link_mass + r.payload,
+                        r.inertia_com,
+                    ))
+                    .can_sleep(false),
+            );
+            let joint = world
+                .insert_multibody_joint(ground, body, RevoluteJointBuilder::new(Vector::Z))
+                .expect("a joint between the ground and a new body forms no cycle");
+            Hinge {
+                body,
+                joint,
+                axis: Vector::Z,
+                pivot: Vector::ZERO,
+            }
+        });
+        let mut rig = RapierRig {
+            world,
+            operator: operator_hinge,
+            robot: robot_hinge,
+        };
+        rig.settle_multibody();
+        rig
+    }
+
+    /// Brings the multibody to its final number of degrees of freedom and zeroes Rapier's hidden
+    /// default joint damping (0.1 per DoF).
+    fn settle_multibody(&mut self) {
+        let (mb, _) = self
+            .world
+            .multibody_joints
+            .get_mut(self.operator.joint)
+            .expect("the operator joint exists");
+        mb.forward_kinematics(&self.world.bodies, true);
+        mb.damping_mut().fill(0.0);
+    }
+
+    /// Sets the hinge of the operator (and of the robot) to the given angle and rate.
+    pub fn set_state(&mut self, operator: HingeState, robot: Option<HingeState>) {
+        let mut targets = vec![(self.operator.joint, operator)];
+        if let (Some(h), Some(s)) = (self.robot, robot) {
+            targets.push((h.joint, s));
+        }
+        for (joint, s) in targets {
+            let (mb, link) = self
+                .world
+                .multibody_joints
+                .get_mut(joint)
+                .expect("the joint exists");
+            let a = mb.link(link).expect("the link exists").assembly_id();
+            let current = mb.link(link).expect("the link exists").joint().coords()[3];
+            let mut disp = vec![0.0; mb.ndofs()];
+            disp[a] = s.angle - current;
+            mb.apply_displacements(&disp);
+            mb.generalized_velocity_mut()[a] = s.rate;
+            mb.forward_kinematics(&self.world.bodies, true);
+            mb.update_rigid_bodies(&mut self.world.bodies, true);
+        }
+    }
+
+    fn hinge_state(&self, hinge: &Hinge) -> HingeState {
+        let (mb, link) = self
+            .world
+            .multibody_joints
+            .get(hinge.joint)
+            .expect("the joint exists");
+        let l = mb.link(link).expect("the link exists");
+        HingeState {
+            angle: l.joint().coords()[3],
+            rate: mb.generalized_velocity()[l.assembly_id()],
+        }
+    }
+
+    /// Operator angle (from the vertical, positive towards the robot) and rate.
+    pub fn operator_state(&self) -> HingeState {
+        self.hinge_state(&self.operator)
+    }
+
+    /// Robot angle and rate (CJ only).
+    pub fn robot_state(&self) -> Option<HingeState> {
+        self.robot.as_ref().map(|h| self.hinge_state(h))
+    }
+
+    fn kinematics(&self, hinge: &Hinge) -> BodyKinematics {
+        let s = self.hinge_state(hinge);
+        BodyKinematics {
+            pose: Pose::from_parts(hinge.pivot, DQuat::from_axis_angle(hinge.axis, s.angle)),
+            reference_point: hinge.pivot,
+            linvel: Vector::ZERO,
+            angvel: hinge.axis * s.rate,
+        }
+    }
+
+    /// Pose and velocity of the operator body (frame origin at the pivot).
+    pub fn operator_kinematics(&self) -> BodyKinematics {
+        self.kinematics(&self.operator)
+    }
+
+    /// Pose and velocity of the robot body (frame origin on the axis), CJ only.
+    pub fn robot_kinematics(&self) -> Option<BodyKinematics> {
+        self.robot.as_ref().map(|h| self.kinematics(h))
+    }
+
+    /// Clears last step's forces, then applies the contact force (on the block: the operator;
+    /// on the dome: the robot, CJ only) at the contact point and the spring torque
+    /// `robot_torque` [N·m] about the robot axis.
+    pub fn apply_loads(&mut self, contact: Option<&ContactSample>, robot_torque: f64) {
+        let op = &mut self.world.bodies[self.operator.body];
+        op.reset_forces(false);
+        op.reset_torques(false);
+        if let Some(c) = contact {
+            op.add_force_at_point(c.force_on_block(), c.point, false);
+        }
+        if let Some(h) = self.robot {
+            let rb = &mut self.world.bodies[h.body];
+            rb.reset_forces(false);
+            rb.reset_torques(false);
+            rb.add_torque(h.axis * robot_torque, false);
+            if let Some(c) = contact {
+                rb.add_force_at_point(c.force_on_dome(), c.point, false);
+            }
+        }
+    }
+
+    /// Advances the world by `dt` [s] (symplectic Euler).
+    pub fn step(&mut self, dt: f64) {
+        self.world.integration_parameters.dt = dt;
+        self.world.step();
+    }
+}
