@@ -32,9 +32,6 @@ pub const HERMITE_PRODUCTS: [[f64; 4]; 4] = [
     [-13.0 / 420.0, -1.0 / 140.0, -11.0 / 210.0, 1.0 / 105.0],
 ];
 
-/// Slot (Hermite function index) of each element DOF.
-const SLOT: [usize; 6] = [0, 0, 1, 2, 2, 3];
-
 /// Lumped rotary inertia factor: ρA l³/78 per node (HRZ scaling of the consistent diagonal).
 pub const LUMPED_ROTARY_FACTOR: f64 = 1.0 / 78.0;
 
@@ -116,14 +113,7 @@ pub fn consistent_inertia_trig(
         Vector2::new(trig[1].1, trig[1].0),
     ];
     let n = [Vector2::new(-t[0].y, t[0].x), Vector2::new(-t[1].y, t[1].x)];
-    let e: [Vector2<f64>; 6] = [
-        Vector2::new(1.0, 0.0),
-        Vector2::new(0.0, 1.0),
-        n[0] * l,
-        Vector2::new(1.0, 0.0),
-        Vector2::new(0.0, 1.0),
-        n[1] * l,
-    ];
+    let h = &HERMITE_PRODUCTS;
     // Slot accelerations A_b (including the centripetal term −l θ̇² t).
     let a_slot = [
         Vector2::new(acc[0], acc[1]),
@@ -131,34 +121,57 @@ pub fn consistent_inertia_trig(
         Vector2::new(acc[3], acc[4]),
         n[1] * (l * acc[5]) - t[1] * (l * om[1] * om[1]),
     ];
-    let h = &HERMITE_PRODUCTS;
-    let mut w = [Vector2::zeros(); 4];
-    for (a, wa) in w.iter_mut().enumerate() {
-        for (b, ab) in a_slot.iter().enumerate() {
-            *wa += ab * h[a][b];
+    let w: [Vector2<f64>; 4] = std::array::from_fn(|a| {
+        a_slot[0] * h[a][0] + a_slot[1] * h[a][1] + a_slot[2] * h[a][2] + a_slot[3] * h[a][3]
+    });
+    let m_e = rho_a * l;
+    let ln = [n[0] * l, n[1] * l];
+    let force = Vector6::new(
+        m_e * w[0].x,
+        m_e * w[0].y,
+        m_e * ln[0].dot(&w[1]),
+        m_e * w[2].x,
+        m_e * w[2].y,
+        m_e * ln[1].dot(&w[3]),
+    );
+    // M: translations (slots 0, 2; axis x or y) and rotations (slots 1, 3; direction l nⱼ)
+    let mut mass = Matrix6::zeros();
+    let trans = [(0usize, 0usize, 0usize), (1, 0, 1), (3, 2, 0), (4, 2, 1)]; // (dof, slot, axis)
+    let rot = [(2usize, 1usize, 0usize), (5, 3, 1)]; // (dof, slot, node)
+    for &(d, sd, ax) in &trans {
+        for &(k, sk, bx) in &trans {
+            if ax == bx {
+                mass[(d, k)] = m_e * h[sd][sk];
+            }
+        }
+        for &(k, sk, j) in &rot {
+            let v = m_e * h[sd][sk] * ln[j][ax];
+            mass[(d, k)] = v;
+            mass[(k, d)] = v;
         }
     }
-    let m_e = rho_a * l;
-    let mut force = Vector6::zeros();
-    let mut mass = Matrix6::zeros();
+    let n12 = ln[0].dot(&ln[1]);
+    mass[(2, 2)] = m_e * h[1][1] * l * l;
+    mass[(5, 5)] = m_e * h[3][3] * l * l;
+    mass[(2, 5)] = m_e * h[1][3] * n12;
+    mass[(5, 2)] = mass[(2, 5)];
     let mut d_dq = Matrix6::zeros();
     let mut d_dv = Matrix6::zeros();
-    for d in 0..6 {
-        force[d] = m_e * e[d].dot(&w[SLOT[d]]);
-        for k in 0..6 {
-            mass[(d, k)] = m_e * h[SLOT[d]][SLOT[k]] * e[d].dot(&e[k]);
-        }
-    }
     if nonlinear {
-        for (j, &k) in [2usize, 5].iter().enumerate() {
+        for &(k, sk, j) in &rot {
             let dadtheta = -t[j] * (l * acc[k]) - n[j] * (l * om[j] * om[j]);
             let dadomega = -t[j] * (2.0 * l * om[j]);
-            for d in 0..6 {
-                let hk = m_e * h[SLOT[d]][SLOT[k]];
-                d_dq[(d, k)] = hk * e[d].dot(&dadtheta);
-                d_dv[(d, k)] = hk * e[d].dot(&dadomega);
+            for &(d, sd, ax) in &trans {
+                let hk = m_e * h[sd][sk];
+                d_dq[(d, k)] = hk * dadtheta[ax];
+                d_dv[(d, k)] = hk * dadomega[ax];
             }
-            d_dq[(k, k)] += m_e * (-t[j] * l).dot(&w[SLOT[k]]);
+            for &(d, sd, i) in &rot {
+                let hk = m_e * h[sd][sk];
+                d_dq[(d, k)] = hk * ln[i].dot(&dadtheta);
+                d_dv[(d, k)] = hk * ln[i].dot(&dadomega);
+            }
+            d_dq[(k, k)] += m_e * (-t[j] * l).dot(&w[sk]);
         }
     }
     ElementInertia {
