@@ -42,7 +42,10 @@ fn main() {
         let a = mb.link(link_id).unwrap().assembly_id();
         let w = mb.generalized_velocity()[a];
         if prev < 0.0 && w >= 0.0 {
-            println!("velocity sign change at {t:.4} damping {:?}", mb.damping().as_slice());
+            println!(
+                "velocity sign change at {t:.4} damping {:?}",
+                mb.damping().as_slice()
+            );
         }
         prev = w;
     }

@@ -105,8 +105,13 @@ impl BeamLink {
             self.loads.set_force(self.tip, f.x, f.y)?;
             self.loads.set_moment(self.tip, moment)?;
         }
-        self.integrator
-            .step(&self.model, &mut self.state, &mut self.workspace, dt, &self.loads)?;
+        self.integrator.step(
+            &self.model,
+            &mut self.state,
+            &mut self.workspace,
+            dt,
+            &self.loads,
+        )?;
         Ok(())
     }
 }

@@ -39,7 +39,8 @@ impl OperatorGeometry {
     /// Angular speed [rad/s] at the bottom of a swing released at rest from `angle_rad`:
     /// ω² = 2 M g l_c (1 − cos θ₀)/J.
     pub fn bottom_angular_speed(&self, angle_rad: f64, gravity: f64) -> f64 {
-        (2.0 * self.mass * gravity * self.com_distance * (1.0 - angle_rad.cos()) / self.inertia_pivot)
+        (2.0 * self.mass * gravity * self.com_distance * (1.0 - angle_rad.cos())
+            / self.inertia_pivot)
             .sqrt()
     }
 

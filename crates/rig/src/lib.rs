@@ -16,5 +16,7 @@ pub mod world;
 
 pub use beam_link::BeamLink;
 pub use error::RigError;
-pub use run::{Frame, NoRecorder, Recorder, RunOptions, RunSummary, Simulation, StepOutcome, run_scene_text};
+pub use run::{
+    Frame, NoRecorder, Recorder, RunOptions, RunSummary, Simulation, StepOutcome, run_scene_text,
+};
 pub use scene::{Design, Scene, SceneFile};

@@ -100,6 +100,9 @@ pub struct RunSummary {
     pub energy_initial_j: f64,
     /// Mechanical energy at the end [J].
     pub energy_final_j: f64,
+    /// Mechanical energy just before the contact and just after separation [J]; equal for an
+    /// undamped contact up to the integration error.
+    pub energy_through_contact_j: Option<(f64, f64)>,
     /// Simulated time [s].
     pub duration_s: f64,
     /// Sensor samples.
@@ -175,6 +178,8 @@ struct Stats {
     impulse: f64,
     energy_initial: f64,
     energy: f64,
+    energy_onset: Option<f64>,
+    energy_separation: Option<f64>,
     last_indentation: f64,
 }
 
@@ -260,6 +265,8 @@ impl<'s> Simulation<'s> {
             },
             Start::Contact { .. } => {
                 sim.phase = Phase::Contact;
+                // Touching at t = 0: the onset is the start of the first step.
+                sim.previous_gap = Some((0.0, 0.0));
                 HingeState {
                     angle: 0.0,
                     rate: omega_bottom,
@@ -308,8 +315,10 @@ impl<'s> Simulation<'s> {
     }
 
     fn gap(&self) -> f64 {
-        self.contact
-            .gap(&self.dome_kinematics().pose, &self.rapier.operator_kinematics().pose)
+        self.contact.gap(
+            &self.dome_kinematics().pose,
+            &self.rapier.operator_kinematics().pose,
+        )
     }
 
     /// Total mechanical energy [J].
@@ -321,8 +330,12 @@ impl<'s> Simulation<'s> {
             + op.mass * g * op.com_distance * (1.0 - s.angle.cos());
         e += match &self.robot {
             RobotSide::Rigid { spring } => {
-                let r = self.rapier.robot_state().expect("a rigid robot lives in Rapier");
-                0.5 * self.geometry.robot.inertia_axis * r.rate * r.rate + 0.5 * spring * r.angle * r.angle
+                let r = self
+                    .rapier
+                    .robot_state()
+                    .expect("a rigid robot lives in Rapier");
+                0.5 * self.geometry.robot.inertia_axis * r.rate * r.rate
+                    + 0.5 * spring * r.angle * r.angle
             }
             RobotSide::Beam(b) => b.energy(),
         };
@@ -337,7 +350,10 @@ impl<'s> Simulation<'s> {
         let l = self.geometry.operator.arm_length;
         let (robot_angle, tip_deflection, load_velocity) = match &self.robot {
             RobotSide::Rigid { .. } => {
-                let r = self.rapier.robot_state().expect("a rigid robot lives in Rapier");
+                let r = self
+                    .rapier
+                    .robot_state()
+                    .expect("a rigid robot lives in Rapier");
                 let len = self.geometry.robot.length;
                 (r.angle, len * r.angle.sin(), len * r.angle.cos() * r.rate)
             }
@@ -413,6 +429,12 @@ impl<'s> Simulation<'s> {
         let outcome = self.classify(after.as_ref(), dt);
         let energy = self.energy(after.as_ref());
         self.check_health(energy)?;
+        match outcome {
+            // The energy at the start of the onset step, when nothing touched yet.
+            StepOutcome::ContactOnset => self.stats.energy_onset = Some(self.stats.energy),
+            StepOutcome::Separation => self.stats.energy_separation = Some(energy),
+            _ => {}
+        }
         self.stats.energy = energy;
 
         let reading = self.reading(after.as_ref());
@@ -445,7 +467,9 @@ impl<'s> Simulation<'s> {
         match (self.stats.onset_time, after) {
             (None, Some(c)) => {
                 // Onset inside this step: interpolate on the gap (was ≥ 0, now −δ).
-                let frac = self.previous_gap_at_step_start().map_or(1.0, |g0| g0 / (g0 + c.indentation));
+                let frac = self
+                    .previous_gap_at_step_start()
+                    .map_or(1.0, |g0| g0 / (g0 + c.indentation));
                 self.stats.onset_time = Some(self.t - dt + frac * dt);
                 self.stats.impact_velocity = c.rate;
                 self.phase = Phase::Contact;
@@ -482,7 +506,11 @@ impl<'s> Simulation<'s> {
         self.stats.contact_steps += 1;
         self.stats.max_indentation = self.stats.max_indentation.max(c.indentation);
         self.stats.last_indentation = c.indentation;
-        self.force_history = [self.force_history[1], self.force_history[2], (self.t, c.force)];
+        self.force_history = [
+            self.force_history[1],
+            self.force_history[2],
+            (self.t, c.force),
+        ];
         let _ = dt;
     }
 
@@ -490,9 +518,15 @@ impl<'s> Simulation<'s> {
     fn check_health(&self, energy: f64) -> Result<(), RigError> {
         let op = self.rapier.operator_state();
         let suggestion = if self.phase == Phase::Contact {
-            format!("solver.contact_steps (more than {})", self.scene.file.solver.contact_steps)
+            format!(
+                "solver.contact_steps (more than {})",
+                self.scene.file.solver.contact_steps
+            )
         } else {
-            format!("solver.swing_step_s (below {:e} s)", self.scene.file.solver.swing_step_s)
+            format!(
+                "solver.swing_step_s (below {:e} s)",
+                self.scene.file.solver.swing_step_s
+            )
         };
         if !(op.angle.is_finite() && op.rate.is_finite() && energy.is_finite()) {
             return Err(RigError::Unstable {
@@ -570,6 +604,7 @@ impl<'s> Simulation<'s> {
             contact_step_s: self.contact_step,
             energy_initial_j: self.stats.energy_initial,
             energy_final_j: self.stats.energy,
+            energy_through_contact_j: self.stats.energy_onset.zip(self.stats.energy_separation),
             duration_s: self.t,
             samples: self.sampler.into_samples(),
         })
@@ -596,7 +631,10 @@ fn parabola_vertex(p: [(f64, f64); 3]) -> (f64, f64) {
 }
 
 /// Loads the bundled materials and runs `scene_text` to its stop condition.
-pub fn run_scene_text(scene_text: &str, recorder: &mut dyn Recorder) -> Result<RunSummary, RigError> {
+pub fn run_scene_text(
+    scene_text: &str,
+    recorder: &mut dyn Recorder,
+) -> Result<RunSummary, RigError> {
     let materials = Materials::bundled()?;
     let scene = Scene::from_toml_str(scene_text, &materials)?;
     Simulation::new(&scene, RunOptions::default())?.run(recorder)

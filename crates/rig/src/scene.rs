@@ -283,7 +283,11 @@ impl Scene {
         positive("robot.dome_radius_m", r.dome_radius_m)?;
         positive("robot.dome_standoff_m", r.dome_standoff_m)?;
         if r.beam_elements == 0 || r.beam_elements > 4096 {
-            return Err(invalid("robot.beam_elements", r.beam_elements, "must lie in [1, 4096]"));
+            return Err(invalid(
+                "robot.beam_elements",
+                r.beam_elements,
+                "must lie in [1, 4096]",
+            ));
         }
         let link_mass_kg = r.density_kg_m3 * r.width_m * r.thickness_m * r.length_m;
         let link_ei = r.youngs_modulus_pa * r.width_m * r.thickness_m.powi(3) / 12.0;
@@ -316,10 +320,18 @@ impl Scene {
         let s = &file.solver;
         positive("solver.swing_step_s", s.swing_step_s)?;
         if s.contact_steps < 4 {
-            return Err(invalid("solver.contact_steps", s.contact_steps, "must be at least 4"));
+            return Err(invalid(
+                "solver.contact_steps",
+                s.contact_steps,
+                "must be at least 4",
+            ));
         }
         if s.max_steps == 0 {
-            return Err(invalid("solver.max_steps", s.max_steps, "must be at least 1"));
+            return Err(invalid(
+                "solver.max_steps",
+                s.max_steps,
+                "must be at least 1",
+            ));
         }
         if let StopSpec::Duration { duration_s } = file.stop {
             positive("stop.duration_s", duration_s)?;
@@ -343,9 +355,9 @@ impl Scene {
             DampingSpec::HuntCrossley { restitution } => {
                 Box::new(DampedHertz::hunt_crossley(self.hertz, restitution, v0)?)
             }
-            DampingSpec::LankaraniNikravesh { restitution } => {
-                Box::new(DampedHertz::lankarani_nikravesh(self.hertz, restitution, v0)?)
-            }
+            DampingSpec::LankaraniNikravesh { restitution } => Box::new(
+                DampedHertz::lankarani_nikravesh(self.hertz, restitution, v0)?,
+            ),
         })
     }
 }

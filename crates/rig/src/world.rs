@@ -5,8 +5,8 @@
 //! bodies, which gains energy), no CCD, no sleeping, exact masses (no colliders; explicit mass
 //! properties), the spring torque applied by us each step.
 
-use flexrig_contact::{BodyKinematics, ContactSample};
 use flexrig_contact::math::{Pose, Vector};
+use flexrig_contact::{BodyKinematics, ContactSample};
 use rapier3d_f64::glamx::DQuat;
 use rapier3d_f64::parry::mass_properties::MassProperties;
 use rapier3d_f64::prelude::{
