@@ -22,6 +22,8 @@ pub struct Cli {
 /// The `flexrig` commands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
+    /// Run a scene of the drop-pendulum test rig (CJ or CL) and print its impact summary.
+    Run(commands::run::RunArgs),
     /// Peak force of the lumped two-mass impact (paper Eq. 10–14) by the exact energy balance,
     /// the n = 1 closed form, or time integration.
     Impact(commands::impact::ImpactArgs),
@@ -43,6 +45,7 @@ pub const DEFAULT_OUT_DIR: &str = "out";
 pub fn run(cli: &Cli, out: &mut dyn Write) -> Result<(), CliError> {
     match &cli.command {
         None => commands::default_job(&PathBuf::from(DEFAULT_OUT_DIR), out),
+        Some(Command::Run(args)) => commands::run::run(args, out),
         Some(Command::Impact(args)) => commands::impact::run(args, out),
         Some(Command::Fig6(args)) => commands::fig6::run(args, out),
         Some(Command::Fit(args)) => commands::fit::run(args, out),

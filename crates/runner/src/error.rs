@@ -25,6 +25,9 @@ pub enum CliError {
     /// An error from the beam crate.
     #[error(transparent)]
     Beam(#[from] flexrig_beam::BeamError),
+    /// An error from the test rig (scene, simulation).
+    #[error(transparent)]
+    Rig(#[from] flexrig_rig::RigError),
     /// An input file could not be read.
     #[error("cannot read {path}: {source}")]
     Read {
@@ -59,6 +62,7 @@ impl CliError {
             CliError::Contact(e) if e.is_input_error() => 2,
             CliError::Lumped(e) if e.is_input_error() => 2,
             CliError::Beam(e) if e.is_input_error() => 2,
+            CliError::Rig(e) if e.is_input_error() => 2,
             _ => 1,
         }
     }

@@ -273,3 +273,51 @@ fn every_command_has_help() {
         assert!(!out.stdout.is_empty());
     }
 }
+
+fn scene_path(name: &str) -> String {
+    format!(
+        "{}/../../assets/scenes/{name}.toml",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+#[test]
+fn run_prints_the_impact_summary() {
+    for name in ["cj_aluminium", "cl_aluminium"] {
+        let v = json(&["run", &scene_path(name), "--json"]);
+        for key in [
+            "peak_force_n",
+            "time_of_peak_s",
+            "impact_velocity_mps",
+            "contact_duration_s",
+            "max_indentation_m",
+            "steps",
+        ] {
+            assert!(v.get(key).is_some(), "{name}: no {key} in {v}");
+        }
+        // Impact speed of the 30° release of the bundled pendulum (compound pendulum energy,
+        // 0.8912 m/s; the swing integration is within 1e-4).
+        let speed = v["impact_velocity_mps"].as_f64().unwrap();
+        assert!((speed - 0.8912).abs() < 2e-4, "{name}: {speed}");
+        let peak = v["peak_force_n"].as_f64().unwrap();
+        assert!(peak > 150.0 && peak < 200.0, "{name}: {peak}");
+    }
+}
+
+#[test]
+fn run_rejects_bad_scenes_with_exit_code_2() {
+    let dir = scratch_dir("run");
+    let text = std::fs::read_to_string(scene_path("cj_iron")).unwrap();
+    let bad = dir.join("bad.toml");
+    std::fs::write(
+        &bad,
+        text.replace("payload_kg = 0.412", "payload_kg = -1.0"),
+    )
+    .unwrap();
+    let out = flexrig(&["run", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("robot.payload_kg"));
+    let out = flexrig(&["run", dir.join("missing.toml").to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let _ = std::fs::remove_dir_all(&dir);
+}

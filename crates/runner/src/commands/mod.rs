@@ -5,6 +5,7 @@ pub mod fig6;
 pub mod fit;
 pub mod impact;
 pub mod prb;
+pub mod run;
 
 use std::io::Write;
 use std::path::Path;

@@ -1,0 +1,98 @@
+//! `flexrig run SCENE`: one run of the drop-pendulum test rig.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::Args;
+use flexrig_contact::Materials;
+use flexrig_rig::{NoRecorder, RunOptions, RunSummary, Scene, Simulation};
+use serde_json::json;
+
+use crate::CliError;
+use crate::output::{line, print_json};
+
+/// Arguments of `flexrig run`.
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    /// Scene file (TOML), e.g. assets/scenes/cj_aluminium.toml; see docs/scenes.md.
+    #[arg(value_name = "SCENE")]
+    pub scene: PathBuf,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Loads, validates and runs a scene file.
+pub fn run_scene_file(path: &PathBuf) -> Result<RunSummary, CliError> {
+    let text = std::fs::read_to_string(path).map_err(|source| CliError::Read {
+        path: path.clone(),
+        source,
+    })?;
+    let scene = Scene::from_toml_str(&text, &Materials::bundled()?)?;
+    Ok(Simulation::new(&scene, RunOptions::default())?.run(&mut NoRecorder)?)
+}
+
+/// Runs `flexrig run`.
+pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let s = run_scene_file(&args.scene)?;
+    if args.json {
+        return print_json(
+            out,
+            &json!({
+                "scene": s.scene,
+                "design": s.design,
+                "peak_force_n": s.peak_force_n,
+                "time_of_peak_s": s.time_of_peak_s,
+                "impact_velocity_mps": s.impact_velocity_mps,
+                "onset_time_s": s.onset_time_s,
+                "contact_duration_s": s.contact_duration_s,
+                "max_indentation_m": s.max_indentation_m,
+                "impulse_n_s": s.impulse_n_s,
+                "steps": s.steps,
+                "contact_steps": s.contact_steps,
+                "contact_step_s": s.contact_step_s,
+                "energy_initial_j": s.energy_initial_j,
+                "energy_final_j": s.energy_final_j,
+                "duration_s": s.duration_s,
+                "samples": s.samples.len(),
+            }),
+        );
+    }
+    line(out, format!("scene {} ({:?})", s.scene, s.design))?;
+    line(
+        out,
+        format!(
+            "  peak force          {:.6} N at t = {:.6} s",
+            s.peak_force_n, s.time_of_peak_s
+        ),
+    )?;
+    line(
+        out,
+        format!(
+            "  impact velocity     {:.6} m/s (onset at {:.6} s)",
+            s.impact_velocity_mps, s.onset_time_s
+        ),
+    )?;
+    match s.contact_duration_s {
+        Some(d) => line(out, format!("  contact duration    {:.6e} s", d))?,
+        None => line(out, "  contact duration    (stopped before separation)")?,
+    }
+    line(
+        out,
+        format!("  max indentation     {:.6e} m", s.max_indentation_m),
+    )?;
+    line(
+        out,
+        format!("  impulse             {:.6e} N·s", s.impulse_n_s),
+    )?;
+    line(
+        out,
+        format!(
+            "  steps               {} ({} in contact at {:.3e} s), {} sensor samples",
+            s.steps,
+            s.contact_steps,
+            s.contact_step_s,
+            s.samples.len()
+        ),
+    )
+}
