@@ -14,7 +14,7 @@ pub mod scene;
 pub mod sensors;
 pub mod world;
 
-pub use beam_link::BeamLink;
+pub use beam_link::{BeamLink, LinkVariant};
 pub use error::RigError;
 pub use run::{
     Frame, NoRecorder, Recorder, RunOptions, RunSummary, Simulation, StepOutcome, run_scene_text,

@@ -8,7 +8,7 @@ use flexrig_contact::{ContactCallback, ContactSample, DomeBlockContact, Material
 use serde::Serialize;
 
 use crate::RigError;
-use crate::beam_link::BeamLink;
+use crate::beam_link::{BeamLink, LinkVariant};
 use crate::geometry::RigGeometry;
 use crate::scene::{Design, Scene, Start, StopSpec};
 use crate::sensors::{Reading, Sampler, SensorSample};
@@ -120,6 +120,8 @@ pub struct RunOptions {
     pub beam_rho_inf: f64,
     /// Relative energy growth that counts as instability.
     pub energy_growth_limit: f64,
+    /// The beam used for design `cl`.
+    pub cl_link: LinkVariant,
 }
 
 impl Default for RunOptions {
@@ -128,6 +130,7 @@ impl Default for RunOptions {
             beam_kinematics: Kinematics::Corotational,
             beam_rho_inf: 1.0,
             energy_growth_limit: 0.05,
+            cl_link: LinkVariant::Compliant,
         }
     }
 }
@@ -211,6 +214,7 @@ impl<'s> Simulation<'s> {
                     scene,
                     options.beam_kinematics,
                     options.beam_rho_inf,
+                    options.cl_link,
                 )?)),
                 Pose::from_translation(
                     geometry.robot.dome_center_local - Vector::new(geometry.robot.length, 0.0, 0.0),
@@ -414,10 +418,22 @@ impl<'s> Simulation<'s> {
             }
             RobotSide::Beam(_) => 0.0,
         };
+        // For the beam, the contact at the end of the step: the operator's end state is exactly
+        // what Rapier's symplectic Euler will produce, the tip's is predicted to second order.
+        let contact_at_end = match &self.robot {
+            RobotSide::Beam(b) => {
+                let op_end = self.operator_state_after(dt, contact.as_ref());
+                self.contact.evaluate(
+                    &b.predicted_tip_kinematics(dt),
+                    &self.rapier.operator_kinematics_at(op_end),
+                )
+            }
+            RobotSide::Rigid { .. } => None,
+        };
         self.rapier.apply_loads(contact.as_ref(), spring_torque);
         self.rapier.step(dt);
         if let RobotSide::Beam(b) = &mut self.robot {
-            b.step(dt, contact.as_ref())?;
+            b.step(dt, contact_at_end.as_ref())?;
         }
         self.t += dt;
         self.stats.steps += 1;
@@ -460,6 +476,22 @@ impl<'s> Simulation<'s> {
             energy,
         })?;
         Ok(outcome)
+    }
+
+    /// The operator's hinge state after a symplectic Euler step of `dt` with the contact force
+    /// `contact` and gravity: ω' = ω + dt (τ_contact + τ_gravity)/J, φ' = φ + dt ω'.
+    fn operator_state_after(&self, dt: f64, contact: Option<&ContactSample>) -> HingeState {
+        let op = &self.geometry.operator;
+        let s = self.rapier.operator_state();
+        let mut torque = -op.mass * self.scene.file.gravity_mps2 * op.com_distance * s.angle.sin();
+        if let Some(c) = contact {
+            torque += (c.point - op.pivot).cross(c.force_on_block()).x;
+        }
+        let rate = s.rate + dt * torque / op.inertia_pivot;
+        HingeState {
+            angle: s.angle + dt * rate,
+            rate,
+        }
     }
 
     /// Updates the contact statistics and names the event of the step.

@@ -169,7 +169,10 @@ impl RapierRig {
     }
 
     fn kinematics(&self, hinge: &Hinge) -> BodyKinematics {
-        let s = self.hinge_state(hinge);
+        Self::kinematics_at(hinge, self.hinge_state(hinge))
+    }
+
+    fn kinematics_at(hinge: &Hinge, s: HingeState) -> BodyKinematics {
         BodyKinematics {
             pose: Pose::from_parts(hinge.pivot, DQuat::from_axis_angle(hinge.axis, s.angle)),
             reference_point: hinge.pivot,
@@ -181,6 +184,11 @@ impl RapierRig {
     /// Pose and velocity of the operator body (frame origin at the pivot).
     pub fn operator_kinematics(&self) -> BodyKinematics {
         self.kinematics(&self.operator)
+    }
+
+    /// Pose and velocity the operator body would have in the hinge state `s`.
+    pub fn operator_kinematics_at(&self, s: HingeState) -> BodyKinematics {
+        Self::kinematics_at(&self.operator, s)
     }
 
     /// Pose and velocity of the robot body (frame origin on the axis), CJ only.

@@ -205,7 +205,8 @@ fn light_payload_favours_the_compliant_link() {
             cl.peak_force_n,
             cj.peak_force_n
         );
-        assert!(relative_error(cl.impact_velocity_mps, cj.impact_velocity_mps, 0.0) < 1e-12);
+        // Same swing: the approach speed at the first contact step differs only by that step.
+        assert!(relative_error(cl.impact_velocity_mps, cj.impact_velocity_mps, 0.0) < 1e-4);
     }
 }
 
@@ -247,5 +248,66 @@ fn stop_at_peak_and_sensors() {
             0.0
         ) < 0.02,
         "{at_peak:?}"
+    );
+}
+
+#[test]
+fn cl_coupling_is_second_order_and_conserves_energy() {
+    // The beam receives the end-of-step contact force (see BeamLink::step): peak differences
+    // fall ~16× per factor 4 of the step (measured 9.4e-3, 5.5e-4, 3.4e-5 N), and the energy
+    // through an undamped contact is kept to < 1e-6 (measured 1.8e-7 at 400 steps).
+    let peaks: Vec<f64> = [100, 400, 1600]
+        .iter()
+        .map(|&n| {
+            let list = [edit("from = \"release\"", "from = \"contact\""), steps(n)];
+            let rig = run(&common::scene("cl_aluminium", &edits(&list)));
+            if n >= 400 {
+                let (before, after) = rig.energy_through_contact_j.unwrap();
+                assert!(
+                    (after - before).abs() / before < 1e-6,
+                    "{n} steps: {before} -> {after}"
+                );
+            }
+            rig.peak_force_n
+        })
+        .collect();
+    let order = ((peaks[0] - peaks[1]) / (peaks[1] - peaks[2])).log(4.0);
+    assert!(
+        (1.7..2.6).contains(&order),
+        "observed order {order} from {peaks:?}"
+    );
+}
+
+#[test]
+fn rapier_cj_matches_a_stiff_fe_beam_on_the_same_spring() {
+    // The CJ built from the FE beam (EI, EA × 1e4, pinned on k_θr; consistent mass gives the same
+    // J = m_r L²/3 + m_e L² as the rigid rod) against the Rapier rigid link.
+    let list = [
+        edit("from = \"release\"", "from = \"contact\""),
+        steps(1600),
+    ];
+    let cj = run(&common::scene("cj_iron", &edits(&list)));
+    let as_beam = common::scene("cl_iron", &edits(&list));
+    let options = RunOptions {
+        cl_link: flexrig_rig::LinkVariant::StiffOnTorsionSpring {
+            stiffness_factor: 1e4,
+        },
+        ..RunOptions::default()
+    };
+    let fe = Simulation::new(&as_beam, options)
+        .unwrap()
+        .run(&mut NoRecorder)
+        .unwrap();
+    assert_close(
+        "peak: Rapier CJ vs stiff FE CJ",
+        fe.peak_force_n,
+        cj.peak_force_n,
+        1e-3,
+    );
+    assert_close(
+        "duration: Rapier CJ vs stiff FE CJ",
+        fe.contact_duration_s.unwrap(),
+        cj.contact_duration_s.unwrap(),
+        1e-3,
     );
 }
