@@ -3,8 +3,8 @@
 
 mod common;
 
+use flexrig_contact::SeriesCompliance;
 use flexrig_contact::tolerance::{assert_close, relative_error};
-use flexrig_contact::{Hertz, SeriesCompliance};
 use flexrig_lumped::ode::{OdeOptions, integrate};
 use flexrig_lumped::{ImpactModel, peak_exact};
 use flexrig_rig::geometry::RigGeometry;
@@ -41,7 +41,7 @@ fn point_contact(block_size: &str) -> Vec<(String, String)> {
     ]
 }
 
-fn edits<'a>(list: &'a [(String, String)]) -> Vec<(&'a str, &'a str)> {
+fn edits(list: &[(String, String)]) -> Vec<(&str, &str)> {
     list.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect()
 }
 

@@ -1,0 +1,40 @@
+//! Whole scenes from release to separation: the bundled settings and the coarsest contact step
+//! that keeps the peak within 1e-3 of the converged value (100 steps per contact: 1.1e-4 for CJ,
+//! 5.5e-5 for CL; see tests/contact.rs for the convergence study).
+
+use std::hint::black_box;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use flexrig_contact::Materials;
+use flexrig_rig::{NoRecorder, RunOptions, Scene, Simulation};
+
+fn scene(name: &str, contact_steps: usize) -> Scene {
+    let path = format!(
+        "{}/../../assets/scenes/{name}.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(path).unwrap().replace(
+        "contact_steps = 800",
+        &format!("contact_steps = {contact_steps}"),
+    );
+    Scene::from_toml_str(&text, &Materials::bundled().unwrap()).unwrap()
+}
+
+fn bench(c: &mut Criterion) {
+    for name in ["cj_aluminium", "cl_aluminium"] {
+        for steps in [100, 800] {
+            let s = scene(name, steps);
+            c.bench_function(&format!("{name}_release_to_separation_{steps}"), |b| {
+                b.iter(|| {
+                    Simulation::new(black_box(&s), RunOptions::default())
+                        .unwrap()
+                        .run(&mut NoRecorder)
+                        .unwrap()
+                })
+            });
+        }
+    }
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
