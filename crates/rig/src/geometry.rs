@@ -14,6 +14,20 @@ use flexrig_contact::math::Vector;
 
 use crate::scene::Scene;
 
+/// Angular speed [rad/s] at the bottom of the swing of a compound pendulum (mass [kg], centre of
+/// mass `com_distance` [m] below the pivot, `inertia` [kg·m²] about it) that is at `angle` [rad]
+/// with `rate` [rad/s]: ½ J ω_b² = ½ J ω² + M g l_c (1 − cos φ).
+pub fn rate_at_bottom(
+    mass: f64,
+    com_distance: f64,
+    inertia: f64,
+    g: f64,
+    angle: f64,
+    rate: f64,
+) -> f64 {
+    (rate * rate + 2.0 * mass * g * com_distance * (1.0 - angle.cos()) / inertia).sqrt()
+}
+
 /// The operator pendulum.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct OperatorGeometry {
@@ -39,9 +53,14 @@ impl OperatorGeometry {
     /// Angular speed [rad/s] at the bottom of a swing released at rest from `angle_rad`:
     /// ω² = 2 M g l_c (1 − cos θ₀)/J.
     pub fn bottom_angular_speed(&self, angle_rad: f64, gravity: f64) -> f64 {
-        (2.0 * self.mass * gravity * self.com_distance * (1.0 - angle_rad.cos())
-            / self.inertia_pivot)
-            .sqrt()
+        rate_at_bottom(
+            self.mass,
+            self.com_distance,
+            self.inertia_pivot,
+            gravity,
+            angle_rad,
+            0.0,
+        )
     }
 
     /// Mass [kg] the pendulum presents to a horizontal force at the contact height (l below the

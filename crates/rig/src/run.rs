@@ -10,7 +10,7 @@ use serde::Serialize;
 use crate::RigError;
 use crate::beam_link::{BeamLink, LinkVariant};
 use crate::geometry::RigGeometry;
-use crate::scene::{Design, Scene, Start, StopSpec};
+use crate::scene::{Design, Scene, StopSpec};
 use crate::sensors::{Reading, Sampler, SensorSample};
 use crate::world::{HingeState, RapierRig};
 
@@ -81,6 +81,9 @@ pub struct RunSummary {
     pub time_of_peak_s: f64,
     /// Approach speed normal to the contact at onset [m/s].
     pub impact_velocity_mps: f64,
+    /// Relative normal velocity at separation [m/s] (positive when parting); the coefficient of
+    /// restitution is its ratio to `impact_velocity_mps`.
+    pub separation_velocity_mps: Option<f64>,
     /// Time of contact onset [s] (interpolated within the onset step).
     pub onset_time_s: f64,
     /// Contact duration [s] (interpolated at both ends); `None` if the run stopped before
@@ -184,6 +187,8 @@ struct Stats {
     energy_onset: Option<f64>,
     energy_separation: Option<f64>,
     last_indentation: f64,
+    last_contact: Option<ContactSample>,
+    separation_velocity: Option<f64>,
 }
 
 /// Factor of the Hertz contact duration t_c ≈ C δ_max/v0 used to size the contact step
@@ -198,9 +203,20 @@ impl<'s> Simulation<'s> {
         let g = scene.file.gravity_mps2;
         let design = scene.file.robot.design;
         let rapier = RapierRig::new(g, op, (design == Design::Cj).then_some(&geometry.robot));
-        let angle = scene.file.operator.start.release_angle_deg().to_radians();
-        let omega_bottom = op.bottom_angular_speed(angle, g);
-        let v_impact = omega_bottom * op.arm_length;
+        let swing =
+            scene
+                .file
+                .operator
+                .start
+                .initial_swing(op.mass, op.com_distance, op.inertia_pivot, g);
+        let v_impact = swing.rate_at_contact * op.arm_length;
+        if !(v_impact > 0.0) {
+            return Err(crate::error::invalid(
+                "operator.start",
+                format!("{:?}", scene.file.operator.start),
+                "must bring the block to the dome with a positive speed",
+            ));
+        }
         let law = scene.contact_law(v_impact)?;
         let (robot, dome_offset) = match design {
             Design::Cj => (
@@ -262,21 +278,25 @@ impl<'s> Simulation<'s> {
             force_history: [(0.0, 0.0); 3],
             stats: Stats::default(),
         };
-        let initial = match scene.file.operator.start {
-            Start::Release { .. } => HingeState {
-                angle: -angle,
-                rate: 0.0,
-            },
-            Start::Contact { .. } => {
-                sim.phase = Phase::Contact;
-                // Touching at t = 0: the onset is the start of the first step.
-                sim.previous_gap = Some((0.0, 0.0));
-                HingeState {
-                    angle: 0.0,
-                    rate: omega_bottom,
-                }
-            }
+        // Rapier's symplectic Euler (kick, then drift) is leapfrog with the velocity half a step
+        // behind the position: start it from ω(−dt/2) = ω₀ − (dt/2) α(φ₀), so that a swing that
+        // starts moving keeps second-order accuracy (from ω₀ itself the impact speed of a start
+        // at −10°, −1 rad/s was off by 7e-4; now 1e-6). No contact acts at a swing start.
+        let alpha0 = -op.mass * g * op.com_distance * swing.angle.sin() / op.inertia_pivot;
+        let half_kick = if swing.starts_in_contact {
+            0.0
+        } else {
+            0.5 * scene.file.solver.swing_step_s * alpha0
         };
+        let initial = HingeState {
+            angle: swing.angle,
+            rate: swing.rate - half_kick,
+        };
+        if swing.starts_in_contact {
+            sim.phase = Phase::Contact;
+            // Touching at t = 0: the onset is the start of the first step.
+            sim.previous_gap = Some((0.0, 0.0));
+        }
         let robot_initial = (design == Design::Cj).then_some(HingeState {
             angle: 0.0,
             rate: 0.0,
@@ -522,6 +542,14 @@ impl<'s> Simulation<'s> {
                 let d0 = self.stats.last_indentation;
                 let frac = if d0 + gap > 0.0 { d0 / (d0 + gap) } else { 1.0 };
                 self.stats.separation_time = Some(self.t - dt + frac * dt);
+                // Relative normal velocity at the last contact point, positive when parting.
+                if let Some(c) = self.stats.last_contact {
+                    let dome = self.dome_kinematics();
+                    let block = self.rapier.operator_kinematics();
+                    self.stats.separation_velocity = Some(
+                        -(dome.velocity_at(c.point) - block.velocity_at(c.point)).dot(c.normal),
+                    );
+                }
                 self.phase = Phase::After;
                 self.previous_gap = None;
                 StepOutcome::Separation
@@ -538,6 +566,7 @@ impl<'s> Simulation<'s> {
         self.stats.contact_steps += 1;
         self.stats.max_indentation = self.stats.max_indentation.max(c.indentation);
         self.stats.last_indentation = c.indentation;
+        self.stats.last_contact = Some(*c);
         self.force_history = [
             self.force_history[1],
             self.force_history[2],
@@ -623,6 +652,7 @@ impl<'s> Simulation<'s> {
             peak_force_n: peak_force,
             time_of_peak_s: time_of_peak,
             impact_velocity_mps: self.stats.impact_velocity,
+            separation_velocity_mps: self.stats.separation_velocity,
             onset_time_s: self.stats.onset_time.unwrap_or(f64::NAN),
             contact_duration_s: self
                 .stats

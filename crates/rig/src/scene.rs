@@ -5,11 +5,12 @@
 //! the field path (`robot.thickness_m`), the value and what is allowed.
 
 use flexrig_contact::validate::{non_negative, positive};
-use flexrig_contact::{ContactLaw, DampedHertz, Hertz, Materials};
+use flexrig_contact::{AdamsImpact, ContactLaw, DampedHertz, Hertz, Materials};
 use serde::{Deserialize, Serialize};
 
 use crate::RigError;
 use crate::error::invalid;
+use crate::geometry::rate_at_bottom;
 
 /// Compliant joint (rigid link on a torsion spring) or compliant link (flexible beam).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -36,14 +37,72 @@ pub enum Start {
         /// Release angle [deg] whose swing speed is used, in (0, 170].
         release_angle_deg: f64,
     },
+    /// At any angle with any angular velocity (the general initial condition).
+    Moving {
+        /// Angle from the vertical [deg], in [−170, 170]; negative on the side away from the robot.
+        angle_deg: f64,
+        /// Angular velocity [rad/s], positive towards the robot.
+        angular_velocity_rad_s: f64,
+    },
+}
+
+/// The operator's initial hinge state and the angular speed it will have at the contact (the
+/// bottom of the swing), from the energy of the compound pendulum.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InitialSwing {
+    /// Angle [rad] from the vertical, positive towards the robot.
+    pub angle: f64,
+    /// Angular velocity [rad/s].
+    pub rate: f64,
+    /// Angular speed at the bottom of the swing [rad/s].
+    pub rate_at_contact: f64,
+    /// True when the run starts touching.
+    pub starts_in_contact: bool,
 }
 
 impl Start {
-    /// The release angle [deg].
-    pub fn release_angle_deg(&self) -> f64 {
+    /// The initial swing of a pendulum of mass `mass` [kg], centre of mass `com_distance` [m]
+    /// below the pivot and inertia `inertia` [kg·m²] about it, under gravity `g` [m/s²]:
+    /// ½ J ω_b² = ½ J ω₀² + M g l_c (1 − cos φ₀).
+    pub fn initial_swing(
+        &self,
+        mass: f64,
+        com_distance: f64,
+        inertia: f64,
+        g: f64,
+    ) -> InitialSwing {
+        let bottom =
+            |angle: f64, rate: f64| rate_at_bottom(mass, com_distance, inertia, g, angle, rate);
         match *self {
-            Start::Release { release_angle_deg } | Start::Contact { release_angle_deg } => {
-                release_angle_deg
+            Start::Release { release_angle_deg } => {
+                let angle = -release_angle_deg.to_radians();
+                InitialSwing {
+                    angle,
+                    rate: 0.0,
+                    rate_at_contact: bottom(angle, 0.0),
+                    starts_in_contact: false,
+                }
+            }
+            Start::Contact { release_angle_deg } => {
+                let rate = bottom(release_angle_deg.to_radians(), 0.0);
+                InitialSwing {
+                    angle: 0.0,
+                    rate,
+                    rate_at_contact: rate,
+                    starts_in_contact: true,
+                }
+            }
+            Start::Moving {
+                angle_deg,
+                angular_velocity_rad_s,
+            } => {
+                let angle = angle_deg.to_radians();
+                InitialSwing {
+                    angle,
+                    rate: angular_velocity_rad_s,
+                    rate_at_contact: bottom(angle, angular_velocity_rad_s),
+                    starts_in_contact: false,
+                }
             }
         }
     }
@@ -117,6 +176,14 @@ pub enum DampingSpec {
     LankaraniNikravesh {
         /// Coefficient of restitution ∈ [0, 1].
         restitution: f64,
+    },
+    /// ADAMS IMPACT: damping ramped by a cubic STEP from 0 at first touch to `c_max` at the
+    /// penetration `depth_m` (stiffness and exponent from the Hertz law).
+    AdamsImpact {
+        /// Maximum damping [N·s/m], ≥ 0.
+        c_max_n_s_per_m: f64,
+        /// Penetration at which the damping reaches c_max [m], > 0.
+        depth_m: f64,
     },
 }
 
@@ -238,13 +305,37 @@ impl Scene {
         for (i, axis) in ["x", "y", "z"].iter().enumerate() {
             positive(&format!("operator.block_size_m.{axis}"), op.block_size_m[i])?;
         }
-        let angle = op.start.release_angle_deg();
-        if !(angle.is_finite() && angle > 0.0 && angle <= 170.0) {
-            return Err(invalid(
-                "operator.start.release_angle_deg",
-                angle,
-                "must lie in (0, 170] degrees",
-            ));
+        match op.start {
+            Start::Release {
+                release_angle_deg: a,
+            }
+            | Start::Contact {
+                release_angle_deg: a,
+            } => {
+                if !(a.is_finite() && a > 0.0 && a <= 170.0) {
+                    return Err(invalid(
+                        "operator.start.release_angle_deg",
+                        a,
+                        "must lie in (0, 170] degrees",
+                    ));
+                }
+            }
+            Start::Moving {
+                angle_deg,
+                angular_velocity_rad_s,
+            } => {
+                if !(angle_deg.is_finite() && (-170.0..0.0).contains(&angle_deg)) {
+                    return Err(invalid(
+                        "operator.start.angle_deg",
+                        angle_deg,
+                        "must lie in [-170, 0) degrees (the block before the dome)",
+                    ));
+                }
+                flexrig_contact::validate::finite(
+                    "operator.start.angular_velocity_rad_s",
+                    angular_velocity_rad_s,
+                )?;
+            }
         }
         let material = materials.get(&op.block_material).map_err(|_| {
             invalid(
@@ -315,6 +406,13 @@ impl Scene {
                     ));
                 }
             }
+            DampingSpec::AdamsImpact {
+                c_max_n_s_per_m,
+                depth_m,
+            } => {
+                non_negative("contact.damping.c_max_n_s_per_m", c_max_n_s_per_m)?;
+                positive("contact.damping.depth_m", depth_m)?;
+            }
         }
 
         let s = &file.solver;
@@ -358,6 +456,15 @@ impl Scene {
             DampingSpec::LankaraniNikravesh { restitution } => Box::new(
                 DampedHertz::lankarani_nikravesh(self.hertz, restitution, v0)?,
             ),
+            DampingSpec::AdamsImpact {
+                c_max_n_s_per_m,
+                depth_m,
+            } => Box::new(AdamsImpact::new(
+                self.hertz.k(),
+                self.hertz.n(),
+                c_max_n_s_per_m,
+                depth_m,
+            )?),
         })
     }
 }

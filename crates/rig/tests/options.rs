@@ -1,0 +1,109 @@
+//! Scene options: the general initial swing, damped contact laws.
+
+mod common;
+
+use flexrig_contact::tolerance::assert_close;
+use flexrig_rig::{NoRecorder, RunOptions, RunSummary, Scene, Simulation};
+
+fn run(scene: &Scene) -> RunSummary {
+    Simulation::new(scene, RunOptions::default())
+        .unwrap()
+        .run(&mut NoRecorder)
+        .unwrap()
+}
+
+#[test]
+fn moving_start_at_rest_is_a_release() {
+    let release = run(&common::scene("cj_aluminium", &[]));
+    let moving = run(&common::scene(
+        "cj_aluminium",
+        &[(
+            "{ from = \"release\", release_angle_deg = 30.0 }",
+            "{ from = \"moving\", angle_deg = -30.0, angular_velocity_rad_s = 0.0 }",
+        )],
+    ));
+    assert_eq!(release.peak_force_n, moving.peak_force_n);
+    // The integrated swing reaches the speed of the compound pendulum's energy balance.
+    let scene = common::scene("cj_aluminium", &[]);
+    let g = flexrig_rig::geometry::RigGeometry::of(&scene).operator;
+    let v = g.bottom_angular_speed(30f64.to_radians(), 9.81) * g.arm_length;
+    assert_close(
+        "impact speed of the 30° release",
+        release.impact_velocity_mps,
+        v,
+        1e-5,
+    );
+    // Swinging away first at 1 rad/s from −10°: it comes back at the energy speed
+    // ω_b² = ω² + 2 M g l_c (1 − cos φ)/J.
+    let scene = common::scene(
+        "cj_aluminium",
+        &[(
+            "{ from = \"release\", release_angle_deg = 30.0 }",
+            "{ from = \"moving\", angle_deg = -10.0, angular_velocity_rad_s = -1.0 }",
+        )],
+    );
+    let g = flexrig_rig::geometry::RigGeometry::of(&scene).operator;
+    let expected = flexrig_rig::geometry::rate_at_bottom(
+        g.mass,
+        g.com_distance,
+        g.inertia_pivot,
+        9.81,
+        10f64.to_radians(),
+        1.0,
+    ) * g.arm_length;
+    let s = run(&scene);
+    assert_close(
+        "impact speed after swinging away",
+        s.impact_velocity_mps,
+        expected,
+        2e-4,
+    );
+    // Elastic contact: the bodies part at the approach speed.
+    assert_close(
+        "restitution of the undamped law",
+        s.separation_velocity_mps.unwrap(),
+        s.impact_velocity_mps,
+        1e-3,
+    );
+}
+
+#[test]
+fn damped_laws_dissipate_and_lower_the_restitution() {
+    for (damping, low, high) in [
+        (
+            "{ model = \"hunt_crossley\", restitution = 0.8 }",
+            0.75,
+            0.85,
+        ),
+        (
+            "{ model = \"lankarani_nikravesh\", restitution = 0.8 }",
+            0.75,
+            0.85,
+        ),
+        (
+            "{ model = \"adams_impact\", c_max_n_s_per_m = 200.0, depth_m = 1e-4 }",
+            0.05,
+            0.99,
+        ),
+    ] {
+        let list = [
+            ("from = \"release\"", "from = \"contact\""),
+            (
+                "damping = { model = \"none\" }",
+                format!("damping = {damping}").leak() as &str,
+            ),
+        ];
+        let s = run(&common::scene("cj_aluminium", &list));
+        let e = s.separation_velocity_mps.unwrap() / s.impact_velocity_mps;
+        assert!((low..high).contains(&e), "{damping}: restitution {e}");
+        let (before, after) = s.energy_through_contact_j.unwrap();
+        assert!(after < before, "{damping}: energy {before} -> {after}");
+    }
+    let e = flexrig_contact::Materials::bundled().unwrap();
+    let text = common::scene_text("cj_aluminium").replace(
+        "damping = { model = \"none\" }",
+        "damping = { model = \"adams_impact\", c_max_n_s_per_m = 1.0, depth_m = 0.0 }",
+    );
+    let err = Scene::from_toml_str(&text, &e).unwrap_err().to_string();
+    assert!(err.contains("contact.damping.depth_m"), "{err}");
+}
