@@ -51,6 +51,8 @@ pub struct Frame<'a> {
     pub contact: Option<ContactSample>,
     /// Total mechanical energy [J] (kinetic, gravity, spring, beam strain, contact).
     pub energy: f64,
+    /// Sensor samples taken during this step.
+    pub samples: &'a [SensorSample],
 }
 
 /// Receives every step (e.g. an MCAP logger). Implementations must not panic; an error stops
@@ -474,6 +476,7 @@ impl<'s> Simulation<'s> {
         self.stats.energy = energy;
 
         let reading = self.reading(after.as_ref());
+        let sampled_before = self.sampler.samples().len();
         self.sampler.record_step(&self.last, &reading);
         self.last = reading;
 
@@ -494,6 +497,7 @@ impl<'s> Simulation<'s> {
             beam,
             contact: after,
             energy,
+            samples: &self.sampler.samples()[sampled_before..],
         })?;
         Ok(outcome)
     }

@@ -7,6 +7,7 @@
 pub mod cli;
 pub mod commands;
 pub mod error;
+pub mod mcap_log;
 pub mod output;
 pub mod plots;
 

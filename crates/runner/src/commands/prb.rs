@@ -23,7 +23,7 @@ use crate::output::{ensure_dir, line, print_json, write_atomic};
 /// Arguments of `flexrig prb`.
 #[derive(Debug, Args)]
 pub struct PrbArgs {
-    /// Number of corotational elements of the traced cantilever (4 to 4096).
+    /// Number of corotational elements of the traced cantilever (4 to 1024).
     #[arg(long, value_name = "N", default_value_t = 32)]
     pub elements: usize,
     /// Tip-error measure of the 0.5 % criterion: deflection (relative to the tip deflection,
@@ -52,11 +52,11 @@ fn fe_beam_share(mu: f64) -> Result<f64, CliError> {
 
 /// Runs the PRB check.
 pub fn run(args: &PrbArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    if !(4..=4096).contains(&args.elements) {
+    if !(4..=1024).contains(&args.elements) {
         return Err(CliError::InvalidArgument {
             arg: "--elements".into(),
             value: args.elements.to_string(),
-            allowed: "must be an integer from 4 to 4096".into(),
+            allowed: "must be an integer from 4 to 1024".into(),
         });
     }
     let measure = match args.criterion.as_str() {

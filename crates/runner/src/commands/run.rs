@@ -9,6 +9,7 @@ use flexrig_rig::{NoRecorder, RunOptions, RunSummary, Scene, Simulation};
 use serde_json::json;
 
 use crate::CliError;
+use crate::mcap_log::McapRecorder;
 use crate::output::{line, print_json};
 
 /// Arguments of `flexrig run`.
@@ -17,24 +18,51 @@ pub struct RunArgs {
     /// Scene file (TOML), e.g. assets/scenes/cj_aluminium.toml; see docs/scenes.md.
     #[arg(value_name = "SCENE")]
     pub scene: PathBuf,
+    /// Write the run's traces to this MCAP file (opens in Foxglove; see docs/foxglove.md).
+    #[arg(long, value_name = "FILE.mcap")]
+    pub out: Option<PathBuf>,
+    /// Overwrite the --out file if it exists.
+    #[arg(long)]
+    pub force: bool,
     /// Print JSON instead of text.
     #[arg(long)]
     pub json: bool,
 }
 
-/// Loads, validates and runs a scene file.
-pub fn run_scene_file(path: &PathBuf) -> Result<RunSummary, CliError> {
+/// Loads, validates and runs a scene file, logging to `out` (MCAP) if given. The log is always
+/// finished, with an `error` metadata record if the run failed.
+pub fn run_scene_file(
+    path: &PathBuf,
+    out: Option<&PathBuf>,
+    force: bool,
+) -> Result<RunSummary, CliError> {
     let text = std::fs::read_to_string(path).map_err(|source| CliError::Read {
         path: path.clone(),
         source,
     })?;
     let scene = Scene::from_toml_str(&text, &Materials::bundled()?)?;
-    Ok(Simulation::new(&scene, RunOptions::default())?.run(&mut NoRecorder)?)
+    let simulation = Simulation::new(&scene, RunOptions::default())?;
+    let Some(out) = out else {
+        return Ok(simulation.run(&mut NoRecorder)?);
+    };
+    let mut log = McapRecorder::create(out, force, &scene, &text)?;
+    let closed = |e: mcap::McapError| CliError::write(out, std::io::Error::other(e.to_string()));
+    match simulation.run(&mut log) {
+        Ok(summary) => {
+            log.write_summary(&summary).map_err(closed)?;
+            log.finish(None).map_err(closed)?;
+            Ok(summary)
+        }
+        Err(e) => {
+            log.finish(Some(&e.to_string())).map_err(closed)?;
+            Err(e.into())
+        }
+    }
 }
 
 /// Runs `flexrig run`.
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let s = run_scene_file(&args.scene)?;
+    let s = run_scene_file(&args.scene, args.out.as_ref(), args.force)?;
     if args.json {
         return print_json(
             out,
@@ -59,6 +87,9 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
         );
     }
     line(out, format!("scene {} ({:?})", s.scene, s.design))?;
+    if let Some(path) = &args.out {
+        line(out, format!("  log                 {}", path.display()))?;
+    }
     line(
         out,
         format!(

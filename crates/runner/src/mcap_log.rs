@@ -1,0 +1,570 @@
+//! MCAP logs of rig runs that open well in Foxglove (see `docs/foxglove.md`).
+//!
+//! Written with the raw `mcap::Writer` (every write reports its I/O error at once) fed with the
+//! Foxglove SDK's protobuf message types and our own `#[derive(Encode)]` messages. Time is the
+//! simulation time from 0, in ns, in `log_time`, `publish_time` and every message's own
+//! timestamp. Inside the contact window every step is logged; outside it the scalar channels are
+//! decimated to 1 kHz and the 3D channels (`/tf`, `/scene`) to 60 Hz. The scene file is attached;
+//! key parameters, the software version and the git revision are metadata. The file is always
+//! finished: [`McapRecorder::finish`] closes it, with an `error` metadata record when the run
+//! failed.
+
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::{BufWriter, Seek, Write};
+use std::path::Path;
+
+use flexrig_contact::math::{Pose, Vector};
+use flexrig_rig::sensors::SensorSample;
+use flexrig_rig::{Frame, Recorder, RigError, RunSummary, Scene};
+use foxglove::Encode;
+use foxglove::messages::{
+    ArrowPrimitive, Color, CubePrimitive, FrameTransform, FrameTransforms, JointState, JointStates,
+    LinePrimitive, Point3, Quaternion, SceneEntity, SceneUpdate, SpherePrimitive, Timestamp,
+    Vector3, line_primitive::Type as LineType,
+};
+
+use crate::CliError;
+
+/// Contact force sensor between load and dome.
+#[derive(Debug, Clone, Encode)]
+pub struct ForceSensor {
+    /// Simulation time.
+    pub timestamp: Timestamp,
+    /// Force [N].
+    pub force_n: f64,
+}
+
+/// One accelerometer, along the strike direction (world y).
+#[derive(Debug, Clone, Encode)]
+pub struct Accelerometer {
+    /// Simulation time.
+    pub timestamp: Timestamp,
+    /// Acceleration [m/s²].
+    pub accel_mps2: f64,
+}
+
+/// The contact state at a step end.
+#[derive(Debug, Clone, Encode)]
+pub struct ContactState {
+    /// Simulation time.
+    pub timestamp: Timestamp,
+    /// Indentation δ [m].
+    pub indentation_m: f64,
+    /// Indentation rate δ̇ [m/s].
+    pub rate_mps: f64,
+    /// Contact force [N].
+    pub force_n: f64,
+}
+
+/// Mechanical energy.
+#[derive(Debug, Clone, Encode)]
+pub struct EnergyState {
+    /// Simulation time.
+    pub timestamp: Timestamp,
+    /// Total mechanical energy [J].
+    pub total_j: f64,
+}
+
+/// Channel ids of the log.
+#[derive(Debug, Clone, Copy)]
+struct Channels {
+    tf: u16,
+    scene: u16,
+    force: u16,
+    accel_operator: u16,
+    accel_load: u16,
+    encoders: u16,
+    contact: u16,
+    energy: u16,
+}
+
+/// Period of the 3D channels outside contact [ns] (60 Hz).
+const SCENE_PERIOD_NS: u64 = 1_000_000_000 / 60;
+/// Period of the scalar channels outside contact [ns] (1 kHz).
+const SCALAR_PERIOD_NS: u64 = 1_000_000;
+
+/// A [`Recorder`] that writes an MCAP file.
+pub struct McapRecorder<W: Write + Seek> {
+    writer: mcap::Writer<W>,
+    channels: Channels,
+    sequence: u32,
+    buffer: Vec<u8>,
+    last_scene_ns: Option<u64>,
+    last_scalar_ns: Option<u64>,
+    geometry: flexrig_rig::geometry::RigGeometry,
+    messages: u64,
+}
+
+impl<W: Write + Seek> std::fmt::Debug for McapRecorder<W> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("McapRecorder")
+            .field("messages", &self.messages)
+            .finish()
+    }
+}
+
+fn io_error(e: mcap::McapError) -> RigError {
+    RigError::NotReached {
+        what: "the end of the MCAP log".into(),
+        limit: format!("a write error: {e}"),
+    }
+}
+
+fn nanos(t: f64) -> u64 {
+    (t.max(0.0) * 1e9).round() as u64
+}
+
+fn stamp(t: f64) -> Timestamp {
+    let ns = nanos(t);
+    Timestamp::new((ns / 1_000_000_000) as u32, (ns % 1_000_000_000) as u32)
+}
+
+fn vec3(v: Vector) -> Vector3 {
+    Vector3 {
+        x: v.x,
+        y: v.y,
+        z: v.z,
+    }
+}
+
+fn point(v: Vector) -> Point3 {
+    Point3 {
+        x: v.x,
+        y: v.y,
+        z: v.z,
+    }
+}
+
+fn pose(p: &Pose) -> foxglove::messages::Pose {
+    let q = p.rotation;
+    foxglove::messages::Pose {
+        position: Some(vec3(p.translation)),
+        orientation: Some(Quaternion {
+            x: q.x,
+            y: q.y,
+            z: q.z,
+            w: q.w,
+        }),
+    }
+}
+
+fn color(r: f64, g: f64, b: f64) -> Option<Color> {
+    Some(Color { r, g, b, a: 1.0 })
+}
+
+impl McapRecorder<BufWriter<File>> {
+    /// Creates `path` (refusing to overwrite unless `force`) and writes the header, the scene
+    /// attachment and the metadata.
+    pub fn create(
+        path: &Path,
+        force: bool,
+        scene: &Scene,
+        scene_text: &str,
+    ) -> Result<Self, CliError> {
+        let file = if force {
+            File::create(path)
+        } else {
+            File::create_new(path)
+        }
+        .map_err(|e| {
+            if e.kind() == std::io::ErrorKind::AlreadyExists {
+                CliError::InvalidArgument {
+                    arg: "--out".into(),
+                    value: path.display().to_string(),
+                    allowed: "a file that does not exist yet (or add --force to overwrite)".into(),
+                }
+            } else {
+                CliError::write(path, e)
+            }
+        })?;
+        McapRecorder::new(BufWriter::new(file), scene, scene_text)
+            .map_err(|e| CliError::write(path, std::io::Error::other(e.to_string())))
+    }
+}
+
+impl<W: Write + Seek> McapRecorder<W> {
+    /// Starts a log on `w`.
+    pub fn new(w: W, scene: &Scene, scene_text: &str) -> Result<Self, mcap::McapError> {
+        let mut writer = mcap::WriteOptions::new()
+            .compression(Some(mcap::Compression::Zstd))
+            .profile("")
+            .library(format!("flexrig {}", env!("CARGO_PKG_VERSION")))
+            .create(w)?;
+        let mut channel = |topic: &str, schema: Option<foxglove::Schema>, encoding: String| {
+            let schema = schema.expect("foxglove and derived messages have schemas");
+            let id = writer.add_schema(&schema.name, &schema.encoding, &schema.data)?;
+            writer.add_channel(id, topic, &encoding, &BTreeMap::new())
+        };
+        let channels = Channels {
+            tf: channel(
+                "/tf",
+                FrameTransforms::get_schema(),
+                FrameTransforms::get_message_encoding(),
+            )?,
+            scene: channel(
+                "/scene",
+                SceneUpdate::get_schema(),
+                SceneUpdate::get_message_encoding(),
+            )?,
+            force: channel(
+                "/sensors/force",
+                ForceSensor::get_schema(),
+                ForceSensor::get_message_encoding(),
+            )?,
+            accel_operator: channel(
+                "/sensors/accel/operator",
+                Accelerometer::get_schema(),
+                Accelerometer::get_message_encoding(),
+            )?,
+            accel_load: channel(
+                "/sensors/accel/load",
+                Accelerometer::get_schema(),
+                Accelerometer::get_message_encoding(),
+            )?,
+            encoders: channel(
+                "/sensors/encoders",
+                JointStates::get_schema(),
+                JointStates::get_message_encoding(),
+            )?,
+            contact: channel(
+                "/contact",
+                ContactState::get_schema(),
+                ContactState::get_message_encoding(),
+            )?,
+            energy: channel(
+                "/energy",
+                EnergyState::get_schema(),
+                EnergyState::get_message_encoding(),
+            )?,
+        };
+        writer.attach(&mcap::Attachment {
+            log_time: 0,
+            create_time: 0,
+            name: "scene.toml".into(),
+            media_type: "application/toml".into(),
+            data: std::borrow::Cow::Borrowed(scene_text.as_bytes()),
+        })?;
+        let f = &scene.file;
+        let metadata: BTreeMap<String, String> = [
+            ("software", format!("flexrig {}", env!("CARGO_PKG_VERSION"))),
+            (
+                "git_revision",
+                option_env!("FLEXRIG_GIT_REVISION")
+                    .unwrap_or("unknown")
+                    .to_string(),
+            ),
+            ("scene", f.name.clone()),
+            ("design", format!("{:?}", f.robot.design).to_lowercase()),
+            ("block_material", f.operator.block_material.clone()),
+            ("block_mass_kg", scene.block_mass_kg.to_string()),
+            ("payload_kg", f.robot.payload_kg.to_string()),
+            ("link_mass_kg", scene.link_mass_kg.to_string()),
+            (
+                "torsion_spring_nm_per_rad",
+                scene.torsion_spring.to_string(),
+            ),
+            ("hertz_k", scene.hertz.k().to_string()),
+            ("hertz_n", scene.hertz.n().to_string()),
+            ("time", "simulation time from 0 (ns)".to_string()),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect();
+        writer.write_metadata(&mcap::records::Metadata {
+            name: "flexrig".into(),
+            metadata,
+        })?;
+        Ok(McapRecorder {
+            writer,
+            channels,
+            sequence: 0,
+            buffer: Vec::with_capacity(1024),
+            last_scene_ns: None,
+            last_scalar_ns: None,
+            geometry: flexrig_rig::geometry::RigGeometry::of(scene),
+            messages: 0,
+        })
+    }
+
+    /// Messages written so far.
+    pub fn messages(&self) -> u64 {
+        self.messages
+    }
+
+    fn write<M: Encode>(&mut self, channel: u16, t: f64, msg: &M) -> Result<(), RigError> {
+        self.buffer.clear();
+        msg.encode(&mut self.buffer)
+            .map_err(|e| RigError::NotReached {
+                what: "an encoded message".into(),
+                limit: e.to_string(),
+            })?;
+        self.sequence += 1;
+        let ns = nanos(t);
+        self.writer
+            .write_to_known_channel(
+                &mcap::records::MessageHeader {
+                    channel_id: channel,
+                    sequence: self.sequence,
+                    log_time: ns,
+                    publish_time: ns,
+                },
+                &self.buffer,
+            )
+            .map_err(io_error)?;
+        self.messages += 1;
+        Ok(())
+    }
+
+    fn write_samples(&mut self, samples: &[SensorSample], every: bool) -> Result<(), RigError> {
+        for s in samples {
+            let ns = nanos(s.t);
+            if !every
+                && self
+                    .last_scalar_ns
+                    .is_some_and(|last| ns < last + SCALAR_PERIOD_NS)
+            {
+                continue;
+            }
+            self.last_scalar_ns = Some(ns);
+            let ts = stamp(s.t);
+            let c = self.channels;
+            self.write(
+                c.force,
+                s.t,
+                &ForceSensor {
+                    timestamp: ts,
+                    force_n: s.force_n,
+                },
+            )?;
+            self.write(
+                c.accel_operator,
+                s.t,
+                &Accelerometer {
+                    timestamp: ts,
+                    accel_mps2: s.operator_accel_mps2,
+                },
+            )?;
+            self.write(
+                c.accel_load,
+                s.t,
+                &Accelerometer {
+                    timestamp: ts,
+                    accel_mps2: s.load_accel_mps2,
+                },
+            )?;
+            let joint = |name: &str, position: f64| JointState {
+                name: name.into(),
+                position: Some(position),
+                velocity: None,
+                acceleration: None,
+                effort: None,
+            };
+            self.write(
+                c.encoders,
+                s.t,
+                &JointStates {
+                    timestamp: Some(ts),
+                    joints: vec![
+                        joint("operator", s.operator_angle_rad),
+                        joint("robot", s.robot_angle_rad),
+                    ],
+                },
+            )?;
+        }
+        Ok(())
+    }
+
+    fn write_3d(&mut self, f: &Frame<'_>) -> Result<(), RigError> {
+        let ts = stamp(f.t);
+        let transform = |child: &str, p: &Pose| FrameTransform {
+            timestamp: Some(ts),
+            parent_frame_id: "world".into(),
+            child_frame_id: child.into(),
+            translation: Some(vec3(p.translation)),
+            rotation: Some(Quaternion {
+                x: p.rotation.x,
+                y: p.rotation.y,
+                z: p.rotation.z,
+                w: p.rotation.w,
+            }),
+        };
+        let tf = FrameTransforms {
+            transforms: vec![
+                transform("operator", &f.operator_pose),
+                transform("robot", &f.dome_body_pose),
+            ],
+        };
+        self.write(self.channels.tf, f.t, &tf)?;
+
+        let op = &self.geometry.operator;
+        let robot = &self.geometry.robot;
+        let world = |p: &Pose, local: Vector| p.transform_point(local);
+        let block_pose = f.operator_pose * Pose::from_translation(op.block_center_local);
+        let link_points: Vec<Point3> = match f.beam {
+            Some(b) => b.node_positions().into_iter().map(point).collect(),
+            None => vec![
+                point(world(&f.dome_body_pose, Vector::ZERO)),
+                point(world(
+                    &f.dome_body_pose,
+                    Vector::new(robot.length, 0.0, 0.0),
+                )),
+            ],
+        };
+        let (dome_body, dome_local) = match f.beam {
+            Some(_) => (
+                f.dome_body_pose,
+                robot.dome_center_local - Vector::new(robot.length, 0.0, 0.0),
+            ),
+            None => (f.dome_body_pose, robot.dome_center_local),
+        };
+        let line = |points: Vec<Point3>, c: Option<Color>| LinePrimitive {
+            r#type: LineType::LineStrip as i32,
+            pose: None,
+            thickness: 4.0,
+            scale_invariant: true,
+            points,
+            color: c,
+            colors: vec![],
+            indices: vec![],
+        };
+        let mut entities = vec![
+            SceneEntity {
+                timestamp: Some(ts),
+                frame_id: "world".into(),
+                id: "operator".into(),
+                lines: vec![line(
+                    vec![point(op.pivot), point(block_pose.translation)],
+                    color(0.6, 0.6, 0.6),
+                )],
+                cubes: vec![CubePrimitive {
+                    pose: Some(pose(&block_pose)),
+                    size: Some(vec3(op.block_half_extents * 2.0)),
+                    color: color(0.75, 0.55, 0.3),
+                }],
+                ..Default::default()
+            },
+            SceneEntity {
+                timestamp: Some(ts),
+                frame_id: "world".into(),
+                id: "robot".into(),
+                lines: vec![line(link_points, color(0.2, 0.4, 0.9))],
+                spheres: vec![SpherePrimitive {
+                    pose: Some(pose(&(dome_body * Pose::from_translation(dome_local)))),
+                    size: Some(vec3(Vector::splat(2.0 * robot.dome_radius))),
+                    color: Some(Color {
+                        r: 0.8,
+                        g: 0.8,
+                        b: 0.85,
+                        a: 0.5,
+                    }),
+                }],
+                ..Default::default()
+            },
+        ];
+        let arrows = match f.contact {
+            Some(c) if c.force > 0.0 => {
+                // 1 mm of arrow per N, along the force on the block.
+                let length = (c.force * 1e-3).max(1e-3);
+                let rotation = rapier_arrow_rotation(c.normal);
+                vec![ArrowPrimitive {
+                    pose: Some(pose(&Pose::from_parts(c.point, rotation))),
+                    shaft_length: 0.8 * length,
+                    shaft_diameter: 0.004,
+                    head_length: 0.2 * length,
+                    head_diameter: 0.01,
+                    color: color(0.9, 0.1, 0.1),
+                }]
+            }
+            _ => vec![],
+        };
+        entities.push(SceneEntity {
+            timestamp: Some(ts),
+            frame_id: "world".into(),
+            id: "contact_force".into(),
+            arrows,
+            ..Default::default()
+        });
+        self.write(
+            self.channels.scene,
+            f.t,
+            &SceneUpdate {
+                deletions: vec![],
+                entities,
+            },
+        )
+    }
+
+    /// Closes the file; with `error`, an `error` metadata record first. Returns the summary of
+    /// the written file.
+    pub fn finish(mut self, error: Option<&str>) -> Result<(), mcap::McapError> {
+        if let Some(e) = error {
+            self.writer.write_metadata(&mcap::records::Metadata {
+                name: "error".into(),
+                metadata: [("message".to_string(), e.to_string())]
+                    .into_iter()
+                    .collect(),
+            })?;
+        }
+        self.writer.finish()?;
+        Ok(())
+    }
+
+    /// Writes the run summary as metadata (after a successful run).
+    pub fn write_summary(&mut self, s: &RunSummary) -> Result<(), mcap::McapError> {
+        let value = serde_json::to_value(s).unwrap_or_default();
+        let metadata = value
+            .as_object()
+            .map(|o| o.iter().map(|(k, v)| (k.clone(), v.to_string())).collect())
+            .unwrap_or_default();
+        self.writer.write_metadata(&mcap::records::Metadata {
+            name: "summary".into(),
+            metadata,
+        })
+    }
+}
+
+/// The rotation taking +x (the Foxglove arrow axis) onto `direction`.
+fn rapier_arrow_rotation(direction: Vector) -> flexrig_contact::math::Rotation {
+    flexrig_contact::math::Rotation::from_rotation_arc(Vector::X, direction.normalize())
+}
+
+impl<W: Write + Seek> Recorder for McapRecorder<W> {
+    fn frame(&mut self, f: &Frame<'_>) -> Result<(), RigError> {
+        let ns = nanos(f.t);
+        let in_contact = f.contact.is_some();
+        self.write_samples(f.samples, in_contact)?;
+        if in_contact || self.last_scalar_ns.is_none_or(|last| ns >= last) {
+            let ts = stamp(f.t);
+            if let Some(c) = f.contact {
+                self.write(
+                    self.channels.contact,
+                    f.t,
+                    &ContactState {
+                        timestamp: ts,
+                        indentation_m: c.indentation,
+                        rate_mps: c.rate,
+                        force_n: c.force,
+                    },
+                )?;
+            }
+        }
+        let energy_due = in_contact
+            || self
+                .last_scene_ns
+                .is_none_or(|last| ns >= last + SCENE_PERIOD_NS);
+        if energy_due {
+            self.write(
+                self.channels.energy,
+                f.t,
+                &EnergyState {
+                    timestamp: stamp(f.t),
+                    total_j: f.energy,
+                },
+            )?;
+            self.write_3d(f)?;
+            self.last_scene_ns = Some(ns);
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,216 @@
+//! MCAP logs: read back with the `mcap` crate (summary, counts, attachment, metadata), always a
+//! finished file when the run fails midway, no overwrite without --force, and the independent
+//! Python check when Python with the `mcap` package is present.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn flexrig(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_flexrig"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn scene_path(name: &str) -> String {
+    format!(
+        "{}/../../assets/scenes/{name}.toml",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("flexrig-mcap-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Per-topic message counts from a full scan, and the summary.
+fn read_back(path: &PathBuf) -> (std::collections::BTreeMap<String, u64>, mcap::Summary) {
+    let bytes = std::fs::read(path).unwrap();
+    let summary = mcap::Summary::read(&bytes)
+        .unwrap()
+        .expect("a finished file has a summary");
+    let mut counts = std::collections::BTreeMap::new();
+    let mut last = std::collections::BTreeMap::new();
+    for message in mcap::MessageStream::new(&bytes).unwrap() {
+        let m = message.unwrap();
+        *counts.entry(m.channel.topic.clone()).or_insert(0) += 1;
+        let previous = last
+            .insert(m.channel.topic.clone(), m.log_time)
+            .unwrap_or(0);
+        assert!(
+            m.log_time >= previous,
+            "{}: time goes back",
+            m.channel.topic
+        );
+        assert_eq!(m.log_time, m.publish_time);
+    }
+    (counts, summary)
+}
+
+#[test]
+fn run_log_reads_back_with_everything_written() {
+    let dir = scratch("ok");
+    let out = dir.join("run.mcap");
+    for (scene, design) in [("cj_iron", "cj"), ("cl_aluminium", "cl")] {
+        let _ = std::fs::remove_file(&out);
+        let o = flexrig(&[
+            "run",
+            &scene_path(scene),
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let (counts, summary) = read_back(&out);
+        let stats = summary.stats.as_ref().unwrap();
+        for (id, n) in &stats.channel_message_counts {
+            let topic = &summary.channels[id].topic;
+            assert_eq!(counts.get(topic), Some(n), "{topic}");
+        }
+        for topic in [
+            "/tf",
+            "/scene",
+            "/sensors/force",
+            "/sensors/accel/operator",
+            "/sensors/accel/load",
+            "/sensors/encoders",
+            "/contact",
+            "/energy",
+        ] {
+            assert!(
+                counts.get(topic).copied().unwrap_or(0) > 0,
+                "{scene}: no {topic}"
+            );
+        }
+        // Every contact step is logged (full rate inside the contact window).
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(counts["/contact"], v["contact_steps"].as_u64().unwrap());
+        // The scene file is attached verbatim; metadata carry the design and the version.
+        let bytes = std::fs::read(&out).unwrap();
+        let attachment = summary
+            .attachment_indexes
+            .iter()
+            .find(|a| a.name == "scene.toml")
+            .unwrap();
+        let a = mcap::read::attachment(&bytes, attachment).unwrap();
+        assert_eq!(
+            a.data.as_ref(),
+            std::fs::read(scene_path(scene)).unwrap().as_slice()
+        );
+        let meta = summary
+            .metadata_indexes
+            .iter()
+            .find(|m| m.name == "flexrig")
+            .unwrap();
+        let m = mcap::read::metadata(&bytes, meta).unwrap();
+        assert_eq!(m.metadata["design"], design);
+        assert!(m.metadata["software"].starts_with("flexrig "));
+        assert!(summary.metadata_indexes.iter().all(|m| m.name != "error"));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_run_that_fails_midway_leaves_a_finished_log() {
+    let dir = scratch("fail");
+    let text = std::fs::read_to_string(scene_path("cj_aluminium"))
+        .unwrap()
+        .replace(
+            "contact_steps = 800",
+            "contact_steps = 800\nmax_steps = 500",
+        );
+    let scene = dir.join("short.toml");
+    std::fs::write(&scene, text).unwrap();
+    let out = dir.join("fail.mcap");
+    let o = flexrig(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(String::from_utf8_lossy(&o.stderr).contains("solver.max_steps"));
+    let (counts, summary) = read_back(&out);
+    assert!(counts["/energy"] > 10, "what was computed is in the log");
+    let bytes = std::fs::read(&out).unwrap();
+    let index = summary
+        .metadata_indexes
+        .iter()
+        .find(|m| m.name == "error")
+        .expect("an error record");
+    let m = mcap::read::metadata(&bytes, index).unwrap();
+    assert!(m.metadata["message"].contains("max_steps"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn refuses_to_overwrite_without_force() {
+    let dir = scratch("force");
+    let out = dir.join("x.mcap");
+    std::fs::write(&out, b"keep me").unwrap();
+    let o = flexrig(&[
+        "run",
+        &scene_path("cj_iron"),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--force"));
+    assert_eq!(std::fs::read(&out).unwrap(), b"keep me");
+    let o = flexrig(&[
+        "run",
+        &scene_path("cj_iron"),
+        "--out",
+        out.to_str().unwrap(),
+        "--force",
+    ]);
+    assert!(o.status.success());
+    assert!(read_back(&out).0["/contact"] > 0);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn independent_python_check_when_available() {
+    let has_python_mcap = Command::new("python3")
+        .args(["-c", "import mcap, mcap_protobuf"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !has_python_mcap {
+        eprintln!("skipped: python3 with mcap and mcap-protobuf-support is not installed");
+        return;
+    }
+    let dir = scratch("py");
+    let out = dir.join("py.mcap");
+    assert!(
+        flexrig(&[
+            "run",
+            &scene_path("cl_iron"),
+            "--out",
+            out.to_str().unwrap()
+        ])
+        .status
+        .success()
+    );
+    let script = format!("{}/../../scripts/check_mcap.py", env!("CARGO_MANIFEST_DIR"));
+    let o = Command::new("python3")
+        .arg(script)
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(String::from_utf8_lossy(&o.stdout).contains(", ok;"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,0 +1,67 @@
+#!/usr/bin/env python3
+"""Independent check of flexrig MCAP logs with the Python `mcap` package.
+
+For each file: CRCs valid, summary present, per-topic message counts equal to the summary's
+statistics, log_time monotone per topic and equal to publish_time, every message decodes
+(protobuf, with the schemas stored in the file), the scene attachment and the metadata present.
+Prints one line per file and exits non-zero on the first problem.
+
+Usage: python3 scripts/check_mcap.py FILE.mcap [...]
+Needs: pip install mcap mcap-protobuf-support
+"""
+import sys
+from collections import Counter
+
+from mcap.reader import make_reader
+from mcap_protobuf.decoder import DecoderFactory
+
+REQUIRED_TOPICS = {"/tf", "/scene", "/sensors/force", "/sensors/accel/operator",
+                   "/sensors/accel/load", "/sensors/encoders", "/contact", "/energy"}
+
+
+def check(path):
+    with open(path, "rb") as f:
+        reader = make_reader(f, validate_crcs=True, decoder_factories=[DecoderFactory()])
+        summary = reader.get_summary()
+        if summary is None or summary.statistics is None:
+            raise SystemExit(f"{path}: no summary (unfinished file?)")
+        topics = {c.id: c.topic for c in summary.channels.values()}
+        missing = REQUIRED_TOPICS - set(topics.values())
+        if missing:
+            raise SystemExit(f"{path}: missing topics {sorted(missing)}")
+        counts = Counter()
+        last = {}
+        for schema, channel, message, decoded in reader.iter_decoded_messages(log_time_order=False):
+            topic = channel.topic
+            counts[topic] += 1
+            if message.log_time != message.publish_time:
+                raise SystemExit(f"{path}: {topic}: log_time != publish_time")
+            if topic in last and message.log_time < last[topic]:
+                raise SystemExit(f"{path}: {topic}: log_time goes back at {message.log_time}")
+            last[topic] = message.log_time
+            ts = getattr(decoded, "timestamp", None)
+            if ts is not None and hasattr(ts, "seconds") and ts.ByteSize() > 0:
+                nanos = ts.seconds * 1_000_000_000 + ts.nanos
+                if nanos != message.log_time:
+                    raise SystemExit(f"{path}: {topic}: message timestamp {nanos} != log_time {message.log_time}")
+        for cid, expected in summary.statistics.channel_message_counts.items():
+            if counts[topics[cid]] != expected:
+                raise SystemExit(f"{path}: {topics[cid]}: {counts[topics[cid]]} messages, statistics say {expected}")
+        attachments = [a.name for a in reader.iter_attachments()]
+        if "scene.toml" not in attachments:
+            raise SystemExit(f"{path}: no scene.toml attachment")
+        metadata = {m.name: m.metadata for m in reader.iter_metadata()}
+        if "flexrig" not in metadata:
+            raise SystemExit(f"{path}: no flexrig metadata")
+        state = "error: " + metadata["error"]["message"] if "error" in metadata else "ok"
+        total = sum(counts.values())
+        print(f"{path}: {total} messages on {len(counts)} topics, {state}; "
+              + ", ".join(f"{t} {n}" for t, n in sorted(counts.items())))
+    return 0
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 2:
+        raise SystemExit(__doc__)
+    for p in sys.argv[1:]:
+        check(p)
