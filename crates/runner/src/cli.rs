@@ -22,6 +22,9 @@ pub struct Cli {
 /// The `flexrig` commands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
+    /// Replay the paper's §VI experiment (Fig. 9): CJ vs CL, two operators, repeats with
+    /// release-angle jitter, and the light-load case; an MCAP log per run.
+    Experiment(commands::experiment::ExperimentArgs),
     /// Run a scene of the drop-pendulum test rig (CJ or CL) and print its impact summary.
     Run(commands::run::RunArgs),
     /// Peak force of the lumped two-mass impact (paper Eq. 10–14) by the exact energy balance,
@@ -45,6 +48,7 @@ pub const DEFAULT_OUT_DIR: &str = "out";
 pub fn run(cli: &Cli, out: &mut dyn Write) -> Result<(), CliError> {
     match &cli.command {
         None => commands::default_job(&PathBuf::from(DEFAULT_OUT_DIR), out),
+        Some(Command::Experiment(args)) => commands::experiment::run(args, out),
         Some(Command::Run(args)) => commands::run::run(args, out),
         Some(Command::Impact(args)) => commands::impact::run(args, out),
         Some(Command::Fig6(args)) => commands::fig6::run(args, out),

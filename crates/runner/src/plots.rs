@@ -87,3 +87,93 @@ pub fn fig6_svg(curves: &[EtaCurve]) -> Result<String, String> {
     }
     Ok(svg)
 }
+
+/// The paper's Fig. 9: (a) peak force of CJ and CL against the aluminium and the iron operator,
+/// mean ± 95 % CI; (b) the light-load case. `groups` are named by scene (`cj_aluminium`, ...).
+pub fn fig9_svg(groups: &[crate::commands::experiment::GroupStats]) -> Result<String, String> {
+    let find = |name: &str| groups.iter().find(|g| g.scene == name);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (1100, 500)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let (left, right) = root.split_horizontally(700);
+        let panels: [(&DrawingArea<_, _>, &str, [(&str, &str); 2]); 2] = [
+            (
+                &left,
+                "(a) test bed: m_e = 412 g, mean ± 95 % CI",
+                [
+                    ("aluminium operator 398 g", "aluminium"),
+                    ("iron operator 4008 g", "iron"),
+                ],
+            ),
+            (
+                &right,
+                "(b) light load m_e = 0.1 kg",
+                [("aluminium operator", "light_load"), ("", "")],
+            ),
+        ];
+        for (area, title, cases) in panels {
+            let cases: Vec<_> = cases.iter().filter(|c| !c.1.is_empty()).collect();
+            let top = cases
+                .iter()
+                .flat_map(|c| [find(&format!("cj_{}", c.1)), find(&format!("cl_{}", c.1))])
+                .flatten()
+                .map(|g| g.mean_peak_force_n + g.ci95_n)
+                .fold(0.0, f64::max)
+                * 1.15;
+            let mut chart = ChartBuilder::on(area)
+                .caption(title, ("sans-serif", 18))
+                .margin(15)
+                .x_label_area_size(40)
+                .y_label_area_size(60)
+                .build_cartesian_2d(0.0..(3.0 * cases.len() as f64), 0.0..top.max(1.0))
+                .map_err(|e| e.to_string())?;
+            chart
+                .configure_mesh()
+                .disable_x_mesh()
+                .x_labels(0)
+                .y_desc("peak impact force [N]")
+                .draw()
+                .map_err(|e| e.to_string())?;
+            for (i, (label, key)) in cases.iter().enumerate() {
+                let x0 = 3.0 * i as f64;
+                for (j, (design, colour)) in [("cj", ORANGE), ("cl", BLUE)].iter().enumerate() {
+                    let Some(g) = find(&format!("{design}_{key}")) else {
+                        continue;
+                    };
+                    let (a, b) = (x0 + 0.5 + j as f64, x0 + 1.4 + j as f64);
+                    let m = g.mean_peak_force_n;
+                    chart
+                        .draw_series(std::iter::once(Rectangle::new(
+                            [(a, 0.0), (b, m)],
+                            colour.filled(),
+                        )))
+                        .map_err(|e| e.to_string())?;
+                    let c = 0.5 * (a + b);
+                    chart
+                        .draw_series(std::iter::once(PathElement::new(
+                            vec![(c, m - g.ci95_n), (c, m + g.ci95_n)],
+                            BLACK.stroke_width(2),
+                        )))
+                        .map_err(|e| e.to_string())?;
+                    chart
+                        .draw_series(std::iter::once(Text::new(
+                            format!("{} {:.1} N", design.to_uppercase(), m),
+                            (a, m + g.ci95_n + 0.03 * top),
+                            ("sans-serif", 13),
+                        )))
+                        .map_err(|e| e.to_string())?;
+                }
+                chart
+                    .draw_series(std::iter::once(Text::new(
+                        label.to_string(),
+                        (x0 + 0.5, -0.06 * top),
+                        ("sans-serif", 14),
+                    )))
+                    .map_err(|e| e.to_string())?;
+            }
+        }
+        root.present().map_err(|e| e.to_string())?;
+    }
+    Ok(svg)
+}

@@ -1,6 +1,7 @@
 //! One module per `flexrig` command.
 
 pub mod beam;
+pub mod experiment;
 pub mod fig6;
 pub mod fit;
 pub mod impact;
@@ -12,12 +13,16 @@ use std::path::Path;
 
 use crate::CliError;
 
-/// The main job on bundled defaults: the Fig. 6 study into `out_dir`.
+/// The main job on bundled defaults: the paper's §VI experiment replayed (Fig. 9) into
+/// `out_dir`, with its table and where its files are.
 pub fn default_job(out_dir: &Path, out: &mut dyn Write) -> Result<(), CliError> {
-    let args = fig6::Fig6Args {
+    let args = experiment::ExperimentArgs {
+        repeats: 5,
+        jitter_deg: 0.5,
+        seed: 1,
         out: out_dir.to_path_buf(),
-        points: fig6::DEFAULT_POINTS,
+        scenes: None,
         json: false,
     };
-    fig6::run(&args, out)
+    experiment::run(&args, out)
 }
