@@ -34,6 +34,12 @@ pub enum RigError {
         /// Which setting to reduce.
         suggestion: String,
     },
+    /// The run was interrupted (e.g. Ctrl-C) by its recorder.
+    #[error("the run was interrupted at t = {t:.6e} s")]
+    Interrupted {
+        /// Time reached [s].
+        t: f64,
+    },
     /// The run did not reach its stop condition.
     #[error("the run did not reach {what} within {limit}")]
     NotReached {
@@ -51,7 +57,9 @@ impl RigError {
             RigError::InvalidScene { .. } | RigError::SceneSyntax(_) => true,
             RigError::Contact(e) => e.is_input_error(),
             RigError::Beam(e) => e.is_input_error(),
-            RigError::Unstable { .. } | RigError::NotReached { .. } => false,
+            RigError::Unstable { .. }
+            | RigError::NotReached { .. }
+            | RigError::Interrupted { .. } => false,
         }
     }
 }

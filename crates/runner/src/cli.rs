@@ -2,6 +2,8 @@
 
 use std::io::Write;
 use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 
 use clap::{Parser, Subcommand};
 
@@ -46,10 +48,24 @@ pub const DEFAULT_OUT_DIR: &str = "out";
 
 /// Runs the parsed command line, writing the report to `out`.
 pub fn run(cli: &Cli, out: &mut dyn Write) -> Result<(), CliError> {
+    run_interruptible(cli, out, &Interrupt::default())
+}
+
+/// A flag that asks running simulations to stop (set by the Ctrl-C handler of the binary);
+/// logs are finished with an `error` record.
+#[derive(Debug, Clone, Default)]
+pub struct Interrupt(pub Arc<AtomicBool>);
+
+/// As [`run`], stopping simulations when `interrupt` is set.
+pub fn run_interruptible(
+    cli: &Cli,
+    out: &mut dyn Write,
+    interrupt: &Interrupt,
+) -> Result<(), CliError> {
     match &cli.command {
-        None => commands::default_job(&PathBuf::from(DEFAULT_OUT_DIR), out),
-        Some(Command::Experiment(args)) => commands::experiment::run(args, out),
-        Some(Command::Run(args)) => commands::run::run(args, out),
+        None => commands::default_job(&PathBuf::from(DEFAULT_OUT_DIR), out, interrupt),
+        Some(Command::Experiment(args)) => commands::experiment::run(args, out, interrupt),
+        Some(Command::Run(args)) => commands::run::run(args, out, interrupt),
         Some(Command::Impact(args)) => commands::impact::run(args, out),
         Some(Command::Fig6(args)) => commands::fig6::run(args, out),
         Some(Command::Fit(args)) => commands::fit::run(args, out),

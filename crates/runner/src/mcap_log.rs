@@ -13,6 +13,8 @@ use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::{BufWriter, Seek, Write};
 use std::path::Path;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use flexrig_contact::math::{Pose, Vector};
 use flexrig_rig::sensors::SensorSample;
@@ -94,6 +96,7 @@ pub struct McapRecorder<W: Write + Seek> {
     last_scalar_ns: Option<u64>,
     geometry: flexrig_rig::geometry::RigGeometry,
     messages: u64,
+    interrupt: Option<Arc<AtomicBool>>,
 }
 
 impl<W: Write + Seek> std::fmt::Debug for McapRecorder<W> {
@@ -284,7 +287,16 @@ impl<W: Write + Seek> McapRecorder<W> {
             last_scalar_ns: None,
             geometry: flexrig_rig::geometry::RigGeometry::of(scene),
             messages: 0,
+            interrupt: None,
         })
+    }
+
+    /// Stops the run (with [`RigError::Interrupted`]) at the first frame after `flag` is set,
+    /// e.g. by a Ctrl-C handler; the file is then finished with an `error` record as for any
+    /// failed run.
+    pub fn with_interrupt(mut self, flag: Arc<AtomicBool>) -> Self {
+        self.interrupt = Some(flag);
+        self
     }
 
     /// Messages written so far.
@@ -531,6 +543,13 @@ fn rapier_arrow_rotation(direction: Vector) -> flexrig_contact::math::Rotation {
 
 impl<W: Write + Seek> Recorder for McapRecorder<W> {
     fn frame(&mut self, f: &Frame<'_>) -> Result<(), RigError> {
+        if self
+            .interrupt
+            .as_ref()
+            .is_some_and(|i| i.load(Ordering::Relaxed))
+        {
+            return Err(RigError::Interrupted { t: f.t });
+        }
         let ns = nanos(f.t);
         let in_contact = f.contact.is_some();
         self.write_samples(f.samples, in_contact)?;

@@ -20,6 +20,7 @@ use serde::Serialize;
 use serde_json::json;
 
 use crate::CliError;
+use crate::cli::Interrupt;
 use crate::mcap_log::McapRecorder;
 use crate::output::{ensure_dir, line, print_json, write_atomic};
 
@@ -168,7 +169,11 @@ struct Job {
 }
 
 /// Runs `flexrig experiment`.
-pub fn run(args: &ExperimentArgs, out: &mut dyn Write) -> Result<(), CliError> {
+pub fn run(
+    args: &ExperimentArgs,
+    out: &mut dyn Write,
+    interrupt: &Interrupt,
+) -> Result<(), CliError> {
     if args.repeats == 0 || args.repeats > 1000 {
         return Err(CliError::InvalidArgument {
             arg: "--repeats".into(),
@@ -193,7 +198,7 @@ pub fn run(args: &ExperimentArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let records = jobs
         .par_iter()
         .map(|job| {
-            let r = run_job(job, &materials, &args.out);
+            let r = run_job(job, &materials, &args.out, interrupt);
             progress.inc(1);
             r
         })
@@ -326,14 +331,20 @@ fn plan(args: &ExperimentArgs, materials: &Materials) -> Result<Vec<Job>, CliErr
     Ok(jobs)
 }
 
-fn run_job(job: &Job, materials: &Materials, dir: &Path) -> Result<RunRecord, CliError> {
+fn run_job(
+    job: &Job,
+    materials: &Materials,
+    dir: &Path,
+    interrupt: &Interrupt,
+) -> Result<RunRecord, CliError> {
     let mut scene = Scene::from_toml_str(&job.text, materials)?;
     scene.file.operator.start = Start::Release {
         release_angle_deg: job.angle_deg,
     };
     let scene = Scene::from_file(scene.file, materials)?;
     let path = dir.join(format!("{}_{}.mcap", job.scene, job.repeat));
-    let mut log = McapRecorder::create(&path, true, &scene, &job.text)?;
+    let mut log =
+        McapRecorder::create(&path, true, &scene, &job.text)?.with_interrupt(interrupt.0.clone());
     let closed = |e: mcap::McapError| CliError::write(&path, std::io::Error::other(e.to_string()));
     let summary = match Simulation::new(&scene, RunOptions::default())?.run(&mut log) {
         Ok(s) => {

@@ -15,7 +15,11 @@ use crate::CliError;
 
 /// The main job on bundled defaults: the paper's §VI experiment replayed (Fig. 9) into
 /// `out_dir`, with its table and where its files are.
-pub fn default_job(out_dir: &Path, out: &mut dyn Write) -> Result<(), CliError> {
+pub fn default_job(
+    out_dir: &Path,
+    out: &mut dyn Write,
+    interrupt: &crate::cli::Interrupt,
+) -> Result<(), CliError> {
     let args = experiment::ExperimentArgs {
         repeats: 5,
         jitter_deg: 0.5,
@@ -24,5 +28,5 @@ pub fn default_job(out_dir: &Path, out: &mut dyn Write) -> Result<(), CliError> 
         scenes: None,
         json: false,
     };
-    experiment::run(&args, out)
+    experiment::run(&args, out, interrupt)
 }

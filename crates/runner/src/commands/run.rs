@@ -9,6 +9,7 @@ use flexrig_rig::{NoRecorder, RunOptions, RunSummary, Scene, Simulation};
 use serde_json::json;
 
 use crate::CliError;
+use crate::cli::Interrupt;
 use crate::mcap_log::McapRecorder;
 use crate::output::{line, print_json};
 
@@ -35,6 +36,7 @@ pub fn run_scene_file(
     path: &PathBuf,
     out: Option<&PathBuf>,
     force: bool,
+    interrupt: &Interrupt,
 ) -> Result<RunSummary, CliError> {
     let text = std::fs::read_to_string(path).map_err(|source| CliError::Read {
         path: path.clone(),
@@ -45,7 +47,8 @@ pub fn run_scene_file(
     let Some(out) = out else {
         return Ok(simulation.run(&mut NoRecorder)?);
     };
-    let mut log = McapRecorder::create(out, force, &scene, &text)?;
+    let mut log =
+        McapRecorder::create(out, force, &scene, &text)?.with_interrupt(interrupt.0.clone());
     let closed = |e: mcap::McapError| CliError::write(out, std::io::Error::other(e.to_string()));
     match simulation.run(&mut log) {
         Ok(summary) => {
@@ -61,8 +64,8 @@ pub fn run_scene_file(
 }
 
 /// Runs `flexrig run`.
-pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let s = run_scene_file(&args.scene, args.out.as_ref(), args.force)?;
+pub fn run(args: &RunArgs, out: &mut dyn Write, interrupt: &Interrupt) -> Result<(), CliError> {
+    let s = run_scene_file(&args.scene, args.out.as_ref(), args.force, interrupt)?;
     if args.json {
         return print_json(
             out,
