@@ -15,6 +15,12 @@ fn bench(c: &mut Criterion) {
     for name in ["cj_aluminium", "cl_aluminium"] {
         let text = BUNDLED_SCENES.iter().find(|(n, _)| *n == name).unwrap().1;
         let scene = Scene::from_toml_str(text, &materials).unwrap();
+        c.bench_function(&format!("{name}_open_and_close_log"), |b| {
+            b.iter(|| {
+                let log = McapRecorder::new(Cursor::new(Vec::new()), &scene, text).unwrap();
+                log.finish(None).unwrap();
+            })
+        });
         c.bench_function(&format!("{name}_no_log"), |b| {
             b.iter(|| {
                 Simulation::new(black_box(&scene), RunOptions::default())

@@ -97,7 +97,9 @@ pub fn fig9_svg(groups: &[crate::commands::experiment::GroupStats]) -> Result<St
         let root = SVGBackend::with_string(&mut svg, (1100, 500)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
         let (left, right) = root.split_horizontally(700);
-        let panels: [(&DrawingArea<_, _>, &str, [(&str, &str); 2]); 2] = [
+        // (area, title, [(x label, scene suffix)]).
+        type Cases<'a> = [(&'a str, &'a str); 2];
+        let panels: [(&DrawingArea<_, _>, &str, Cases); 2] = [
             (
                 &left,
                 "(a) test bed: m_e = 412 g, mean ± 95 % CI",
