@@ -140,3 +140,86 @@ pub fn eta_references() -> Vec<EtaReference> {
         },
     ]
 }
+
+/// Peak forces from `scripts/reference_exact.py`: mpmath at 50 digits, U(f) by tanh-sinh
+/// quadrature of the work of the force and the root of U(f) = μ v0²/2 by findroot (another method
+/// than the closed-form antiderivative and Newton of [`crate::peak_exact`]). Rows: (m_h, m_eff,
+/// k_δ, k_c, n, v0, f_max), SI units.
+#[allow(clippy::excessive_precision)]
+pub const HIGH_PRECISION_PEAKS: [(f64, f64, f64, f64, f64, f64, f64); 8] = [
+    (
+        4.0,
+        10.0 / 3.0 + 0.1,
+        1e8,
+        1e8,
+        2.0,
+        2.0,
+        2296.617005700095672426137,
+    ),
+    (
+        4.0,
+        10.0 / 3.0 + 0.1,
+        1e8,
+        1e8,
+        1.5,
+        2.0,
+        5847.789870245047887188035,
+    ),
+    (
+        4.0,
+        20.0 / 9.0 + 0.1,
+        2e2,
+        1e8,
+        2.0,
+        2.0,
+        34.24504981478450701721317,
+    ),
+    (
+        1000.0,
+        10.0 / 3.0 + 0.1,
+        1e8,
+        1e8,
+        2.5,
+        2.0,
+        1862.770268477948318160946,
+    ),
+    (
+        0.398,
+        0.429,
+        6.0,
+        7.359e7,
+        1.961,
+        0.9,
+        1.001497720973772587892669,
+    ),
+    (
+        4.008,
+        0.429,
+        6.0,
+        9.642e7,
+        2.002,
+        0.9,
+        1.372112708700056584262454,
+    ),
+    (
+        0.039,
+        0.1,
+        1e2,
+        1.311e7,
+        1.817,
+        1.5,
+        2.505447899271634783196705,
+    ),
+    (1.0, 1.0, 1e-2, 1e4, 3.0, 1.0, 0.07066272066547139108705697),
+];
+
+/// [`HIGH_PRECISION_PEAKS`] as impact models with their reference peak force [N].
+pub fn high_precision_peaks() -> Result<Vec<(ImpactModel, f64)>, LumpedError> {
+    HIGH_PRECISION_PEAKS
+        .iter()
+        .map(|&(m_h, m_eff, k_delta, k_c, n, v0, f)| {
+            let spring = SeriesCompliance::new(k_delta, Hertz::new(k_c, n)?)?;
+            Ok((ImpactModel::new(m_h, m_eff, spring, v0)?, f))
+        })
+        .collect()
+}

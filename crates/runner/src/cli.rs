@@ -39,6 +39,8 @@ pub enum Command {
     /// Finite-element Euler–Bernoulli beam: natural frequencies and static deflection.
     #[command(subcommand)]
     Beam(commands::beam::BeamCommand),
+    /// Run the verification suite against every reference; writes validation.md.
+    Validate(commands::validate::ValidateArgs),
     /// Check the Pseudo-Rigid-Body model (γ, K_Θ) against the corotational FE beam.
     Prb(commands::prb::PrbArgs),
 }
@@ -71,5 +73,6 @@ pub fn run_interruptible(
         Some(Command::Fit(args)) => commands::fit::run(args, out),
         Some(Command::Beam(cmd)) => commands::beam::run(cmd, out),
         Some(Command::Prb(args)) => commands::prb::run(args, out),
+        Some(Command::Validate(args)) => commands::validate::run(args, out),
     }
 }

@@ -44,6 +44,12 @@ pub enum CliError {
         /// The cause.
         source: std::io::Error,
     },
+    /// `flexrig validate` found failing cases.
+    #[error("verification failed: {failed}")]
+    ValidationFailed {
+        /// Names of the failing cases.
+        failed: String,
+    },
     /// A figure could not be drawn.
     #[error("cannot draw {path}: {message}")]
     Plot {

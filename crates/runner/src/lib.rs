@@ -10,5 +10,6 @@ pub mod error;
 pub mod mcap_log;
 pub mod output;
 pub mod plots;
+pub mod validation;
 
 pub use error::CliError;

@@ -375,3 +375,20 @@ fn run_rejects_bad_scenes_with_exit_code_2() {
     assert_eq!(out.status.code(), Some(2));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn validate_passes_every_case_and_writes_the_report() {
+    let dir = scratch_dir("validate");
+    let v = json(&["validate", "--out", dir.to_str().unwrap(), "--json"]);
+    let cases = v["cases"].as_array().unwrap();
+    assert!(cases.len() >= 40, "{} cases", cases.len());
+    for c in cases {
+        assert_eq!(c["pass"], true, "{c}");
+        for key in ["name", "reference", "value", "error", "tolerance"] {
+            assert!(c.get(key).is_some(), "{key}");
+        }
+    }
+    let report = std::fs::read_to_string(dir.join("validation.md")).unwrap();
+    assert!(report.contains(&format!("{} of {} cases pass", cases.len(), cases.len())));
+    let _ = std::fs::remove_dir_all(&dir);
+}

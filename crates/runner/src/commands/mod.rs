@@ -7,6 +7,7 @@ pub mod fit;
 pub mod impact;
 pub mod prb;
 pub mod run;
+pub mod validate;
 
 use std::io::Write;
 use std::path::Path;

@@ -1,0 +1,64 @@
+//! `flexrig validate`: the verification report against every reference.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::Args;
+use serde_json::json;
+
+use crate::CliError;
+use crate::output::{ensure_dir, line, print_json, write_atomic};
+use crate::validation::{markdown, suite};
+
+/// Arguments of `flexrig validate`.
+#[derive(Debug, Args)]
+pub struct ValidateArgs {
+    /// Skip the slowest cases (the PRB fit path, the rig convergence study).
+    #[arg(long)]
+    pub quick: bool,
+    /// Directory for validation.md.
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs `flexrig validate`; fails (exit code 1) if any case fails.
+pub fn run(args: &ValidateArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let cases = suite(args.quick)?;
+    ensure_dir(&args.out)?;
+    let report = args.out.join("validation.md");
+    write_atomic(&report, markdown(&cases).as_bytes())?;
+    if args.json {
+        print_json(out, &json!({ "cases": cases, "report": report }))?;
+    } else {
+        for c in &cases {
+            line(
+                out,
+                format!(
+                    "{} {:<58} value {:>16.9e}  ref {:>16.9e}  err {:.1e} ≤ {:.0e}",
+                    if c.pass { "pass" } else { "FAIL" },
+                    c.name,
+                    c.value,
+                    c.reference,
+                    c.error,
+                    c.tolerance
+                ),
+            )?;
+        }
+        line(out, format!("Wrote {}", report.display()))?;
+    }
+    let failed: Vec<&str> = cases
+        .iter()
+        .filter(|c| !c.pass)
+        .map(|c| c.name.as_str())
+        .collect();
+    if failed.is_empty() {
+        Ok(())
+    } else {
+        Err(CliError::ValidationFailed {
+            failed: failed.join("; "),
+        })
+    }
+}

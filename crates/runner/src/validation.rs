@@ -1,0 +1,391 @@
+//! The verification suite behind `flexrig validate`: every case computes a value with flexrig and
+//! compares it with an independent reference (analytic solution, published table, converged
+//! solution of another method, conservation law), with a stated tolerance. The references come
+//! from the canonical problems of the crates (`flexrig_lumped::samples`,
+//! `flexrig_beam::canonical`) and `notes/references.md`.
+
+use flexrig_beam::canonical::{self, CANTILEVER_BETA_L, ELASTICA, TIP_MASS_BETA1};
+use flexrig_beam::prb::{ErrorMeasure, default_load_indices, fit_prb, trace_tip_path};
+use flexrig_beam::{Kinematics, ModalDirection, StaticOptions, modal_analysis, solve_static};
+use flexrig_contact::Materials;
+use flexrig_contact::tolerance::relative_error;
+use flexrig_lumped::ode::{OdeOptions, integrate};
+use flexrig_lumped::{peak_analytic, peak_exact, samples};
+use flexrig_rig::{NoRecorder, RunOptions, Scene, Simulation};
+use serde::Serialize;
+
+use crate::CliError;
+use crate::commands::experiment::BUNDLED_SCENES;
+
+/// How a case's error is measured.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ErrorKind {
+    /// |value − reference| / |reference|.
+    Relative,
+    /// |value − reference|.
+    Absolute,
+}
+
+/// One verification case and its outcome.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Case {
+    /// Case name, `area.what`.
+    pub name: String,
+    /// Reference value.
+    pub reference: f64,
+    /// Where the reference comes from.
+    pub source: String,
+    /// Computed value.
+    pub value: f64,
+    /// Error (relative or absolute, see `kind`).
+    pub error: f64,
+    /// Largest error accepted.
+    pub tolerance: f64,
+    /// Error measure.
+    pub kind: ErrorKind,
+    /// error ≤ tolerance and the value is finite.
+    pub pass: bool,
+}
+
+impl Case {
+    /// Compares `value` with `reference`.
+    pub fn new(
+        name: &str,
+        value: f64,
+        reference: f64,
+        source: &str,
+        tolerance: f64,
+        kind: ErrorKind,
+    ) -> Self {
+        let error = match kind {
+            ErrorKind::Relative => relative_error(value, reference, f64::MIN_POSITIVE),
+            ErrorKind::Absolute => (value - reference).abs(),
+        };
+        Case {
+            name: name.into(),
+            reference,
+            source: source.into(),
+            value,
+            error,
+            tolerance,
+            kind,
+            pass: value.is_finite() && error <= tolerance,
+        }
+    }
+}
+
+fn rel(name: &str, value: f64, reference: f64, source: &str, tolerance: f64) -> Case {
+    Case::new(
+        name,
+        value,
+        reference,
+        source,
+        tolerance,
+        ErrorKind::Relative,
+    )
+}
+
+fn abs(name: &str, value: f64, reference: f64, source: &str, tolerance: f64) -> Case {
+    Case::new(
+        name,
+        value,
+        reference,
+        source,
+        tolerance,
+        ErrorKind::Absolute,
+    )
+}
+
+/// Runs every case; `quick` skips the slowest (the PRB path and the rig convergence study).
+pub fn suite(quick: bool) -> Result<Vec<Case>, CliError> {
+    let mut cases = Vec::new();
+    lumped_cases(&mut cases)?;
+    beam_cases(&mut cases, quick)?;
+    rig_cases(&mut cases, quick)?;
+    Ok(cases)
+}
+
+fn lumped_cases(cases: &mut Vec<Case>) -> Result<(), CliError> {
+    for r in samples::peak_references()? {
+        cases.push(rel(
+            &format!("lumped.exact {}", r.name),
+            peak_exact(&r.model).f_max,
+            r.f_max,
+            r.source,
+            r.reference_accuracy,
+        ));
+        let ode = integrate(&r.model, &OdeOptions::new(1e-12)?)?;
+        cases.push(rel(
+            &format!("lumped.ode {}", r.name),
+            ode.peak.f_max,
+            r.f_max,
+            r.source,
+            1e-9,
+        ));
+        if r.model.spring().contact().n() == 1.0 {
+            let a = peak_analytic(&r.model)?;
+            cases.push(rel(
+                &format!("lumped.exact vs Eq. 13 {}", r.name),
+                peak_exact(&r.model).f_max,
+                a.peak.f_max,
+                "paper Eq. 13 (closed form)",
+                1e-12,
+            ));
+            cases.push(rel(
+                &format!("lumped.ode contact duration {}", r.name),
+                ode.contact_duration.unwrap_or(f64::NAN),
+                a.contact_duration,
+                "half period π√(μ/k_o)",
+                1e-9,
+            ));
+        }
+    }
+    for (i, (model, reference)) in samples::high_precision_peaks()?.into_iter().enumerate() {
+        let n = model.spring().contact().n();
+        cases.push(rel(
+            &format!("lumped.exact mpmath case {i} (n = {n})"),
+            peak_exact(&model).f_max,
+            reference,
+            "scripts/reference_exact.py (mpmath, 50 digits, quadrature + findroot)",
+            1e-12,
+        ));
+    }
+    for r in samples::eta_references() {
+        cases.push(abs(
+            &format!("fig6.eta(2/3) m_h = {} n = {}", r.case.m_h, r.n),
+            r.case.eta(r.n, 2.0 / 3.0)?,
+            r.eta,
+            r.source,
+            r.reference_accuracy,
+        ));
+    }
+    Ok(())
+}
+
+fn beam_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), CliError> {
+    let section = canonical::unit_section();
+    for elements in [16, 32] {
+        let model = canonical::unit_cantilever(elements, Kinematics::Linear)?;
+        let modal = modal_analysis(&model, 4, ModalDirection::Transverse)?;
+        let tol = if elements == 16 { 2e-4 } else { 1e-5 };
+        for (k, beta) in CANTILEVER_BETA_L.iter().enumerate() {
+            let reference = canonical::beam_omega(*beta, section.ei(), section.rho_a(), 1.0);
+            cases.push(rel(
+                &format!("beam.cantilever ω{} ({elements} elements)", k + 1),
+                modal.omegas[k],
+                reference,
+                "roots of 1 + cos βL cosh βL = 0 (references.md)",
+                tol,
+            ));
+        }
+    }
+    for (mu, beta) in TIP_MASS_BETA1 {
+        if mu != 1.0 && quick {
+            continue;
+        }
+        let model = canonical::unit_cantilever_with_tip_mass(32, mu)?;
+        let modal = modal_analysis(&model, 1, ModalDirection::Transverse)?;
+        cases.push(rel(
+            &format!("beam.tip mass μ = {mu}: ω₁"),
+            modal.omegas[0],
+            canonical::beam_omega(beta, section.ei(), section.rho_a(), 1.0),
+            "tip-mass frequency equation (references.md)",
+            1e-4,
+        ));
+    }
+    let options = StaticOptions::new(20, 50, 1e-10)?;
+    for (load, v_over_l, _, _) in ELASTICA {
+        let (model, loads) = canonical::elastica_problem(load, 32)?;
+        let s = solve_static(&model, &loads, &options)?;
+        cases.push(rel(
+            &format!("beam.elastica PL²/EI = {load}: v/L (32 elements)"),
+            s.q[3 * model.tip_node() + 1],
+            v_over_l,
+            "elliptic integrals (references.md)",
+            5e-4,
+        ));
+    }
+    if !quick {
+        let path = trace_tip_path(32, &default_load_indices())?;
+        let fit = fit_prb(&path, ErrorMeasure::Deflection)?;
+        cases.push(abs(
+            "prb.gamma (Howell's error measure)",
+            fit.gamma,
+            canonical::HOWELL_GAMMA,
+            "Howell 2001: γ = 0.8517",
+            2e-3,
+        ));
+        cases.push(abs(
+            "prb.theta_max [deg]",
+            fit.theta_max_deg,
+            canonical::HOWELL_THETA_MAX_DEG,
+            "Howell 2001: Θ_max ≈ 64.3°",
+            0.5,
+        ));
+        cases.push(abs(
+            "prb.small-deflection gamma",
+            fit.gamma_small,
+            canonical::PAPER_GAMMA_SMALL,
+            "PL³/3EI and slope: γ = 2/3",
+            1e-3,
+        ));
+    }
+    Ok(())
+}
+
+fn bundled(name: &str, edits: &[(&str, &str)]) -> Result<Scene, CliError> {
+    let mut text = BUNDLED_SCENES
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, t)| t.to_string())
+        .expect("a bundled scene");
+    for (from, to) in edits {
+        text = text.replace(from, to);
+    }
+    Ok(Scene::from_toml_str(&text, &Materials::bundled()?)?)
+}
+
+fn rig_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), CliError> {
+    let run = |scene: &Scene, options: RunOptions| -> Result<flexrig_rig::RunSummary, CliError> {
+        Ok(Simulation::new(scene, options)?.run(&mut NoRecorder)?)
+    };
+    // Point-like contact: the rig against the lumped model with the same effective masses.
+    let point = [
+        ("from = \"release\"", "from = \"contact\""),
+        ("contact_steps = 800", "contact_steps = 3200"),
+        ("dome_radius_m = 0.0715", "dome_radius_m = 0.002"),
+        ("dome_standoff_m = 0.030", "dome_standoff_m = 0.002"),
+        (
+            "block_size_m = [0.0799, 0.0799, 0.0799]",
+            "block_size_m = [0.0799, 0.002, 0.0799]",
+        ),
+    ];
+    let scene = bundled("cj_iron", &point)?;
+    let rig = run(&scene, RunOptions::default())?;
+    let g = flexrig_rig::geometry::RigGeometry::of(&scene);
+    let spring = flexrig_contact::SeriesCompliance::new(1e15, scene.hertz)?;
+    let lumped = flexrig_lumped::ImpactModel::new(
+        g.operator.effective_mass(),
+        g.robot.effective_mass(),
+        spring,
+        rig.impact_velocity_mps,
+    )?;
+    cases.push(rel(
+        "rig.CJ peak vs lumped (point contact)",
+        rig.peak_force_n,
+        peak_exact(&lumped).f_max,
+        "lumped two-mass model, same masses",
+        1e-4,
+    ));
+    let v = g.operator.bottom_angular_speed(30f64.to_radians(), 9.81) * g.operator.arm_length;
+    cases.push(rel(
+        "rig.impact speed vs pendulum energy",
+        rig.impact_velocity_mps,
+        v,
+        "½Jω² = M g l_c (1 − cos θ₀)",
+        1e-6,
+    ));
+    let (before, after) = rig.energy_through_contact_j.unwrap_or((f64::NAN, f64::NAN));
+    cases.push(abs(
+        "rig.energy through an undamped contact (relative)",
+        (after - before) / before,
+        0.0,
+        "energy conservation",
+        1e-6,
+    ));
+    // The Rapier CJ against the CJ built from a stiff FE beam on the same spring.
+    let stiff = bundled(
+        "cl_iron",
+        &[
+            ("from = \"release\"", "from = \"contact\""),
+            ("contact_steps = 800", "contact_steps = 1600"),
+        ],
+    )?;
+    let cj = bundled(
+        "cj_iron",
+        &[
+            ("from = \"release\"", "from = \"contact\""),
+            ("contact_steps = 800", "contact_steps = 1600"),
+        ],
+    )?;
+    let fe = run(
+        &stiff,
+        RunOptions {
+            cl_link: flexrig_rig::LinkVariant::StiffOnTorsionSpring {
+                stiffness_factor: 1e4,
+            },
+            ..RunOptions::default()
+        },
+    )?;
+    let rapier = run(&cj, RunOptions::default())?;
+    cases.push(rel(
+        "rig.Rapier CJ vs stiff FE CJ: peak",
+        rapier.peak_force_n,
+        fe.peak_force_n,
+        "FE beam ×1e4 stiffness on k_θr",
+        1e-3,
+    ));
+    if !quick {
+        let peaks: Vec<f64> = [200usize, 400, 800]
+            .iter()
+            .map(|n| {
+                let s = bundled(
+                    "cj_aluminium",
+                    &[("contact_steps = 800", &format!("contact_steps = {n}"))],
+                )?;
+                Ok(run(&s, RunOptions::default())?.peak_force_n)
+            })
+            .collect::<Result<_, CliError>>()?;
+        let order = ((peaks[0] - peaks[1]) / (peaks[1] - peaks[2])).log2();
+        cases.push(abs(
+            "rig.CJ peak convergence order in the contact step",
+            order,
+            2.0,
+            "leapfrog (symplectic Euler) is second order",
+            0.3,
+        ));
+    }
+    Ok(())
+}
+
+/// The Markdown report written as `validation.md`.
+pub fn markdown(cases: &[Case]) -> String {
+    let passed = cases.iter().filter(|c| c.pass).count();
+    let mut s = format!(
+        "# Verification report\n\nGenerated by `flexrig validate`: {passed} of {} cases pass.\n\n| case | reference (source) | value | error | tolerance | pass |\n|---|---|---|---|---|---|\n",
+        cases.len()
+    );
+    for c in cases {
+        let kind = if c.kind == ErrorKind::Relative {
+            "rel"
+        } else {
+            "abs"
+        };
+        s.push_str(&format!(
+            "| {} | {:.10e} ({}) | {:.10e} | {:.2e} {kind} | {:.1e} | {} |\n",
+            c.name,
+            c.reference,
+            c.source,
+            c.value,
+            c.error,
+            c.tolerance,
+            if c.pass { "yes" } else { "**NO**" }
+        ));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_wrong_reference_fails_the_case() {
+        let good = rel("x", 1.0 + 1e-13, 1.0, "exact", 1e-12);
+        let wrong = rel("x", 1.0 + 1e-13, 1.001, "deliberately wrong", 1e-12);
+        assert!(good.pass && !wrong.pass);
+        assert!(!abs("nan", f64::NAN, 0.0, "", 1.0).pass);
+        assert!(markdown(&[good, wrong]).contains("**NO**"));
+    }
+}
