@@ -51,7 +51,7 @@ fn gather(x: &[f64], e: usize) -> Vector6<f64> {
 
 /// Assembles r = f_int + f_damp + f_in + f_root − f_ext into `r` and, if `jac` is given, the
 /// weighted Jacobian into the band matrix (over free DOFs; it is cleared first). Returns the
-/// sum of the element strain energies (plus the root spring) [J].
+/// sum of the element strain energies (plus the root spring) \[J\].
 pub fn assemble(
     model: &BeamModel,
     kin: Kinematic<'_>,
@@ -189,7 +189,7 @@ pub fn assemble(
     energy
 }
 
-/// Kinetic energy ½ q̇ᵀ M(q) q̇ of the beam, its point masses and the hub [J].
+/// Kinetic energy ½ q̇ᵀ M(q) q̇ of the beam, its point masses and the hub \[J\].
 pub fn kinetic_energy(model: &BeamModel, q: &[f64], v: &[f64]) -> f64 {
     let sec = model.section();
     let l = model.element_length();
@@ -220,7 +220,7 @@ pub fn kinetic_energy(model: &BeamModel, q: &[f64], v: &[f64]) -> f64 {
     t + 0.5 * j_hub * v[2] * v[2]
 }
 
-/// Strain energy of the elements and the root spring [J].
+/// Strain energy of the elements and the root spring \[J\].
 pub fn strain_energy(model: &BeamModel, q: &[f64]) -> f64 {
     let zeros = vec![0.0; q.len()];
     let mut r = vec![0.0; q.len()];

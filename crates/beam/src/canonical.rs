@@ -24,7 +24,7 @@ pub const TIP_MASS_BETA1: [(f64, f64); 7] = [
 ];
 
 /// Inextensible elastica, cantilever under a perpendicular dead tip load:
-/// (PL²/EI, v/L, u/L shortening, tip angle [rad]).
+/// (PL²/EI, v/L, u/L shortening, tip angle \[rad\]).
 pub const ELASTICA: [(f64, f64, f64, f64); 4] = [
     (1.0, 0.3017207738, 0.0564332363, 0.4613519497),
     (2.0, 0.4934574804, 0.1606417208, 0.7817498316),
@@ -36,7 +36,7 @@ pub const ELASTICA: [(f64, f64, f64, f64); 4] = [
 pub const HOWELL_GAMMA: f64 = 0.8517;
 /// Howell's stiffness coefficient K_Θ (k = γ K_Θ EI/L), quoted from the book.
 pub const HOWELL_K_THETA: f64 = 2.67617;
-/// Howell's parametric limit Θ_max [deg] for γ = 0.8517 (tip error ≤ 0.5 % of L).
+/// Howell's parametric limit Θ_max \[deg\] for γ = 0.8517 (tip error ≤ 0.5 % of L).
 pub const HOWELL_THETA_MAX_DEG: f64 = 64.3;
 /// The paper's small-deflection characteristic radius.
 pub const PAPER_GAMMA_SMALL: f64 = 2.0 / 3.0;

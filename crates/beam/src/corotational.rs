@@ -22,9 +22,9 @@ pub struct CorotationalElement {
     pub tangent: Matrix6<f64>,
     /// Material part Bᵀ K_l B (used for stiffness-proportional damping of the local rates).
     pub material: Matrix6<f64>,
-    /// Strain energy ½ (N ū + M₁ θ̄₁ + M₂ θ̄₂) [J].
+    /// Strain energy ½ (N ū + M₁ θ̄₁ + M₂ θ̄₂) \[J\].
     pub strain_energy: f64,
-    /// Local deformations (ū [m], θ̄₁, θ̄₂ [rad]).
+    /// Local deformations (ū \[m\], θ̄₁, θ̄₂ \[rad\]).
     pub local: Vector3<f64>,
 }
 

@@ -98,7 +98,7 @@ impl GeneralizedAlpha {
 /// The dynamic state: time, displacements, velocities, accelerations (one entry per DOF).
 #[derive(Debug, Clone, PartialEq)]
 pub struct State {
-    /// Time t [s].
+    /// Time t \[s\].
     pub t: f64,
     /// q [m, rad].
     pub q: Vec<f64>,
@@ -114,7 +114,7 @@ pub struct State {
     initial_energy: f64,
 }
 
-/// Energies of a state [J].
+/// Energies of a state \[J\].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Energy {
     /// Kinetic energy ½ q̇ᵀ M q̇ (beam, point masses, hub).
@@ -266,7 +266,7 @@ pub struct StepReport {
 }
 
 impl GeneralizedAlpha {
-    /// Advances `state` by `h` [s] (> 0, finite) with the loads `loads` acting at t + h.
+    /// Advances `state` by `h` \[s\] (> 0, finite) with the loads `loads` acting at t + h.
     pub fn step(
         &self,
         model: &BeamModel,

@@ -35,7 +35,7 @@ pub const HERMITE_PRODUCTS: [[f64; 4]; 4] = [
 /// Lumped rotary inertia factor: ρA l³/78 per node (HRZ scaling of the consistent diagonal).
 pub const LUMPED_ROTARY_FACTOR: f64 = 1.0 / 78.0;
 
-/// Linear element stiffness matrix for an element along x of length `l` [m].
+/// Linear element stiffness matrix for an element along x of length `l` \[m\].
 pub fn linear_stiffness(l: f64, ea: f64, ei: f64) -> Matrix6<f64> {
     let a = ea / l;
     let b = ei / (l * l * l);
@@ -73,7 +73,7 @@ pub struct ElementInertia {
 }
 
 /// Consistent, rotation-invariant inertia of an element of length `l` and mass per length
-/// `rho_a`, at nodal rotations `theta` = (θ₁, θ₂) [rad], rotation rates `omega` [rad/s] and
+/// `rho_a`, at nodal rotations `theta` = (θ₁, θ₂) \[rad\], rotation rates `omega` [rad/s] and
 /// generalized accelerations `acc` (the vector M multiplies). With `nonlinear == false` the
 /// rotations are taken as 0 and the gyroscopic term is dropped (the linear model).
 pub fn consistent_inertia(

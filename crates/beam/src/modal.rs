@@ -34,7 +34,7 @@ pub enum ModalDirection {
 pub struct ModalAnalysis {
     /// Angular frequencies ω [rad/s], ascending.
     pub omegas: Vec<f64>,
-    /// Frequencies f = ω/2π [Hz].
+    /// Frequencies f = ω/2π \[Hz\].
     pub frequencies_hz: Vec<f64>,
     /// Mass-normalised mode shapes, one full DOF vector (constrained entries 0) per mode.
     pub shapes: Vec<Vec<f64>>,

@@ -95,7 +95,7 @@ impl RootSupport {
 pub struct PointMass {
     /// Node index, 0..=N.
     pub node: usize,
-    /// Mass [kg], ≥ 0.
+    /// Mass \[kg\], ≥ 0.
     pub mass: f64,
     /// Rotary inertia about the node [kg·m²], ≥ 0.
     pub inertia: f64,
@@ -107,7 +107,7 @@ pub struct PointMass {
 pub struct Rayleigh {
     /// Mass-proportional coefficient a₀ [1/s], ≥ 0.
     pub alpha_mass: f64,
-    /// Stiffness-proportional coefficient a₁ [s], ≥ 0.
+    /// Stiffness-proportional coefficient a₁ \[s\], ≥ 0.
     pub beta_stiffness: f64,
 }
 
@@ -122,7 +122,7 @@ impl Rayleigh {
 /// The parameters of a beam, before validation (the serialised form of [`BeamModel`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct BeamSpec {
-    /// Beam length L [m], > 0.
+    /// Beam length L \[m\], > 0.
     pub length: f64,
     /// Section properties.
     pub section: Section,
@@ -238,7 +238,7 @@ impl BeamModel {
     pub fn spec(&self) -> &BeamSpec {
         &self.spec
     }
-    /// Length L [m].
+    /// Length L \[m\].
     pub fn length(&self) -> f64 {
         self.spec.length
     }
@@ -266,7 +266,7 @@ impl BeamModel {
     pub fn n_free(&self) -> usize {
         self.n_dofs() - self.n_fixed()
     }
-    /// Element length l = L/N [m].
+    /// Element length l = L/N \[m\].
     pub fn element_length(&self) -> f64 {
         self.element_length
     }
@@ -278,7 +278,7 @@ impl BeamModel {
     pub fn root(&self) -> RootSupport {
         self.spec.root
     }
-    /// Undeformed x of node `i` [m].
+    /// Undeformed x of node `i` \[m\].
     pub fn node_x(&self, i: usize) -> f64 {
         i as f64 * self.element_length
     }
@@ -286,7 +286,7 @@ impl BeamModel {
     pub fn tip_node(&self) -> usize {
         self.spec.elements
     }
-    /// Total mass of the beam ρAL [kg] (point masses excluded).
+    /// Total mass of the beam ρAL \[kg\] (point masses excluded).
     pub fn beam_mass(&self) -> f64 {
         self.spec.section.rho_a() * self.spec.length
     }
@@ -298,7 +298,7 @@ impl BeamModel {
     }
 }
 
-/// Nodal forces [N] and moments [N·m] in the global (x, y) frame, one entry per DOF; dead loads
+/// Nodal forces \[N\] and moments [N·m] in the global (x, y) frame, one entry per DOF; dead loads
 /// (their direction does not follow the deformation). May be changed between steps.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct NodalLoads {
@@ -323,7 +323,7 @@ impl NodalLoads {
             ))
         }
     }
-    /// Sets the force (fx, fy) [N] at `node`; NaN or infinite values are rejected.
+    /// Sets the force (fx, fy) \[N\] at `node`; NaN or infinite values are rejected.
     pub fn set_force(&mut self, node: usize, fx: f64, fy: f64) -> Result<(), BeamError> {
         self.check_node(node)?;
         self.values[3 * node] = finite("force x", fx)?;

@@ -51,7 +51,7 @@ pub struct TipPoint {
     pub a: f64,
     /// Vertical tip deflection b/L.
     pub b: f64,
-    /// Tip slope angle [rad].
+    /// Tip slope angle \[rad\].
     pub tip_angle: f64,
 }
 
@@ -95,7 +95,7 @@ pub fn trace_tip_path(elements: usize, load_indices: &[f64]) -> Result<Vec<TipPo
     Ok(out)
 }
 
-/// PRB angle Θ [rad] and tip error of `p` for a characteristic radius `gamma`, relative to L
+/// PRB angle Θ \[rad\] and tip error of `p` for a characteristic radius `gamma`, relative to L
 /// or to the tip deflection.
 pub fn prb_angle_and_error(p: &TipPoint, gamma: f64, measure: ErrorMeasure) -> (f64, f64) {
     let x = p.a - (1.0 - gamma);
@@ -107,7 +107,7 @@ pub fn prb_angle_and_error(p: &TipPoint, gamma: f64, measure: ErrorMeasure) -> (
     }
 }
 
-/// Θ_max(γ) [rad]: the PRB angle up to which the error stays ≤ [`TIP_ERROR_LIMIT`] (the last
+/// Θ_max(γ) \[rad\]: the PRB angle up to which the error stays ≤ [`TIP_ERROR_LIMIT`] (the last
 /// traced Θ if it never exceeds it).
 pub fn theta_max(path: &[TipPoint], gamma: f64, measure: ErrorMeasure) -> f64 {
     let mut prev = (0.0, 0.0);
@@ -129,13 +129,13 @@ pub struct PrbFit {
     pub gamma: f64,
     /// Stiffness coefficient K_Θ (least squares, see the module docs).
     pub k_theta: f64,
-    /// Parametric limit Θ_max [deg].
+    /// Parametric limit Θ_max \[deg\].
     pub theta_max_deg: f64,
     /// Small-deflection γ₀ from the smallest load.
     pub gamma_small: f64,
     /// Small-deflection K_Θ0 from the smallest load.
     pub k_theta_small: f64,
-    /// Θ_max [deg] of Howell's γ = 0.8517 on this path.
+    /// Θ_max \[deg\] of Howell's γ = 0.8517 on this path.
     pub theta_max_deg_howell_gamma: f64,
 }
 

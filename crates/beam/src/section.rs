@@ -36,14 +36,14 @@ impl From<Material> for MaterialSpec {
 }
 
 impl Material {
-    /// Young's modulus `youngs` E [Pa] and mass density `density` ρ [kg/m³], both finite and > 0.
+    /// Young's modulus `youngs` E \[Pa\] and mass density `density` ρ [kg/m³], both finite and > 0.
     pub fn new(youngs: f64, density: f64) -> Result<Self, BeamError> {
         Ok(Material {
             youngs: positive("youngs", youngs)?,
             density: positive("density", density)?,
         })
     }
-    /// Young's modulus E [Pa].
+    /// Young's modulus E \[Pa\].
     pub fn youngs(&self) -> f64 {
         self.youngs
     }
@@ -53,7 +53,7 @@ impl Material {
     }
 }
 
-/// Section properties: axial stiffness EA [N], bending stiffness EI [N·m²] and mass per length
+/// Section properties: axial stiffness EA \[N\], bending stiffness EI [N·m²] and mass per length
 /// ρA [kg/m]. Rotary inertia of the section is neglected (Euler–Bernoulli).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "SectionSpec", into = "SectionSpec")]
@@ -88,7 +88,7 @@ impl From<Section> for SectionSpec {
 }
 
 impl Section {
-    /// A solid rectangle of `width` w [m] and `thickness` t [m] bending in the thickness
+    /// A solid rectangle of `width` w \[m\] and `thickness` t \[m\] bending in the thickness
     /// direction: A = w t, I = w t³/12, EA = E A, EI = E I, ρA = ρ w t.
     pub fn rectangular(material: &Material, width: f64, thickness: f64) -> Result<Self, BeamError> {
         let w = positive("width", width)?;
@@ -102,7 +102,7 @@ impl Section {
         )
     }
 
-    /// Section from `ea` EA [N], `ei` EI [N·m²] and `rho_a` ρA [kg/m], all finite and > 0.
+    /// Section from `ea` EA \[N\], `ei` EI [N·m²] and `rho_a` ρA [kg/m], all finite and > 0.
     pub fn from_stiffness(ea: f64, ei: f64, rho_a: f64) -> Result<Self, BeamError> {
         Ok(Section {
             ea: positive("ea", ea)?,
@@ -110,7 +110,7 @@ impl Section {
             rho_a: positive("rho_a", rho_a)?,
         })
     }
-    /// Axial stiffness EA [N].
+    /// Axial stiffness EA \[N\].
     pub fn ea(&self) -> f64 {
         self.ea
     }

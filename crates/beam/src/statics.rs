@@ -9,7 +9,7 @@ use crate::BeamError;
 use crate::assembly::{JacobianWeights, Kinematic, assemble, band_for};
 use crate::model::{BeamModel, Kinematics, NodalLoads};
 
-/// Largest change of a nodal rotation in one Newton iteration [rad]; larger corrections are
+/// Largest change of a nodal rotation in one Newton iteration \[rad\]; larger corrections are
 /// scaled down as a whole (damped Newton). The corotational element is 2π-periodic in the nodal
 /// rotations, so an unlimited step can converge to a node turned by a full turn.
 pub const MAX_ROTATION_INCREMENT: f64 = 0.5;
@@ -86,7 +86,7 @@ pub struct StaticSolution {
     pub q: Vec<f64>,
     /// Total Newton iterations (1 for the linear model).
     pub iterations: usize,
-    /// Final residual ‖r‖∞ over the free DOFs [N].
+    /// Final residual ‖r‖∞ over the free DOFs \[N\].
     pub residual: f64,
     /// Load level reached (1 when converged).
     pub load_level: f64,

@@ -37,11 +37,11 @@ impl BodyKinematics {
 /// One evaluation of the contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactSample {
-    /// Indentation δ ≥ 0 [m].
+    /// Indentation δ ≥ 0 \[m\].
     pub indentation: f64,
     /// Indentation rate δ̇ [m/s] (> 0 while approaching).
     pub rate: f64,
-    /// Force magnitude f ≥ 0 [N].
+    /// Force magnitude f ≥ 0 \[N\].
     pub force: f64,
     /// Unit normal from the dome into the block (direction of the force on the block).
     pub normal: Vector,
@@ -63,7 +63,7 @@ impl ContactSample {
 
 /// A contact model the rig calls each step (no global state; one per simulation).
 pub trait ContactCallback: Send + Sync + std::fmt::Debug {
-    /// Signed gap between the surfaces [m] (negative when penetrating); used to predict onset.
+    /// Signed gap between the surfaces \[m\] (negative when penetrating); used to predict onset.
     fn gap(&self, dome: &Pose, block: &Pose) -> f64;
 
     /// The contact force, or `None` when the surfaces do not touch.
@@ -81,8 +81,8 @@ pub struct DomeBlockContact {
 }
 
 impl DomeBlockContact {
-    /// Dome of radius `dome_radius` [m] centred at `dome_offset` in the dome body's frame; block
-    /// with half extents `block_half_extents` [m] centred at `block_offset` in the block body's
+    /// Dome of radius `dome_radius` \[m\] centred at `dome_offset` in the dome body's frame; block
+    /// with half extents `block_half_extents` \[m\] centred at `block_offset` in the block body's
     /// frame.
     pub fn new(
         dome_radius: f64,

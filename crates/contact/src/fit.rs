@@ -12,9 +12,9 @@ use crate::{ContactError, Hertz};
 /// One compression-test sample.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CompressionPoint {
-    /// Indentation δ [m].
+    /// Indentation δ \[m\].
     pub indentation_m: f64,
-    /// Force f [N].
+    /// Force f \[N\].
     pub force_n: f64,
 }
 
@@ -82,7 +82,7 @@ pub struct HertzFit {
     pub k_stderr: f64,
     /// Standard error of n [-].
     pub n_stderr: f64,
-    /// Root-mean-square residual [N].
+    /// Root-mean-square residual \[N\].
     pub rms_residual_n: f64,
     /// Points used (indentation > 0).
     pub points: usize,

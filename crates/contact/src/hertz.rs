@@ -62,7 +62,7 @@ impl Hertz {
         self.n
     }
 
-    /// Indentation at force f [m]: δ_c = (f/k_c)^{1/n} (paper Eq. 6); 0 for f ≤ 0.
+    /// Indentation at force f \[m\]: δ_c = (f/k_c)^{1/n} (paper Eq. 6); 0 for f ≤ 0.
     pub fn indentation(&self, f: f64) -> f64 {
         if f > 0.0 {
             (f / self.k).powf(1.0 / self.n)
@@ -71,7 +71,7 @@ impl Hertz {
         }
     }
 
-    /// Stored energy at indentation δ [J]: k δ^{n+1}/(n+1); 0 for δ ≤ 0.
+    /// Stored energy at indentation δ \[J\]: k δ^{n+1}/(n+1); 0 for δ ≤ 0.
     pub fn energy(&self, delta: f64) -> f64 {
         if delta > 0.0 {
             self.k * delta.powf(self.n + 1.0) / (self.n + 1.0)
@@ -80,7 +80,7 @@ impl Hertz {
         }
     }
 
-    /// Peak indentation [m] of an undamped impact of reduced mass μ [kg] at approach speed v0
+    /// Peak indentation \[m\] of an undamped impact of reduced mass μ \[kg\] at approach speed v0
     /// [m/s]: ½ μ v0² = k δ^{n+1}/(n+1).
     pub fn peak_indentation(&self, mu: f64, v0: f64) -> f64 {
         (0.5 * mu * v0 * v0 * (self.n + 1.0) / self.k).powf(1.0 / (self.n + 1.0))

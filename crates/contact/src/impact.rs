@@ -41,7 +41,7 @@ pub struct AdamsImpact {
 
 impl AdamsImpact {
     /// Stiffness `k` [N/m^e] > 0, exponent `exponent` ∈ (0, 10], maximum damping `c_max`
-    /// [N·s/m] ≥ 0 reached at the penetration `depth` d [m] > 0.
+    /// [N·s/m] ≥ 0 reached at the penetration `depth` d \[m\] > 0.
     pub fn new(k: f64, exponent: f64, c_max: f64, depth: f64) -> Result<Self, ContactError> {
         Ok(AdamsImpact {
             elastic: Hertz::named(k, exponent, "k", "exponent")?,

@@ -4,12 +4,12 @@ use crate::Hertz;
 
 /// A normal contact law f(δ, δ̇) between two bodies.
 ///
-/// Conventions (all laws): δ [m] is the indentation (penetration), positive in contact; δ̇ [m/s]
+/// Conventions (all laws): δ \[m\] is the indentation (penetration), positive in contact; δ̇ [m/s]
 /// its rate, positive while approaching. The force is compressive and never adhesive:
 /// f ≥ 0, and f = 0 for δ ≤ 0. Implementors are plain data (`Send + Sync`), so one law may be
 /// shared by many simulations running in parallel.
 pub trait ContactLaw: Send + Sync + std::fmt::Debug {
-    /// Contact force f(δ, δ̇) ≥ 0 [N].
+    /// Contact force f(δ, δ̇) ≥ 0 \[N\].
     fn force(&self, delta: f64, delta_dot: f64) -> f64;
 
     /// Tangent stiffness ∂f/∂δ [N/m] at (δ, δ̇); 0 where the force is clamped to 0.
@@ -20,7 +20,7 @@ pub trait ContactLaw: Send + Sync + std::fmt::Debug {
         0.0
     }
 
-    /// Elastic energy stored at indentation δ [J]: ∫₀^δ f(s, 0) ds. Dissipation is not included.
+    /// Elastic energy stored at indentation δ \[J\]: ∫₀^δ f(s, 0) ds. Dissipation is not included.
     fn elastic_energy(&self, delta: f64) -> f64 {
         self.elastic().energy(delta)
     }

@@ -46,7 +46,7 @@ pub struct Material {
     pub description: String,
     /// Fitted Hertz law f = k δ^n (k in N/m^n).
     pub hertz: Hertz,
-    /// Mass of the block [kg].
+    /// Mass of the block \[kg\].
     pub block_mass_kg: f64,
     /// Where the numbers come from.
     pub source: String,
@@ -97,7 +97,7 @@ impl Materials {
         })
     }
 
-    /// Dome radius [m].
+    /// Dome radius \[m\].
     pub fn dome_radius_m(&self) -> f64 {
         self.dome_radius_m
     }

@@ -35,7 +35,7 @@ pub struct SeriesCompliance {
 /// Result of a force solve, with its cost.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ForceSolve {
-    /// The force f [N].
+    /// The force f \[N\].
     pub force: f64,
     /// Newton iterations used (0 for a closed form).
     pub iterations: usize,
@@ -60,17 +60,17 @@ impl SeriesCompliance {
         self.contact
     }
 
-    /// Link deflection δ_l = f/k_δ [m] (Eq. 7).
+    /// Link deflection δ_l = f/k_δ \[m\] (Eq. 7).
     pub fn link_deflection(&self, f: f64) -> f64 {
         f.max(0.0) / self.k_delta
     }
 
-    /// Contact indentation δ_c = (f/k_c)^{1/n} [m] (Eq. 6).
+    /// Contact indentation δ_c = (f/k_c)^{1/n} \[m\] (Eq. 6).
     pub fn indentation(&self, f: f64) -> f64 {
         self.contact.indentation(f)
     }
 
-    /// Total displacement δ = δ_l + δ_c [m] at force f [N] (Eq. 8).
+    /// Total displacement δ = δ_l + δ_c \[m\] at force f \[N\] (Eq. 8).
     pub fn displacement(&self, f: f64) -> f64 {
         self.link_deflection(f) + self.indentation(f)
     }
@@ -96,7 +96,7 @@ impl SeriesCompliance {
         f / self.displacement(f)
     }
 
-    /// Stored strain energy U(f) = f²/(2k_δ) + f δ_c/(n + 1) [J] at force f [N].
+    /// Stored strain energy U(f) = f²/(2k_δ) + f δ_c/(n + 1) \[J\] at force f \[N\].
     pub fn energy(&self, f: f64) -> f64 {
         if f <= 0.0 {
             return 0.0;
@@ -112,7 +112,7 @@ impl SeriesCompliance {
         f / self.k_delta + self.indentation(f) / self.contact.n()
     }
 
-    /// Force f [N] at total displacement δ [m]: the root of δ(f) = δ (0 for δ ≤ 0). Closed form
+    /// Force f \[N\] at total displacement δ \[m\]: the root of δ(f) = δ (0 for δ ≤ 0). Closed form
     /// f = k_o δ, k_o = k_c k_δ/(k_c + k_δ), for n = 1.
     pub fn force(&self, delta: f64) -> f64 {
         self.solve_force(delta).force
@@ -151,7 +151,7 @@ impl SeriesCompliance {
         newton_in_log(upper, lower, residual)
     }
 
-    /// Upper bound [N] on the force at which the stored energy reaches `energy` [J]: the smaller
+    /// Upper bound \[N\] on the force at which the stored energy reaches `energy` \[J\]: the smaller
     /// of the two single-spring solutions √(2 E k_δ) and ((n + 1) E)^{n/(n+1)} k_c^{1/(n+1)}
     /// (U exceeds each of its two parts). The true force is at least the bound at E/2.
     pub fn force_bound_at_energy(&self, energy: f64) -> f64 {
@@ -161,7 +161,7 @@ impl SeriesCompliance {
         f_link.min(f_contact)
     }
 
-    /// Force f [N] at which the stored energy U(f) equals `energy` [J] ≥ 0 — the peak force of an
+    /// Force f \[N\] at which the stored energy U(f) equals `energy` \[J\] ≥ 0 — the peak force of an
     /// undamped impact with kinetic energy `energy` (see flexrig-lumped). No closed-form shortcut
     /// for n = 1 (that one is checked against it).
     pub fn force_at_energy(&self, energy: f64) -> ForceSolve {

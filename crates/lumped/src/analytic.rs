@@ -15,9 +15,9 @@ pub struct AnalyticImpact {
     pub peak: Peak,
     /// Overall stiffness k_o [N/m].
     pub k_o: f64,
-    /// Time from first contact to the peak [s].
+    /// Time from first contact to the peak \[s\].
     pub t_peak: f64,
-    /// Contact duration [s].
+    /// Contact duration \[s\].
     pub contact_duration: f64,
 }
 

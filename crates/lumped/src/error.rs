@@ -19,7 +19,7 @@ pub enum LumpedError {
     /// The time integration failed.
     #[error("time integration failed at t = {t:e} s: {reason}")]
     IntegrationFailed {
-        /// Time reached [s].
+        /// Time reached \[s\].
         t: f64,
         /// What happened and what to try.
         reason: String,

@@ -14,7 +14,7 @@ use crate::model::ImpactModel;
 use crate::prb::PrbLink;
 use crate::{LumpedError, peak_exact};
 
-/// Robot link mass of the study, m_r [kg].
+/// Robot link mass of the study, m_r \[kg\].
 pub const M_R: f64 = 10.0;
 /// Contact stiffness of the study, k_c [N/m^n].
 pub const K_C: f64 = 1e8;
@@ -28,11 +28,11 @@ pub const GAMMA_RANGE: (f64, f64) = (0.5, 1.0);
 /// One design case of Fig. 6.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Fig6Case {
-    /// Human mass m_h [kg].
+    /// Human mass m_h \[kg\].
     pub m_h: f64,
     /// Link lateral stiffness k_δ [N/m].
     pub k_delta: f64,
-    /// Payload m_e [kg].
+    /// Payload m_e \[kg\].
     pub m_e: f64,
 }
 

@@ -23,7 +23,7 @@ pub struct ImpactModel {
 }
 
 impl ImpactModel {
-    /// Human (operator) mass `m_h` [kg] > 0, effective robot mass `m_eff` [kg] > 0, the series
+    /// Human (operator) mass `m_h` \[kg\] > 0, effective robot mass `m_eff` \[kg\] > 0, the series
     /// spring, and the approach speed `v0` [m/s] > 0.
     pub fn new(
         m_h: f64,
@@ -49,12 +49,12 @@ impl ImpactModel {
         Self::new(m_h, link.effective_mass(), spring, v0)
     }
 
-    /// Human mass m_h [kg].
+    /// Human mass m_h \[kg\].
     pub fn m_h(&self) -> f64 {
         self.m_h
     }
 
-    /// Effective robot mass m_eff [kg].
+    /// Effective robot mass m_eff \[kg\].
     pub fn m_eff(&self) -> f64 {
         self.m_eff
     }
@@ -69,12 +69,12 @@ impl ImpactModel {
         self.v0
     }
 
-    /// Reduced mass μ = m_h m_eff/(m_h + m_eff) [kg].
+    /// Reduced mass μ = m_h m_eff/(m_h + m_eff) \[kg\].
     pub fn reduced_mass(&self) -> f64 {
         reduced_mass(self.m_h, self.m_eff)
     }
 
-    /// Kinetic energy of the relative motion, ½ μ v0² [J]: all of it is stored in the springs at
+    /// Kinetic energy of the relative motion, ½ μ v0² \[J\]: all of it is stored in the springs at
     /// the peak.
     pub fn impact_energy(&self) -> f64 {
         0.5 * self.reduced_mass() * self.v0 * self.v0
@@ -89,13 +89,13 @@ impl ImpactModel {
 /// The state at maximum compression.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Peak {
-    /// Peak force f_max [N].
+    /// Peak force f_max \[N\].
     pub f_max: f64,
-    /// Total displacement at the peak, δ_max [m].
+    /// Total displacement at the peak, δ_max \[m\].
     pub delta_max: f64,
-    /// Contact indentation at the peak, δ_c [m].
+    /// Contact indentation at the peak, δ_c \[m\].
     pub indentation_max: f64,
-    /// Link deflection at the peak, δ_l [m].
+    /// Link deflection at the peak, δ_l \[m\].
     pub link_deflection_max: f64,
 }
 

@@ -9,7 +9,7 @@
 use flexrig_contact::{ContactError, validate};
 
 /// Lateral tip stiffness of a rigid link on a torsion spring, k_δ = k_θr/L² [N/m] (Eq. 1).
-/// `k_theta_r` [N·m/rad], `length` [m].
+/// `k_theta_r` [N·m/rad], `length` \[m\].
 pub fn lateral_stiffness_cj(k_theta_r: f64, length: f64) -> f64 {
     k_theta_r / (length * length)
 }
@@ -29,14 +29,14 @@ pub fn prb_torsion_spring(ei: f64, length: f64, gamma: f64) -> f64 {
     std::f64::consts::PI * ei * gamma * gamma / length
 }
 
-/// Reduced mass μ = m₁ m₂/(m₁ + m₂) [kg].
+/// Reduced mass μ = m₁ m₂/(m₁ + m₂) \[kg\].
 pub fn reduced_mass(m1: f64, m2: f64) -> f64 {
     m1 * m2 / (m1 + m2)
 }
 
 /// A link described for the PRB effective mass: characteristic radius γ ∈ (0, 1] (γ = 1 is the
 /// rigid link on a compliant joint, 2/3 the small-deflection compliant link, 0.85 the large-
-/// deflection one), link mass m_r [kg] > 0 and payload m_e [kg] ≥ 0.
+/// deflection one), link mass m_r \[kg\] > 0 and payload m_e \[kg\] ≥ 0.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PrbLink {
     gamma: f64,
@@ -59,17 +59,17 @@ impl PrbLink {
         self.gamma
     }
 
-    /// Link mass m_r [kg].
+    /// Link mass m_r \[kg\].
     pub fn m_r(&self) -> f64 {
         self.m_r
     }
 
-    /// Payload m_e [kg].
+    /// Payload m_e \[kg\].
     pub fn m_e(&self) -> f64 {
         self.m_e
     }
 
-    /// Effective mass at the tip, m_eff = m_e + γ m_r/3 [kg] (Eq. 5).
+    /// Effective mass at the tip, m_eff = m_e + γ m_r/3 \[kg\] (Eq. 5).
     pub fn effective_mass(&self) -> f64 {
         self.m_e + self.gamma * self.m_r / 3.0
     }

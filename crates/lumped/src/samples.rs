@@ -15,7 +15,7 @@ pub struct PeakReference {
     pub name: &'static str,
     /// The impact.
     pub model: ImpactModel,
-    /// Reference peak force [N].
+    /// Reference peak force \[N\].
     pub f_max: f64,
     /// Relative accuracy of the reference itself.
     pub reference_accuracy: f64,
@@ -213,7 +213,7 @@ pub const HIGH_PRECISION_PEAKS: [(f64, f64, f64, f64, f64, f64, f64); 8] = [
     (1.0, 1.0, 1e-2, 1e4, 3.0, 1.0, 0.07066272066547139108705697),
 ];
 
-/// [`HIGH_PRECISION_PEAKS`] as impact models with their reference peak force [N].
+/// [`HIGH_PRECISION_PEAKS`] as impact models with their reference peak force \[N\].
 pub fn high_precision_peaks() -> Result<Vec<(ImpactModel, f64)>, LumpedError> {
     HIGH_PRECISION_PEAKS
         .iter()

@@ -125,13 +125,13 @@ impl BeamLink {
         (self.state.q[i], self.state.v[i], self.state.a[i])
     }
 
-    /// Kinetic plus strain energy [J].
+    /// Kinetic plus strain energy \[J\].
     pub fn energy(&self) -> f64 {
         let e = self.state.energy(&self.model);
         e.kinetic + e.strain
     }
 
-    /// World positions of the nodes (for the 3D view) [m].
+    /// World positions of the nodes (for the 3D view) \[m\].
     pub fn node_positions(&self) -> Vec<Vector> {
         (0..self.model.n_nodes())
             .map(|n| {
@@ -141,7 +141,7 @@ impl BeamLink {
             .collect()
     }
 
-    /// Advances by `dt` [s]. `contact_at_end` is the contact force at the end of the step
+    /// Advances by `dt` \[s\]. `contact_at_end` is the contact force at the end of the step
     /// (predicted): generalized-α applies the load (1 − α_f) F_{n+1} + α_f F_n, so handing it the
     /// end-of-step force gives the trapezoidal average the scheme is built on (second order),
     /// where the start-of-step force would lag by a step (first order; measured: the energy

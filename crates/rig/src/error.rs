@@ -25,7 +25,7 @@ pub enum RigError {
     /// The simulation became unstable or non-finite.
     #[error("simulation stopped at t = {t:.6e} s: {quantity} {reason}; try a smaller {suggestion}")]
     Unstable {
-        /// Time reached [s].
+        /// Time reached \[s\].
         t: f64,
         /// The quantity that failed.
         quantity: String,
@@ -37,7 +37,7 @@ pub enum RigError {
     /// The run was interrupted (e.g. Ctrl-C) by its recorder.
     #[error("the run was interrupted at t = {t:.6e} s")]
     Interrupted {
-        /// Time reached [s].
+        /// Time reached \[s\].
         t: f64,
     },
     /// The run did not reach its stop condition.

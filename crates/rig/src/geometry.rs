@@ -14,8 +14,8 @@ use flexrig_contact::math::Vector;
 
 use crate::scene::Scene;
 
-/// Angular speed [rad/s] at the bottom of the swing of a compound pendulum (mass [kg], centre of
-/// mass `com_distance` [m] below the pivot, `inertia` [kg·m²] about it) that is at `angle` [rad]
+/// Angular speed [rad/s] at the bottom of the swing of a compound pendulum (mass \[kg\], centre of
+/// mass `com_distance` \[m\] below the pivot, `inertia` [kg·m²] about it) that is at `angle` \[rad\]
 /// with `rate` [rad/s]: ½ J ω_b² = ½ J ω² + M g l_c (1 − cos φ).
 pub fn rate_at_bottom(
     mass: f64,
@@ -33,19 +33,19 @@ pub fn rate_at_bottom(
 pub struct OperatorGeometry {
     /// Pivot [m, world].
     pub pivot: Vector,
-    /// Pivot to block centre l [m].
+    /// Pivot to block centre l \[m\].
     pub arm_length: f64,
-    /// Total mass M [kg].
+    /// Total mass M \[kg\].
     pub mass: f64,
-    /// Pivot to centre of mass l_c [m].
+    /// Pivot to centre of mass l_c \[m\].
     pub com_distance: f64,
     /// Moment of inertia about the pivot axis J [kg·m²].
     pub inertia_pivot: f64,
     /// Principal moments of inertia about the centre of mass (x, y, z body axes) [kg·m²].
     pub inertia_com: Vector,
-    /// Block half extents [m].
+    /// Block half extents \[m\].
     pub block_half_extents: Vector,
-    /// Block centre in the operator body frame (origin at the pivot) [m].
+    /// Block centre in the operator body frame (origin at the pivot) \[m\].
     pub block_center_local: Vector,
 }
 
@@ -63,7 +63,7 @@ impl OperatorGeometry {
         )
     }
 
-    /// Mass [kg] the pendulum presents to a horizontal force at the contact height (l below the
+    /// Mass \[kg\] the pendulum presents to a horizontal force at the contact height (l below the
     /// pivot): J/l².
     pub fn effective_mass(&self) -> f64 {
         self.inertia_pivot / (self.arm_length * self.arm_length)
@@ -73,28 +73,28 @@ impl OperatorGeometry {
 /// The robot link (rigid, for CJ) with its payload and dome.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RobotGeometry {
-    /// Link length L [m].
+    /// Link length L \[m\].
     pub length: f64,
-    /// Link mass m_r [kg].
+    /// Link mass m_r \[kg\].
     pub link_mass: f64,
-    /// Payload m_e [kg].
+    /// Payload m_e \[kg\].
     pub payload: f64,
     /// Moment of inertia about the robot axis, m_r L²/3 + m_e L² [kg·m²].
     pub inertia_axis: f64,
-    /// Centre of mass along the link [m].
+    /// Centre of mass along the link \[m\].
     pub com_x: f64,
     /// Principal moments of inertia about the centre of mass [kg·m²].
     pub inertia_com: Vector,
-    /// Dome radius [m].
+    /// Dome radius \[m\].
     pub dome_radius: f64,
-    /// Dome ball centre in the robot body frame (origin on the axis) [m].
+    /// Dome ball centre in the robot body frame (origin on the axis) \[m\].
     pub dome_center_local: Vector,
-    /// Dome apex in the robot body frame [m].
+    /// Dome apex in the robot body frame \[m\].
     pub dome_apex_local: Vector,
 }
 
 impl RobotGeometry {
-    /// Mass [kg] the rigid link presents at its tip to a force along y: J/L² = m_e + m_r/3
+    /// Mass \[kg\] the rigid link presents at its tip to a force along y: J/L² = m_e + m_r/3
     /// (Eq. 5 with γ = 1).
     pub fn effective_mass(&self) -> f64 {
         self.inertia_axis / (self.length * self.length)

@@ -31,9 +31,9 @@ pub enum StepOutcome {
 /// The state of the rig after a step, handed to a [`Recorder`].
 #[derive(Debug, Clone, Copy)]
 pub struct Frame<'a> {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
-    /// Step just taken [s].
+    /// Step just taken \[s\].
     pub dt: f64,
     /// What the step reached.
     pub outcome: StepOutcome,
@@ -49,7 +49,7 @@ pub struct Frame<'a> {
     pub beam: Option<&'a BeamLink>,
     /// The contact at the end of the step, if touching.
     pub contact: Option<ContactSample>,
-    /// Total mechanical energy [J] (kinetic, gravity, spring, beam strain, contact).
+    /// Total mechanical energy \[J\] (kinetic, gravity, spring, beam strain, contact).
     pub energy: f64,
     /// Sensor samples taken during this step.
     pub samples: &'a [SensorSample],
@@ -77,21 +77,21 @@ pub struct RunSummary {
     pub scene: String,
     /// CJ or CL.
     pub design: Design,
-    /// Peak contact force [N] (vertex of the parabola through the three largest step values).
+    /// Peak contact force \[N\] (vertex of the parabola through the three largest step values).
     pub peak_force_n: f64,
-    /// Time of the peak [s].
+    /// Time of the peak \[s\].
     pub time_of_peak_s: f64,
     /// Approach speed normal to the contact at onset [m/s].
     pub impact_velocity_mps: f64,
     /// Relative normal velocity at separation [m/s] (positive when parting); the coefficient of
     /// restitution is its ratio to `impact_velocity_mps`.
     pub separation_velocity_mps: Option<f64>,
-    /// Time of contact onset [s] (interpolated within the onset step).
+    /// Time of contact onset \[s\] (interpolated within the onset step).
     pub onset_time_s: f64,
-    /// Contact duration [s] (interpolated at both ends); `None` if the run stopped before
+    /// Contact duration \[s\] (interpolated at both ends); `None` if the run stopped before
     /// separation.
     pub contact_duration_s: Option<f64>,
-    /// Largest indentation [m].
+    /// Largest indentation \[m\].
     pub max_indentation_m: f64,
     /// Impulse of the contact force ∫ f dt [N·s].
     pub impulse_n_s: f64,
@@ -99,16 +99,16 @@ pub struct RunSummary {
     pub steps: usize,
     /// Steps taken in contact.
     pub contact_steps: usize,
-    /// Step size used in contact [s].
+    /// Step size used in contact \[s\].
     pub contact_step_s: f64,
-    /// Mechanical energy at the start and at the end [J].
+    /// Mechanical energy at the start and at the end \[J\].
     pub energy_initial_j: f64,
-    /// Mechanical energy at the end [J].
+    /// Mechanical energy at the end \[J\].
     pub energy_final_j: f64,
-    /// Mechanical energy just before the contact and just after separation [J]; equal for an
+    /// Mechanical energy just before the contact and just after separation \[J\]; equal for an
     /// undamped contact up to the integration error.
     pub energy_through_contact_j: Option<(f64, f64)>,
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub duration_s: f64,
     /// Sensor samples.
     #[serde(skip)]
@@ -310,7 +310,7 @@ impl<'s> Simulation<'s> {
         Ok(sim)
     }
 
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub fn time(&self) -> f64 {
         self.t
     }
@@ -320,7 +320,7 @@ impl<'s> Simulation<'s> {
         &self.geometry
     }
 
-    /// Step size used in contact [s].
+    /// Step size used in contact \[s\].
     pub fn contact_step(&self) -> f64 {
         self.contact_step
     }
@@ -347,7 +347,7 @@ impl<'s> Simulation<'s> {
         )
     }
 
-    /// Total mechanical energy [J].
+    /// Total mechanical energy \[J\].
     fn energy(&self, contact: Option<&ContactSample>) -> f64 {
         let op = &self.geometry.operator;
         let s = self.rapier.operator_state();

@@ -28,18 +28,18 @@ pub enum Design {
 pub enum Start {
     /// Released at rest from `release_angle_deg` (from the vertical, away from the robot).
     Release {
-        /// Release angle [deg], in (0, 170].
+        /// Release angle \[deg\], in (0, 170].
         release_angle_deg: f64,
     },
     /// At the instant of contact, with the swing speed of a release from `release_angle_deg`
     /// (energy of the compound pendulum): the swing is not integrated.
     Contact {
-        /// Release angle [deg] whose swing speed is used, in (0, 170].
+        /// Release angle \[deg\] whose swing speed is used, in (0, 170].
         release_angle_deg: f64,
     },
     /// At any angle with any angular velocity (the general initial condition).
     Moving {
-        /// Angle from the vertical [deg], in [−170, 170]; negative on the side away from the robot.
+        /// Angle from the vertical \[deg\], in [−170, 170]; negative on the side away from the robot.
         angle_deg: f64,
         /// Angular velocity [rad/s], positive towards the robot.
         angular_velocity_rad_s: f64,
@@ -50,7 +50,7 @@ pub enum Start {
 /// bottom of the swing), from the energy of the compound pendulum.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InitialSwing {
-    /// Angle [rad] from the vertical, positive towards the robot.
+    /// Angle \[rad\] from the vertical, positive towards the robot.
     pub angle: f64,
     /// Angular velocity [rad/s].
     pub rate: f64,
@@ -61,7 +61,7 @@ pub struct InitialSwing {
 }
 
 impl Start {
-    /// The initial swing of a pendulum of mass `mass` [kg], centre of mass `com_distance` [m]
+    /// The initial swing of a pendulum of mass `mass` \[kg\], centre of mass `com_distance` \[m\]
     /// below the pivot and inertia `inertia` [kg·m²] about it, under gravity `g` [m/s²]:
     /// ½ J ω_b² = ½ J ω₀² + M g l_c (1 − cos φ₀).
     pub fn initial_swing(
@@ -112,16 +112,16 @@ impl Start {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OperatorSpec {
-    /// Pivot to block centre [m].
+    /// Pivot to block centre \[m\].
     pub arm_length_m: f64,
-    /// Mass of the arm, a uniform rod from the pivot to the block centre [kg].
+    /// Mass of the arm, a uniform rod from the pivot to the block centre \[kg\].
     pub arm_mass_kg: f64,
     /// Block material in the materials file (sets its Hertz law and, by default, its mass).
     pub block_material: String,
-    /// Block mass [kg]; default: the material's block mass.
+    /// Block mass \[kg\]; default: the material's block mass.
     #[serde(default)]
     pub block_mass_kg: Option<f64>,
-    /// Block size [m]: along the arm's swing axis (x), the strike direction (y), vertical (z).
+    /// Block size \[m\]: along the arm's swing axis (x), the strike direction (y), vertical (z).
     pub block_size_m: [f64; 3],
     /// How the run starts.
     pub start: Start,
@@ -133,21 +133,21 @@ pub struct OperatorSpec {
 pub struct RobotSpec {
     /// CJ or CL.
     pub design: Design,
-    /// Link length, axis to payload [m].
+    /// Link length, axis to payload \[m\].
     pub length_m: f64,
-    /// Link width (in the plane of the strike for CJ) [m].
+    /// Link width (in the plane of the strike for CJ) \[m\].
     pub width_m: f64,
-    /// Link thickness (the bending direction of the CL) [m].
+    /// Link thickness (the bending direction of the CL) \[m\].
     pub thickness_m: f64,
-    /// Young's modulus of the link [Pa].
+    /// Young's modulus of the link \[Pa\].
     pub youngs_modulus_pa: f64,
     /// Density of the link [kg/m³].
     pub density_kg_m3: f64,
-    /// Payload at the tip, including force sensor and dome [kg].
+    /// Payload at the tip, including force sensor and dome \[kg\].
     pub payload_kg: f64,
-    /// Dome radius [m].
+    /// Dome radius \[m\].
     pub dome_radius_m: f64,
-    /// Distance from the link axis to the dome apex, towards the operator [m].
+    /// Distance from the link axis to the dome apex, towards the operator \[m\].
     pub dome_standoff_m: f64,
     /// CJ torsion spring k_θr [N·m/rad]; default 3EI/L (Eq. 3).
     #[serde(default)]
@@ -182,7 +182,7 @@ pub enum DampingSpec {
     AdamsImpact {
         /// Maximum damping [N·s/m], ≥ 0.
         c_max_n_s_per_m: f64,
-        /// Penetration at which the damping reaches c_max [m], > 0.
+        /// Penetration at which the damping reaches c_max \[m\], > 0.
         depth_m: f64,
     },
 }
@@ -210,7 +210,7 @@ fn no_damping() -> DampingSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSpec {
-    /// Step during the free swing [s].
+    /// Step during the free swing \[s\].
     pub swing_step_s: f64,
     /// Steps per estimated contact duration.
     pub contact_steps: usize,
@@ -233,7 +233,7 @@ pub enum StopSpec {
     Separation,
     /// After a fixed simulated time.
     Duration {
-        /// Simulated time [s].
+        /// Simulated time \[s\].
         duration_s: f64,
     },
 }
@@ -242,7 +242,7 @@ pub enum StopSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RecordSpec {
-    /// Sensor sampling rate [Hz], independent of the step.
+    /// Sensor sampling rate \[Hz\], independent of the step.
     pub sample_rate_hz: f64,
 }
 
@@ -276,11 +276,11 @@ pub struct SceneFile {
 pub struct Scene {
     /// The file it came from.
     pub file: SceneFile,
-    /// Block mass [kg].
+    /// Block mass \[kg\].
     pub block_mass_kg: f64,
     /// Elastic Hertz law of the contact.
     pub hertz: Hertz,
-    /// Link mass m_r = ρ w t L [kg].
+    /// Link mass m_r = ρ w t L \[kg\].
     pub link_mass_kg: f64,
     /// Bending stiffness of the link in its compliant direction, EI = E w t³/12 [N·m²].
     pub link_ei: f64,

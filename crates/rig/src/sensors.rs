@@ -9,38 +9,38 @@ use serde::Serialize;
 /// One sample of every sensor.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct SensorSample {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
-    /// Operator encoder: pendulum angle from the vertical, positive towards the robot [rad].
+    /// Operator encoder: pendulum angle from the vertical, positive towards the robot \[rad\].
     pub operator_angle_rad: f64,
-    /// Robot encoder: angle of the robot axis [rad] (0 for CL: the link is clamped to the shaft).
+    /// Robot encoder: angle of the robot axis \[rad\] (0 for CL: the link is clamped to the shaft).
     pub robot_angle_rad: f64,
-    /// Lateral tip deflection of the link (CJ: L sin θ; CL: beam tip v) [m].
+    /// Lateral tip deflection of the link (CJ: L sin θ; CL: beam tip v) \[m\].
     pub link_tip_deflection_m: f64,
     /// Operator block accelerometer, along the strike direction (world y) [m/s²].
     pub operator_accel_mps2: f64,
     /// Load accelerometer, along the strike direction (world y) [m/s²].
     pub load_accel_mps2: f64,
-    /// Force sensor between load and dome [N].
+    /// Force sensor between load and dome \[N\].
     pub force_n: f64,
 }
 
 /// The state of the measured quantities at a step end.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Reading {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
-    /// Operator angle [rad].
+    /// Operator angle \[rad\].
     pub operator_angle: f64,
-    /// Robot axis angle [rad].
+    /// Robot axis angle \[rad\].
     pub robot_angle: f64,
-    /// Link tip deflection [m].
+    /// Link tip deflection \[m\].
     pub tip_deflection: f64,
     /// Operator block velocity along y [m/s].
     pub operator_velocity: f64,
     /// Load velocity along y [m/s].
     pub load_velocity: f64,
-    /// Contact force [N].
+    /// Contact force \[N\].
     pub force: f64,
 }
 

@@ -40,7 +40,7 @@ impl std::fmt::Debug for RapierRig {
 /// Angle and rate of a hinge.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HingeState {
-    /// Joint angle [rad].
+    /// Joint angle \[rad\].
     pub angle: f64,
     /// Joint rate [rad/s].
     pub rate: f64,
@@ -217,7 +217,7 @@ impl RapierRig {
         }
     }
 
-    /// Advances the world by `dt` [s] (symplectic Euler).
+    /// Advances the world by `dt` \[s\] (symplectic Euler).
     pub fn step(&mut self, dt: f64) {
         self.world.integration_parameters.dt = dt;
         self.world.step();

@@ -36,7 +36,7 @@ use crate::CliError;
 pub struct ForceSensor {
     /// Simulation time.
     pub timestamp: Timestamp,
-    /// Force [N].
+    /// Force \[N\].
     pub force_n: f64,
 }
 
@@ -54,11 +54,11 @@ pub struct Accelerometer {
 pub struct ContactState {
     /// Simulation time.
     pub timestamp: Timestamp,
-    /// Indentation δ [m].
+    /// Indentation δ \[m\].
     pub indentation_m: f64,
     /// Indentation rate δ̇ [m/s].
     pub rate_mps: f64,
-    /// Contact force [N].
+    /// Contact force \[N\].
     pub force_n: f64,
 }
 
@@ -67,7 +67,7 @@ pub struct ContactState {
 pub struct EnergyState {
     /// Simulation time.
     pub timestamp: Timestamp,
-    /// Total mechanical energy [J].
+    /// Total mechanical energy \[J\].
     pub total_j: f64,
 }
 

@@ -373,7 +373,7 @@ fn elliptic_k(k: f64) -> f64 {
     std::f64::consts::PI / (2.0 * a)
 }
 
-/// Mean period over 10 swings of the Rapier pendulum released from `theta0` [rad].
+/// Mean period over 10 swings of the Rapier pendulum released from `theta0` \[rad\].
 fn measured_period(op: &flexrig_rig::geometry::OperatorGeometry, theta0: f64, dt: f64) -> f64 {
     use flexrig_rig::world::{HingeState, RapierRig};
     let mut rig = RapierRig::new(9.81, op, None);

@@ -37,19 +37,19 @@ pub struct Dop853Options<const N: usize> {
 pub enum StepFailure {
     /// The step size fell below the resolution of t.
     StepTooSmall {
-        /// Time reached [s].
+        /// Time reached \[s\].
         t: f64,
-        /// Step size tried [s].
+        /// Step size tried \[s\].
         h: f64,
     },
     /// The right-hand side or the state became non-finite.
     NonFinite {
-        /// Time reached [s].
+        /// Time reached \[s\].
         t: f64,
     },
     /// More than `max_steps` attempts.
     TooManySteps {
-        /// Time reached [s].
+        /// Time reached \[s\].
         t: f64,
         /// The cap.
         max_steps: usize,
@@ -112,12 +112,12 @@ impl<const N: usize> DenseOutput<N> {
         y
     }
 
-    /// Start of the step [s].
+    /// Start of the step \[s\].
     pub fn t_start(&self) -> f64 {
         self.t_old
     }
 
-    /// End of the step [s].
+    /// End of the step \[s\].
     pub fn t_end(&self) -> f64 {
         self.t_old + self.h
     }
@@ -160,7 +160,7 @@ impl<const N: usize> Dop853<N> {
         s
     }
 
-    /// Current time [s].
+    /// Current time \[s\].
     pub fn t(&self) -> f64 {
         self.t
     }
@@ -175,7 +175,7 @@ impl<const N: usize> Dop853<N> {
         &self.f
     }
 
-    /// Start of the last accepted step [s].
+    /// Start of the last accepted step \[s\].
     pub fn t_old(&self) -> f64 {
         self.t_old
     }

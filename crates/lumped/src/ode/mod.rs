@@ -126,15 +126,15 @@ impl OdeOptions {
 /// One sample of the impact.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct TracePoint {
-    /// Time since first contact [s].
+    /// Time since first contact \[s\].
     pub t: f64,
-    /// Total displacement δ [m].
+    /// Total displacement δ \[m\].
     pub delta: f64,
-    /// Contact indentation δ_c [m].
+    /// Contact indentation δ_c \[m\].
     pub indentation: f64,
     /// Approach speed δ̇ [m/s].
     pub velocity: f64,
-    /// Contact force f [N].
+    /// Contact force f \[N\].
     pub force: f64,
 }
 
@@ -154,9 +154,9 @@ pub enum StepOutcome {
 pub struct OdeSolution {
     /// Peak state.
     pub peak: Peak,
-    /// Time from first contact to the peak [s].
+    /// Time from first contact to the peak \[s\].
     pub t_peak: f64,
-    /// Contact duration [s]; `None` when stopped at the peak.
+    /// Contact duration \[s\]; `None` when stopped at the peak.
     pub contact_duration: Option<f64>,
     /// Separation speed [m/s] (equals v0 for an elastic contact); `None` when stopped at the peak.
     pub separation_speed: Option<f64>,

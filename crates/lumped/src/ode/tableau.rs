@@ -1,6 +1,6 @@
 //! Coefficients of the Dormand–Prince 8(5,3) pair with its 7th-order dense output, as published
 //! in E. Hairer, S. P. Nørsett, G. Wanner, "Solving Ordinary Differential Equations I", 2nd ed.,
-//! Springer 1993, §II.10 (code DOP853). Stage s uses c[s] and the row a[s]; stages 0–11 form the
+//! Springer 1993, §II.10 (code DOP853). Stage s uses c\[s\] and the row a\[s\]; stages 0–11 form the
 //! step, stage 12 is the first-same-as-last derivative at the new point, stages 13–15 are extra
 //! stages for the dense output only.
 #![allow(clippy::excessive_precision, clippy::unreadable_literal)]

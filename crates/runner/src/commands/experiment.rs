@@ -35,7 +35,7 @@ pub struct ExperimentArgs {
     /// Repeats of each Fig. 9a configuration (the paper: 5).
     #[arg(long, default_value_t = 5)]
     pub repeats: usize,
-    /// Standard deviation of the release-angle jitter [deg].
+    /// Standard deviation of the release-angle jitter \[deg\].
     #[arg(long, value_name = "DEG", default_value_t = 0.5)]
     pub jitter_deg: f64,
     /// Seed of the jitter RNG.
@@ -109,15 +109,15 @@ pub struct RunRecord {
     pub scene: String,
     /// Repeat index.
     pub repeat: usize,
-    /// Release angle used [deg].
+    /// Release angle used \[deg\].
     pub release_angle_deg: f64,
-    /// Peak contact force [N].
+    /// Peak contact force \[N\].
     pub peak_force_n: f64,
     /// Impact speed [m/s].
     pub impact_velocity_mps: f64,
-    /// Contact duration [s].
+    /// Contact duration \[s\].
     pub contact_duration_s: Option<f64>,
-    /// Largest indentation [m].
+    /// Largest indentation \[m\].
     pub max_indentation_m: f64,
     /// The MCAP log.
     pub mcap: PathBuf,
@@ -130,9 +130,9 @@ pub struct GroupStats {
     pub scene: String,
     /// Runs.
     pub n: usize,
-    /// Mean peak force [N].
+    /// Mean peak force \[N\].
     pub mean_peak_force_n: f64,
-    /// Half-width of the 95 % confidence interval of the mean [N] (Student t).
+    /// Half-width of the 95 % confidence interval of the mean \[N\] (Student t).
     pub ci95_n: f64,
 }
 
