@@ -194,6 +194,44 @@ fn beam_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), CliError> {
             1e-4,
         ));
     }
+    // Linear statics: tip deflection PL³/3EI under a tip force, ML²/2EI under a tip moment.
+    let linear = canonical::unit_cantilever(8, Kinematics::Linear)?;
+    let tip = linear.tip_node();
+    let mut loads = flexrig_beam::NodalLoads::zeros(&linear);
+    loads.set_force(tip, 0.0, 1e-3)?;
+    let s = solve_static(&linear, &loads, &StaticOptions::new(1, 5, 1e-12)?)?;
+    cases.push(rel(
+        "beam.linear tip deflection PL³/3EI",
+        s.q[3 * tip + 1],
+        1e-3 / (3.0 * section.ei()),
+        "Euler–Bernoulli closed form",
+        1e-12,
+    ));
+    let mut loads = flexrig_beam::NodalLoads::zeros(&linear);
+    loads.set_moment(tip, 1e-3)?;
+    let s = solve_static(&linear, &loads, &StaticOptions::new(1, 5, 1e-12)?)?;
+    cases.push(rel(
+        "beam.linear tip deflection ML²/2EI",
+        s.q[3 * tip + 1],
+        1e-3 / (2.0 * section.ei()),
+        "Euler–Bernoulli closed form",
+        1e-12,
+    ));
+    // A tip moment 2πEI/L rolls the corotational beam into a full circle: the tip returns to the
+    // root (u = −L, v = 0).
+    let (model, _) = canonical::elastica_problem(1.0, 32)?;
+    let mut loads = flexrig_beam::NodalLoads::zeros(&model);
+    loads.set_moment(model.tip_node(), 2.0 * std::f64::consts::PI * section.ei())?;
+    let s = solve_static(&model, &loads, &StaticOptions::new(40, 50, 1e-10)?)?;
+    let t = 3 * model.tip_node();
+    let gap = ((1.0 + s.q[t]).powi(2) + s.q[t + 1].powi(2)).sqrt();
+    cases.push(abs(
+        "beam.full-circle roll-up: tip to root distance / L",
+        gap,
+        0.0,
+        "M = 2πEI/L closes the circle (references.md)",
+        2e-3,
+    ));
     let options = StaticOptions::new(20, 50, 1e-10)?;
     for (load, v_over_l, _, _) in ELASTICA {
         let (model, loads) = canonical::elastica_problem(load, 32)?;
@@ -215,6 +253,13 @@ fn beam_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), CliError> {
             canonical::HOWELL_GAMMA,
             "Howell 2001: γ = 0.8517",
             2e-3,
+        ));
+        cases.push(abs(
+            "prb.K_Theta (least squares)",
+            fit.k_theta,
+            canonical::HOWELL_K_THETA,
+            "Howell 2001: 2.67617; an independent least-squares fit gives ≈ 2.70 (references.md)",
+            0.03,
         ));
         cases.push(abs(
             "prb.theta_max [deg]",
