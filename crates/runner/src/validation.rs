@@ -232,6 +232,13 @@ fn beam_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), CliError> {
         "M = 2πEI/L closes the circle (references.md)",
         2e-3,
     ));
+    cases.push(rel(
+        "beam.full-circle roll-up: tip rotation",
+        s.q[t + 2],
+        2.0 * std::f64::consts::PI,
+        "uniform curvature φ = ML/EI = 2π",
+        1e-9,
+    ));
     let options = StaticOptions::new(20, 50, 1e-10)?;
     for (load, v_over_l, _, _) in ELASTICA {
         let (model, loads) = canonical::elastica_problem(load, 32)?;
