@@ -14,6 +14,17 @@
 //! * [`canonical`]: canonical problems and their published references, shared by tests, benches
 //!   and the CLI.
 //!
+//! ```
+//! use flexrig_beam::{canonical, Kinematics, ModalDirection, modal_analysis};
+//! // First bending frequency of a unit cantilever (EI = ρA = L = 1) with 16 elements against
+//! // ω₁ = (1.8751040687)² √(EI/(ρA L⁴)).
+//! let model = canonical::unit_cantilever(16, Kinematics::Linear)?;
+//! let modes = modal_analysis(&model, 1, ModalDirection::Transverse)?;
+//! let exact = 1.8751040687f64.powi(2);
+//! assert!((modes.omegas[0] / exact - 1.0).abs() < 1e-6);
+//! # Ok::<(), flexrig_beam::BeamError>(())
+//! ```
+//!
 //! Every length is in m, force in N, moment in N·m, mass in kg, time in s, angle in rad.
 //! Degrees of freedom: node `i` (0 at the root, `N` at the tip) carries `(u, v, θ)` at indices
 //! `3i, 3i+1, 3i+2`; u is along the undeformed beam axis (x), v transverse (y), θ the section
