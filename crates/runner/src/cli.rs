@@ -39,6 +39,9 @@ pub enum Command {
     /// Finite-element Euler–Bernoulli beam: natural frequencies and static deflection.
     #[command(subcommand)]
     Beam(commands::beam::BeamCommand),
+    /// Work–precision benchmarks (run time against error) of the lumped impact, the beam and the
+    /// rig, with plots.
+    Bench(commands::bench::BenchArgs),
     /// Run the verification suite against every reference; writes validation.md.
     Validate(commands::validate::ValidateArgs),
     /// Check the Pseudo-Rigid-Body model (γ, K_Θ) against the corotational FE beam.
@@ -74,5 +77,6 @@ pub fn run_interruptible(
         Some(Command::Beam(cmd)) => commands::beam::run(cmd, out),
         Some(Command::Prb(args)) => commands::prb::run(args, out),
         Some(Command::Validate(args)) => commands::validate::run(args, out),
+        Some(Command::Bench(args)) => commands::bench::run(args, out),
     }
 }

@@ -179,3 +179,82 @@ pub fn fig9_svg(groups: &[crate::commands::experiment::GroupStats]) -> Result<St
     }
     Ok(svg)
 }
+
+/// Log–log work–precision plot: error against run time, one line per method.
+pub fn work_precision_svg(
+    title: &str,
+    rows: &[&crate::commands::bench::Row],
+) -> Result<String, String> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (900, 600)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let points: Vec<(f64, f64)> = rows
+            .iter()
+            .filter(|r| r.error > 0.0 && r.seconds > 0.0)
+            .map(|r| (r.seconds, r.error))
+            .collect();
+        let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+        for (x, y) in &points {
+            x0 = x0.min(*x);
+            x1 = x1.max(*x);
+            y0 = y0.min(*y);
+            y1 = y1.max(*y);
+        }
+        if points.is_empty() {
+            (x0, x1, y0, y1) = (1e-6, 1.0, 1e-12, 1.0);
+        }
+        let mut chart = ChartBuilder::on(&root)
+            .caption(format!("work–precision: {title}"), ("sans-serif", 20))
+            .margin(15)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(
+                (x0 * 0.7..x1 * 1.4).log_scale(),
+                (y0 * 0.3..y1 * 3.0).log_scale(),
+            )
+            .map_err(|e| e.to_string())?;
+        chart
+            .configure_mesh()
+            .x_desc("run time [s]")
+            .y_desc("relative error")
+            .draw()
+            .map_err(|e| e.to_string())?;
+        let mut methods: Vec<&str> = rows.iter().map(|r| r.method.as_str()).collect();
+        methods.dedup();
+        for (i, method) in methods.iter().enumerate() {
+            let colour = Palette99::pick(i).to_rgba();
+            let series: Vec<(f64, f64)> = rows
+                .iter()
+                .filter(|r| r.method == *method && r.error > 0.0)
+                .map(|r| (r.seconds, r.error))
+                .collect();
+            if series.is_empty() {
+                continue;
+            }
+            chart
+                .draw_series(LineSeries::new(series.clone(), colour.stroke_width(2)))
+                .map_err(|e| e.to_string())?
+                .label(method.to_string())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 15, y)], colour.stroke_width(2))
+                });
+            chart
+                .draw_series(
+                    series
+                        .into_iter()
+                        .map(|p| Circle::new(p, 3, colour.filled())),
+                )
+                .map_err(|e| e.to_string())?;
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 11))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        root.present().map_err(|e| e.to_string())?;
+    }
+    Ok(svg)
+}

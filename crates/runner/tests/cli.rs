@@ -392,3 +392,38 @@ fn validate_passes_every_case_and_writes_the_report() {
     assert!(report.contains(&format!("{} of {} cases pass", cases.len(), cases.len())));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn bench_quick_reports_rows_and_plots() {
+    let dir = scratch_dir("bench");
+    let v = json(&["bench", "--quick", "--out", dir.to_str().unwrap(), "--json"]);
+    let rows = v["rows"].as_array().unwrap();
+    for model in ["lumped", "beam", "rig"] {
+        assert!(rows.iter().any(|r| r["model"] == model), "no {model} rows");
+    }
+    for r in rows {
+        for key in ["model", "method", "setting", "error", "seconds"] {
+            assert!(r.get(key).is_some(), "{key} in {r}");
+        }
+        assert!(r["seconds"].as_f64().unwrap() > 0.0);
+    }
+    // Tighter tolerances give smaller errors (work–precision): the lumped ode rows of one method
+    // are ordered by rtol, and the error falls by at least 100× from the loosest to the tightest.
+    let errors: Vec<f64> = rows
+        .iter()
+        .filter(|r| r["method"] == "ode indentation n=2 stiff")
+        .map(|r| r["error"].as_f64().unwrap())
+        .collect();
+    assert!(
+        errors.len() >= 3 && errors[0] > 100.0 * errors[errors.len() - 1],
+        "{errors:?}"
+    );
+    for name in ["bench_lumped.svg", "bench_beam.svg", "bench_rig.svg"] {
+        assert!(
+            std::fs::read_to_string(dir.join(name))
+                .unwrap()
+                .contains("<svg")
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

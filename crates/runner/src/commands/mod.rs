@@ -1,6 +1,7 @@
 //! One module per `flexrig` command.
 
 pub mod beam;
+pub mod bench;
 pub mod experiment;
 pub mod fig6;
 pub mod fit;

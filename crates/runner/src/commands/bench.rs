@@ -1,0 +1,241 @@
+//! `flexrig bench`: work–precision studies — run time against error — for the lumped impact,
+//! the beam and the rig, as tables, JSON rows and log–log SVG plots. Timings are medians of
+//! repeated runs in this process; errors are against independent references (the exact energy
+//! solution, the elastica table, a converged run).
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use clap::Args;
+use flexrig_beam::canonical::{self, ELASTICA};
+use flexrig_beam::{StaticOptions, solve_static};
+use flexrig_contact::{Hertz, Materials, SeriesCompliance};
+use flexrig_lumped::ode::{Formulation, OdeOptions, integrate};
+use flexrig_lumped::{ImpactModel, peak_exact};
+use flexrig_rig::{NoRecorder, RunOptions, Scene, Simulation};
+use serde::Serialize;
+use serde_json::json;
+
+use crate::CliError;
+use crate::commands::experiment::BUNDLED_SCENES;
+use crate::output::{ensure_dir, line, print_json, write_atomic};
+
+/// Arguments of `flexrig bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// Fewer settings and repetitions (well under a minute).
+    #[arg(long)]
+    pub quick: bool,
+    /// Directory for the SVG plots.
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+    /// Print JSON rows instead of the tables.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// One measured point.
+#[derive(Debug, Clone, Serialize)]
+pub struct Row {
+    /// `lumped`, `beam` or `rig`.
+    pub model: String,
+    /// Method or variant.
+    pub method: String,
+    /// The setting varied (tolerance, elements, steps).
+    pub setting: String,
+    /// Error against the reference.
+    pub error: f64,
+    /// Median run time [s].
+    pub seconds: f64,
+}
+
+/// Median wall time [s] of `f` over `samples` samples of `reps` calls each.
+fn median_seconds<T>(samples: usize, reps: usize, mut f: impl FnMut() -> T) -> f64 {
+    let mut times: Vec<f64> = (0..samples)
+        .map(|_| {
+            let start = Instant::now();
+            for _ in 0..reps {
+                std::hint::black_box(f());
+            }
+            start.elapsed().as_secs_f64() / reps as f64
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[times.len() / 2]
+}
+
+/// Runs `flexrig bench`.
+pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let mut rows = Vec::new();
+    lumped(&mut rows, args.quick)?;
+    beam(&mut rows, args.quick)?;
+    rig(&mut rows, args.quick)?;
+    ensure_dir(&args.out)?;
+    let mut files = Vec::new();
+    for model in ["lumped", "beam", "rig"] {
+        let path = args.out.join(format!("bench_{model}.svg"));
+        let subset: Vec<&Row> = rows.iter().filter(|r| r.model == model).collect();
+        let svg =
+            crate::plots::work_precision_svg(model, &subset).map_err(|message| CliError::Plot {
+                path: path.clone(),
+                message,
+            })?;
+        write_atomic(&path, svg.as_bytes())?;
+        files.push(path);
+    }
+    if args.json {
+        return print_json(out, &json!({ "rows": rows, "plots": files }));
+    }
+    line(
+        out,
+        format!(
+            "{:<7} {:<34} {:<14} {:>10} {:>12}",
+            "model", "method", "setting", "error", "time [s]"
+        ),
+    )?;
+    for r in &rows {
+        line(
+            out,
+            format!(
+                "{:<7} {:<34} {:<14} {:>10.2e} {:>12.3e}",
+                r.model, r.method, r.setting, r.error, r.seconds
+            ),
+        )?;
+    }
+    line(
+        out,
+        format!(
+            "Plots: {}",
+            files
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    )
+}
+
+fn lumped(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
+    let tolerances: &[f64] = if quick {
+        &[1e-6, 1e-9, 1e-12]
+    } else {
+        &[1e-4, 1e-6, 1e-8, 1e-10, 1e-12]
+    };
+    let (samples, reps) = if quick { (3, 20) } else { (7, 100) };
+    for (link, k_delta) in [("stiff", 1e8), ("soft", 2e2)] {
+        for n in [1.0, 2.0] {
+            let spring = SeriesCompliance::new(k_delta, Hertz::new(1e8, n)?)?;
+            let model = ImpactModel::new(4.0, 10.0 / 3.0 + 0.1, spring, 2.0)?;
+            let exact = peak_exact(&model).f_max;
+            rows.push(Row {
+                model: "lumped".into(),
+                method: format!("exact n={n} {link}"),
+                setting: "-".into(),
+                error: 0.0,
+                seconds: median_seconds(samples, reps * 10, || peak_exact(&model)),
+            });
+            for formulation in [Formulation::Indentation, Formulation::Displacement] {
+                for &rtol in tolerances {
+                    let options = OdeOptions::new(rtol)?.formulation(formulation);
+                    let sol = integrate(&model, &options)?;
+                    rows.push(Row {
+                        model: "lumped".into(),
+                        method: format!("ode {formulation:?} n={n} {link}").to_lowercase(),
+                        setting: format!("rtol {rtol:e}"),
+                        error: (sol.peak.f_max / exact - 1.0).abs(),
+                        seconds: median_seconds(samples, reps, || integrate(&model, &options)),
+                    });
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn beam(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
+    let elements: &[usize] = if quick {
+        &[4, 8, 16]
+    } else {
+        &[4, 8, 16, 32, 64]
+    };
+    let (load, v_over_l, _, _) = ELASTICA[2];
+    let options = StaticOptions::new(10, 50, 1e-10)?;
+    for &n in elements {
+        let (model, loads) = canonical::elastica_problem(load, n)?;
+        let s = solve_static(&model, &loads, &options)?;
+        rows.push(Row {
+            model: "beam".into(),
+            method: "elastica PL²/EI=5, corotational".into(),
+            setting: format!("{n} elements"),
+            error: (s.q[3 * model.tip_node() + 1] / v_over_l - 1.0).abs(),
+            seconds: median_seconds(if quick { 3 } else { 5 }, 3, || {
+                solve_static(&model, &loads, &options)
+            }),
+        });
+    }
+    Ok(())
+}
+
+fn scene(name: &str, edits: &[(&str, String)]) -> Result<Scene, CliError> {
+    let mut text = BUNDLED_SCENES
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, t)| t.to_string())
+        .unwrap_or_default();
+    for (from, to) in edits {
+        text = text.replace(from, to);
+    }
+    Ok(Scene::from_toml_str(&text, &Materials::bundled()?)?)
+}
+
+fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
+    let steps: &[usize] = if quick {
+        &[50, 200, 800]
+    } else {
+        &[25, 50, 100, 200, 400, 800, 1600]
+    };
+    let samples = if quick { 3 } else { 5 };
+    let run = |s: &Scene| -> Result<flexrig_rig::RunSummary, CliError> {
+        Ok(Simulation::new(s, RunOptions::default())?.run(&mut NoRecorder)?)
+    };
+    for name in ["cj_aluminium", "cl_aluminium"] {
+        let reference = run(&scene(
+            name,
+            &[("contact_steps = 800", "contact_steps = 6400".into())],
+        )?)?
+        .peak_force_n;
+        for &n in steps {
+            let variants: [(&str, Vec<(&str, String)>); 3] = [
+                ("release to separation", vec![]),
+                (
+                    "start at contact",
+                    vec![("from = \"release\"", "from = \"contact\"".into())],
+                ),
+                (
+                    "start at contact, stop at peak",
+                    vec![
+                        ("from = \"release\"", "from = \"contact\"".into()),
+                        ("at = \"separation\"", "at = \"peak\"".into()),
+                    ],
+                ),
+            ];
+            for (label, mut edits) in variants {
+                edits.push(("contact_steps = 800", format!("contact_steps = {n}")));
+                let s = scene(name, &edits)?;
+                // Too coarse a contact step is caught by the energy check: no row for it.
+                let Ok(result) = run(&s) else { continue };
+                // The swing from release adds its own (tiny) impact-speed error; the shortcuts are
+                // compared with the same converged release run.
+                rows.push(Row {
+                    model: "rig".into(),
+                    method: format!("{name}: {label}"),
+                    setting: format!("{n} steps/contact"),
+                    error: (result.peak_force_n / reference - 1.0).abs(),
+                    seconds: median_seconds(samples, 1, || run(&s)),
+                });
+            }
+        }
+    }
+    Ok(())
+}
