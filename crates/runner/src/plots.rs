@@ -218,10 +218,16 @@ pub fn work_precision_svg(
             .configure_mesh()
             .x_desc("run time [s]")
             .y_desc("relative error")
+            .x_label_formatter(&|x| format!("{x:.0e}"))
+            .y_label_formatter(&|y| format!("{y:.0e}"))
             .draw()
             .map_err(|e| e.to_string())?;
-        let mut methods: Vec<&str> = rows.iter().map(|r| r.method.as_str()).collect();
-        methods.dedup();
+        let mut methods: Vec<&str> = Vec::new();
+        for r in rows {
+            if !methods.contains(&r.method.as_str()) {
+                methods.push(&r.method);
+            }
+        }
         for (i, method) in methods.iter().enumerate() {
             let colour = Palette99::pick(i).to_rgba();
             let series: Vec<(f64, f64)> = rows
