@@ -11,7 +11,7 @@ use clap::Args;
 use flexrig_beam::canonical::{self, ELASTICA};
 use flexrig_beam::{StaticOptions, solve_static};
 use flexrig_contact::{Hertz, Materials, SeriesCompliance};
-use flexrig_lumped::ode::{Formulation, OdeOptions, integrate};
+use flexrig_lumped::ode::{Formulation, OdeOptions, StopAt, integrate};
 use flexrig_lumped::{ImpactModel, peak_exact};
 use flexrig_rig::{NoRecorder, RunOptions, Scene, Simulation};
 use serde::Serialize;
@@ -48,6 +48,8 @@ pub struct Row {
     pub error: f64,
     /// Median run time [s].
     pub seconds: f64,
+    /// Right-hand-side evaluations (time integrations only).
+    pub evaluations: Option<usize>,
 }
 
 /// Median wall time [s] of `f` over `samples` samples of `reps` calls each.
@@ -69,6 +71,7 @@ fn median_seconds<T>(samples: usize, reps: usize, mut f: impl FnMut() -> T) -> f
 pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let mut rows = Vec::new();
     lumped(&mut rows, args.quick)?;
+    let peer_ratio = peer(&mut rows, args.quick)?;
     beam(&mut rows, args.quick)?;
     rig(&mut rows, args.quick)?;
     ensure_dir(&args.out)?;
@@ -85,7 +88,10 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
         files.push(path);
     }
     if args.json {
-        return print_json(out, &json!({ "rows": rows, "plots": files }));
+        return print_json(
+            out,
+            &json!({ "rows": rows, "plots": files, "scipy_dop853_over_flexrig_at_1e_9": peer_ratio }),
+        );
     }
     line(
         out,
@@ -102,6 +108,16 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 r.model, r.method, r.setting, r.error, r.seconds
             ),
         )?;
+    }
+    match peer_ratio {
+        Some(r) => line(
+            out,
+            format!("scipy DOP853 / flexrig run time at a peak error <= 1e-9: {r:.0}x"),
+        )?,
+        None => line(
+            out,
+            "scipy peer not run (needs python3 with numpy and scipy)",
+        )?,
     }
     line(
         out,
@@ -134,6 +150,7 @@ fn lumped(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
                 setting: "-".into(),
                 error: 0.0,
                 seconds: median_seconds(samples, reps * 10, || peak_exact(&model)),
+                evaluations: None,
             });
             for formulation in [Formulation::Indentation, Formulation::Displacement] {
                 for &rtol in tolerances {
@@ -145,12 +162,76 @@ fn lumped(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
                         setting: format!("rtol {rtol:e}"),
                         error: (sol.peak.f_max / exact - 1.0).abs(),
                         seconds: median_seconds(samples, reps, || integrate(&model, &options)),
+                        evaluations: Some(sol.rhs_evals),
                     });
                 }
             }
         }
     }
     Ok(())
+}
+
+/// The paper's Fig. 6 CJ case (m_h = 4 kg, m_eff = 3.433 kg, k_δ = k_c = 1e8, n = 2, v0 = 2 m/s)
+/// integrated to the peak by flexrig and, when Python with scipy is present, by
+/// `scripts/peer_scipy.py` (solve_ivp DOP853, Radau, LSODA) over the same tolerances. Returns the
+/// ratio of the fastest DOP853 time to the fastest flexrig time with a peak error ≤ 1e-9.
+fn peer(rows: &mut Vec<Row>, quick: bool) -> Result<Option<f64>, CliError> {
+    let spring = SeriesCompliance::new(1e8, Hertz::new(1e8, 2.0)?)?;
+    let model = ImpactModel::new(4.0, 10.0 / 3.0 + 0.1, spring, 2.0)?;
+    let exact = peak_exact(&model).f_max;
+    let rtols = [1e-6, 1e-9, 1e-12];
+    let (samples, reps) = if quick { (3, 20) } else { (7, 100) };
+    for rtol in rtols {
+        let options = OdeOptions::new(rtol)?.stop(StopAt::Peak);
+        let sol = integrate(&model, &options)?;
+        rows.push(Row {
+            model: "lumped".into(),
+            method: "flexrig ode to the peak, Fig. 6 CJ n=2".into(),
+            setting: format!("rtol {rtol:e}"),
+            error: (sol.peak.f_max / exact - 1.0).abs(),
+            seconds: median_seconds(samples, reps, || integrate(&model, &options)),
+            evaluations: Some(sol.rhs_evals),
+        });
+    }
+    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scripts/peer_scipy.py");
+    let mut command = std::process::Command::new("python3");
+    command.arg(script);
+    for v in [4.0, 10.0 / 3.0 + 0.1, 1e8, 1e8, 2.0, 2.0] {
+        command.arg(format!("{v:e}"));
+    }
+    for rtol in rtols {
+        command.arg(format!("{rtol:e}"));
+    }
+    let Ok(output) = command.output() else {
+        return Ok(None);
+    };
+    if !output.status.success() {
+        return Ok(None);
+    }
+    for text in String::from_utf8_lossy(&output.stdout).lines() {
+        let Ok(v) = serde_json::from_str::<serde_json::Value>(text) else {
+            continue;
+        };
+        rows.push(Row {
+            model: "lumped".into(),
+            method: format!(
+                "scipy {} to the peak, Fig. 6 CJ n=2",
+                v["method"].as_str().unwrap_or("?")
+            ),
+            setting: format!("rtol {:e}", v["rtol"].as_f64().unwrap_or(f64::NAN)),
+            error: v["error"].as_f64().unwrap_or(f64::NAN),
+            seconds: v["seconds"].as_f64().unwrap_or(f64::NAN),
+            evaluations: v["nfev"].as_u64().map(|n| n as usize),
+        });
+    }
+    let fastest = |prefix: &str| {
+        rows.iter()
+            .filter(|r| r.method.starts_with(prefix) && r.error <= 1e-9)
+            .map(|r| r.seconds)
+            .fold(f64::INFINITY, f64::min)
+    };
+    let ratio = fastest("scipy DOP853") / fastest("flexrig ode to the peak");
+    Ok(ratio.is_finite().then_some(ratio))
 }
 
 fn beam(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
@@ -172,6 +253,7 @@ fn beam(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
             seconds: median_seconds(if quick { 3 } else { 5 }, 3, || {
                 solve_static(&model, &loads, &options)
             }),
+            evaluations: None,
         });
     }
     Ok(())
@@ -233,6 +315,7 @@ fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
                     setting: format!("{n} steps/contact"),
                     error: (result.peak_force_n / reference - 1.0).abs(),
                     seconds: median_seconds(samples, 1, || run(&s)),
+                    evaluations: None,
                 });
             }
         }
