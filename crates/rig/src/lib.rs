@@ -19,6 +19,7 @@
 //! ```
 
 mod beam_link;
+pub mod canonical;
 mod error;
 pub mod geometry;
 pub mod run;

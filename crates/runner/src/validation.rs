@@ -11,6 +11,7 @@ use flexrig_contact::Materials;
 use flexrig_contact::tolerance::relative_error;
 use flexrig_lumped::ode::{OdeOptions, integrate};
 use flexrig_lumped::{peak_analytic, peak_exact, samples};
+use flexrig_rig::canonical::{compound_pendulum_period, simulated_pendulum};
 use flexrig_rig::{NoRecorder, RunOptions, Scene, Simulation};
 use serde::Serialize;
 
@@ -307,13 +308,11 @@ fn rig_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), CliError> {
     let g = flexrig_rig::geometry::RigGeometry::of(&scene);
     let op = g.operator;
     let theta0 = 30f64.to_radians();
-    let period = 4.0
-        * (op.inertia_pivot / (op.mass * 9.81 * op.com_distance)).sqrt()
-        * elliptic_k((0.5 * theta0).sin());
+    let (period, _) = simulated_pendulum(&op, 9.81, theta0, scene.file.solver.swing_step_s, 10);
     cases.push(rel(
         "rig.pendulum period (30°, dt = 5e-4 s)",
-        measured_period(&op, theta0, scene.file.solver.swing_step_s),
         period,
+        compound_pendulum_period(&op, 9.81, theta0),
         "T = 4√(J/(M g l_c)) K(sin(θ₀/2)) (references.md)",
         1e-6,
     ));
@@ -414,41 +413,6 @@ fn rig_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), CliError> {
         ));
     }
     Ok(())
-}
-
-/// Complete elliptic integral of the first kind K(k), by the arithmetic–geometric mean.
-fn elliptic_k(k: f64) -> f64 {
-    let (mut a, mut b) = (1.0f64, (1.0 - k * k).sqrt());
-    for _ in 0..40 {
-        (a, b) = (0.5 * (a + b), (a * b).sqrt());
-    }
-    std::f64::consts::PI / (2.0 * a)
-}
-
-/// Mean period over 10 swings of the Rapier pendulum released from `theta0` \[rad\].
-fn measured_period(op: &flexrig_rig::geometry::OperatorGeometry, theta0: f64, dt: f64) -> f64 {
-    use flexrig_rig::world::{HingeState, RapierRig};
-    let mut rig = RapierRig::new(9.81, op, None);
-    rig.set_state(
-        HingeState {
-            angle: -theta0,
-            rate: 0.0,
-        },
-        None,
-    );
-    let (mut t, mut prev) = (0.0, rig.operator_state());
-    let mut crossings = Vec::new();
-    while crossings.len() < 11 {
-        rig.apply_loads(None, 0.0);
-        rig.step(dt);
-        t += dt;
-        let s = rig.operator_state();
-        if prev.rate > 0.0 && s.rate <= 0.0 {
-            crossings.push(t - dt + dt * prev.rate / (prev.rate - s.rate));
-        }
-        prev = s;
-    }
-    (crossings[10] - crossings[0]) / 10.0
 }
 
 /// The Markdown report written as `validation.md`.
