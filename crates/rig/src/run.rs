@@ -168,6 +168,7 @@ pub struct Simulation<'s> {
     contact_step: f64,
     previous_gap: Option<(f64, f64)>,
     onset_tolerance: f64,
+    indentation_scale: f64,
     last: Reading,
     sampler: Sampler,
     force_history: [(f64, f64); 3],
@@ -267,6 +268,7 @@ impl<'s> Simulation<'s> {
             contact_step,
             previous_gap: None,
             onset_tolerance: 1e-9 * delta_max,
+            indentation_scale: delta_max,
             last: Reading {
                 t: 0.0,
                 operator_angle: 0.0,
@@ -405,7 +407,16 @@ impl<'s> Simulation<'s> {
         let swing = self.scene.file.solver.swing_step_s;
         match self.phase {
             Phase::Contact => self.contact_step,
-            Phase::After => swing.min(self.contact_step * 10.0).max(self.contact_step),
+            Phase::After => {
+                // Back to swing steps (and onset prediction) once the bodies are well apart:
+                // five peak indentations (the swing phase predicts the next onset).
+                if self.gap() > 5.0 * self.indentation_scale {
+                    self.phase = Phase::Swing;
+                    self.previous_gap = None;
+                    return self.next_step();
+                }
+                swing.min(self.contact_step * 10.0).max(self.contact_step)
+            }
             Phase::Swing => {
                 let gap = self.gap();
                 if gap <= self.onset_tolerance {
@@ -470,7 +481,9 @@ impl<'s> Simulation<'s> {
         match outcome {
             // The energy at the start of the onset step, when nothing touched yet.
             StepOutcome::ContactOnset => self.stats.energy_onset = Some(self.stats.energy),
-            StepOutcome::Separation => self.stats.energy_separation = Some(energy),
+            StepOutcome::Separation if self.stats.energy_separation.is_none() => {
+                self.stats.energy_separation = Some(energy)
+            }
             _ => {}
         }
         self.stats.energy = energy;
@@ -545,6 +558,13 @@ impl<'s> Simulation<'s> {
                 let gap = self.gap().max(0.0);
                 let d0 = self.stats.last_indentation;
                 let frac = if d0 + gap > 0.0 { d0 / (d0 + gap) } else { 1.0 };
+                // The summary describes the first contact; later ones (a duration run) only
+                // add to the impulse and the step counts.
+                if self.stats.separation_time.is_some() {
+                    self.phase = Phase::After;
+                    self.previous_gap = None;
+                    return StepOutcome::Separation;
+                }
                 self.stats.separation_time = Some(self.t - dt + frac * dt);
                 // Relative normal velocity at the last contact point, positive when parting.
                 if let Some(c) = self.stats.last_contact {

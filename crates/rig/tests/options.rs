@@ -107,3 +107,26 @@ fn damped_laws_dissipate_and_lower_the_restitution() {
     let err = Scene::from_toml_str(&text, &e).unwrap_err().to_string();
     assert!(err.contains("contact.damping.depth_m"), "{err}");
 }
+
+#[test]
+fn after_separation_the_swing_step_returns() {
+    // A 1 s run: one contact, then the free swing at the swing step (5e-4 s), not at the
+    // contact step (6e-6 s): far fewer than 1 s / 6e-6 s steps.
+    let scene = common::scene(
+        "cj_aluminium",
+        &[("at = \"separation\"", "at = \"duration\"\nduration_s = 1.0")],
+    );
+    let s = run(&scene);
+    assert!(s.duration_s >= 1.0);
+    assert!(
+        s.steps < 5_000,
+        "{} steps, {} in contact",
+        s.steps,
+        s.contact_steps
+    );
+    assert!(s.contact_steps >= 700, "{} contact steps", s.contact_steps);
+    // A second contact follows within the second; the summary keeps the first one.
+    let first = run(&common::scene("cj_aluminium", &[]));
+    assert_eq!(s.contact_duration_s, first.contact_duration_s);
+    assert_eq!(s.peak_force_n, first.peak_force_n);
+}
