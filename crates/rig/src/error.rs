@@ -34,6 +34,9 @@ pub enum RigError {
         /// Which setting to reduce.
         suggestion: String,
     },
+    /// The recorder failed (e.g. a log could not be written); the run stops.
+    #[error("recorder: {0}")]
+    Recorder(String),
     /// The run was interrupted (e.g. Ctrl-C) by its recorder.
     #[error("the run was interrupted at t = {t:.6e} s")]
     Interrupted {
@@ -59,7 +62,8 @@ impl RigError {
             RigError::Beam(e) => e.is_input_error(),
             RigError::Unstable { .. }
             | RigError::NotReached { .. }
-            | RigError::Interrupted { .. } => false,
+            | RigError::Interrupted { .. }
+            | RigError::Recorder(_) => false,
         }
     }
 }

@@ -89,8 +89,6 @@ pub struct RobotGeometry {
     pub dome_radius: f64,
     /// Dome ball centre in the robot body frame (origin on the axis) \[m\].
     pub dome_center_local: Vector,
-    /// Dome apex in the robot body frame \[m\].
-    pub dome_apex_local: Vector,
 }
 
 impl RobotGeometry {
@@ -130,7 +128,6 @@ impl RigGeometry {
             inertia_com: Vector::new(i_x.max(1e-12 * i_z), i_z, i_z),
             dome_radius: r.dome_radius_m,
             dome_center_local: Vector::new(length, -standoff + r.dome_radius_m, 0.0),
-            dome_apex_local: Vector::new(length, -standoff, 0.0),
         };
 
         let op = &scene.file.operator;

@@ -542,11 +542,11 @@ impl<'s> Simulation<'s> {
                 self.stats.onset_time = Some(self.t - dt + frac * dt);
                 self.stats.impact_velocity = c.rate;
                 self.phase = Phase::Contact;
-                self.note_contact(c, dt);
+                self.note_contact(c);
                 StepOutcome::ContactOnset
             }
             (Some(_), Some(c)) => {
-                self.note_contact(c, dt);
+                self.note_contact(c);
                 let [(_, f0), (_, f1), (_, f2)] = self.force_history;
                 if self.stats.peak.is_none() && f2 < f1 && f1 >= f0 && f1 > 0.0 {
                     self.stats.peak = Some(parabola_vertex(self.force_history));
@@ -586,7 +586,7 @@ impl<'s> Simulation<'s> {
         self.previous_gap.map(|(_, g)| g.max(0.0))
     }
 
-    fn note_contact(&mut self, c: &ContactSample, dt: f64) {
+    fn note_contact(&mut self, c: &ContactSample) {
         self.stats.contact_steps += 1;
         self.stats.max_indentation = self.stats.max_indentation.max(c.indentation);
         self.stats.last_indentation = c.indentation;
@@ -596,7 +596,6 @@ impl<'s> Simulation<'s> {
             self.force_history[2],
             (self.t, c.force),
         ];
-        let _ = dt;
     }
 
     /// Stops on a non-finite state or on energy growth beyond the limit.

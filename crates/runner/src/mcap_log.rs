@@ -114,10 +114,7 @@ impl<W: Write + Seek> std::fmt::Debug for McapRecorder<W> {
 }
 
 fn io_error(e: mcap::McapError) -> RigError {
-    RigError::NotReached {
-        what: "the end of the MCAP log".into(),
-        limit: format!("a write error: {e}"),
-    }
+    RigError::Recorder(format!("MCAP write failed: {e}"))
 }
 
 fn nanos(t: f64) -> u64 {
@@ -484,7 +481,7 @@ impl<W: Write + Seek> McapRecorder<W> {
             Some(c) if c.force > 0.0 => {
                 // 1 mm of arrow per N, along the force on the block.
                 let length = (c.force * 1e-3).max(1e-3);
-                let rotation = rapier_arrow_rotation(c.normal);
+                let rotation = arrow_rotation(c.normal);
                 vec![ArrowPrimitive {
                     pose: Some(pose(&Pose::from_parts(c.point, rotation))),
                     shaft_length: 0.8 * length,
@@ -543,7 +540,7 @@ impl<W: Write + Seek> McapRecorder<W> {
 }
 
 /// The rotation taking +x (the Foxglove arrow axis) onto `direction`.
-fn rapier_arrow_rotation(direction: Vector) -> flexrig_contact::math::Rotation {
+fn arrow_rotation(direction: Vector) -> flexrig_contact::math::Rotation {
     flexrig_contact::math::Rotation::from_rotation_arc(Vector::X, direction.normalize())
 }
 

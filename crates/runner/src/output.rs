@@ -30,6 +30,14 @@ fn temporary_sibling(path: &Path) -> PathBuf {
     path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
 }
 
+/// Reads an input text file; an error names the file (exit code 2).
+pub fn read_text(path: &Path) -> Result<String, CliError> {
+    std::fs::read_to_string(path).map_err(|source| CliError::Read {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
 /// Writes `value` as pretty JSON and a newline to the report.
 pub fn print_json(out: &mut dyn Write, value: &serde_json::Value) -> Result<(), CliError> {
     let text = serde_json::to_string_pretty(value).expect("a serde_json::Value always serialises");

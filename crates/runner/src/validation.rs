@@ -7,7 +7,6 @@
 use flexrig_beam::canonical::{self, CANTILEVER_BETA_L, ELASTICA, TIP_MASS_BETA1};
 use flexrig_beam::prb::{ErrorMeasure, default_load_indices, fit_prb, trace_tip_path};
 use flexrig_beam::{Kinematics, ModalDirection, StaticOptions, modal_analysis, solve_static};
-use flexrig_contact::Materials;
 use flexrig_contact::tolerance::relative_error;
 use flexrig_lumped::ode::{OdeOptions, integrate};
 use flexrig_lumped::{peak_analytic, peak_exact, samples};
@@ -16,7 +15,7 @@ use flexrig_rig::{NoRecorder, RunOptions, Scene, Simulation};
 use serde::Serialize;
 
 use crate::CliError;
-use crate::commands::experiment::BUNDLED_SCENES;
+use crate::commands::experiment::bundled_scene;
 
 /// How a case's error is measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -287,24 +286,12 @@ fn beam_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), CliError> {
     Ok(())
 }
 
-fn bundled(name: &str, edits: &[(&str, &str)]) -> Result<Scene, CliError> {
-    let mut text = BUNDLED_SCENES
-        .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(_, t)| t.to_string())
-        .expect("a bundled scene");
-    for (from, to) in edits {
-        text = text.replace(from, to);
-    }
-    Ok(Scene::from_toml_str(&text, &Materials::bundled()?)?)
-}
-
 fn rig_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), CliError> {
     let run = |scene: &Scene, options: RunOptions| -> Result<flexrig_rig::RunSummary, CliError> {
         Ok(Simulation::new(scene, options)?.run(&mut NoRecorder)?)
     };
     // The operator pendulum alone against the elliptic-integral period (default swing step).
-    let scene = bundled("cj_aluminium", &[])?;
+    let scene = bundled_scene("cj_aluminium", &[])?;
     let g = flexrig_rig::geometry::RigGeometry::of(&scene);
     let op = g.operator;
     let theta0 = 30f64.to_radians();
@@ -327,7 +314,7 @@ fn rig_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), CliError> {
             "block_size_m = [0.0799, 0.002, 0.0799]",
         ),
     ];
-    let scene = bundled("cj_iron", &point)?;
+    let scene = bundled_scene("cj_iron", &point)?;
     let rig = run(&scene, RunOptions::default())?;
     let g = flexrig_rig::geometry::RigGeometry::of(&scene);
     let spring = flexrig_contact::SeriesCompliance::new(1e15, scene.hertz)?;
@@ -361,14 +348,14 @@ fn rig_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), CliError> {
         1e-6,
     ));
     // The Rapier CJ against the CJ built from a stiff FE beam on the same spring.
-    let stiff = bundled(
+    let stiff = bundled_scene(
         "cl_iron",
         &[
             ("from = \"release\"", "from = \"contact\""),
             ("contact_steps = 800", "contact_steps = 1600"),
         ],
     )?;
-    let cj = bundled(
+    let cj = bundled_scene(
         "cj_iron",
         &[
             ("from = \"release\"", "from = \"contact\""),
@@ -396,7 +383,7 @@ fn rig_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), CliError> {
         let peaks: Vec<f64> = [200usize, 400, 800]
             .iter()
             .map(|n| {
-                let s = bundled(
+                let s = bundled_scene(
                     "cj_aluminium",
                     &[("contact_steps = 800", &format!("contact_steps = {n}"))],
                 )?;

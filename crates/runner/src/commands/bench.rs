@@ -10,7 +10,7 @@ use std::time::Instant;
 use clap::Args;
 use flexrig_beam::canonical::{self, ELASTICA};
 use flexrig_beam::{StaticOptions, solve_static};
-use flexrig_contact::{Hertz, Materials, SeriesCompliance};
+use flexrig_contact::{Hertz, SeriesCompliance};
 use flexrig_lumped::ode::{Formulation, OdeOptions, StopAt, integrate};
 use flexrig_lumped::{ImpactModel, peak_exact};
 use flexrig_rig::{NoRecorder, RunOptions, Scene, Simulation};
@@ -18,7 +18,7 @@ use serde::Serialize;
 use serde_json::json;
 
 use crate::CliError;
-use crate::commands::experiment::BUNDLED_SCENES;
+use crate::commands::experiment::bundled_scene;
 use crate::output::{ensure_dir, line, print_json, write_atomic};
 
 /// Arguments of `flexrig bench`.
@@ -299,16 +299,10 @@ fn beam(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
     Ok(())
 }
 
+/// A bundled scene with owned replacement texts (see [`bundled_scene`]).
 fn scene(name: &str, edits: &[(&str, String)]) -> Result<Scene, CliError> {
-    let mut text = BUNDLED_SCENES
-        .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(_, t)| t.to_string())
-        .unwrap_or_default();
-    for (from, to) in edits {
-        text = text.replace(from, to);
-    }
-    Ok(Scene::from_toml_str(&text, &Materials::bundled()?)?)
+    let edits: Vec<(&str, &str)> = edits.iter().map(|(a, b)| (*a, b.as_str())).collect();
+    bundled_scene(name, &edits)
 }
 
 fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {

@@ -80,15 +80,22 @@ pub const BUNDLED_SCENES: [(&str, &str); 6] = [
     ),
 ];
 
+/// Bundled scene `name` with text replacements applied (for studies that vary one setting:
+/// `flexrig validate`, `flexrig bench`).
+pub fn bundled_scene(name: &str, edits: &[(&str, &str)]) -> Result<Scene, CliError> {
+    let (mut text, _) = scene_text(name, None)?;
+    for (from, to) in edits {
+        text = text.replace(from, to);
+    }
+    Ok(Scene::from_toml_str(&text, &Materials::bundled()?)?)
+}
+
 /// The text of scene `name`: from `dir` if given, else the bundled copy.
 fn scene_text(name: &str, dir: Option<&PathBuf>) -> Result<(String, String), CliError> {
     match dir {
         Some(dir) => {
             let path = dir.join(format!("{name}.toml"));
-            let text = std::fs::read_to_string(&path).map_err(|source| CliError::Read {
-                path: path.clone(),
-                source,
-            })?;
+            let text = crate::output::read_text(&path)?;
             Ok((text, path.display().to_string()))
         }
         None => {

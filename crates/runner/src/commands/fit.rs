@@ -23,10 +23,7 @@ pub struct FitArgs {
 
 /// Runs `flexrig fit`.
 pub fn run(args: &FitArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let text = std::fs::read_to_string(&args.file).map_err(|source| CliError::Read {
-        path: args.file.clone(),
-        source,
-    })?;
+    let text = crate::output::read_text(&args.file)?;
     let fit = fit_hertz(&parse_compression_csv(&text)?)?;
     if args.json {
         return print_json(

@@ -33,15 +33,12 @@ pub struct RunArgs {
 /// Loads, validates and runs a scene file, logging to `out` (MCAP) if given. The log is always
 /// finished, with an `error` metadata record if the run failed.
 pub fn run_scene_file(
-    path: &PathBuf,
+    path: &std::path::Path,
     out: Option<&PathBuf>,
     force: bool,
     interrupt: &Interrupt,
 ) -> Result<RunSummary, CliError> {
-    let text = std::fs::read_to_string(path).map_err(|source| CliError::Read {
-        path: path.clone(),
-        source,
-    })?;
+    let text = crate::output::read_text(path)?;
     let scene = Scene::from_toml_str(&text, &Materials::bundled()?)?;
     let simulation = Simulation::new(&scene, RunOptions::default())?;
     let Some(out) = out else {
