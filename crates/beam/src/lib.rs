@@ -10,6 +10,8 @@
 //!   analytic tangent.
 //! * [`banded`]: a banded LU factorisation (partial pivoting), O(N) per solve.
 //! * [`statics`], [`modal`], [`dynamics`] (generalized-α), [`energy`]: the solvers.
+//! * [`reduced`]: the modal-reduced linear beam (lowest modes plus static correction shapes),
+//!   stepped by the same generalized-α scheme — the shortcut for small deflections.
 //! * [`prb`]: the Pseudo-Rigid-Body (γ, K_Θ) fit to the corotational tip path (Howell's method).
 //! * [`canonical`]: canonical problems and their published references, shared by tests, benches
 //!   and the CLI.
@@ -44,6 +46,7 @@ mod error;
 pub mod modal;
 pub mod model;
 pub mod prb;
+pub mod reduced;
 pub mod section;
 pub mod statics;
 
@@ -53,5 +56,6 @@ pub use modal::{ModalAnalysis, ModalDirection, modal_analysis};
 pub use model::{
     BeamModel, BeamSpec, Kinematics, MassMatrix, NodalLoads, PointMass, Rayleigh, RootSupport,
 };
+pub use reduced::{ReducedModel, ReducedState};
 pub use section::{Material, Section};
 pub use statics::{StaticOptions, StaticSolution, solve_static};
