@@ -1,18 +1,20 @@
 //! The compliant link (CL): a flexrig-beam finite-element beam clamped at the robot axis, bending
 //! in the horizontal plane (its local x along the world x, its transverse v along the world y),
 //! with the payload as a point mass at the tip node and the dome rigidly attached to the tip
-//! section. It advances with the same step as the Rapier world.
+//! section. It advances with the same step as the Rapier world, either with every FE degree of
+//! freedom or, as the shortcut for small deflections, modal-reduced (the scene's
+//! `solver.beam`).
 
 use flexrig_beam::{
     BeamModel, BeamSpec, GeneralizedAlpha, Kinematics, Material, NodalLoads, PointMass,
-    RootSupport, Section, State, Workspace,
+    ReducedModel, ReducedState, RootSupport, Section, State, Workspace,
 };
 use flexrig_contact::math::{Pose, Vector};
 use flexrig_contact::{BodyKinematics, ContactSample};
 use rapier3d_f64::glamx::DQuat;
 
 use crate::RigError;
-use crate::scene::Scene;
+use crate::scene::{BeamSolverSpec, Scene};
 
 /// Which beam stands for the robot link.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -31,23 +33,36 @@ pub enum LinkVariant {
 #[derive(Debug, Clone)]
 pub struct BeamLink {
     model: BeamModel,
-    state: State,
-    workspace: Workspace,
+    dynamics: LinkDynamics,
     integrator: GeneralizedAlpha,
     loads: NodalLoads,
     tip: usize,
 }
 
+/// Every FE DOF, or the modal-reduced linear beam.
+#[derive(Debug, Clone)]
+enum LinkDynamics {
+    Full {
+        state: State,
+        workspace: Workspace,
+    },
+    Modal {
+        reduced: Box<ReducedModel>,
+        state: ReducedState,
+    },
+}
+
 impl BeamLink {
     /// The link of `scene`, at rest: clamped at the axis ([`LinkVariant::Compliant`]) or, for the
-    /// CJ cross-check, stiffened and pinned on the scene's torsion spring.
-    pub fn new(
-        scene: &Scene,
-        kinematics: Kinematics,
-        rho_inf: f64,
-        variant: LinkVariant,
-    ) -> Result<Self, RigError> {
+    /// CJ cross-check, stiffened and pinned on the scene's torsion spring; solved as the scene's
+    /// `solver.beam` says (the modal model keeps the tip u, v, θ correction shapes, where the
+    /// contact force and moment act).
+    pub fn new(scene: &Scene, rho_inf: f64, variant: LinkVariant) -> Result<Self, RigError> {
         let r = &scene.file.robot;
+        let kinematics = match scene.file.solver.beam {
+            BeamSolverSpec::Corotational => Kinematics::Corotational,
+            BeamSolverSpec::Linear | BeamSolverSpec::Modal { .. } => Kinematics::Linear,
+        };
         let material = Material::new(r.youngs_modulus_pa, r.density_kg_m3)?;
         let section = Section::rectangular(&material, r.width_m, r.thickness_m)?;
         let mut spec = BeamSpec::cantilever(r.length_m, section, r.beam_elements, kinematics);
@@ -69,15 +84,42 @@ impl BeamLink {
         });
         let model = BeamModel::new(spec)?;
         let loads = NodalLoads::zeros(&model);
-        let state = State::at_rest(&model, &loads)?;
+        let tip = model.tip_node();
+        let dynamics = match scene.file.solver.beam {
+            BeamSolverSpec::Modal { modes } => {
+                let reduced =
+                    ReducedModel::new(&model, modes, &[3 * tip, 3 * tip + 1, 3 * tip + 2])?;
+                LinkDynamics::Modal {
+                    state: ReducedState::at_rest(&reduced, &loads)?,
+                    reduced: Box::new(reduced),
+                }
+            }
+            _ => LinkDynamics::Full {
+                state: State::at_rest(&model, &loads)?,
+                workspace: Workspace::new(&model),
+            },
+        };
         Ok(BeamLink {
-            workspace: Workspace::new(&model),
             integrator: GeneralizedAlpha::new(rho_inf)?,
-            tip: model.tip_node(),
+            tip,
             model,
-            state,
+            dynamics,
             loads,
         })
+    }
+
+    /// Displacement, velocity and acceleration of global DOF `dof` [m or rad, /s, /s²].
+    fn dof(&self, dof: usize) -> (f64, f64, f64) {
+        match &self.dynamics {
+            LinkDynamics::Full { state, .. } => (state.q[dof], state.v[dof], state.a[dof]),
+            LinkDynamics::Modal { reduced, state } => reduced.dof(state, dof),
+        }
+    }
+
+    /// (q, v, a) of the tip's u, v, θ.
+    fn tip_dofs(&self) -> [(f64, f64, f64); 3] {
+        let i = 3 * self.tip;
+        [self.dof(i), self.dof(i + 1), self.dof(i + 2)]
     }
 
     /// The beam model.
@@ -85,59 +127,63 @@ impl BeamLink {
         &self.model
     }
 
-    /// The beam state.
-    pub fn state(&self) -> &State {
-        &self.state
+    /// Number of coordinates advanced per step: every free FE DOF, or the modal coordinates.
+    pub fn n_coordinates(&self) -> usize {
+        match &self.dynamics {
+            LinkDynamics::Full { .. } => self.model.n_free(),
+            LinkDynamics::Modal { reduced, .. } => reduced.n_coordinates(),
+        }
     }
 
     /// Pose and velocity of the tip section (frame origin at the tip node on the beam axis).
     pub fn tip_kinematics(&self) -> BodyKinematics {
-        let i = 3 * self.tip;
-        let (q, v) = (&self.state.q, &self.state.v);
-        let position = Vector::new(self.model.length() + q[i], q[i + 1], 0.0);
-        BodyKinematics {
-            pose: Pose::from_parts(position, DQuat::from_rotation_z(q[i + 2])),
-            reference_point: position,
-            linvel: Vector::new(v[i], v[i + 1], 0.0),
-            angvel: Vector::new(0.0, 0.0, v[i + 2]),
-        }
+        self.predicted_tip_kinematics(0.0)
     }
 
     /// The tip section's pose and velocity predicted `dt` ahead from the current displacement,
     /// velocity and acceleration (q + v dt + a dt²/2, v + a dt): second order.
     pub fn predicted_tip_kinematics(&self, dt: f64) -> BodyKinematics {
-        let i = 3 * self.tip;
-        let (q, v, a) = (&self.state.q, &self.state.v, &self.state.a);
-        let at = |k: usize| q[k] + v[k] * dt + 0.5 * a[k] * dt * dt;
-        let rate = |k: usize| v[k] + a[k] * dt;
-        let position = Vector::new(self.model.length() + at(i), at(i + 1), 0.0);
+        let [u, v, theta] = self
+            .tip_dofs()
+            .map(|(q, v, a)| (q + v * dt + 0.5 * a * dt * dt, v + a * dt));
+        let position = Vector::new(self.model.length() + u.0, v.0, 0.0);
         BodyKinematics {
-            pose: Pose::from_parts(position, DQuat::from_rotation_z(at(i + 2))),
+            pose: Pose::from_parts(position, DQuat::from_rotation_z(theta.0)),
             reference_point: position,
-            linvel: Vector::new(rate(i), rate(i + 1), 0.0),
-            angvel: Vector::new(0.0, 0.0, rate(i + 2)),
+            linvel: Vector::new(u.1, v.1, 0.0),
+            angvel: Vector::new(0.0, 0.0, theta.1),
         }
     }
 
     /// Transverse (y) displacement, velocity and acceleration of the tip [m, m/s, m/s²].
     pub fn tip_transverse(&self) -> (f64, f64, f64) {
-        let i = 3 * self.tip + 1;
-        (self.state.q[i], self.state.v[i], self.state.a[i])
+        self.dof(3 * self.tip + 1)
     }
 
     /// Kinetic plus strain energy \[J\].
     pub fn energy(&self) -> f64 {
-        let e = self.state.energy(&self.model);
-        e.kinetic + e.strain
+        match &self.dynamics {
+            LinkDynamics::Full { state, .. } => {
+                let e = state.energy(&self.model);
+                e.kinetic + e.strain
+            }
+            LinkDynamics::Modal { reduced, state } => {
+                let (kinetic, strain) = reduced.energy(state);
+                kinetic + strain
+            }
+        }
     }
 
     /// World positions of the nodes (for the 3D view) \[m\].
     pub fn node_positions(&self) -> Vec<Vector> {
+        let q = match &self.dynamics {
+            LinkDynamics::Full { state, .. } => std::borrow::Cow::Borrowed(&state.q),
+            LinkDynamics::Modal { reduced, state } => {
+                std::borrow::Cow::Owned(reduced.displacements(state))
+            }
+        };
         (0..self.model.n_nodes())
-            .map(|n| {
-                let (u, v, _) = self.state.node(n);
-                Vector::new(self.model.node_x(n) + u, v, 0.0)
-            })
+            .map(|n| Vector::new(self.model.node_x(n) + q[3 * n], q[3 * n + 1], 0.0))
             .collect()
     }
 
@@ -159,13 +205,16 @@ impl BeamLink {
             self.loads.set_force(self.tip, f.x, f.y)?;
             self.loads.set_moment(self.tip, moment)?;
         }
-        self.integrator.step(
-            &self.model,
-            &mut self.state,
-            &mut self.workspace,
-            dt,
-            &self.loads,
-        )?;
+        match &mut self.dynamics {
+            LinkDynamics::Full { state, workspace } => {
+                self.integrator
+                    .step(&self.model, state, workspace, dt, &self.loads)?;
+            }
+            LinkDynamics::Modal { reduced, state } => {
+                self.integrator
+                    .step_reduced(reduced, state, dt, &self.loads)?;
+            }
+        }
         Ok(())
     }
 }

@@ -32,4 +32,4 @@ pub use error::RigError;
 pub use run::{
     Frame, NoRecorder, Recorder, RunOptions, RunSummary, Simulation, StepOutcome, run_scene_text,
 };
-pub use scene::{Design, Scene, SceneFile};
+pub use scene::{BeamSolverSpec, Design, Scene, SceneFile};

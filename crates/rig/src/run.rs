@@ -2,7 +2,6 @@
 //! sensors), a step policy that takes large steps in the free swing, lands on the contact onset
 //! and resolves the contact on its own time scale, and the stop condition of the scene.
 
-use flexrig_beam::Kinematics;
 use flexrig_contact::math::{Pose, Vector};
 use flexrig_contact::{ContactCallback, ContactSample, DomeBlockContact, Materials};
 use serde::Serialize;
@@ -119,8 +118,6 @@ pub struct RunSummary {
 /// choices; tests vary them).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunOptions {
-    /// Beam kinematics for CL.
-    pub beam_kinematics: Kinematics,
     /// Generalized-α spectral radius for the beam (1: no numerical dissipation).
     pub beam_rho_inf: f64,
     /// Relative energy growth that counts as instability.
@@ -132,7 +129,6 @@ pub struct RunOptions {
 impl Default for RunOptions {
     fn default() -> Self {
         RunOptions {
-            beam_kinematics: Kinematics::Corotational,
             beam_rho_inf: 1.0,
             energy_growth_limit: 0.05,
             cl_link: LinkVariant::Compliant,
@@ -231,7 +227,6 @@ impl<'s> Simulation<'s> {
             Design::Cl => (
                 RobotSide::Beam(Box::new(BeamLink::new(
                     scene,
-                    options.beam_kinematics,
                     options.beam_rho_inf,
                     options.cl_link,
                 )?)),

@@ -217,6 +217,26 @@ pub struct SolverSpec {
     /// Cap on the number of steps.
     #[serde(default = "default_max_steps")]
     pub max_steps: usize,
+    /// How the CL beam is solved (default: the full corotational FE beam).
+    #[serde(default)]
+    pub beam: BeamSolverSpec,
+}
+
+/// How the finite-element link is solved (design `cl`; ignored for `cj`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", tag = "model", deny_unknown_fields)]
+pub enum BeamSolverSpec {
+    /// Every FE degree of freedom, corotational (large deflection): the reference.
+    #[default]
+    Corotational,
+    /// Every FE degree of freedom, linear kinematics (small deflection).
+    Linear,
+    /// The shortcut for small deflections: the linear beam reduced to its lowest `modes` modes
+    /// plus static correction shapes for the tip force and moment (flexrig_beam::reduced).
+    Modal {
+        /// Number of kept modes, ≥ 1 (and at most the beam's DOFs).
+        modes: usize,
+    },
 }
 
 fn default_max_steps() -> usize {
@@ -430,6 +450,16 @@ impl Scene {
                 s.max_steps,
                 "must be at least 1",
             ));
+        }
+        if let BeamSolverSpec::Modal { modes } = s.beam {
+            let dofs = 3 * file.robot.beam_elements;
+            if modes == 0 || modes > dofs {
+                return Err(invalid(
+                    "solver.beam.modes",
+                    modes,
+                    &format!("must be from 1 to {dofs} (3 per beam element)"),
+                ));
+            }
         }
         if let StopSpec::Duration { duration_s } = file.stop {
             positive("stop.duration_s", duration_s)?;
