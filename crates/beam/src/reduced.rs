@@ -68,11 +68,7 @@ impl ReducedModel {
     /// static correction shape for each DOF index in `loaded_dofs` (global indices 3·node + {0: u,
     /// 1: v, 2: θ}). Root dampers (c_θ > 0) are not modal and are rejected; Rayleigh damping is
     /// kept.
-    pub fn new(
-        model: &BeamModel,
-        modes: usize,
-        loaded_dofs: &[usize],
-    ) -> Result<Self, BeamError> {
+    pub fn new(model: &BeamModel, modes: usize, loaded_dofs: &[usize]) -> Result<Self, BeamError> {
         let c_theta = match model.root() {
             RootSupport::Clamped => 0.0,
             RootSupport::Pinned { c_theta, .. } | RootSupport::Hub { c_theta, .. } => c_theta,
@@ -98,11 +94,8 @@ impl ReducedModel {
         let analysis = modal_analysis(model, modes, ModalDirection::All)?;
         let (k, m) = dense_matrices(model);
         let nf = k.nrows();
-        let modes_free: Vec<Vec<f64>> = analysis
-            .shapes
-            .iter()
-            .map(|s| s[nfix..].to_vec())
-            .collect();
+        let modes_free: Vec<Vec<f64>> =
+            analysis.shapes.iter().map(|s| s[nfix..].to_vec()).collect();
         let mut corrections: Vec<Vec<f64>> = Vec::new();
         for shape in static_shapes(model, &k, &m, loaded_dofs)? {
             let basis: Vec<&Vec<f64>> = modes_free.iter().chain(&corrections).collect();
@@ -354,7 +347,10 @@ fn m_orthonormalised(m: &Mat<f64>, basis: &[&Vec<f64>], mut shape: Vec<f64>) -> 
     for _ in 0..2 {
         for b in basis {
             let c = m_dot(m, b, &shape);
-            shape.iter_mut().zip(b.iter()).for_each(|(s, bj)| *s -= c * bj);
+            shape
+                .iter_mut()
+                .zip(b.iter())
+                .for_each(|(s, bj)| *s -= c * bj);
         }
     }
     let norm = m_dot(m, &shape, &shape).sqrt();

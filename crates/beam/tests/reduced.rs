@@ -147,10 +147,16 @@ fn truncation_error_falls_with_modes_and_the_correction_shapes_cut_it() {
     // 1.3e-3; corrected 1.6e-1, 3.9e-3, 8.6e-5. (Two modes miss the third, ω₃ T = 6.2, which the
     // pulse drives dynamically: no correction shape can stand in for a resonant mode.)
     for w in corrected.windows(2) {
-        assert!(w[1] < 0.2 * w[0], "corrected errors do not fall: {corrected:?}");
+        assert!(
+            w[1] < 0.2 * w[0],
+            "corrected errors do not fall: {corrected:?}"
+        );
     }
     for (c, p) in corrected.iter().zip(&plain).skip(1) {
-        assert!(*c < p / 3.0, "correction does not help: {corrected:?} vs {plain:?}");
+        assert!(
+            *c < p / 3.0,
+            "correction does not help: {corrected:?} vs {plain:?}"
+        );
     }
     assert!(corrected[2] < 2e-4, "{corrected:?}");
 }
