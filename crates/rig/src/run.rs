@@ -126,13 +126,19 @@ pub struct RunOptions {
     pub cl_link: LinkVariant,
 }
 
+impl RunOptions {
+    /// The defaults, usable in constants: ρ∞ = 1 (no numerical dissipation), instability at 5 %
+    /// energy growth, the compliant link for design `cl`.
+    pub const DEFAULT: RunOptions = RunOptions {
+        beam_rho_inf: 1.0,
+        energy_growth_limit: 0.05,
+        cl_link: LinkVariant::Compliant,
+    };
+}
+
 impl Default for RunOptions {
     fn default() -> Self {
-        RunOptions {
-            beam_rho_inf: 1.0,
-            energy_growth_limit: 0.05,
-            cl_link: LinkVariant::Compliant,
-        }
+        RunOptions::DEFAULT
     }
 }
 

@@ -1,5 +1,5 @@
 //! The cost of MCAP logging: a whole CJ scene (release to separation) without a recorder and
-//! with the MCAP recorder writing to memory (zstd chunks, the same as to a file).
+//! with the MCAP recorder writing to memory (uncompressed indexed chunks, as to a file).
 
 use std::hint::black_box;
 use std::io::Cursor;

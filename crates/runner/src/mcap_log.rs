@@ -5,7 +5,8 @@
 //! simulation time from 0, in ns, in `log_time`, `publish_time` and every message's own
 //! timestamp. Inside the contact window every step is logged on `/contact`, every sensor sample,
 //! and the 3D channels (`/tf`, `/scene`, with `/energy`) at 10 kHz; outside it the scalar channels
-//! are decimated to 250 Hz and the 3D channels to 60 Hz. Chunks are indexed but not compressed:
+//! are decimated to 250 Hz and the 3D channels to 60 Hz ([`LogRates::DECIMATED`]; every step with
+//! [`LogRates::EVERY_STEP`]). Chunks are indexed but not compressed:
 //! LZ4 took 57 % of the logging instructions (zstd 2.5× more time than LZ4) and protobuf doubles
 //! compress poorly; an uncompressed bundled run is 0.22–0.24 MB. The scene file is attached;
 //! key parameters, the software version and the git revision are metadata. The file is always
@@ -84,13 +85,34 @@ struct Channels {
     energy: u16,
 }
 
-/// Period of the 3D channels outside contact [ns] (60 Hz).
-const SCENE_PERIOD_NS: u64 = 1_000_000_000 / 60;
-/// Period of the 3D channels inside contact [ns] (10 kHz: about 40 frames across a pulse; the
-/// plots read the full-rate scalar channels).
-const SCENE_PERIOD_CONTACT_NS: u64 = 100_000;
-/// Period of the scalar channels outside contact [ns] (250 Hz: the swing is slow).
-const SCALAR_PERIOD_NS: u64 = 4_000_000;
+/// How often the channels are written. Inside the contact window `/contact` and the sensor
+/// channels take every step and sample whatever the rates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LogRates {
+    /// Period of the 3D channels (`/tf`, `/scene`) and `/energy` outside contact [ns].
+    pub scene_period_ns: u64,
+    /// Period of the 3D channels and `/energy` inside contact [ns].
+    pub scene_period_contact_ns: u64,
+    /// Period of the sensor channels outside contact [ns].
+    pub scalar_period_ns: u64,
+}
+
+impl LogRates {
+    /// The default: 3D at 60 Hz outside contact and 10 kHz inside (about 40 frames across a
+    /// pulse; the plots read the full-rate scalar channels), sensors at 250 Hz outside contact
+    /// (the swing is slow).
+    pub const DECIMATED: LogRates = LogRates {
+        scene_period_ns: 1_000_000_000 / 60,
+        scene_period_contact_ns: 100_000,
+        scalar_period_ns: 4_000_000,
+    };
+    /// Every step and every sensor sample on every channel (`flexrig run --log-every-step`).
+    pub const EVERY_STEP: LogRates = LogRates {
+        scene_period_ns: 0,
+        scene_period_contact_ns: 0,
+        scalar_period_ns: 0,
+    };
+}
 
 /// A [`Recorder`] that writes an MCAP file.
 pub struct McapRecorder<W: Write + Seek> {
@@ -103,6 +125,7 @@ pub struct McapRecorder<W: Write + Seek> {
     geometry: flexrig_rig::geometry::RigGeometry,
     messages: u64,
     interrupt: Option<Arc<AtomicBool>>,
+    rates: LogRates,
 }
 
 impl<W: Write + Seek> std::fmt::Debug for McapRecorder<W> {
@@ -291,6 +314,7 @@ impl<W: Write + Seek> McapRecorder<W> {
             geometry: flexrig_rig::geometry::RigGeometry::of(scene),
             messages: 0,
             interrupt: None,
+            rates: LogRates::DECIMATED,
         })
     }
 
@@ -302,6 +326,12 @@ impl<W: Write + Seek> McapRecorder<W> {
         self
     }
 
+    /// Writes at `rates` instead of [`LogRates::DECIMATED`].
+    pub fn with_rates(mut self, rates: LogRates) -> Self {
+        self.rates = rates;
+        self
+    }
+
     /// Messages written so far.
     pub fn messages(&self) -> u64 {
         self.messages
@@ -310,10 +340,7 @@ impl<W: Write + Seek> McapRecorder<W> {
     fn write<M: Encode>(&mut self, channel: u16, t: f64, msg: &M) -> Result<(), RigError> {
         self.buffer.clear();
         msg.encode(&mut self.buffer)
-            .map_err(|e| RigError::NotReached {
-                what: "an encoded message".into(),
-                limit: e.to_string(),
-            })?;
+            .map_err(|e| RigError::Recorder(format!("encoding a message failed: {e}")))?;
         self.sequence += 1;
         let ns = nanos(t);
         self.writer
@@ -337,7 +364,7 @@ impl<W: Write + Seek> McapRecorder<W> {
             if !every
                 && self
                     .last_scalar_ns
-                    .is_some_and(|last| ns < last + SCALAR_PERIOD_NS)
+                    .is_some_and(|last| ns < last + self.rates.scalar_period_ns)
             {
                 continue;
             }
@@ -525,6 +552,12 @@ impl<W: Write + Seek> McapRecorder<W> {
         Ok(())
     }
 
+    /// Finishes the file (as [`McapRecorder::finish`] without an error) and returns the writer.
+    pub fn finish_into_inner(mut self) -> Result<W, mcap::McapError> {
+        self.writer.finish()?;
+        Ok(self.writer.into_inner())
+    }
+
     /// Writes the run summary as metadata (after a successful run).
     pub fn write_summary(&mut self, s: &RunSummary) -> Result<(), mcap::McapError> {
         let value = serde_json::to_value(s).unwrap_or_default();
@@ -572,9 +605,9 @@ impl<W: Write + Seek> Recorder for McapRecorder<W> {
             }
         }
         let period = if in_contact {
-            SCENE_PERIOD_CONTACT_NS
+            self.rates.scene_period_contact_ns
         } else {
-            SCENE_PERIOD_NS
+            self.rates.scene_period_ns
         };
         let energy_due = self.last_scene_ns.is_none_or(|last| ns >= last + period);
         if energy_due {

@@ -114,6 +114,31 @@ fn run_log_reads_back_with_everything_written() {
 }
 
 #[test]
+fn log_every_step_writes_every_sample_and_every_step() {
+    let dir = scratch("every");
+    let out = dir.join("every.mcap");
+    let o = flexrig(&[
+        "run",
+        &scene_path("cj_aluminium"),
+        "--out",
+        out.to_str().unwrap(),
+        "--log-every-step",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let (counts, _) = read_back(&out);
+    let samples = v["samples"].as_u64().unwrap();
+    let steps = v["steps"].as_u64().unwrap();
+    assert_eq!(counts["/sensors/force"], samples);
+    assert_eq!(counts["/sensors/encoders"], samples);
+    // One frame per step (plus the initial frame).
+    assert!(counts["/energy"] >= steps && counts["/energy"] <= steps + 1, "{counts:?}");
+    assert_eq!(counts["/tf"], counts["/energy"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn a_run_that_fails_midway_leaves_a_finished_log() {
     let dir = scratch("fail");
     let text = std::fs::read_to_string(scene_path("cj_aluminium"))

@@ -3,7 +3,7 @@
 //! repeated runs in this process; errors are against independent references (the exact energy
 //! solution, the elastica table, a converged run).
 
-use std::io::Write;
+use std::io::{Cursor, Write};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -13,12 +13,13 @@ use flexrig_beam::{StaticOptions, solve_static};
 use flexrig_contact::{Hertz, SeriesCompliance};
 use flexrig_lumped::ode::{Formulation, OdeOptions, StopAt, integrate};
 use flexrig_lumped::{ImpactModel, peak_exact};
-use flexrig_rig::{NoRecorder, RunOptions, Scene, Simulation};
+use flexrig_rig::{LinkVariant, NoRecorder, RunOptions, Scene, Simulation};
 use serde::Serialize;
 use serde_json::json;
 
 use crate::CliError;
 use crate::commands::experiment::bundled_scene;
+use crate::mcap_log::{LogRates, McapRecorder};
 use crate::output::{ensure_dir, line, print_json, write_atomic};
 
 /// Arguments of `flexrig bench`.
@@ -305,6 +306,35 @@ fn scene(name: &str, edits: &[(&str, String)]) -> Result<Scene, CliError> {
     bundled_scene(name, &edits)
 }
 
+/// A CJ built from the FE beam (EI, EA × 1e4, pinned on the torsion spring): what the Rapier
+/// rigid link saves.
+const STIFF_FE_CJ: RunOptions = RunOptions {
+    cl_link: LinkVariant::StiffOnTorsionSpring {
+        stiffness_factor: 1e4,
+    },
+    ..RunOptions::DEFAULT
+};
+
+fn run_scene(s: &Scene, options: RunOptions) -> Result<flexrig_rig::RunSummary, CliError> {
+    Ok(Simulation::new(s, options)?.run(&mut NoRecorder)?)
+}
+
+/// Release → separation with the MCAP recorder writing to memory at `rates`: (summary, bytes).
+fn run_logged(s: &Scene, rates: LogRates) -> Result<(flexrig_rig::RunSummary, usize), CliError> {
+    let mut log = McapRecorder::new(Cursor::new(Vec::new()), s, "")
+        .map_err(|e| CliError::Plot {
+            path: "memory".into(),
+            message: e.to_string(),
+        })?
+        .with_rates(rates);
+    let summary = Simulation::new(s, RunOptions::default())?.run(&mut log)?;
+    let bytes = log.finish_into_inner().map_err(|e| CliError::Plot {
+        path: "memory".into(),
+        message: e.to_string(),
+    })?;
+    Ok((summary, bytes.into_inner().len()))
+}
+
 fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
     let steps: &[usize] = if quick {
         &[50, 200, 800]
@@ -312,35 +342,67 @@ fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
         &[25, 50, 100, 200, 400, 800, 1600]
     };
     let samples = if quick { 3 } else { 5 };
-    let run = |s: &Scene| -> Result<flexrig_rig::RunSummary, CliError> {
-        Ok(Simulation::new(s, RunOptions::default())?.run(&mut NoRecorder)?)
-    };
+    let modal = "\nbeam = { model = \"modal\", modes = 8 }";
     for name in ["cj_aluminium", "cl_aluminium"] {
-        let reference = run(&scene(
-            name,
-            &[("contact_steps = 800", "contact_steps = 6400".into())],
-        )?)?
+        let reference = run_scene(
+            &scene(
+                name,
+                &[("contact_steps = 800", "contact_steps = 6400".into())],
+            )?,
+            RunOptions::default(),
+        )?
         .peak_force_n;
+        let cl = name.starts_with("cl");
         for &n in steps {
-            let variants: [(&str, Vec<(&str, String)>); 3] = [
-                ("release to separation", vec![]),
+            let from_contact = ("from = \"release\"", "from = \"contact\"".to_string());
+            let to_peak = ("at = \"separation\"", "at = \"peak\"".to_string());
+            // (label, edits, solver line suffix, options)
+            let mut variants: Vec<(&str, Vec<(&str, String)>, &str, RunOptions)> = vec![
+                ("release to separation", vec![], "", RunOptions::DEFAULT),
                 (
                     "start at contact",
-                    vec![("from = \"release\"", "from = \"contact\"".into())],
+                    vec![from_contact.clone()],
+                    "",
+                    RunOptions::DEFAULT,
                 ),
                 (
                     "start at contact, stop at peak",
-                    vec![
-                        ("from = \"release\"", "from = \"contact\"".into()),
-                        ("at = \"separation\"", "at = \"peak\"".into()),
-                    ],
+                    vec![from_contact.clone(), to_peak.clone()],
+                    "",
+                    RunOptions::DEFAULT,
                 ),
             ];
-            for (label, mut edits) in variants {
-                edits.push(("contact_steps = 800", format!("contact_steps = {n}")));
+            if cl {
+                variants.push((
+                    "release to separation, modal beam (8 modes)",
+                    vec![],
+                    modal,
+                    RunOptions::DEFAULT,
+                ));
+                variants.push((
+                    "start at contact, stop at peak, modal beam (8 modes)",
+                    vec![from_contact.clone(), to_peak.clone()],
+                    modal,
+                    RunOptions::DEFAULT,
+                ));
+            } else {
+                variants.push((
+                    "release to separation, as a stiff FE beam (no rigid-link shortcut)",
+                    vec![("design = \"cj\"", "design = \"cl\"".into())],
+                    "",
+                    STIFF_FE_CJ,
+                ));
+            }
+            for (label, mut edits, suffix, options) in variants {
+                edits.push((
+                    "contact_steps = 800",
+                    format!("contact_steps = {n}{suffix}"),
+                ));
                 let s = scene(name, &edits)?;
                 // Too coarse a contact step is caught by the energy check: no row for it.
-                let Ok(result) = run(&s) else { continue };
+                let Ok(result) = run_scene(&s, options) else {
+                    continue;
+                };
                 // The swing from release adds its own (tiny) impact-speed error; the shortcuts are
                 // compared with the same converged release run.
                 rows.push(Row {
@@ -348,10 +410,29 @@ fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
                     method: format!("{name}: {label}"),
                     setting: format!("{n} steps/contact"),
                     error: (result.peak_force_n / reference - 1.0).abs(),
-                    seconds: median_seconds(samples, 1, || run(&s)),
+                    seconds: median_seconds(samples, 1, || run_scene(&s, options)),
                     evaluations: None,
                 });
             }
+        }
+        // Logging: decimated outside contact (the default) against every step.
+        let s = scene(name, &[])?;
+        for (label, rates) in [
+            ("decimated outside contact", LogRates::DECIMATED),
+            ("every step", LogRates::EVERY_STEP),
+        ] {
+            let (summary, bytes) = run_logged(&s, rates)?;
+            rows.push(Row {
+                model: "rig".into(),
+                method: format!(
+                    "{name}: release to separation, MCAP log {label} ({:.2} MB)",
+                    bytes as f64 / 1e6
+                ),
+                setting: "800 steps/contact".into(),
+                error: (summary.peak_force_n / reference - 1.0).abs(),
+                seconds: median_seconds(samples, 1, || run_logged(&s, rates)),
+                evaluations: None,
+            });
         }
     }
     Ok(())

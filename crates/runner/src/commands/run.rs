@@ -10,7 +10,7 @@ use serde_json::json;
 
 use crate::CliError;
 use crate::cli::Interrupt;
-use crate::mcap_log::McapRecorder;
+use crate::mcap_log::{LogRates, McapRecorder};
 use crate::output::{line, print_json};
 
 /// Arguments of `flexrig run`.
@@ -25,6 +25,10 @@ pub struct RunArgs {
     /// Overwrite the --out file if it exists.
     #[arg(long)]
     pub force: bool,
+    /// Log every step and sensor sample on every channel (default: the 3D view at 60 Hz and the
+    /// sensors at 250 Hz outside contact; inside contact everything is logged either way).
+    #[arg(long)]
+    pub log_every_step: bool,
     /// Print JSON instead of text.
     #[arg(long)]
     pub json: bool,
@@ -36,6 +40,7 @@ pub fn run_scene_file(
     path: &std::path::Path,
     out: Option<&PathBuf>,
     force: bool,
+    rates: LogRates,
     interrupt: &Interrupt,
 ) -> Result<RunSummary, CliError> {
     let text = crate::output::read_text(path)?;
@@ -44,8 +49,9 @@ pub fn run_scene_file(
     let Some(out) = out else {
         return Ok(simulation.run(&mut NoRecorder)?);
     };
-    let mut log =
-        McapRecorder::create(out, force, &scene, &text)?.with_interrupt(interrupt.0.clone());
+    let mut log = McapRecorder::create(out, force, &scene, &text)?
+        .with_interrupt(interrupt.0.clone())
+        .with_rates(rates);
     let closed = |e: mcap::McapError| CliError::write(out, std::io::Error::other(e.to_string()));
     match simulation.run(&mut log) {
         Ok(summary) => {
@@ -62,7 +68,12 @@ pub fn run_scene_file(
 
 /// Runs `flexrig run`.
 pub fn run(args: &RunArgs, out: &mut dyn Write, interrupt: &Interrupt) -> Result<(), CliError> {
-    let s = run_scene_file(&args.scene, args.out.as_ref(), args.force, interrupt)?;
+    let rates = if args.log_every_step {
+        LogRates::EVERY_STEP
+    } else {
+        LogRates::DECIMATED
+    };
+    let s = run_scene_file(&args.scene, args.out.as_ref(), args.force, rates, interrupt)?;
     if args.json {
         return print_json(
             out,
