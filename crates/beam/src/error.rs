@@ -15,15 +15,17 @@ pub enum BeamError {
     },
     /// Newton–Raphson did not converge.
     #[error(
-        "{solver}: Newton did not converge at load level {load_level:.4} after {iterations} \
-         iterations (residual {residual:.3e}); try more load steps or a smaller time step"
+        "{solver}: Newton did not converge after {iterations} iterations (residual \
+         {residual:.3e}, load level reached {load_level:.4}); try more load steps or a smaller \
+         time step"
     )]
     NotConverged {
         /// Which solver (e.g. "corotational static solve", "generalized-α step").
         solver: String,
-        /// Fraction of the load reached (statics) or 1 (dynamics).
+        /// Fraction of the load reached (statics: the last converged load step, in [0, 1)) or 1
+        /// (dynamics).
         load_level: f64,
-        /// Iterations spent at that level.
+        /// Iterations spent on the load step (or time step) that failed.
         iterations: usize,
         /// The last residual norm, in N.
         residual: f64,

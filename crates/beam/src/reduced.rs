@@ -255,40 +255,38 @@ impl GeneralizedAlpha {
             Some(hp) if hp != h => h / hp,
             _ => 1.0,
         };
-        state.h_prev = Some(h);
-        let mut forces = std::mem::take(&mut state.a_aux);
         let r = model.n_coordinates();
-        let mut ahat_old = vec![0.0; r];
-        for i in 0..r {
-            // â_n ≈ q̈(t_n + (α_m − α_f) h): rescale its offset from q̈_n when h changes.
-            ahat_old[i] = state.eta_ddot[i] + (forces[i] - state.eta_ddot[i]) * rescale;
-        }
+        let mut forces = vec![0.0; r];
         model.generalized_forces(loads.as_slice(), &mut forces);
+        let mut next = state.clone();
         for i in 0..r {
             let (w2, c) = (model.omegas[i] * model.omegas[i], model.damping[i]);
-            let (q, v, a, ah) = (
-                state.eta[i],
-                state.eta_dot[i],
-                state.eta_ddot[i],
-                ahat_old[i],
-            );
+            let (q, v, a) = (state.eta[i], state.eta_dot[i], state.eta_ddot[i]);
+            // â_n ≈ q̈(t_n + (α_m − α_f) h): rescale its offset from q̈_n when h changes.
+            let ah = a + (state.a_aux[i] - a) * rescale;
             let lhs = (1.0 - am) / (1.0 - af) + c * g * h + w2 * b * h * h;
             let rhs = forces[i]
                 - (am * ah - af * a) / (1.0 - af)
                 - c * (v + (1.0 - g) * h * ah)
                 - w2 * (q + h * v + (0.5 - b) * h * h * ah);
             let x = rhs / lhs;
-            state.eta[i] = q + h * v + h * h * ((0.5 - b) * ah + b * x);
-            state.eta_dot[i] = v + h * ((1.0 - g) * ah + g * x);
-            state.eta_ddot[i] = ((1.0 - am) * x + am * ah - af * a) / (1.0 - af);
-            forces[i] = x;
+            next.eta[i] = q + h * v + h * h * ((0.5 - b) * ah + b * x);
+            next.eta_dot[i] = v + h * ((1.0 - g) * ah + g * x);
+            next.eta_ddot[i] = ((1.0 - am) * x + am * ah - af * a) / (1.0 - af);
+            next.a_aux[i] = x;
         }
-        state.a_aux = forces;
-        if let Some(i) = state.eta.iter().position(|x| !x.is_finite()) {
+        // A failed step leaves `state` unchanged (as the full model's step does).
+        if let Some(i) = (0..r).find(|&i| {
+            !(next.eta[i].is_finite()
+                && next.eta_dot[i].is_finite()
+                && next.eta_ddot[i].is_finite())
+        }) {
             return Err(BeamError::NonFinite {
                 what: format!("modal coordinate {i}"),
             });
         }
+        next.h_prev = Some(h);
+        *state = next;
         state.t += h;
         Ok(())
     }
@@ -341,7 +339,7 @@ fn m_dot(m: &Mat<f64>, x: &[f64], y: &[f64]) -> f64 {
 /// when what is left is below [`SPAN_TOLERANCE`] of its original M-norm (already in the span).
 fn m_orthonormalised(m: &Mat<f64>, basis: &[&Vec<f64>], mut shape: Vec<f64>) -> Option<Vec<f64>> {
     let norm0 = m_dot(m, &shape, &shape).sqrt();
-    if !(norm0 > 0.0) {
+    if norm0.is_nan() || norm0 <= 0.0 {
         return None;
     }
     for _ in 0..2 {

@@ -221,7 +221,8 @@ pub fn solve_static_from(
         if !converged {
             return Err(BeamError::NotConverged {
                 solver: "corotational static solve".into(),
-                load_level: lambda,
+                // the level reached: the last converged one
+                load_level: (step - 1) as f64 / steps as f64,
                 iterations,
                 residual,
             });
@@ -235,6 +236,12 @@ pub fn solve_static_from(
     };
     assemble(model, kin, f_full, &mut r, None);
     residual = r[nfix..].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    // (finite loads near f64::MAX can overflow the displacements of the linear solve)
+    if !residual.is_finite() || q.iter().any(|x| !x.is_finite()) {
+        return Err(BeamError::NonFinite {
+            what: "static displacement".into(),
+        });
+    }
     Ok(StaticSolution {
         reactions: r[..nfix].to_vec(),
         q,

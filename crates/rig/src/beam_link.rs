@@ -42,10 +42,7 @@ pub struct BeamLink {
 /// Every FE DOF, or the modal-reduced linear beam.
 #[derive(Debug, Clone)]
 enum LinkDynamics {
-    Full {
-        state: State,
-        workspace: Workspace,
-    },
+    Full(Box<(State, Workspace)>),
     Modal {
         reduced: Box<ReducedModel>,
         state: ReducedState,
@@ -94,10 +91,10 @@ impl BeamLink {
                     reduced: Box::new(reduced),
                 }
             }
-            _ => LinkDynamics::Full {
-                state: State::at_rest(&model, &loads)?,
-                workspace: Workspace::new(&model),
-            },
+            _ => LinkDynamics::Full(Box::new((
+                State::at_rest(&model, &loads)?,
+                Workspace::new(&model),
+            ))),
         };
         Ok(BeamLink {
             integrator: GeneralizedAlpha::new(rho_inf)?,
@@ -111,7 +108,7 @@ impl BeamLink {
     /// Displacement, velocity and acceleration of global DOF `dof` [m or rad, /s, /s²].
     fn dof(&self, dof: usize) -> (f64, f64, f64) {
         match &self.dynamics {
-            LinkDynamics::Full { state, .. } => (state.q[dof], state.v[dof], state.a[dof]),
+            LinkDynamics::Full(full) => (full.0.q[dof], full.0.v[dof], full.0.a[dof]),
             LinkDynamics::Modal { reduced, state } => reduced.dof(state, dof),
         }
     }
@@ -130,7 +127,7 @@ impl BeamLink {
     /// Number of coordinates advanced per step: every free FE DOF, or the modal coordinates.
     pub fn n_coordinates(&self) -> usize {
         match &self.dynamics {
-            LinkDynamics::Full { .. } => self.model.n_free(),
+            LinkDynamics::Full(_) => self.model.n_free(),
             LinkDynamics::Modal { reduced, .. } => reduced.n_coordinates(),
         }
     }
@@ -163,8 +160,8 @@ impl BeamLink {
     /// Kinetic plus strain energy \[J\].
     pub fn energy(&self) -> f64 {
         match &self.dynamics {
-            LinkDynamics::Full { state, .. } => {
-                let e = state.energy(&self.model);
+            LinkDynamics::Full(full) => {
+                let e = full.0.energy(&self.model);
                 e.kinetic + e.strain
             }
             LinkDynamics::Modal { reduced, state } => {
@@ -177,7 +174,7 @@ impl BeamLink {
     /// World positions of the nodes (for the 3D view) \[m\].
     pub fn node_positions(&self) -> Vec<Vector> {
         let q = match &self.dynamics {
-            LinkDynamics::Full { state, .. } => std::borrow::Cow::Borrowed(&state.q),
+            LinkDynamics::Full(full) => std::borrow::Cow::Borrowed(&full.0.q),
             LinkDynamics::Modal { reduced, state } => {
                 std::borrow::Cow::Owned(reduced.displacements(state))
             }
@@ -206,7 +203,8 @@ impl BeamLink {
             self.loads.set_moment(self.tip, moment)?;
         }
         match &mut self.dynamics {
-            LinkDynamics::Full { state, workspace } => {
+            LinkDynamics::Full(full) => {
+                let (state, workspace) = &mut **full;
                 self.integrator
                     .step(&self.model, state, workspace, dt, &self.loads)?;
             }

@@ -133,7 +133,10 @@ fn log_every_step_writes_every_sample_and_every_step() {
     assert_eq!(counts["/sensors/force"], samples);
     assert_eq!(counts["/sensors/encoders"], samples);
     // One frame per step (plus the initial frame).
-    assert!(counts["/energy"] >= steps && counts["/energy"] <= steps + 1, "{counts:?}");
+    assert!(
+        counts["/energy"] >= steps && counts["/energy"] <= steps + 1,
+        "{counts:?}"
+    );
     assert_eq!(counts["/tf"], counts["/energy"]);
     let _ = std::fs::remove_dir_all(&dir);
 }

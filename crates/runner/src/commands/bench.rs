@@ -315,6 +315,14 @@ const STIFF_FE_CJ: RunOptions = RunOptions {
     ..RunOptions::DEFAULT
 };
 
+/// A rig bench variant: label, scene text edits, a suffix for the solver line, run options.
+type RigVariant = (
+    &'static str,
+    Vec<(&'static str, String)>,
+    &'static str,
+    RunOptions,
+);
+
 fn run_scene(s: &Scene, options: RunOptions) -> Result<flexrig_rig::RunSummary, CliError> {
     Ok(Simulation::new(s, options)?.run(&mut NoRecorder)?)
 }
@@ -357,7 +365,7 @@ fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
             let from_contact = ("from = \"release\"", "from = \"contact\"".to_string());
             let to_peak = ("at = \"separation\"", "at = \"peak\"".to_string());
             // (label, edits, solver line suffix, options)
-            let mut variants: Vec<(&str, Vec<(&str, String)>, &str, RunOptions)> = vec![
+            let mut variants: Vec<RigVariant> = vec![
                 ("release to separation", vec![], "", RunOptions::DEFAULT),
                 (
                     "start at contact",
