@@ -45,7 +45,7 @@ impl Formulation {
     ///
     /// Measured at matched error (the largest rtol giving a peak error ≤ 1e-9; n ∈ {1, 1.5, 1.961,
     /// 2, 2.5} × k_δ ∈ {1e2, 1e4, 1e6, 1e8} N/m, k_c = 1e8) the indentation state is the faster one
-    /// in 19 of 20 cases — soft link n = 2 (k_δ = 200): 931 evaluations at rtol 3e-7 against 511
+    /// in 19 of 20 cases — soft link n = 2 (k_δ = 200): 931 evaluations at rtol 1e-7 against 511
     /// at rtol 3e-11 with the displacement state, whose Newton solve costs more per evaluation —
     /// so `Auto` takes it; the displacement state stays available as an independent check. The
     /// two map rtol to error differently: near a soft link the indentation state over-resolves
