@@ -7,6 +7,8 @@
 //!   32 elements, 10 load steps.
 //! * `step_scaling/N`: cost of one corotational transient step for N = 8 … 512.
 //! * `modal/linear_32`: the first 4 bending modes with 32 elements (dense faer eigensolver).
+//! * `transient/linear_32_x1000` and `transient/modal8_32_x1000`: the same 1000 steps with the
+//!   linear beam and with the modal-reduced one (8 modes + tip u, v, θ correction shapes).
 
 use std::hint::black_box;
 
@@ -48,6 +50,34 @@ fn transient(c: &mut Criterion) {
                 ga.step(&model, &mut s, &mut ws, 1e-4, &loads).unwrap();
             }
             black_box(s.q[3 * 32 + 1])
+        })
+    });
+}
+
+fn reduced(c: &mut Criterion) {
+    let model = link(32).with_kinematics(Kinematics::Linear);
+    let s0 = start(&model);
+    let loads = NodalLoads::zeros(&model);
+    let ga = GeneralizedAlpha::new(0.8).unwrap();
+    c.bench_function("transient/linear_32_x1000", |b| {
+        b.iter(|| {
+            let mut s = s0.clone();
+            let mut ws = Workspace::new(&model);
+            for _ in 0..1000 {
+                ga.step(&model, &mut s, &mut ws, 1e-4, &loads).unwrap();
+            }
+            black_box(s.q[3 * 32 + 1])
+        })
+    });
+    let tip = model.tip_node();
+    let red = ReducedModel::new(&model, 8, &[3 * tip, 3 * tip + 1, 3 * tip + 2]).unwrap();
+    c.bench_function("transient/modal8_32_x1000", |b| {
+        b.iter(|| {
+            let mut s = ReducedState::at_rest(&red, &loads).unwrap();
+            for _ in 0..1000 {
+                ga.step_reduced(&red, &mut s, 1e-4, &loads).unwrap();
+            }
+            black_box(red.dof(&s, 3 * tip + 1).0)
         })
     });
 }
@@ -102,5 +132,5 @@ fn modal(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, transient, statics, scaling, modal);
+criterion_group!(benches, transient, reduced, statics, scaling, modal);
 criterion_main!(benches);
