@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use clap::Args;
 use flexrig_beam::canonical::{self, ELASTICA};
-use flexrig_beam::{StaticOptions, solve_static};
+use flexrig_beam::{ModalDirection, StaticOptions, modal_analysis, solve_static};
 use flexrig_contact::{Hertz, SeriesCompliance};
 use flexrig_lumped::ode::{Formulation, OdeOptions, StopAt, integrate};
 use flexrig_lumped::{ImpactModel, peak_exact};
@@ -281,6 +281,25 @@ fn beam(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
     } else {
         &[4, 8, 16, 32, 64]
     };
+    // Frequencies: ω₁–₄ of the unit cantilever against (βᵢL)² (Euler–Bernoulli), consistent mass.
+    for &n in elements {
+        let model = canonical::unit_cantilever(n, flexrig_beam::Kinematics::Linear)?;
+        let modes = || modal_analysis(&model, 4, ModalDirection::Transverse);
+        let omegas = modes()?.omegas;
+        let error = canonical::CANTILEVER_BETA_L
+            .iter()
+            .zip(&omegas)
+            .map(|(beta_l, w)| (w / canonical::beam_omega(*beta_l, 1.0, 1.0, 1.0) - 1.0).abs())
+            .fold(0.0, f64::max);
+        rows.push(Row {
+            model: "beam".into(),
+            method: "frequencies ω₁–₄ (max error), consistent mass".into(),
+            setting: format!("{n} elements"),
+            error,
+            seconds: median_seconds(if quick { 3 } else { 5 }, 3, modes),
+            evaluations: None,
+        });
+    }
     let (load, v_over_l, _, _) = ELASTICA[2];
     let options = StaticOptions::new(10, 50, 1e-10)?;
     for &n in elements {
