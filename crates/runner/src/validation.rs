@@ -194,6 +194,21 @@ fn beam_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), CliError> {
             1e-4,
         ));
     }
+    // Modal reduction: one mode plus the tip correction shape gives the exact static tip
+    // deflection, Σ φᵢ(tip)² P/ωᵢ² = PL³/3EI.
+    let model = canonical::unit_cantilever(16, Kinematics::Linear)?;
+    let tip_v = 3 * model.tip_node() + 1;
+    let reduced = flexrig_beam::ReducedModel::new(&model, 1, &[tip_v])?;
+    let static_tip: f64 = (0..reduced.n_coordinates())
+        .map(|i| (reduced.shape(i)[tip_v] / reduced.omegas()[i]).powi(2))
+        .sum();
+    cases.push(rel(
+        "beam.modal reduction (1 mode + correction): static tip deflection",
+        static_tip,
+        1.0 / 3.0,
+        "PL³/3EI (Euler–Bernoulli)",
+        1e-10,
+    ));
     // Linear statics: tip deflection PL³/3EI under a tip force, ML²/2EI under a tip moment.
     let linear = canonical::unit_cantilever(8, Kinematics::Linear)?;
     let tip = linear.tip_node();
@@ -378,6 +393,31 @@ fn rig_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), CliError> {
         fe.peak_force_n,
         "FE beam ×1e4 stiffness on k_θr",
         1e-3,
+    ));
+    // The modal-reduced CL link against the full linear FE link it is built from (truncation).
+    let beam = |model: &str| {
+        bundled_scene(
+            "cl_iron",
+            &[
+                ("from = \"release\"", "from = \"contact\""),
+                (
+                    "contact_steps = 800",
+                    &format!("contact_steps = 800\nbeam = {model}"),
+                ),
+            ],
+        )
+    };
+    let full = run(&beam("{ model = \"linear\" }")?, RunOptions::default())?;
+    let modal = run(
+        &beam("{ model = \"modal\", modes = 12 }")?,
+        RunOptions::default(),
+    )?;
+    cases.push(rel(
+        "rig.CL modal beam (12 modes) vs full linear FE: peak",
+        modal.peak_force_n,
+        full.peak_force_n,
+        "full linear FE link, same steps (measured 6.3e-7)",
+        3e-6,
     ));
     if !quick {
         let peaks: Vec<f64> = [200usize, 400, 800]
