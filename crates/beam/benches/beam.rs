@@ -37,38 +37,33 @@ fn start(model: &BeamModel) -> State {
     State::new(model, vec![0.0; model.n_dofs()], v, 0.0, &loads).unwrap()
 }
 
-fn transient(c: &mut Criterion) {
-    let model = link(32);
-    let s0 = start(&model);
-    let loads = NodalLoads::zeros(&model);
+/// 1000 steps of h = 1e-4 s (ρ∞ = 0.8) of `model` from its first-mode swing.
+fn thousand_steps(c: &mut Criterion, name: &str, model: &BeamModel) {
+    let s0 = start(model);
+    let loads = NodalLoads::zeros(model);
     let ga = GeneralizedAlpha::new(0.8).unwrap();
-    c.bench_function("transient/corotational_32_x1000", |b| {
+    let tip_v = 3 * model.tip_node() + 1;
+    c.bench_function(name, |b| {
         b.iter(|| {
             let mut s = s0.clone();
-            let mut ws = Workspace::new(&model);
+            let mut ws = Workspace::new(model);
             for _ in 0..1000 {
-                ga.step(&model, &mut s, &mut ws, 1e-4, &loads).unwrap();
+                ga.step(model, &mut s, &mut ws, 1e-4, &loads).unwrap();
             }
-            black_box(s.q[3 * 32 + 1])
+            black_box(s.q[tip_v])
         })
     });
 }
 
+fn transient(c: &mut Criterion) {
+    thousand_steps(c, "transient/corotational_32_x1000", &link(32));
+}
+
 fn reduced(c: &mut Criterion) {
     let model = link(32).with_kinematics(Kinematics::Linear);
-    let s0 = start(&model);
+    thousand_steps(c, "transient/linear_32_x1000", &model);
     let loads = NodalLoads::zeros(&model);
     let ga = GeneralizedAlpha::new(0.8).unwrap();
-    c.bench_function("transient/linear_32_x1000", |b| {
-        b.iter(|| {
-            let mut s = s0.clone();
-            let mut ws = Workspace::new(&model);
-            for _ in 0..1000 {
-                ga.step(&model, &mut s, &mut ws, 1e-4, &loads).unwrap();
-            }
-            black_box(s.q[3 * 32 + 1])
-        })
-    });
     let tip = model.tip_node();
     let red = ReducedModel::new(&model, 8, &[3 * tip, 3 * tip + 1, 3 * tip + 2]).unwrap();
     c.bench_function("transient/modal8_32_x1000", |b| {

@@ -469,6 +469,19 @@ fn mode1_velocity(model: &BeamModel, tip_speed: f64) -> Vec<f64> {
     phi.iter().map(|x| x * s).collect()
 }
 
+/// The undeformed beam moving in its first mode with tip speed `tip_speed` [m/s], unloaded.
+fn swinging_in_mode1(m: &BeamModel, tip_speed: f64) -> State {
+    let loads = NodalLoads::zeros(m);
+    State::new(
+        m,
+        vec![0.0; m.n_dofs()],
+        mode1_velocity(m, tip_speed),
+        0.0,
+        &loads,
+    )
+    .unwrap()
+}
+
 /// First period of the unit cantilever, 1.787 s.
 fn period1() -> f64 {
     2.0 * PI / beam_omega(CANTILEVER_BETA_L[0], 1.0, 1.0, 1.0)
@@ -606,8 +619,7 @@ proptest! {
         let m = unit_cantilever(4, kin).unwrap();
         let loads = NodalLoads::zeros(&m);
         let mut s =
-            State::new(&m, vec![0.0; m.n_dofs()], mode1_velocity(&m, tip_speed), 0.0, &loads)
-                .unwrap();
+            swinging_in_mode1(&m, tip_speed);
         let mut ws = Workspace::new(&m);
         let ga = GeneralizedAlpha::new(rho).unwrap();
         let h = 10f64.powf(log10_h);
@@ -639,14 +651,7 @@ fn a_failed_step_leaves_the_state_unchanged_and_a_retry_matches_an_unfailed_run(
     // predictor than a run that never failed.
     let m = unit_cantilever(4, Kinematics::Corotational).unwrap();
     let loads = NodalLoads::zeros(&m);
-    let mut s = State::new(
-        &m,
-        vec![0.0; m.n_dofs()],
-        mode1_velocity(&m, 1.4),
-        0.0,
-        &loads,
-    )
-    .unwrap();
+    let mut s = swinging_in_mode1(&m, 1.4);
     let mut ws = Workspace::new(&m);
     let ga = GeneralizedAlpha::new(0.8).unwrap();
     let h = period1() / 100.0;
@@ -742,14 +747,7 @@ fn long_run_at_rho_08_never_gains_energy_and_dissipates_like_the_single_mode_the
     let theory = sdof_generalized_alpha_energy_ratio(0.8, w1, h, steps);
     let loads = NodalLoads::zeros(&m);
     let ga = GeneralizedAlpha::new(0.8).unwrap();
-    let mut s = State::new(
-        &m,
-        vec![0.0; m.n_dofs()],
-        mode1_velocity(&m, 1.0),
-        0.0,
-        &loads,
-    )
-    .unwrap();
+    let mut s = swinging_in_mode1(&m, 1.0);
     let mut ws = Workspace::new(&m);
     let e0 = total_energy(&s, &m);
     for _ in 0..steps {
