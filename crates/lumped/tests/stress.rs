@@ -3,7 +3,7 @@
 //! 1 mm/s … 10 m/s).
 
 use flexrig_contact::{Hertz, SeriesCompliance};
-use flexrig_lumped::ode::{OdeOptions, integrate};
+use flexrig_lumped::ode::{Formulation, OdeOptions, integrate};
 use flexrig_lumped::{ImpactModel, peak_exact};
 use proptest::prelude::*;
 
@@ -37,6 +37,28 @@ proptest! {
         prop_assert!(err < 1e-8, "peak error {err:e}");
         let t = sol.contact_duration.unwrap();
         prop_assert!(t.is_finite() && (t - 2.0 * sol.t_peak).abs() < 1e-7 * t);
+        let rebound = sol.separation_speed.unwrap();
+        prop_assert!((rebound - v0).abs() < 1e-8 * v0, "rebound {rebound} vs {v0}");
+    }
+
+    #[test]
+    fn displacement_state_agrees_with_exact_over_decades(
+        m_h in log_uniform(1e-3, 1e3),
+        m_eff in log_uniform(1e-3, 1e3),
+        k_delta in log_uniform(1e2, 1e10),
+        k_c in log_uniform(1e2, 1e10),
+        n in 1.0f64..3.0,
+        v0 in log_uniform(1e-3, 10.0),
+    ) {
+        // The warm-started Newton solve of the series compliance (linearised start, integer
+        // powers, stop at |step| ≤ 1e-8 δ_c) must not cost accuracy anywhere.
+        let spring = SeriesCompliance::new(k_delta, Hertz::new(k_c, n).unwrap()).unwrap();
+        let model = ImpactModel::new(m_h, m_eff, spring, v0).unwrap();
+        let exact = peak_exact(&model).f_max;
+        let options = OdeOptions::new(1e-12).unwrap().formulation(Formulation::Displacement);
+        let sol = integrate(&model, &options).unwrap();
+        let err = (sol.peak.f_max - exact).abs() / exact;
+        prop_assert!(err < 1e-8, "peak error {err:e}");
         let rebound = sol.separation_speed.unwrap();
         prop_assert!((rebound - v0).abs() < 1e-8 * v0, "rebound {rebound} vs {v0}");
     }
