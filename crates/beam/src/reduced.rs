@@ -2,10 +2,14 @@
 //!
 //! The displacements are approximated in a Ritz basis, q ≈ Φ η, built from
 //! * the lowest `modes` free-vibration modes of the linearised model (K φ = ω² M φ), and
-//! * one *static correction* shape K⁻¹ e_j per loaded DOF j (the attachment modes of the
-//!   mode-acceleration / modal-truncation-augmentation method), so that the static response to
-//!   loads at those DOFs is reproduced exactly and the truncated high modes do not leave the
-//!   contact point too soft.
+//! * one *static correction* shape per loaded DOF j: the residual flexibility
+//!   Σ_{i not kept} φᵢ φᵢᵀ e_j / ωᵢ² (the residual attachment mode of the mode-acceleration /
+//!   modal-truncation-augmentation method), so that the static response to loads at those DOFs
+//!   is reproduced exactly and the truncated high modes do not leave the contact point too soft.
+//!   It is computed as K̃⁻¹ (I − MΦΦᵀ) e_j with the kept modes deflated,
+//!   K̃ = K + σ Σ_kept (Mφ)(Mφ)ᵀ, σ = EI/(ρA L⁴): the load is cleared of the kept modes, and on
+//!   their M-orthogonal complement K̃ acts as K, while the lift makes K̃ positive definite and
+//!   well conditioned even with a rigid mode (pinned root without spring) or a very soft spring.
 //!
 //! The correction shapes are made M-orthonormal to the modes and to each other (modified
 //! Gram–Schmidt, twice; shapes already in the span are dropped), which also makes them
@@ -29,9 +33,10 @@ use faer::{Mat, Par, Side};
 use crate::BeamError;
 use crate::dynamics::GeneralizedAlpha;
 use crate::modal::{ModalDirection, dense_matrices, modal_analysis};
-use crate::model::{BeamModel, NodalLoads, RootSupport};
+use crate::model::{BeamModel, NodalLoads};
 
-/// Relative M-norm below which a correction shape counts as already in the span of the basis.
+/// M-norm, relative to the whole static shape, below which a correction shape counts as already
+/// in the span of the basis.
 const SPAN_TOLERANCE: f64 = 1e-8;
 
 /// The reduced model: Ritz frequencies, damping and M-orthonormal shapes.
@@ -69,15 +74,23 @@ impl ReducedModel {
     /// 1: v, 2: θ}). Root dampers (c_θ > 0) are not modal and are rejected; Rayleigh damping is
     /// kept.
     pub fn new(model: &BeamModel, modes: usize, loaded_dofs: &[usize]) -> Result<Self, BeamError> {
-        let c_theta = match model.root() {
-            RootSupport::Clamped => 0.0,
-            RootSupport::Pinned { c_theta, .. } | RootSupport::Hub { c_theta, .. } => c_theta,
-        };
+        let (k_theta, c_theta, _) = model.root().spring_damper_inertia();
         if c_theta != 0.0 {
             return Err(BeamError::invalid(
                 "c_theta",
                 c_theta,
                 "0 for a modal-reduced beam (only Rayleigh damping is modal)",
+            ));
+        }
+        // The full model's a₁ term damps the element deformation rates only, not the root
+        // spring: with both, C is not a₀M + a₁K and not modal.
+        let a1 = model.spec().damping.beta_stiffness;
+        if a1 != 0.0 && k_theta != 0.0 {
+            return Err(BeamError::invalid(
+                "rayleigh beta_stiffness",
+                a1,
+                "0 for a modal-reduced beam on a root spring (the stiffness-proportional damping \
+                 of the full model leaves the spring out, which is not modal)",
             ));
         }
         let nfix = model.n_fixed();
@@ -97,9 +110,9 @@ impl ReducedModel {
         let modes_free: Vec<Vec<f64>> =
             analysis.shapes.iter().map(|s| s[nfix..].to_vec()).collect();
         let mut corrections: Vec<Vec<f64>> = Vec::new();
-        for shape in static_shapes(model, &k, &m, loaded_dofs)? {
+        for (shape, reference) in residual_shapes(model, &k, &m, &modes_free, loaded_dofs)? {
             let basis: Vec<&Vec<f64>> = modes_free.iter().chain(&corrections).collect();
-            if let Some(s) = m_orthonormalised(&m, &basis, shape) {
+            if let Some(s) = m_orthonormalised(&m, &basis, shape, reference) {
                 corrections.push(s);
             }
         }
@@ -250,6 +263,13 @@ impl GeneralizedAlpha {
             return Err(BeamError::invalid("time step", h, "a finite number > 0"));
         }
         check_loads(model, loads)?;
+        if state.eta.len() != model.n_coordinates() {
+            return Err(BeamError::invalid(
+                "reduced state length",
+                state.eta.len(),
+                format!("{} (the model's modal coordinates)", model.n_coordinates()),
+            ));
+        }
         let (am, af, g, b) = self.parameters();
         let rescale = match state.h_prev {
             Some(hp) if hp != h => h / hp,
@@ -292,34 +312,57 @@ impl GeneralizedAlpha {
     }
 }
 
-/// K⁻¹ e_j over the free DOFs for each loaded DOF j; with a singular K (a pinned root without
-/// spring) the shifted K + σM, σ = EI/(ρA L⁴), is used instead.
-fn static_shapes(
+/// For each loaded DOF j: the residual flexibility shape K̃⁻¹ (I − MΦΦᵀ) e_j over the free DOFs
+/// (see the module docs) and, as the scale against which it counts as significant, the M-norm of
+/// the whole static shape K̃⁻¹ e_j.
+fn residual_shapes(
     model: &BeamModel,
     k: &Mat<f64>,
     m: &Mat<f64>,
+    kept: &[Vec<f64>],
     loaded_dofs: &[usize],
-) -> Result<Vec<Vec<f64>>, BeamError> {
+) -> Result<Vec<(Vec<f64>, f64)>, BeamError> {
     let nfix = model.n_fixed();
     let n = k.nrows();
     let sec = model.section();
     let sigma = sec.ei() / (sec.rho_a() * model.length().powi(4));
-    let llt = match k.llt(Side::Lower) {
-        Ok(llt) => llt,
-        Err(_) => Mat::from_fn(n, n, |i, j| k[(i, j)] + sigma * m[(i, j)])
-            .llt(Side::Lower)
-            .map_err(|e| BeamError::Eigen(format!("Cholesky of K + σM failed: {e:?}")))?,
-    };
+    let m_phi: Vec<Vec<f64>> = kept.iter().map(|phi| m_times(m, phi)).collect();
+    let lifted = Mat::from_fn(n, n, |i, j| {
+        k[(i, j)] + sigma * m_phi.iter().map(|v| v[i] * v[j]).sum::<f64>()
+    });
+    let llt = lifted
+        .llt(Side::Lower)
+        .map_err(|e| BeamError::Eigen(format!("Cholesky of the deflated K failed: {e:?}")))?;
     let l = llt.L();
+    let solve = |rhs: &[f64]| -> Vec<f64> {
+        let mut x = Mat::from_fn(n, 1, |i, _| rhs[i]);
+        solve_lower_triangular_in_place(l, x.as_mut(), Par::Seq);
+        solve_upper_triangular_in_place(l.transpose(), x.as_mut(), Par::Seq);
+        (0..n).map(|i| x[(i, 0)]).collect()
+    };
     Ok(loaded_dofs
         .iter()
         .map(|&j| {
-            let mut x = Mat::from_fn(n, 1, |i, _| if i + nfix == j { 1.0 } else { 0.0 });
-            solve_lower_triangular_in_place(l, x.as_mut(), Par::Seq);
-            solve_upper_triangular_in_place(l.transpose(), x.as_mut(), Par::Seq);
-            (0..n).map(|i| x[(i, 0)]).collect()
+            let e: Vec<f64> = (0..n)
+                .map(|i| if i + nfix == j { 1.0 } else { 0.0 })
+                .collect();
+            let whole = solve(&e);
+            let reference = m_dot(m, &whole, &whole).sqrt();
+            // (I − MΦΦᵀ) e_j: φᵀ e_j is the j-th entry of φ.
+            let mut load = e;
+            for (phi, mp) in kept.iter().zip(&m_phi) {
+                let c = phi[j - nfix];
+                load.iter_mut().zip(mp).for_each(|(l, v)| *l -= c * v);
+            }
+            (solve(&load), reference)
         })
         .collect())
+}
+
+fn m_times(m: &Mat<f64>, x: &[f64]) -> Vec<f64> {
+    (0..x.len())
+        .map(|i| (0..x.len()).map(|j| m[(i, j)] * x[j]).sum())
+        .collect()
 }
 
 fn m_dot(m: &Mat<f64>, x: &[f64], y: &[f64]) -> f64 {
@@ -336,10 +379,15 @@ fn m_dot(m: &Mat<f64>, x: &[f64], y: &[f64]) -> f64 {
 }
 
 /// `shape` made M-orthogonal to `basis` (modified Gram–Schmidt, twice) and M-normalised; `None`
-/// when what is left is below [`SPAN_TOLERANCE`] of its original M-norm (already in the span).
-fn m_orthonormalised(m: &Mat<f64>, basis: &[&Vec<f64>], mut shape: Vec<f64>) -> Option<Vec<f64>> {
-    let norm0 = m_dot(m, &shape, &shape).sqrt();
-    if norm0.is_nan() || norm0 <= 0.0 {
+/// when what is left is below [`SPAN_TOLERANCE`] of `reference` (the M-norm of the whole static
+/// shape: the correction adds nothing significant, e.g. every mode is kept).
+fn m_orthonormalised(
+    m: &Mat<f64>,
+    basis: &[&Vec<f64>],
+    mut shape: Vec<f64>,
+    reference: f64,
+) -> Option<Vec<f64>> {
+    if reference.is_nan() || reference <= 0.0 {
         return None;
     }
     for _ in 0..2 {
@@ -352,7 +400,7 @@ fn m_orthonormalised(m: &Mat<f64>, basis: &[&Vec<f64>], mut shape: Vec<f64>) -> 
         }
     }
     let norm = m_dot(m, &shape, &shape).sqrt();
-    if norm <= SPAN_TOLERANCE * norm0 {
+    if norm.is_nan() || norm <= SPAN_TOLERANCE * reference {
         return None;
     }
     shape.iter_mut().for_each(|s| *s /= norm);

@@ -274,3 +274,84 @@ fn a_free_pinned_root_keeps_its_rigid_mode() {
         1e-4, // 8 elements: discretisation error 3.9e-5 (O(h⁴))
     );
 }
+
+#[test]
+fn a_free_pinned_root_keeps_every_correction_whatever_the_mesh() {
+    // Regression: with K singular the Cholesky of K could succeed on a round-off pivot (4 and 5
+    // elements), the correction came out dominated by the rigid mode and was dropped.
+    for elements in [4, 5, 8, 16] {
+        let mut spec =
+            BeamSpec::cantilever(1.0, canonical::unit_section(), elements, Kinematics::Linear);
+        spec.root = RootSupport::Pinned {
+            k_theta: 0.0,
+            c_theta: 0.0,
+        };
+        let model = BeamModel::new(spec).unwrap();
+        let tip = model.tip_node();
+        let reduced = ReducedModel::new(&model, 2, &[3 * tip, 3 * tip + 1, 3 * tip + 2]).unwrap();
+        assert_eq!(reduced.n_coordinates(), 5, "{elements} elements");
+    }
+}
+
+#[test]
+fn a_very_soft_root_spring_keeps_the_static_tip_response_exact() {
+    // Regression: the correction was judged against a static shape dominated by the soft spring
+    // mode and could be dropped; the elastic part of the tip deflection was then missing.
+    for k_theta in [1e-6, 1e-3, 1.0, 1e6] {
+        let mut spec = BeamSpec::cantilever(1.0, canonical::unit_section(), 16, Kinematics::Linear);
+        spec.root = RootSupport::Pinned {
+            k_theta,
+            c_theta: 0.0,
+        };
+        let model = BeamModel::new(spec).unwrap();
+        let tip = model.tip_node();
+        // Hermite elements are exact for a tip load: v = P/k_θ · L + PL³/3EI (L = EI = P = 1).
+        let full = 1.0 / k_theta + 1.0 / 3.0;
+        let reduced = ReducedModel::new(&model, 2, &[3 * tip + 1]).unwrap();
+        let static_tip: f64 = (0..reduced.n_coordinates())
+            .map(|i| (reduced.shape(i)[3 * tip + 1] / reduced.omegas()[i]).powi(2))
+            .sum();
+        assert_eq!(
+            reduced.n_coordinates(),
+            3,
+            "k_θ = {k_theta}: correction dropped"
+        );
+        // ω₁² of a soft spring mode (≈ 3 k_θ here) carries an absolute error ≈ 1e-12 from the
+        // shifted eigenproblem (σ = 1 next to axial ω² ≈ 1e10), which 1/ω₁² amplifies: measured
+        // total errors 7.3e-7 (k_θ = 1e-6), 2.2e-10 (1e-3), 9e-12 (1), 2e-12 (1e6).
+        let omega1_sq = reduced.omegas()[0].powi(2);
+        assert_rel(
+            &format!("k_θ = {k_theta}: tip deflection"),
+            static_tip,
+            full,
+            1e-10 + 5e-12 / omega1_sq,
+        );
+    }
+}
+
+#[test]
+fn stiffness_damping_on_a_root_spring_is_refused_and_a_foreign_state_is_an_error() {
+    let mut spec = BeamSpec::cantilever(1.0, canonical::unit_section(), 8, Kinematics::Linear);
+    spec.root = RootSupport::Pinned {
+        k_theta: 2.0,
+        c_theta: 0.0,
+    };
+    spec.damping = Rayleigh {
+        alpha_mass: 0.0,
+        beta_stiffness: 1e-3,
+    };
+    let model = BeamModel::new(spec).unwrap();
+    let e = ReducedModel::new(&model, 2, &[]).unwrap_err().to_string();
+    assert!(e.contains("beta_stiffness"), "{e}");
+    let clamped = canonical::unit_cantilever(8, Kinematics::Linear).unwrap();
+    let two = ReducedModel::new(&clamped, 2, &[]).unwrap();
+    let three = ReducedModel::new(&clamped, 3, &[]).unwrap();
+    let loads = NodalLoads::zeros(&clamped);
+    let mut s = ReducedState::at_rest(&two, &loads).unwrap();
+    let e = GeneralizedAlpha::new(1.0)
+        .unwrap()
+        .step_reduced(&three, &mut s, 1e-3, &loads)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("reduced state length"), "{e}");
+}

@@ -57,8 +57,8 @@ impl BeamLink {
     pub fn new(scene: &Scene, rho_inf: f64, variant: LinkVariant) -> Result<Self, RigError> {
         let r = &scene.file.robot;
         let kinematics = match scene.file.solver.beam {
-            BeamSolverSpec::Corotational => Kinematics::Corotational,
-            BeamSolverSpec::Linear | BeamSolverSpec::Modal { .. } => Kinematics::Linear,
+            BeamSolverSpec::Corotational {} => Kinematics::Corotational,
+            BeamSolverSpec::Linear {} | BeamSolverSpec::Modal { .. } => Kinematics::Linear,
         };
         let material = Material::new(r.youngs_modulus_pa, r.density_kg_m3)?;
         let section = Section::rectangular(&material, r.width_m, r.thickness_m)?;

@@ -166,7 +166,7 @@ fn default_beam_elements() -> usize {
 #[serde(rename_all = "snake_case", tag = "model", deny_unknown_fields)]
 pub enum DampingSpec {
     /// No damping (default).
-    None,
+    None {},
     /// Hunt–Crossley with restitution `restitution` at the impact speed.
     HuntCrossley {
         /// Coefficient of restitution ∈ [0, 1].
@@ -203,7 +203,7 @@ pub struct ContactSpec {
 }
 
 fn no_damping() -> DampingSpec {
-    DampingSpec::None
+    DampingSpec::None {}
 }
 
 /// Step policy.
@@ -222,21 +222,27 @@ pub struct SolverSpec {
     pub beam: BeamSolverSpec,
 }
 
-/// How the finite-element link is solved (design `cl`; ignored for `cj`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+/// How the finite-element link is solved (design `cl`; ignored for `cj`). (Struct variants, so
+/// that a field a model does not take, e.g. `modes` with `linear`, is an error.)
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", tag = "model", deny_unknown_fields)]
 pub enum BeamSolverSpec {
     /// Every FE degree of freedom, corotational (large deflection): the reference.
-    #[default]
-    Corotational,
+    Corotational {},
     /// Every FE degree of freedom, linear kinematics (small deflection).
-    Linear,
+    Linear {},
     /// The shortcut for small deflections: the linear beam reduced to its lowest `modes` modes
     /// plus static correction shapes for the tip force and moment (flexrig_beam::reduced).
     Modal {
         /// Number of kept modes, ≥ 1 (and at most the beam's DOFs).
         modes: usize,
     },
+}
+
+impl Default for BeamSolverSpec {
+    fn default() -> Self {
+        BeamSolverSpec::Corotational {}
+    }
 }
 
 fn default_max_steps() -> usize {
@@ -415,7 +421,7 @@ impl Scene {
         let n = c.n.unwrap_or(material.hertz.n());
         let hertz = Hertz::named(k, n, "contact.k", "contact.n")?;
         match c.damping {
-            DampingSpec::None => {}
+            DampingSpec::None {} => {}
             DampingSpec::HuntCrossley { restitution }
             | DampingSpec::LankaraniNikravesh { restitution } => {
                 if !(0.0..=1.0).contains(&restitution) {
@@ -479,7 +485,7 @@ impl Scene {
     /// The contact law for an impact at approach speed `v0` [m/s] (damping models need it).
     pub fn contact_law(&self, v0: f64) -> Result<Box<dyn ContactLaw>, RigError> {
         Ok(match self.file.contact.damping {
-            DampingSpec::None => Box::new(self.hertz),
+            DampingSpec::None {} => Box::new(self.hertz),
             DampingSpec::HuntCrossley { restitution } => {
                 Box::new(DampedHertz::hunt_crossley(self.hertz, restitution, v0)?)
             }

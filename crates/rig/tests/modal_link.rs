@@ -37,7 +37,7 @@ const SCENES: [&str; 3] = ["cl_aluminium", "cl_iron", "cl_light_load"];
 fn modal_link_converges_to_the_full_linear_fe_link_with_modes() {
     // Same contact steps, same scheme: the only difference is the truncation. Measured peak and
     // duration errors (Al, Fe, light load): 2 modes ≤ 5.4e-3; 8 modes ≤ 1.2e-5 (peak),
-    // 6.3e-5 (duration); 12 modes ≤ 6.3e-7 (peak), 4e-7 (duration).
+    // 6.3e-5 (duration); 12 modes ≤ 3.2e-7 (peak), 3e-8 (duration).
     for name in SCENES {
         let full = cl(name, "{ model = \"linear\" }");
         let errors = |m: &RunSummary| {

@@ -133,3 +133,23 @@ fn bad_scenes_name_the_field() {
     .unwrap_err();
     assert!(e.to_string().contains("colour"), "{e}");
 }
+
+#[test]
+fn a_field_the_beam_model_does_not_take_is_a_scene_error() {
+    let text = common::scene_text("cl_aluminium").replace(
+        "contact_steps = 800",
+        "contact_steps = 800\nbeam = { model = \"linear\", modes = 4 }",
+    );
+    let e = Scene::from_toml_str(&text, &Materials::bundled().unwrap()).unwrap_err();
+    assert!(e.to_string().contains("modes"), "{e}");
+}
+
+#[test]
+fn a_field_the_damping_model_does_not_take_is_a_scene_error() {
+    let text = common::scene_text("cl_aluminium").replace(
+        "damping = { model = \"none\" }",
+        "damping = { model = \"none\", restitution = 0.5 }",
+    );
+    let e = Scene::from_toml_str(&text, &Materials::bundled().unwrap()).unwrap_err();
+    assert!(e.to_string().contains("restitution"), "{e}");
+}

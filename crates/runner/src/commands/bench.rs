@@ -263,8 +263,10 @@ fn beam(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
     for &n in meshes {
         for &h in steps {
             // A step too large for Newton (unresolved stiff axial modes) leaves no row.
-            let Ok(v) = beam_transient(n, h) else {
-                continue;
+            let v = match beam_transient(n, h) {
+                Ok(v) => v,
+                Err(CliError::Beam(flexrig_beam::BeamError::NotConverged { .. })) => continue,
+                Err(e) => return Err(e),
             };
             rows.push(Row {
                 model: "beam".into(),
@@ -426,9 +428,12 @@ fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
                     format!("contact_steps = {n}{suffix}"),
                 ));
                 let s = scene(name, &edits)?;
-                // Too coarse a contact step is caught by the energy check: no row for it.
-                let Ok(result) = run_scene(&s, options) else {
-                    continue;
+                // Too coarse a contact step is caught by the energy check: no row for it. Any
+                // other error is a defect of the bench and is reported.
+                let result = match run_scene(&s, options) {
+                    Ok(result) => result,
+                    Err(CliError::Rig(flexrig_rig::RigError::Unstable { .. })) => continue,
+                    Err(e) => return Err(e),
                 };
                 // The swing from release adds its own (tiny) impact-speed error; the shortcuts are
                 // compared with the same converged release run.

@@ -27,7 +27,7 @@ pub struct RunArgs {
     pub force: bool,
     /// Log every step and sensor sample on every channel (default: the 3D view at 60 Hz and the
     /// sensors at 250 Hz outside contact; inside contact everything is logged either way).
-    #[arg(long)]
+    #[arg(long, requires = "out")]
     pub log_every_step: bool,
     /// Print JSON instead of text.
     #[arg(long)]
