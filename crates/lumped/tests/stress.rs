@@ -11,6 +11,22 @@ fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
     (lo.ln()..hi.ln()).prop_map(f64::exp)
 }
 
+/// Impacts over the decades of the module docs: (m_h, m_eff, k_δ, k_c, n, v0) as a model.
+fn impacts() -> impl Strategy<Value = ImpactModel> {
+    (
+        log_uniform(1e-3, 1e3),
+        log_uniform(1e-3, 1e3),
+        log_uniform(1e2, 1e10),
+        log_uniform(1e2, 1e10),
+        1.0f64..3.0,
+        log_uniform(1e-3, 10.0),
+    )
+        .prop_map(|(m_h, m_eff, k_delta, k_c, n, v0)| {
+            let spring = SeriesCompliance::new(k_delta, Hertz::new(k_c, n).unwrap()).unwrap();
+            ImpactModel::new(m_h, m_eff, spring, v0).unwrap()
+        })
+}
+
 proptest! {
     #![proptest_config(ProptestConfig {
         cases: 400,
@@ -19,16 +35,8 @@ proptest! {
     })]
 
     #[test]
-    fn ode_agrees_with_exact_over_decades(
-        m_h in log_uniform(1e-3, 1e3),
-        m_eff in log_uniform(1e-3, 1e3),
-        k_delta in log_uniform(1e2, 1e10),
-        k_c in log_uniform(1e2, 1e10),
-        n in 1.0f64..3.0,
-        v0 in log_uniform(1e-3, 10.0),
-    ) {
-        let spring = SeriesCompliance::new(k_delta, Hertz::new(k_c, n).unwrap()).unwrap();
-        let model = ImpactModel::new(m_h, m_eff, spring, v0).unwrap();
+    fn ode_agrees_with_exact_over_decades(model in impacts()) {
+        let v0 = model.v0();
         let exact = peak_exact(&model);
         prop_assert!(exact.f_max.is_finite() && exact.f_max > 0.0);
         prop_assert!(exact.delta_max.is_finite() && exact.delta_max > 0.0);
@@ -42,18 +50,10 @@ proptest! {
     }
 
     #[test]
-    fn displacement_state_agrees_with_exact_over_decades(
-        m_h in log_uniform(1e-3, 1e3),
-        m_eff in log_uniform(1e-3, 1e3),
-        k_delta in log_uniform(1e2, 1e10),
-        k_c in log_uniform(1e2, 1e10),
-        n in 1.0f64..3.0,
-        v0 in log_uniform(1e-3, 10.0),
-    ) {
+    fn displacement_state_agrees_with_exact_over_decades(model in impacts()) {
         // The warm-started Newton solve of the series compliance (linearised start, integer
         // powers, stop at |step| ≤ 1e-8 δ_c) must not cost accuracy anywhere.
-        let spring = SeriesCompliance::new(k_delta, Hertz::new(k_c, n).unwrap()).unwrap();
-        let model = ImpactModel::new(m_h, m_eff, spring, v0).unwrap();
+        let v0 = model.v0();
         let exact = peak_exact(&model).f_max;
         let options = OdeOptions::new(1e-12).unwrap().formulation(Formulation::Displacement);
         let sol = integrate(&model, &options).unwrap();
