@@ -30,6 +30,7 @@ use crate::assembly::{
 };
 use crate::banded::BandMatrix;
 use crate::model::{BeamModel, Kinematics, NodalLoads};
+use crate::node_load::NodeLoad;
 
 /// Generalized-α integrator settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -88,6 +89,11 @@ impl GeneralizedAlpha {
         self.tolerance = tolerance;
         Ok(self)
     }
+    /// (maximum Newton iterations, tolerance \[m or rad\] on a correction) for models of length
+    /// 1 m; scale the tolerance by the length.
+    pub(crate) fn newton_limits(&self) -> (usize, f64) {
+        (self.max_iterations, self.tolerance)
+    }
     /// ρ∞.
     pub fn rho_inf(&self) -> f64 {
         self.rho_inf
@@ -113,6 +119,8 @@ pub struct State {
     a_aux_prev: Vec<f64>,
     h_prev: Option<f64>,
     f_prev: Vec<f64>,
+    /// (first global DOF of the node, force) of the last motion-dependent node load.
+    node_force_prev: (usize, [f64; 3]),
     external_work: f64,
     initial_energy: f64,
 }
@@ -198,6 +206,7 @@ impl State {
             h_prev: None,
             a,
             f_prev: loads.as_slice().to_vec(),
+            node_force_prev: (0, [0.0; 3]),
             external_work: 0.0,
             initial_energy,
         })
@@ -242,6 +251,8 @@ pub struct Workspace {
     dq_step: Vec<f64>,
     dq: Vec<f64>,
     factored_for: Option<(f64, f64)>,
+    /// The predictor of the last accepted step (tried first on the next one).
+    last_predictor: Predictor,
 }
 
 impl Workspace {
@@ -259,19 +270,55 @@ impl Workspace {
             dq_step: vec![0.0; n],
             dq: vec![0.0; model.n_free()],
             factored_for: None,
+            last_predictor: Predictor::Extrapolated,
         }
     }
 }
 
 /// What one step did.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct StepReport {
-    /// Newton iterations (linear solves) used.
+    /// Newton iterations (linear solves) used, failed attempts included.
     pub iterations: usize,
-    /// ‖Δq‖∞ of the first Newton correction (the predictor error) [m or rad].
+    /// ‖Δq‖∞ of the first Newton correction of the accepted attempt (the predictor error)
+    /// [m or rad].
     pub first_correction: f64,
     /// ‖Δq‖∞ of the last Newton correction [m or rad].
     pub last_correction: f64,
+    /// Pieces the step was taken in: 1 when whole, more when Newton failed on it and the step
+    /// was halved (recursively) and taken in halves.
+    pub substeps: usize,
+    /// Attempts that Newton abandoned (restarted from another predictor or halved).
+    pub rejected: usize,
+}
+
+/// Most halvings of one step before the step fails: the smallest piece is h/2¹⁰.
+pub const MAX_STEP_HALVINGS: u32 = 10;
+
+/// Iterations allowed from the extrapolated predictor before Newton restarts from the velocity
+/// predictor (a smooth step needs one or two; many mean the extrapolation missed, e.g. after a
+/// step load or with h far above the periods of the fast modes).
+const EXTRAPOLATED_ITERATIONS: usize = 8;
+
+/// Where Newton starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Predictor {
+    /// â_{n+1} extrapolated linearly from â_{n−1}, â_n (â_n on the first step): close for a
+    /// smooth motion, so usually a single correction.
+    Extrapolated,
+    /// Δq = h q̇_n (zero acceleration): never far off, whatever the fast modes did.
+    Velocity,
+    /// Δq = 0: the linear model's start (its single solve is exact from any start, and the
+    /// extrapolated Δq, O(h²|â|), would leave a round-off error ≈ ε κ h²|â| when h ≫ T).
+    Rest,
+}
+
+/// True for failures that a smaller step can cure.
+fn recoverable(e: &BeamError) -> bool {
+    matches!(
+        e,
+        BeamError::NotConverged { .. } | BeamError::NonFinite { .. } | BeamError::Singular { .. }
+    )
 }
 
 impl GeneralizedAlpha {
@@ -284,17 +331,199 @@ impl GeneralizedAlpha {
         h: f64,
         loads: &NodalLoads,
     ) -> Result<StepReport, BeamError> {
+        self.step_with(model, state, ws, h, loads, None)
+    }
+
+    /// Advances `state` by `h` \[s\] with the dead loads `loads` acting at t + h and, if given,
+    /// the motion-dependent `node_load` treated implicitly (in the residual and the iteration
+    /// matrix, see [`crate::node_load`]).
+    ///
+    /// Newton starts from the extrapolated predictor; if it does not converge within a few
+    /// iterations it restarts from Δq = h q̇_n; if that fails too (no convergence, a singular
+    /// iteration matrix or a non-finite state), the step is taken as two halves, each with the
+    /// same strategy, down to h/2¹⁰ ([`MAX_STEP_HALVINGS`]). Within a split step the dead
+    /// loads are interpolated linearly from those of the previous step, and the node load is
+    /// evaluated at each piece's end time. A step that fails even so returns
+    /// [`BeamError::StepFailed`] and leaves `state` unchanged.
+    pub fn step_with<'l>(
+        &self,
+        model: &BeamModel,
+        state: &mut State,
+        ws: &mut Workspace,
+        h: f64,
+        loads: &NodalLoads,
+        mut node_load: Option<&mut (dyn NodeLoad + 'l)>,
+    ) -> Result<StepReport, BeamError> {
         if !(h.is_finite() && h > 0.0) {
             return Err(BeamError::invalid("time step", h, "a finite number > 0"));
         }
         loads.check(model)?;
+        if let Some(nl) = node_load.as_deref()
+            && nl.node() > model.tip_node()
+        {
+            return Err(BeamError::invalid(
+                "node load node",
+                nl.node(),
+                format!("a node index from 0 to {} (the tip)", model.tip_node()),
+            ));
+        }
         if ws.r.len() != model.n_dofs() {
             *ws = Workspace::new(model);
         }
+        let mut report = StepReport {
+            substeps: 1,
+            ..StepReport::default()
+        };
+        match self.attempt(model, state, ws, h, loads, node_load.as_deref_mut(), &mut report) {
+            Ok(()) => return Ok(report),
+            Err(e) if !recoverable(&e) => return Err(e),
+            Err(_) => {}
+        }
+        let saved = state.clone();
+        let t_end = state.t + h;
+        let start = NodalLoads::from_values(state.f_prev.clone());
+        report.substeps = 0;
+        let split = self.take_in_halves(
+            model,
+            state,
+            ws,
+            (h, 1),
+            (&start, loads),
+            node_load,
+            &mut report,
+        );
+        match split {
+            Ok(()) => {
+                // the pieces' times add up to t + h only up to round-off
+                state.t = t_end;
+                Ok(report)
+            }
+            Err(cause) => {
+                *state = saved;
+                Err(BeamError::StepFailed {
+                    t: state.t,
+                    h,
+                    halvings: MAX_STEP_HALVINGS,
+                    cause: Box::new(cause),
+                })
+            }
+        }
+    }
+
+    /// Takes a step of `h` (at halving depth `depth`) as two halves, each halved again on a
+    /// recoverable failure; dead loads linear from `start` to `end` over the step.
+    #[allow(clippy::too_many_arguments)]
+    fn take_in_halves<'l>(
+        &self,
+        model: &BeamModel,
+        state: &mut State,
+        ws: &mut Workspace,
+        (h, depth): (f64, u32),
+        (start, end): (&NodalLoads, &NodalLoads),
+        mut node_load: Option<&mut (dyn NodeLoad + 'l)>,
+        report: &mut StepReport,
+    ) -> Result<(), BeamError> {
+        let half = 0.5 * h;
+        let middle = start.lerp(end, 0.5);
+        for (from, to) in [(start, &middle), (&middle, end)] {
+            match self.attempt(model, state, ws, half, to, node_load.as_deref_mut(), report) {
+                Ok(()) => report.substeps += 1,
+                Err(e) if recoverable(&e) && depth < MAX_STEP_HALVINGS => self.take_in_halves(
+                    model,
+                    state,
+                    ws,
+                    (half, depth + 1),
+                    (from, to),
+                    node_load.as_deref_mut(),
+                    report,
+                )?,
+                Err(e) => return Err(e),
+            }
+        }
+        Ok(())
+    }
+
+    /// One try at the whole step `h`: Newton from the first predictor, then (nonlinear model)
+    /// once more from the velocity predictor. On success `state` is advanced.
+    #[allow(clippy::too_many_arguments)]
+    fn attempt<'l>(
+        &self,
+        model: &BeamModel,
+        state: &mut State,
+        ws: &mut Workspace,
+        h: f64,
+        loads: &NodalLoads,
+        mut node_load: Option<&mut (dyn NodeLoad + 'l)>,
+        report: &mut StepReport,
+    ) -> Result<(), BeamError> {
+        // The predictor that worked on the last step goes first.
+        let extrapolated = (
+            Predictor::Extrapolated,
+            self.max_iterations.min(EXTRAPOLATED_ITERATIONS),
+        );
+        let velocity = (Predictor::Velocity, self.max_iterations);
+        let plan = if model.kinematics() == Kinematics::Linear {
+            [(Predictor::Rest, self.max_iterations), (Predictor::Rest, 0)]
+        } else if ws.last_predictor == Predictor::Velocity {
+            [velocity, extrapolated]
+        } else {
+            [extrapolated, velocity]
+        };
+        let mut failure = None;
+        for (predictor, max_iterations) in plan {
+            if max_iterations == 0 {
+                continue;
+            }
+            let newton = NewtonStep {
+                h,
+                predictor,
+                max_iterations,
+            };
+            match self.newton(model, state, ws, loads, node_load.as_deref_mut(), newton) {
+                Ok((iterations, first, last)) => {
+                    ws.last_predictor = predictor;
+                    report.iterations += iterations;
+                    report.first_correction = first;
+                    report.last_correction = last;
+                    return Ok(());
+                }
+                Err((iterations, e)) => {
+                    report.iterations += iterations;
+                    report.rejected += 1;
+                    if !recoverable(&e) {
+                        return Err(e);
+                    }
+                    failure = Some(e);
+                }
+            }
+        }
+        Err(failure.expect("the plan has at least one predictor"))
+    }
+
+    /// Newton iterations for one step; on success the state is advanced and (iterations, first
+    /// correction, last correction) returned; on failure the state is unchanged and the
+    /// iterations spent are returned with the error.
+    fn newton<'l>(
+        &self,
+        model: &BeamModel,
+        state: &mut State,
+        ws: &mut Workspace,
+        loads: &NodalLoads,
+        mut node_load: Option<&mut (dyn NodeLoad + 'l)>,
+        step: NewtonStep,
+    ) -> Result<(usize, f64, f64), (usize, BeamError)> {
+        let NewtonStep {
+            h,
+            predictor,
+            max_iterations,
+        } = step;
         let (am, af, g, b) = (self.alpha_m, self.alpha_f, self.gamma, self.beta);
         let nfix = model.n_fixed();
         let n = model.n_dofs();
         let linear = model.kinematics() == Kinematics::Linear;
+        // A motion-dependent load makes even the linear model nonlinear: iterate, refactor.
+        let single_solve = linear && node_load.is_none();
+        let t_new = state.t + h;
         let weights = JacobianWeights {
             stiffness: 1.0,
             velocity: g / (b * h),
@@ -312,24 +541,22 @@ impl GeneralizedAlpha {
                 *ah = a + (*ah - a) * r;
             }
         }
-        // Predictor: â_{n+1} extrapolated linearly from â_{n−1}, â_n (â_n on the first step).
-        // The linear model starts from Δq = 0 instead: its single solve is exact from any start,
-        // and the extrapolated Δq, O(h²|â|), would leave a round-off error ≈ ε κ h²|â| when
-        // h ≫ T (energy errors up to 1e-6 at h = 1e3 s, garbage at 1e100 s).
         let ratio = match state.h_prev {
             Some(hp) if state.a_aux_prev.len() == n => h / hp,
             _ => 0.0,
         };
         for i in 0..n {
-            let ahat = if ratio > 0.0 {
-                ws.a_aux[i] + ratio * (ws.a_aux[i] - state.a_aux_prev[i])
-            } else {
-                ws.a_aux[i]
-            };
-            ws.dq_step[i] = if linear {
-                0.0
-            } else {
-                h * state.v[i] + h * h * ((0.5 - b) * ws.a_aux[i] + b * ahat)
+            ws.dq_step[i] = match predictor {
+                Predictor::Rest => 0.0,
+                Predictor::Velocity => h * state.v[i],
+                Predictor::Extrapolated => {
+                    let ahat = if ratio > 0.0 {
+                        ws.a_aux[i] + ratio * (ws.a_aux[i] - state.a_aux_prev[i])
+                    } else {
+                        ws.a_aux[i]
+                    };
+                    h * state.v[i] + h * h * ((0.5 - b) * ws.a_aux[i] + b * ahat)
+                }
             };
             ws.q_new[i] = state.q[i] + ws.dq_step[i];
         }
@@ -347,30 +574,29 @@ impl GeneralizedAlpha {
                 ws.v_new[i] = state.v[i] + h * ((1.0 - g) * ws.a_aux[i] + g * ahat);
                 ws.a_new[i] = ((1.0 - am) * ahat + am * ws.a_aux[i] - af * state.a[i]) / (1.0 - af);
             }
-            if iterations > 0 && (last <= tol || (linear && iterations == 1)) {
+            if iterations > 0 && (last <= tol || (single_solve && iterations == 1)) {
                 break;
-            }
-            if iterations >= self.max_iterations {
-                let kin = Kinematic {
-                    q: &ws.q_new,
-                    v: Some(&ws.v_new),
-                    a: Some(&ws.a_new),
-                };
-                assemble(model, kin, loads.as_slice(), &mut ws.r, None);
-                let residual = ws.r[nfix..].iter().fold(0.0f64, |m, x| m.max(x.abs()));
-                return Err(BeamError::NotConverged {
-                    solver: "generalized-α step".into(),
-                    load_level: 1.0,
-                    iterations,
-                    residual,
-                });
             }
             let kin = Kinematic {
                 q: &ws.q_new,
                 v: Some(&ws.v_new),
                 a: Some(&ws.a_new),
             };
-            let reuse = linear && ws.factored_for == Some((h, self.rho_inf));
+            if iterations >= max_iterations {
+                assemble(model, kin, loads.as_slice(), &mut ws.r, None);
+                node_residual(node_load.as_deref_mut(), t_new, ws, nfix, None);
+                let residual = ws.r[nfix..].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                return Err((
+                    iterations,
+                    BeamError::NotConverged {
+                        solver: "generalized-α step".into(),
+                        load_level: 1.0,
+                        iterations,
+                        residual,
+                    },
+                ));
+            }
+            let reuse = single_solve && ws.factored_for == Some((h, self.rho_inf));
             if reuse {
                 assemble(model, kin, loads.as_slice(), &mut ws.r, None);
             } else {
@@ -381,9 +607,12 @@ impl GeneralizedAlpha {
                     &mut ws.r,
                     Some((&mut ws.band, weights)),
                 );
+                node_residual(node_load.as_deref_mut(), t_new, ws, nfix, Some(weights));
                 ws.factored_for = None;
-                ws.band.factorize("generalized-α iteration matrix")?;
-                if linear {
+                if let Err(e) = ws.band.factorize("generalized-α iteration matrix") {
+                    return Err((iterations, e));
+                }
+                if single_solve {
                     ws.factored_for = Some((h, self.rho_inf));
                 }
             }
@@ -403,23 +632,67 @@ impl GeneralizedAlpha {
                 last = last.max((s * d).abs());
             }
             if !last.is_finite() {
-                return Err(BeamError::NonFinite {
-                    what: "generalized-α displacement".into(),
-                });
+                return Err((
+                    iterations,
+                    BeamError::NonFinite {
+                        what: "generalized-α displacement".into(),
+                    },
+                ));
             }
             if iterations == 0 {
                 first = last;
             }
             iterations += 1;
         }
+        // A converged step that turns a node by more than the Newton limiter allows in one
+        // iteration has not resolved the rotation: it may be a spurious root (a node turned by
+        // 2π, or onto another branch of the 2π-periodic element); take it in smaller pieces.
+        if !linear
+            && let Some(i) = (nfix..n)
+                .filter(|i| i % 3 == 2)
+                .find(|&i| ws.dq_step[i].abs() > crate::statics::MAX_ROTATION_INCREMENT)
+        {
+            return Err((
+                iterations,
+                BeamError::NotConverged {
+                    solver: format!(
+                        "generalized-α step (node {} turned by {:.3} rad in one step)",
+                        i / 3,
+                        ws.dq_step[i]
+                    ),
+                    load_level: 1.0,
+                    iterations,
+                    residual: 0.0,
+                },
+            ));
+        }
         // A step so small or so large that h² under- or overflows gives inf/NaN in â, q̇, q̈.
         if [&ws.q_new, &ws.v_new, &ws.a_new, &ws.ahat_new]
             .iter()
             .any(|x| x.iter().any(|v| !v.is_finite()))
         {
-            return Err(BeamError::NonFinite {
-                what: "generalized-α state".into(),
-            });
+            return Err((
+                iterations,
+                BeamError::NonFinite {
+                    what: "generalized-α state".into(),
+                },
+            ));
+        }
+        // The motion-dependent load at the accepted state (for the work done on the beam).
+        let node_force = node_load.as_deref_mut().map(|nl| {
+            let k = 3 * nl.node();
+            let f = nl.evaluate(t_new, node_dofs(&ws.q_new, k), node_dofs(&ws.v_new, k));
+            (k, f.force)
+        });
+        if let Some((_, f)) = node_force
+            && !f.iter().all(|x| x.is_finite())
+        {
+            return Err((
+                iterations,
+                BeamError::NonFinite {
+                    what: "node load".into(),
+                },
+            ));
         }
         // Accept.
         let f = loads.as_slice();
@@ -427,6 +700,13 @@ impl GeneralizedAlpha {
         for i in 0..n {
             work += 0.5 * (state.f_prev[i] + f[i]) * ws.dq_step[i];
         }
+        let (k_prev, f_prev_node) = state.node_force_prev;
+        let (k_new, f_new_node) = node_force.unwrap_or((k_prev, [0.0; 3]));
+        for d in 0..3 {
+            work += 0.5 * f_prev_node[d] * ws.dq_step[k_prev + d];
+            work += 0.5 * f_new_node[d] * ws.dq_step[k_new + d];
+        }
+        state.node_force_prev = (k_new, f_new_node);
         state.external_work += work;
         state.f_prev.copy_from_slice(f);
         state.q.copy_from_slice(&ws.q_new);
@@ -437,11 +717,53 @@ impl GeneralizedAlpha {
         state.a_aux_prev.extend_from_slice(&ws.a_aux);
         state.a_aux.copy_from_slice(&ws.ahat_new);
         state.h_prev = Some(h);
-        state.t += h;
-        Ok(StepReport {
-            iterations,
-            first_correction: first,
-            last_correction: last,
-        })
+        state.t = t_new;
+        Ok((iterations, first, last))
+    }
+}
+
+/// One Newton solve's settings.
+#[derive(Debug, Clone, Copy)]
+struct NewtonStep {
+    h: f64,
+    predictor: Predictor,
+    max_iterations: usize,
+}
+
+/// (x[k], x[k + 1], x[k + 2]).
+fn node_dofs(x: &[f64], k: usize) -> [f64; 3] {
+    [x[k], x[k + 1], x[k + 2]]
+}
+
+/// Adds the motion-dependent node load at the current iterate to the residual (r −= F) and, if
+/// `weights` is given, −(c_q ∂F/∂q + c_v ∂F/∂q̇) to the iteration matrix (free DOFs only).
+fn node_residual<'l>(
+    node_load: Option<&mut (dyn NodeLoad + 'l)>,
+    t: f64,
+    ws: &mut Workspace,
+    nfix: usize,
+    weights: Option<JacobianWeights>,
+) {
+    let Some(nl) = node_load else {
+        return;
+    };
+    let k = 3 * nl.node();
+    let f = nl.evaluate(t, node_dofs(&ws.q_new, k), node_dofs(&ws.v_new, k));
+    for i in 0..3 {
+        ws.r[k + i] -= f.force[i];
+    }
+    if let Some(w) = weights {
+        for i in 0..3 {
+            for j in 0..3 {
+                let (gi, gj) = (k + i, k + j);
+                if gi >= nfix && gj >= nfix {
+                    ws.band.add(
+                        gi - nfix,
+                        gj - nfix,
+                        -(w.stiffness * f.d_dq[i][j] + w.velocity * f.d_dv[i][j]),
+                    );
+                }
+            }
+        }
     }
 }

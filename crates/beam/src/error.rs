@@ -46,6 +46,21 @@ pub enum BeamError {
         /// What became non-finite.
         what: String,
     },
+    /// A time step failed even when taken in 2^`halvings` pieces.
+    #[error(
+        "time step at t = {t:.6e} s (h = {h:.3e} s) failed even split into {} pieces: {cause}",
+        1u64 << *halvings
+    )]
+    StepFailed {
+        /// Time at the start of the step \[s\].
+        t: f64,
+        /// The step \[s\].
+        h: f64,
+        /// How often the step was halved.
+        halvings: u32,
+        /// The failure of the smallest piece.
+        cause: Box<BeamError>,
+    },
     /// The eigen-solver failed.
     #[error("eigen-solver failed: {0}")]
     Eigen(String),

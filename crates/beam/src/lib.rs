@@ -45,13 +45,15 @@ pub mod energy;
 mod error;
 pub mod modal;
 pub mod model;
+pub mod node_load;
 pub mod prb;
 pub mod reduced;
 pub mod section;
 pub mod statics;
 
-pub use dynamics::{GeneralizedAlpha, State, StepReport, Workspace};
+pub use dynamics::{GeneralizedAlpha, MAX_STEP_HALVINGS, State, StepReport, Workspace};
 pub use error::BeamError;
+pub use node_load::{NodeForce, NodeLoad};
 pub use modal::{ModalAnalysis, ModalDirection, modal_analysis};
 pub use model::{
     BeamModel, BeamSpec, Kinematics, MassMatrix, NodalLoads, PointMass, Rayleigh, RootSupport,

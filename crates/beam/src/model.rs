@@ -336,6 +336,21 @@ impl NodalLoads {
         self.values[3 * node + 2] = finite("moment", m)?;
         Ok(())
     }
+    /// Loads from a vector of one entry per DOF.
+    pub(crate) fn from_values(values: Vec<f64>) -> Self {
+        NodalLoads { values }
+    }
+    /// (1 − s) self + s other, entry by entry.
+    pub fn lerp(&self, other: &NodalLoads, s: f64) -> Self {
+        NodalLoads {
+            values: self
+                .values
+                .iter()
+                .zip(&other.values)
+                .map(|(a, b)| a + (b - a) * s)
+                .collect(),
+        }
+    }
     /// Zeroes every load.
     pub fn clear(&mut self) {
         self.values.iter_mut().for_each(|v| *v = 0.0);

@@ -34,6 +34,8 @@ use crate::BeamError;
 use crate::dynamics::GeneralizedAlpha;
 use crate::modal::{ModalDirection, dense_matrices, modal_analysis};
 use crate::model::{BeamModel, NodalLoads};
+use crate::node_load::NodeLoad;
+use nalgebra::{Matrix3, Vector3};
 
 /// M-norm, relative to the whole static shape, below which a correction shape counts as already
 /// in the span of the basis.
@@ -43,6 +45,8 @@ const SPAN_TOLERANCE: f64 = 1e-8;
 #[derive(Debug, Clone, PartialEq)]
 pub struct ReducedModel {
     n_dofs: usize,
+    /// Length of the beam \[m\] (scales the Newton tolerance).
+    length: f64,
     exact_modes: usize,
     /// ωᵢ [rad/s], ascending.
     omegas: Vec<f64>,
@@ -133,6 +137,7 @@ impl ReducedModel {
             .collect();
         Ok(ReducedModel {
             n_dofs,
+            length: model.length(),
             exact_modes: modes,
             damping: omegas
                 .iter()
@@ -259,6 +264,23 @@ impl GeneralizedAlpha {
         h: f64,
         loads: &NodalLoads,
     ) -> Result<(), BeamError> {
+        self.step_reduced_with(model, state, h, loads, None)
+    }
+
+    /// [`GeneralizedAlpha::step_reduced`] with a motion-dependent `node_load` treated
+    /// implicitly: its generalized force Φ_kᵀ F(q_k, q̇_k) at the node's DOFs k couples the
+    /// coordinates, and Newton solves D x − Φ_kᵀ F = b for the auxiliary accelerations x, with
+    /// D = diag(lhsᵢ) and the iteration matrix D − Φ_kᵀ (βh² ∂F/∂q + γh ∂F/∂q̇) Φ_k: diagonal
+    /// plus rank 3, solved through a 3×3 system (O(r) per iteration). Converged when the node
+    /// moves by at most the Newton tolerance between iterations.
+    pub fn step_reduced_with(
+        &self,
+        model: &ReducedModel,
+        state: &mut ReducedState,
+        h: f64,
+        loads: &NodalLoads,
+        mut node_load: Option<&mut dyn NodeLoad>,
+    ) -> Result<(), BeamError> {
         if !(h.is_finite() && h > 0.0) {
             return Err(BeamError::invalid("time step", h, "a finite number > 0"));
         }
@@ -270,6 +292,15 @@ impl GeneralizedAlpha {
                 format!("{} (the model's modal coordinates)", model.n_coordinates()),
             ));
         }
+        if let Some(nl) = node_load.as_deref()
+            && 3 * nl.node() + 2 >= model.n_dofs
+        {
+            return Err(BeamError::invalid(
+                "node load node",
+                nl.node(),
+                format!("a node index from 0 to {} (the tip)", model.n_dofs / 3 - 1),
+            ));
+        }
         let (am, af, g, b) = self.parameters();
         let rescale = match state.h_prev {
             Some(hp) if hp != h => h / hp,
@@ -278,22 +309,48 @@ impl GeneralizedAlpha {
         let r = model.n_coordinates();
         let mut forces = vec![0.0; r];
         model.generalized_forces(loads.as_slice(), &mut forces);
-        let mut next = state.clone();
+        // Per coordinate: η = Q + βh² x, η̇ = V + γh x, and lhs x = rhs (+ the node load).
+        let mut q_base = vec![0.0; r];
+        let mut v_base = vec![0.0; r];
+        let mut lhs = vec![0.0; r];
+        let mut rhs = vec![0.0; r];
+        let mut a_hat = vec![0.0; r];
         for i in 0..r {
             let (w2, c) = (model.omegas[i] * model.omegas[i], model.damping[i]);
             let (q, v, a) = (state.eta[i], state.eta_dot[i], state.eta_ddot[i]);
             // â_n ≈ q̈(t_n + (α_m − α_f) h): rescale its offset from q̈_n when h changes.
             let ah = a + (state.a_aux[i] - a) * rescale;
-            let lhs = (1.0 - am) / (1.0 - af) + c * g * h + w2 * b * h * h;
-            let rhs = forces[i]
-                - (am * ah - af * a) / (1.0 - af)
-                - c * (v + (1.0 - g) * h * ah)
-                - w2 * (q + h * v + (0.5 - b) * h * h * ah);
-            let x = rhs / lhs;
-            next.eta[i] = q + h * v + h * h * ((0.5 - b) * ah + b * x);
-            next.eta_dot[i] = v + h * ((1.0 - g) * ah + g * x);
-            next.eta_ddot[i] = ((1.0 - am) * x + am * ah - af * a) / (1.0 - af);
-            next.a_aux[i] = x;
+            a_hat[i] = ah;
+            q_base[i] = q + h * v + (0.5 - b) * h * h * ah;
+            v_base[i] = v + (1.0 - g) * h * ah;
+            lhs[i] = (1.0 - am) / (1.0 - af) + c * g * h + w2 * b * h * h;
+            rhs[i] = forces[i] - (am * ah - af * a) / (1.0 - af) - c * v_base[i] - w2 * q_base[i];
+        }
+        let x = match node_load.as_deref_mut() {
+            None => (0..r).map(|i| rhs[i] / lhs[i]).collect(),
+            Some(nl) => {
+                let coupled = Coupled {
+                    model,
+                    t: state.t + h,
+                    h,
+                    beta: b,
+                    gamma: g,
+                    q_base: &q_base,
+                    v_base: &v_base,
+                    lhs: &lhs,
+                    rhs: &rhs,
+                };
+                let (max_iterations, tolerance) = self.newton_limits();
+                coupled.solve(nl, a_hat.clone(), (max_iterations, tolerance * model.length))?
+            }
+        };
+        let mut next = state.clone();
+        for i in 0..r {
+            let (ah, a) = (a_hat[i], state.eta_ddot[i]);
+            next.eta[i] = q_base[i] + b * h * h * x[i];
+            next.eta_dot[i] = v_base[i] + g * h * x[i];
+            next.eta_ddot[i] = ((1.0 - am) * x[i] + am * ah - af * a) / (1.0 - af);
+            next.a_aux[i] = x[i];
         }
         // A failed step leaves `state` unchanged (as the full model's step does).
         if let Some(i) = (0..r).find(|&i| {
@@ -445,4 +502,102 @@ fn diagonalise(k: &Mat<f64>, basis: &[Vec<f64>]) -> Result<(Vec<f64>, Vec<Vec<f6
         );
     }
     Ok((omegas, shapes))
+}
+
+/// The coordinates coupled by a node load: D x − Φ_kᵀ F(q_k(x), q̇_k(x)) = b.
+struct Coupled<'a> {
+    model: &'a ReducedModel,
+    t: f64,
+    h: f64,
+    beta: f64,
+    gamma: f64,
+    q_base: &'a [f64],
+    v_base: &'a [f64],
+    lhs: &'a [f64],
+    rhs: &'a [f64],
+}
+
+impl Coupled<'_> {
+    /// Newton from `x`; (maximum iterations, tolerance \[m or rad\] on the node's motion).
+    fn solve(
+        &self,
+        node_load: &mut dyn NodeLoad,
+        mut x: Vec<f64>,
+        (max_iterations, tolerance): (usize, f64),
+    ) -> Result<Vec<f64>, BeamError> {
+        let k = 3 * node_load.node();
+        let shapes = &self.model.shapes;
+        let r = x.len();
+        let (bh2, gh) = (self.beta * self.h * self.h, self.gamma * self.h);
+        let node_motion = |x: &[f64]| {
+            let (mut q, mut v) = ([0.0; 3], [0.0; 3]);
+            for (i, s) in shapes.iter().enumerate() {
+                for d in 0..3 {
+                    q[d] += s[k + d] * (self.q_base[i] + bh2 * x[i]);
+                    v[d] += s[k + d] * (self.v_base[i] + gh * x[i]);
+                }
+            }
+            (q, v)
+        };
+        let mut residual = vec![0.0; r];
+        for iteration in 0..=max_iterations {
+            let (q, v) = node_motion(&x);
+            let f = node_load.evaluate(self.t, q, v);
+            if !f.is_finite() {
+                return Err(BeamError::NonFinite {
+                    what: "node load".into(),
+                });
+            }
+            for i in 0..r {
+                let generalized: f64 = (0..3).map(|d| shapes[i][k + d] * f.force[d]).sum();
+                residual[i] = self.lhs[i] * x[i] - self.rhs[i] - generalized;
+            }
+            if iteration == max_iterations {
+                return Err(BeamError::NotConverged {
+                    solver: "modal-reduced generalized-α step".into(),
+                    load_level: 1.0,
+                    iterations: iteration,
+                    residual: residual.iter().fold(0.0f64, |m, x: &f64| m.max(x.abs())),
+                });
+            }
+            // J Δ = −R with J = D − U C Uᵀ, U = Φ_kᵀ (r×3), C = βh² ∂F/∂q + γh ∂F/∂q̇:
+            // y = UᵀΔ solves (I − UᵀD⁻¹U C) y = Uᵀ D⁻¹ (−R), then Δ = D⁻¹(−R + U C y).
+            let c = Matrix3::from_fn(|i, j| bh2 * f.d_dq[i][j] + gh * f.d_dv[i][j]);
+            let mut utdu = Matrix3::zeros();
+            let mut utdr = Vector3::zeros();
+            for i in 0..r {
+                let u = Vector3::new(shapes[i][k], shapes[i][k + 1], shapes[i][k + 2]);
+                utdu += u * u.transpose() / self.lhs[i];
+                utdr -= u * (residual[i] / self.lhs[i]);
+            }
+            let y = (Matrix3::identity() - utdu * c)
+                .lu()
+                .solve(&utdr)
+                .ok_or_else(|| BeamError::Singular {
+                    what: "modal-reduced node-load iteration matrix".into(),
+                    dof: k,
+                    hint: "the node load's stiffness cancels the beam's".into(),
+                })?;
+            let cy = c * y;
+            let mut moved = [0.0f64; 3];
+            for i in 0..r {
+                let u = Vector3::new(shapes[i][k], shapes[i][k + 1], shapes[i][k + 2]);
+                let delta = (-residual[i] + u.dot(&cy)) / self.lhs[i];
+                x[i] += delta;
+                for d in 0..3 {
+                    moved[d] += u[d] * bh2 * delta;
+                }
+            }
+            let step = moved.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+            if !step.is_finite() {
+                return Err(BeamError::NonFinite {
+                    what: "modal coordinates".into(),
+                });
+            }
+            if step <= tolerance {
+                return Ok(x);
+            }
+        }
+        unreachable!("the loop returns at the last iteration")
+    }
 }
