@@ -374,7 +374,15 @@ impl GeneralizedAlpha {
             substeps: 1,
             ..StepReport::default()
         };
-        match self.attempt(model, state, ws, h, loads, node_load.as_deref_mut(), &mut report) {
+        match self.attempt(
+            model,
+            state,
+            ws,
+            h,
+            loads,
+            node_load.as_deref_mut(),
+            &mut report,
+        ) {
             Ok(()) => return Ok(report),
             Err(e) if !recoverable(&e) => return Err(e),
             Err(_) => {}

@@ -53,11 +53,11 @@ pub mod statics;
 
 pub use dynamics::{GeneralizedAlpha, MAX_STEP_HALVINGS, State, StepReport, Workspace};
 pub use error::BeamError;
-pub use node_load::{NodeForce, NodeLoad};
 pub use modal::{ModalAnalysis, ModalDirection, modal_analysis};
 pub use model::{
     BeamModel, BeamSpec, Kinematics, MassMatrix, NodalLoads, PointMass, Rayleigh, RootSupport,
 };
+pub use node_load::{NodeForce, NodeLoad};
 pub use reduced::{ReducedModel, ReducedState};
 pub use section::{Material, Section};
 pub use statics::{StaticOptions, StaticSolution, solve_static};

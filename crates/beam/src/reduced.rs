@@ -341,7 +341,11 @@ impl GeneralizedAlpha {
                     rhs: &rhs,
                 };
                 let (max_iterations, tolerance) = self.newton_limits();
-                coupled.solve(nl, a_hat.clone(), (max_iterations, tolerance * model.length))?
+                coupled.solve(
+                    nl,
+                    a_hat.clone(),
+                    (max_iterations, tolerance * model.length),
+                )?
             }
         };
         let mut next = state.clone();

@@ -108,6 +108,21 @@ impl DomeBlockContact {
         })
     }
 
+    /// Centre of the dome's sphere [m, world] when the dome body is at `dome`.
+    pub fn dome_center(&self, dome: &Pose) -> Vector {
+        (*dome * self.dome_offset).translation
+    }
+
+    /// The signed gap \[m\] between the surfaces (negative when penetrating) and the approach
+    /// rate [m/s] (δ̇ of [`ContactSample`], > 0 when closing) along the normal through the closest
+    /// points, touching or not; `None` if the bodies are too far apart for a query.
+    pub fn approach(&self, dome: &BodyKinematics, block: &BodyKinematics) -> Option<(f64, f64)> {
+        let c = self.contact(&dome.pose, &block.pose, f64::MAX)?;
+        let point = (c.point1 + c.point2) * 0.5;
+        let rate = (dome.velocity_at(point) - block.velocity_at(point)).dot(c.normal1);
+        Some((c.dist, rate))
+    }
+
     /// The contact law.
     pub fn law(&self) -> &dyn ContactLaw {
         self.law.as_ref()

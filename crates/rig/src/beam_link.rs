@@ -6,14 +6,14 @@
 //! `solver.beam`).
 
 use flexrig_beam::{
-    BeamModel, BeamSpec, GeneralizedAlpha, Kinematics, Material, NodalLoads, PointMass,
+    BeamModel, BeamSpec, GeneralizedAlpha, Kinematics, Material, NodalLoads, NodeLoad, PointMass,
     ReducedModel, ReducedState, RootSupport, Section, State, Workspace,
 };
-use flexrig_contact::math::{Pose, Vector};
-use flexrig_contact::{BodyKinematics, ContactSample};
-use rapier3d_f64::glamx::DQuat;
+use flexrig_contact::BodyKinematics;
+use flexrig_contact::math::Vector;
 
 use crate::RigError;
+use crate::coupling::section_kinematics;
 use crate::scene::{BeamSolverSpec, Scene};
 
 /// Which beam stands for the robot link.
@@ -134,22 +134,17 @@ impl BeamLink {
 
     /// Pose and velocity of the tip section (frame origin at the tip node on the beam axis).
     pub fn tip_kinematics(&self) -> BodyKinematics {
-        self.predicted_tip_kinematics(0.0)
+        let [u, v, theta] = self.tip_dofs();
+        section_kinematics(
+            self.model.length(),
+            [u.0, v.0, theta.0],
+            [u.1, v.1, theta.1],
+        )
     }
 
-    /// The tip section's pose and velocity predicted `dt` ahead from the current displacement,
-    /// velocity and acceleration (q + v dt + a dt²/2, v + a dt): second order.
-    pub fn predicted_tip_kinematics(&self, dt: f64) -> BodyKinematics {
-        let [u, v, theta] = self
-            .tip_dofs()
-            .map(|(q, v, a)| (q + v * dt + 0.5 * a * dt * dt, v + a * dt));
-        let position = Vector::new(self.model.length() + u.0, v.0, 0.0);
-        BodyKinematics {
-            pose: Pose::from_parts(position, DQuat::from_rotation_z(theta.0)),
-            reference_point: position,
-            linvel: Vector::new(u.1, v.1, 0.0),
-            angvel: Vector::new(0.0, 0.0, theta.1),
-        }
+    /// Index of the tip node.
+    pub fn tip_node(&self) -> usize {
+        self.tip
     }
 
     /// Transverse (y) displacement, velocity and acceleration of the tip [m, m/s, m/s²].
@@ -184,33 +179,31 @@ impl BeamLink {
             .collect()
     }
 
-    /// Advances by `dt` \[s\]. `contact_at_end` is the contact force at the end of the step
-    /// (predicted): generalized-α applies the load (1 − α_f) F_{n+1} + α_f F_n, so handing it the
-    /// end-of-step force gives the trapezoidal average the scheme is built on (second order),
-    /// where the start-of-step force would lag by a step (first order; measured: the energy
-    /// error through contact 0.8 % at 400 steps per contact, 0.2 % at 1600).
-    pub fn step(
-        &mut self,
-        dt: f64,
-        contact_at_end: Option<&ContactSample>,
-    ) -> Result<(), RigError> {
-        self.loads.clear();
-        if let Some(c) = contact_at_end {
-            let f = c.force_on_dome();
-            let tip = self.predicted_tip_kinematics(dt).pose.translation;
-            let moment = (c.point - tip).cross(f).z;
-            self.loads.set_force(self.tip, f.x, f.y)?;
-            self.loads.set_moment(self.tip, moment)?;
-        }
+    /// Advances by `dt` \[s\] with the motion-dependent `tip_load` (the contact) treated
+    /// implicitly at the end of the step (see [`crate::coupling`]): generalized-α enforces the
+    /// equation of motion at t + dt, so the contact force enters at the same time level as the
+    /// beam's own forces, with its stiffness and damping in the Newton iteration matrix.
+    pub fn step(&mut self, dt: f64, tip_load: &mut dyn NodeLoad) -> Result<(), RigError> {
         match &mut self.dynamics {
             LinkDynamics::Full(full) => {
                 let (state, workspace) = &mut **full;
-                self.integrator
-                    .step(&self.model, state, workspace, dt, &self.loads)?;
+                self.integrator.step_with(
+                    &self.model,
+                    state,
+                    workspace,
+                    dt,
+                    &self.loads,
+                    Some(tip_load),
+                )?;
             }
             LinkDynamics::Modal { reduced, state } => {
-                self.integrator
-                    .step_reduced(reduced, state, dt, &self.loads)?;
+                self.integrator.step_reduced_with(
+                    reduced,
+                    state,
+                    dt,
+                    &self.loads,
+                    Some(tip_load),
+                )?;
             }
         }
         Ok(())

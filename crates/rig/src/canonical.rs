@@ -47,7 +47,7 @@ pub fn simulated_pendulum(
     let mut crossings = Vec::new();
     let mut worst = 0.0f64;
     while crossings.len() <= swings {
-        rig.apply_loads(None, 0.0);
+        rig.apply_torques(0.0, 0.0);
         rig.step(dt);
         t += dt;
         let s = rig.operator_state();

@@ -23,7 +23,7 @@ pub enum RigError {
     #[error(transparent)]
     Beam(#[from] flexrig_beam::BeamError),
     /// The simulation became unstable or non-finite.
-    #[error("simulation stopped at t = {t:.6e} s: {quantity} {reason}; try a smaller {suggestion}")]
+    #[error("simulation stopped at t = {t:.6e} s: {quantity} {reason}; try {suggestion}")]
     Unstable {
         /// Time reached \[s\].
         t: f64,

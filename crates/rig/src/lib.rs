@@ -20,6 +20,7 @@
 
 mod beam_link;
 pub mod canonical;
+pub mod coupling;
 mod error;
 pub mod geometry;
 pub mod run;
@@ -30,6 +31,7 @@ pub mod world;
 pub use beam_link::{BeamLink, LinkVariant};
 pub use error::RigError;
 pub use run::{
-    Frame, NoRecorder, Recorder, RunOptions, RunSummary, Simulation, StepOutcome, run_scene_text,
+    ContactEvent, Frame, NoRecorder, Recorder, RunOptions, RunSummary, Simulation, StepOutcome,
+    run_scene_text,
 };
 pub use scene::{BeamSolverSpec, Design, Scene, SceneFile};

@@ -1,13 +1,18 @@
-//! The run loop: a named pipeline per step (check → contact → loads → integrate → events →
+//! The run loop: a named pipeline per step (loads → integrate → synchronise → events → check →
 //! sensors), a step policy that takes large steps in the free swing, lands on the contact onset
-//! and resolves the contact on its own time scale, and the stop condition of the scene.
+//! and resolves the contact on its own time scale, and the stop condition of the scene. How the
+//! contact force is exchanged within a step (second order; implicit for the compliant link) is
+//! in [`crate::coupling`].
 
 use flexrig_contact::math::{Pose, Vector};
-use flexrig_contact::{ContactCallback, ContactSample, DomeBlockContact, Materials};
+use flexrig_contact::{
+    BodyKinematics, ContactCallback, ContactSample, DomeBlockContact, Materials,
+};
 use serde::Serialize;
 
 use crate::RigError;
 use crate::beam_link::{BeamLink, LinkVariant};
+use crate::coupling::{HingeMotion, TipContact};
 use crate::geometry::RigGeometry;
 use crate::scene::{Design, Scene, StopSpec};
 use crate::sensors::{Reading, Sampler, SensorSample};
@@ -36,9 +41,9 @@ pub struct Frame<'a> {
     pub dt: f64,
     /// What the step reached.
     pub outcome: StepOutcome,
-    /// Operator hinge.
+    /// Operator hinge (rate synchronised with the angle).
     pub operator: HingeState,
-    /// Robot hinge (CJ).
+    /// Robot hinge (CJ; rate synchronised with the angle).
     pub robot: Option<HingeState>,
     /// Operator body pose (origin at the pivot).
     pub operator_pose: Pose,
@@ -48,7 +53,8 @@ pub struct Frame<'a> {
     pub beam: Option<&'a BeamLink>,
     /// The contact at the end of the step, if touching.
     pub contact: Option<ContactSample>,
-    /// Total mechanical energy \[J\] (kinetic, gravity, spring, beam strain, contact).
+    /// Total mechanical energy \[J\] (kinetic, gravity, spring, beam strain, contact), at
+    /// synchronised positions and velocities.
     pub energy: f64,
     /// Sensor samples taken during this step.
     pub samples: &'a [SensorSample],
@@ -69,7 +75,35 @@ pub struct NoRecorder;
 
 impl Recorder for NoRecorder {}
 
-/// Result of a run.
+/// One contact of a run, from onset to separation.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ContactEvent {
+    /// Time of contact onset \[s\] (interpolated within the onset step).
+    pub onset_time_s: f64,
+    /// Approach speed normal to the contact at onset [m/s] (interpolated to the onset time).
+    pub impact_velocity_mps: f64,
+    /// Peak contact force \[N\] (vertex of the parabola through the three largest step values).
+    pub peak_force_n: f64,
+    /// Time of the peak \[s\].
+    pub time_of_peak_s: f64,
+    /// Largest indentation \[m\].
+    pub max_indentation_m: f64,
+    /// Impulse of the contact force ∫ f dt [N·s] (trapezoidal, as the integrator applies it).
+    pub impulse_n_s: f64,
+    /// Contact duration \[s\] (interpolated at both ends); `None` if the run stopped in contact.
+    pub duration_s: Option<f64>,
+    /// Relative normal velocity at separation [m/s] (positive when parting); `None` if the run
+    /// stopped in contact.
+    pub separation_velocity_mps: Option<f64>,
+    /// Mechanical energy just before the onset step \[J\].
+    pub energy_before_j: f64,
+    /// Mechanical energy at the end of the separation step \[J\]; equal to `energy_before_j` for
+    /// an undamped contact up to the integration error.
+    pub energy_after_j: Option<f64>,
+}
+
+/// Result of a run. The top-level contact quantities are those of the first contact; `contacts`
+/// lists every contact of the run.
 #[derive(Debug, Clone, Serialize)]
 pub struct RunSummary {
     /// Scene name.
@@ -100,13 +134,15 @@ pub struct RunSummary {
     pub contact_steps: usize,
     /// Step size used in contact \[s\].
     pub contact_step_s: f64,
-    /// Mechanical energy at the start and at the end \[J\].
+    /// Mechanical energy at the start \[J\] (for a release from rest: M g l_c (1 − cos θ₀)).
     pub energy_initial_j: f64,
     /// Mechanical energy at the end \[J\].
     pub energy_final_j: f64,
-    /// Mechanical energy just before the contact and just after separation \[J\]; equal for an
-    /// undamped contact up to the integration error.
+    /// Mechanical energy just before the first contact and just after its separation \[J\];
+    /// equal for an undamped contact up to the integration error.
     pub energy_through_contact_j: Option<(f64, f64)>,
+    /// Every contact of the run, in order (the first is the one of the top-level keys).
+    pub contacts: Vec<ContactEvent>,
     /// Simulated time \[s\].
     pub duration_s: f64,
     /// Sensor samples.
@@ -156,6 +192,18 @@ enum Phase {
     After,
 }
 
+/// The hinges and the contact at one instant, with the rates synchronised to the angles (see
+/// [`crate::coupling`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Synced {
+    operator: HingeState,
+    /// Operator angular acceleration [rad/s²] (gravity and contact).
+    operator_accel: f64,
+    /// Robot hinge and its angular acceleration (CJ).
+    robot: Option<(HingeState, f64)>,
+    contact: Option<ContactSample>,
+}
+
 /// A running simulation of one scene.
 #[derive(Debug)]
 pub struct Simulation<'s> {
@@ -166,6 +214,9 @@ pub struct Simulation<'s> {
     robot: RobotSide,
     contact: DomeBlockContact,
     t: f64,
+    /// The last step \[s\] (0 before the first): Rapier's rates lag the angles by half of it.
+    h_prev: f64,
+    now: Synced,
     phase: Phase,
     contact_step: f64,
     previous_gap: Option<(f64, f64)>,
@@ -173,27 +224,57 @@ pub struct Simulation<'s> {
     indentation_scale: f64,
     last: Reading,
     sampler: Sampler,
-    force_history: [(f64, f64); 3],
     stats: Stats,
+}
+
+/// The contact in progress.
+#[derive(Debug, Clone, Copy)]
+struct OpenContact {
+    onset_time: f64,
+    impact_velocity: f64,
+    energy_before: f64,
+    force_history: [(f64, f64); 3],
+    peak: Option<(f64, f64)>,
+    max_indentation: f64,
+    impulse: f64,
+    last_indentation: f64,
+    last: ContactSample,
+}
+
+impl OpenContact {
+    fn note(&mut self, t: f64, c: &ContactSample) {
+        self.max_indentation = self.max_indentation.max(c.indentation);
+        self.last_indentation = c.indentation;
+        self.last = *c;
+        self.force_history = [self.force_history[1], self.force_history[2], (t, c.force)];
+    }
+
+    /// The contact as reported (`separation`: time, relative normal velocity and energy).
+    fn event(&self, separation: Option<(f64, f64, f64)>) -> ContactEvent {
+        let (time_of_peak, peak) = self.peak.unwrap_or(self.force_history[2]);
+        ContactEvent {
+            onset_time_s: self.onset_time,
+            impact_velocity_mps: self.impact_velocity,
+            peak_force_n: peak,
+            time_of_peak_s: time_of_peak,
+            max_indentation_m: self.max_indentation,
+            impulse_n_s: self.impulse,
+            duration_s: separation.map(|(t, _, _)| t - self.onset_time),
+            separation_velocity_mps: separation.map(|(_, v, _)| v),
+            energy_before_j: self.energy_before,
+            energy_after_j: separation.map(|(_, _, e)| e),
+        }
+    }
 }
 
 #[derive(Debug, Clone, Default)]
 struct Stats {
     steps: usize,
     contact_steps: usize,
-    onset_time: Option<f64>,
-    separation_time: Option<f64>,
-    impact_velocity: f64,
-    peak: Option<(f64, f64)>,
-    max_indentation: f64,
-    impulse: f64,
     energy_initial: f64,
     energy: f64,
-    energy_onset: Option<f64>,
-    energy_separation: Option<f64>,
-    last_indentation: f64,
-    last_contact: Option<ContactSample>,
-    separation_velocity: Option<f64>,
+    open: Option<OpenContact>,
+    contacts: Vec<ContactEvent>,
 }
 
 /// Factor of the Hertz contact duration t_c ≈ C δ_max/v0 used to size the contact step
@@ -257,6 +338,14 @@ impl<'s> Simulation<'s> {
         let contact_time = CONTACT_TIME_FACTOR * delta_max / v_impact;
         let contact_step = contact_time / scene.file.solver.contact_steps as f64;
 
+        let operator = HingeState {
+            angle: swing.angle,
+            rate: swing.rate,
+        };
+        let robot_initial = (design == Design::Cj).then_some(HingeState {
+            angle: 0.0,
+            rate: 0.0,
+        });
         let mut sim = Simulation {
             scene,
             options,
@@ -265,6 +354,13 @@ impl<'s> Simulation<'s> {
             robot,
             contact,
             t: 0.0,
+            h_prev: 0.0,
+            now: Synced {
+                operator,
+                operator_accel: 0.0,
+                robot: None,
+                contact: None,
+            },
             phase: Phase::Swing,
             contact_step,
             previous_gap: None,
@@ -280,36 +376,19 @@ impl<'s> Simulation<'s> {
                 force: 0.0,
             },
             sampler: Sampler::new(scene.file.record.sample_rate_hz),
-            force_history: [(0.0, 0.0); 3],
             stats: Stats::default(),
-        };
-        // Rapier's symplectic Euler (kick, then drift) is leapfrog with the velocity half a step
-        // behind the position: start it from ω(−dt/2) = ω₀ − (dt/2) α(φ₀), so that a swing that
-        // starts moving keeps second-order accuracy (from ω₀ itself the impact speed of a start
-        // at −10°, −1 rad/s was off by 7e-4; now 1e-6). No contact acts at a swing start.
-        let alpha0 = -op.mass * g * op.com_distance * swing.angle.sin() / op.inertia_pivot;
-        let half_kick = if swing.starts_in_contact {
-            0.0
-        } else {
-            0.5 * scene.file.solver.swing_step_s * alpha0
-        };
-        let initial = HingeState {
-            angle: swing.angle,
-            rate: swing.rate - half_kick,
         };
         if swing.starts_in_contact {
             sim.phase = Phase::Contact;
             // Touching at t = 0: the onset is the start of the first step.
             sim.previous_gap = Some((0.0, 0.0));
         }
-        let robot_initial = (design == Design::Cj).then_some(HingeState {
-            angle: 0.0,
-            rate: 0.0,
-        });
-        sim.rapier.set_state(initial, robot_initial);
-        sim.stats.energy_initial = sim.energy(None);
+        // Rapier holds the synchronised start state; the first kick is a half step (h_prev = 0).
+        sim.rapier.set_state(operator, robot_initial);
+        sim.now = sim.synchronize(0.0);
+        sim.stats.energy_initial = sim.energy();
         sim.stats.energy = sim.stats.energy_initial;
-        sim.last = sim.reading(None);
+        sim.last = sim.reading();
         Ok(sim)
     }
 
@@ -328,19 +407,18 @@ impl<'s> Simulation<'s> {
         self.contact_step
     }
 
-    fn dome_kinematics(&self) -> flexrig_contact::BodyKinematics {
-        match &self.robot {
-            RobotSide::Rigid { .. } => self
-                .rapier
-                .robot_kinematics()
-                .expect("a rigid robot lives in Rapier"),
-            RobotSide::Beam(b) => b.tip_kinematics(),
+    /// The dome body's pose and velocity (rates from the synchronised state).
+    fn dome_kinematics(&self) -> BodyKinematics {
+        match (&self.robot, self.now.robot) {
+            (RobotSide::Beam(b), _) => b.tip_kinematics(),
+            (RobotSide::Rigid { .. }, Some((r, _))) => self.rapier.robot_kinematics_at(r),
+            (RobotSide::Rigid { .. }, None) => unreachable!("a rigid robot has a hinge state"),
         }
     }
 
-    fn evaluate_contact(&self) -> Option<ContactSample> {
-        self.contact
-            .evaluate(&self.dome_kinematics(), &self.rapier.operator_kinematics())
+    /// The block body's pose and velocity (rate from the synchronised state).
+    fn block_kinematics(&self) -> BodyKinematics {
+        self.rapier.operator_kinematics_at(self.now.operator)
     }
 
     fn gap(&self) -> f64 {
@@ -350,46 +428,115 @@ impl<'s> Simulation<'s> {
         )
     }
 
-    /// Total mechanical energy \[J\].
-    fn energy(&self, contact: Option<&ContactSample>) -> f64 {
+    /// Angular accelerations [rad/s²] of the operator and (CJ) the robot at hinge angles
+    /// `operator`, `robot` under gravity, the torsion spring and the contact `contact`.
+    fn accelerations(
+        &self,
+        operator: HingeState,
+        robot: Option<HingeState>,
+        contact: Option<&ContactSample>,
+    ) -> (f64, Option<f64>) {
         let op = &self.geometry.operator;
-        let s = self.rapier.operator_state();
+        let g = self.scene.file.gravity_mps2;
+        let mut torque = -op.mass * g * op.com_distance * operator.angle.sin();
+        if let Some(c) = contact {
+            torque += (c.point - op.pivot).cross(c.force_on_block()).x;
+        }
+        let robot_accel = match (&self.robot, robot) {
+            (RobotSide::Rigid { spring }, Some(r)) => {
+                let mut t = -spring * r.angle;
+                if let Some(c) = contact {
+                    t += c.point.cross(c.force_on_dome()).z;
+                }
+                Some(t / self.geometry.robot.inertia_axis)
+            }
+            _ => None,
+        };
+        (torque / op.inertia_pivot, robot_accel)
+    }
+
+    /// The synchronised state after a step of `h` (0 at the start, when Rapier's rates are
+    /// already synchronised): ω = ω_Rapier + (h/2) a(φ, contact), the contact evaluated with
+    /// those rates — a predictor–corrector pass for a damped law (δ̇ needs ω, ω needs f).
+    fn synchronize(&self, h: f64) -> Synced {
+        let lagging = (self.rapier.operator_state(), self.rapier.robot_state());
+        let at = |contact: Option<&ContactSample>| {
+            let (a_op, a_rob) = self.accelerations(lagging.0, lagging.1, contact);
+            let operator = HingeState {
+                angle: lagging.0.angle,
+                rate: lagging.0.rate + 0.5 * h * a_op,
+            };
+            let robot = lagging.1.zip(a_rob).map(|(r, a)| {
+                (
+                    HingeState {
+                        angle: r.angle,
+                        rate: r.rate + 0.5 * h * a,
+                    },
+                    a,
+                )
+            });
+            (operator, a_op, robot)
+        };
+        let evaluate = |operator: HingeState, robot: Option<(HingeState, f64)>| {
+            let dome = match (&self.robot, robot) {
+                (RobotSide::Beam(b), _) => b.tip_kinematics(),
+                (RobotSide::Rigid { .. }, Some((r, _))) => self.rapier.robot_kinematics_at(r),
+                (RobotSide::Rigid { .. }, None) => unreachable!("a rigid robot has a hinge state"),
+            };
+            self.contact
+                .evaluate(&dome, &self.rapier.operator_kinematics_at(operator))
+        };
+        // Predictor: the rates with the forces of the step's start; then twice with the
+        // contact at the synchronised rates.
+        let mut guess = at(self.now.contact.as_ref());
+        let mut contact = None;
+        for _ in 0..2 {
+            contact = evaluate(guess.0, guess.2);
+            guess = at(contact.as_ref());
+        }
+        let (operator, operator_accel, robot) = guess;
+        Synced {
+            operator,
+            operator_accel,
+            robot,
+            contact,
+        }
+    }
+
+    /// Total mechanical energy \[J\] at the synchronised state.
+    fn energy(&self) -> f64 {
+        let op = &self.geometry.operator;
+        let s = self.now.operator;
         let g = self.scene.file.gravity_mps2;
         let mut e = 0.5 * op.inertia_pivot * s.rate * s.rate
             + op.mass * g * op.com_distance * (1.0 - s.angle.cos());
-        e += match &self.robot {
-            RobotSide::Rigid { spring } => {
-                let r = self
-                    .rapier
-                    .robot_state()
-                    .expect("a rigid robot lives in Rapier");
+        e += match (&self.robot, self.now.robot) {
+            (RobotSide::Rigid { spring }, Some((r, _))) => {
                 0.5 * self.geometry.robot.inertia_axis * r.rate * r.rate
                     + 0.5 * spring * r.angle * r.angle
             }
-            RobotSide::Beam(b) => b.energy(),
+            (RobotSide::Beam(b), _) => b.energy(),
+            (RobotSide::Rigid { .. }, None) => unreachable!("a rigid robot has a hinge state"),
         };
-        if let Some(c) = contact {
+        if let Some(c) = &self.now.contact {
             e += self.contact.law().elastic_energy(c.indentation);
         }
         e
     }
 
-    fn reading(&self, contact: Option<&ContactSample>) -> Reading {
-        let op = self.rapier.operator_state();
+    fn reading(&self) -> Reading {
+        let op = self.now.operator;
         let l = self.geometry.operator.arm_length;
-        let (robot_angle, tip_deflection, load_velocity) = match &self.robot {
-            RobotSide::Rigid { .. } => {
-                let r = self
-                    .rapier
-                    .robot_state()
-                    .expect("a rigid robot lives in Rapier");
+        let (robot_angle, tip_deflection, load_velocity) = match (&self.robot, self.now.robot) {
+            (RobotSide::Rigid { .. }, Some((r, _))) => {
                 let len = self.geometry.robot.length;
                 (r.angle, len * r.angle.sin(), len * r.angle.cos() * r.rate)
             }
-            RobotSide::Beam(b) => {
+            (RobotSide::Beam(b), _) => {
                 let (v, vdot, _) = b.tip_transverse();
                 (0.0, v, vdot)
             }
+            (RobotSide::Rigid { .. }, None) => unreachable!("a rigid robot has a hinge state"),
         };
         Reading {
             t: self.t,
@@ -398,7 +545,7 @@ impl<'s> Simulation<'s> {
             tip_deflection,
             operator_velocity: l * op.angle.cos() * op.rate,
             load_velocity,
-            force: contact.map_or(0.0, |c| c.force),
+            force: self.now.contact.map_or(0.0, |c| c.force),
         }
     }
 
@@ -441,145 +588,195 @@ impl<'s> Simulation<'s> {
         }
     }
 
-    /// One step of the pipeline: check → contact → loads → integrate → events → sensors.
+    /// The torques that turn Rapier's next step of `h` into a velocity-Verlet step from the
+    /// synchronised state: J a_n (h_prev + h)/(2h), less the gravity Rapier adds itself.
+    fn kick_torques(&self, h: f64) -> (f64, f64) {
+        let op = &self.geometry.operator;
+        let scale = (self.h_prev + h) / (2.0 * h);
+        let gravity = -op.mass
+            * self.scene.file.gravity_mps2
+            * op.com_distance
+            * self.now.operator.angle.sin();
+        let operator = op.inertia_pivot * self.now.operator_accel * scale - gravity;
+        let robot = self
+            .now
+            .robot
+            .map_or(0.0, |(_, a)| self.geometry.robot.inertia_axis * a * scale);
+        (operator, robot)
+    }
+
+    /// One step of the pipeline: loads → integrate → synchronise → events → check → sensors.
     pub fn step(&mut self, recorder: &mut dyn Recorder) -> Result<StepOutcome, RigError> {
         let dt = self.next_step();
-        // Contact force at the start of the step, held over it (explicit coupling).
-        let contact = self.evaluate_contact();
-        let spring_torque = match &self.robot {
-            RobotSide::Rigid { spring } => {
-                -spring * self.rapier.robot_state().expect("rigid robot").angle
-            }
-            RobotSide::Beam(_) => 0.0,
-        };
-        // For the beam, the contact at the end of the step: the operator's end state is exactly
-        // what Rapier's symplectic Euler will produce, the tip's is predicted to second order.
-        let contact_at_end = match &self.robot {
-            RobotSide::Beam(b) => {
-                let op_end = self.operator_state_after(dt, contact.as_ref());
-                self.contact.evaluate(
-                    &b.predicted_tip_kinematics(dt),
-                    &self.rapier.operator_kinematics_at(op_end),
-                )
-            }
-            RobotSide::Rigid { .. } => None,
-        };
-        self.rapier.apply_loads(contact.as_ref(), spring_torque);
+        let start = (self.now, self.dome_kinematics(), self.block_kinematics());
+        // Loads: the forces at t_n (the contact of the synchronised state) as kicks.
+        let (operator_torque, robot_torque) = self.kick_torques(dt);
+        self.rapier.apply_torques(operator_torque, robot_torque);
+        // Integrate: Rapier (explicit), then the beam with the contact implicit at t_n + dt.
         self.rapier.step(dt);
         if let RobotSide::Beam(b) = &mut self.robot {
-            b.step(dt, contact_at_end.as_ref())?;
+            let mut tip_contact = TipContact {
+                contact: &self.contact,
+                rapier: &self.rapier,
+                operator: HingeMotion {
+                    t0: self.t,
+                    start: start.0.operator,
+                    accel: start.0.operator_accel,
+                },
+                tip_x: b.model().length(),
+                tip: b.tip_node(),
+            };
+            if let Err(e) = b.step(dt, &mut tip_contact) {
+                return Err(self.beam_failure(e));
+            }
         }
         self.t += dt;
+        self.h_prev = dt;
         self.stats.steps += 1;
-        if let Some(c) = &contact {
-            self.stats.impulse += c.force * dt;
-        }
-
-        let after = self.evaluate_contact();
-        let outcome = self.classify(after.as_ref(), dt);
-        let energy = self.energy(after.as_ref());
+        // Synchronise: rates and contact at t_{n+1}.
+        self.now = self.synchronize(dt);
+        // Events.
+        let outcome = self.classify(&start, dt);
+        let energy = self.energy();
         self.check_health(energy)?;
-        match outcome {
-            // The energy at the start of the onset step, when nothing touched yet.
-            StepOutcome::ContactOnset => self.stats.energy_onset = Some(self.stats.energy),
-            StepOutcome::Separation if self.stats.energy_separation.is_none() => {
-                self.stats.energy_separation = Some(energy)
-            }
-            _ => {}
-        }
         self.stats.energy = energy;
-
-        let reading = self.reading(after.as_ref());
+        // Sensors and the recorder.
+        let reading = self.reading();
         let sampled_before = self.sampler.samples().len();
         self.sampler.record_step(&self.last, &reading);
         self.last = reading;
-
         let operator_pose = self.rapier.operator_kinematics().pose;
         let dome_body_pose = self.dome_kinematics().pose;
-        let (robot_state, beam) = match &self.robot {
-            RobotSide::Rigid { .. } => (self.rapier.robot_state(), None),
-            RobotSide::Beam(b) => (None, Some(b.as_ref())),
+        let beam = match &self.robot {
+            RobotSide::Rigid { .. } => None,
+            RobotSide::Beam(b) => Some(b.as_ref()),
         };
         recorder.frame(&Frame {
             t: self.t,
             dt,
             outcome,
-            operator: self.rapier.operator_state(),
-            robot: robot_state,
+            operator: self.now.operator,
+            robot: self.now.robot.map(|(r, _)| r),
             operator_pose,
             dome_body_pose,
             beam,
-            contact: after,
+            contact: self.now.contact,
             energy,
             samples: &self.sampler.samples()[sampled_before..],
         })?;
         Ok(outcome)
     }
 
-    /// The operator's hinge state after a symplectic Euler step of `dt` with the contact force
-    /// `contact` and gravity: ω' = ω + dt (τ_contact + τ_gravity)/J, φ' = φ + dt ω'.
-    fn operator_state_after(&self, dt: f64, contact: Option<&ContactSample>) -> HingeState {
-        let op = &self.geometry.operator;
-        let s = self.rapier.operator_state();
-        let mut torque = -op.mass * self.scene.file.gravity_mps2 * op.com_distance * s.angle.sin();
-        if let Some(c) = contact {
-            torque += (c.point - op.pivot).cross(c.force_on_block()).x;
-        }
-        let rate = s.rate + dt * torque / op.inertia_pivot;
-        HingeState {
-            angle: s.angle + dt * rate,
-            rate,
+    /// A failed beam step as the user meets it: what failed, when, and which scene field to
+    /// change.
+    fn beam_failure(&self, e: RigError) -> RigError {
+        match e {
+            RigError::Beam(cause) if !cause.is_input_error() => RigError::Unstable {
+                t: self.t,
+                quantity: "the compliant link (beam step)".into(),
+                reason: format!("failed: {cause}"),
+                suggestion: self.step_advice(),
+            },
+            e => e,
         }
     }
 
-    /// Updates the contact statistics and names the event of the step.
-    fn classify(&mut self, after: Option<&ContactSample>, dt: f64) -> StepOutcome {
-        match (self.stats.onset_time, after) {
+    /// What to change in the scene when a step fails: the setting of the current phase, named
+    /// as in the scene file, with the direction that makes the step smaller.
+    fn step_advice(&self) -> String {
+        let solver = &self.scene.file.solver;
+        if self.phase == Phase::Contact {
+            format!(
+                "a larger solver.contact_steps (now {}; more steps per contact, a smaller step)",
+                solver.contact_steps
+            )
+        } else {
+            format!(
+                "a smaller solver.swing_step_s (now {:e} s)",
+                solver.swing_step_s
+            )
+        }
+    }
+
+    /// Relative normal velocity [m/s] of the dome against the block at the contact point and
+    /// normal of `c`, for the given kinematics (positive when approaching).
+    fn normal_rate(dome: &BodyKinematics, block: &BodyKinematics, c: &ContactSample) -> f64 {
+        (dome.velocity_at(c.point) - block.velocity_at(c.point)).dot(c.normal)
+    }
+
+    /// Updates the contact statistics and names the event of the step; `start` is the
+    /// synchronised state and the kinematics at the start of the step.
+    fn classify(
+        &mut self,
+        start: &(Synced, BodyKinematics, BodyKinematics),
+        dt: f64,
+    ) -> StepOutcome {
+        let (before, dome0, block0) = start;
+        let after = self.now.contact;
+        // The impulse of the step as the integrator applies it: trapezoidal.
+        let force0 = before.contact.map_or(0.0, |c| c.force);
+        let impulse = 0.5 * dt * (force0 + after.map_or(0.0, |c| c.force));
+        match (self.stats.open.as_mut(), after) {
             (None, Some(c)) => {
-                // Onset inside this step: interpolate on the gap (was ≥ 0, now −δ).
+                // Onset inside this step: interpolate on the gap (was ≥ 0, now −δ), and the
+                // normal approach speed between the step's ends to the same instant.
                 let frac = self
                     .previous_gap_at_step_start()
                     .map_or(1.0, |g0| g0 / (g0 + c.indentation));
-                self.stats.onset_time = Some(self.t - dt + frac * dt);
-                self.stats.impact_velocity = c.rate;
+                let rate0 = self
+                    .contact
+                    .approach(dome0, block0)
+                    .map_or(c.rate, |(_, rate)| rate);
+                let mut open = OpenContact {
+                    onset_time: self.t - dt + frac * dt,
+                    impact_velocity: rate0 + frac * (c.rate - rate0),
+                    energy_before: self.stats.energy,
+                    force_history: [(0.0, 0.0); 3],
+                    peak: None,
+                    max_indentation: 0.0,
+                    impulse,
+                    last_indentation: 0.0,
+                    last: c,
+                };
+                open.note(self.t, &c);
+                self.stats.open = Some(open);
+                self.stats.contact_steps += 1;
                 self.phase = Phase::Contact;
-                self.note_contact(c);
                 StepOutcome::ContactOnset
             }
-            (Some(_), Some(c)) => {
-                self.note_contact(c);
-                let [(_, f0), (_, f1), (_, f2)] = self.force_history;
-                if self.stats.peak.is_none() && f2 < f1 && f1 >= f0 && f1 > 0.0 {
-                    self.stats.peak = Some(parabola_vertex(self.force_history));
-                    return StepOutcome::Peak;
+            (Some(open), Some(c)) => {
+                open.impulse += impulse;
+                open.note(self.t, &c);
+                self.stats.contact_steps += 1;
+                let [(_, f0), (_, f1), (_, f2)] = open.force_history;
+                if open.peak.is_none() && f2 < f1 && f1 >= f0 && f1 > 0.0 {
+                    open.peak = Some(parabola_vertex(open.force_history));
+                    if self.stats.contacts.is_empty() {
+                        return StepOutcome::Peak;
+                    }
                 }
                 StepOutcome::Advanced
             }
-            (Some(_), None) if self.phase == Phase::Contact => {
+            (Some(_), None) => {
+                let mut open = self.stats.open.take().expect("matched Some");
+                open.impulse += impulse;
                 let gap = self.gap().max(0.0);
-                let d0 = self.stats.last_indentation;
+                let d0 = open.last_indentation;
                 let frac = if d0 + gap > 0.0 { d0 / (d0 + gap) } else { 1.0 };
-                // The summary describes the first contact; later ones (a duration run) only
-                // add to the impulse and the step counts.
-                if self.stats.separation_time.is_some() {
-                    self.phase = Phase::After;
-                    self.previous_gap = None;
-                    return StepOutcome::Separation;
-                }
-                self.stats.separation_time = Some(self.t - dt + frac * dt);
+                let separation = self.t - dt + frac * dt;
                 // Relative normal velocity at the last contact point, positive when parting.
-                if let Some(c) = self.stats.last_contact {
-                    let dome = self.dome_kinematics();
-                    let block = self.rapier.operator_kinematics();
-                    self.stats.separation_velocity = Some(
-                        -(dome.velocity_at(c.point) - block.velocity_at(c.point)).dot(c.normal),
-                    );
-                }
+                let parting = -Self::normal_rate(
+                    &self.dome_kinematics(),
+                    &self.block_kinematics(),
+                    &open.last,
+                );
+                let event = open.event(Some((separation, parting, self.energy())));
+                self.stats.contacts.push(event);
                 self.phase = Phase::After;
                 self.previous_gap = None;
                 StepOutcome::Separation
             }
-            _ => StepOutcome::Advanced,
+            (None, None) => StepOutcome::Advanced,
         }
     }
 
@@ -587,38 +784,15 @@ impl<'s> Simulation<'s> {
         self.previous_gap.map(|(_, g)| g.max(0.0))
     }
 
-    fn note_contact(&mut self, c: &ContactSample) {
-        self.stats.contact_steps += 1;
-        self.stats.max_indentation = self.stats.max_indentation.max(c.indentation);
-        self.stats.last_indentation = c.indentation;
-        self.stats.last_contact = Some(*c);
-        self.force_history = [
-            self.force_history[1],
-            self.force_history[2],
-            (self.t, c.force),
-        ];
-    }
-
-    /// Stops on a non-finite state or on energy growth beyond the limit.
+    /// Stops on a non-finite state or on growth of the (synchronised) energy beyond the limit.
     fn check_health(&self, energy: f64) -> Result<(), RigError> {
-        let op = self.rapier.operator_state();
-        let suggestion = if self.phase == Phase::Contact {
-            format!(
-                "solver.contact_steps (more than {})",
-                self.scene.file.solver.contact_steps
-            )
-        } else {
-            format!(
-                "solver.swing_step_s (below {:e} s)",
-                self.scene.file.solver.swing_step_s
-            )
-        };
+        let op = self.now.operator;
         if !(op.angle.is_finite() && op.rate.is_finite() && energy.is_finite()) {
             return Err(RigError::Unstable {
                 t: self.t,
                 quantity: "the state".into(),
                 reason: "became non-finite".into(),
-                suggestion,
+                suggestion: self.step_advice(),
             });
         }
         let e0 = self.stats.energy_initial;
@@ -630,7 +804,7 @@ impl<'s> Simulation<'s> {
                     "grew from {e0:.6e} J to {energy:.6e} J (more than {:.0} %)",
                     100.0 * self.options.energy_growth_limit
                 ),
-                suggestion,
+                suggestion: self.step_advice(),
             });
         }
         Ok(())
@@ -657,7 +831,8 @@ impl<'s> Simulation<'s> {
                 break;
             }
             if let StopSpec::Peak | StopSpec::Separation = stop
-                && self.stats.onset_time.is_none()
+                && self.stats.contacts.is_empty()
+                && self.stats.open.is_none()
                 && self.t > 60.0
             {
                 return Err(RigError::NotReached {
@@ -666,31 +841,41 @@ impl<'s> Simulation<'s> {
                 });
             }
         }
-        let (time_of_peak, peak_force) = self.stats.peak.unwrap_or_else(|| {
-            let (t, f) = self.force_history[2];
-            (t, f)
-        });
+        let mut contacts = std::mem::take(&mut self.stats.contacts);
+        if let Some(open) = &self.stats.open {
+            contacts.push(open.event(None));
+        }
+        let Some(first) = contacts.first().copied() else {
+            return Err(RigError::NotReached {
+                what: "the first contact".into(),
+                limit: format!(
+                    "stop.duration_s = {} s (the run ended at t = {:.6e} s)",
+                    match stop {
+                        StopSpec::Duration { duration_s } => duration_s,
+                        _ => self.t,
+                    },
+                    self.t
+                ),
+            });
+        };
         Ok(RunSummary {
             scene: self.scene.file.name.clone(),
             design: self.scene.file.robot.design,
-            peak_force_n: peak_force,
-            time_of_peak_s: time_of_peak,
-            impact_velocity_mps: self.stats.impact_velocity,
-            separation_velocity_mps: self.stats.separation_velocity,
-            onset_time_s: self.stats.onset_time.unwrap_or(f64::NAN),
-            contact_duration_s: self
-                .stats
-                .separation_time
-                .zip(self.stats.onset_time)
-                .map(|(s, o)| s - o),
-            max_indentation_m: self.stats.max_indentation,
-            impulse_n_s: self.stats.impulse,
+            peak_force_n: first.peak_force_n,
+            time_of_peak_s: first.time_of_peak_s,
+            impact_velocity_mps: first.impact_velocity_mps,
+            separation_velocity_mps: first.separation_velocity_mps,
+            onset_time_s: first.onset_time_s,
+            contact_duration_s: first.duration_s,
+            max_indentation_m: first.max_indentation_m,
+            impulse_n_s: first.impulse_n_s,
             steps: self.stats.steps,
             contact_steps: self.stats.contact_steps,
             contact_step_s: self.contact_step,
             energy_initial_j: self.stats.energy_initial,
             energy_final_j: self.stats.energy,
-            energy_through_contact_j: self.stats.energy_onset.zip(self.stats.energy_separation),
+            energy_through_contact_j: first.energy_after_j.map(|e| (first.energy_before_j, e)),
+            contacts,
             duration_s: self.t,
             samples: self.sampler.into_samples(),
         })

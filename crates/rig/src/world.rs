@@ -5,8 +5,8 @@
 //! bodies, which gains energy), no CCD, no sleeping, exact masses (no colliders; explicit mass
 //! properties), the spring torque applied by us each step.
 
+use flexrig_contact::BodyKinematics;
 use flexrig_contact::math::{Pose, Vector};
-use flexrig_contact::{BodyKinematics, ContactSample};
 use rapier3d_f64::glamx::DQuat;
 use rapier3d_f64::parry::mass_properties::MassProperties;
 use rapier3d_f64::prelude::{
@@ -191,28 +191,34 @@ impl RapierRig {
         Self::kinematics_at(&self.operator, s)
     }
 
+    /// Pose and velocity the robot body would have in the hinge state `s` (CJ only; the robot
+    /// axis).
+    pub fn robot_kinematics_at(&self, s: HingeState) -> BodyKinematics {
+        let hinge = self.robot.unwrap_or(Hinge {
+            body: self.operator.body,
+            joint: self.operator.joint,
+            axis: Vector::Z,
+            pivot: Vector::ZERO,
+        });
+        Self::kinematics_at(&hinge, s)
+    }
+
     /// Pose and velocity of the robot body (frame origin on the axis), CJ only.
     pub fn robot_kinematics(&self) -> Option<BodyKinematics> {
         self.robot.as_ref().map(|h| self.kinematics(h))
     }
 
-    /// Clears last step's forces, then applies the contact force (on the block: the operator;
-    /// on the dome: the robot, CJ only) at the contact point and the spring torque
-    /// `robot_torque` [N·m] about the robot axis.
-    pub fn apply_loads(&mut self, contact: Option<&ContactSample>, robot_torque: f64) {
-        let op = &mut self.world.bodies[self.operator.body];
-        op.reset_forces(false);
-        op.reset_torques(false);
-        if let Some(c) = contact {
-            op.add_force_at_point(c.force_on_block(), c.point, false);
-        }
-        if let Some(h) = self.robot {
-            let rb = &mut self.world.bodies[h.body];
-            rb.reset_forces(false);
-            rb.reset_torques(false);
-            rb.add_torque(h.axis * robot_torque, false);
-            if let Some(c) = contact {
-                rb.add_force_at_point(c.force_on_dome(), c.point, false);
+    /// Clears last step's forces, then applies the torques `operator_torque` about the operator's
+    /// pivot axis and `robot_torque` about the robot axis (CJ) [N·m], held over the next step
+    /// (Rapier adds gravity itself).
+    pub fn apply_torques(&mut self, operator_torque: f64, robot_torque: f64) {
+        let hinges = [Some(self.operator), self.robot];
+        for (hinge, torque) in hinges.into_iter().zip([operator_torque, robot_torque]) {
+            if let Some(h) = hinge {
+                let body = &mut self.world.bodies[h.body];
+                body.reset_forces(false);
+                body.reset_torques(false);
+                body.add_torque(h.axis * torque, false);
             }
         }
     }
