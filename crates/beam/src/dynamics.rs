@@ -687,7 +687,7 @@ impl GeneralizedAlpha {
             ));
         }
         // The motion-dependent load at the accepted state (for the work done on the beam).
-        let node_force = node_load.as_deref_mut().map(|nl| {
+        let node_force = node_load.map(|nl| {
             let k = 3 * nl.node();
             let f = nl.evaluate(t_new, node_dofs(&ws.q_new, k), node_dofs(&ws.v_new, k));
             (k, f.force)

@@ -279,7 +279,7 @@ impl GeneralizedAlpha {
         state: &mut ReducedState,
         h: f64,
         loads: &NodalLoads,
-        mut node_load: Option<&mut dyn NodeLoad>,
+        node_load: Option<&mut dyn NodeLoad>,
     ) -> Result<(), BeamError> {
         if !(h.is_finite() && h > 0.0) {
             return Err(BeamError::invalid("time step", h, "a finite number > 0"));
@@ -326,7 +326,7 @@ impl GeneralizedAlpha {
             lhs[i] = (1.0 - am) / (1.0 - af) + c * g * h + w2 * b * h * h;
             rhs[i] = forces[i] - (am * ah - af * a) / (1.0 - af) - c * v_base[i] - w2 * q_base[i];
         }
-        let x = match node_load.as_deref_mut() {
+        let x = match node_load {
             None => (0..r).map(|i| rhs[i] / lhs[i]).collect(),
             Some(nl) => {
                 let coupled = Coupled {
