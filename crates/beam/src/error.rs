@@ -86,12 +86,27 @@ impl BeamError {
     }
 }
 
+/// A number as an error message should quote it: exponent form for very small or large
+/// magnitudes.
+pub(crate) fn display(value: f64) -> String {
+    let a = value.abs();
+    if a != 0.0 && a.is_finite() && !(1e-4..1e6).contains(&a) {
+        format!("{value:e}")
+    } else {
+        format!("{value}")
+    }
+}
+
 /// Checks that `value` is finite and > 0.
 pub(crate) fn positive(field: &str, value: f64) -> Result<f64, BeamError> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(BeamError::invalid(field, value, "a finite number > 0"))
+        Err(BeamError::invalid(
+            field,
+            display(value),
+            "a finite number > 0",
+        ))
     }
 }
 
@@ -100,7 +115,11 @@ pub(crate) fn non_negative(field: &str, value: f64) -> Result<f64, BeamError> {
     if value.is_finite() && value >= 0.0 {
         Ok(value)
     } else {
-        Err(BeamError::invalid(field, value, "a finite number ≥ 0"))
+        Err(BeamError::invalid(
+            field,
+            display(value),
+            "a finite number ≥ 0",
+        ))
     }
 }
 
@@ -109,6 +128,6 @@ pub(crate) fn finite(field: &str, value: f64) -> Result<f64, BeamError> {
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(BeamError::invalid(field, value, "a finite number"))
+        Err(BeamError::invalid(field, display(value), "a finite number"))
     }
 }

@@ -4,10 +4,21 @@
 
 use crate::ContactError;
 
+/// A number as an error message should quote it: plain for ordinary magnitudes, in exponent
+/// form for very small or large ones (1e-300 must not print as 300 digits).
+pub fn display(value: f64) -> String {
+    let a = value.abs();
+    if a != 0.0 && a.is_finite() && !(1e-4..1e6).contains(&a) {
+        format!("{value:e}")
+    } else {
+        format!("{value}")
+    }
+}
+
 fn invalid(field: &str, value: f64, allowed: &str) -> ContactError {
     ContactError::InvalidParameter {
         field: field.to_string(),
-        value: format!("{value}"),
+        value: display(value),
         allowed: allowed.to_string(),
     }
 }

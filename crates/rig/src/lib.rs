@@ -23,6 +23,7 @@ pub mod canonical;
 pub mod coupling;
 mod error;
 pub mod geometry;
+pub mod limits;
 pub mod run;
 pub mod scene;
 pub mod sensors;
@@ -31,7 +32,7 @@ pub mod world;
 pub use beam_link::{BeamLink, LinkVariant};
 pub use error::RigError;
 pub use run::{
-    ContactEvent, Frame, NoRecorder, Recorder, RunOptions, RunSummary, Simulation, StepOutcome,
-    run_scene_text,
+    ContactEvent, Frame, Interruptible, NoRecorder, Recorder, RunOptions, RunSummary, Simulation,
+    StepOutcome, run_scene_text,
 };
 pub use scene::{BeamSolverSpec, Design, Scene, SceneFile};

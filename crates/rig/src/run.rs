@@ -91,15 +91,32 @@ pub struct ContactEvent {
     /// Impulse of the contact force ∫ f dt [N·s] (trapezoidal, as the integrator applies it).
     pub impulse_n_s: f64,
     /// Contact duration \[s\] (interpolated at both ends); `None` if the run stopped in contact.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub duration_s: Option<f64>,
     /// Relative normal velocity at separation [m/s] (positive when parting); `None` if the run
     /// stopped in contact.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub separation_velocity_mps: Option<f64>,
     /// Mechanical energy just before the onset step \[J\].
     pub energy_before_j: f64,
     /// Mechanical energy at the end of the separation step \[J\]; equal to `energy_before_j` for
     /// an undamped contact up to the integration error.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub energy_after_j: Option<f64>,
+}
+
+/// A recorder that keeps nothing and stops the run (with [`RigError::Interrupted`]) at the
+/// first step after its flag is set, e.g. by a Ctrl-C handler.
+#[derive(Debug, Clone, Default)]
+pub struct Interruptible(pub std::sync::Arc<std::sync::atomic::AtomicBool>);
+
+impl Recorder for Interruptible {
+    fn frame(&mut self, frame: &Frame<'_>) -> Result<(), RigError> {
+        if self.0.load(std::sync::atomic::Ordering::Relaxed) {
+            return Err(RigError::Interrupted { t: frame.t });
+        }
+        Ok(())
+    }
 }
 
 /// Result of a run. The top-level contact quantities are those of the first contact; `contacts`
@@ -118,11 +135,13 @@ pub struct RunSummary {
     pub impact_velocity_mps: f64,
     /// Relative normal velocity at separation [m/s] (positive when parting); the coefficient of
     /// restitution is its ratio to `impact_velocity_mps`.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub separation_velocity_mps: Option<f64>,
     /// Time of contact onset \[s\] (interpolated within the onset step).
     pub onset_time_s: f64,
     /// Contact duration \[s\] (interpolated at both ends); `None` if the run stopped before
     /// separation.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub contact_duration_s: Option<f64>,
     /// Largest indentation \[m\].
     pub max_indentation_m: f64,
@@ -140,6 +159,7 @@ pub struct RunSummary {
     pub energy_final_j: f64,
     /// Mechanical energy just before the first contact and just after its separation \[J\];
     /// equal for an undamped contact up to the integration error.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub energy_through_contact_j: Option<(f64, f64)>,
     /// Every contact of the run, in order (the first is the one of the top-level keys).
     pub contacts: Vec<ContactEvent>,

@@ -4,13 +4,13 @@
 //! materials file and derives every physical quantity once ([`Scene`] is immutable). Errors name
 //! the field path (`robot.thickness_m`), the value and what is allowed.
 
-use flexrig_contact::validate::{non_negative, positive};
 use flexrig_contact::{AdamsImpact, ContactLaw, DampedHertz, Hertz, Materials};
 use serde::{Deserialize, Serialize};
 
 use crate::RigError;
 use crate::error::invalid;
 use crate::geometry::rate_at_bottom;
+use crate::limits;
 
 /// Compliant joint (rigid link on a torsion spring) or compliant link (flexible beam).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -318,18 +318,19 @@ impl Scene {
     /// Parses a scene from TOML text and validates it.
     pub fn from_toml_str(text: &str, materials: &Materials) -> Result<Self, RigError> {
         let file: SceneFile =
-            toml::from_str(text).map_err(|e| RigError::SceneSyntax(e.to_string()))?;
+            toml::from_str(text).map_err(|e| RigError::SceneSyntax(syntax_message(text, &e)))?;
         Self::from_file(file, materials)
     }
 
-    /// Validates a parsed scene.
+    /// Validates a parsed scene: every quantity in its physical range ([`crate::limits`]), then
+    /// the run's work budget.
     pub fn from_file(file: SceneFile, materials: &Materials) -> Result<Self, RigError> {
-        positive("gravity_mps2", file.gravity_mps2)?;
+        limits::GRAVITY.check("gravity_mps2", file.gravity_mps2)?;
         let op = &file.operator;
-        positive("operator.arm_length_m", op.arm_length_m)?;
-        non_negative("operator.arm_mass_kg", op.arm_mass_kg)?;
+        limits::LENGTH.check("operator.arm_length_m", op.arm_length_m)?;
+        limits::ARM_MASS.check("operator.arm_mass_kg", op.arm_mass_kg)?;
         for (i, axis) in ["x", "y", "z"].iter().enumerate() {
-            positive(&format!("operator.block_size_m.{axis}"), op.block_size_m[i])?;
+            limits::SIZE.check(&format!("operator.block_size_m.{axis}"), op.block_size_m[i])?;
         }
         match op.start {
             Start::Release {
@@ -357,7 +358,7 @@ impl Scene {
                         "must lie in [-170, 0) degrees (the block before the dome)",
                     ));
                 }
-                flexrig_contact::validate::finite(
+                limits::ANGULAR_VELOCITY.check(
                     "operator.start.angular_velocity_rad_s",
                     angular_velocity_rad_s,
                 )?;
@@ -379,7 +380,7 @@ impl Scene {
             )
         })?;
         let block_mass_kg = match op.block_mass_kg {
-            Some(m) => positive("operator.block_mass_kg", m)?,
+            Some(m) => limits::BLOCK_MASS.check("operator.block_mass_kg", m)?,
             None => material.block_mass_kg,
         };
         if op.block_size_m[2] * 0.5 >= op.arm_length_m {
@@ -391,31 +392,25 @@ impl Scene {
         }
 
         let r = &file.robot;
-        positive("robot.length_m", r.length_m)?;
-        positive("robot.width_m", r.width_m)?;
-        positive("robot.thickness_m", r.thickness_m)?;
-        positive("robot.youngs_modulus_pa", r.youngs_modulus_pa)?;
-        positive("robot.density_kg_m3", r.density_kg_m3)?;
-        non_negative("robot.payload_kg", r.payload_kg)?;
-        positive("robot.dome_radius_m", r.dome_radius_m)?;
-        positive("robot.dome_standoff_m", r.dome_standoff_m)?;
-        if r.beam_elements == 0 || r.beam_elements > 4096 {
-            return Err(invalid(
-                "robot.beam_elements",
-                r.beam_elements,
-                "must lie in [1, 4096]",
-            ));
-        }
+        limits::LENGTH.check("robot.length_m", r.length_m)?;
+        limits::WIDTH.check("robot.width_m", r.width_m)?;
+        limits::THICKNESS.check("robot.thickness_m", r.thickness_m)?;
+        limits::YOUNGS_MODULUS.check("robot.youngs_modulus_pa", r.youngs_modulus_pa)?;
+        limits::DENSITY.check("robot.density_kg_m3", r.density_kg_m3)?;
+        limits::PAYLOAD.check("robot.payload_kg", r.payload_kg)?;
+        limits::SIZE.check("robot.dome_radius_m", r.dome_radius_m)?;
+        limits::SIZE.check("robot.dome_standoff_m", r.dome_standoff_m)?;
+        limits::check_beam_mesh(r.beam_elements, file.solver.beam)?;
         let link_mass_kg = r.density_kg_m3 * r.width_m * r.thickness_m * r.length_m;
         let link_ei = r.youngs_modulus_pa * r.width_m * r.thickness_m.powi(3) / 12.0;
         let torsion_spring = match r.torsion_spring_nm_per_rad {
-            Some(k) => positive("robot.torsion_spring_nm_per_rad", k)?,
+            Some(k) => limits::TORSION_SPRING.check("robot.torsion_spring_nm_per_rad", k)?,
             None => 3.0 * link_ei / r.length_m,
         };
 
         let c = &file.contact;
         let k = match c.k {
-            Some(k) => positive("contact.k", k)?,
+            Some(k) => limits::CONTACT_K.check("contact.k", k)?,
             None => material.hertz.k(),
         };
         let n = c.n.unwrap_or(material.hertz.n());
@@ -436,27 +431,19 @@ impl Scene {
                 c_max_n_s_per_m,
                 depth_m,
             } => {
-                non_negative("contact.damping.c_max_n_s_per_m", c_max_n_s_per_m)?;
-                positive("contact.damping.depth_m", depth_m)?;
+                limits::DAMPING_C_MAX.check("contact.damping.c_max_n_s_per_m", c_max_n_s_per_m)?;
+                limits::DAMPING_DEPTH.check("contact.damping.depth_m", depth_m)?;
             }
         }
 
         let s = &file.solver;
-        positive("solver.swing_step_s", s.swing_step_s)?;
-        if s.contact_steps < 4 {
-            return Err(invalid(
-                "solver.contact_steps",
-                s.contact_steps,
-                "must be at least 4",
-            ));
-        }
-        if s.max_steps == 0 {
-            return Err(invalid(
-                "solver.max_steps",
-                s.max_steps,
-                "must be at least 1",
-            ));
-        }
+        limits::SWING_STEP.check("solver.swing_step_s", s.swing_step_s)?;
+        limits::check_count(
+            "solver.contact_steps",
+            s.contact_steps,
+            limits::CONTACT_STEPS,
+        )?;
+        limits::check_count("solver.max_steps", s.max_steps, limits::MAX_STEPS)?;
         if let BeamSolverSpec::Modal { modes } = s.beam {
             let dofs = 3 * file.robot.beam_elements;
             if modes == 0 || modes > dofs {
@@ -468,18 +455,20 @@ impl Scene {
             }
         }
         if let StopSpec::Duration { duration_s } = file.stop {
-            positive("stop.duration_s", duration_s)?;
+            limits::DURATION.check("stop.duration_s", duration_s)?;
         }
-        positive("record.sample_rate_hz", file.record.sample_rate_hz)?;
+        limits::SAMPLE_RATE.check("record.sample_rate_hz", file.record.sample_rate_hz)?;
 
-        Ok(Scene {
+        let scene = Scene {
             block_mass_kg,
             hertz,
             link_mass_kg,
             link_ei,
             torsion_spring,
             file,
-        })
+        };
+        limits::check_budget(&scene)?;
+        Ok(scene)
     }
 
     /// The contact law for an impact at approach speed `v0` [m/s] (damping models need it).
@@ -503,4 +492,46 @@ impl Scene {
             )?),
         })
     }
+}
+
+/// Most characters of the offending line quoted in a syntax error.
+const QUOTE_LIMIT: usize = 200;
+
+/// A TOML error as the user should see it: line and column, the parser's message, and at most
+/// [`QUOTE_LIMIT`] characters of the line around the error (a 10 MB field must not come back
+/// as 20 MB of error text).
+fn syntax_message(text: &str, e: &toml::de::Error) -> String {
+    let message = e.message().trim();
+    let Some(span) = e.span() else {
+        return format!("{message} (position unknown)");
+    };
+    let start = span.start.min(text.len());
+    let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+    let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
+    let line_number = text[..start].matches('\n').count() + 1;
+    let column = text[line_start..start].chars().count() + 1;
+    let line = &text[line_start..line_end];
+    let before: Vec<char> = text[line_start..start].chars().collect();
+    let after: Vec<char> = text[start..line_end].chars().collect();
+    let quote = if line.chars().count() <= QUOTE_LIMIT {
+        line.to_string()
+    } else {
+        let head = QUOTE_LIMIT / 2;
+        let from = before.len().saturating_sub(head);
+        let left: String = before[from..].iter().collect();
+        let right: String = after
+            .iter()
+            .take(QUOTE_LIMIT - (before.len() - from))
+            .collect();
+        format!(
+            "{}{left}{right}{}",
+            if from > 0 { "…" } else { "" },
+            if after.len() > QUOTE_LIMIT - (before.len() - from) {
+                "…"
+            } else {
+                ""
+            }
+        )
+    };
+    format!("line {line_number}, column {column}: {message}\n    {quote}")
 }

@@ -61,9 +61,11 @@ pub enum CliError {
 }
 
 impl CliError {
-    /// Process exit code: 2 for bad input (arguments, parameters, data files), 1 otherwise.
+    /// Process exit code: 2 for bad input (arguments, parameters, data files), 130 for a run
+    /// stopped by Ctrl-C (the shell's code for SIGINT), 1 otherwise.
     pub fn exit_code(&self) -> i32 {
         match self {
+            CliError::Rig(flexrig_rig::RigError::Interrupted { .. }) => 130,
             CliError::InvalidArgument { .. } | CliError::Read { .. } => 2,
             CliError::Contact(e) if e.is_input_error() => 2,
             CliError::Lumped(e) if e.is_input_error() => 2,

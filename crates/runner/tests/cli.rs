@@ -335,20 +335,65 @@ fn scene_path(name: &str) -> String {
     )
 }
 
+/// The JSON keys docs/cli.md promises for `flexrig run --json`: the backquoted names of its
+/// "JSON keys" paragraph, split into the top level and those of each `contacts` entry (the
+/// parenthesis after `contacts`).
+fn documented_run_keys() -> (Vec<String>, Vec<String>) {
+    let doc = std::fs::read_to_string(format!("{}/../../docs/cli.md", env!("CARGO_MANIFEST_DIR")))
+        .unwrap();
+    let section = &doc[doc.find("## flexrig run").expect("a run section")..];
+    let para = &section[section.find("JSON keys").expect("a key list")..];
+    let para = &para[..para.find("\n\n").unwrap_or(para.len())];
+    let names = |text: &str| -> Vec<String> {
+        text.split('`')
+            .skip(1)
+            .step_by(2)
+            .filter(|k| k.chars().all(|c| c.is_ascii_lowercase() || c == '_'))
+            .map(str::to_string)
+            .collect()
+    };
+    let open = para.find("`contacts` (").expect("the contacts entry");
+    let close = open + para[open..].find(')').unwrap();
+    let inner = names(&para[open + "`contacts`".len()..close]);
+    let mut outer = names(&para[..open + "`contacts`".len()]);
+    outer.extend(names(&para[close..]));
+    (outer, inner)
+}
+
 #[test]
-fn run_prints_the_impact_summary() {
+fn run_json_has_every_documented_key_and_nothing_undocumented() {
+    // Regression (issue 11): separation_velocity_mps and energy_through_contact_j were
+    // documented but missing.
+    let (outer, inner) = documented_run_keys();
+    assert!(outer.len() > 15 && inner.len() > 8, "{outer:?} {inner:?}");
     for name in ["cj_aluminium", "cl_aluminium"] {
         let v = json(&["run", &scene_path(name), "--json"]);
-        for key in [
-            "peak_force_n",
-            "time_of_peak_s",
-            "impact_velocity_mps",
-            "contact_duration_s",
-            "max_indentation_m",
-            "steps",
-        ] {
-            assert!(v.get(key).is_some(), "{name}: no {key} in {v}");
+        let map = v.as_object().unwrap();
+        for key in &outer {
+            assert!(
+                map.contains_key(key),
+                "{name}: documented {key} missing in {v}"
+            );
         }
+        for key in map.keys() {
+            assert!(outer.contains(key), "{name}: {key} is not documented");
+        }
+        let contact = v["contacts"][0].as_object().unwrap();
+        for key in &inner {
+            assert!(
+                contact.contains_key(key),
+                "{name}: contacts[0] has no {key}"
+            );
+        }
+        for key in contact.keys() {
+            assert!(
+                inner.contains(key),
+                "{name}: contacts[0].{key} is not documented"
+            );
+        }
+        // no null and no non-finite number anywhere
+        let text = v.to_string();
+        assert!(!text.contains("null") && !text.contains("NaN"), "{text}");
         // Impact speed of the 30° release of the bundled pendulum (compound pendulum energy,
         // 0.8912 m/s; the swing integration is within 1e-4).
         let speed = v["impact_velocity_mps"].as_f64().unwrap();

@@ -142,30 +142,44 @@ fn log_every_step_writes_every_sample_and_every_step() {
 }
 
 #[test]
-fn a_run_that_fails_midway_leaves_a_finished_log() {
-    let dir = scratch("fail");
+fn a_run_stopped_by_ctrl_c_midway_leaves_a_finished_log_and_exits_130() {
+    // A long run (10 simulated minutes of the CJ rig), interrupted by SIGINT once it is under
+    // way: exit code 130, and the log holds what was computed, finished, with an error record.
+    let dir = scratch("interrupt");
     let text = std::fs::read_to_string(scene_path("cj_aluminium"))
         .unwrap()
         .replace(
+            "at = \"separation\"",
+            "at = \"duration\"\nduration_s = 600.0",
+        )
+        .replace(
             "contact_steps = 800",
-            "contact_steps = 800\nmax_steps = 500",
-        );
-    let scene = dir.join("short.toml");
+            "contact_steps = 800\nmax_steps = 100000000",
+        )
+        .replace("sample_rate_hz = 50000.0", "sample_rate_hz = 10000.0");
+    let scene = dir.join("long.toml");
     std::fs::write(&scene, text).unwrap();
-    let out = dir.join("fail.mcap");
-    let o = flexrig(&[
-        "run",
-        scene.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(
-        o.status.code(),
-        Some(1),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    assert!(String::from_utf8_lossy(&o.stderr).contains("solver.max_steps"));
+    let out = dir.join("interrupted.mcap");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_flexrig"))
+        .args([
+            "run",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(700));
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let o = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("interrupted"), "{stderr}");
     let (counts, summary) = read_back(&out);
     assert!(counts["/energy"] > 10, "what was computed is in the log");
     let bytes = std::fs::read(&out).unwrap();
@@ -175,7 +189,38 @@ fn a_run_that_fails_midway_leaves_a_finished_log() {
         .find(|m| m.name == "error")
         .expect("an error record");
     let m = mcap::read::metadata(&bytes, index).unwrap();
-    assert!(m.metadata["message"].contains("max_steps"));
+    assert!(
+        m.metadata["message"].contains("interrupted"),
+        "{:?}",
+        m.metadata
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_scene_beyond_its_step_budget_is_refused_before_it_starts() {
+    // solver.max_steps = 500 cannot carry the swing and the contact: refused up front (exit 2,
+    // naming the fields), and no log is left behind.
+    let dir = scratch("budget");
+    let text = std::fs::read_to_string(scene_path("cj_aluminium"))
+        .unwrap()
+        .replace(
+            "contact_steps = 800",
+            "contact_steps = 800\nmax_steps = 500",
+        );
+    let scene = dir.join("short.toml");
+    std::fs::write(&scene, text).unwrap();
+    let out = dir.join("never.mcap");
+    let o = flexrig(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("solver.max_steps"), "{stderr}");
+    assert!(!out.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexrig_contact::Materials;
-use flexrig_rig::{NoRecorder, RunOptions, RunSummary, Scene, Simulation};
+use flexrig_rig::{Interruptible, RunOptions, RunSummary, Scene, Simulation};
 use serde_json::json;
 
 use crate::CliError;
@@ -47,7 +47,7 @@ pub fn run_scene_file(
     let scene = Scene::from_toml_str(&text, &Materials::bundled()?)?;
     let simulation = Simulation::new(&scene, RunOptions::default())?;
     let Some(out) = out else {
-        return Ok(simulation.run(&mut NoRecorder)?);
+        return Ok(simulation.run(&mut Interruptible(interrupt.0.clone()))?);
     };
     let mut log = McapRecorder::create(out, force, &scene, &text)?
         .with_interrupt(interrupt.0.clone())
@@ -66,6 +66,18 @@ pub fn run_scene_file(
     }
 }
 
+/// The run summary as `flexrig run --json` prints it: every field of [`RunSummary`] (absent
+/// when it does not apply, e.g. `contact_duration_s` for a run stopped at the peak) and the
+/// number of sensor `samples`.
+pub fn summary_json(s: &RunSummary) -> serde_json::Value {
+    let mut value = serde_json::to_value(s).expect("a run summary serialises");
+    if let Some(map) = value.as_object_mut() {
+        map.retain(|_, v| !v.is_null());
+        map.insert("samples".into(), json!(s.samples.len()));
+    }
+    value
+}
+
 /// Runs `flexrig run`.
 pub fn run(args: &RunArgs, out: &mut dyn Write, interrupt: &Interrupt) -> Result<(), CliError> {
     let rates = if args.log_every_step {
@@ -75,27 +87,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, interrupt: &Interrupt) -> Result
     };
     let s = run_scene_file(&args.scene, args.out.as_ref(), args.force, rates, interrupt)?;
     if args.json {
-        return print_json(
-            out,
-            &json!({
-                "scene": s.scene,
-                "design": s.design,
-                "peak_force_n": s.peak_force_n,
-                "time_of_peak_s": s.time_of_peak_s,
-                "impact_velocity_mps": s.impact_velocity_mps,
-                "onset_time_s": s.onset_time_s,
-                "contact_duration_s": s.contact_duration_s,
-                "max_indentation_m": s.max_indentation_m,
-                "impulse_n_s": s.impulse_n_s,
-                "steps": s.steps,
-                "contact_steps": s.contact_steps,
-                "contact_step_s": s.contact_step_s,
-                "energy_initial_j": s.energy_initial_j,
-                "energy_final_j": s.energy_final_j,
-                "duration_s": s.duration_s,
-                "samples": s.samples.len(),
-            }),
-        );
+        return print_json(out, &summary_json(&s));
     }
     line(out, format!("scene {} ({:?})", s.scene, s.design))?;
     if let Some(path) = &args.out {

@@ -1,0 +1,228 @@
+//! Physical ranges of the scene quantities and the work budget of a run, checked before it
+//! starts: a scene that would take longer than `solver.max_steps`, keep more sensor samples
+//! than [`MAX_SAMPLES`], or step so finely that time stops advancing is refused with an error
+//! naming the scene field and the limit (docs/scenes.md lists both).
+
+use crate::RigError;
+use crate::canonical::compound_pendulum_period;
+use crate::error::invalid;
+use crate::geometry::RigGeometry;
+use crate::scene::{BeamSolverSpec, Scene, Start, StopSpec};
+
+/// An allowed closed interval of a scene quantity, in the field's unit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Range {
+    /// Smallest allowed value.
+    pub lo: f64,
+    /// Largest allowed value.
+    pub hi: f64,
+}
+
+impl Range {
+    /// Checks that `value` lies in the range, naming `field` otherwise.
+    pub fn check(&self, field: &str, value: f64) -> Result<f64, RigError> {
+        if value.is_finite() && value >= self.lo && value <= self.hi {
+            Ok(value)
+        } else {
+            Err(invalid(
+                field,
+                flexrig_contact::validate::display(value),
+                &format!("must lie in [{:e}, {:e}]", self.lo, self.hi),
+            ))
+        }
+    }
+}
+
+const fn range(lo: f64, hi: f64) -> Range {
+    Range { lo, hi }
+}
+
+/// Gravitational acceleration [m/s²]: up to ten times the Earth's.
+pub const GRAVITY: Range = range(0.01, 100.0);
+/// Pendulum arm, link length \[m\].
+pub const LENGTH: Range = range(0.01, 10.0);
+/// Arm mass \[kg\] (0: a massless arm).
+pub const ARM_MASS: Range = range(0.0, 1e3);
+/// Block mass \[kg\].
+pub const BLOCK_MASS: Range = range(1e-6, 1e4);
+/// Block edge, dome radius, dome standoff \[m\].
+pub const SIZE: Range = range(1e-4, 10.0);
+/// Initial angular velocity of a moving start [rad/s].
+pub const ANGULAR_VELOCITY: Range = range(-100.0, 100.0);
+/// Link width \[m\].
+pub const WIDTH: Range = range(1e-5, 1.0);
+/// Link thickness \[m\].
+pub const THICKNESS: Range = range(1e-6, 0.5);
+/// Young's modulus \[Pa\]: from soft rubber to diamond.
+pub const YOUNGS_MODULUS: Range = range(1e5, 1.2e12);
+/// Density [kg/m³].
+pub const DENSITY: Range = range(1.0, 1e5);
+/// Payload \[kg\].
+pub const PAYLOAD: Range = range(0.0, 1e4);
+/// Torsion spring [N·m/rad].
+pub const TORSION_SPRING: Range = range(1e-6, 1e9);
+/// Hertz stiffness [N/m^n].
+pub const CONTACT_K: Range = range(1e-3, 1e20);
+/// ADAMS IMPACT maximum damping [N·s/m].
+pub const DAMPING_C_MAX: Range = range(0.0, 1e9);
+/// ADAMS IMPACT damping depth \[m\].
+pub const DAMPING_DEPTH: Range = range(1e-9, 1.0);
+/// Swing step \[s\].
+pub const SWING_STEP: Range = range(1e-8, 0.1);
+/// Simulated duration \[s\].
+pub const DURATION: Range = range(1e-6, 1e4);
+/// Sensor sampling rate \[Hz\].
+pub const SAMPLE_RATE: Range = range(1.0, 1e8);
+/// Steps per contact.
+pub const CONTACT_STEPS: (usize, usize) = (4, 100_000_000);
+/// Cap on the steps of a run.
+pub const MAX_STEPS: (usize, usize) = (1, 1_000_000_000);
+/// CL beam elements; the modal-reduced beam solves a dense eigenproblem (O(n³)): fewer.
+pub const BEAM_ELEMENTS: (usize, usize) = (1, 4096);
+/// Largest mesh for `solver.beam = { model = "modal" }`.
+pub const MODAL_BEAM_ELEMENTS: usize = 1000;
+/// Most sensor samples a run keeps in memory (56 B each: 560 MB).
+pub const MAX_SAMPLES: f64 = 1e7;
+
+/// Checks an integer field against `(lo, hi)`.
+pub fn check_count(field: &str, value: usize, (lo, hi): (usize, usize)) -> Result<usize, RigError> {
+    if (lo..=hi).contains(&value) {
+        Ok(value)
+    } else {
+        Err(invalid(field, value, &format!("must lie in [{lo}, {hi}]")))
+    }
+}
+
+/// The work a scene will take, estimated before it runs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Budget {
+    /// Simulated time \[s\] (to the stop condition; for peak/separation: to the first contact's
+    /// end, bounded by a full pendulum period).
+    pub simulated_s: f64,
+    /// Steps.
+    pub steps: f64,
+    /// Sensor samples.
+    pub samples: f64,
+}
+
+/// Estimates the work of `scene` and refuses it if it exceeds `solver.max_steps`,
+/// [`MAX_SAMPLES`], or if its contact step is too small for time to advance.
+pub fn check_budget(scene: &Scene) -> Result<Budget, RigError> {
+    let file = &scene.file;
+    let g = RigGeometry::of(scene);
+    let op = &g.operator;
+    let gravity = file.gravity_mps2;
+    // The swing's amplitude from its energy; a start that would go over the top is refused.
+    let swing =
+        file.operator
+            .start
+            .initial_swing(op.mass, op.com_distance, op.inertia_pivot, gravity);
+    let energy = 0.5 * op.inertia_pivot * swing.rate * swing.rate
+        + op.mass * gravity * op.com_distance * (1.0 - swing.angle.cos());
+    let cos_amplitude = 1.0 - energy / (op.mass * gravity * op.com_distance);
+    if !(cos_amplitude >= 170f64.to_radians().cos() - 1e-12) {
+        let (field, value) = match file.operator.start {
+            Start::Moving {
+                angular_velocity_rad_s,
+                ..
+            } => (
+                "operator.start.angular_velocity_rad_s",
+                flexrig_contact::validate::display(angular_velocity_rad_s),
+            ),
+            Start::Release { release_angle_deg } | Start::Contact { release_angle_deg } => (
+                "operator.start.release_angle_deg",
+                flexrig_contact::validate::display(release_angle_deg),
+            ),
+        };
+        return Err(invalid(
+            field,
+            value,
+            "must leave the swing below 170° (the pendulum would go over the top)",
+        ));
+    }
+    let period = compound_pendulum_period(op, gravity, cos_amplitude.acos().max(1e-6));
+    // Contacts: one per half period at most (the block returns each swing).
+    let simulated_s = match file.stop {
+        StopSpec::Duration { duration_s } => duration_s,
+        StopSpec::Peak | StopSpec::Separation => period,
+    };
+    let contacts = (2.0 * simulated_s / period).ceil().max(1.0);
+    let swing_steps = simulated_s / file.solver.swing_step_s;
+    let contact_steps = contacts * file.solver.contact_steps as f64;
+    let steps = swing_steps + contact_steps;
+    let max_steps = file.solver.max_steps as f64;
+    if steps > max_steps {
+        let (field, value) = if swing_steps >= contact_steps {
+            (
+                "solver.swing_step_s",
+                format!("{:e}", file.solver.swing_step_s),
+            )
+        } else {
+            (
+                "solver.contact_steps",
+                file.solver.contact_steps.to_string(),
+            )
+        };
+        return Err(invalid(
+            field,
+            value,
+            &format!(
+                "the run would take about {steps:.3e} steps ({simulated_s:.3e} s simulated, \
+                 {contacts} contact(s)), more than solver.max_steps = {max_steps:e}: raise \
+                 solver.max_steps, take larger steps, or a shorter stop"
+            ),
+        ));
+    }
+    let samples = simulated_s * file.record.sample_rate_hz;
+    if samples > MAX_SAMPLES {
+        return Err(invalid(
+            "record.sample_rate_hz",
+            file.record.sample_rate_hz,
+            &format!(
+                "{simulated_s:.3e} s at this rate would keep {samples:.3e} sensor samples, more \
+                 than {MAX_SAMPLES:e}: lower the rate or shorten the stop"
+            ),
+        ));
+    }
+    // The contact step must be representable next to the time reached.
+    let v_impact = swing.rate_at_contact * op.arm_length;
+    let m_op = op.effective_mass();
+    let m_rob = g.robot.effective_mass();
+    let mu = m_op * m_rob / (m_op + m_rob);
+    let contact_time = 3.0 * scene.hertz.peak_indentation(mu, v_impact) / v_impact;
+    let contact_step = contact_time / file.solver.contact_steps as f64;
+    if !(contact_step > 1e-12 * simulated_s.max(1.0) && contact_time.is_finite()) {
+        return Err(invalid(
+            "solver.contact_steps",
+            file.solver.contact_steps,
+            &format!(
+                "gives a contact step of {contact_step:.3e} s over a contact of \
+                 {contact_time:.3e} s, too small for time to advance over {simulated_s:.3e} s: \
+                 take fewer contact steps (or a stiffer contact.k)"
+            ),
+        ));
+    }
+    Ok(Budget {
+        simulated_s,
+        steps,
+        samples,
+    })
+}
+
+/// Checks the mesh limit of the chosen beam solver.
+pub fn check_beam_mesh(elements: usize, beam: BeamSolverSpec) -> Result<(), RigError> {
+    check_count("robot.beam_elements", elements, BEAM_ELEMENTS)?;
+    if let BeamSolverSpec::Modal { .. } = beam
+        && elements > MODAL_BEAM_ELEMENTS
+    {
+        return Err(invalid(
+            "robot.beam_elements",
+            elements,
+            &format!(
+                "must be at most {MODAL_BEAM_ELEMENTS} with solver.beam = {{ model = \"modal\" }} \
+                 (a dense eigenproblem), or use the full beam"
+            ),
+        ));
+    }
+    Ok(())
+}
