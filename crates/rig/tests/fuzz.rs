@@ -3,6 +3,7 @@
 //! scene field (or the line of a syntax error) — never an internal name — or, within a small
 //! work budget, it runs to a finite summary or a clear runtime error. Bounded, seeded cases.
 
+#[allow(dead_code)]
 mod common;
 
 use flexrig_contact::Materials;

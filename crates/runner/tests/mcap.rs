@@ -160,7 +160,7 @@ fn a_run_stopped_by_ctrl_c_midway_leaves_a_finished_log_and_exits_130() {
     let scene = dir.join("long.toml");
     std::fs::write(&scene, text).unwrap();
     let out = dir.join("interrupted.mcap");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_flexrig"))
+    let child = Command::new(env!("CARGO_BIN_EXE_flexrig"))
         .args([
             "run",
             scene.to_str().unwrap(),
