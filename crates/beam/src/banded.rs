@@ -97,7 +97,9 @@ impl BandMatrix {
                     what: what.to_string(),
                     dof: j,
                     hint: "the structure is a mechanism (e.g. a pinned root without a torsion \
-                           spring under a static load) or the solution diverged"
+                           spring under a static load), the solution diverged, or the matrix is \
+                           too ill-conditioned for double precision (its condition grows as N⁴ \
+                           with the number of elements: use fewer)"
                         .into(),
                 });
             }

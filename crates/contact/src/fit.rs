@@ -61,9 +61,16 @@ pub fn parse_compression_csv(text: &str) -> Result<Vec<CompressionPoint>, Contac
                 _ => Err(csv_error(format!("{name} must be a finite number"))),
             }
         };
+        let force_n = number(fields[1], "force_n")?;
+        if force_n < 0.0 {
+            return Err(csv_error(format!(
+                "force_n = {} must be >= 0 (a compression force; the contact does not pull)",
+                crate::validate::display(force_n)
+            )));
+        }
         points.push(CompressionPoint {
             indentation_m: number(fields[0], "indentation_m")?,
-            force_n: number(fields[1], "force_n")?,
+            force_n,
         });
     }
     Ok(points)
@@ -103,6 +110,78 @@ const MAX_LM_ITERATIONS: usize = 200;
 
 /// Fits f = k δ^n to `points` (those with δ > 0; at least 3, with at least 2 distinct δ).
 pub fn fit_hertz(points: &[CompressionPoint]) -> Result<HertzFit, ContactError> {
+    // Fit in units of the largest indentation D and the largest force F, so that data of any
+    // magnitude (1e-300 … 1e300) neither under- nor overflows in the sums of squares; then
+    // k = k' F / D^n, with the same relative standard error.
+    let scale_d = points
+        .iter()
+        .filter(|p| p.indentation_m > 0.0)
+        .fold(0.0f64, |m, p| m.max(p.indentation_m));
+    let scale_f = points.iter().fold(0.0f64, |m, p| m.max(p.force_n.abs()));
+    if !(scale_d > 0.0 && scale_f > 0.0) {
+        return fit_scaled(points);
+    }
+    let scaled: Vec<CompressionPoint> = points
+        .iter()
+        .map(|p| CompressionPoint {
+            indentation_m: p.indentation_m / scale_d,
+            force_n: p.force_n / scale_f,
+        })
+        .collect();
+    let f = fit_scaled(&scaled)?;
+    // ln k = ln k' + ln F − n ln D (in logarithms, so that an intermediate D^n does not
+    // overflow); its variance takes the covariance of (ln k', n): with L = ln D,
+    // var ln k = var ln k' + L² var n − 2 L cov(ln k', n).
+    let l = scale_d.ln();
+    let ln_k = f.k.ln() + scale_f.ln() - f.n * l;
+    let used: Vec<CompressionPoint> = scaled
+        .iter()
+        .copied()
+        .filter(|p| p.indentation_m > 0.0)
+        .collect();
+    let m = used.len() as f64;
+    let (jtj, _) = normal_equations(&used, [f.k.ln(), f.n]);
+    let det = jtj[0][0] * jtj[1][1] - jtj[0][1] * jtj[1][0];
+    let sigma2 = f.rms_residual_n.powi(2) * m / (m - 2.0);
+    let var_ln_k = if m > 2.0 && det > 0.0 {
+        let (var_a, var_n, cov) = (
+            sigma2 * jtj[1][1] / det,
+            sigma2 * jtj[0][0] / det,
+            -sigma2 * jtj[0][1] / det,
+        );
+        (var_a + l * l * var_n - 2.0 * l * cov).max(0.0)
+    } else {
+        f64::INFINITY
+    };
+    let k = ln_k.exp();
+    let fit = HertzFit {
+        k,
+        k_stderr: k * var_ln_k.sqrt(),
+        rms_residual_n: f.rms_residual_n * scale_f,
+        ..f
+    };
+    if !(fit.k.is_finite() && fit.k > 0.0 && fit.k_stderr.is_finite()) {
+        return Err(ContactError::FitDidNotConverge {
+            iterations: fit.iterations,
+            reason: format!(
+                "the fitted k = {} N/m^n (n = {}) is not representable in double precision: \
+                 give the data in other units (e.g. mm and kN)",
+                crate::validate::display(fit.k),
+                fit.n
+            ),
+        });
+    }
+    if !(fit.n_stderr.is_finite() && fit.rms_residual_n.is_finite()) {
+        return Err(ContactError::FitDidNotConverge {
+            iterations: fit.iterations,
+            reason: "the standard errors are not finite (too few independent points?)".into(),
+        });
+    }
+    Ok(fit)
+}
+
+/// The Levenberg–Marquardt fit on data of moderate magnitude.
+fn fit_scaled(points: &[CompressionPoint]) -> Result<HertzFit, ContactError> {
     let used: Vec<CompressionPoint> = points
         .iter()
         .copied()

@@ -117,7 +117,78 @@ fn too_little_data_is_an_error() {
         fit_hertz(&same_depth),
         Err(ContactError::NotEnoughData { .. })
     ));
-    let all_negative = parse_compression_csv("0.001,-1\n0.002,-2\n0.003,-3\n").unwrap();
-    let e = fit_hertz(&all_negative).unwrap_err();
+    let all_zero = parse_compression_csv("0.001,0\n0.002,0\n0.003,0\n").unwrap();
+    let e = fit_hertz(&all_zero).unwrap_err();
     assert!(e.to_string().contains("force_n > 0"), "{e}");
+    // Regression (issue 11): negative forces were accepted; a compression force is >= 0.
+    let e = parse_compression_csv("0.001,1\n0.002,-2\n").unwrap_err();
+    assert!(matches!(e, ContactError::Csv { line: 2, .. }), "{e}");
+    assert!(e.to_string().contains("force_n"), "{e}");
+}
+
+#[test]
+fn data_of_any_magnitude_fit_with_finite_errors_or_say_why() {
+    // Regression (issue 11): values of 1e300 or 1e-300 gave null standard errors. The fit
+    // runs in units of the largest indentation and force; the law and its relative errors do
+    // not depend on the units.
+    let law = |d: f64| 3.0 * d.powf(1.9);
+    let base: Vec<(f64, f64)> = (1..=20)
+        .map(|i| {
+            let d = i as f64 * 0.05;
+            (
+                d,
+                law(d) * (1.0 + 0.01 * ((i * 7919) % 13) as f64 / 13.0 - 0.005),
+            )
+        })
+        .collect();
+    let reference = fit_hertz(
+        &base
+            .iter()
+            .map(|&(d, f)| CompressionPoint {
+                indentation_m: d,
+                force_n: f,
+            })
+            .collect::<Vec<_>>(),
+    )
+    .unwrap();
+    for (sd, sf) in [
+        (1e-150, 1e150),
+        (1e100, 1e-100),
+        (1e-300, 1.0),
+        (1.0, 1e-300),
+    ] {
+        let points: Vec<CompressionPoint> = base
+            .iter()
+            .map(|&(d, f)| CompressionPoint {
+                indentation_m: d * sd,
+                force_n: f * sf,
+            })
+            .collect();
+        match fit_hertz(&points) {
+            Ok(fit) => {
+                assert!((fit.n - reference.n).abs() < 1e-9, "{sd:e} {sf:e}: {fit:?}");
+                assert!(
+                    (fit.n_stderr / reference.n_stderr - 1.0).abs() < 1e-6,
+                    "{sd:e} {sf:e}: {fit:?}"
+                );
+                // k's relative error depends on the units (ln k = ln k' + ln F − n ln D
+                // carries n's uncertainty), but it is finite
+                assert!(fit.k.is_finite() && fit.k_stderr.is_finite(), "{fit:?}");
+                let k_expected = reference.k * sf / sd.powf(reference.n);
+                if k_expected.is_normal() {
+                    assert!(
+                        (fit.k / k_expected - 1.0).abs() < 1e-6,
+                        "{fit:?} vs {k_expected:e}"
+                    );
+                }
+            }
+            Err(e) => {
+                // k = k' F/D^n may leave double precision: then say so
+                assert!(
+                    e.to_string().contains("not representable"),
+                    "{sd:e} {sf:e}: {e}"
+                );
+            }
+        }
+    }
 }

@@ -44,6 +44,16 @@ pub enum CliError {
         /// The cause.
         source: std::io::Error,
     },
+    /// A result is not a finite number for the given arguments.
+    #[error("the {what} is {value} for these arguments: {advice}")]
+    NonFinite {
+        /// The quantity.
+        what: String,
+        /// Its (non-finite) value.
+        value: String,
+        /// Which arguments to change.
+        advice: String,
+    },
     /// `flexrig validate` found failing cases.
     #[error("verification failed: {failed}")]
     ValidationFailed {
@@ -66,7 +76,9 @@ impl CliError {
     pub fn exit_code(&self) -> i32 {
         match self {
             CliError::Rig(flexrig_rig::RigError::Interrupted { .. }) => 130,
-            CliError::InvalidArgument { .. } | CliError::Read { .. } => 2,
+            CliError::InvalidArgument { .. }
+            | CliError::Read { .. }
+            | CliError::NonFinite { .. } => 2,
             CliError::Contact(e) if e.is_input_error() => 2,
             CliError::Lumped(e) if e.is_input_error() => 2,
             CliError::Beam(e) if e.is_input_error() => 2,

@@ -58,3 +58,31 @@ pub fn positive_arg(flag: &str, value: f64) -> Result<f64, CliError> {
 pub fn non_negative_arg(flag: &str, value: f64) -> Result<f64, CliError> {
     Ok(flexrig_contact::validate::non_negative(flag, value)?)
 }
+
+/// A command-line number that must lie in the physical range [lo, hi] (the error names the flag,
+/// the value and the range).
+pub fn range_arg(flag: &str, value: f64, lo: f64, hi: f64) -> Result<f64, CliError> {
+    if value.is_finite() && value >= lo && value <= hi {
+        Ok(value)
+    } else {
+        Err(CliError::InvalidArgument {
+            arg: flag.into(),
+            value: flexrig_contact::validate::display(value),
+            allowed: format!("must lie in [{lo:e}, {hi:e}]"),
+        })
+    }
+}
+
+/// Refuses a result that is not a finite number: the computation left double precision for
+/// these arguments (the error says which quantity and what to change).
+pub fn finite_result(what: &str, value: f64, advice: &str) -> Result<f64, CliError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(CliError::NonFinite {
+            what: what.into(),
+            value: format!("{value}"),
+            advice: advice.into(),
+        })
+    }
+}

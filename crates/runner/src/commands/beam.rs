@@ -12,7 +12,7 @@ use flexrig_beam::{
 use serde_json::json;
 
 use crate::CliError;
-use crate::output::{line, non_negative_arg, positive_arg, print_json};
+use crate::output::{line, print_json, range_arg};
 
 /// Beam sub-commands.
 #[derive(Debug, Subcommand)]
@@ -43,7 +43,9 @@ pub struct BeamArgs {
     /// Section thickness t \[m\] (bending direction), I = w t³/12.
     #[arg(long, value_name = "M", allow_negative_numbers = true)]
     pub thickness: f64,
-    /// Number of Hermite-cubic elements N (1 to 100000).
+    /// Number of Hermite-cubic elements N (1 to 100000; `beam modal` at most 1000: a dense
+    /// eigenproblem). The stiffness matrix's condition grows as N⁴: on slender beams a few
+    /// thousand elements already cost digits (a clear "singular" error beyond).
     #[arg(long, value_name = "N", default_value_t = 16)]
     pub elements: usize,
     /// Point mass at the tip \[kg\] (rotary inertia neglected).
@@ -116,13 +118,13 @@ fn invalid(arg: &str, value: impl ToString, allowed: &str) -> CliError {
 
 /// Builds the validated model from the flags, naming the flag on bad input.
 pub fn build_model(a: &BeamArgs, kinematics: Kinematics) -> Result<BeamModel, CliError> {
-    positive_arg("--length", a.length)?;
-    positive_arg("--youngs", a.youngs)?;
-    positive_arg("--density", a.density)?;
-    positive_arg("--width", a.width)?;
-    positive_arg("--thickness", a.thickness)?;
-    non_negative_arg("--tip-mass", a.tip_mass)?;
-    non_negative_arg("--k-theta", a.k_theta)?;
+    range_arg("--length", a.length, 1e-4, 1e3)?;
+    range_arg("--youngs", a.youngs, 1e3, 1e13)?;
+    range_arg("--density", a.density, 1e-3, 1e6)?;
+    range_arg("--width", a.width, 1e-6, 10.0)?;
+    range_arg("--thickness", a.thickness, 1e-7, 10.0)?;
+    range_arg("--tip-mass", a.tip_mass, 0.0, 1e6)?;
+    range_arg("--k-theta", a.k_theta, 0.0, 1e12)?;
     if a.elements == 0 || a.elements > flexrig_beam::model::MAX_ELEMENTS {
         return Err(invalid(
             "--elements",
@@ -157,6 +159,16 @@ pub fn run(cmd: &BeamCommand, out: &mut dyn Write) -> Result<(), CliError> {
 }
 
 fn modal(args: &ModalArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    if args.beam.elements > flexrig_beam::modal::MAX_MODAL_ELEMENTS {
+        return Err(invalid(
+            "--elements",
+            args.beam.elements,
+            &format!(
+                "must be at most {} for beam modal (a dense eigenproblem, O(n³))",
+                flexrig_beam::modal::MAX_MODAL_ELEMENTS
+            ),
+        ));
+    }
     let model = build_model(&args.beam, Kinematics::Linear)?;
     if args.modes == 0 {
         return Err(invalid("--modes", 0, "must be an integer >= 1"));
@@ -197,20 +209,8 @@ fn statics(args: &StaticArgs, out: &mut dyn Write) -> Result<(), CliError> {
         "corotational" => Kinematics::Corotational,
         other => return Err(invalid("--model", other, "must be linear or corotational")),
     };
-    if !args.tip_load.is_finite() {
-        return Err(invalid(
-            "--tip-load",
-            args.tip_load,
-            "must be a finite number",
-        ));
-    }
-    if !args.tip_moment.is_finite() {
-        return Err(invalid(
-            "--tip-moment",
-            args.tip_moment,
-            "must be a finite number",
-        ));
-    }
+    range_arg("--tip-load", args.tip_load, -1e12, 1e12)?;
+    range_arg("--tip-moment", args.tip_moment, -1e12, 1e12)?;
     if args.load_steps == 0 || args.load_steps > 1_000_000 {
         return Err(invalid(
             "--load-steps",

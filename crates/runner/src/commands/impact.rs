@@ -3,7 +3,7 @@
 use std::io::Write;
 
 use clap::{Args, ValueEnum};
-use flexrig_contact::validate::{in_left_open, non_negative, positive};
+use flexrig_contact::validate::in_left_open;
 use flexrig_contact::{Hertz, SeriesCompliance};
 use flexrig_lumped::ode::{DEFAULT_RTOL, Formulation, OdeOptions, integrate};
 use flexrig_lumped::prb::PrbLink;
@@ -11,7 +11,7 @@ use flexrig_lumped::{ImpactModel, Peak, peak_analytic, peak_exact};
 use serde_json::json;
 
 use crate::CliError;
-use crate::output::{line, print_json};
+use crate::output::{finite_result, line, print_json, range_arg};
 
 /// How the peak is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -102,13 +102,14 @@ pub struct ImpactArgs {
 
 /// The validated impact of the arguments.
 pub fn model(args: &ImpactArgs) -> Result<ImpactModel, CliError> {
-    let m_h = positive("--m-h", args.m_h)?;
+    let mass = |flag: &str, v: f64| range_arg(flag, v, MASS.0, MASS.1);
+    let m_h = mass("--m-h", args.m_h)?;
     let m_eff = match (args.m_eff, args.gamma, args.m_r, args.m_e) {
-        (Some(m_eff), ..) => positive("--m-eff", m_eff)?,
+        (Some(m_eff), ..) => mass("--m-eff", m_eff)?,
         (None, Some(gamma), Some(m_r), Some(m_e)) => PrbLink::new(
             in_left_open("--gamma", gamma, 0.0, 1.0)?,
-            positive("--m-r", m_r)?,
-            non_negative("--m-e", m_e)?,
+            mass("--m-r", m_r)?,
+            range_arg("--m-e", m_e, 0.0, MASS.1)?,
         )?
         .effective_mass(),
         _ => {
@@ -119,13 +120,18 @@ pub fn model(args: &ImpactArgs) -> Result<ImpactModel, CliError> {
             });
         }
     };
-    let k_delta = positive("--k-delta", args.k_delta)?;
-    let k_c = positive("--k-c", args.k_c)?;
+    let k_delta = range_arg("--k-delta", args.k_delta, STIFFNESS.0, STIFFNESS.1)?;
+    let k_c = range_arg("--k-c", args.k_c, STIFFNESS.0, STIFFNESS.1)?;
     let n = in_left_open("--n", args.n, 0.0, flexrig_contact::MAX_EXPONENT)?;
-    let v0 = positive("--v0", args.v0)?;
+    let v0 = range_arg("--v0", args.v0, SPEED.0, SPEED.1)?;
     let spring = SeriesCompliance::new(k_delta, Hertz::new(k_c, n)?)?;
     Ok(ImpactModel::new(m_h, m_eff, spring, v0)?)
 }
+
+/// Physical ranges of the impact flags: masses \[kg\], stiffnesses [N/m or N/m^n], speed [m/s].
+const MASS: (f64, f64) = (1e-9, 1e9);
+const STIFFNESS: (f64, f64) = (1e-9, 1e20);
+const SPEED: (f64, f64) = (1e-9, 1e3);
 
 /// Runs `flexrig impact`.
 pub fn run(args: &ImpactArgs, out: &mut dyn Write) -> Result<(), CliError> {
@@ -167,6 +173,9 @@ pub fn run(args: &ImpactArgs, out: &mut dyn Write) -> Result<(), CliError> {
             sol.peak
         }
     };
+    let advice = "the impact leaves double precision; use moderate --v0, masses and stiffnesses";
+    finite_result("peak force", peak.f_max, advice)?;
+    finite_result("peak displacement", peak.delta_max, advice)?;
     report["f_max_n"] = json!(peak.f_max);
     report["delta_max_m"] = json!(peak.delta_max);
     report["indentation_max_m"] = json!(peak.indentation_max);
