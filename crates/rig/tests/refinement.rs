@@ -122,3 +122,33 @@ fn the_peak_is_second_order_in_the_contact_step_for_every_law_and_beam() {
         }
     }
 }
+
+#[test]
+fn a_stopped_run_names_the_quantity_the_time_and_a_consistent_scene_setting() {
+    // Regression: 500 elements stopped with "try a smaller solver.contact_steps (more than
+    // 800)". An energy "growth" limit of −50 % stops the run at its first step: in the swing
+    // the advice is a smaller swing step, in contact more contact steps.
+    let strict = RunOptions {
+        energy_growth_limit: -0.5,
+        ..RunOptions::default()
+    };
+    for (start, setting, direction) in [
+        ("release", "solver.swing_step_s (now 5e-4 s)", "a smaller"),
+        ("contact", "solver.contact_steps (now 800;", "a larger"),
+    ] {
+        let scene = common::scene(
+            "cl_aluminium",
+            &[("from = \"release\"", &format!("from = \"{start}\""))],
+        );
+        let Err(e) = Simulation::new(&scene, strict)
+            .unwrap()
+            .run(&mut NoRecorder)
+        else {
+            panic!("{start}: the run did not stop");
+        };
+        let m = e.to_string();
+        assert!(m.contains("the mechanical energy grew"), "{m}");
+        assert!(m.contains("simulation stopped at t = "), "{m}");
+        assert!(m.contains(&format!("try {direction} {setting}")), "{m}");
+    }
+}
