@@ -24,6 +24,7 @@ pub mod coupling;
 mod error;
 pub mod geometry;
 pub mod limits;
+pub mod overrides;
 pub mod run;
 pub mod scene;
 pub mod sensors;
@@ -31,6 +32,7 @@ pub mod world;
 
 pub use beam_link::{BeamLink, LinkVariant};
 pub use error::RigError;
+pub use overrides::{Override, scene_with_overrides};
 pub use run::{
     ContactEvent, Frame, Interruptible, NoRecorder, Recorder, RunOptions, RunSummary, Simulation,
     StepOutcome, run_scene_text,

@@ -472,3 +472,31 @@ fn bench_quick_reports_rows_and_plots() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn run_set_overrides_a_field_like_the_file_and_names_a_bad_path() {
+    let dir = scratch_dir("set");
+    let text = std::fs::read_to_string(scene_path("cj_aluminium"))
+        .unwrap()
+        .replace("payload_kg = 0.412", "payload_kg = 0.2");
+    let edited = dir.join("edited.toml");
+    std::fs::write(&edited, text).unwrap();
+    let by_file = json(&["run", edited.to_str().unwrap(), "--json"]);
+    let by_set = json(&[
+        "run",
+        &scene_path("cj_aluminium"),
+        "--set",
+        "robot.payload_kg=0.2",
+        "--json",
+    ]);
+    assert_eq!(by_file["peak_force_n"], by_set["peak_force_n"]);
+    let o = flexrig(&[
+        "run",
+        &scene_path("cj_aluminium"),
+        "--set",
+        "robot.payload=0.2",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("robot.payload"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

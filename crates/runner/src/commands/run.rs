@@ -5,7 +5,10 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexrig_contact::Materials;
-use flexrig_rig::{Interruptible, RunOptions, RunSummary, Scene, Simulation};
+use flexrig_rig::overrides;
+use flexrig_rig::{
+    Interruptible, Override, RunOptions, RunSummary, Simulation, scene_with_overrides,
+};
 use serde_json::json;
 
 use crate::CliError;
@@ -29,6 +32,10 @@ pub struct RunArgs {
     /// sensors at 250 Hz outside contact; inside contact everything is logged either way).
     #[arg(long, requires = "out")]
     pub log_every_step: bool,
+    /// Override a scene field, e.g. `--set robot.payload_kg=0.2` or
+    /// `--set operator.start.release_angle_deg=45` (repeatable; validated like the file).
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub set: Vec<String>,
     /// Print JSON instead of text.
     #[arg(long)]
     pub json: bool,
@@ -38,13 +45,16 @@ pub struct RunArgs {
 /// finished, with an `error` metadata record if the run failed.
 pub fn run_scene_file(
     path: &std::path::Path,
+    overrides: &[Override],
     out: Option<&PathBuf>,
     force: bool,
     rates: LogRates,
     interrupt: &Interrupt,
 ) -> Result<RunSummary, CliError> {
     let text = crate::output::read_text(path)?;
-    let scene = Scene::from_toml_str(&text, &Materials::bundled()?)?;
+    let scene = scene_with_overrides(&text, overrides, &Materials::bundled()?)?;
+    // the log records the scene as run
+    let text = overrides::apply(&text, overrides)?;
     let simulation = Simulation::new(&scene, RunOptions::default())?;
     let Some(out) = out else {
         return Ok(simulation.run(&mut Interruptible(interrupt.0.clone()))?);
@@ -85,7 +95,19 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, interrupt: &Interrupt) -> Result
     } else {
         LogRates::DECIMATED
     };
-    let s = run_scene_file(&args.scene, args.out.as_ref(), args.force, rates, interrupt)?;
+    let overrides = args
+        .set
+        .iter()
+        .map(|s| Override::parse(s))
+        .collect::<Result<Vec<_>, _>>()?;
+    let s = run_scene_file(
+        &args.scene,
+        &overrides,
+        args.out.as_ref(),
+        args.force,
+        rates,
+        interrupt,
+    )?;
     if args.json {
         return print_json(out, &summary_json(&s));
     }

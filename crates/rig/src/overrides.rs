@@ -1,0 +1,191 @@
+//! Scene overrides by dotted path: `robot.payload_kg=0.2`, `operator.start.release_angle_deg=45`,
+//! `robot.design=cl`. Applied to the scene's TOML before it is parsed and validated, so an
+//! overridden value is checked exactly like one in the file; an error names the path.
+
+use crate::RigError;
+
+/// One `PATH=VALUE` override.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Override {
+    /// Dotted path of the field, e.g. `operator.start.release_angle_deg`.
+    pub path: String,
+    /// The value (TOML: a number, a boolean, a quoted string, an inline table or array; a bare
+    /// word is taken as a string).
+    pub value: toml::Value,
+}
+
+/// Most characters of an override quoted in an error.
+const QUOTE_LIMIT: usize = 120;
+
+fn quoted(text: &str) -> String {
+    if text.chars().count() <= QUOTE_LIMIT {
+        text.to_string()
+    } else {
+        format!("{}…", text.chars().take(QUOTE_LIMIT).collect::<String>())
+    }
+}
+
+fn bad(path: &str, value: &str, allowed: &str) -> RigError {
+    RigError::InvalidScene {
+        field: path.to_string(),
+        value: quoted(value),
+        allowed: allowed.to_string(),
+    }
+}
+
+impl Override {
+    /// Parses `PATH=VALUE`.
+    pub fn parse(text: &str) -> Result<Self, RigError> {
+        let Some((path, value)) = text.split_once('=') else {
+            return Err(bad(
+                "--set",
+                text,
+                "must be PATH=VALUE, e.g. robot.payload_kg=0.2",
+            ));
+        };
+        let path = path.trim();
+        let valid_segment =
+            |s: &str| !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+        if !path.split('.').all(valid_segment) {
+            return Err(bad(
+                "--set",
+                text,
+                "the path must be dotted field names, e.g. operator.start.release_angle_deg",
+            ));
+        }
+        Ok(Override {
+            path: path.to_string(),
+            value: parse_value(value.trim()),
+        })
+    }
+
+    /// `PATH=VALUE` with a value already in hand.
+    pub fn new(path: &str, value: toml::Value) -> Self {
+        Override {
+            path: path.to_string(),
+            value,
+        }
+    }
+}
+
+/// A TOML value from its text; a bare word that is not TOML is a string.
+pub fn parse_value(text: &str) -> toml::Value {
+    toml::from_str::<toml::Table>(&format!("v = {text}"))
+        .ok()
+        .and_then(|mut t| t.remove("v"))
+        .unwrap_or_else(|| toml::Value::String(text.to_string()))
+}
+
+/// Sets `value` at the dotted `path` of `table`, creating tables on the way where a section or
+/// an optional field is absent; a path that runs through a non-table value is an error naming
+/// the path.
+fn set(table: &mut toml::Table, path: &str, value: toml::Value) -> Result<(), RigError> {
+    let mut segments: Vec<&str> = path.split('.').collect();
+    let last = segments.pop().expect("a parsed path has a segment");
+    let mut current = table;
+    let mut walked = String::new();
+    for segment in segments {
+        if !walked.is_empty() {
+            walked.push('.');
+        }
+        walked.push_str(segment);
+        let entry = current
+            .entry(segment.to_string())
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        current = match entry {
+            toml::Value::Table(t) => t,
+            other => {
+                return Err(bad(
+                    path,
+                    &other.to_string(),
+                    &format!("{walked} is a value, not a section: no field below it"),
+                ));
+            }
+        };
+    }
+    current.insert(last.to_string(), value);
+    Ok(())
+}
+
+/// The scene text `text` with `overrides` applied, in order. The result is TOML text for
+/// [`crate::Scene::from_toml_str`]; a value of the wrong type or an unknown field is reported
+/// there, and [`scene_with_overrides`] names the override that caused it.
+pub fn apply(text: &str, overrides: &[Override]) -> Result<String, RigError> {
+    if overrides.is_empty() {
+        return Ok(text.to_string());
+    }
+    let mut table: toml::Table = toml::from_str(text).map_err(|e| {
+        RigError::SceneSyntax(format!("{} (before the overrides)", e.message().trim()))
+    })?;
+    for o in overrides {
+        set(&mut table, &o.path, o.value.clone())?;
+    }
+    Ok(toml::to_string(&table).expect("a TOML table serialises"))
+}
+
+/// Parses `text` with `overrides` and validates the scene; an error caused by an override names
+/// its path and value.
+pub fn scene_with_overrides(
+    text: &str,
+    overrides: &[Override],
+    materials: &flexrig_contact::Materials,
+) -> Result<crate::Scene, RigError> {
+    let edited = apply(text, overrides)?;
+    match crate::Scene::from_toml_str(&edited, materials) {
+        Ok(scene) => Ok(scene),
+        Err(e @ RigError::InvalidScene { .. }) => Err(e),
+        Err(e) if overrides.is_empty() => Err(e),
+        Err(e) => {
+            // Which override breaks the base? The first one that fails on its own (type or
+            // unknown field) is named; otherwise the error stands.
+            let base_ok = crate::Scene::from_toml_str(text, materials).is_ok();
+            for o in overrides {
+                let single = apply(text, std::slice::from_ref(o))?;
+                if let Err(RigError::SceneSyntax(message)) =
+                    crate::Scene::from_toml_str(&single, materials)
+                    && base_ok
+                {
+                    let message = message
+                        .split_once(": ")
+                        .map_or(message.as_str(), |(_, m)| m)
+                        .lines()
+                        .next()
+                        .unwrap_or_default()
+                        .to_string();
+                    return Err(bad(
+                        &o.path,
+                        &o.value.to_string(),
+                        &format!("not accepted by the scene format: {message}"),
+                    ));
+                }
+            }
+            Err(e)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn values_parse_as_toml_or_strings() {
+        assert_eq!(parse_value("0.2"), toml::Value::Float(0.2));
+        assert_eq!(parse_value("800"), toml::Value::Integer(800));
+        assert_eq!(parse_value("cl"), toml::Value::String("cl".into()));
+        assert_eq!(parse_value("\"cl\""), toml::Value::String("cl".into()));
+        assert!(matches!(
+            parse_value("{ model = \"modal\", modes = 8 }"),
+            toml::Value::Table(_)
+        ));
+    }
+
+    #[test]
+    fn malformed_overrides_name_the_problem() {
+        assert!(Override::parse("robot.payload_kg").is_err());
+        assert!(Override::parse("robot..payload_kg=1").is_err());
+        assert!(Override::parse("robot.pay load=1").is_err());
+        let o = Override::parse(" robot.payload_kg = 0.2 ").unwrap();
+        assert_eq!(o.path, "robot.payload_kg");
+    }
+}
