@@ -32,7 +32,7 @@ pub mod world;
 
 pub use beam_link::{BeamLink, LinkVariant};
 pub use error::RigError;
-pub use overrides::{Override, scene_with_overrides};
+pub use overrides::{Override, scene_from_table, scene_with_overrides};
 pub use run::{
     ContactEvent, Frame, Interruptible, NoRecorder, Recorder, RunOptions, RunSummary, Simulation,
     StepOutcome, run_scene_text,

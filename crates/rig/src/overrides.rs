@@ -130,28 +130,43 @@ pub fn scene_with_overrides(
     overrides: &[Override],
     materials: &flexrig_contact::Materials,
 ) -> Result<crate::Scene, RigError> {
-    let edited = apply(text, overrides)?;
-    match crate::Scene::from_toml_str(&edited, materials) {
+    if overrides.is_empty() {
+        return crate::Scene::from_toml_str(text, materials);
+    }
+    let base: toml::Table = toml::from_str(text).map_err(|e| {
+        // the file itself is broken: report it with its line
+        match crate::Scene::from_toml_str(text, materials) {
+            Err(syntax) => syntax,
+            Ok(_) => RigError::SceneSyntax(e.message().trim().to_string()),
+        }
+    })?;
+    scene_from_table(&base, overrides, materials)
+}
+
+/// The scene of the parsed base `table` with `overrides` applied (no text round trip: the fast
+/// path of a sweep); an error caused by an override names its path and value.
+pub fn scene_from_table(
+    base: &toml::Table,
+    overrides: &[Override],
+    materials: &flexrig_contact::Materials,
+) -> Result<crate::Scene, RigError> {
+    let mut table = base.clone();
+    for o in overrides {
+        set(&mut table, &o.path, o.value.clone())?;
+    }
+    match parse_table(table, materials) {
         Ok(scene) => Ok(scene),
         Err(e @ RigError::InvalidScene { .. }) => Err(e),
-        Err(e) if overrides.is_empty() => Err(e),
         Err(e) => {
-            // Which override breaks the base? The first one that fails on its own (type or
-            // unknown field) is named; otherwise the error stands.
-            let base_ok = crate::Scene::from_toml_str(text, materials).is_ok();
+            // A format error (type, unknown field): name the first override that causes it on
+            // its own, if the base is fine without it.
+            if parse_table(base.clone(), materials).is_err() {
+                return Err(e);
+            }
             for o in overrides {
-                let single = apply(text, std::slice::from_ref(o))?;
-                if let Err(RigError::SceneSyntax(message)) =
-                    crate::Scene::from_toml_str(&single, materials)
-                    && base_ok
-                {
-                    let message = message
-                        .split_once(": ")
-                        .map_or(message.as_str(), |(_, m)| m)
-                        .lines()
-                        .next()
-                        .unwrap_or_default()
-                        .to_string();
+                let mut single = base.clone();
+                set(&mut single, &o.path, o.value.clone())?;
+                if let Err(RigError::SceneSyntax(message)) = parse_table(single, materials) {
                     return Err(bad(
                         &o.path,
                         &o.value.to_string(),
@@ -161,6 +176,35 @@ pub fn scene_with_overrides(
             }
             Err(e)
         }
+    }
+}
+
+fn parse_table(
+    table: toml::Table,
+    materials: &flexrig_contact::Materials,
+) -> Result<crate::Scene, RigError> {
+    crate::Scene::from_file(deserialize(table)?, materials)
+}
+
+fn deserialize(table: toml::Table) -> Result<crate::SceneFile, RigError> {
+    toml::Value::Table(table)
+        .try_into()
+        .map_err(|e: toml::de::Error| RigError::SceneSyntax(e.message().trim().to_string()))
+}
+
+/// Checks that `o` fits the scene format on the parsed `base` (a known field, a value of its
+/// type) without validating ranges: a sweep refuses a bad path or type before it runs anything.
+pub fn check_format(base: &toml::Table, o: &Override) -> Result<(), RigError> {
+    let mut table = base.clone();
+    set(&mut table, &o.path, o.value.clone())?;
+    match deserialize(table) {
+        Ok(_) => Ok(()),
+        Err(RigError::SceneSyntax(message)) => Err(bad(
+            &o.path,
+            &o.value.to_string(),
+            &format!("not accepted by the scene format: {message}"),
+        )),
+        Err(e) => Err(e),
     }
 }
 

@@ -29,6 +29,9 @@ pub enum Command {
     Experiment(commands::experiment::ExperimentArgs),
     /// Run a scene of the drop-pendulum test rig (CJ or CL) and print its impact summary.
     Run(commands::run::RunArgs),
+    /// Run a base scene over a grid (or zip) of scene fields, in parallel, into one table;
+    /// resumable, shardable for a cluster (`flexrig sweep merge` joins the shards).
+    Sweep(commands::sweep::SweepArgs),
     /// Peak force of the lumped two-mass impact (paper Eq. 10–14) by the exact energy balance,
     /// the n = 1 closed form, or time integration.
     Impact(commands::impact::ImpactArgs),
@@ -71,6 +74,7 @@ pub fn run_interruptible(
         None => commands::default_job(&PathBuf::from(DEFAULT_OUT_DIR), out, interrupt),
         Some(Command::Experiment(args)) => commands::experiment::run(args, out, interrupt),
         Some(Command::Run(args)) => commands::run::run(args, out, interrupt),
+        Some(Command::Sweep(args)) => commands::sweep::run(args, out, interrupt),
         Some(Command::Impact(args)) => commands::impact::run(args, out),
         Some(Command::Fig6(args)) => commands::fig6::run(args, out),
         Some(Command::Fit(args)) => commands::fit::run(args, out),

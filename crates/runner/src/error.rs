@@ -54,6 +54,16 @@ pub enum CliError {
         /// Which arguments to change.
         advice: String,
     },
+    /// Some runs of a sweep failed (their rows say why).
+    #[error("{failed} of {total} runs failed; see the status and error columns of {}", table.display())]
+    SweepFailed {
+        /// Failed runs.
+        failed: usize,
+        /// Runs of the sweep (or shard).
+        total: usize,
+        /// The table.
+        table: PathBuf,
+    },
     /// `flexrig validate` found failing cases.
     #[error("verification failed: {failed}")]
     ValidationFailed {

@@ -24,6 +24,7 @@ pub mod error;
 pub mod mcap_log;
 pub mod output;
 pub mod plots;
+pub mod study;
 pub mod validation;
 
 pub use error::CliError;

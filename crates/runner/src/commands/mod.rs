@@ -8,6 +8,7 @@ pub mod fit;
 pub mod impact;
 pub mod prb;
 pub mod run;
+pub mod sweep;
 pub mod validate;
 
 use std::io::Write;
