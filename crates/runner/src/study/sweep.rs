@@ -64,6 +64,7 @@ pub fn summary_values(s: &RunSummary) -> [Option<f64>; 15] {
 /// A sweep: the base scene and what varies.
 #[derive(Debug, Clone)]
 pub struct Sweep {
+    materials: Materials,
     base_text: String,
     base: toml::Table,
     dimensions: Vec<Dimension>,
@@ -115,6 +116,7 @@ impl Sweep {
         }
         let points = point_count(&dimensions, zip)?;
         Ok(Sweep {
+            materials,
             base_text: base_text.to_string(),
             base,
             dimensions,
@@ -195,8 +197,7 @@ impl Sweep {
         overrides: &[Override],
         options: &SweepOptions,
     ) -> Result<RunSummary, CliError> {
-        let materials = Materials::bundled()?;
-        let scene = flexrig_rig::scene_from_table(&self.base, overrides, &materials)?;
+        let scene = flexrig_rig::scene_from_table(&self.base, overrides, &self.materials)?;
         let simulation = Simulation::new(&scene, RunOptions::default())?;
         let Some(dir) = &options.mcap_dir else {
             return Ok(simulation.run(&mut Interruptible(options.interrupt.clone()))?);
