@@ -471,17 +471,14 @@ impl GeneralizedAlpha {
         );
         let velocity = (Predictor::Velocity, self.max_iterations);
         let plan = if model.kinematics() == Kinematics::Linear {
-            [(Predictor::Rest, self.max_iterations), (Predictor::Rest, 0)]
+            [Some((Predictor::Rest, self.max_iterations)), None]
         } else if ws.last_predictor == Predictor::Velocity {
-            [velocity, extrapolated]
+            [Some(velocity), Some(extrapolated)]
         } else {
-            [extrapolated, velocity]
+            [Some(extrapolated), Some(velocity)]
         };
         let mut failure = None;
-        for (predictor, max_iterations) in plan {
-            if max_iterations == 0 {
-                continue;
-            }
+        for (predictor, max_iterations) in plan.into_iter().flatten() {
             let newton = NewtonStep {
                 h,
                 predictor,
