@@ -115,14 +115,19 @@ pub struct State {
     pub v: Vec<f64>,
     /// q̈ [m/s², rad/s²].
     pub a: Vec<f64>,
-    a_aux: Vec<f64>,
-    a_aux_prev: Vec<f64>,
-    h_prev: Option<f64>,
-    f_prev: Vec<f64>,
-    /// (first global DOF of the node, force) of the last motion-dependent node load.
-    node_force_prev: (usize, [f64; 3]),
-    external_work: f64,
-    initial_energy: f64,
+    pub(crate) a_aux: Vec<f64>,
+    pub(crate) a_aux_prev: Vec<f64>,
+    pub(crate) h_prev: Option<f64>,
+    pub(crate) f_prev: Vec<f64>,
+    /// (node, force in (u, v, θ) terms) of the last motion-dependent node load.
+    pub(crate) node_force_prev: (usize, [f64; 3]),
+    pub(crate) external_work: f64,
+    pub(crate) initial_energy: f64,
+    /// 3, or 4 for ANCF.
+    pub(crate) dofs_per_node: usize,
+    /// Element (and root spring) strain energies at q (energy-conserving step; empty until
+    /// first needed).
+    pub(crate) element_energies: Vec<f64>,
 }
 
 /// Energies of a state \[J\].
@@ -155,7 +160,7 @@ impl State {
                 return Err(BeamError::invalid(
                     format!("{name} length"),
                     x.len(),
-                    format!("{n} entries (3 per node)"),
+                    format!("{n} entries ({} per node)", model.dofs_per_node()),
                 ));
             }
             if let Some(i) = x.iter().position(|v| !v.is_finite()) {
@@ -209,6 +214,8 @@ impl State {
             node_force_prev: (0, [0.0; 3]),
             external_work: 0.0,
             initial_energy,
+            dofs_per_node: model.dofs_per_node(),
+            element_energies: Vec::new(),
         })
     }
 
@@ -218,9 +225,28 @@ impl State {
         State::new(model, vec![0.0; n], vec![0.0; n], 0.0, loads)
     }
 
-    /// (u, v, θ) of node `i`.
+    /// (u, v, θ) of node `i` [m, m, rad] (ANCF: θ = atan2(r′ᵧ, r′ₓ)).
     pub fn node(&self, i: usize) -> (f64, f64, f64) {
-        (self.q[3 * i], self.q[3 * i + 1], self.q[3 * i + 2])
+        let [u, v, t] = node_values(self.dofs_per_node, &self.q, i);
+        (u, v, t)
+    }
+
+    /// (u̇, v̇, θ̇) of node `i` [m/s, m/s, rad/s].
+    pub fn node_velocity(&self, i: usize) -> [f64; 3] {
+        if self.dofs_per_node == 4 {
+            crate::assembly_ancf::node_uvt_rate(&self.q, &self.v, i)
+        } else {
+            node_dofs(&self.v, 3 * i)
+        }
+    }
+
+    /// (ü, v̈, θ̈) of node `i` [m/s², m/s², rad/s²].
+    pub fn node_acceleration(&self, i: usize) -> [f64; 3] {
+        if self.dofs_per_node == 4 {
+            crate::assembly_ancf::node_uvt_acceleration(&self.q, &self.v, &self.a, i)
+        } else {
+            node_dofs(&self.a, 3 * i)
+        }
     }
 
     /// Energies of this state.
@@ -529,6 +555,7 @@ impl GeneralizedAlpha {
         let nfix = model.n_fixed();
         let n = model.n_dofs();
         let linear = model.kinematics() == Kinematics::Linear;
+        let corotational = model.kinematics() == Kinematics::Corotational;
         // A motion-dependent load makes even the linear model nonlinear: iterate, refactor.
         let single_solve = linear && node_load.is_none();
         let t_new = state.t + h;
@@ -592,7 +619,14 @@ impl GeneralizedAlpha {
             };
             if iterations >= max_iterations {
                 assemble(model, kin, loads.as_slice(), &mut ws.r, None);
-                node_residual(node_load.as_deref_mut(), t_new, ws, nfix, None);
+                node_residual(
+                    node_load.as_deref_mut(),
+                    t_new,
+                    ws,
+                    (nfix, model.dofs_per_node()),
+                    None,
+                    1.0,
+                );
                 let residual = ws.r[nfix..].iter().fold(0.0f64, |m, x| m.max(x.abs()));
                 return Err((
                     iterations,
@@ -615,7 +649,14 @@ impl GeneralizedAlpha {
                     &mut ws.r,
                     Some((&mut ws.band, weights)),
                 );
-                node_residual(node_load.as_deref_mut(), t_new, ws, nfix, Some(weights));
+                node_residual(
+                    node_load.as_deref_mut(),
+                    t_new,
+                    ws,
+                    (nfix, model.dofs_per_node()),
+                    Some(weights),
+                    1.0,
+                );
                 ws.factored_for = None;
                 if let Err(e) = ws.band.factorize("generalized-α iteration matrix") {
                     return Err((iterations, e));
@@ -628,10 +669,10 @@ impl GeneralizedAlpha {
                 *d = -ri;
             }
             ws.band.solve_in_place(&mut ws.dq);
-            let s = if linear {
-                1.0
-            } else {
+            let s = if corotational {
                 crate::statics::rotation_limiter(&ws.dq, nfix)
+            } else {
+                1.0
             };
             last = 0.0;
             for (i, d) in (nfix..n).zip(&ws.dq) {
@@ -655,7 +696,7 @@ impl GeneralizedAlpha {
         // A converged step that turns a node by more than the Newton limiter allows in one
         // iteration has not resolved the rotation: it may be a spurious root (a node turned by
         // 2π, or onto another branch of the 2π-periodic element); take it in smaller pieces.
-        if !linear
+        if corotational
             && let Some(i) = (nfix..n)
                 .filter(|i| i % 3 == 2)
                 .find(|&i| ws.dq_step[i].abs() > crate::statics::MAX_ROTATION_INCREMENT)
@@ -687,10 +728,11 @@ impl GeneralizedAlpha {
             ));
         }
         // The motion-dependent load at the accepted state (for the work done on the beam).
+        let dpn = model.dofs_per_node();
         let node_force = node_load.as_deref_mut().map(|nl| {
-            let k = 3 * nl.node();
-            let f = nl.evaluate(t_new, node_dofs(&ws.q_new, k), node_dofs(&ws.v_new, k));
-            (k, f.force)
+            let i = nl.node();
+            let (q, v) = node_motion(dpn, &ws.q_new, &ws.v_new, i);
+            (i, nl.evaluate(t_new, q, v).force)
         });
         if let Some((_, f)) = node_force
             && !f.iter().all(|x| x.is_finite())
@@ -704,18 +746,14 @@ impl GeneralizedAlpha {
         }
         // Accept.
         let f = loads.as_slice();
-        let mut work = 0.0;
-        for i in 0..n {
-            work += 0.5 * (state.f_prev[i] + f[i]) * ws.dq_step[i];
-        }
-        let (k_prev, f_prev_node) = state.node_force_prev;
-        let (k_new, f_new_node) = node_force.unwrap_or((k_prev, [0.0; 3]));
-        for d in 0..3 {
-            work += 0.5 * f_prev_node[d] * ws.dq_step[k_prev + d];
-            work += 0.5 * f_new_node[d] * ws.dq_step[k_new + d];
-        }
-        state.node_force_prev = (k_new, f_new_node);
-        state.external_work += work;
+        state.external_work += step_work(
+            dpn,
+            (&state.q, &ws.q_new),
+            (&state.f_prev, f),
+            state.node_force_prev,
+            node_force,
+        );
+        state.node_force_prev = node_force.unwrap_or((state.node_force_prev.0, [0.0; 3]));
         state.f_prev.copy_from_slice(f);
         state.q.copy_from_slice(&ws.q_new);
         state.v.copy_from_slice(&ws.v_new);
@@ -743,34 +781,156 @@ fn node_dofs(x: &[f64], k: usize) -> [f64; 3] {
     [x[k], x[k + 1], x[k + 2]]
 }
 
-/// Adds the motion-dependent node load at the current iterate to the residual (r −= F) and, if
-/// `weights` is given, −(c_q ∂F/∂q + c_v ∂F/∂q̇) to the iteration matrix (free DOFs only).
-fn node_residual<'l>(
+/// (u, v, θ) of node `i` from the DOF vector `q` (`dpn` DOFs per node).
+pub(crate) fn node_values(dpn: usize, q: &[f64], i: usize) -> [f64; 3] {
+    if dpn == 4 {
+        crate::assembly_ancf::node_uvt(q, i)
+    } else {
+        node_dofs(q, 3 * i)
+    }
+}
+
+/// ((u, v, θ), (u̇, v̇, θ̇)) of node `i`.
+pub(crate) fn node_motion(dpn: usize, q: &[f64], v: &[f64], i: usize) -> ([f64; 3], [f64; 3]) {
+    if dpn == 4 {
+        (
+            crate::assembly_ancf::node_uvt(q, i),
+            crate::assembly_ancf::node_uvt_rate(q, v, i),
+        )
+    } else {
+        (node_dofs(q, 3 * i), node_dofs(v, 3 * i))
+    }
+}
+
+/// (Δu, Δv, Δθ) of node `i` from `q0` to `q1` (ANCF: Δθ is the angle between the slopes).
+pub(crate) fn node_increment(dpn: usize, q0: &[f64], q1: &[f64], i: usize) -> [f64; 3] {
+    if dpn == 4 {
+        let (a, b) = (
+            crate::assembly_ancf::slope(q0, i),
+            crate::assembly_ancf::slope(q1, i),
+        );
+        [
+            q1[4 * i] - q0[4 * i],
+            q1[4 * i + 1] - q0[4 * i + 1],
+            (a.0 * b.1 - a.1 * b.0).atan2(a.0 * b.0 + a.1 * b.1),
+        ]
+    } else {
+        std::array::from_fn(|d| q1[3 * i + d] - q0[3 * i + d])
+    }
+}
+
+/// Work of the dead loads (trapezoidal: ½ (F₀ + F₁)·Δ) and of the node load (½ (F₀ + F₁)·Δ of
+/// its node) over a step from `q0` to `q1`, in node terms (u, v, θ).
+pub(crate) fn step_work(
+    dpn: usize,
+    (q0, q1): (&[f64], &[f64]),
+    (f0, f1): (&[f64], &[f64]),
+    node_prev: (usize, [f64; 3]),
+    node_new: Option<(usize, [f64; 3])>,
+) -> f64 {
+    let mut work = 0.0;
+    let nodes = f1.len() / 3;
+    for i in 0..nodes {
+        if (0..3).all(|d| f0[3 * i + d] == 0.0 && f1[3 * i + d] == 0.0) {
+            continue;
+        }
+        let dq = node_increment(dpn, q0, q1, i);
+        for d in 0..3 {
+            work += 0.5 * (f0[3 * i + d] + f1[3 * i + d]) * dq[d];
+        }
+    }
+    let (i_prev, fp) = node_prev;
+    let dq = node_increment(dpn, q0, q1, i_prev);
+    work += 0.5 * (0..3).map(|d| fp[d] * dq[d]).sum::<f64>();
+    if let Some((i_new, fnew)) = node_new {
+        let dq = node_increment(dpn, q0, q1, i_new);
+        work += 0.5 * (0..3).map(|d| fnew[d] * dq[d]).sum::<f64>();
+    }
+    work
+}
+
+/// Adds `scale` × the motion-dependent node load at the current iterate to the residual
+/// (r −= scale·F) and, if `weights` is given, −scale·(c_q ∂F/∂q + c_v ∂F/∂q̇) to the iteration
+/// matrix (free DOFs only). On an ANCF node F = (fx, fy, m) acts through the chain rule
+/// Q = Jᵀ F, J = ∂(u, v, θ)/∂(u, v, r′ᵧ, r′ₓ), and the Jacobian gets
+/// Jᵀ (∂F/∂q) J + m ∂²θ/∂r′² + Jᵀ (∂F/∂θ̇)(∂θ̇/∂r′) for c_q and Jᵀ (∂F/∂q̇) J for c_v.
+pub(crate) fn node_residual<'l>(
     node_load: Option<&mut (dyn NodeLoad + 'l)>,
     t: f64,
     ws: &mut Workspace,
-    nfix: usize,
+    (nfix, dpn): (usize, usize),
     weights: Option<JacobianWeights>,
+    scale: f64,
 ) {
     let Some(nl) = node_load else {
         return;
     };
-    let k = 3 * nl.node();
-    let f = nl.evaluate(t, node_dofs(&ws.q_new, k), node_dofs(&ws.v_new, k));
-    for i in 0..3 {
-        ws.r[k + i] -= f.force[i];
+    let node = nl.node();
+    let (q, v) = node_motion(dpn, &ws.q_new, &ws.v_new, node);
+    let f = nl.evaluate(t, q, v);
+    let k = dpn * node;
+    if dpn == 3 {
+        for i in 0..3 {
+            ws.r[k + i] -= scale * f.force[i];
+        }
+        if let Some(w) = weights {
+            for i in 0..3 {
+                for j in 0..3 {
+                    let (gi, gj) = (k + i, k + j);
+                    if gi >= nfix && gj >= nfix {
+                        ws.band.add(
+                            gi - nfix,
+                            gj - nfix,
+                            -scale * (w.stiffness * f.d_dq[i][j] + w.velocity * f.d_dv[i][j]),
+                        );
+                    }
+                }
+            }
+        }
+        return;
+    }
+    // ANCF: J (3 × 4) over the node DOFs (u, v, r′ᵧ, r′ₓ − 1)
+    use crate::assembly_ancf::{SLOPE_X, SLOPE_Y, slope};
+    let (sx, sy) = slope(&ws.q_new, node);
+    let (_, g, h) = crate::ancf::slope_angle(sx, sy);
+    let mut jm = [[0.0; 4]; 3];
+    jm[0][0] = 1.0;
+    jm[1][1] = 1.0;
+    jm[2][SLOPE_X] = g[0];
+    jm[2][SLOPE_Y] = g[1];
+    let mut hq = [[0.0; 4]; 4];
+    let sd = [ws.v_new[k + SLOPE_X], ws.v_new[k + SLOPE_Y]];
+    let slot = [SLOPE_X, SLOPE_Y];
+    // ∂θ̇/∂r′ = H ṙ′
+    let mut dthdot = [0.0; 4];
+    for a in 0..2 {
+        dthdot[slot[a]] = h[a][0] * sd[0] + h[a][1] * sd[1];
+        for b in 0..2 {
+            hq[slot[a]][slot[b]] = h[a][b];
+        }
+    }
+    for a in 0..4 {
+        let qa: f64 = (0..3).map(|i| jm[i][a] * f.force[i]).sum();
+        ws.r[k + a] -= scale * qa;
     }
     if let Some(w) = weights {
-        for i in 0..3 {
-            for j in 0..3 {
-                let (gi, gj) = (k + i, k + j);
-                if gi >= nfix && gj >= nfix {
-                    ws.band.add(
-                        gi - nfix,
-                        gj - nfix,
-                        -(w.stiffness * f.d_dq[i][j] + w.velocity * f.d_dv[i][j]),
-                    );
+        for a in 0..4 {
+            for b in 0..4 {
+                let (ga, gb) = (k + a, k + b);
+                if ga < nfix || gb < nfix {
+                    continue;
                 }
+                let mut dq = f.force[2] * hq[a][b];
+                let mut dv = 0.0;
+                for i in 0..3 {
+                    for j in 0..3 {
+                        dq += jm[i][a] * f.d_dq[i][j] * jm[j][b];
+                        dv += jm[i][a] * f.d_dv[i][j] * jm[j][b];
+                    }
+                    dq += jm[i][a] * f.d_dv[i][2] * dthdot[b];
+                }
+                ws.band
+                    .add(ga - nfix, gb - nfix, -scale * (w.stiffness * dq + w.velocity * dv));
             }
         }
     }

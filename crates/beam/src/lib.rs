@@ -35,7 +35,9 @@
 // Index loops mirror the equations (DOF i, node j) in the numerics.
 #![allow(clippy::needless_range_loop)]
 
+pub mod ancf;
 pub mod assembly;
+pub mod assembly_ancf;
 pub mod banded;
 pub mod canonical;
 pub mod corotational;
