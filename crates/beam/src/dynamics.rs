@@ -42,6 +42,7 @@ pub struct GeneralizedAlpha {
     beta: f64,
     max_iterations: usize,
     tolerance: f64,
+    energy_conserving: bool,
 }
 
 impl GeneralizedAlpha {
@@ -66,7 +67,22 @@ impl GeneralizedAlpha {
             beta,
             max_iterations: 25,
             tolerance: 1e-6,
+            energy_conserving: false,
         })
+    }
+
+    /// The energy-conserving midpoint step (ρ∞ = 1, no numerical dissipation) for the ANCF and
+    /// linear models, see [`crate::energy_conserving`]: undamped free motion keeps
+    /// T + U to the Newton tolerance for any h, second order in h.
+    pub fn energy_conserving() -> Self {
+        let mut ga = GeneralizedAlpha::new(1.0).expect("ρ∞ = 1 is valid");
+        ga.energy_conserving = true;
+        ga
+    }
+
+    /// True for the energy-conserving step ([`GeneralizedAlpha::energy_conserving`]).
+    pub fn is_energy_conserving(&self) -> bool {
+        self.energy_conserving
     }
     /// Newton settings: at most `max_iterations` ≥ 1, converged when ‖Δq‖∞ ≤ `tolerance`·L,
     /// `tolerance` in (0, 1e-3].
@@ -265,20 +281,29 @@ impl State {
 /// Scratch memory reused between steps.
 #[derive(Debug, Clone)]
 pub struct Workspace {
-    band: BandMatrix,
-    r: Vec<f64>,
-    q_new: Vec<f64>,
-    v_new: Vec<f64>,
-    a_new: Vec<f64>,
-    ahat_new: Vec<f64>,
+    pub(crate) band: BandMatrix,
+    pub(crate) r: Vec<f64>,
+    pub(crate) q_new: Vec<f64>,
+    pub(crate) v_new: Vec<f64>,
+    pub(crate) a_new: Vec<f64>,
+    pub(crate) ahat_new: Vec<f64>,
     /// â_n rescaled to the current step.
-    a_aux: Vec<f64>,
+    pub(crate) a_aux: Vec<f64>,
     /// The step's increment Δq = q_{n+1} − q_n (the Newton unknown).
-    dq_step: Vec<f64>,
-    dq: Vec<f64>,
-    factored_for: Option<(f64, f64)>,
+    pub(crate) dq_step: Vec<f64>,
+    pub(crate) dq: Vec<f64>,
+    /// (h, ρ∞, energy-conserving) of the factorisation held in `band`, if it may be reused.
+    pub(crate) factored_for: Option<(f64, f64, bool)>,
+    /// Element energies at q₁ (energy-conserving step).
+    pub(crate) u1: Vec<f64>,
+    /// Element energies at q₀ (energy-conserving step).
+    pub(crate) u0: Vec<f64>,
+    /// The dead loads averaged over the step (energy-conserving step).
+    pub(crate) f_avg: Vec<f64>,
+    /// Midpoint displacements (energy-conserving step).
+    pub(crate) q_mid: Vec<f64>,
     /// The predictor of the last accepted step (tried first on the next one).
-    last_predictor: Predictor,
+    pub(crate) last_predictor: Predictor,
 }
 
 impl Workspace {
@@ -296,6 +321,10 @@ impl Workspace {
             dq_step: vec![0.0; n],
             dq: vec![0.0; model.n_free()],
             factored_for: None,
+            u1: vec![0.0; model.n_nodes()],
+            u0: vec![0.0; model.n_nodes()],
+            f_avg: vec![0.0; 3 * model.n_nodes()],
+            q_mid: vec![0.0; n],
             last_predictor: Predictor::Extrapolated,
         }
     }
@@ -318,6 +347,10 @@ pub struct StepReport {
     pub rejected: usize,
 }
 
+/// Modified Newton (ANCF): the iteration matrix is rebuilt when a correction is larger than
+/// this fraction of the previous one (slow linear contraction), and after a failed attempt.
+pub const MODIFIED_NEWTON_RATE: f64 = 0.25;
+
 /// Most halvings of one step before the step fails: the smallest piece is h/2¹⁰.
 pub const MAX_STEP_HALVINGS: u32 = 10;
 
@@ -328,7 +361,7 @@ const EXTRAPOLATED_ITERATIONS: usize = 8;
 
 /// Where Newton starts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Predictor {
+pub(crate) enum Predictor {
     /// â_{n+1} extrapolated linearly from â_{n−1}, â_n (â_n on the first step): close for a
     /// smooth motion, so usually a single correction.
     Extrapolated,
@@ -340,7 +373,7 @@ enum Predictor {
 }
 
 /// True for failures that a smaller step can cure.
-fn recoverable(e: &BeamError) -> bool {
+pub(crate) fn recoverable(e: &BeamError) -> bool {
     matches!(
         e,
         BeamError::NotConverged { .. } | BeamError::NonFinite { .. } | BeamError::Singular { .. }
@@ -393,7 +426,14 @@ impl GeneralizedAlpha {
                 format!("a node index from 0 to {} (the tip)", model.tip_node()),
             ));
         }
-        if ws.r.len() != model.n_dofs() {
+        if self.energy_conserving && model.kinematics() == Kinematics::Corotational {
+            return Err(BeamError::invalid(
+                "kinematics",
+                "corotational",
+                "ancf or linear for the energy-conserving step (its mass must be constant)",
+            ));
+        }
+        if ws.r.len() != model.n_dofs() || ws.f_avg.len() != 3 * model.n_nodes() {
             *ws = Workspace::new(model);
         }
         let mut report = StepReport {
@@ -522,6 +562,10 @@ impl GeneralizedAlpha {
                     return Ok(());
                 }
                 Err((iterations, e)) => {
+                    // never reuse an iteration matrix across a failure
+                    if model.kinematics() == Kinematics::Ancf {
+                        ws.factored_for = None;
+                    }
                     report.iterations += iterations;
                     report.rejected += 1;
                     if !recoverable(&e) {
@@ -546,6 +590,9 @@ impl GeneralizedAlpha {
         mut node_load: Option<&mut (dyn NodeLoad + 'l)>,
         step: NewtonStep,
     ) -> Result<(usize, f64, f64), (usize, BeamError)> {
+        if self.energy_conserving {
+            return self.newton_energy_conserving(model, state, ws, loads, node_load, step);
+        }
         let NewtonStep {
             h,
             predictor,
@@ -599,6 +646,11 @@ impl GeneralizedAlpha {
         let mut iterations = 0;
         let mut last = f64::INFINITY;
         let mut first = f64::INFINITY;
+        // modified Newton (ANCF): the iteration matrix of an earlier iteration or step is kept
+        // while the corrections contract by at least MODIFIED_NEWTON_RATE per iteration
+        let modified = model.kinematics() == Kinematics::Ancf;
+        let mut refactor = false;
+        let mut previous = f64::INFINITY;
         loop {
             // Newmark relations: â, q̇, q̈ from the increment Δq = q_{n+1} − q_n (not from
             // q_{n+1} − q_n, which cancels to ε|q| and leaves ε|q|/(βh²) of noise in â at tiny h).
@@ -638,9 +690,20 @@ impl GeneralizedAlpha {
                     },
                 ));
             }
-            let reuse = single_solve && ws.factored_for == Some((h, self.rho_inf));
+            let key = Some((h, self.rho_inf, false));
+            let reuse = ws.factored_for == key && (single_solve || (modified && !refactor));
             if reuse {
                 assemble(model, kin, loads.as_slice(), &mut ws.r, None);
+                if !single_solve {
+                    node_residual(
+                        node_load.as_deref_mut(),
+                        t_new,
+                        ws,
+                        (nfix, model.dofs_per_node()),
+                        None,
+                        1.0,
+                    );
+                }
             } else {
                 assemble(
                     model,
@@ -661,9 +724,10 @@ impl GeneralizedAlpha {
                 if let Err(e) = ws.band.factorize("generalized-α iteration matrix") {
                     return Err((iterations, e));
                 }
-                if single_solve {
-                    ws.factored_for = Some((h, self.rho_inf));
+                if single_solve || modified {
+                    ws.factored_for = key;
                 }
+                refactor = false;
             }
             for (d, ri) in ws.dq.iter_mut().zip(&ws.r[nfix..]) {
                 *d = -ri;
@@ -691,6 +755,11 @@ impl GeneralizedAlpha {
             if iterations == 0 {
                 first = last;
             }
+            // modified Newton: a fresh iteration matrix once the contraction is slow
+            if modified && reuse && iterations > 0 && last > MODIFIED_NEWTON_RATE * previous {
+                refactor = true;
+            }
+            previous = last;
             iterations += 1;
         }
         // A converged step that turns a node by more than the Newton limiter allows in one
@@ -770,14 +839,14 @@ impl GeneralizedAlpha {
 
 /// One Newton solve's settings.
 #[derive(Debug, Clone, Copy)]
-struct NewtonStep {
-    h: f64,
-    predictor: Predictor,
-    max_iterations: usize,
+pub(crate) struct NewtonStep {
+    pub(crate) h: f64,
+    pub(crate) predictor: Predictor,
+    pub(crate) max_iterations: usize,
 }
 
 /// (x[k], x[k + 1], x[k + 2]).
-fn node_dofs(x: &[f64], k: usize) -> [f64; 3] {
+pub(crate) fn node_dofs(x: &[f64], k: usize) -> [f64; 3] {
     [x[k], x[k + 1], x[k + 2]]
 }
 
@@ -873,17 +942,41 @@ pub(crate) fn node_residual<'l>(
         for i in 0..3 {
             ws.r[k + i] -= scale * f.force[i];
         }
-        if let Some(w) = weights {
-            for i in 0..3 {
-                for j in 0..3 {
-                    let (gi, gj) = (k + i, k + j);
-                    if gi >= nfix && gj >= nfix {
-                        ws.band.add(
-                            gi - nfix,
-                            gj - nfix,
-                            -scale * (w.stiffness * f.d_dq[i][j] + w.velocity * f.d_dv[i][j]),
-                        );
-                    }
+    } else {
+        use crate::assembly_ancf::{SLOPE_X, SLOPE_Y, slope};
+        let (sx, sy) = slope(&ws.q_new, node);
+        let (_, g, _) = crate::ancf::slope_angle(sx, sy);
+        ws.r[k] -= scale * f.force[0];
+        ws.r[k + 1] -= scale * f.force[1];
+        ws.r[k + SLOPE_X] -= scale * f.force[2] * g[0];
+        ws.r[k + SLOPE_Y] -= scale * f.force[2] * g[1];
+    }
+    if let Some(w) = weights {
+        add_node_jacobian(ws, (nfix, dpn), node, &f, w, scale);
+    }
+}
+
+/// Adds −scale·(c_q ∂Q/∂q + c_v ∂Q/∂q̇) of the node force `f` on `node` to the iteration matrix
+/// (chain rule through θ = atan2(r′ᵧ, r′ₓ) on an ANCF node, at the iterate in `ws`).
+pub(crate) fn add_node_jacobian(
+    ws: &mut Workspace,
+    (nfix, dpn): (usize, usize),
+    node: usize,
+    f: &crate::node_load::NodeForce,
+    w: JacobianWeights,
+    scale: f64,
+) {
+    let k = dpn * node;
+    if dpn == 3 {
+        for i in 0..3 {
+            for j in 0..3 {
+                let (gi, gj) = (k + i, k + j);
+                if gi >= nfix && gj >= nfix {
+                    ws.band.add(
+                        gi - nfix,
+                        gj - nfix,
+                        -scale * (w.stiffness * f.d_dq[i][j] + w.velocity * f.d_dv[i][j]),
+                    );
                 }
             }
         }
@@ -910,28 +1003,22 @@ pub(crate) fn node_residual<'l>(
         }
     }
     for a in 0..4 {
-        let qa: f64 = (0..3).map(|i| jm[i][a] * f.force[i]).sum();
-        ws.r[k + a] -= scale * qa;
-    }
-    if let Some(w) = weights {
-        for a in 0..4 {
-            for b in 0..4 {
-                let (ga, gb) = (k + a, k + b);
-                if ga < nfix || gb < nfix {
-                    continue;
-                }
-                let mut dq = f.force[2] * hq[a][b];
-                let mut dv = 0.0;
-                for i in 0..3 {
-                    for j in 0..3 {
-                        dq += jm[i][a] * f.d_dq[i][j] * jm[j][b];
-                        dv += jm[i][a] * f.d_dv[i][j] * jm[j][b];
-                    }
-                    dq += jm[i][a] * f.d_dv[i][2] * dthdot[b];
-                }
-                ws.band
-                    .add(ga - nfix, gb - nfix, -scale * (w.stiffness * dq + w.velocity * dv));
+        for b in 0..4 {
+            let (ga, gb) = (k + a, k + b);
+            if ga < nfix || gb < nfix {
+                continue;
             }
+            let mut dq = f.force[2] * hq[a][b];
+            let mut dv = 0.0;
+            for i in 0..3 {
+                for j in 0..3 {
+                    dq += jm[i][a] * f.d_dq[i][j] * jm[j][b];
+                    dv += jm[i][a] * f.d_dv[i][j] * jm[j][b];
+                }
+                dq += jm[i][a] * f.d_dv[i][2] * dthdot[b];
+            }
+            ws.band
+                .add(ga - nfix, gb - nfix, -scale * (w.stiffness * dq + w.velocity * dv));
         }
     }
 }

@@ -44,6 +44,7 @@ pub mod corotational;
 pub mod dynamics;
 pub mod element;
 pub mod energy;
+pub mod energy_conserving;
 mod error;
 pub mod modal;
 pub mod model;
