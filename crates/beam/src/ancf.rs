@@ -154,8 +154,10 @@ pub enum Want {
     Energy,
     /// Energy and internal force.
     Force,
-    /// Energy, force, tangent and material matrices.
+    /// Energy, force and tangent.
     Tangent,
+    /// Energy, force, tangent and material matrices.
+    TangentAndMaterial,
 }
 
 /// One integration point: weight × l and the coefficients of r′ and r″ per slot.
@@ -199,7 +201,8 @@ pub struct AncfEvaluation {
     pub force: Vector8,
     /// Tangent ∂²U/∂e² (zero unless requested).
     pub tangent: Matrix8,
-    /// Material part ∫ EA ∇ε∇εᵀ + EI ∇κ∇κᵀ ds (zero unless requested).
+    /// Material part ∫ EA ∇ε∇εᵀ + EI ∇κ∇κᵀ ds (zero unless requested with
+    /// [`Want::TangentAndMaterial`]).
     pub material: Matrix8,
 }
 
@@ -297,7 +300,7 @@ impl AncfElement {
                 out.force[2 * a] += p.c1[a] * ft.x;
                 out.force[2 * a + 1] += p.c1[a] * ft.y;
             }
-            if want != Want::Tangent {
+            if want == Want::Force {
                 continue;
             }
             // A = wl EA (t tᵀ + ε P/|r′|), material part wl EA t tᵀ
@@ -311,13 +314,20 @@ impl AncfElement {
                 [ea_w * s * (1.0 - t.x * t.x), -ea_w * s * t.x * t.y],
                 [-ea_w * s * t.x * t.y, ea_w * s * (1.0 - t.y * t.y)],
             ];
+            let kk = [
+                [mt[0][0] + geo[0][0], mt[0][1] + geo[0][1]],
+                [mt[1][0] + geo[1][0], mt[1][1] + geo[1][1]],
+            ];
+            let material = want == Want::TangentAndMaterial;
             for a in 0..4 {
                 for b in 0..4 {
                     let cc = p.c1[a] * p.c1[b];
                     for i in 0..2 {
                         for j in 0..2 {
-                            km[2 * a + i][2 * b + j] += cc * mt[i][j];
-                            k[2 * a + i][2 * b + j] += cc * (mt[i][j] + geo[i][j]);
+                            k[2 * a + i][2 * b + j] += cc * kk[i][j];
+                            if material {
+                                km[2 * a + i][2 * b + j] += cc * mt[i][j];
+                            }
                         }
                     }
                 }
@@ -346,7 +356,7 @@ impl AncfElement {
                 out.force[2 * a] += fm * grad.x;
                 out.force[2 * a + 1] += fm * grad.y;
             }
-            if want != Want::Tangent {
+            if want == Want::Force {
                 continue;
             }
             let ei_w = p.wl * self.ei;
@@ -367,43 +377,52 @@ impl AncfElement {
                 [-1.0 / g - 2.0 * rp.y * qv.x / g2, -2.0 * rp.y * qv.y / g2],
             ];
             let (al, be) = ([alpha.x, alpha.y], [beta.x, beta.y]);
+            // K_ab = c¹ₐ P_b + c²ₐ Q_b, P_b = c¹_b K₁₁ + c²_b K₁₂, Q_b = c¹_b K₁₂ᵀ + c²_b K₂₂
+            let mut k11 = [[0.0; 2]; 2];
+            let mut k12 = [[0.0; 2]; 2];
+            let mut k22 = [[0.0; 2]; 2];
             let mut m11 = [[0.0; 2]; 2];
             let mut m12 = [[0.0; 2]; 2];
-            let mut m22 = [[0.0; 2]; 2];
-            let mut g11 = [[0.0; 2]; 2];
-            let mut g12 = [[0.0; 2]; 2];
             for i in 0..2 {
                 for j in 0..2 {
                     m11[i][j] = ei_w * al[i] * al[j];
                     m12[i][j] = ei_w * al[i] * be[j];
-                    m22[i][j] = ei_w * be[i] * be[j];
-                    g11[i][j] = ei_w * kappa * b11[i][j];
-                    g12[i][j] = ei_w * kappa * b12[i][j];
+                    k22[i][j] = ei_w * be[i] * be[j];
+                    k11[i][j] = m11[i][j] + ei_w * kappa * b11[i][j];
+                    k12[i][j] = m12[i][j] + ei_w * kappa * b12[i][j];
                 }
             }
-            for a in 0..4 {
-                for b in 0..4 {
-                    let (c11, c12, c21, c22) = (
-                        p.c1[a] * p.c1[b],
-                        p.c1[a] * p.c2[b],
-                        p.c2[a] * p.c1[b],
-                        p.c2[a] * p.c2[b],
-                    );
+            let material = want == Want::TangentAndMaterial;
+            for b in 0..4 {
+                let (c1b, c2b) = (p.c1[b], p.c2[b]);
+                let mut pb = [[0.0; 2]; 2];
+                let mut qb = [[0.0; 2]; 2];
+                let mut pm = [[0.0; 2]; 2];
+                let mut qm = [[0.0; 2]; 2];
+                for i in 0..2 {
+                    for j in 0..2 {
+                        pb[i][j] = c1b * k11[i][j] + c2b * k12[i][j];
+                        qb[i][j] = c1b * k12[j][i] + c2b * k22[i][j];
+                        if material {
+                            pm[i][j] = c1b * m11[i][j] + c2b * m12[i][j];
+                            qm[i][j] = c1b * m12[j][i] + c2b * k22[i][j];
+                        }
+                    }
+                }
+                for a in 0..4 {
+                    let (c1a, c2a) = (p.c1[a], p.c2[a]);
                     for i in 0..2 {
                         for j in 0..2 {
-                            let mat = c11 * m11[i][j]
-                                + c12 * m12[i][j]
-                                + c21 * m12[j][i]
-                                + c22 * m22[i][j];
-                            km[2 * a + i][2 * b + j] += mat;
-                            k[2 * a + i][2 * b + j] +=
-                                mat + c11 * g11[i][j] + c12 * g12[i][j] + c21 * g12[j][i];
+                            k[2 * a + i][2 * b + j] += c1a * pb[i][j] + c2a * qb[i][j];
+                            if material {
+                                km[2 * a + i][2 * b + j] += c1a * pm[i][j] + c2a * qm[i][j];
+                            }
                         }
                     }
                 }
             }
         }
-        if want == Want::Tangent {
+        if matches!(want, Want::Tangent | Want::TangentAndMaterial) {
             for i in 0..8 {
                 for j in 0..8 {
                     out.tangent[(i, j)] = k[i][j];
@@ -455,7 +474,7 @@ mod tests {
             let mut dm = d;
             dp[k] += h;
             dm[k] -= h;
-            let (ep, em) = (el.evaluate(&dp, Want::Tangent), el.evaluate(&dm, Want::Tangent));
+            let (ep, em) = (el.evaluate(&dp, Want::Force), el.evaluate(&dm, Want::Force));
             let du = (ep.energy - em.energy) / (2.0 * h);
             assert!((du - e.force[k]).abs() < 1e-7 * fscale, "dU/de {k}");
             for i in 0..8 {

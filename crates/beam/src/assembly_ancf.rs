@@ -138,7 +138,21 @@ pub fn assemble_ancf(
     let m_lump = Vector8::from_column_slice(&[lm[0], lm[1], lm[2], lm[2], lm[3], lm[4], lm[5], lm[5]]);
     let metric = [1.0, 1.0, l * l, l * l, 1.0, 1.0, l * l, l * l];
     let need_material = dynamic && damping.beta_stiffness > 0.0;
-    let want = if jac.is_some() || need_material {
+    // the constant inertia part of the iteration matrix, (w_a + w_v a₀) M
+    let inertia_weighted = match jac.as_ref() {
+        Some((_, w)) => {
+            let c = w.acceleration + w.velocity * damping.alpha_mass;
+            if lumped {
+                Matrix8::from_diagonal(&(m_lump * c))
+            } else {
+                mass * c
+            }
+        }
+        None => Matrix8::zeros(),
+    };
+    let want = if need_material {
+        Want::TangentAndMaterial
+    } else if jac.is_some() {
         Want::Tangent
     } else {
         Want::Force
@@ -170,37 +184,33 @@ pub fn assemble_ancf(
             }
             None => energy += ev.energy,
         }
-        let mut cv = Matrix8::zeros();
-        let mut ca = Matrix8::zeros();
         if dynamic {
             let pv = gather(kin.v.unwrap(), e);
             let pa = gather(kin.a.unwrap(), e);
             if need_material {
                 f += ev.material * pv * damping.beta_stiffness;
-                cv += ev.material * damping.beta_stiffness;
             }
             let acc = pa + pv * damping.alpha_mass;
             if lumped {
                 for k in 0..8 {
                     f[k] += m_lump[k] * acc[k];
-                    ca[(k, k)] = m_lump[k];
-                    cv[(k, k)] += damping.alpha_mass * m_lump[k];
                 }
             } else {
                 f += mass * acc;
-                ca = mass;
-                cv += mass * damping.alpha_mass;
             }
         }
         for k in 0..8 {
             r[4 * e + ELEMENT_DOFS[k]] += f[k];
         }
         if let Some((band, w)) = jac.as_mut() {
-            if !dynamic {
-                cv.fill(0.0);
-                ca.fill(0.0);
-            }
+            // w_k K_t + (w_a + w_v a₀) M + w_v a₁ K_m
             kt *= w.stiffness;
+            if dynamic {
+                kt += inertia_weighted;
+                if need_material {
+                    kt += ev.material * (w.velocity * damping.beta_stiffness);
+                }
+            }
             for i in 0..8 {
                 let gi = 4 * e + ELEMENT_DOFS[i];
                 if gi < nfix {
@@ -208,11 +218,9 @@ pub fn assemble_ancf(
                 }
                 for j in 0..8 {
                     let gj = 4 * e + ELEMENT_DOFS[j];
-                    if gj < nfix {
-                        continue;
+                    if gj >= nfix {
+                        band.add(gi - nfix, gj - nfix, kt[(i, j)]);
                     }
-                    let v = kt[(i, j)] + w.velocity * cv[(i, j)] + w.acceleration * ca[(i, j)];
-                    band.add(gi - nfix, gj - nfix, v);
                 }
             }
         }
