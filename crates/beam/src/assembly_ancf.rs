@@ -171,7 +171,15 @@ pub fn assemble_ancf(
             Some(dg) => {
                 let d1 = gather(dg.q1, e);
                 let d0 = gather(dg.q0, e);
-                let u1 = el.evaluate(&d1, Want::Energy).energy;
+                let at1 = el.evaluate(
+                    &d1,
+                    if jac.is_some() {
+                        Want::Force
+                    } else {
+                        Want::Energy
+                    },
+                );
+                let u1 = at1.energy;
                 dg.u1[e] = u1;
                 energy += u1;
                 let dd = d1 - d0;
@@ -179,6 +187,15 @@ pub fn assemble_ancf(
                 let n2 = dd.dot(&wdd);
                 if n2 > 0.0 {
                     let c = (u1 - dg.u0[e] - f.dot(&dd)) / n2;
+                    if jac.is_some() {
+                        // ∂f̄/∂Δ = ½ H(m) + W Δ ∂cᵀ + c W, ∂c = [∇U(q₁) − ∇U(m) − ½ H Δ − 2c W Δ]/n²;
+                        // kt is weighted by ½ below, hence the factor 2
+                        let dc = (at1.force - f - kt * dd * 0.5 - wdd * (2.0 * c)) / n2;
+                        kt += wdd * dc.transpose() * 2.0;
+                        for k in 0..8 {
+                            kt[(k, k)] += 2.0 * c * metric[k];
+                        }
+                    }
                     f += wdd * c;
                 }
             }

@@ -422,8 +422,8 @@ fn energy_conserving_step_keeps_the_energy_of_the_compliant_link_to_1e9() {
 fn energy_conserving_step_is_second_order_and_conserves_energy_for_any_step() {
     // Large first-mode swing of a unit beam (8 elements, tip speed 2 m/s: tip angle ≈ 0.6 rad),
     // 0.5 s. Order: with EA L²/EI = 1e3 (every mode the swing excites through the geometric
-    // coupling resolved at h = 0.01) the tip (u, v) errors against h/16 at h and h/2 give order 2
-    // (measured 2.0). Energy: ≤ 1e-9 relative at every h, also with EA L²/EI = 1e7, where h = 0.01
+    // coupling resolved at h = 0.004) the tip (u, v) errors against h/16 at h and h/2 give
+    // order 2 (measured 2.09; 1.8 from h = 0.01, not yet asymptotic). Energy: ≤ 1e-9 relative at every h, also with EA L²/EI = 1e7, where h = 0.01
     // is 50 times the axial period /2π (unresolved: the trajectory is then not converged, but
     // the energy is still kept).
     let loads = NodalLoads::zeros(&unit_cantilever(8, Kinematics::Ancf).unwrap());
@@ -451,7 +451,7 @@ fn energy_conserving_step_is_second_order_and_conserves_energy_for_any_step() {
     ))
     .unwrap();
     let stiff = unit_cantilever(8, Kinematics::Ancf).unwrap();
-    let h = 0.01;
+    let h = 0.004;
     let r0 = run(&soft, h);
     let r1 = run(&soft, h / 2.0);
     let rf = run(&soft, h / 16.0);
@@ -459,7 +459,7 @@ fn energy_conserving_step_is_second_order_and_conserves_energy_for_any_step() {
     let p = order(err(r0), err(r1));
     println!("errors {:.3e} {:.3e}: order {p:.2}", err(r0), err(r1));
     assert!(p > 1.8 && p < 2.4, "order {p}");
-    let rs = run(&stiff, h);
+    let rs = run(&stiff, 0.01);
     for r in [r0, r1, rf, rs] {
         assert!(r.2 < 1e-9, "energy {:e}", r.2);
     }
