@@ -15,8 +15,16 @@ fn main() {
         let f = vec![0.0; 3 * model.n_nodes()];
         let mut r = vec![0.0; n];
         let mut band = band_for(&model);
-        let w = JacobianWeights { stiffness: 1.0, velocity: 1e3, acceleration: 1e6 };
-        let kinm = Kinematic { q: &q, v: Some(&v), a: Some(&a) };
+        let w = JacobianWeights {
+            stiffness: 1.0,
+            velocity: 1e3,
+            acceleration: 1e6,
+        };
+        let kinm = Kinematic {
+            q: &q,
+            v: Some(&v),
+            a: Some(&a),
+        };
         let reps = 20000;
         let t0 = Instant::now();
         for _ in 0..reps {
@@ -44,7 +52,10 @@ fn main() {
         let t_solve = t0.elapsed().as_secs_f64() / reps as f64;
         println!(
             "{kin:?} {ne} el: assemble+jac {:.2} us, residual {:.2} us, LU {:.2} us, solve {:.2} us",
-            t_jac * 1e6, t_res * 1e6, t_lu * 1e6, t_solve * 1e6
+            t_jac * 1e6,
+            t_res * 1e6,
+            t_lu * 1e6,
+            t_solve * 1e6
         );
     }
 }

@@ -58,7 +58,10 @@ fn main() {
                 let e = [(v - vr).abs(), (-u - ur).abs(), (th - tr).abs()];
                 worst = worst.max(e.iter().cloned().fold(0.0, f64::max));
                 if ne == 32 {
-                    println!("  {kin:?} phi {phi}: dv {:.2e} du {:.2e} dth {:.2e}", e[0], e[1], e[2]);
+                    println!(
+                        "  {kin:?} phi {phi}: dv {:.2e} du {:.2e} dth {:.2e}",
+                        e[0], e[1], e[2]
+                    );
                 }
             }
             println!("{kin:?} ne {ne}: worst abs error {worst:.3e}, iterations {its}");

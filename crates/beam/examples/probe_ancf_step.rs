@@ -21,7 +21,9 @@ fn main() {
     let l = 0.3;
     let model = BeamModel::new(BeamSpec::cantilever(l, sec, ne, kin)).unwrap();
     let mut loads = NodalLoads::zeros(&model);
-    loads.set_force(model.tip_node(), 0.0, sec.ei() / (l * l)).unwrap();
+    loads
+        .set_force(model.tip_node(), 0.0, sec.ei() / (l * l))
+        .unwrap();
     let t0 = std::time::Instant::now();
     let mut best = f64::INFINITY;
     let mut out = None;
@@ -39,11 +41,23 @@ fn main() {
         }
         best = best.min(t0r.elapsed().as_secs_f64());
         let e = state.energy(&model);
-        out = Some((state.node(model.tip_node()), its as f64 / nsteps as f64, rej, e));
+        out = Some((
+            state.node(model.tip_node()),
+            its as f64 / nsteps as f64,
+            rej,
+            e,
+        ));
     }
     let (tip, its, rej, e) = out.unwrap();
     println!(
         "tip {:.12e} {:.12e} {:.12e} its/step {:.2} rejected {} best {:.4} s (total {:.2}) dissipated/W {:.3e}",
-        tip.0, tip.1, tip.2, its, rej, best, t0.elapsed().as_secs_f64(), e.dissipated / e.external_work
+        tip.0,
+        tip.1,
+        tip.2,
+        its,
+        rej,
+        best,
+        t0.elapsed().as_secs_f64(),
+        e.dissipated / e.external_work
     );
 }

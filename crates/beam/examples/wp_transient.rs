@@ -37,7 +37,10 @@ fn main() {
         let mut ws = Workspace::new(&model);
         let mut n_it = 0;
         for k in 1..=steps {
-            n_it += ga.step(&model, &mut s, &mut ws, h, &loads).unwrap().iterations;
+            n_it += ga
+                .step(&model, &mut s, &mut ws, h, &loads)
+                .unwrap()
+                .iterations;
             if record && k % every == 0 {
                 trajectory.push(s.node(ne).1);
             }

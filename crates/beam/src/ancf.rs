@@ -67,7 +67,10 @@ pub const MAX_POINTS: usize = 5;
 pub fn gauss_rule(n: usize) -> ([f64; MAX_POINTS], [f64; MAX_POINTS]) {
     let (x, w): (&[f64], &[f64]) = match n {
         1 => (&[0.0], &[2.0]),
-        2 => (&[-0.577_350_269_189_625_8, 0.577_350_269_189_625_8], &[1.0, 1.0]),
+        2 => (
+            &[-0.577_350_269_189_625_8, 0.577_350_269_189_625_8],
+            &[1.0, 1.0],
+        ),
         3 => (
             &[-0.774_596_669_241_483_4, 0.0, 0.774_596_669_241_483_4],
             &[5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0],
@@ -458,7 +461,8 @@ mod tests {
 
     #[test]
     fn tangent_and_force_match_finite_differences() {
-        let el = AncfElement::with_rules(0.25, 5.0e4, 3.0, Quadrature::Gauss(3), Quadrature::Gauss(4));
+        let el =
+            AncfElement::with_rules(0.25, 5.0e4, 3.0, Quadrature::Gauss(3), Quadrature::Gauss(4));
         test_fd(&el);
         test_fd(&AncfElement::new(0.25, 5.0e4, 3.0));
     }

@@ -74,8 +74,8 @@ pub fn node_uvt_acceleration(q: &[f64], v: &[f64], a: &[f64], i: usize) -> [f64;
     let (sx, sy) = slope(q, i);
     let (_, g, h) = slope_angle(sx, sy);
     let sd = [v[4 * i + SLOPE_X], v[4 * i + SLOPE_Y]];
-    let quad = sd[0] * (h[0][0] * sd[0] + h[0][1] * sd[1])
-        + sd[1] * (h[1][0] * sd[0] + h[1][1] * sd[1]);
+    let quad =
+        sd[0] * (h[0][0] * sd[0] + h[0][1] * sd[1]) + sd[1] * (h[1][0] * sd[0] + h[1][1] * sd[1]);
     [
         a[4 * i],
         a[4 * i + 1],
@@ -135,7 +135,8 @@ pub fn assemble_ancf(
     let el = element_of(model);
     let mass = el.mass(sec.rho_a());
     let lm = lumped_mass(l, sec.rho_a());
-    let m_lump = Vector8::from_column_slice(&[lm[0], lm[1], lm[2], lm[2], lm[3], lm[4], lm[5], lm[5]]);
+    let m_lump =
+        Vector8::from_column_slice(&[lm[0], lm[1], lm[2], lm[2], lm[3], lm[4], lm[5], lm[5]]);
     let metric = [1.0, 1.0, l * l, l * l, 1.0, 1.0, l * l, l * l];
     let need_material = dynamic && damping.beta_stiffness > 0.0;
     // the constant inertia part of the iteration matrix, (w_a + w_v a₀) M
@@ -284,7 +285,8 @@ pub fn assemble_ancf(
                 let hs = h[i][0] * sd[0] + h[i][1] * sd[1];
                 for j in 0..2 {
                     cv[i][j] = c_theta * g[i] * g[j];
-                    k[i][j] += c_theta * (theta_dot * h[i][j] + g[i] * (h[j][0] * sd[0] + h[j][1] * sd[1]));
+                    k[i][j] += c_theta
+                        * (theta_dot * h[i][j] + g[i] * (h[j][0] * sd[0] + h[j][1] * sd[1]));
                 }
                 let _ = hs;
                 cv[i][i] += damping.alpha_mass * j_hub;

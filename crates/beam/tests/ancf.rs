@@ -64,7 +64,9 @@ fn static_tip(model: &BeamModel, phi: f64, gauss_axial: Option<usize>) -> (f64, 
     let _ = gauss_axial;
     let (l, ei) = (model.length(), model.section().ei());
     let mut loads = NodalLoads::zeros(model);
-    loads.set_force(model.tip_node(), 0.0, phi * ei / (l * l)).unwrap();
+    loads
+        .set_force(model.tip_node(), 0.0, phi * ei / (l * l))
+        .unwrap();
     let s = solve_static(model, &loads, &StaticOptions::new(10, 50, 1e-10).unwrap()).unwrap();
     let (u, v, th) = s.node(model.tip_node());
     (v / l, -u / l, th)
@@ -178,7 +180,9 @@ fn full_gauss_integration_of_the_axial_strain_locks_and_lobatto_does_not() {
     let l8 = elastica_with_rule(8, Quadrature::Lobatto3, 5.0, thin);
     let l16 = elastica_with_rule(16, Quadrature::Lobatto3, 5.0, thin);
     let thick8 = elastica_with_rule(8, Quadrature::Lobatto3, 5.0, 1e2);
-    println!("Gauss 5: {g8:.3e} {g16:.3e}; Lobatto: {l8:.3e} {l16:.3e}; thick Lobatto {thick8:.3e}");
+    println!(
+        "Gauss 5: {g8:.3e} {g16:.3e}; Lobatto: {l8:.3e} {l16:.3e}; thick Lobatto {thick8:.3e}"
+    );
     assert!(g8 > 50.0 * l8, "locking expected: {g8:e} vs {l8:e}");
     assert!(g16 > 50.0 * l16, "locking expected: {g16:e} vs {l16:e}");
     assert!(order(l8, l16) > 3.8, "Lobatto order {}", order(l8, l16));
@@ -209,10 +213,32 @@ fn assembled_tangent_matches_finite_differences_with_moments_root_spring_and_dyn
     let n = model.n_dofs();
     let nfix = model.n_fixed();
     let q: Vec<f64> = (0..n)
-        .map(|i| if i < nfix { 0.0 } else { 0.2 * ((i as f64) * 1.3).sin() })
+        .map(|i| {
+            if i < nfix {
+                0.0
+            } else {
+                0.2 * ((i as f64) * 1.3).sin()
+            }
+        })
         .collect();
-    let v: Vec<f64> = (0..n).map(|i| if i < nfix { 0.0 } else { ((i as f64) * 0.7).cos() }).collect();
-    let a: Vec<f64> = (0..n).map(|i| if i < nfix { 0.0 } else { ((i as f64) * 0.4).sin() }).collect();
+    let v: Vec<f64> = (0..n)
+        .map(|i| {
+            if i < nfix {
+                0.0
+            } else {
+                ((i as f64) * 0.7).cos()
+            }
+        })
+        .collect();
+    let a: Vec<f64> = (0..n)
+        .map(|i| {
+            if i < nfix {
+                0.0
+            } else {
+                ((i as f64) * 0.4).sin()
+            }
+        })
+        .collect();
     let mut loads = NodalLoads::zeros(&model);
     loads.set_force(4, 0.3, -1.1).unwrap();
     loads.set_moment(4, 0.8).unwrap();
@@ -261,7 +287,10 @@ fn assembled_tangent_matches_finite_differences_with_moments_root_spring_and_dyn
             scale = scale.max(got.abs());
         }
     }
-    assert!(worst < 1e-6 * scale, "Jacobian mismatch {worst:e} (scale {scale:e})");
+    assert!(
+        worst < 1e-6 * scale,
+        "Jacobian mismatch {worst:e} (scale {scale:e})"
+    );
 }
 
 #[test]
@@ -336,8 +365,14 @@ fn rigid_motion_gives_no_force_and_the_mass_is_constant_and_exact() {
         None,
     );
     assert!(r.iter().all(|x| x.abs() < 1e-9), "{r:?}");
-    let s = State::new(&model, q, vec![0.0; model.n_dofs()], 0.0, &NodalLoads::zeros(&model))
-        .unwrap();
+    let s = State::new(
+        &model,
+        q,
+        vec![0.0; model.n_dofs()],
+        0.0,
+        &NodalLoads::zeros(&model),
+    )
+    .unwrap();
     assert!((s.node(5).2 - phi).abs() < 1e-14);
 }
 
@@ -356,7 +391,12 @@ fn modes_1_to_4_at_32_elements_within_1e5_of_euler_bernoulli() {
         let exact = beam_omega(CANTILEVER_BETA_L[i], 1.0, 1.0, 1.0);
         // measured ≤ 1.3e-7 (mode 4), as the linear element
         assert_rel(&format!("ω{}", i + 1), m.omegas[i], exact, 1e-5);
-        assert_rel(&format!("ω{} vs linear", i + 1), m.omegas[i], lin.omegas[i], 1e-10);
+        assert_rel(
+            &format!("ω{} vs linear", i + 1),
+            m.omegas[i],
+            lin.omegas[i],
+            1e-10,
+        );
     }
     // axial: ω₁ = (π/2) √(EA/ρA)/L
     let ax = modal_analysis(&model, 1, ModalDirection::Axial).unwrap();
@@ -505,4 +545,33 @@ fn issue13_step_load_64_elements_runs_at_h_1e3_for_rho_08_09_and_1() {
     for t in &tips[1..] {
         assert!((t.1 - tips[0].1).abs() < 2e-3 * tips[0].1.abs(), "{tips:?}");
     }
+}
+
+#[test]
+fn prb_fit_on_the_ancf_path_agrees_with_the_corotational_one() {
+    // Howell's fit (γ, K_Θ) on the tip path of 16 ANCF and 16 corotational elements: the two
+    // agree to the corotational element's O(h²) error (the ANCF path is 1e-2 of it closer to
+    // the elastica)
+    use flexrig_beam::prb::{ErrorMeasure, default_load_indices, fit_prb, trace_tip_path_with};
+    let loads = default_load_indices();
+    let loads = &loads[..loads.len() / 2];
+    let a = fit_prb(
+        &trace_tip_path_with(Kinematics::Ancf, 16, loads).unwrap(),
+        ErrorMeasure::Deflection,
+    )
+    .unwrap();
+    let c = fit_prb(
+        &trace_tip_path_with(Kinematics::Corotational, 16, loads).unwrap(),
+        ErrorMeasure::Deflection,
+    )
+    .unwrap();
+    println!("ancf {a:?}\ncorotational {c:?}");
+    assert!(
+        (a.gamma - c.gamma).abs() < 2e-3,
+        "{} vs {}",
+        a.gamma,
+        c.gamma
+    );
+    assert!((a.k_theta / c.k_theta - 1.0).abs() < 2e-3);
+    assert!((a.gamma_small - 2.0 / 3.0).abs() < 1e-3);
 }
