@@ -165,7 +165,7 @@ impl BandMatrix {
                 let l = self.data[self.idx(j, k)];
                 d -= l * l;
             }
-            if !(d > tiny) {
+            if d.is_nan() || d <= tiny {
                 ok = false;
                 break 'outer;
             }

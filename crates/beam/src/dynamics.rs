@@ -814,7 +814,7 @@ impl GeneralizedAlpha {
         }
         // The motion-dependent load at the accepted state (for the work done on the beam).
         let dpn = model.dofs_per_node();
-        let node_force = node_load.as_deref_mut().map(|nl| {
+        let node_force = node_load.map(|nl| {
             let i = nl.node();
             let (q, v) = node_motion(dpn, &ws.q_new, &ws.v_new, i);
             (i, nl.evaluate(t_new, q, v).force)

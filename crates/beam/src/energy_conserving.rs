@@ -196,7 +196,7 @@ impl GeneralizedAlpha {
         }
         // The node load at the accepted state (its force was evaluated at the last iterate,
         // which differs from the accepted one by the last correction: re-evaluate).
-        let node_force = node_load.as_deref_mut().map(|nl| {
+        let node_force = node_load.map(|nl| {
             let i = nl.node();
             let (q, v) = node_motion(dpn, &ws.q_new, &ws.v_new, i);
             (i, nl.evaluate(t_new, q, v).force)

@@ -2,6 +2,8 @@
 //! rigid motion, locking, the elastica against the extensible shooting reference, modes, energy
 //! conservation and convergence order, issue 13's step-load transient.
 
+#![allow(clippy::needless_range_loop)]
+
 mod common;
 use common::{assert_rel, order};
 
