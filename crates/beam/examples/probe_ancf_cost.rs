@@ -44,13 +44,6 @@ fn main() {
             b2.factorize("x").unwrap();
         }
         let t_lu = t0.elapsed().as_secs_f64() / reps as f64;
-        let t0 = Instant::now();
-        let mut b3 = band.clone();
-        for _ in 0..reps {
-            b3 = band.clone();
-            b3.factorize_symmetric("x").unwrap();
-        }
-        let t_chol = t0.elapsed().as_secs_f64() / reps as f64;
         let mut x = r[model.n_fixed()..].to_vec();
         let t0 = Instant::now();
         for _ in 0..reps {

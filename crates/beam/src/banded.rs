@@ -20,10 +20,6 @@ pub struct BandMatrix {
     data: Vec<f64>,
     pivots: Vec<usize>,
     factored: bool,
-    /// The factors are Cholesky's L (lower band) rather than LU.
-    cholesky: bool,
-    /// Copy of the matrix while a Cholesky factorisation is attempted.
-    backup: Vec<f64>,
 }
 
 impl BandMatrix {
@@ -38,8 +34,6 @@ impl BandMatrix {
             data: vec![0.0; ld * n],
             pivots: vec![0; n],
             factored: false,
-            cholesky: false,
-            backup: Vec::new(),
         }
     }
     /// Dimension n.
@@ -50,7 +44,6 @@ impl BandMatrix {
     pub fn clear(&mut self) {
         self.data.iter_mut().for_each(|x| *x = 0.0);
         self.factored = false;
-        self.cholesky = false;
     }
     #[inline]
     fn idx(&self, i: usize, j: usize) -> usize {
@@ -141,77 +134,11 @@ impl BandMatrix {
             }
         }
         self.factored = true;
-        self.cholesky = false;
         Ok(())
     }
-    /// Factorises a matrix that the caller knows to be symmetric (only its lower band is read):
-    /// Cholesky A = L Lᵀ (about a quarter of the LU's work for the ANCF band) when A is
-    /// positive definite, else (a pivot ≤ 1e-12 of the largest diagonal entry) the LU with
-    /// partial pivoting of [`BandMatrix::factorize`]. Returns true when Cholesky was used.
-    pub fn factorize_symmetric(&mut self, what: &str) -> Result<bool, BeamError> {
-        let (n, kl) = (self.n, self.kl);
-        self.backup.clear();
-        self.backup.extend_from_slice(&self.data);
-        let dmax = (0..n).fold(0.0f64, |m, j| m.max(self.data[self.idx(j, j)].abs()));
-        let tiny = dmax * 1e-12;
-        let mut ok = dmax.is_finite();
-        'outer: for j in 0..n {
-            if !ok {
-                break;
-            }
-            let lo = j.saturating_sub(kl);
-            let mut d = self.data[self.idx(j, j)];
-            for k in lo..j {
-                let l = self.data[self.idx(j, k)];
-                d -= l * l;
-            }
-            if d.is_nan() || d <= tiny {
-                ok = false;
-                break 'outer;
-            }
-            let djj = d.sqrt();
-            let kj = self.idx(j, j);
-            self.data[kj] = djj;
-            for i in j + 1..=(j + kl).min(n - 1) {
-                let mut s = self.data[self.idx(i, j)];
-                for k in i.saturating_sub(kl)..j {
-                    s -= self.data[self.idx(i, k)] * self.data[self.idx(j, k)];
-                }
-                let k = self.idx(i, j);
-                self.data[k] = s / djj;
-            }
-        }
-        if ok {
-            self.cholesky = true;
-            self.factored = true;
-            return Ok(true);
-        }
-        std::mem::swap(&mut self.data, &mut self.backup);
-        self.factorize(what)?;
-        Ok(false)
-    }
-
     /// Solves A x = b in place (after [`BandMatrix::factorize`]).
     pub fn solve_in_place(&self, b: &mut [f64]) {
         assert!(self.factored, "BandMatrix::solve_in_place before factorize");
-        if self.cholesky {
-            let (n, kl) = (self.n, self.kl);
-            for i in 0..n {
-                let mut s = b[i];
-                for k in i.saturating_sub(kl)..i {
-                    s -= self.data[self.idx(i, k)] * b[k];
-                }
-                b[i] = s / self.data[self.idx(i, i)];
-            }
-            for i in (0..n).rev() {
-                let mut s = b[i];
-                for k in i + 1..=(i + kl).min(n - 1) {
-                    s -= self.data[self.idx(k, i)] * b[k];
-                }
-                b[i] = s / self.data[self.idx(i, i)];
-            }
-            return;
-        }
         let (n, kl, ku) = (self.n, self.kl, self.ku);
         for j in 0..n {
             let p = self.pivots[j];
@@ -264,36 +191,6 @@ mod tests {
         a.solve_in_place(&mut b);
         for i in 0..n {
             assert!((b[i] - x[i]).abs() < 1e-10, "{i}: {} vs {}", b[i], x[i]);
-        }
-    }
-
-    #[test]
-    fn symmetric_factorisation_uses_cholesky_when_positive_definite_and_lu_otherwise() {
-        let n = 30;
-        let build = |shift: f64| {
-            let mut a = BandMatrix::zeros(n, 3, 3);
-            for i in 0..n {
-                for j in i.saturating_sub(3)..=(i + 3).min(n - 1) {
-                    let v = if i == j {
-                        4.0 + shift
-                    } else {
-                        1.0 / (1.0 + (i + j) as f64 % 5.0)
-                    };
-                    a.add(i, j, v);
-                }
-            }
-            a
-        };
-        for (shift, chol) in [(2.0, true), (-6.0, false)] {
-            let mut a = build(shift);
-            let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.3).cos()).collect();
-            let mut b = vec![0.0; n];
-            a.mul_vec(&x, &mut b);
-            assert_eq!(a.factorize_symmetric("test").unwrap(), chol);
-            a.solve_in_place(&mut b);
-            for i in 0..n {
-                assert!((b[i] - x[i]).abs() < 1e-10, "shift {shift}, {i}: {}", b[i]);
-            }
         }
     }
 

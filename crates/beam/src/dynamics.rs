@@ -656,10 +656,6 @@ impl GeneralizedAlpha {
         let modified = model.kinematics() == Kinematics::Ancf;
         let mut refactor = false;
         let mut previous = f64::INFINITY;
-        // the ANCF iteration matrix is symmetric (Hessian of the energy and of the moments'
-        // potential, constant mass, Rayleigh) unless a node load or a root damper acts
-        let symmetric =
-            modified && node_load.is_none() && model.root().spring_damper_inertia().1 == 0.0;
         loop {
             // Newmark relations: â, q̇, q̈ from the increment Δq = q_{n+1} − q_n (not from
             // q_{n+1} − q_n, which cancels to ε|q| and leaves ε|q|/(βh²) of noise in â at tiny h).
@@ -730,13 +726,7 @@ impl GeneralizedAlpha {
                     1.0,
                 );
                 ws.factored_for = None;
-                let factored = if symmetric {
-                    ws.band
-                        .factorize_symmetric("generalized-α iteration matrix")
-                        .map(|_| ())
-                } else {
-                    ws.band.factorize("generalized-α iteration matrix")
-                };
+                let factored = ws.band.factorize("generalized-α iteration matrix");
                 if let Err(e) = factored {
                     return Err((iterations, e));
                 }

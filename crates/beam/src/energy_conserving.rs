@@ -77,9 +77,6 @@ impl GeneralizedAlpha {
             };
         }
         let key = Some((h, 1.0, true));
-        // the discrete gradient's derivative is not symmetric (ANCF); the linear model's is
-        let symmetric =
-            !ancf && node_load.is_none() && model.root().spring_damper_inertia().1 == 0.0;
         let mut refactor = ws.factored_for != key;
         let mut iterations = 0;
         let mut last = f64::INFINITY;
@@ -143,13 +140,7 @@ impl GeneralizedAlpha {
             .map_err(|e| (iterations, e))?;
             if jac {
                 ws.factored_for = None;
-                let factored = if symmetric {
-                    ws.band
-                        .factorize_symmetric("energy-conserving iteration matrix")
-                        .map(|_| ())
-                } else {
-                    ws.band.factorize("energy-conserving iteration matrix")
-                };
+                let factored = ws.band.factorize("energy-conserving iteration matrix");
                 if let Err(e) = factored {
                     return Err((iterations, e));
                 }
