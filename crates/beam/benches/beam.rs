@@ -9,11 +9,17 @@
 //! * `modal/linear_32`: the first 4 bending modes with 32 elements (dense faer eigensolver).
 //! * `transient/linear_32_x1000` and `transient/modal8_32_x1000`: the same 1000 steps with the
 //!   linear beam and with the modal-reduced one (8 modes + tip u, v, θ correction shapes).
+//! * `issue13/…`: issue 13's problem (canonical::issue13_cantilever: L 0.3 m, 25 × 1 mm,
+//!   E 1.5 GPa, ρ 900): the ANCF element alone (force; force and tangent), the elastica
+//!   PL²/EI = 5 with 32 ANCF elements (10 load steps), and the step-load transient (P = EI/L²
+//!   from rest, h = 1e-3 s, 1000 steps, generalized-α ρ∞ = 0.9 or the energy-conserving step)
+//!   with ANCF and corotational elements; the error of each row is in
+//!   docs/performance-beam.md (scripts/work_precision_beam.py).
 
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use flexrig_beam::canonical::elastica_problem;
+use flexrig_beam::canonical::{self, elastica_problem};
 use flexrig_beam::*;
 
 fn link(elements: usize) -> BeamModel {
@@ -127,5 +133,61 @@ fn modal(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, transient, reduced, statics, scaling, modal);
+fn issue13(c: &mut Criterion) {
+    use flexrig_beam::ancf::{AncfElement, Vector8, Want};
+    let mut g = c.benchmark_group("issue13");
+    let el = AncfElement::new(0.3 / 32.0, 37500.0, 3.125e-3);
+    let d = Vector8::from_column_slice(&[1e-4, 2e-3, -1e-3, 0.2, -3e-4, 9e-3, -2e-2, 0.25]);
+    g.bench_function("ancf_element_force", |b| {
+        b.iter(|| black_box(el.evaluate(black_box(&d), Want::Force).force[3]))
+    });
+    g.bench_function("ancf_element_tangent", |b| {
+        b.iter(|| black_box(el.evaluate(black_box(&d), Want::Tangent).tangent[(3, 3)]))
+    });
+    let (model, loads) = canonical::elastica_problem_with(Kinematics::Ancf, 5.0, 32).unwrap();
+    let opts = StaticOptions::with_load_steps(10).unwrap();
+    g.bench_function("static_elastica_PL2_EI_5_32_ancf", |b| {
+        b.iter(|| black_box(solve_static(&model, &loads, &opts).unwrap().iterations))
+    });
+    g.sample_size(10);
+    for (kin, integrator, n) in [
+        (Kinematics::Ancf, "0.9", 4usize),
+        (Kinematics::Ancf, "0.9", 8),
+        (Kinematics::Ancf, "0.9", 32),
+        (Kinematics::Ancf, "ec", 8),
+        (Kinematics::Corotational, "0.9", 8),
+        (Kinematics::Corotational, "0.9", 32),
+    ] {
+        let (model, loads) = canonical::issue13_cantilever(n, kin).unwrap();
+        let ga = if integrator == "ec" {
+            GeneralizedAlpha::energy_conserving()
+        } else {
+            GeneralizedAlpha::new(0.9).unwrap()
+        };
+        let name = format!(
+            "transient_{}_{}_{n}_h1e-3_x1000",
+            if kin == Kinematics::Ancf {
+                "ancf"
+            } else {
+                "corotational"
+            },
+            if integrator == "ec" { "ec" } else { "rho0.9" }
+        );
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                let mut s = State::at_rest(&model, &loads).unwrap();
+                let mut ws = Workspace::new(&model);
+                for _ in 0..1000 {
+                    ga.step(&model, &mut s, &mut ws, 1e-3, &loads).unwrap();
+                }
+                black_box(s.node(n).1)
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(
+    benches, transient, reduced, statics, scaling, modal, issue13
+);
 criterion_main!(benches);

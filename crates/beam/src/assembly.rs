@@ -28,9 +28,10 @@ pub struct JacobianWeights {
     pub acceleration: f64,
 }
 
-/// A zero band matrix for the free DOFs of `model`.
+/// A zero band matrix for the free DOFs of `model` (half-bandwidth 5, or 7 for ANCF).
 pub fn band_for(model: &BeamModel) -> BandMatrix {
-    BandMatrix::zeros(model.n_free(), HALF_BANDWIDTH, HALF_BANDWIDTH)
+    let hb = model.half_bandwidth();
+    BandMatrix::zeros(model.n_free(), hb, hb)
 }
 
 /// Kinematic input of an evaluation: displacements, and for dynamics velocities and
@@ -51,7 +52,8 @@ fn gather(x: &[f64], e: usize) -> Vector6<f64> {
 
 /// Assembles r = f_int + f_damp + f_in + f_root − f_ext into `r` and, if `jac` is given, the
 /// weighted Jacobian into the band matrix (over free DOFs; it is cleared first). Returns the
-/// sum of the element strain energies (plus the root spring) \[J\].
+/// sum of the element strain energies (plus the root spring) \[J\]. `f_ext` holds 3 entries
+/// per node (fx, fy, m); ANCF models are assembled by [`crate::assembly_ancf`].
 pub fn assemble(
     model: &BeamModel,
     kin: Kinematic<'_>,
@@ -59,6 +61,9 @@ pub fn assemble(
     r: &mut [f64],
     mut jac: Option<(&mut BandMatrix, JacobianWeights)>,
 ) -> f64 {
+    if model.kinematics() == Kinematics::Ancf {
+        return crate::assembly_ancf::assemble_ancf(model, kin, f_ext, r, jac, None);
+    }
     let nfix = model.n_fixed();
     let sec = *model.section();
     let l = model.element_length();
@@ -191,6 +196,9 @@ pub fn assemble(
 
 /// Kinetic energy ½ q̇ᵀ M(q) q̇ of the beam, its point masses and the hub \[J\].
 pub fn kinetic_energy(model: &BeamModel, q: &[f64], v: &[f64]) -> f64 {
+    if model.kinematics() == Kinematics::Ancf {
+        return crate::assembly_ancf::kinetic_energy_ancf(model, v);
+    }
     let sec = model.section();
     let l = model.element_length();
     let nonlinear = model.kinematics() == Kinematics::Corotational;
@@ -222,7 +230,11 @@ pub fn kinetic_energy(model: &BeamModel, q: &[f64], v: &[f64]) -> f64 {
 
 /// Strain energy of the elements and the root spring \[J\].
 pub fn strain_energy(model: &BeamModel, q: &[f64]) -> f64 {
-    let zeros = vec![0.0; q.len()];
+    if model.kinematics() == Kinematics::Ancf {
+        let mut out = vec![0.0; model.n_nodes()];
+        return crate::assembly_ancf::strain_energies_ancf(model, q, &mut out);
+    }
+    let zeros = vec![0.0; 3 * model.n_nodes()];
     let mut r = vec![0.0; q.len()];
     assemble(
         model,

@@ -41,6 +41,21 @@ pub const HOWELL_THETA_MAX_DEG: f64 = 64.3;
 /// The paper's small-deflection characteristic radius.
 pub const PAPER_GAMMA_SMALL: f64 = 2.0 / 3.0;
 
+/// Issue 13's cantilever (the Exudyn comparison): L = 0.3 m, E = 1.5 GPa, ρ = 900 kg/m³,
+/// 25 × 1 mm (EA L²/EI = 1.08e6), clamped, `elements` elements, and the tip load P = EI/L² of
+/// its step-load transient (from rest, 1000 steps of 1 ms in the benches).
+pub fn issue13_cantilever(
+    elements: usize,
+    kinematics: Kinematics,
+) -> Result<(BeamModel, NodalLoads), BeamError> {
+    let mat = crate::section::Material::new(1.5e9, 900.0)?;
+    let sec = Section::rectangular(&mat, 0.025, 0.001)?;
+    let model = BeamModel::new(BeamSpec::cantilever(0.3, sec, elements, kinematics))?;
+    let mut loads = NodalLoads::zeros(&model);
+    loads.set_force(model.tip_node(), 0.0, sec.ei() / 0.09)?;
+    Ok((model, loads))
+}
+
 /// Natural frequency ω = (βL)² √(EI/(ρA L⁴)) [rad/s].
 pub fn beam_omega(beta_l: f64, ei: f64, rho_a: f64, length: f64) -> f64 {
     beta_l * beta_l * (ei / (rho_a * length.powi(4))).sqrt()
@@ -79,7 +94,16 @@ pub fn elastica_problem(
     load_index: f64,
     elements: usize,
 ) -> Result<(BeamModel, NodalLoads), BeamError> {
-    let model = unit_cantilever(elements, Kinematics::Corotational)?;
+    elastica_problem_with(Kinematics::Corotational, load_index, elements)
+}
+
+/// [`elastica_problem`] with the large-deflection element `kinematics`.
+pub fn elastica_problem_with(
+    kinematics: Kinematics,
+    load_index: f64,
+    elements: usize,
+) -> Result<(BeamModel, NodalLoads), BeamError> {
+    let model = unit_cantilever(elements, kinematics)?;
     let mut loads = NodalLoads::zeros(&model);
     loads.set_force(model.tip_node(), 0.0, load_index)?;
     Ok((model, loads))

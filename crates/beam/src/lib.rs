@@ -8,11 +8,17 @@
 //!   (consistent, rotation-invariant, or lumped mass).
 //! * [`corotational`]: the corotational element for large displacement and rotation with its
 //!   analytic tangent.
+//! * [`ancf`]: the ANCF cable element (positions and slopes, constant mass, exact for rigid
+//!   motion, O(h⁴) accurate in large deflection) and [`assembly_ancf`] its assembly
+//!   ([`Kinematics::Ancf`]: 4 DOFs per node, loads and node queries still in (u, v, θ)).
 //! * [`banded`]: a banded LU factorisation (partial pivoting), O(N) per solve.
-//! * [`statics`], [`modal`], [`dynamics`] (generalized-α), [`energy`]: the solvers.
+//! * [`statics`], [`modal`], [`dynamics`] (generalized-α), [`energy`]: the solvers;
+//!   [`energy_conserving`]: the energy-conserving midpoint step (discrete gradient) for the
+//!   ANCF and linear models ([`GeneralizedAlpha::energy_conserving`]).
 //! * [`reduced`]: the modal-reduced linear beam (lowest modes plus static correction shapes),
 //!   stepped by the same generalized-α scheme — the shortcut for small deflections.
-//! * [`prb`]: the Pseudo-Rigid-Body (γ, K_Θ) fit to the corotational tip path (Howell's method).
+//! * [`prb`]: the Pseudo-Rigid-Body (γ, K_Θ) fit to the corotational or ANCF tip path (Howell's
+//!   method).
 //! * [`canonical`]: canonical problems and their published references, shared by tests, benches
 //!   and the CLI.
 //!
@@ -30,18 +36,23 @@
 //! Every length is in m, force in N, moment in N·m, mass in kg, time in s, angle in rad.
 //! Degrees of freedom: node `i` (0 at the root, `N` at the tip) carries `(u, v, θ)` at indices
 //! `3i, 3i+1, 3i+2`; u is along the undeformed beam axis (x), v transverse (y), θ the section
-//! rotation (counter-clockwise).
+//! rotation (counter-clockwise). The ANCF model carries `(u, v, r′ᵧ, r′ₓ − 1)` at `4i … 4i+3`
+//! (see [`Kinematics::Ancf`]); use [`State::node`], [`State::node_velocity`],
+//! [`State::node_acceleration`] and [`StaticSolution::node`] for (u, v, θ) with either layout.
 
 // Index loops mirror the equations (DOF i, node j) in the numerics.
 #![allow(clippy::needless_range_loop)]
 
+pub mod ancf;
 pub mod assembly;
+pub mod assembly_ancf;
 pub mod banded;
 pub mod canonical;
 pub mod corotational;
 pub mod dynamics;
 pub mod element;
 pub mod energy;
+pub mod energy_conserving;
 mod error;
 pub mod modal;
 pub mod model;

@@ -21,9 +21,9 @@ use crate::model::{BeamModel, Kinematics};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ModalDirection {
-    /// Bending: v and θ (u held).
+    /// Bending: v and θ (u held; ANCF: v and r′ᵧ, u and r′ₓ held).
     Transverse,
-    /// Axial: u only.
+    /// Axial: u only (ANCF: u and r′ₓ).
     Axial,
     /// Every free DOF.
     All,
@@ -43,11 +43,16 @@ pub struct ModalAnalysis {
 /// Largest mesh for the dense eigen solve: 3000 DOFs, 72 MB per matrix, a few seconds.
 pub const MAX_MODAL_ELEMENTS: usize = 1000;
 
-/// Dense K and M over the free DOFs of the linearised model.
+/// Dense K and M over the free DOFs of the model linearised about the undeformed state (the
+/// linear element for the corotational model; the ANCF element's own tangent and mass for ANCF).
 pub fn dense_matrices(model: &BeamModel) -> (Mat<f64>, Mat<f64>) {
-    let lin = model.with_kinematics(Kinematics::Linear);
+    let lin = match model.kinematics() {
+        Kinematics::Ancf => model.clone(),
+        _ => model.with_kinematics(Kinematics::Linear),
+    };
     let n = lin.n_dofs();
     let zeros = vec![0.0; n];
+    let no_loads = vec![0.0; 3 * lin.n_nodes()];
     let mut r = vec![0.0; n];
     let mut band = band_for(&lin);
     let mut out = Vec::new();
@@ -68,7 +73,7 @@ pub fn dense_matrices(model: &BeamModel) -> (Mat<f64>, Mat<f64>) {
             v: Some(&zeros),
             a: Some(&zeros),
         };
-        assemble(&lin, kin, &zeros, &mut r, Some((&mut band, w)));
+        assemble(&lin, kin, &no_loads, &mut r, Some((&mut band, w)));
         let nf = band.n();
         out.push(Mat::from_fn(nf, nf, |i, j| band.get(i, j)));
     }
@@ -95,12 +100,15 @@ pub fn modal_analysis(
     }
     let nfix = model.n_fixed();
     let (k_all, m_all) = dense_matrices(model);
+    // axial components: u (and r′ₓ for ANCF); transverse: v and θ (ANCF: r′ᵧ)
+    let dpn = model.dofs_per_node();
     let keep: Vec<usize> = (0..model.n_free())
         .filter(|&i| {
-            let c = (i + nfix) % 3;
+            let c = (i + nfix) % dpn;
+            let axial = c == 0 || c == 3;
             match direction {
-                ModalDirection::Transverse => c != 0,
-                ModalDirection::Axial => c == 0,
+                ModalDirection::Transverse => !axial,
+                ModalDirection::Axial => axial,
                 ModalDirection::All => true,
             }
         })

@@ -14,6 +14,36 @@ pub enum Kinematics {
     Linear,
     /// Large displacements and rotations (Crisfield's corotational element), small strains.
     Corotational,
+    /// Large displacements and rotations with the ANCF cable element ([`crate::ancf`]): cubic
+    /// Hermite positions from nodal positions and slopes, constant consistent mass, exact for
+    /// rigid motion. Node `i` carries 4 DOFs, the displacements of (x, y, r′ᵧ, r′ₓ) from the
+    /// straight reference: (u, v, r′ᵧ, r′ₓ − 1) at `4i … 4i+3` (r′ᵧ ≈ θ for small rotations);
+    /// the node angle is θ = atan2(r′ᵧ, r′ₓ). Loads, point masses and node queries stay in
+    /// (u, v, θ) terms.
+    Ancf,
+}
+
+impl Kinematics {
+    /// DOFs per node: 3 (u, v, θ), or 4 for ANCF (u, v, r′ᵧ, r′ₓ − 1).
+    pub fn dofs_per_node(self) -> usize {
+        match self {
+            Kinematics::Ancf => 4,
+            _ => 3,
+        }
+    }
+    /// Parses `linear`, `corotational` or `ancf`, naming `field` on error.
+    pub fn parse(field: &str, text: &str) -> Result<Self, BeamError> {
+        match text {
+            "linear" => Ok(Kinematics::Linear),
+            "corotational" => Ok(Kinematics::Corotational),
+            "ancf" => Ok(Kinematics::Ancf),
+            other => Err(BeamError::invalid(
+                field,
+                other,
+                "one of linear, corotational, ancf",
+            )),
+        }
+    }
 }
 
 /// Mass discretisation.
@@ -32,7 +62,7 @@ pub enum MassMatrix {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", tag = "type")]
 pub enum RootSupport {
-    /// u = v = θ = 0 at the root.
+    /// u = v = θ = 0 at the root (ANCF: u = v = r′ᵧ = 0, the slope's length stays free).
     Clamped,
     /// u = v = 0; θ free, restrained by a linear torsion spring `k_theta` [N·m/rad] and a
     /// viscous damper `c_theta` [N·m·s/rad] (both may be 0: a free hinge).
@@ -254,9 +284,17 @@ impl BeamModel {
     pub fn n_nodes(&self) -> usize {
         self.spec.elements + 1
     }
-    /// Number of DOFs 3(N + 1), constrained ones included.
+    /// DOFs per node: 3, or 4 for [`Kinematics::Ancf`].
+    pub fn dofs_per_node(&self) -> usize {
+        self.spec.kinematics.dofs_per_node()
+    }
+    /// Number of DOFs 3(N + 1) (ANCF: 4(N + 1)), constrained ones included.
     pub fn n_dofs(&self) -> usize {
-        3 * self.n_nodes()
+        self.dofs_per_node() * self.n_nodes()
+    }
+    /// Half-bandwidth of the node-ordered system matrices (one element couples two nodes).
+    pub fn half_bandwidth(&self) -> usize {
+        2 * self.dofs_per_node() - 1
     }
     /// Number of constrained DOFs (the first ones, at the root).
     pub fn n_fixed(&self) -> usize {
@@ -298,8 +336,11 @@ impl BeamModel {
     }
 }
 
-/// Nodal forces \[N\] and moments [N·m] in the global (x, y) frame, one entry per DOF; dead loads
-/// (their direction does not follow the deformation). May be changed between steps.
+/// Nodal forces \[N\] and moments [N·m] in the global (x, y) frame, three entries per node
+/// (fx, fy, m; for the 3-DOF elements one entry per DOF); dead loads (their direction does not
+/// follow the deformation). On an ANCF node the moment does work on the node angle
+/// θ = atan2(r′ᵧ, r′ₓ): its generalized force on the slope is m ∂θ/∂r′ = m (−r′ᵧ, r′ₓ)/|r′|²,
+/// configuration dependent (its derivative enters the tangent). May be changed between steps.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct NodalLoads {
     values: Vec<f64>,
@@ -309,7 +350,7 @@ impl NodalLoads {
     /// Zero loads for `model`.
     pub fn zeros(model: &BeamModel) -> Self {
         NodalLoads {
-            values: vec![0.0; model.n_dofs()],
+            values: vec![0.0; 3 * model.n_nodes()],
         }
     }
     fn check_node(&self, node: usize) -> Result<(), BeamError> {
@@ -366,11 +407,11 @@ impl NodalLoads {
         }
     }
     pub(crate) fn check(&self, model: &BeamModel) -> Result<(), BeamError> {
-        if self.values.len() != model.n_dofs() {
+        if self.values.len() != 3 * model.n_nodes() {
             return Err(BeamError::invalid(
                 "loads length",
                 self.values.len(),
-                format!("{} entries (3 per node)", model.n_dofs()),
+                format!("{} entries (3 per node)", 3 * model.n_nodes()),
             ));
         }
         for (i, v) in self.values.iter().enumerate() {

@@ -58,7 +58,17 @@ pub struct TipPoint {
 /// Traces the tip path of the unit corotational cantilever (L = 1, EI = 1, EA = 1e7) with
 /// `elements` elements for Φ = PL²/EI in `load_indices` (ascending, > 0), by continuation.
 pub fn trace_tip_path(elements: usize, load_indices: &[f64]) -> Result<Vec<TipPoint>, BeamError> {
-    let model = unit_cantilever(elements, Kinematics::Corotational)?;
+    trace_tip_path_with(Kinematics::Corotational, elements, load_indices)
+}
+
+/// [`trace_tip_path`] with the large-deflection element `kinematics` (corotational or ANCF;
+/// the ANCF path is O(h⁴) accurate, the corotational O(h²)).
+pub fn trace_tip_path_with(
+    kinematics: Kinematics,
+    elements: usize,
+    load_indices: &[f64],
+) -> Result<Vec<TipPoint>, BeamError> {
+    let model = unit_cantilever(elements, kinematics)?;
     let mut q = vec![0.0; model.n_dofs()];
     let mut prev = NodalLoads::zeros(&model);
     let mut last_phi = 0.0;

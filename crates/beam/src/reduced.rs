@@ -77,7 +77,19 @@ impl ReducedModel {
     /// static correction shape for each DOF index in `loaded_dofs` (global indices 3·node + {0: u,
     /// 1: v, 2: θ}). Root dampers (c_θ > 0) are not modal and are rejected; Rayleigh damping is
     /// kept.
+    ///
+    /// The reduction is linear, so an ANCF model is refused: reduce the same spec with
+    /// [`crate::Kinematics::Linear`] (the linearised ANCF element has the same bending stiffness
+    /// and mass as the linear Hermite element).
     pub fn new(model: &BeamModel, modes: usize, loaded_dofs: &[usize]) -> Result<Self, BeamError> {
+        if model.kinematics() == crate::Kinematics::Ancf {
+            return Err(BeamError::invalid(
+                "kinematics",
+                "ancf",
+                "linear or corotational for the modal-reduced (linear) beam: reduce the linear \
+                 model of the same beam",
+            ));
+        }
         let (k_theta, c_theta, _) = model.root().spring_damper_inertia();
         if c_theta != 0.0 {
             return Err(BeamError::invalid(

@@ -82,7 +82,7 @@ impl StaticOptions {
 /// A converged static solution.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StaticSolution {
-    /// Displacements, one entry per DOF [m, rad].
+    /// Displacements, one entry per DOF [m, rad] (ANCF: see [`Kinematics::Ancf`]).
     pub q: Vec<f64>,
     /// Total Newton iterations (1 for the linear model).
     pub iterations: usize,
@@ -90,14 +90,20 @@ pub struct StaticSolution {
     pub residual: f64,
     /// Load level reached (1 when converged).
     pub load_level: f64,
-    /// Reactions at the constrained root DOFs [N, N·m].
+    /// Reactions at the constrained root DOFs [N, N·m] (u, v, then θ when clamped).
     pub reactions: Vec<f64>,
+    dofs_per_node: usize,
 }
 
 impl StaticSolution {
-    /// (u, v, θ) of node `i`.
+    /// (u, v, θ) of node `i` (ANCF: θ = atan2(r′ᵧ, r′ₓ)).
     pub fn node(&self, i: usize) -> (f64, f64, f64) {
-        (self.q[3 * i], self.q[3 * i + 1], self.q[3 * i + 2])
+        if self.dofs_per_node == 4 {
+            let [u, v, t] = crate::assembly_ancf::node_uvt(&self.q, i);
+            (u, v, t)
+        } else {
+            (self.q[3 * i], self.q[3 * i + 1], self.q[3 * i + 2])
+        }
     }
 }
 
@@ -142,20 +148,25 @@ pub fn solve_static_from(
     };
     let steps = match model.kinematics() {
         Kinematics::Linear => 1,
-        Kinematics::Corotational => options.load_steps,
+        Kinematics::Corotational | Kinematics::Ancf => options.load_steps,
     };
+    let ancf = model.kinematics() == Kinematics::Ancf;
     let f_full = loads.as_slice();
-    let f_scale = f_full[nfix..]
+    // loads on the root node's constrained DOFs are taken by the support
+    let skip = if ancf { 3 } else { nfix };
+    let f_scale = f_full[skip..]
         .iter()
-        .chain(&f_start[nfix..])
+        .chain(&f_start[skip..])
         .fold(0.0f64, |m, x| m.max(x.abs()));
-    let mut f = vec![0.0; n];
+    let mut f = vec![0.0; f_full.len()];
+    // ANCF: the loads as generalized forces on the DOFs (for the internal-force scale)
+    let mut f_gen = vec![0.0; n];
     let mut total_iterations = 0;
     let mut residual = 0.0;
     let mut dq = vec![0.0; n - nfix];
     for step in 1..=steps {
         let lambda = step as f64 / steps as f64;
-        for i in 0..n {
+        for i in 0..f.len() {
             f[i] = f_start[i] + lambda * (f_full[i] - f_start[i]);
         }
         let mut converged = false;
@@ -173,9 +184,14 @@ pub fn solve_static_from(
                     what: "static residual".into(),
                 });
             }
+            if ancf {
+                crate::assembly_ancf::generalized_loads(model, &q, &f, &mut f_gen);
+            } else {
+                f_gen.copy_from_slice(&f);
+            }
             let f_int_scale = r[nfix..]
                 .iter()
-                .zip(&f[nfix..])
+                .zip(&f_gen[nfix..])
                 .fold(0.0f64, |m, (ri, fi)| m.max((ri + fi).abs()));
             let scale = f_scale.max(f_int_scale);
             if iterations > 0 && residual <= options.tolerance * scale {
@@ -190,10 +206,10 @@ pub fn solve_static_from(
             dq.iter_mut().zip(&r[nfix..]).for_each(|(d, ri)| *d = -ri);
             band.solve_in_place(&mut dq);
             iterations += 1;
-            let s = if model.kinematics() == Kinematics::Linear {
-                1.0
-            } else {
+            let s = if model.kinematics() == Kinematics::Corotational {
                 rotation_limiter(&dq, nfix)
+            } else {
+                1.0
             };
             let mut dmax = 0.0f64;
             for (qi, d) in q[nfix..].iter_mut().zip(&dq) {
@@ -242,8 +258,15 @@ pub fn solve_static_from(
             what: "static displacement".into(),
         });
     }
+    let mut reactions = r[..nfix].to_vec();
+    if ancf && nfix == 3 {
+        // the r′ᵧ reaction Q is a moment Q/(∂θ/∂r′ᵧ) = Q |r′|²/r′ₓ (r′ᵧ = 0 at a clamped root)
+        let (sx, _) = crate::assembly_ancf::slope(&q, 0);
+        reactions[2] *= sx;
+    }
     Ok(StaticSolution {
-        reactions: r[..nfix].to_vec(),
+        reactions,
+        dofs_per_node: model.dofs_per_node(),
         q,
         iterations: total_iterations,
         residual,

@@ -1,0 +1,512 @@
+//! The planar ANCF cable element (absolute nodal coordinate formulation, Gerstmayr & Irschik
+//! 2008): cubic Hermite positions with nodal positions and slopes, a constant consistent mass,
+//! and a geometrically exact (Reissner–Kirchhoff) strain energy.
+//!
+//! **Interpolation.** Element of reference length l, ξ = s/l ∈ [0, 1], nodal coordinates
+//! e = (r₁, r₁′, r₂, r₂′) (positions and slopes r′ = ∂r/∂s, 2-vectors), Hermite cubics
+//! N₁ … N₄ (see [`crate::element`]):
+//! r(ξ) = N₁ r₁ + l N₂ r₁′ + N₃ r₂ + l N₄ r₂′ = S(ξ) e.
+//! Rigid motion (translation and any rotation) is represented exactly; a straight reference
+//! along x has r₀′ = (1, 0) everywhere, r₀″ = 0.
+//!
+//! **Mass.** T = ½ ρA ∫ |ṙ|² ds = ½ ėᵀ M ė with the constant consistent matrix
+//! M = ρA l ∫₀¹ SᵀS dξ, M_(a,i),(b,j) = ρA l sₐ s_b H_ab δᵢⱼ, s = (1, l, 1, l), H_ab = ∫ NₐN_b dξ:
+//! exact for every motion of the interpolated centre line (no gyroscopic or centrifugal term).
+//!
+//! **Strain energy** (per reference length, Reissner's planar rod without shear):
+//! W = ½ EA ε² + ½ EI κ²,  ε = |r′| − 1,  κ = dθ/ds = (r′ × r″)/|r′|²,
+//! so the axial force is N = EA ε along the tangent and the bending moment M = EI θ′, the
+//! constitutive law of the extensible elastica ([`crate::canonical`]'s references). Both strains
+//! are invariant under rigid motion: no force under any rigid motion, for any rotation.
+//! ε is computed from the displacement gradient d′ = r′ − r₀′ without cancellation,
+//! |r′|² − 1 = 2d′ₓ + |d′|², ε = (|r′|² − 1)/(|r′| + 1).
+//!
+//! **Integration and locking.** κ² is integrated with 3 Gauss points ([`BENDING_RULE`]; 2 are
+//! exact for the linearised element, where κ ≈ v″ is linear, but leave a 6× larger elastica
+//! error). The axial term is integrated with the 3-point Gauss–Lobatto (Simpson) rule
+//! ([`AXIAL_RULE`]): ξ = 0, ½, 1. A thin cubic cable (EA l²/EI ≫ 1) integrated with Gauss points
+//! must keep |r′| ≈ 1 at 3 or more interior points of every curved element, more constraints
+//! than the element's 2 axial parameters can meet, so it becomes too stiff in bending
+//! (membrane locking: at EA L²/EI = 1.08e6 the elastica error with 5 Gauss points is 2.3e-3 at
+//! 8 elements and 2.7e-4 at 16, converging as O(h³) instead of O(h⁴)). The Lobatto points at the
+//! nodes are shared by the neighbouring elements (the strain there depends on the nodal slope
+//! only), so each element adds 2 constraints for its 2 axial parameters: the error is then
+//! independent of EA (3.1e-5, 2.0e-6, 1.2e-7, 7.6e-9 at 8, 16, 32, 64 elements for
+//! EA L²/EI from 1e4 to 1e7: O(h⁴)), and unlike 2 Gauss points (also 2 constraints per element)
+//! the root slope's length is held too, so no zero-energy axial mode remains. The energy is an
+//! exact function of e, so the element stays conservative and its tangent symmetric.
+//!
+//! **Derivatives.** With r′ = Σ c¹ₐ eₐ, r″ = Σ c²ₐ eₐ (c¹ = (N₁′/l, N₂′, N₃′/l, N₄′),
+//! c² = (N₁″/l², N₂″/l, N₃″/l², N₄″/l)), t = r′/|r′|, P = I − t tᵀ, g = |r′|², J = [[0, 1],
+//! [−1, 0]], p = J r″, q = Jᵀ r′:
+//! ∂ε/∂eₐ = c¹ₐ t,  ∂²ε/∂eₐ∂e_b = c¹ₐ c¹_b P/|r′|,
+//! ∂κ/∂eₐ = c¹ₐ α + c²ₐ β,  α = p/g − 2κ r′/g,  β = q/g,
+//! ∂²κ/∂eₐ∂e_b = c¹ₐc¹_b B₁₁ + c¹ₐc²_b B₁₂ + c²ₐc¹_b B₁₂ᵀ,
+//! B₁₁ = −2(p r′ᵀ + r′ pᵀ)/g² − 2κ I/g + 8κ r′r′ᵀ/g²,  B₁₂ = J/g − 2 r′ qᵀ/g²,
+//! and the tangent K = ∫ EA (∇ε∇εᵀ + ε∇²ε) + EI (∇κ∇κᵀ + κ∇²κ) ds (analytic, checked against
+//! finite differences). The *material* part ∫ EA ∇ε∇εᵀ + EI ∇κ∇κᵀ ds weighs strain rates for
+//! stiffness-proportional (Rayleigh) damping, which then vanishes under rigid motion.
+
+use nalgebra::{SMatrix, SVector, Vector2};
+
+use crate::element::HERMITE_PRODUCTS;
+
+/// Element coordinates: (r₁ₓ, r₁ᵧ, r₁′ₓ, r₁′ᵧ, r₂ₓ, r₂ᵧ, r₂′ₓ, r₂′ᵧ).
+pub type Vector8 = SVector<f64, 8>;
+/// An 8 × 8 element matrix.
+pub type Matrix8 = SMatrix<f64, 8, 8>;
+
+/// Rule of the axial term (see the module docs).
+pub const AXIAL_RULE: Quadrature = Quadrature::Lobatto3;
+/// Rule of the bending term.
+pub const BENDING_RULE: Quadrature = Quadrature::Gauss(3);
+/// The largest Gauss rule available.
+pub const MAX_POINTS: usize = 5;
+
+/// Gauss–Legendre points on [0, 1] and weights (summing to 1), n = 1 … 5.
+pub fn gauss_rule(n: usize) -> ([f64; MAX_POINTS], [f64; MAX_POINTS]) {
+    let (x, w): (&[f64], &[f64]) = match n {
+        1 => (&[0.0], &[2.0]),
+        2 => (
+            &[-0.577_350_269_189_625_8, 0.577_350_269_189_625_8],
+            &[1.0, 1.0],
+        ),
+        3 => (
+            &[-0.774_596_669_241_483_4, 0.0, 0.774_596_669_241_483_4],
+            &[5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0],
+        ),
+        4 => (
+            &[
+                -0.861_136_311_594_052_6,
+                -0.339_981_043_584_856_3,
+                0.339_981_043_584_856_3,
+                0.861_136_311_594_052_6,
+            ],
+            &[
+                0.347_854_845_137_453_9,
+                0.652_145_154_862_546_1,
+                0.652_145_154_862_546_1,
+                0.347_854_845_137_453_9,
+            ],
+        ),
+        5 => (
+            &[
+                -0.906_179_845_938_664,
+                -0.538_469_310_105_683_1,
+                0.0,
+                0.538_469_310_105_683_1,
+                0.906_179_845_938_664,
+            ],
+            &[
+                0.236_926_885_056_189_1,
+                0.478_628_670_499_366_5,
+                0.568_888_888_888_888_9,
+                0.478_628_670_499_366_5,
+                0.236_926_885_056_189_1,
+            ],
+        ),
+        _ => panic!("Gauss rule with {n} points: 1 to {MAX_POINTS} available"),
+    };
+    let mut xs = [0.0; MAX_POINTS];
+    let mut ws = [0.0; MAX_POINTS];
+    for i in 0..x.len() {
+        xs[i] = 0.5 * (x[i] + 1.0);
+        ws[i] = 0.5 * w[i];
+    }
+    (xs, ws)
+}
+
+/// 3-point Gauss–Lobatto (Simpson) rule on [0, 1]: the ends and the middle, weights 1/6, 4/6,
+/// 1/6.
+pub fn lobatto3_rule() -> ([f64; MAX_POINTS], [f64; MAX_POINTS]) {
+    let mut x = [0.0; MAX_POINTS];
+    let mut w = [0.0; MAX_POINTS];
+    x[..3].copy_from_slice(&[0.0, 0.5, 1.0]);
+    w[..3].copy_from_slice(&[1.0 / 6.0, 4.0 / 6.0, 1.0 / 6.0]);
+    (x, w)
+}
+
+/// A quadrature rule on [0, 1].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quadrature {
+    /// Gauss–Legendre with 1 … [`MAX_POINTS`] points.
+    Gauss(usize),
+    /// 3-point Gauss–Lobatto (Simpson): the nodes and the middle.
+    Lobatto3,
+}
+
+impl Quadrature {
+    fn points(self) -> (usize, [f64; MAX_POINTS], [f64; MAX_POINTS]) {
+        match self {
+            Quadrature::Gauss(n) => {
+                let (x, w) = gauss_rule(n);
+                (n, x, w)
+            }
+            Quadrature::Lobatto3 => {
+                let (x, w) = lobatto3_rule();
+                (3, x, w)
+            }
+        }
+    }
+}
+
+/// What an element evaluation computes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Want {
+    /// The strain energy only.
+    Energy,
+    /// Energy and internal force.
+    Force,
+    /// Energy, force and tangent.
+    Tangent,
+    /// Energy, force, tangent and material matrices.
+    TangentAndMaterial,
+}
+
+/// One integration point: weight × l and the coefficients of r′ and r″ per slot.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Point {
+    wl: f64,
+    c1: [f64; 4],
+    c2: [f64; 4],
+}
+
+impl Point {
+    fn at(xi: f64, w: f64, l: f64) -> Self {
+        let x2 = xi * xi;
+        // dN/dξ and d²N/dξ²
+        let d1 = [
+            -6.0 * xi + 6.0 * x2,
+            1.0 - 4.0 * xi + 3.0 * x2,
+            6.0 * xi - 6.0 * x2,
+            -2.0 * xi + 3.0 * x2,
+        ];
+        let d2 = [
+            -6.0 + 12.0 * xi,
+            -4.0 + 6.0 * xi,
+            6.0 - 12.0 * xi,
+            -2.0 + 6.0 * xi,
+        ];
+        Point {
+            wl: w * l,
+            c1: [d1[0] / l, d1[1], d1[2] / l, d1[3]],
+            c2: [d2[0] / (l * l), d2[1] / l, d2[2] / (l * l), d2[3] / l],
+        }
+    }
+}
+
+/// Result of an element evaluation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AncfEvaluation {
+    /// Strain energy \[J\].
+    pub energy: f64,
+    /// Internal force ∂U/∂e [N] (zero unless requested).
+    pub force: Vector8,
+    /// Tangent ∂²U/∂e² (zero unless requested).
+    pub tangent: Matrix8,
+    /// Material part ∫ EA ∇ε∇εᵀ + EI ∇κ∇κᵀ ds (zero unless requested with
+    /// [`Want::TangentAndMaterial`]).
+    pub material: Matrix8,
+}
+
+/// An ANCF cable element of given length, stiffness and integration rules (all elements of a
+/// uniform mesh share one).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AncfElement {
+    l: f64,
+    ea: f64,
+    ei: f64,
+    n_axial: usize,
+    n_bending: usize,
+    axial: [Point; MAX_POINTS],
+    bending: [Point; MAX_POINTS],
+}
+
+impl AncfElement {
+    /// Element of length `l` \[m\], axial stiffness `ea` \[N\], bending stiffness `ei` [N·m²]
+    /// with the default rules ([`AXIAL_RULE`], [`BENDING_RULE`]).
+    pub fn new(l: f64, ea: f64, ei: f64) -> Self {
+        Self::with_rules(l, ea, ei, AXIAL_RULE, BENDING_RULE)
+    }
+
+    /// Element with the rules `axial` and `bending` for the two terms (e.g. Gauss(5) for the
+    /// axial term: the fully integrated element that locks).
+    pub fn with_rules(l: f64, ea: f64, ei: f64, axial: Quadrature, bending: Quadrature) -> Self {
+        let table = |rule: Quadrature| {
+            let (n, x, w) = rule.points();
+            let pts: [Point; MAX_POINTS] = std::array::from_fn(|i| Point::at(x[i], w[i], l));
+            (n, pts)
+        };
+        let (n_axial, axial) = table(axial);
+        let (n_bending, bending) = table(bending);
+        AncfElement {
+            l,
+            ea,
+            ei,
+            n_axial,
+            n_bending,
+            axial,
+            bending,
+        }
+    }
+
+    /// Element length l \[m\].
+    pub fn length(&self) -> f64 {
+        self.l
+    }
+
+    /// Constant consistent mass matrix for mass per length `rho_a` [kg/m] (see the module docs).
+    pub fn mass(&self, rho_a: f64) -> Matrix8 {
+        let l = self.l;
+        let s = [1.0, l, 1.0, l];
+        let m_e = rho_a * l;
+        let mut m = Matrix8::zeros();
+        for a in 0..4 {
+            for b in 0..4 {
+                let v = m_e * s[a] * s[b] * HERMITE_PRODUCTS[a][b];
+                m[(2 * a, 2 * b)] = v;
+                m[(2 * a + 1, 2 * b + 1)] = v;
+            }
+        }
+        m
+    }
+
+    /// Evaluates the element at the displacement `d` of its coordinates from the straight
+    /// reference along x (positions (X₁, 0), (X₂, 0) and unit slopes (1, 0)), slot order
+    /// (r₁, r₁′, r₂, r₂′).
+    pub fn evaluate(&self, d: &Vector8, want: Want) -> AncfEvaluation {
+        let slot = |a: usize| Vector2::new(d[2 * a], d[2 * a + 1]);
+        let ds = [slot(0), slot(1), slot(2), slot(3)];
+        let mut out = AncfEvaluation {
+            energy: 0.0,
+            force: Vector8::zeros(),
+            tangent: Matrix8::zeros(),
+            material: Matrix8::zeros(),
+        };
+        let mut k = [[0.0f64; 8]; 8];
+        let mut km = [[0.0f64; 8]; 8];
+        // axial: ε = |r′| − 1
+        for p in &self.axial[..self.n_axial] {
+            let dp = ds[0] * p.c1[0] + ds[1] * p.c1[1] + ds[2] * p.c1[2] + ds[3] * p.c1[3];
+            let rp = Vector2::new(1.0 + dp.x, dp.y);
+            let g1 = 2.0 * dp.x + dp.norm_squared(); // |r′|² − 1
+            let norm = (1.0 + g1).sqrt();
+            let eps = g1 / (norm + 1.0);
+            let n_ax = self.ea * eps;
+            out.energy += 0.5 * p.wl * n_ax * eps;
+            if want == Want::Energy {
+                continue;
+            }
+            let t = rp / norm;
+            let ft = t * (p.wl * n_ax);
+            for a in 0..4 {
+                out.force[2 * a] += p.c1[a] * ft.x;
+                out.force[2 * a + 1] += p.c1[a] * ft.y;
+            }
+            if want == Want::Force {
+                continue;
+            }
+            // A = wl EA (t tᵀ + ε P/|r′|), material part wl EA t tᵀ
+            let ea_w = p.wl * self.ea;
+            let s = eps / norm;
+            let mt = [
+                [ea_w * t.x * t.x, ea_w * t.x * t.y],
+                [ea_w * t.y * t.x, ea_w * t.y * t.y],
+            ];
+            let geo = [
+                [ea_w * s * (1.0 - t.x * t.x), -ea_w * s * t.x * t.y],
+                [-ea_w * s * t.x * t.y, ea_w * s * (1.0 - t.y * t.y)],
+            ];
+            let kk = [
+                [mt[0][0] + geo[0][0], mt[0][1] + geo[0][1]],
+                [mt[1][0] + geo[1][0], mt[1][1] + geo[1][1]],
+            ];
+            let material = want == Want::TangentAndMaterial;
+            for a in 0..4 {
+                for b in 0..4 {
+                    let cc = p.c1[a] * p.c1[b];
+                    for i in 0..2 {
+                        for j in 0..2 {
+                            k[2 * a + i][2 * b + j] += cc * kk[i][j];
+                            if material {
+                                km[2 * a + i][2 * b + j] += cc * mt[i][j];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // bending: κ = (r′ × r″)/|r′|²
+        for p in &self.bending[..self.n_bending] {
+            let dp = ds[0] * p.c1[0] + ds[1] * p.c1[1] + ds[2] * p.c1[2] + ds[3] * p.c1[3];
+            let rpp = ds[0] * p.c2[0] + ds[1] * p.c2[1] + ds[2] * p.c2[2] + ds[3] * p.c2[3];
+            let rp = Vector2::new(1.0 + dp.x, dp.y);
+            let g = rp.norm_squared();
+            let c = rp.x * rpp.y - rp.y * rpp.x;
+            let kappa = c / g;
+            let m_b = self.ei * kappa;
+            out.energy += 0.5 * p.wl * m_b * kappa;
+            if want == Want::Energy {
+                continue;
+            }
+            let pv = Vector2::new(rpp.y, -rpp.x); // J r″
+            let qv = Vector2::new(-rp.y, rp.x); // Jᵀ r′
+            let alpha = pv / g - rp * (2.0 * kappa / g);
+            let beta = qv / g;
+            let fm = p.wl * m_b;
+            for a in 0..4 {
+                let grad = alpha * p.c1[a] + beta * p.c2[a];
+                out.force[2 * a] += fm * grad.x;
+                out.force[2 * a + 1] += fm * grad.y;
+            }
+            if want == Want::Force {
+                continue;
+            }
+            let ei_w = p.wl * self.ei;
+            let g2 = g * g;
+            // B₁₁ and B₁₂ (see the module docs)
+            let b11 = [
+                [
+                    -4.0 * pv.x * rp.x / g2 - 2.0 * kappa / g + 8.0 * kappa * rp.x * rp.x / g2,
+                    -2.0 * (pv.x * rp.y + rp.x * pv.y) / g2 + 8.0 * kappa * rp.x * rp.y / g2,
+                ],
+                [
+                    -2.0 * (pv.y * rp.x + rp.y * pv.x) / g2 + 8.0 * kappa * rp.y * rp.x / g2,
+                    -4.0 * pv.y * rp.y / g2 - 2.0 * kappa / g + 8.0 * kappa * rp.y * rp.y / g2,
+                ],
+            ];
+            let b12 = [
+                [-2.0 * rp.x * qv.x / g2, 1.0 / g - 2.0 * rp.x * qv.y / g2],
+                [-1.0 / g - 2.0 * rp.y * qv.x / g2, -2.0 * rp.y * qv.y / g2],
+            ];
+            let (al, be) = ([alpha.x, alpha.y], [beta.x, beta.y]);
+            // K_ab = c¹ₐ P_b + c²ₐ Q_b, P_b = c¹_b K₁₁ + c²_b K₁₂, Q_b = c¹_b K₁₂ᵀ + c²_b K₂₂
+            let mut k11 = [[0.0; 2]; 2];
+            let mut k12 = [[0.0; 2]; 2];
+            let mut k22 = [[0.0; 2]; 2];
+            let mut m11 = [[0.0; 2]; 2];
+            let mut m12 = [[0.0; 2]; 2];
+            for i in 0..2 {
+                for j in 0..2 {
+                    m11[i][j] = ei_w * al[i] * al[j];
+                    m12[i][j] = ei_w * al[i] * be[j];
+                    k22[i][j] = ei_w * be[i] * be[j];
+                    k11[i][j] = m11[i][j] + ei_w * kappa * b11[i][j];
+                    k12[i][j] = m12[i][j] + ei_w * kappa * b12[i][j];
+                }
+            }
+            let material = want == Want::TangentAndMaterial;
+            for b in 0..4 {
+                let (c1b, c2b) = (p.c1[b], p.c2[b]);
+                let mut pb = [[0.0; 2]; 2];
+                let mut qb = [[0.0; 2]; 2];
+                let mut pm = [[0.0; 2]; 2];
+                let mut qm = [[0.0; 2]; 2];
+                for i in 0..2 {
+                    for j in 0..2 {
+                        pb[i][j] = c1b * k11[i][j] + c2b * k12[i][j];
+                        qb[i][j] = c1b * k12[j][i] + c2b * k22[i][j];
+                        if material {
+                            pm[i][j] = c1b * m11[i][j] + c2b * m12[i][j];
+                            qm[i][j] = c1b * m12[j][i] + c2b * k22[i][j];
+                        }
+                    }
+                }
+                for a in 0..4 {
+                    let (c1a, c2a) = (p.c1[a], p.c2[a]);
+                    for i in 0..2 {
+                        for j in 0..2 {
+                            k[2 * a + i][2 * b + j] += c1a * pb[i][j] + c2a * qb[i][j];
+                            if material {
+                                km[2 * a + i][2 * b + j] += c1a * pm[i][j] + c2a * qm[i][j];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        if matches!(want, Want::Tangent | Want::TangentAndMaterial) {
+            for i in 0..8 {
+                for j in 0..8 {
+                    out.tangent[(i, j)] = k[i][j];
+                    out.material[(i, j)] = km[i][j];
+                }
+            }
+        }
+        out
+    }
+}
+
+/// Node angle θ = atan2(r′ᵧ, r′ₓ) \[rad\] of the slope `(sx, sy)` (absolute), its gradient
+/// ∂θ/∂(r′ₓ, r′ᵧ) = (−r′ᵧ, r′ₓ)/|r′|² and Hessian
+/// [[2 r′ₓr′ᵧ, r′ᵧ² − r′ₓ²], [r′ᵧ² − r′ₓ², −2 r′ₓr′ᵧ]]/|r′|⁴.
+pub fn slope_angle(sx: f64, sy: f64) -> (f64, [f64; 2], [[f64; 2]; 2]) {
+    let g = sx * sx + sy * sy;
+    let g2 = g * g;
+    let off = (sy * sy - sx * sx) / g2;
+    (
+        sy.atan2(sx),
+        [-sy / g, sx / g],
+        [[2.0 * sx * sy / g2, off], [off, -2.0 * sx * sy / g2]],
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> Vector8 {
+        Vector8::from_column_slice(&[0.01, -0.02, -0.3, 0.4, -0.05, 0.09, -0.6, 0.5])
+    }
+
+    #[test]
+    fn tangent_and_force_match_finite_differences() {
+        let el =
+            AncfElement::with_rules(0.25, 5.0e4, 3.0, Quadrature::Gauss(3), Quadrature::Gauss(4));
+        test_fd(&el);
+        test_fd(&AncfElement::new(0.25, 5.0e4, 3.0));
+    }
+
+    fn test_fd(el: &AncfElement) {
+        let d = sample();
+        let e = el.evaluate(&d, Want::Tangent);
+        let h = 1e-6;
+        let kscale = e.tangent.abs().max();
+        let fscale = e.force.abs().max();
+        for k in 0..8 {
+            let mut dp = d;
+            let mut dm = d;
+            dp[k] += h;
+            dm[k] -= h;
+            let (ep, em) = (el.evaluate(&dp, Want::Force), el.evaluate(&dm, Want::Force));
+            let du = (ep.energy - em.energy) / (2.0 * h);
+            assert!((du - e.force[k]).abs() < 1e-7 * fscale, "dU/de {k}");
+            for i in 0..8 {
+                let fd = (ep.force[i] - em.force[i]) / (2.0 * h);
+                assert!(
+                    (fd - e.tangent[(i, k)]).abs() < 1e-7 * kscale,
+                    "K {i} {k}: {fd} vs {}",
+                    e.tangent[(i, k)]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn slope_angle_derivatives_match_finite_differences() {
+        let (sx, sy) = (0.7, -1.3);
+        let (_, g, hs) = slope_angle(sx, sy);
+        let h = 1e-6;
+        let fd = |dx: f64, dy: f64| slope_angle(sx + dx, sy + dy);
+        let gx = (fd(h, 0.0).0 - fd(-h, 0.0).0) / (2.0 * h);
+        let gy = (fd(0.0, h).0 - fd(0.0, -h).0) / (2.0 * h);
+        assert!((gx - g[0]).abs() < 1e-9 && (gy - g[1]).abs() < 1e-9);
+        for j in 0..2 {
+            let (dx, dy) = if j == 0 { (h, 0.0) } else { (0.0, h) };
+            let (p, m) = (fd(dx, dy).1, fd(-dx, -dy).1);
+            for i in 0..2 {
+                assert!(((p[i] - m[i]) / (2.0 * h) - hs[i][j]).abs() < 1e-8);
+            }
+        }
+    }
+}

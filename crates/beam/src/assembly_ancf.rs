@@ -1,0 +1,442 @@
+//! Assembly for the ANCF cable model ([`crate::model::Kinematics::Ancf`]).
+//!
+//! Node `i` carries the displacements (u, v, r′ᵧ, r′ₓ − 1) at `4i … 4i+3` (constrained DOFs
+//! first at the root: clamped u, v, r′ᵧ; pinned u, v). The residual is that of
+//! [`crate::assembly`]:
+//! r = f_int(q) + a₀ M q̇ + a₁ K_m(q) q̇ + M q̈ + f_root − f_ext,
+//! with the constant consistent mass M, the material matrix K_m of [`crate::ancf`] (Rayleigh
+//! damping of the strain rates: no damping of rigid motion), and in node terms:
+//! * a point mass m on (u, v) and its rotary inertia J on both slope DOFs: ½ J |ṙ′|², which is
+//!   ½ J θ̇² exactly while the slope keeps unit length and differs by O(ε) (the axial strain,
+//!   ≈ 1e-6 for the CL link) otherwise, so that M stays constant;
+//! * the root spring and damper on θ₀ = atan2(r′ᵧ, r′ₓ) (valid for |θ₀| < π), hub inertia as a
+//!   point rotary inertia at node 0;
+//! * the dead force (fx, fy) on (u, v) and the dead moment m on the slope,
+//!   m ∂θ/∂r′ = m (−r′ᵧ, r′ₓ)/|r′|², with its load stiffness −m ∂²θ/∂r′² in the tangent.
+//!
+//! **Discrete gradient** (energy-conserving step, [`crate::energy_conserving`]). With a
+//! [`Discrete`] the elastic force of each element (and of the root spring) is Gonzalez's
+//! discrete gradient between q₀ and q₁ = q₀ + Δq,
+//! f̄ = ∇U(q_mid) + [U(q₁) − U(q₀) − ∇U(q_mid)·Δq] W Δq / (Δqᵀ W Δq),
+//! W = diag(1, 1, l², l², …) (slopes scaled to lengths), so that f̄·Δq = U(q₁) − U(q₀) exactly,
+//! and a moment m does the work m (θ₁ − θ₀) through the discrete gradient of θ.
+
+use nalgebra::Vector2;
+
+use crate::ancf::{AncfElement, Matrix8, Vector8, Want, slope_angle};
+use crate::assembly::{JacobianWeights, Kinematic};
+use crate::banded::BandMatrix;
+use crate::element::lumped_mass;
+use crate::model::{BeamModel, MassMatrix};
+
+/// Global DOF (relative to 4e) of element coordinate k (slot order r₁, r₁′, r₂, r₂′; x, y).
+pub const ELEMENT_DOFS: [usize; 8] = [0, 1, 3, 2, 4, 5, 7, 6];
+
+/// Offsets of the slope DOFs (r′ₓ, r′ᵧ) within a node.
+pub const SLOPE_X: usize = 3;
+/// Offset of r′ᵧ within a node.
+pub const SLOPE_Y: usize = 2;
+
+/// The element of a model.
+pub fn element_of(model: &BeamModel) -> AncfElement {
+    let sec = model.section();
+    AncfElement::new(model.element_length(), sec.ea(), sec.ei())
+}
+
+fn gather(x: &[f64], e: usize) -> Vector8 {
+    Vector8::from_fn(|k, _| x[4 * e + ELEMENT_DOFS[k]])
+}
+
+/// Absolute slope (r′ₓ, r′ᵧ) of node `i` from the displacements `q`.
+pub fn slope(q: &[f64], i: usize) -> (f64, f64) {
+    (1.0 + q[4 * i + SLOPE_X], q[4 * i + SLOPE_Y])
+}
+
+/// (u, v, θ) of node `i`.
+pub fn node_uvt(q: &[f64], i: usize) -> [f64; 3] {
+    let (sx, sy) = slope(q, i);
+    [q[4 * i], q[4 * i + 1], sy.atan2(sx)]
+}
+
+/// (u̇, v̇, θ̇) of node `i`, θ̇ = ∂θ/∂r′ · ṙ′.
+pub fn node_uvt_rate(q: &[f64], v: &[f64], i: usize) -> [f64; 3] {
+    let (sx, sy) = slope(q, i);
+    let (_, g, _) = slope_angle(sx, sy);
+    [
+        v[4 * i],
+        v[4 * i + 1],
+        g[0] * v[4 * i + SLOPE_X] + g[1] * v[4 * i + SLOPE_Y],
+    ]
+}
+
+/// (ü, v̈, θ̈) of node `i`, θ̈ = ∂θ/∂r′ · r̈′ + ṙ′ᵀ ∂²θ/∂r′² ṙ′.
+pub fn node_uvt_acceleration(q: &[f64], v: &[f64], a: &[f64], i: usize) -> [f64; 3] {
+    let (sx, sy) = slope(q, i);
+    let (_, g, h) = slope_angle(sx, sy);
+    let sd = [v[4 * i + SLOPE_X], v[4 * i + SLOPE_Y]];
+    let quad =
+        sd[0] * (h[0][0] * sd[0] + h[0][1] * sd[1]) + sd[1] * (h[1][0] * sd[0] + h[1][1] * sd[1]);
+    [
+        a[4 * i],
+        a[4 * i + 1],
+        g[0] * a[4 * i + SLOPE_X] + g[1] * a[4 * i + SLOPE_Y] + quad,
+    ]
+}
+
+/// Discrete-gradient data of an energy-conserving step: the start q₀, the end q₁ and the
+/// element (and root spring) energies at q₀; the energies at q₁ are written to `u1`.
+pub struct Discrete<'a> {
+    /// q₀ (one entry per DOF).
+    pub q0: &'a [f64],
+    /// q₁.
+    pub q1: &'a [f64],
+    /// Energies at q₀: one per element, then the root spring.
+    pub u0: &'a [f64],
+    /// Energies at q₁ (written).
+    pub u1: &'a mut [f64],
+}
+
+/// Discrete gradient of θ(r′) between the slopes `s0` and `s1` (absolute):
+/// ∇θ(s_mid) + [θ₁ − θ₀ − ∇θ(s_mid)·Δs] Δs/|Δs|², so that ∇̄θ·Δs = θ₁ − θ₀ (angles unwrapped
+/// across ±π). Also returns ∂²θ/∂r′² at the midpoint.
+pub fn discrete_angle_gradient(s0: (f64, f64), s1: (f64, f64)) -> ([f64; 2], [[f64; 2]; 2]) {
+    let mid = (0.5 * (s0.0 + s1.0), 0.5 * (s0.1 + s1.1));
+    let (_, g, h) = slope_angle(mid.0, mid.1);
+    let ds = [s1.0 - s0.0, s1.1 - s0.1];
+    let n2 = ds[0] * ds[0] + ds[1] * ds[1];
+    if n2 == 0.0 {
+        return (g, h);
+    }
+    // θ₁ − θ₀ as the angle from s0 to s1 (no branch cut)
+    let dtheta = (s0.0 * s1.1 - s0.1 * s1.0).atan2(s0.0 * s1.0 + s0.1 * s1.1);
+    let c = (dtheta - g[0] * ds[0] - g[1] * ds[1]) / n2;
+    ([g[0] + c * ds[0], g[1] + c * ds[1]], h)
+}
+
+/// Assembles the ANCF residual into `r` (one entry per DOF) and, if `jac` is given, the weighted
+/// Jacobian over the free DOFs (cleared first); `f_ext` holds 3 entries per node (fx, fy, m).
+/// With `discrete`, `kin.q` must be the midpoint ½(q₀ + q₁) and the elastic forces and the
+/// moments are discrete gradients (module docs). Returns the strain energy at `kin.q` (or, with
+/// `discrete`, at q₁) \[J\].
+pub fn assemble_ancf(
+    model: &BeamModel,
+    kin: Kinematic<'_>,
+    f_ext: &[f64],
+    r: &mut [f64],
+    mut jac: Option<(&mut BandMatrix, JacobianWeights)>,
+    mut discrete: Option<&mut Discrete<'_>>,
+) -> f64 {
+    let nfix = model.n_fixed();
+    let sec = *model.section();
+    let l = model.element_length();
+    let damping = model.spec().damping;
+    let dynamic = kin.v.is_some() && kin.a.is_some();
+    let lumped = model.spec().mass == MassMatrix::Lumped;
+    let el = element_of(model);
+    let mass = el.mass(sec.rho_a());
+    let lm = lumped_mass(l, sec.rho_a());
+    let m_lump =
+        Vector8::from_column_slice(&[lm[0], lm[1], lm[2], lm[2], lm[3], lm[4], lm[5], lm[5]]);
+    let metric = [1.0, 1.0, l * l, l * l, 1.0, 1.0, l * l, l * l];
+    let need_material = dynamic && damping.beta_stiffness > 0.0;
+    // the constant inertia part of the iteration matrix, (w_a + w_v a₀) M
+    let inertia_weighted = match jac.as_ref() {
+        Some((_, w)) => {
+            let c = w.acceleration + w.velocity * damping.alpha_mass;
+            if lumped {
+                Matrix8::from_diagonal(&(m_lump * c))
+            } else {
+                mass * c
+            }
+        }
+        None => Matrix8::zeros(),
+    };
+    let want = if need_material {
+        Want::TangentAndMaterial
+    } else if jac.is_some() {
+        Want::Tangent
+    } else {
+        Want::Force
+    };
+    r.iter_mut().for_each(|x| *x = 0.0);
+    if let Some((band, _)) = jac.as_mut() {
+        band.clear();
+    }
+    let mut energy = 0.0;
+    for e in 0..model.n_elements() {
+        let d = gather(kin.q, e);
+        let ev = el.evaluate(&d, want);
+        let mut f = ev.force;
+        let mut kt = ev.tangent;
+        match discrete.as_deref_mut() {
+            Some(dg) => {
+                let d1 = gather(dg.q1, e);
+                let d0 = gather(dg.q0, e);
+                let at1 = el.evaluate(
+                    &d1,
+                    if jac.is_some() {
+                        Want::Force
+                    } else {
+                        Want::Energy
+                    },
+                );
+                let u1 = at1.energy;
+                dg.u1[e] = u1;
+                energy += u1;
+                let dd = d1 - d0;
+                let wdd = Vector8::from_fn(|k, _| metric[k] * dd[k]);
+                let n2 = dd.dot(&wdd);
+                if n2 > 0.0 {
+                    let c = (u1 - dg.u0[e] - f.dot(&dd)) / n2;
+                    if jac.is_some() {
+                        // ∂f̄/∂Δ = ½ H(m) + W Δ ∂cᵀ + c W, ∂c = [∇U(q₁) − ∇U(m) − ½ H Δ − 2c W Δ]/n²;
+                        // kt is weighted by ½ below, hence the factor 2
+                        let dc = (at1.force - f - kt * dd * 0.5 - wdd * (2.0 * c)) / n2;
+                        kt += wdd * dc.transpose() * 2.0;
+                        for k in 0..8 {
+                            kt[(k, k)] += 2.0 * c * metric[k];
+                        }
+                    }
+                    f += wdd * c;
+                }
+            }
+            None => energy += ev.energy,
+        }
+        if dynamic {
+            let pv = gather(kin.v.unwrap(), e);
+            let pa = gather(kin.a.unwrap(), e);
+            if need_material {
+                f += ev.material * pv * damping.beta_stiffness;
+            }
+            let acc = pa + pv * damping.alpha_mass;
+            if lumped {
+                for k in 0..8 {
+                    f[k] += m_lump[k] * acc[k];
+                }
+            } else {
+                f += mass * acc;
+            }
+        }
+        for k in 0..8 {
+            r[4 * e + ELEMENT_DOFS[k]] += f[k];
+        }
+        if let Some((band, w)) = jac.as_mut() {
+            // w_k K_t + (w_a + w_v a₀) M + w_v a₁ K_m
+            kt *= w.stiffness;
+            if dynamic {
+                kt += inertia_weighted;
+                if need_material {
+                    kt += ev.material * (w.velocity * damping.beta_stiffness);
+                }
+            }
+            for i in 0..8 {
+                let gi = 4 * e + ELEMENT_DOFS[i];
+                if gi < nfix {
+                    continue;
+                }
+                for j in 0..8 {
+                    let gj = 4 * e + ELEMENT_DOFS[j];
+                    if gj >= nfix {
+                        band.add(gi - nfix, gj - nfix, kt[(i, j)]);
+                    }
+                }
+            }
+        }
+    }
+    // Root spring, damper and hub inertia on θ₀ (pinned or hub root).
+    let (k_theta, c_theta, j_hub) = model.root().spring_damper_inertia();
+    if nfix == 2 {
+        let (sx, sy) = slope(kin.q, 0);
+        let (theta, g, h) = slope_angle(sx, sy);
+        let dofs = [SLOPE_X, SLOPE_Y];
+        let mut f = [k_theta * theta * g[0], k_theta * theta * g[1]];
+        let mut k = [[0.0; 2]; 2];
+        for i in 0..2 {
+            for j in 0..2 {
+                k[i][j] = k_theta * (g[i] * g[j] + theta * h[i][j]);
+            }
+        }
+        match discrete.as_deref_mut() {
+            Some(dg) => {
+                let (s0, s1) = (slope(dg.q0, 0), slope(dg.q1, 0));
+                let th1 = s1.1.atan2(s1.0);
+                let u1 = 0.5 * k_theta * th1 * th1;
+                let slot = model.n_elements();
+                dg.u1[slot] = u1;
+                energy += u1;
+                let ds = [s1.0 - s0.0, s1.1 - s0.1];
+                let n2 = ds[0] * ds[0] + ds[1] * ds[1];
+                if n2 > 0.0 {
+                    let c = (u1 - dg.u0[slot] - f[0] * ds[0] - f[1] * ds[1]) / n2;
+                    f[0] += c * ds[0];
+                    f[1] += c * ds[1];
+                }
+            }
+            None => energy += 0.5 * k_theta * theta * theta,
+        }
+        let (mut cv, mut ca) = ([[0.0; 2]; 2], 0.0);
+        if dynamic {
+            let (v, a) = (kin.v.unwrap(), kin.a.unwrap());
+            let sd = [v[SLOPE_X], v[SLOPE_Y]];
+            let theta_dot = g[0] * sd[0] + g[1] * sd[1];
+            for i in 0..2 {
+                f[i] += c_theta * theta_dot * g[i]
+                    + j_hub * (a[dofs[i]] + damping.alpha_mass * v[dofs[i]]);
+                let hs = h[i][0] * sd[0] + h[i][1] * sd[1];
+                for j in 0..2 {
+                    cv[i][j] = c_theta * g[i] * g[j];
+                    k[i][j] += c_theta
+                        * (theta_dot * h[i][j] + g[i] * (h[j][0] * sd[0] + h[j][1] * sd[1]));
+                }
+                let _ = hs;
+                cv[i][i] += damping.alpha_mass * j_hub;
+            }
+            ca = j_hub;
+        }
+        for i in 0..2 {
+            r[dofs[i]] += f[i];
+        }
+        if let Some((band, w)) = jac.as_mut() {
+            for i in 0..2 {
+                for j in 0..2 {
+                    let mut v = w.stiffness * k[i][j] + w.velocity * cv[i][j];
+                    if i == j {
+                        v += w.acceleration * ca;
+                    }
+                    band.add(dofs[i] - nfix, dofs[j] - nfix, v);
+                }
+            }
+        }
+    }
+    // Point masses (u, v) and rotary inertias (both slope DOFs).
+    if dynamic {
+        let (v, a) = (kin.v.unwrap(), kin.a.unwrap());
+        for pm in &model.spec().point_masses {
+            for (d, m) in [
+                (0, pm.mass),
+                (1, pm.mass),
+                (SLOPE_Y, pm.inertia),
+                (SLOPE_X, pm.inertia),
+            ] {
+                let g = 4 * pm.node + d;
+                r[g] += m * (a[g] + damping.alpha_mass * v[g]);
+                if g >= nfix
+                    && let Some((band, w)) = jac.as_mut()
+                {
+                    band.add(
+                        g - nfix,
+                        g - nfix,
+                        w.acceleration * m + w.velocity * damping.alpha_mass * m,
+                    );
+                }
+            }
+        }
+    }
+    // Dead loads: forces on (u, v), moments on the slope through ∂θ/∂r′.
+    for i in 0..model.n_nodes() {
+        let (fx, fy, m) = (f_ext[3 * i], f_ext[3 * i + 1], f_ext[3 * i + 2]);
+        r[4 * i] -= fx;
+        r[4 * i + 1] -= fy;
+        if m == 0.0 {
+            continue;
+        }
+        let (g, h) = match discrete.as_deref() {
+            Some(dg) => discrete_angle_gradient(slope(dg.q0, i), slope(dg.q1, i)),
+            None => {
+                let (sx, sy) = slope(kin.q, i);
+                let (_, g, h) = slope_angle(sx, sy);
+                (g, h)
+            }
+        };
+        let dofs = [4 * i + SLOPE_X, 4 * i + SLOPE_Y];
+        r[dofs[0]] -= m * g[0];
+        r[dofs[1]] -= m * g[1];
+        if let Some((band, w)) = jac.as_mut() {
+            for a in 0..2 {
+                for b in 0..2 {
+                    if dofs[a] >= nfix && dofs[b] >= nfix {
+                        band.add(dofs[a] - nfix, dofs[b] - nfix, -w.stiffness * m * h[a][b]);
+                    }
+                }
+            }
+        }
+    }
+    energy
+}
+
+/// Kinetic energy ½ q̇ᵀ M q̇ of the ANCF beam, its point masses and the hub \[J\].
+pub fn kinetic_energy_ancf(model: &BeamModel, v: &[f64]) -> f64 {
+    let sec = model.section();
+    let el = element_of(model);
+    let mut t = 0.0;
+    match model.spec().mass {
+        MassMatrix::Consistent => {
+            let m = el.mass(sec.rho_a());
+            for e in 0..model.n_elements() {
+                let pv = gather(v, e);
+                t += 0.5 * pv.dot(&(m * pv));
+            }
+        }
+        MassMatrix::Lumped => {
+            let lm = lumped_mass(model.element_length(), sec.rho_a());
+            for e in 0..model.n_elements() {
+                let pv = gather(v, e);
+                let w = [lm[0], lm[1], lm[2], lm[2], lm[3], lm[4], lm[5], lm[5]];
+                t += 0.5 * (0..8).map(|k| w[k] * pv[k] * pv[k]).sum::<f64>();
+            }
+        }
+    }
+    let sq = |g: usize| v[g] * v[g];
+    for pm in &model.spec().point_masses {
+        let g = 4 * pm.node;
+        t += 0.5 * pm.mass * (sq(g) + sq(g + 1))
+            + 0.5 * pm.inertia * (sq(g + SLOPE_X) + sq(g + SLOPE_Y));
+    }
+    let (_, _, j_hub) = model.root().spring_damper_inertia();
+    t + 0.5 * j_hub * (sq(SLOPE_X) + sq(SLOPE_Y))
+}
+
+/// Strain energies of the elements and then of the root spring into `out` (length N + 1);
+/// returns their sum \[J\].
+pub fn strain_energies_ancf(model: &BeamModel, q: &[f64], out: &mut [f64]) -> f64 {
+    let el = element_of(model);
+    let mut total = 0.0;
+    for e in 0..model.n_elements() {
+        let u = el.evaluate(&gather(q, e), Want::Energy).energy;
+        out[e] = u;
+        total += u;
+    }
+    let (k_theta, _, _) = model.root().spring_damper_inertia();
+    let (sx, sy) = slope(q, 0);
+    let th = sy.atan2(sx);
+    let u = if model.n_fixed() == 2 {
+        0.5 * k_theta * th * th
+    } else {
+        0.0
+    };
+    out[model.n_elements()] = u;
+    total + u
+}
+
+/// The 2-vector slope of node `i`.
+pub fn slope_vector(q: &[f64], i: usize) -> Vector2<f64> {
+    let (sx, sy) = slope(q, i);
+    Vector2::new(sx, sy)
+}
+
+/// The dead loads `f_ext` (3 per node) as generalized forces on the ANCF DOFs at `q` (moments
+/// through ∂θ/∂r′) into `out` (one entry per DOF).
+pub fn generalized_loads(model: &BeamModel, q: &[f64], f_ext: &[f64], out: &mut [f64]) {
+    out.iter_mut().for_each(|x| *x = 0.0);
+    for i in 0..model.n_nodes() {
+        out[4 * i] = f_ext[3 * i];
+        out[4 * i + 1] = f_ext[3 * i + 1];
+        let m = f_ext[3 * i + 2];
+        if m != 0.0 {
+            let (sx, sy) = slope(q, i);
+            let (_, g, _) = slope_angle(sx, sy);
+            out[4 * i + SLOPE_X] = m * g[0];
+            out[4 * i + SLOPE_Y] = m * g[1];
+        }
+    }
+}
