@@ -151,10 +151,14 @@ impl GeneralizedAlpha {
                 *d = -ri;
             }
             ws.band.solve_in_place(&mut ws.dq);
+            // A correction that turns a slope (ANCF) or a rotation by more than the limiter
+            // allows is scaled down: from a poor start (a predictor deep inside a stiff contact)
+            // an unlimited Newton can run away by kilometres.
+            let scale = correction_limiter(&ws.dq, nfix, dpn, model.length());
             last = 0.0;
             for (i, d) in (nfix..n).zip(&ws.dq) {
-                ws.dq_step[i] += d;
-                last = last.max(d.abs());
+                ws.dq_step[i] += scale * d;
+                last = last.max((scale * d).abs());
             }
             if !last.is_finite() {
                 ws.factored_for = None;
@@ -266,4 +270,27 @@ fn node_load_averaged<'l>(
         add_node_jacobian(ws, (nfix, dpn), node, &f, w, 0.5);
     }
     Ok(())
+}
+
+/// Scale s ≤ 1 so that s·Δq turns no slope (ANCF: r′ components; 3-DOF nodes: θ) by more than
+/// [`crate::statics::MAX_ROTATION_INCREMENT`] and moves no node by more than a tenth of the beam
+/// length (`dq` over the free DOFs, the first of which is global DOF `nfix`).
+fn correction_limiter(dq: &[f64], nfix: usize, dofs_per_node: usize, length: f64) -> f64 {
+    let (mut turn, mut shift) = (0.0f64, 0.0f64);
+    for (i, d) in dq.iter().enumerate() {
+        let c = (i + nfix) % dofs_per_node;
+        if c >= 2 {
+            turn = turn.max(d.abs());
+        } else {
+            shift = shift.max(d.abs());
+        }
+    }
+    let mut s = 1.0f64;
+    if turn > crate::statics::MAX_ROTATION_INCREMENT {
+        s = s.min(crate::statics::MAX_ROTATION_INCREMENT / turn);
+    }
+    if shift > 0.1 * length {
+        s = s.min(0.1 * length / shift);
+    }
+    s
 }

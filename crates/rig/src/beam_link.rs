@@ -56,8 +56,11 @@ impl BeamLink {
     /// contact force and moment act).
     pub fn new(scene: &Scene, rho_inf: f64, variant: LinkVariant) -> Result<Self, RigError> {
         let r = &scene.file.robot;
-        let kinematics = match scene.file.solver.beam {
+        let solver = scene.file.solver.beam.resolve(scene.file.stop);
+        let kinematics = match solver {
+            BeamSolverSpec::Auto {} => unreachable!("resolved above"),
             BeamSolverSpec::Corotational {} => Kinematics::Corotational,
+            BeamSolverSpec::Ancf {} => Kinematics::Ancf,
             BeamSolverSpec::Linear {} | BeamSolverSpec::Modal { .. } => Kinematics::Linear,
         };
         let material = Material::new(r.youngs_modulus_pa, r.density_kg_m3)?;
@@ -82,7 +85,7 @@ impl BeamLink {
         let model = BeamModel::new(spec)?;
         let loads = NodalLoads::zeros(&model);
         let tip = model.tip_node();
-        let dynamics = match scene.file.solver.beam {
+        let dynamics = match solver {
             BeamSolverSpec::Modal { modes } => {
                 let reduced =
                     ReducedModel::new(&model, modes, &[3 * tip, 3 * tip + 1, 3 * tip + 2])?;
@@ -96,8 +99,15 @@ impl BeamLink {
                 Workspace::new(&model),
             ))),
         };
+        // ANCF at ρ∞ = 1: the energy-conserving midpoint step (generalized-α's trapezoidal
+        // rule does not bound the energy of its stiff axial modes).
+        let integrator = if kinematics == Kinematics::Ancf && rho_inf == 1.0 {
+            GeneralizedAlpha::energy_conserving()
+        } else {
+            GeneralizedAlpha::new(rho_inf)?
+        };
         Ok(BeamLink {
-            integrator: GeneralizedAlpha::new(rho_inf)?,
+            integrator,
             tip,
             model,
             dynamics,
@@ -105,18 +115,35 @@ impl BeamLink {
         })
     }
 
-    /// Displacement, velocity and acceleration of global DOF `dof` [m or rad, /s, /s²].
-    fn dof(&self, dof: usize) -> (f64, f64, f64) {
+    /// (q, v, a) of node `node`'s u \[m\], v \[m\], θ \[rad\] (and their rates) for every
+    /// element type (ANCF: θ from the slope).
+    fn node_motion(&self, node: usize) -> [(f64, f64, f64); 3] {
         match &self.dynamics {
-            LinkDynamics::Full(full) => (full.0.q[dof], full.0.v[dof], full.0.a[dof]),
-            LinkDynamics::Modal { reduced, state } => reduced.dof(state, dof),
+            LinkDynamics::Full(full) => {
+                let state = &full.0;
+                let (u, v, t) = state.node(node);
+                let rate = state.node_velocity(node);
+                let acc = state.node_acceleration(node);
+                [
+                    (u, rate[0], acc[0]),
+                    (v, rate[1], acc[1]),
+                    (t, rate[2], acc[2]),
+                ]
+            }
+            LinkDynamics::Modal { reduced, state } => {
+                let i = 3 * node;
+                [
+                    reduced.dof(state, i),
+                    reduced.dof(state, i + 1),
+                    reduced.dof(state, i + 2),
+                ]
+            }
         }
     }
 
     /// (q, v, a) of the tip's u, v, θ.
     fn tip_dofs(&self) -> [(f64, f64, f64); 3] {
-        let i = 3 * self.tip;
-        [self.dof(i), self.dof(i + 1), self.dof(i + 2)]
+        self.node_motion(self.tip)
     }
 
     /// The beam model.
@@ -149,7 +176,7 @@ impl BeamLink {
 
     /// Transverse (y) displacement, velocity and acceleration of the tip [m, m/s, m/s²].
     pub fn tip_transverse(&self) -> (f64, f64, f64) {
-        self.dof(3 * self.tip + 1)
+        self.tip_dofs()[1]
     }
 
     /// Kinetic plus strain energy \[J\].
@@ -168,21 +195,31 @@ impl BeamLink {
 
     /// World positions of the nodes (for the 3D view) \[m\].
     pub fn node_positions(&self) -> Vec<Vector> {
-        let q = match &self.dynamics {
-            LinkDynamics::Full(full) => std::borrow::Cow::Borrowed(&full.0.q),
-            LinkDynamics::Modal { reduced, state } => {
-                std::borrow::Cow::Owned(reduced.displacements(state))
+        let displacement = |n: usize| -> (f64, f64) {
+            match &self.dynamics {
+                LinkDynamics::Full(full) => {
+                    let (u, v, _) = full.0.node(n);
+                    (u, v)
+                }
+                LinkDynamics::Modal { reduced, state } => {
+                    (reduced.dof(state, 3 * n).0, reduced.dof(state, 3 * n + 1).0)
+                }
             }
         };
         (0..self.model.n_nodes())
-            .map(|n| Vector::new(self.model.node_x(n) + q[3 * n], q[3 * n + 1], 0.0))
+            .map(|n| {
+                let (u, v) = displacement(n);
+                Vector::new(self.model.node_x(n) + u, v, 0.0)
+            })
             .collect()
     }
 
     /// Advances by `dt` \[s\] with the motion-dependent `tip_load` (the contact) treated
     /// implicitly at the end of the step (see [`crate::coupling`]): generalized-α enforces the
     /// equation of motion at t + dt, so the contact force enters at the same time level as the
-    /// beam's own forces, with its stiffness and damping in the Newton iteration matrix.
+    /// beam's own forces, with its stiffness and damping in the Newton iteration matrix (the
+    /// ANCF link's energy-conserving midpoint step averages it over the step, as velocity
+    /// Verlet does for the operator).
     pub fn step(&mut self, dt: f64, tip_load: &mut dyn NodeLoad) -> Result<(), RigError> {
         match &mut self.dynamics {
             LinkDynamics::Full(full) => {

@@ -151,7 +151,8 @@ pub struct RunSummary {
     pub steps: usize,
     /// Steps taken in contact.
     pub contact_steps: usize,
-    /// Step size used in contact \[s\].
+    /// Step size used in the first contact \[s\] (each later contact is sized by its own
+    /// impact speed).
     pub contact_step_s: f64,
     /// Mechanical energy at the start \[J\] (for a release from rest: M g l_c (1 − cos θ₀)).
     pub energy_initial_j: f64,
@@ -239,12 +240,25 @@ pub struct Simulation<'s> {
     now: Synced,
     phase: Phase,
     contact_step: f64,
+    /// The first contact's step \[s\] (later contacts are sized by their own impact speed).
+    first_contact_step: f64,
     previous_gap: Option<(f64, f64)>,
     onset_tolerance: f64,
     indentation_scale: f64,
     last: Reading,
     sampler: Sampler,
     stats: Stats,
+}
+
+/// The state a step can be taken again from.
+#[derive(Debug, Clone)]
+struct Snapshot {
+    t: f64,
+    h_prev: f64,
+    now: Synced,
+    operator: HingeState,
+    robot: Option<HingeState>,
+    beam: Option<Box<BeamLink>>,
 }
 
 /// The contact in progress.
@@ -383,6 +397,7 @@ impl<'s> Simulation<'s> {
             },
             phase: Phase::Swing,
             contact_step,
+            first_contact_step: contact_step,
             previous_gap: None,
             onset_tolerance: 1e-9 * delta_max,
             indentation_scale: delta_max,
@@ -422,9 +437,9 @@ impl<'s> Simulation<'s> {
         &self.geometry
     }
 
-    /// Step size used in contact \[s\].
-    pub fn contact_step(&self) -> f64 {
-        self.contact_step
+    /// Step size used in the first contact \[s\].
+    pub fn first_contact_step(&self) -> f64 {
+        self.first_contact_step
     }
 
     /// The dome body's pose and velocity (rates from the synchronised state).
@@ -569,42 +584,61 @@ impl<'s> Simulation<'s> {
         }
     }
 
-    /// The next step size: the contact step in contact; in the swing the swing step, shortened to
-    /// land on the predicted onset (secant on the gap).
+    /// The next step size: the contact step in contact; out of contact the swing step (after a
+    /// separation at most ten contact steps until the bodies are five peak indentations apart),
+    /// shortened near an onset: with the time to touch predicted from the gap and the present
+    /// approach rate, each step takes half of it until it is within a contact step, so that the
+    /// onset falls in a step of the contact's own size whatever the bodies do (a vibrating link
+    /// tip defeats a single prediction).
     fn next_step(&mut self) -> f64 {
         let swing = self.scene.file.solver.swing_step_s;
-        match self.phase {
-            Phase::Contact => self.contact_step,
-            Phase::After => {
-                // Back to swing steps (and onset prediction) once the bodies are well apart:
-                // five peak indentations (the swing phase predicts the next onset).
-                if self.gap() > 5.0 * self.indentation_scale {
-                    self.phase = Phase::Swing;
-                    self.previous_gap = None;
-                    return self.next_step();
-                }
-                swing.min(self.contact_step * 10.0).max(self.contact_step)
+        if self.phase == Phase::Contact {
+            return self.contact_step;
+        }
+        let (gap, closing) = self
+            .contact
+            .approach(&self.dome_kinematics(), &self.block_kinematics())
+            .unwrap_or((f64::INFINITY, 0.0));
+        if self.phase == Phase::After && gap > 5.0 * self.indentation_scale {
+            self.phase = Phase::Swing;
+        }
+        self.previous_gap = Some((self.t, gap));
+        if gap <= self.onset_tolerance {
+            self.phase = Phase::Contact;
+            return self.contact_step;
+        }
+        let cap = match self.phase {
+            Phase::After => swing.min(self.contact_step * 10.0).max(self.contact_step),
+            _ => swing,
+        };
+        if closing > 0.0 {
+            let time_to_touch = gap / closing;
+            if time_to_touch < 2.0 * self.contact_step {
+                return self.contact_step.min(cap);
             }
-            Phase::Swing => {
-                let gap = self.gap();
-                if gap <= self.onset_tolerance {
-                    self.phase = Phase::Contact;
-                    return self.contact_step;
-                }
-                let step = match self.previous_gap {
-                    Some((t_prev, g_prev)) if self.t > t_prev => {
-                        let rate = (gap - g_prev) / (self.t - t_prev);
-                        if rate < 0.0 && gap + rate * swing < 0.0 {
-                            (gap / -rate).max(self.contact_step * 1e-3)
-                        } else {
-                            swing
-                        }
-                    }
-                    _ => swing,
-                };
-                self.previous_gap = Some((self.t, gap));
-                step
+            if time_to_touch < 2.0 * cap {
+                return 0.5 * time_to_touch;
             }
+        }
+        cap
+    }
+
+    /// The contact step for an impact at approach speed `v` [m/s]: the Hertz contact time of the
+    /// two effective masses over `solver.contact_steps`, at most the first contact's (also the
+    /// indentation scale and the onset tolerance).
+    fn size_contact(&mut self, v: f64) {
+        let m_op = self.geometry.operator.effective_mass();
+        let m_rob = self.geometry.robot.effective_mass();
+        let mu = m_op * m_rob / (m_op + m_rob);
+        let delta_max = self.scene.hertz.peak_indentation(mu, v);
+        let contact_time = CONTACT_TIME_FACTOR * delta_max / v;
+        let step = contact_time / self.scene.file.solver.contact_steps as f64;
+        if step.is_finite() && step > 0.0 {
+            // never coarser than the first contact's: a slow, glancing contact against a
+            // vibrating link lasts as long as the link makes it, not as Hertz says
+            self.contact_step = step.min(self.first_contact_step);
+            self.indentation_scale = delta_max;
+            self.onset_tolerance = 1e-9 * delta_max;
         }
     }
 
@@ -627,34 +661,28 @@ impl<'s> Simulation<'s> {
 
     /// One step of the pipeline: loads → integrate → synchronise → events → check → sensors.
     pub fn step(&mut self, recorder: &mut dyn Recorder) -> Result<StepOutcome, RigError> {
-        let dt = self.next_step();
+        let mut dt = self.next_step();
         let start = (self.now, self.dome_kinematics(), self.block_kinematics());
-        // Loads: the forces at t_n (the contact of the synchronised state) as kicks.
-        let (operator_torque, robot_torque) = self.kick_torques(dt);
-        self.rapier.apply_torques(operator_torque, robot_torque);
-        // Integrate: Rapier (explicit), then the beam with the contact implicit at t_n + dt.
-        self.rapier.step(dt);
-        if let RobotSide::Beam(b) = &mut self.robot {
-            let mut tip_contact = TipContact {
-                contact: &self.contact,
-                rapier: &self.rapier,
-                operator: HingeMotion {
-                    t0: self.t,
-                    start: start.0.operator,
-                    accel: start.0.operator_accel,
-                },
-                tip_x: b.model().length(),
-                tip: b.tip_node(),
-            };
-            if let Err(e) = b.step(dt, &mut tip_contact) {
-                return Err(self.beam_failure(e));
+        // Near an onset a step may overshoot it (a vibrating link tip defeats the prediction):
+        // keep what is needed to take it again, smaller.
+        let retry = (self.phase != Phase::Contact && dt > self.contact_step && self.near_contact())
+            .then(|| self.snapshot());
+        loop {
+            self.advance(dt, &start.0)?;
+            // Rejected: a step longer than a contact step that ends deeper in contact than a
+            // contact step at the present rate would go. Retaken at an eighth (at least the
+            // contact step): the onset lands in a step of the contact's own size.
+            if let (Some(snapshot), Some(c)) = (&retry, self.now.contact)
+                && dt > self.contact_step
+                && c.indentation > c.rate.abs() * self.contact_step
+            {
+                self.restore(snapshot);
+                dt = (dt / 8.0).max(self.contact_step);
+                continue;
             }
+            break;
         }
-        self.t += dt;
-        self.h_prev = dt;
         self.stats.steps += 1;
-        // Synchronise: rates and contact at t_{n+1}.
-        self.now = self.synchronize(dt);
         // Events.
         let outcome = self.classify(&start, dt);
         let energy = self.energy();
@@ -685,6 +713,69 @@ impl<'s> Simulation<'s> {
             samples: &self.sampler.samples()[sampled_before..],
         })?;
         Ok(outcome)
+    }
+
+    /// Loads → integrate → synchronise for a step of `dt` from the synchronised state `start`.
+    fn advance(&mut self, dt: f64, start: &Synced) -> Result<(), RigError> {
+        // Loads: the forces at t_n (the contact of the synchronised state) as kicks.
+        let (operator_torque, robot_torque) = self.kick_torques(dt);
+        self.rapier.apply_torques(operator_torque, robot_torque);
+        // Integrate: Rapier (explicit), then the beam with the contact implicit at t_n + dt.
+        self.rapier.step(dt);
+        if let RobotSide::Beam(b) = &mut self.robot {
+            let mut tip_contact = TipContact {
+                contact: &self.contact,
+                rapier: &self.rapier,
+                operator: HingeMotion {
+                    t0: self.t,
+                    start: start.operator,
+                    accel: start.operator_accel,
+                },
+                tip_x: b.model().length(),
+                tip: b.tip_node(),
+            };
+            if let Err(e) = b.step(dt, &mut tip_contact) {
+                return Err(self.beam_failure(e));
+            }
+        }
+        self.t += dt;
+        self.h_prev = dt;
+        // Synchronise: rates and contact at t_{n+1}.
+        self.now = self.synchronize(dt);
+        Ok(())
+    }
+
+    /// True when the bodies are within ten peak indentations: where an onset may come within a
+    /// step.
+    fn near_contact(&self) -> bool {
+        self.previous_gap
+            .is_some_and(|(_, gap)| gap < 10.0 * self.indentation_scale)
+    }
+
+    /// What [`Self::advance`] changes: the time, the hinge states as Rapier holds them and the
+    /// beam.
+    fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            t: self.t,
+            h_prev: self.h_prev,
+            now: self.now,
+            operator: self.rapier.operator_state(),
+            robot: self.rapier.robot_state(),
+            beam: match &self.robot {
+                RobotSide::Beam(b) => Some(b.clone()),
+                RobotSide::Rigid { .. } => None,
+            },
+        }
+    }
+
+    fn restore(&mut self, s: &Snapshot) {
+        self.t = s.t;
+        self.h_prev = s.h_prev;
+        self.now = s.now;
+        self.rapier.set_state(s.operator, s.robot);
+        if let (RobotSide::Beam(b), Some(saved)) = (&mut self.robot, &s.beam) {
+            b.clone_from(saved);
+        }
     }
 
     /// A failed beam step as the user meets it: what failed, when, and which scene field to
@@ -747,9 +838,14 @@ impl<'s> Simulation<'s> {
                     .contact
                     .approach(dome0, block0)
                     .map_or(c.rate, |(_, rate)| rate);
+                let impact_velocity = rate0 + frac * (c.rate - rate0);
+                // every contact on its own time scale (a later one may be faster)
+                if !self.stats.contacts.is_empty() && impact_velocity > 0.0 {
+                    self.size_contact(impact_velocity);
+                }
                 let mut open = OpenContact {
                     onset_time: self.t - dt + frac * dt,
-                    impact_velocity: rate0 + frac * (c.rate - rate0),
+                    impact_velocity,
                     energy_before: self.stats.energy,
                     force_history: [(0.0, 0.0); 3],
                     peak: None,
@@ -891,7 +987,7 @@ impl<'s> Simulation<'s> {
             impulse_n_s: first.impulse_n_s,
             steps: self.stats.steps,
             contact_steps: self.stats.contact_steps,
-            contact_step_s: self.contact_step,
+            contact_step_s: self.first_contact_step,
             energy_initial_j: self.stats.energy_initial,
             energy_final_j: self.stats.energy,
             energy_through_contact_j: first.energy_after_j.map(|e| (first.energy_before_j, e)),
