@@ -97,8 +97,16 @@ impl CliError {
         }
     }
 
-    /// Wraps an I/O error of writing `path`.
+    /// Wraps an I/O error of writing `path`; a full disk says so in words.
     pub fn write(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        let source = if source.kind() == std::io::ErrorKind::StorageFull {
+            std::io::Error::new(
+                std::io::ErrorKind::StorageFull,
+                format!("the disk is full ({source}); free some space or write elsewhere"),
+            )
+        } else {
+            source
+        };
         CliError::Write {
             path: path.into(),
             source,

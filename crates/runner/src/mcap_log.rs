@@ -11,18 +11,19 @@
 //! compress poorly; an uncompressed bundled run is 0.22–0.24 MB. The scene file is attached;
 //! key parameters, the software version and the git revision are metadata. The file is always
 //! finished: [`McapRecorder::finish`] closes it, with an `error` metadata record when the run
-//! failed.
+//! failed, and [`run_logged`] writes it under a temporary name that is renamed into place only
+//! when finished (a full disk leaves no half-written file under the requested name).
 
 use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::{BufWriter, Seek, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use flexrig_contact::math::{Pose, Vector};
 use flexrig_rig::sensors::SensorSample;
-use flexrig_rig::{Frame, Recorder, RigError, RunSummary, Scene};
+use flexrig_rig::{Frame, Recorder, RigError, RunSummary, Scene, Simulation};
 use foxglove::Encode;
 use foxglove::messages::{
     ArrowPrimitive, Color, CubePrimitive, FrameTransform, FrameTransforms, JointState, JointStates,
@@ -182,33 +183,123 @@ fn color(r: f64, g: f64, b: f64) -> Option<Color> {
     Some(Color { r, g, b, a: 1.0 })
 }
 
-impl McapRecorder<BufWriter<File>> {
-    /// Creates `path` (refusing to overwrite unless `force`) and writes the header, the scene
-    /// attachment and the metadata.
-    pub fn create(
-        path: &Path,
-        force: bool,
-        scene: &Scene,
-        scene_text: &str,
-    ) -> Result<Self, CliError> {
-        let file = if force {
-            File::create(path)
-        } else {
-            File::create_new(path)
+/// Where and how [`run_logged`] writes a run's MCAP log.
+#[derive(Debug, Clone)]
+pub struct LogTarget<'a> {
+    /// The log file the user asked for.
+    pub path: &'a Path,
+    /// Replace an existing file at `path` (otherwise an existing file is an error).
+    pub force: bool,
+    /// The scene text as run (attached to the log).
+    pub scene_text: &'a str,
+    /// Ctrl-C: set, the run stops and its log is finished.
+    pub interrupt: Arc<AtomicBool>,
+    /// What is logged how often.
+    pub rates: LogRates,
+}
+
+/// Runs `simulation` of `scene` while logging it to `target.path`.
+///
+/// The log is written under a temporary name in the same directory and moved into place only
+/// when finished, so the requested name never holds an unfinished file. A run that fails (or is
+/// stopped by Ctrl-C) still leaves its finished log, with an `error` metadata record, and returns
+/// the run's error; a write that fails (e.g. a full disk) leaves nothing and returns the write
+/// error, naming the file.
+pub fn run_logged(
+    simulation: Simulation,
+    scene: &Scene,
+    target: &LogTarget<'_>,
+) -> Result<RunSummary, CliError> {
+    let path = target.path;
+    if !target.force && path.exists() {
+        return Err(refuse_overwrite(path));
+    }
+    let pending = PendingFile::new(path);
+    let file = File::create(&pending.tmp).map_err(|e| CliError::write(path, e))?;
+    let write_error = |e: mcap::McapError| CliError::write(path, io_of(e));
+    let mut log = McapRecorder::new(BufWriter::new(file), scene, target.scene_text)
+        .map_err(write_error)?
+        .with_interrupt(target.interrupt.clone())
+        .with_rates(target.rates);
+    let outcome = simulation.run(&mut log);
+    let finished = match &outcome {
+        Ok(summary) => log.write_summary(summary).and_then(|()| log.finish_into_inner()),
+        Err(e) => log.finish_with_error(&e.to_string()),
+    };
+    let writer = finished.map_err(write_error)?;
+    let file = writer
+        .into_inner()
+        .map_err(|e| CliError::write(path, e.into_error()))?;
+    drop(file);
+    pending.commit(target.force)?;
+    Ok(outcome?)
+}
+
+fn refuse_overwrite(path: &Path) -> CliError {
+    CliError::InvalidArgument {
+        arg: "--out".into(),
+        value: path.display().to_string(),
+        allowed: "a file that does not exist yet (or add --force to overwrite)".into(),
+    }
+}
+
+/// The I/O error inside an MCAP error (kept, so a full disk still reads as one).
+fn io_of(e: mcap::McapError) -> std::io::Error {
+    match e {
+        mcap::McapError::Io(e) => e,
+        other => std::io::Error::other(other.to_string()),
+    }
+}
+
+/// A file written under a temporary sibling name, removed unless committed.
+struct PendingFile {
+    tmp: PathBuf,
+    path: PathBuf,
+    committed: bool,
+}
+
+impl PendingFile {
+    fn new(path: &Path) -> Self {
+        PendingFile {
+            tmp: crate::output::temporary_sibling(path),
+            path: path.to_path_buf(),
+            committed: false,
         }
-        .map_err(|e| {
+    }
+
+    /// Moves the finished file into place; without `force` an existing file is not replaced.
+    fn commit(mut self, force: bool) -> Result<(), CliError> {
+        let placed = if force {
+            std::fs::rename(&self.tmp, &self.path)
+        } else {
+            // a hard link fails if the name was taken meanwhile; then the temporary is removed
+            std::fs::hard_link(&self.tmp, &self.path)
+                .or_else(|e| match e.kind() {
+                    std::io::ErrorKind::AlreadyExists => Err(e),
+                    // file systems without hard links
+                    _ => std::fs::rename(&self.tmp, &self.path),
+                })
+                .map(|()| {
+                    let _ = std::fs::remove_file(&self.tmp);
+                })
+        };
+        placed.map_err(|e| {
             if e.kind() == std::io::ErrorKind::AlreadyExists {
-                CliError::InvalidArgument {
-                    arg: "--out".into(),
-                    value: path.display().to_string(),
-                    allowed: "a file that does not exist yet (or add --force to overwrite)".into(),
-                }
+                refuse_overwrite(&self.path)
             } else {
-                CliError::write(path, e)
+                CliError::write(&self.path, e)
             }
         })?;
-        McapRecorder::new(BufWriter::new(file), scene, scene_text)
-            .map_err(|e| CliError::write(path, std::io::Error::other(e.to_string())))
+        self.committed = true;
+        Ok(())
+    }
+}
+
+impl Drop for PendingFile {
+    fn drop(&mut self) {
+        if !self.committed {
+            let _ = std::fs::remove_file(&self.tmp);
+        }
     }
 }
 
@@ -541,12 +632,7 @@ impl<W: Write + Seek> McapRecorder<W> {
     /// the written file.
     pub fn finish(mut self, error: Option<&str>) -> Result<(), mcap::McapError> {
         if let Some(e) = error {
-            self.writer.write_metadata(&mcap::records::Metadata {
-                name: "error".into(),
-                metadata: [("message".to_string(), e.to_string())]
-                    .into_iter()
-                    .collect(),
-            })?;
+            self.write_error(e)?;
         }
         self.writer.finish()?;
         Ok(())
@@ -556,6 +642,21 @@ impl<W: Write + Seek> McapRecorder<W> {
     pub fn finish_into_inner(mut self) -> Result<W, mcap::McapError> {
         self.writer.finish()?;
         Ok(self.writer.into_inner())
+    }
+
+    /// Finishes the file with an `error` metadata record and returns the writer.
+    pub fn finish_with_error(mut self, error: &str) -> Result<W, mcap::McapError> {
+        self.write_error(error)?;
+        self.finish_into_inner()
+    }
+
+    fn write_error(&mut self, error: &str) -> Result<(), mcap::McapError> {
+        self.writer.write_metadata(&mcap::records::Metadata {
+            name: "error".into(),
+            metadata: [("message".to_string(), error.to_string())]
+                .into_iter()
+                .collect(),
+        })
     }
 
     /// Writes the run summary as metadata (after a successful run).

@@ -21,7 +21,7 @@ use serde_json::json;
 
 use crate::CliError;
 use crate::cli::Interrupt;
-use crate::mcap_log::McapRecorder;
+use crate::mcap_log::{LogRates, LogTarget, run_logged};
 use crate::output::{ensure_dir, line, print_json, write_atomic};
 
 /// The bundled scenes of the experiment (paper §VI, Fig. 9), relative to the assets directory.
@@ -350,20 +350,14 @@ fn run_job(
     };
     let scene = Scene::from_file(scene.file, materials)?;
     let path = dir.join(format!("{}_{}.mcap", job.scene, job.repeat));
-    let mut log =
-        McapRecorder::create(&path, true, &scene, &job.text)?.with_interrupt(interrupt.0.clone());
-    let closed = |e: mcap::McapError| CliError::write(&path, std::io::Error::other(e.to_string()));
-    let summary = match Simulation::new(&scene, RunOptions::default())?.run(&mut log) {
-        Ok(s) => {
-            log.write_summary(&s).map_err(closed)?;
-            log.finish(None).map_err(closed)?;
-            s
-        }
-        Err(e) => {
-            log.finish(Some(&e.to_string())).map_err(closed)?;
-            return Err(e.into());
-        }
+    let target = LogTarget {
+        path: &path,
+        force: true,
+        scene_text: &job.text,
+        interrupt: interrupt.0.clone(),
+        rates: LogRates::DECIMATED,
     };
+    let summary = run_logged(Simulation::new(&scene, RunOptions::default())?, &scene, &target)?;
     Ok(RunRecord {
         scene: job.scene.clone(),
         repeat: job.repeat,

@@ -13,7 +13,7 @@ use serde_json::json;
 
 use crate::CliError;
 use crate::cli::Interrupt;
-use crate::mcap_log::{LogRates, McapRecorder};
+use crate::mcap_log::{LogRates, LogTarget, run_logged};
 use crate::output::{line, print_json};
 
 /// Arguments of `flexrig run`.
@@ -59,21 +59,17 @@ pub fn run_scene_file(
     let Some(out) = out else {
         return Ok(simulation.run(&mut Interruptible(interrupt.0.clone()))?);
     };
-    let mut log = McapRecorder::create(out, force, &scene, &text)?
-        .with_interrupt(interrupt.0.clone())
-        .with_rates(rates);
-    let closed = |e: mcap::McapError| CliError::write(out, std::io::Error::other(e.to_string()));
-    match simulation.run(&mut log) {
-        Ok(summary) => {
-            log.write_summary(&summary).map_err(closed)?;
-            log.finish(None).map_err(closed)?;
-            Ok(summary)
-        }
-        Err(e) => {
-            log.finish(Some(&e.to_string())).map_err(closed)?;
-            Err(e.into())
-        }
-    }
+    run_logged(
+        simulation,
+        &scene,
+        &LogTarget {
+            path: out,
+            force,
+            scene_text: &text,
+            interrupt: interrupt.0.clone(),
+            rates,
+        },
+    )
 }
 
 /// The run summary as `flexrig run --json` prints it: every field of [`RunSummary`] (absent

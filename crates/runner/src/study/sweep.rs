@@ -204,21 +204,14 @@ impl Sweep {
         };
         let text = flexrig_rig::overrides::apply(&self.base_text, overrides)?;
         let path = dir.join(format!("run-{index}.mcap"));
-        let mut log = crate::mcap_log::McapRecorder::create(&path, true, &scene, &text)?
-            .with_interrupt(options.interrupt.clone());
-        let closed =
-            |e: mcap::McapError| CliError::write(&path, std::io::Error::other(e.to_string()));
-        match simulation.run(&mut log) {
-            Ok(summary) => {
-                log.write_summary(&summary).map_err(closed)?;
-                log.finish(None).map_err(closed)?;
-                Ok(summary)
-            }
-            Err(e) => {
-                log.finish(Some(&e.to_string())).map_err(closed)?;
-                Err(e.into())
-            }
-        }
+        let target = crate::mcap_log::LogTarget {
+            path: &path,
+            force: true,
+            scene_text: &text,
+            interrupt: options.interrupt.clone(),
+            rates: crate::mcap_log::LogRates::DECIMATED,
+        };
+        crate::mcap_log::run_logged(simulation, &scene, &target)
     }
 
     /// Runs the points of `indices` in parallel, calling `done` after each (e.g. a progress bar
