@@ -2,6 +2,7 @@
 //! shared by tests, benches and the CLI.
 
 use crate::BeamError;
+use crate::dynamics::{GeneralizedAlpha, State, Workspace};
 use crate::model::{BeamModel, BeamSpec, Kinematics, NodalLoads, PointMass};
 use crate::section::Section;
 
@@ -54,6 +55,36 @@ pub fn issue13_cantilever(
     let mut loads = NodalLoads::zeros(&model);
     loads.set_force(model.tip_node(), 0.0, sec.ei() / 0.09)?;
     Ok((model, loads))
+}
+
+/// Issue 13's step-load transient: [`issue13_cantilever`] from rest under its tip load P = EI/L²
+/// applied at t = 0, stepped by `integrator` with the fixed step `h` \[s\] to `duration` \[s\].
+/// Returns the tip deflection v \[m\] at every multiple of `sample` \[s\] (rounded to whole
+/// steps, at least one step apart) and the Newton iterations per step.
+pub fn issue13_step_load(
+    elements: usize,
+    kinematics: Kinematics,
+    integrator: &GeneralizedAlpha,
+    h: f64,
+    duration: f64,
+    sample: f64,
+) -> Result<(Vec<f64>, f64), BeamError> {
+    let (model, loads) = issue13_cantilever(elements, kinematics)?;
+    let mut state = State::at_rest(&model, &loads)?;
+    let mut workspace = Workspace::new(&model);
+    let steps = (duration / h).round() as usize;
+    let every = ((sample / h).round() as usize).max(1);
+    let mut tip = Vec::with_capacity(steps / every + 1);
+    let mut iterations = 0;
+    for k in 1..=steps {
+        iterations += integrator
+            .step(&model, &mut state, &mut workspace, h, &loads)?
+            .iterations;
+        if k % every == 0 {
+            tip.push(state.node(model.tip_node()).1);
+        }
+    }
+    Ok((tip, iterations as f64 / steps.max(1) as f64))
 }
 
 /// Natural frequency ω = (βL)² √(EI/(ρA L⁴)) [rad/s].

@@ -278,6 +278,7 @@ fn beam(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
             });
         }
     }
+    issue13_transient(rows, quick)?;
     let elements: &[usize] = if quick {
         &[4, 8, 16]
     } else {
@@ -315,6 +316,52 @@ fn beam(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
             seconds: median_seconds(if quick { 3 } else { 5 }, 3, || {
                 solve_static(&model, &loads, &options)
             }),
+            evaluations: None,
+        });
+    }
+    Ok(())
+}
+
+/// Issue 13's work–precision problem (the Exudyn comparison of docs/performance-beam.md): the
+/// 0.3 m cantilever under a step tip load EI/L² from rest, 1000 generalized-α steps of 1 ms at
+/// ρ∞ = 0.9. Error: max over t = 1 … 1000 ms of |v − v_ref| / max |v_ref| of the tip deflection,
+/// against 16 ANCF elements at h = 0.25 and 0.125 ms extrapolated to h → 0 (the error is first
+/// order in h: the step load excites modes no step resolves; the extrapolated reference is good
+/// to about 1e-5, docs/performance-beam.md).
+fn issue13_transient(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
+    use flexrig_beam::{GeneralizedAlpha, Kinematics};
+    let ga = GeneralizedAlpha::new(0.9)?;
+    let trajectory = |kin, elements, h| {
+        canonical::issue13_step_load(elements, kin, &ga, h, 1.0, 1e-3).map(|(v, _)| v)
+    };
+    let coarse = trajectory(Kinematics::Ancf, 16, 2.5e-4)?;
+    let fine = trajectory(Kinematics::Ancf, 16, 1.25e-4)?;
+    let reference: Vec<f64> = fine.iter().zip(&coarse).map(|(f, c)| 2.0 * f - c).collect();
+    let scale = reference.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let cases: &[(Kinematics, &str, usize)] = if quick {
+        &[(Kinematics::Ancf, "ANCF", 4), (Kinematics::Corotational, "corotational", 8)]
+    } else {
+        &[
+            (Kinematics::Ancf, "ANCF", 4),
+            (Kinematics::Ancf, "ANCF", 8),
+            (Kinematics::Ancf, "ANCF", 32),
+            (Kinematics::Corotational, "corotational", 8),
+            (Kinematics::Corotational, "corotational", 32),
+        ]
+    };
+    for &(kin, name, elements) in cases {
+        let v = trajectory(kin, elements, 1e-3)?;
+        let error = v
+            .iter()
+            .zip(&reference)
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
+            / scale;
+        rows.push(Row {
+            model: "beam".into(),
+            method: format!("issue 13 step load, 1000 steps ρ∞ 0.9, {elements} {name} elements"),
+            setting: "h 1e-3 s".into(),
+            error,
+            seconds: median_seconds(3, 1, || trajectory(kin, elements, 1e-3)),
             evaluations: None,
         });
     }
