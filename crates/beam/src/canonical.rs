@@ -1,4 +1,4 @@
-//! Canonical problems and their published references (see `shared/notes/references.md`),
+//! Canonical problems and their published references (see `docs/references.md`),
 //! shared by tests, benches and the CLI.
 
 use crate::BeamError;

@@ -1,5 +1,5 @@
 //! Linear model, modal and static validation against the published references
-//! (shared/notes/references.md).
+//! (docs/references.md).
 
 #![allow(clippy::needless_range_loop)]
 

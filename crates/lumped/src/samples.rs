@@ -49,7 +49,7 @@ fn fig6_model(
     ImpactModel::with_prb_link(m_h, PrbLink::new(gamma, M_R, m_e)?, spring, V0)
 }
 
-/// Peak forces of the Fig. 6 set-up quoted in `notes/references.md` (computed independently to
+/// Peak forces of the Fig. 6 set-up quoted in `docs/references.md` (computed independently to
 /// ten significant digits), plus high-precision values from `scripts/reference_exact.py`
 /// (mpmath, 50 digits, root of the energy balance in the displacement variable).
 pub fn peak_references() -> Result<Vec<PeakReference>, LumpedError> {
@@ -59,20 +59,20 @@ pub fn peak_references() -> Result<Vec<PeakReference>, LumpedError> {
             model: fig6_model(4.0, 1e8, 0.1, 1.0, 1.0)?,
             f_max: 19222.55775,
             reference_accuracy: 5e-10,
-            source: "notes/references.md (independent computation)",
+            source: "docs/references.md (independent computation)",
         },
         PeakReference {
             name: "fig6 m_h=4 k_delta=1e8 m_e=0.1 gamma=1 n=2",
             model: fig6_model(4.0, 1e8, 0.1, 1.0, 2.0)?,
             f_max: 2296.617006,
             reference_accuracy: 5e-10,
-            source: "notes/references.md (independent computation)",
+            source: "docs/references.md (independent computation)",
         },
     ])
 }
 
 /// η(2/3) values: the paper's quoted 0.89 and 0.82 (two digits), the independent exact values of
-/// `notes/references.md` (five significant digits: the notes print 0.891770 and 0.822880, whose
+/// `docs/references.md` (five significant digits: the notes print 0.891770 and 0.822880, whose
 /// sixth digit is padding — the 30-digit values are 0.8917658334 and 0.8228761703, see
 /// the last two entries), and 30-digit mpmath values for n = 1.
 pub fn eta_references() -> Vec<EtaReference> {
@@ -101,28 +101,28 @@ pub fn eta_references() -> Vec<EtaReference> {
             n: 1.0,
             eta: 0.891770,
             reference_accuracy: 5e-6,
-            source: "notes/references.md (exact, n = 1)",
+            source: "docs/references.md (exact, n = 1)",
         },
         EtaReference {
             case: case(1000.0),
             n: 1.0,
             eta: 0.822880,
             reference_accuracy: 5e-6,
-            source: "notes/references.md (exact, n = 1)",
+            source: "docs/references.md (exact, n = 1)",
         },
         EtaReference {
             case: case(4.0),
             n: 2.0,
             eta: 0.85866,
             reference_accuracy: 5e-6,
-            source: "notes/references.md (exact, n = 2, rigid link)",
+            source: "docs/references.md (exact, n = 2, rigid link)",
         },
         EtaReference {
             case: case(1000.0),
             n: 2.0,
             eta: 0.77165,
             reference_accuracy: 5e-6,
-            source: "notes/references.md (exact, n = 2, rigid link)",
+            source: "docs/references.md (exact, n = 2, rigid link)",
         },
         EtaReference {
             case: case(4.0),

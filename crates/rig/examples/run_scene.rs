@@ -14,13 +14,18 @@ fn main() {
                     (b - a) / a
                 );
             }
+            let duration = s
+                .contact_duration_s
+                .map_or("(stopped before separation)".to_string(), |d| {
+                    format!("{d:.6e} s")
+                });
             println!(
-                "{}: peak {:.6} N at {:.6} s, v {:.6} m/s, duration {:?}, δmax {:.4e}, steps {} ({} in contact, dt {:.3e}), E {:.6e} -> {:.6e}, impulse {:.6e}",
+                "{}: peak {:.6} N at {:.6} s, v {:.6} m/s, duration {}, δmax {:.4e}, steps {} ({} in contact, dt {:.3e}), E {:.6e} -> {:.6e}, impulse {:.6e}",
                 s.scene,
                 s.peak_force_n,
                 s.time_of_peak_s,
                 s.impact_velocity_mps,
-                s.contact_duration_s,
+                duration,
                 s.max_indentation_m,
                 s.steps,
                 s.contact_steps,

@@ -14,7 +14,7 @@ pub fn elliptic_k(k: f64) -> f64 {
 }
 
 /// Period [s] of the compound pendulum released at rest from `theta0` [rad]:
-/// T = 4 √(J/(M g l_c)) K(sin(θ₀/2)) (`notes/references.md`).
+/// T = 4 √(J/(M g l_c)) K(sin(θ₀/2)) (`docs/references.md`).
 pub fn compound_pendulum_period(op: &OperatorGeometry, g: f64, theta0: f64) -> f64 {
     4.0 * (op.inertia_pivot / (op.mass * g * op.com_distance)).sqrt()
         * elliptic_k((0.5 * theta0).sin())

@@ -22,6 +22,16 @@ pub enum Design {
     Cl,
 }
 
+impl std::fmt::Display for Design {
+    /// The paper's abbreviation: "CJ" or "CL".
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Design::Cj => "CJ",
+            Design::Cl => "CL",
+        })
+    }
+}
+
 /// How the run starts.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", tag = "from", deny_unknown_fields)]

@@ -223,7 +223,9 @@ pub fn run_logged(
         .with_rates(target.rates);
     let outcome = simulation.run(&mut log);
     let finished = match &outcome {
-        Ok(summary) => log.write_summary(summary).and_then(|()| log.finish_into_inner()),
+        Ok(summary) => log
+            .write_summary(summary)
+            .and_then(|()| log.finish_into_inner()),
         Err(e) => log.finish_with_error(&e.to_string()),
     };
     let writer = finished.map_err(write_error)?;

@@ -2,7 +2,7 @@
 //! compares it with an independent reference (analytic solution, published table, converged
 //! solution of another method, conservation law), with a stated tolerance. The references come
 //! from the canonical problems of the crates (`flexrig_lumped::samples`,
-//! `flexrig_beam::canonical`) and `notes/references.md`.
+//! `flexrig_beam::canonical`) and `docs/references.md`.
 
 use flexrig_beam::canonical::{self, CANTILEVER_BETA_L, ELASTICA, TIP_MASS_BETA1};
 use flexrig_beam::prb::{ErrorMeasure, default_load_indices, fit_prb, trace_tip_path};

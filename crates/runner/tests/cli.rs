@@ -500,3 +500,64 @@ fn run_set_overrides_a_field_like_the_file_and_names_a_bad_path() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("robot.payload"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Regression (issue 16): the README's shortcut `start = { from = "contact" }` was refused (it
+/// needs the release angle). Every `start = { … }` the README shows runs, as does the `--set`
+/// form it names, and both start at the contact with the speed of the bundled release.
+#[test]
+fn the_readme_start_shortcuts_run() {
+    let readme =
+        std::fs::read_to_string(format!("{}/../../README.md", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    let tables: Vec<&str> = readme
+        .lines()
+        .filter_map(|l| {
+            let i = l.find("start = {")?;
+            let rest = &l[i + "start = ".len()..];
+            Some(&rest[..=rest.find('}')?])
+        })
+        .collect();
+    assert!(!tables.is_empty(), "the README shows no start shortcut");
+    let scene = format!(
+        "{}/../../assets/scenes/cj_iron.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let release = json(&["run", &scene, "--json"]);
+    let mut sets: Vec<String> = tables
+        .iter()
+        .map(|t| format!("operator.start={t}"))
+        .collect();
+    assert!(readme.contains("--set operator.start.from=contact"));
+    sets.push("operator.start.from=contact".into());
+    for set in &sets {
+        let s = json(&["run", &scene, "--set", set, "--json"]);
+        assert!(s["onset_time_s"].as_f64().unwrap() < 1e-9, "{set}: {s}");
+        if !set.contains("release_angle_deg") || set.contains("= 30.0") {
+            // the bundled scene releases from 30°: the same impact speed, without the swing
+            let (a, b) = (
+                s["impact_velocity_mps"].as_f64().unwrap(),
+                release["impact_velocity_mps"].as_f64().unwrap(),
+            );
+            assert!(rel(a, b) < 1e-5, "{set}: {a} vs {b}");
+        }
+    }
+}
+
+/// The bundled compression-test example (issue 16): synthetic data made from the paper's
+/// aluminium fit (k = 7.359e7, n = 1.961, §III-B) with 1 % noise; the fit recovers both within
+/// three of its standard errors.
+#[test]
+fn the_bundled_compression_example_fits_the_paper_values() {
+    let csv = format!(
+        "{}/../../assets/data/compression_aluminium.csv",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let v = json(&["fit", &csv, "--json"]);
+    let (k, n) = (v["k"].as_f64().unwrap(), v["n"].as_f64().unwrap());
+    let (sk, sn) = (
+        v["k_stderr"].as_f64().unwrap(),
+        v["n_stderr"].as_f64().unwrap(),
+    );
+    assert!((k - 7.359e7).abs() < 3.0 * sk, "k {k} ± {sk}");
+    assert!((n - 1.961).abs() < 3.0 * sn, "n {n} ± {sn}");
+    assert!(sn < 0.02 && sk < 0.1 * k, "standard errors {sk} {sn}");
+}

@@ -1,5 +1,5 @@
 //! End-to-end tests of `flexrig beam modal|static` and `flexrig prb` against the published
-//! references (shared/notes/references.md); bad input exits with code 2 and names the flag.
+//! references (docs/references.md); bad input exits with code 2 and names the flag.
 
 use std::process::{Command, Output};
 

@@ -35,7 +35,7 @@ pub struct ExperimentArgs {
     /// Repeats of each Fig. 9a configuration (the paper: 5).
     #[arg(long, default_value_t = 5)]
     pub repeats: usize,
-    /// Standard deviation of the release-angle jitter \[deg\].
+    /// Standard deviation of the release-angle jitter (degrees).
     #[arg(long, value_name = "DEG", default_value_t = 0.5)]
     pub jitter_deg: f64,
     /// Seed of the jitter RNG.
@@ -357,7 +357,11 @@ fn run_job(
         interrupt: interrupt.0.clone(),
         rates: LogRates::DECIMATED,
     };
-    let summary = run_logged(Simulation::new(&scene, RunOptions::default())?, &scene, &target)?;
+    let summary = run_logged(
+        Simulation::new(&scene, RunOptions::default())?,
+        &scene,
+        &target,
+    )?;
     Ok(RunRecord {
         scene: job.scene.clone(),
         repeat: job.repeat,

@@ -59,19 +59,19 @@ impl From<FormulationArg> for Formulation {
 #[derive(Debug, Args)]
 #[command(allow_negative_numbers = true)]
 pub struct ImpactArgs {
-    /// Human (operator) mass m_h \[kg\].
+    /// Human (operator) mass m_h (kg).
     #[arg(long = "m-h", value_name = "KG")]
     pub m_h: f64,
-    /// Effective robot mass m_eff \[kg\]; or give --gamma, --m-r and --m-e for m_eff = m_e + γ m_r/3.
+    /// Effective robot mass m_eff (kg); or give --gamma, --m-r and --m-e for m_eff = m_e + γ m_r/3.
     #[arg(long = "m-eff", value_name = "KG", required_unless_present_all = ["gamma", "m_r", "m_e"], conflicts_with_all = ["gamma", "m_r", "m_e"])]
     pub m_eff: Option<f64>,
     /// PRB characteristic radius γ ∈ (0, 1] (1: compliant joint, 2/3: compliant link).
     #[arg(long, value_name = "G", requires_all = ["m_r", "m_e"])]
     pub gamma: Option<f64>,
-    /// Robot link mass m_r \[kg\] (with --gamma).
+    /// Robot link mass m_r (kg) (with --gamma).
     #[arg(long = "m-r", value_name = "KG", requires_all = ["gamma", "m_e"])]
     pub m_r: Option<f64>,
-    /// Payload (end mass) m_e \[kg\] (with --gamma).
+    /// Payload (end mass) m_e (kg) (with --gamma).
     #[arg(long = "m-e", value_name = "KG", requires_all = ["gamma", "m_r"])]
     pub m_e: Option<f64>,
     /// Link lateral stiffness k_δ [N/m].
@@ -128,7 +128,7 @@ pub fn model(args: &ImpactArgs) -> Result<ImpactModel, CliError> {
     Ok(ImpactModel::new(m_h, m_eff, spring, v0)?)
 }
 
-/// Physical ranges of the impact flags: masses \[kg\], stiffnesses [N/m or N/m^n], speed [m/s].
+/// Physical ranges of the impact flags: masses (kg), stiffnesses [N/m or N/m^n], speed [m/s].
 const MASS: (f64, f64) = (1e-9, 1e9);
 const STIFFNESS: (f64, f64) = (1e-9, 1e20);
 const SPEED: (f64, f64) = (1e-9, 1e3);

@@ -107,7 +107,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, interrupt: &Interrupt) -> Result
     if args.json {
         return print_json(out, &summary_json(&s));
     }
-    line(out, format!("scene {} ({:?})", s.scene, s.design))?;
+    line(out, format!("scene {} ({})", s.scene, s.design))?;
     if let Some(path) = &args.out {
         line(out, format!("  log                 {}", path.display()))?;
     }

@@ -47,6 +47,15 @@ pub fn run(args: &ValidateArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 ),
             )?;
         }
+        line(
+            out,
+            format!(
+                "{} of {} passed, {} failed",
+                cases.iter().filter(|c| c.pass).count(),
+                cases.len(),
+                cases.iter().filter(|c| !c.pass).count()
+            ),
+        )?;
         line(out, format!("Wrote {}", report.display()))?;
     }
     let failed: Vec<&str> = cases
