@@ -37,6 +37,9 @@ pub enum Command {
     Impact(commands::impact::ImpactArgs),
     /// The paper's Fig. 6: η(γ) = f_max(γ)/f_max(1) for the eight design cases, n = 1 and n = 2.
     Fig6(commands::fig6::Fig6Args),
+    /// The Fig. 6 cases at finite-element fidelity: a free head on the FE compliant link and the
+    /// rigid compliant joint, η_FE beside the lumped η(2/3), and the effective γ.
+    Eta(commands::eta::EtaArgs),
     /// Least-squares fit of the Hertz law f = k δ^n to compression data (CSV).
     Fit(commands::fit::FitArgs),
     /// Finite-element Euler–Bernoulli beam: natural frequencies and static deflection.
@@ -77,6 +80,7 @@ pub fn run_interruptible(
         Some(Command::Sweep(args)) => commands::sweep::run(args, out, interrupt),
         Some(Command::Impact(args)) => commands::impact::run(args, out),
         Some(Command::Fig6(args)) => commands::fig6::run(args, out),
+        Some(Command::Eta(args)) => commands::eta::run(args, out),
         Some(Command::Fit(args)) => commands::fit::run(args, out),
         Some(Command::Beam(cmd)) => commands::beam::run(cmd, out),
         Some(Command::Prb(args)) => commands::prb::run(args, out),

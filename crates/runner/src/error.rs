@@ -25,6 +25,9 @@ pub enum CliError {
     /// An error from the beam crate.
     #[error(transparent)]
     Beam(#[from] flexrig_beam::BeamError),
+    /// An error from the free-mass impact (issue 14).
+    #[error(transparent)]
+    Impact(#[from] flexrig_impact::ImpactError),
     /// An error from the test rig (scene, simulation).
     #[error(transparent)]
     Rig(#[from] flexrig_rig::RigError),
@@ -93,6 +96,7 @@ impl CliError {
             CliError::Lumped(e) if e.is_input_error() => 2,
             CliError::Beam(e) if e.is_input_error() => 2,
             CliError::Rig(e) if e.is_input_error() => 2,
+            CliError::Impact(e) if e.is_input_error() => 2,
             _ => 1,
         }
     }

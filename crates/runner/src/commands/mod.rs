@@ -2,6 +2,7 @@
 
 pub mod beam;
 pub mod bench;
+pub mod eta;
 pub mod experiment;
 pub mod fig6;
 pub mod fit;

@@ -1,0 +1,208 @@
+//! The compliant link under a free head: a linear Euler–Bernoulli beam (flexrig-beam,
+//! Hermite-cubic elements, consistent mass), clamped at the joint (held) or on a hub of the
+//! rotor's inertia (free hub), with the payload m_e as a point mass at the tip.
+//!
+//! Each step of size h: the head drifts by velocity Verlet, x_h(t) = x_n + v_n τ + ½ a_n τ²; the
+//! beam takes a generalized-α step at ρ∞ = 1 (the trapezoidal rule: no numerical dissipation for
+//! the linear beam) with the contact force f = k_c ⟨x_h(t) − w⟩ⁿ on the tip *implicit* in its
+//! Newton iteration ([`HeadContact`], stiffness ∂f/∂w on the tip's transverse DOF); then the
+//! head's rate is completed with the force at t + h. Second order in h for the peak force and
+//! the energy (the rig's coupling, `flexrig_rig::coupling`, with a free mass for the pendulum).
+//! The peak is the largest local maximum of the force samples, refined by the parabola through
+//! the three samples around it; the separation is located by linear interpolation of the gap.
+
+use flexrig_beam::{
+    BeamModel, BeamSpec, GeneralizedAlpha, Kinematics, NodalLoads, NodeForce, NodeLoad, PointMass,
+    RootSupport, Section, State, Workspace,
+};
+use flexrig_contact::{ContactLaw, Hertz};
+
+use crate::ImpactError;
+use crate::setup::{ClSolver, ContactEvent, FreeMassImpact, ImpactOutcome, Joint};
+
+/// The head over one step from its state at `t0`: position x \[m\], speed v \[m/s\] and
+/// acceleration a [m/s²] (velocity Verlet's drift).
+#[derive(Debug, Clone, Copy)]
+struct HeadMotion {
+    t0: f64,
+    x: f64,
+    v: f64,
+    a: f64,
+}
+
+impl HeadMotion {
+    fn at(&self, t: f64) -> (f64, f64) {
+        let tau = t - self.t0;
+        (
+            self.x + tau * (self.v + 0.5 * tau * self.a),
+            self.v + tau * self.a,
+        )
+    }
+}
+
+/// The head's contact as a load on the tip node: F_v = f(x_h − w, ẋ_h − ẇ), ∂F_v/∂w = −∂f/∂δ.
+struct HeadContact<'a> {
+    law: &'a Hertz,
+    head: HeadMotion,
+    tip: usize,
+}
+
+impl NodeLoad for HeadContact<'_> {
+    fn node(&self) -> usize {
+        self.tip
+    }
+
+    fn evaluate(&mut self, t: f64, q: [f64; 3], v: [f64; 3]) -> NodeForce {
+        let (x_h, v_h) = self.head.at(t);
+        let (delta, rate) = (x_h - q[1], v_h - v[1]);
+        let mut out = NodeForce::ZERO;
+        out.force[1] = self.law.force(delta, rate);
+        out.d_dq[1][1] = -self.law.stiffness(delta, rate);
+        out.d_dv[1][1] = -self.law.damping(delta, rate);
+        out
+    }
+}
+
+/// The beam model of the CL link with `elements` elements.
+pub fn cl_beam(setup: &FreeMassImpact, elements: usize) -> Result<BeamModel, ImpactError> {
+    let link = setup.link;
+    let l = link.length;
+    // the linear beam's axial DOFs are uncoupled from bending and never loaded: any EA will do
+    let section = Section::from_stiffness(1e4 * link.ei() / (l * l), link.ei(), link.rho_a())?;
+    let mut spec = BeamSpec::cantilever(l, section, elements, Kinematics::Linear);
+    if let Joint::FreeHub { rotor_inertia } = setup.joint {
+        spec.root = RootSupport::Hub {
+            inertia: rotor_inertia,
+            k_theta: 0.0,
+            c_theta: 0.0,
+        };
+    }
+    if link.m_e > 0.0 {
+        spec.point_masses.push(PointMass {
+            node: elements,
+            mass: link.m_e,
+            inertia: 0.0,
+        });
+    }
+    Ok(BeamModel::new(spec)?)
+}
+
+/// Runs the CL impact from the onset (t = 0) to the separation of the first contact.
+pub fn run_cl(setup: &FreeMassImpact, solver: &ClSolver) -> Result<ImpactOutcome, ImpactError> {
+    setup.validate()?;
+    solver.validate()?;
+    let model = cl_beam(setup, solver.elements)?;
+    let tip = model.tip_node();
+    let loads = NodalLoads::zeros(&model);
+    let n_dofs = model.n_dofs();
+    let mut v0 = vec![0.0; n_dofs];
+    let head_speed = match setup.joint {
+        Joint::Held => setup.v0,
+        Joint::FreeHub { .. } => {
+            // rigid rotation at −v0/L about the joint: the tip moves at −v0 towards the head
+            let omega = -setup.v0 / model.length();
+            for i in 0..=tip {
+                v0[3 * i + 1] = omega * model.node_x(i);
+                v0[3 * i + 2] = omega;
+            }
+            for x in &mut v0[..model.n_fixed()] {
+                *x = 0.0;
+            }
+            0.0
+        }
+    };
+    let mut state = State::new(&model, vec![0.0; n_dofs], v0, 0.0, &loads)?;
+    let mut workspace = Workspace::new(&model);
+    let t_contact = setup.payload_contact_time();
+    let h = t_contact / solver.steps_per_contact as f64;
+    let x_scale = setup.v0 * t_contact;
+    // Newton to 1e-9 of the indentation scale (the tolerance is relative to L)
+    let tolerance = (1e-9 * x_scale / model.length()).clamp(1e-300, 1e-3);
+    let integrator = GeneralizedAlpha::new(1.0)?.with_newton(50, tolerance)?;
+    let law = setup.contact;
+    let mut head = HeadMotion {
+        t0: 0.0,
+        x: 0.0,
+        v: head_speed,
+        a: 0.0,
+    };
+    let energy = |state: &State, head: &HeadMotion, f_delta: f64| {
+        let e = state.energy(&model);
+        0.5 * setup.m_h * head.v * head.v + e.kinetic + e.strain + law.elastic_energy(f_delta)
+    };
+    let e0 = energy(&state, &head, 0.0);
+    // force samples (t, f) of the last three steps, for the peak
+    let mut history: [(f64, f64); 3] = [(0.0, 0.0); 3];
+    let mut peak = (0.0_f64, 0.0_f64);
+    let max_steps = 400 * solver.steps_per_contact;
+    let mut gap_prev = 0.0;
+    for step in 1..=max_steps {
+        let mut contact = HeadContact {
+            law: &law,
+            head,
+            tip,
+        };
+        integrator.step_with(
+            &model,
+            &mut state,
+            &mut workspace,
+            h,
+            &loads,
+            Some(&mut contact),
+        )?;
+        let t = state.t;
+        let (x_h, _) = head.at(t);
+        let (_, w, _) = state.node(tip);
+        let delta = x_h - w;
+        let f = law.force(delta, 0.0);
+        let a_new = -f / setup.m_h;
+        head = HeadMotion {
+            t0: t,
+            x: x_h,
+            v: head.v + 0.5 * h * (head.a + a_new),
+            a: a_new,
+        };
+        history = [history[1], history[2], (t, f)];
+        if step >= 2 && history[1].1 > history[0].1 && history[1].1 >= history[2].1 {
+            let refined = parabola_peak(&history);
+            if refined.1 > peak.0 {
+                peak = (refined.1, refined.0);
+            }
+        }
+        if delta <= 0.0 {
+            // the gap crossed 0 within this step: linear interpolation of the separation
+            let t_sep = t - h * delta / (delta - gap_prev);
+            return Ok(ImpactOutcome {
+                first: ContactEvent {
+                    onset_s: 0.0,
+                    peak_force_n: peak.0,
+                    time_of_peak_s: peak.1,
+                    duration_s: t_sep,
+                },
+                separation_rate_mps: head.v - state.node_velocity(tip)[1],
+                energy_j: (e0, energy(&state, &head, 0.0)),
+                work: step,
+            });
+        }
+        gap_prev = delta;
+    }
+    Err(ImpactError::NotFinished {
+        design: "CL",
+        reason: format!(
+            "no separation within {max_steps} steps (400 contact times of the payload); \
+             a long push of the link: use fewer steps_per_contact"
+        ),
+    })
+}
+
+/// Vertex (t, f) of the parabola through three equally spaced samples.
+fn parabola_peak(s: &[(f64, f64); 3]) -> (f64, f64) {
+    let (f0, f1, f2) = (s[0].1, s[1].1, s[2].1);
+    let curvature = f0 - 2.0 * f1 + f2;
+    if curvature >= 0.0 {
+        return (s[1].0, f1);
+    }
+    let h = s[1].0 - s[0].0;
+    let offset = 0.5 * (f0 - f2) / curvature; // in steps, within [−½, ½]
+    (s[1].0 + offset * h, f1 - 0.25 * (f0 - f2) * offset)
+}

@@ -1,0 +1,147 @@
+//! The paper's Fig. 6 at finite-element fidelity (issue 14): for each design case and Hertz
+//! exponent, the CJ and CL peaks of the free-mass impact, η_FE = f_max(CL)/f_max(CJ) beside the
+//! lumped η(2/3) of Eq. 15, and the **effective γ**: the γ for which the lumped model (Eq. 5,
+//! m_eff = m_e + γ m_r/3, two free masses with the series compliance between them) reproduces
+//! the FE CL peak, found by bisection on the exact energy solution (the lumped peak grows
+//! monotonically with m_eff). Where no γ ∈ (0, 1] fits, [`EffectiveGamma`] says on which side.
+
+use flexrig_contact::Hertz;
+use flexrig_lumped::fig6::{Fig6Case, K_C, M_R, V0};
+use flexrig_lumped::peak_exact;
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::setup::{ClSolver, FreeMassImpact, Joint, LinkParams};
+use crate::{ImpactError, cj, cl};
+
+/// How the FE study is run.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EtaSettings {
+    /// Link length L \[m\] (free: for an Euler–Bernoulli beam the transverse impact depends on
+    /// m_r and k_δ only).
+    pub length: f64,
+    /// The joint during the impact.
+    pub joint: Joint,
+    /// The CL mesh and step.
+    pub solver: ClSolver,
+    /// Relative tolerance of the CJ integration.
+    pub cj_rtol: f64,
+}
+
+impl EtaSettings {
+    /// L = 1 m, held joint, 64 elements, 800 steps per contact, CJ to 1e-10.
+    pub const DEFAULT: EtaSettings = EtaSettings {
+        length: 1.0,
+        joint: Joint::Held,
+        solver: ClSolver::DEFAULT,
+        cj_rtol: 1e-10,
+    };
+}
+
+/// The γ of the lumped model that reproduces a peak.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "kind", content = "gamma")]
+pub enum EffectiveGamma {
+    /// γ ∈ (0, 1].
+    Fits(f64),
+    /// The peak is above the lumped model's at γ = 1 (the CJ): no γ ≤ 1 reaches it.
+    AboveGammaOne,
+    /// The peak is below the lumped model's with the payload alone (γ → 0).
+    BelowPayloadOnly,
+}
+
+/// One row of the table.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EtaRow {
+    /// The design case.
+    pub case: Fig6Case,
+    /// Hertz exponent n.
+    pub n: f64,
+    /// FE (rigid-link) CJ peak \[N\].
+    pub f_cj_n: f64,
+    /// FE CL peak \[N\].
+    pub f_cl_n: f64,
+    /// η_FE = f_CL/f_CJ.
+    pub eta_fe: f64,
+    /// The lumped model's η(2/3) (Eq. 15).
+    pub eta_lumped_2_3: f64,
+    /// The lumped model's CJ peak (γ = 1) \[N\], beside the FE CJ peak.
+    pub f_cj_lumped_n: f64,
+    /// The γ for which the lumped peak equals the FE CL peak.
+    pub gamma_eff: EffectiveGamma,
+}
+
+/// The free-mass set-up of a Fig. 6 case (m_r = 10 kg, k_c = 1e8, v0 = 2 m/s).
+pub fn case_setup(
+    case: &Fig6Case,
+    n: f64,
+    settings: &EtaSettings,
+) -> Result<FreeMassImpact, ImpactError> {
+    Ok(FreeMassImpact {
+        m_h: case.m_h,
+        v0: V0,
+        link: LinkParams {
+            m_r: M_R,
+            length: settings.length,
+            k_delta: case.k_delta,
+            m_e: case.m_e,
+        },
+        joint: settings.joint,
+        contact: Hertz::new(K_C, n)?,
+    })
+}
+
+/// One case and exponent.
+pub fn eta_case(case: &Fig6Case, n: f64, settings: &EtaSettings) -> Result<EtaRow, ImpactError> {
+    let setup = case_setup(case, n, settings)?;
+    let f_cj = cj::run_cj(&setup, settings.cj_rtol)?.first.peak_force_n;
+    let f_cl = cl::run_cl(&setup, &settings.solver)?.first.peak_force_n;
+    Ok(EtaRow {
+        case: *case,
+        n,
+        f_cj_n: f_cj,
+        f_cl_n: f_cl,
+        eta_fe: f_cl / f_cj,
+        eta_lumped_2_3: case.eta(n, 2.0 / 3.0)?,
+        f_cj_lumped_n: peak_exact(&case.model(n, 1.0)?).f_max,
+        gamma_eff: effective_gamma(case, n, f_cl)?,
+    })
+}
+
+/// The eight cases × n ∈ {1, 2}, in parallel (case-major, as `flexrig fig6`).
+pub fn eta_table(settings: &EtaSettings) -> Result<Vec<EtaRow>, ImpactError> {
+    let jobs: Vec<(Fig6Case, f64)> = flexrig_lumped::fig6::cases()
+        .iter()
+        .flat_map(|c| {
+            flexrig_lumped::fig6::EXPONENTS
+                .iter()
+                .map(move |&n| (*c, n))
+        })
+        .collect();
+    jobs.par_iter()
+        .map(|(case, n)| eta_case(case, *n, settings))
+        .collect()
+}
+
+/// The γ ∈ (0, 1] with f_lumped(γ) = `peak` \[N\] (bisection to 1e-12 in γ).
+pub fn effective_gamma(case: &Fig6Case, n: f64, peak: f64) -> Result<EffectiveGamma, ImpactError> {
+    let f =
+        |gamma: f64| -> Result<f64, ImpactError> { Ok(peak_exact(&case.model(n, gamma)?).f_max) };
+    const GAMMA_MIN: f64 = 1e-9;
+    if peak > f(1.0)? {
+        return Ok(EffectiveGamma::AboveGammaOne);
+    }
+    if peak < f(GAMMA_MIN)? {
+        return Ok(EffectiveGamma::BelowPayloadOnly);
+    }
+    let (mut lo, mut hi) = (GAMMA_MIN, 1.0);
+    while hi - lo > 1e-12 {
+        let mid = 0.5 * (lo + hi);
+        if f(mid)? < peak {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok(EffectiveGamma::Fits(0.5 * (lo + hi)))
+}

@@ -1,0 +1,207 @@
+//! `flexrig eta`: the paper's Fig. 6 design cases at finite-element fidelity (issue 14): the
+//! free-mass impact on the FE compliant link and the rigid compliant joint, η_FE beside the
+//! lumped η(2/3), and the effective γ of the lumped model.
+
+use std::fmt::Write as _;
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use flexrig_impact::eta::{EffectiveGamma, EtaRow, EtaSettings, eta_table};
+use flexrig_impact::{ClSolver, Joint};
+use serde_json::json;
+
+use crate::CliError;
+use crate::output::{ensure_dir, line, positive_arg, print_json, write_atomic};
+
+/// The joint during the impact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum JointArg {
+    /// Driven at constant speed: the robot at rest in the joint's frame, struck at v0.
+    Held,
+    /// A free hub with the rotor inertia --rotor-inertia; the robot moves at v0 into the head.
+    FreeHub,
+}
+
+/// Arguments of `flexrig eta`.
+#[derive(Debug, Args)]
+pub struct EtaArgs {
+    /// Directory for eta.csv (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+    /// The joint during the impact.
+    #[arg(long, value_enum, default_value = "held")]
+    pub joint: JointArg,
+    /// Rotor inertia J_R of the free hub, kg·m² (with --joint free-hub).
+    #[arg(long, value_name = "KG_M2")]
+    pub rotor_inertia: Option<f64>,
+    /// Hermite-cubic elements of the CL beam (2 to 4096).
+    #[arg(long, value_name = "N", default_value_t = ClSolver::DEFAULT.elements)]
+    pub elements: usize,
+    /// Time steps over the shortest possible contact (head against the payload; 20 to 1e6).
+    #[arg(long, value_name = "N", default_value_t = ClSolver::DEFAULT.steps_per_contact)]
+    pub steps_per_contact: usize,
+    /// Link length L, m (the transverse impact does not depend on it).
+    #[arg(long, value_name = "M", default_value_t = 1.0)]
+    pub length: f64,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+fn settings(args: &EtaArgs) -> Result<EtaSettings, CliError> {
+    let joint = match (args.joint, args.rotor_inertia) {
+        (JointArg::Held, None) => Joint::Held,
+        (JointArg::Held, Some(j)) => {
+            return Err(CliError::InvalidArgument {
+                arg: "--rotor-inertia".into(),
+                value: j.to_string(),
+                allowed: "only with --joint free-hub".into(),
+            });
+        }
+        (JointArg::FreeHub, None) => {
+            return Err(CliError::InvalidArgument {
+                arg: "--joint".into(),
+                value: "free-hub".into(),
+                allowed: "needs --rotor-inertia (kg·m², > 0)".into(),
+            });
+        }
+        (JointArg::FreeHub, Some(j)) => Joint::FreeHub {
+            rotor_inertia: positive_arg("--rotor-inertia", j)?,
+        },
+    };
+    let flag = |e: flexrig_impact::ImpactError| match e {
+        flexrig_impact::ImpactError::InvalidParameter {
+            field,
+            value,
+            allowed,
+        } => CliError::InvalidArgument {
+            arg: format!("--{}", field.replace('_', "-")),
+            value,
+            allowed,
+        },
+        other => CliError::Impact(other),
+    };
+    let solver = ClSolver {
+        elements: args.elements,
+        steps_per_contact: args.steps_per_contact,
+    };
+    solver.validate().map_err(flag)?;
+    if !(args.length.is_finite() && (1e-3..=1e3).contains(&args.length)) {
+        return Err(CliError::InvalidArgument {
+            arg: "--length".into(),
+            value: args.length.to_string(),
+            allowed: "must lie in [1e-3, 1e3] m".into(),
+        });
+    }
+    Ok(EtaSettings {
+        length: args.length,
+        joint,
+        solver,
+        ..EtaSettings::DEFAULT
+    })
+}
+
+fn gamma_text(g: &EffectiveGamma) -> String {
+    match g {
+        EffectiveGamma::Fits(g) => format!("{g:.6}"),
+        EffectiveGamma::AboveGammaOne => "> 1".into(),
+        EffectiveGamma::BelowPayloadOnly => "< 0".into(),
+    }
+}
+
+fn csv(rows: &[EtaRow]) -> String {
+    let mut s = String::from(
+        "m_h_kg,k_delta_n_per_m,m_e_kg,n,f_cj_n,f_cl_n,eta_fe,eta_lumped_2_3,f_cj_lumped_n,gamma_eff,gamma_eff_note\n",
+    );
+    for r in rows {
+        let (gamma, note) = match r.gamma_eff {
+            EffectiveGamma::Fits(g) => (format!("{g}"), ""),
+            EffectiveGamma::AboveGammaOne => {
+                (String::new(), "FE CL peak above the lumped CJ (gamma = 1)")
+            }
+            EffectiveGamma::BelowPayloadOnly => (
+                String::new(),
+                "FE CL peak below the lumped payload-only peak",
+            ),
+        };
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{},{},{},{},{}",
+            r.case.m_h,
+            r.case.k_delta,
+            r.case.m_e,
+            r.n,
+            r.f_cj_n,
+            r.f_cl_n,
+            r.eta_fe,
+            r.eta_lumped_2_3,
+            r.f_cj_lumped_n,
+            gamma,
+            note
+        );
+    }
+    s
+}
+
+/// Runs `flexrig eta`.
+pub fn run(args: &EtaArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let settings = settings(args)?;
+    let rows = eta_table(&settings)?;
+    ensure_dir(&args.out)?;
+    let csv_path = args.out.join("eta.csv");
+    write_atomic(&csv_path, csv(&rows).as_bytes())?;
+    if args.json {
+        return print_json(
+            out,
+            &json!({ "settings": settings, "rows": rows, "csv": csv_path }),
+        );
+    }
+    line(
+        out,
+        format!(
+            "Fig. 6 cases at FE fidelity (free head, {} joint; m_r = 10 kg, k_c = 1e8, v0 = 2 m/s; CL: {} elements, {} steps per contact)",
+            match settings.joint {
+                Joint::Held => "held".to_string(),
+                Joint::FreeHub { rotor_inertia } => format!("free-hub J_R = {rotor_inertia} kg·m²"),
+            },
+            settings.solver.elements,
+            settings.solver.steps_per_contact
+        ),
+    )?;
+    line(
+        out,
+        format!(
+            "{:>7} {:>8} {:>6} {:>3} {:>12} {:>12} {:>9} {:>11} {:>12} {:>9}",
+            "m_h[kg]",
+            "k_δ[N/m]",
+            "m_e[kg]",
+            "n",
+            "f_CJ[N]",
+            "f_CL[N]",
+            "η_FE",
+            "η_lump(2/3)",
+            "f_CJ,lump[N]",
+            "γ_eff"
+        ),
+    )?;
+    for r in &rows {
+        line(
+            out,
+            format!(
+                "{:>7} {:>8.0e} {:>6} {:>3} {:>12.1} {:>12.1} {:>9.5} {:>11.5} {:>12.1} {:>9}",
+                r.case.m_h,
+                r.case.k_delta,
+                r.case.m_e,
+                r.n,
+                r.f_cj_n,
+                r.f_cl_n,
+                r.eta_fe,
+                r.eta_lumped_2_3,
+                r.f_cj_lumped_n,
+                gamma_text(&r.gamma_eff)
+            ),
+        )?;
+    }
+    line(out, format!("Wrote {}", csv_path.display()))
+}
