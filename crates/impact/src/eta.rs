@@ -29,7 +29,7 @@ pub struct EtaSettings {
 }
 
 impl EtaSettings {
-    /// L = 1 m, held joint, 64 elements, 800 steps per contact, CJ to 1e-10.
+    /// L = 1 m, held joint, 256 elements, 800 steps per contact, CJ to 1e-10.
     pub const DEFAULT: EtaSettings = EtaSettings {
         length: 1.0,
         joint: Joint::Held,

@@ -561,3 +561,49 @@ fn the_bundled_compression_example_fits_the_paper_values() {
     assert!((n - 1.961).abs() < 3.0 * sn, "n {n} ± {sn}");
     assert!(sn < 0.02 && sk < 0.1 * k, "standard errors {sk} {sn}");
 }
+
+/// `flexrig eta` (issue 14): bad input names the flag, exits 2 and leaves no CSV; a coarse run
+/// prints every case with a finite η_FE and writes the CSV.
+#[test]
+fn eta_refuses_bad_input_and_runs_coarse() {
+    let dir = scratch_dir("eta");
+    let out = dir.to_str().unwrap();
+    for (args, flag) in [
+        (vec!["--elements", "1"], "--elements"),
+        (vec!["--steps-per-contact", "5"], "--steps-per-contact"),
+        (vec!["--joint", "free-hub"], "--joint"),
+        (vec!["--rotor-inertia", "2"], "--rotor-inertia"),
+        (
+            vec!["--joint", "free-hub", "--rotor-inertia=-1"],
+            "--rotor-inertia",
+        ),
+        (vec!["--length", "nan"], "--length"),
+    ] {
+        let mut all = vec!["eta", "--out", out];
+        all.extend(args);
+        let o = flexrig(&all);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{all:?}: {stderr}");
+        assert!(stderr.contains(flag), "{all:?}: {stderr}");
+        assert!(!dir.join("eta.csv").exists());
+    }
+    let v = json(&[
+        "eta",
+        "--out",
+        out,
+        "--elements",
+        "4",
+        "--steps-per-contact",
+        "50",
+        "--json",
+    ]);
+    let rows = v["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 16);
+    for r in rows {
+        let eta = r["eta_fe"].as_f64().unwrap();
+        assert!(eta.is_finite() && eta > 0.0, "{r}");
+    }
+    let csv = std::fs::read_to_string(dir.join("eta.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 17);
+    let _ = std::fs::remove_dir_all(&dir);
+}
