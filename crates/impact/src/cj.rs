@@ -67,15 +67,46 @@ impl OdeSystem<6> for CjSystem {
     }
 }
 
+/// A one-degree-of-freedom link seen from its tip: mass `m_tip` \[kg\] on the spring `k` \[N/m\]
+/// to the joint (or, with a free hub, to a rotor of tip-equivalent mass J_R/L²).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TipOscillator {
+    /// Mass at the tip \[kg\].
+    pub m_tip: f64,
+    /// Stiffness at the tip \[N/m\].
+    pub k: f64,
+}
+
 /// Runs the CJ impact from the onset to the separation, with relative tolerance `rtol` of the
 /// DOP853 integration (the peak's error is of the order of `rtol`).
 pub fn run_cj(setup: &FreeMassImpact, rtol: f64) -> Result<ImpactOutcome, ImpactError> {
+    let tip = TipOscillator {
+        m_tip: setup.link.cj_tip_mass(),
+        k: setup.link.k_delta,
+    };
+    run_tip_oscillator(setup, tip, rtol)
+}
+
+/// Runs the impact of the head on a [`TipOscillator`] (the CJ, or a one-mode model of the CL)
+/// with the joint of `setup`, from the onset to the separation.
+pub fn run_tip_oscillator(
+    setup: &FreeMassImpact,
+    tip: TipOscillator,
+    rtol: f64,
+) -> Result<ImpactOutcome, ImpactError> {
     setup.validate()?;
     if !(rtol.is_finite() && (1e-14..=1e-3).contains(&rtol)) {
         return Err(ImpactError::invalid(
             "rtol",
             rtol,
             "must lie in [1e-14, 1e-3]",
+        ));
+    }
+    if !(tip.m_tip.is_finite() && tip.m_tip > 0.0 && tip.k.is_finite() && tip.k > 0.0) {
+        return Err(ImpactError::invalid(
+            "tip oscillator",
+            format!("m {} kg, k {} N/m", tip.m_tip, tip.k),
+            "a mass and a stiffness > 0",
         ));
     }
     let link = setup.link;
@@ -88,9 +119,9 @@ pub fn run_cj(setup: &FreeMassImpact, rtol: f64) -> Result<ImpactOutcome, Impact
     };
     let system = CjSystem {
         m_h: setup.m_h,
-        m_tip: link.cj_tip_mass(),
+        m_tip: tip.m_tip,
         inv_m_rotor,
-        k_delta: link.k_delta,
+        k_delta: tip.k,
         k_c: setup.contact.k(),
         n: setup.contact.n(),
     };

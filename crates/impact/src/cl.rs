@@ -87,6 +87,27 @@ pub fn cl_beam(setup: &FreeMassImpact, elements: usize) -> Result<BeamModel, Imp
     Ok(BeamModel::new(spec)?)
 }
 
+/// The CL link's first bending mode seen from the tip, for the joint held: the modal mass
+/// m₁ = 1/φ₁(tip)² of the mass-normalised mode and k₁ = ω₁² m₁ (a one-mode model of the beam;
+/// the slow limit of the impact, contact time ≫ 2π/ω₁).
+pub fn first_mode_at_tip(
+    setup: &FreeMassImpact,
+    elements: usize,
+) -> Result<crate::cj::TipOscillator, ImpactError> {
+    let held = FreeMassImpact {
+        joint: Joint::Held,
+        ..*setup
+    };
+    let model = cl_beam(&held, elements)?;
+    let modes = flexrig_beam::modal_analysis(&model, 1, flexrig_beam::ModalDirection::Transverse)?;
+    let phi_tip = modes.shapes[0][3 * model.tip_node() + 1];
+    let m_tip = 1.0 / (phi_tip * phi_tip);
+    Ok(crate::cj::TipOscillator {
+        m_tip,
+        k: modes.omegas[0] * modes.omegas[0] * m_tip,
+    })
+}
+
 /// Runs the CL impact from the onset (t = 0) to the separation of the first contact.
 pub fn run_cl(setup: &FreeMassImpact, solver: &ClSolver) -> Result<ImpactOutcome, ImpactError> {
     setup.validate()?;

@@ -214,3 +214,36 @@ fn bad_parameters_name_the_field() {
     .unwrap_err();
     assert!(e.to_string().contains("elements = 1"), "{e}");
 }
+
+#[test]
+fn in_the_slow_limit_the_cl_is_its_first_mode() {
+    // A soft contact makes the impact slow against the link's first period (1.2 ms here): the FE
+    // link then answers as its first mode, a mass m₁ = 1/φ₁(tip)² on k₁ = ω₁² m₁ at the tip
+    // (measured here: m₁ = 2.594 kg ≈ m_e + 0.25 m_r, k₁ = 1.028 k_δ). FE against one mode:
+    // 1.2e-3, 1.4e-5, 4.0e-8 as the contact time grows from 2 ms to 0.2 s.
+    let solver = ClSolver {
+        elements: 16,
+        steps_per_contact: 400,
+    };
+    let mut differences = Vec::new();
+    for k_c in [1e7, 1e5, 1e3] {
+        let mut s = setup(4.0, 1e8, 0.1, 1.0, Joint::Held);
+        s.contact = Hertz::new(k_c, 1.0).unwrap();
+        let mode = flexrig_impact::cl::first_mode_at_tip(&s, 16).unwrap();
+        let one_mode = flexrig_impact::cj::run_tip_oscillator(&s, mode, 1e-12).unwrap();
+        let fe = run_cl(&s, &solver).unwrap();
+        let d = (fe.first.peak_force_n / one_mode.first.peak_force_n - 1.0).abs();
+        println!(
+            "k_c {k_c:e}: contact {:.2e} s, m₁ {:.4} kg, k₁/k_δ {:.4}, FE vs one mode {d:.2e}",
+            fe.first.duration_s,
+            mode.m_tip,
+            mode.k / 1e8
+        );
+        differences.push(d);
+    }
+    assert!(
+        differences.windows(2).all(|w| w[1] < w[0]),
+        "{differences:?}"
+    );
+    assert!(differences[2] < 1e-3, "{differences:?}");
+}
