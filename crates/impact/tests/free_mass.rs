@@ -247,3 +247,30 @@ fn in_the_slow_limit_the_cl_is_its_first_mode() {
     );
     assert!(differences[2] < 1e-3, "{differences:?}");
 }
+
+#[test]
+fn a_free_hub_without_rotor_inertia_leaves_a_free_mass_for_the_head() {
+    // J_R → 0: the spring ends on a massless rotor and carries no force, so the first contact
+    // is the head against a free mass m_e + m_r/3 through the contact alone: the lumped model's
+    // exact energy solution with the link spring made rigid (k_δ → ∞).
+    use flexrig_contact::SeriesCompliance;
+    use flexrig_lumped::{ImpactModel, peak_exact};
+    for (m_h, k_delta, m_e, n) in [(4.0, 1e8, 0.1, 1.0), (1000.0, 2e2, 10.0, 2.0)] {
+        let s = setup(
+            m_h,
+            k_delta,
+            m_e,
+            n,
+            Joint::FreeHub {
+                rotor_inertia: 1e-9,
+            },
+        );
+        let ours = run_cj(&s, 1e-12).unwrap().first.peak_force_n;
+        let rigid = SeriesCompliance::new(1e18, s.contact).unwrap();
+        let lumped = ImpactModel::new(m_h, s.link.cj_tip_mass(), rigid, s.v0).unwrap();
+        let reference = peak_exact(&lumped).f_max;
+        let d = (ours / reference - 1.0).abs();
+        println!("{m_h} {k_delta} {m_e} {n}: {ours} vs {reference} ({d:.1e})");
+        assert!(d < 1e-7, "{ours} vs {reference}");
+    }
+}
