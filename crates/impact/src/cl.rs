@@ -13,7 +13,7 @@
 
 use flexrig_beam::{
     BeamModel, BeamSpec, GeneralizedAlpha, Kinematics, NodalLoads, NodeForce, NodeLoad, PointMass,
-    RootSupport, Section, State, Workspace,
+    ReducedModel, ReducedState, RootSupport, Section, State, Workspace,
 };
 use flexrig_contact::{ContactLaw, Hertz};
 
@@ -108,20 +108,35 @@ pub fn first_mode_at_tip(
     })
 }
 
-/// Runs the CL impact from the onset (t = 0) to the separation of the first contact.
-pub fn run_cl(setup: &FreeMassImpact, solver: &ClSolver) -> Result<ImpactOutcome, ImpactError> {
-    setup.validate()?;
-    solver.validate()?;
-    let model = cl_beam(setup, solver.elements)?;
-    let tip = model.tip_node();
-    let loads = NodalLoads::zeros(&model);
-    let n_dofs = model.n_dofs();
-    let mut v0 = vec![0.0; n_dofs];
-    let head_speed = match setup.joint {
-        Joint::Held => setup.v0,
-        Joint::FreeHub { .. } => {
-            // rigid rotation at −v0/L about the joint: the tip moves at −v0 towards the head
-            let omega = -setup.v0 / model.length();
+/// The beam as the step loop sees it: the full FE model or its modal reduction.
+enum Beam {
+    Full {
+        model: BeamModel,
+        state: State,
+        workspace: Workspace,
+        loads: NodalLoads,
+    },
+    Reduced {
+        model: ReducedModel,
+        state: ReducedState,
+        loads: NodalLoads,
+    },
+}
+
+impl Beam {
+    /// The beam at t = 0, at rest or (free hub) in rigid rotation with the tip at −`tip_speed`.
+    fn new(
+        setup: &FreeMassImpact,
+        solver: &ClSolver,
+        tip_speed: f64,
+    ) -> Result<(Beam, usize, f64), ImpactError> {
+        let model = cl_beam(setup, solver.elements)?;
+        let tip = model.tip_node();
+        let length = model.length();
+        let loads = NodalLoads::zeros(&model);
+        let omega = -tip_speed / length;
+        let Some(modes) = solver.modes else {
+            let mut v0 = vec![0.0; model.n_dofs()];
             for i in 0..=tip {
                 v0[3 * i + 1] = omega * model.node_x(i);
                 v0[3 * i + 2] = omega;
@@ -129,16 +144,118 @@ pub fn run_cl(setup: &FreeMassImpact, solver: &ClSolver) -> Result<ImpactOutcome
             for x in &mut v0[..model.n_fixed()] {
                 *x = 0.0;
             }
-            0.0
+            let state = State::new(&model, vec![0.0; model.n_dofs()], v0, 0.0, &loads)?;
+            let workspace = Workspace::new(&model);
+            return Ok((
+                Beam::Full {
+                    model,
+                    state,
+                    workspace,
+                    loads,
+                },
+                tip,
+                length,
+            ));
+        };
+        let reduced = ReducedModel::new(&model, modes, &[3 * tip + 1])?;
+        let mut state = ReducedState::at_rest(&reduced, &loads)?;
+        if omega != 0.0 {
+            // the rigid rotation is the hub's zero-frequency mode: η̇₀ = ω/φ₀(θ)
+            let rigid = reduced.shape(0);
+            let theta = rigid[3 * tip + 2];
+            if reduced.omegas()[0] != 0.0 || theta == 0.0 {
+                return Err(ImpactError::invalid(
+                    "modes",
+                    modes,
+                    "a free hub's reduced beam needs its rigid mode first",
+                ));
+            }
+            state.eta_dot[0] = omega / theta;
         }
+        Ok((
+            Beam::Reduced {
+                model: reduced,
+                state,
+                loads,
+            },
+            tip,
+            length,
+        ))
+    }
+
+    fn step(
+        &mut self,
+        integrator: &GeneralizedAlpha,
+        h: f64,
+        contact: &mut HeadContact<'_>,
+    ) -> Result<(), ImpactError> {
+        match self {
+            Beam::Full {
+                model,
+                state,
+                workspace,
+                loads,
+            } => {
+                integrator.step_with(model, state, workspace, h, loads, Some(contact))?;
+            }
+            Beam::Reduced {
+                model,
+                state,
+                loads,
+            } => {
+                integrator.step_reduced_with(model, state, h, loads, Some(contact))?;
+            }
+        }
+        Ok(())
+    }
+
+    fn time(&self) -> f64 {
+        match self {
+            Beam::Full { state, .. } => state.t,
+            Beam::Reduced { state, .. } => state.t,
+        }
+    }
+
+    /// Tip deflection \[m\] and rate [m/s].
+    fn tip(&self, tip: usize) -> (f64, f64) {
+        match self {
+            Beam::Full { state, .. } => (state.node(tip).1, state.node_velocity(tip)[1]),
+            Beam::Reduced { model, state, .. } => {
+                let (w, v, _) = model.dof(state, 3 * tip + 1);
+                (w, v)
+            }
+        }
+    }
+
+    /// Kinetic plus strain energy \[J\].
+    fn energy(&self) -> f64 {
+        match self {
+            Beam::Full { model, state, .. } => {
+                let e = state.energy(model);
+                e.kinetic + e.strain
+            }
+            Beam::Reduced { model, state, .. } => {
+                let (t, u) = model.energy(state);
+                t + u
+            }
+        }
+    }
+}
+
+/// Runs the CL impact from the onset (t = 0) to the separation of the first contact.
+pub fn run_cl(setup: &FreeMassImpact, solver: &ClSolver) -> Result<ImpactOutcome, ImpactError> {
+    setup.validate()?;
+    solver.validate()?;
+    let (head_speed, tip_speed) = match setup.joint {
+        Joint::Held => (setup.v0, 0.0),
+        Joint::FreeHub { .. } => (0.0, setup.v0),
     };
-    let mut state = State::new(&model, vec![0.0; n_dofs], v0, 0.0, &loads)?;
-    let mut workspace = Workspace::new(&model);
+    let (mut beam, tip, length) = Beam::new(setup, solver, tip_speed)?;
     let t_contact = setup.payload_contact_time();
     let h = t_contact / solver.steps_per_contact as f64;
     let x_scale = setup.v0 * t_contact;
     // Newton to 1e-9 of the indentation scale (the tolerance is relative to L)
-    let tolerance = (1e-9 * x_scale / model.length()).clamp(1e-300, 1e-3);
+    let tolerance = (1e-9 * x_scale / length).clamp(1e-300, 1e-3);
     let integrator = GeneralizedAlpha::new(1.0)?.with_newton(50, tolerance)?;
     let law = setup.contact;
     let mut head = HeadMotion {
@@ -147,11 +264,10 @@ pub fn run_cl(setup: &FreeMassImpact, solver: &ClSolver) -> Result<ImpactOutcome
         v: head_speed,
         a: 0.0,
     };
-    let energy = |state: &State, head: &HeadMotion, f_delta: f64| {
-        let e = state.energy(&model);
-        0.5 * setup.m_h * head.v * head.v + e.kinetic + e.strain + law.elastic_energy(f_delta)
+    let energy = |beam: &Beam, head: &HeadMotion, delta: f64| {
+        0.5 * setup.m_h * head.v * head.v + beam.energy() + law.elastic_energy(delta)
     };
-    let e0 = energy(&state, &head, 0.0);
+    let e0 = energy(&beam, &head, 0.0);
     // force samples (t, f) of the last three steps, for the peak
     let mut history: [(f64, f64); 3] = [(0.0, 0.0); 3];
     let mut peak = (0.0_f64, 0.0_f64);
@@ -163,17 +279,10 @@ pub fn run_cl(setup: &FreeMassImpact, solver: &ClSolver) -> Result<ImpactOutcome
             head,
             tip,
         };
-        integrator.step_with(
-            &model,
-            &mut state,
-            &mut workspace,
-            h,
-            &loads,
-            Some(&mut contact),
-        )?;
-        let t = state.t;
+        beam.step(&integrator, h, &mut contact)?;
+        let t = beam.time();
         let (x_h, _) = head.at(t);
-        let (_, w, _) = state.node(tip);
+        let (w, w_dot) = beam.tip(tip);
         let delta = x_h - w;
         let f = law.force(delta, 0.0);
         let a_new = -f / setup.m_h;
@@ -200,8 +309,8 @@ pub fn run_cl(setup: &FreeMassImpact, solver: &ClSolver) -> Result<ImpactOutcome
                     time_of_peak_s: peak.1,
                     duration_s: t_sep,
                 },
-                separation_rate_mps: head.v - state.node_velocity(tip)[1],
-                energy_j: (e0, energy(&state, &head, 0.0)),
+                separation_rate_mps: head.v - w_dot,
+                energy_j: (e0, energy(&beam, &head, 0.0)),
                 work: step,
             });
         }

@@ -76,8 +76,11 @@ pub struct ClSolver {
     /// Hermite-cubic elements along the link.
     pub elements: usize,
     /// Time steps over the shortest contact the set-up can have (the head against the payload
-    /// alone, or the CJ contact if shorter).
+    /// alone).
     pub steps_per_contact: usize,
+    /// `Some(k)`: the beam reduced to its lowest k modes plus the static correction shape of the
+    /// tip's transverse DOF (flexrig-beam's `ReducedModel`); `None`: the full FE model.
+    pub modes: Option<usize>,
 }
 
 impl ClSolver {
@@ -88,6 +91,7 @@ impl ClSolver {
     pub const DEFAULT: ClSolver = ClSolver {
         elements: 256,
         steps_per_contact: 800,
+        modes: None,
     };
 
     /// Checks the mesh and the step count; the error names the field.
@@ -105,6 +109,20 @@ impl ClSolver {
                 self.steps_per_contact,
                 "must lie in [20, 1000000]",
             ));
+        }
+        if let Some(k) = self.modes {
+            let most = 3 * self.elements.min(flexrig_beam::modal::MAX_MODAL_ELEMENTS);
+            if !(1..=most).contains(&k) || self.elements > flexrig_beam::modal::MAX_MODAL_ELEMENTS {
+                return Err(ImpactError::invalid(
+                    "modes",
+                    k,
+                    format!(
+                        "must lie in [1, 3 × elements] with at most {} elements (a dense \
+                         eigenproblem)",
+                        flexrig_beam::modal::MAX_MODAL_ELEMENTS
+                    ),
+                ));
+            }
         }
         Ok(())
     }

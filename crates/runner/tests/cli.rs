@@ -578,6 +578,8 @@ fn eta_refuses_bad_input_and_runs_coarse() {
             "--rotor-inertia",
         ),
         (vec!["--length", "nan"], "--length"),
+        (vec!["--modes", "0"], "--modes"),
+        (vec!["--elements", "2000", "--modes", "8"], "--modes"),
     ] {
         let mut all = vec!["eta", "--out", out];
         all.extend(args);

@@ -41,6 +41,10 @@ pub struct EtaArgs {
     /// Time steps over the shortest possible contact (head against the payload; 20 to 1e6).
     #[arg(long, value_name = "N", default_value_t = ClSolver::DEFAULT.steps_per_contact)]
     pub steps_per_contact: usize,
+    /// Solve the CL beam reduced to its lowest N modes plus the tip's static correction shape
+    /// (at most 1000 elements); without it, the full FE model.
+    #[arg(long, value_name = "N")]
+    pub modes: Option<usize>,
     /// Link length L, m (the transverse impact does not depend on it).
     #[arg(long, value_name = "M", default_value_t = 1.0)]
     pub length: f64,
@@ -85,6 +89,7 @@ fn settings(args: &EtaArgs) -> Result<EtaSettings, CliError> {
     let solver = ClSolver {
         elements: args.elements,
         steps_per_contact: args.steps_per_contact,
+        modes: args.modes,
     };
     solver.validate().map_err(flag)?;
     if !(args.length.is_finite() && (1e-3..=1e3).contains(&args.length)) {
