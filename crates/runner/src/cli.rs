@@ -40,6 +40,9 @@ pub enum Command {
     /// The Fig. 6 cases at finite-element fidelity: a free head on the FE compliant link and the
     /// rigid compliant joint, η_FE beside the lumped η(2/3), and the effective γ.
     Eta(commands::eta::EtaArgs),
+    /// The test bed's CL/CJ peak ratio over the payload (the paper's Fig. 9b light-load study as
+    /// a curve), with MCAP logs of three payloads.
+    Payload(commands::payload::PayloadArgs),
     /// Least-squares fit of the Hertz law f = k δ^n to compression data (CSV).
     Fit(commands::fit::FitArgs),
     /// Finite-element Euler–Bernoulli beam: natural frequencies and static deflection.
@@ -82,6 +85,7 @@ pub fn run_interruptible(
         Some(Command::Fig6(args)) => commands::fig6::run(args, out),
         Some(Command::Eta(args)) => commands::eta::run(args, out),
         Some(Command::Fit(args)) => commands::fit::run(args, out),
+        Some(Command::Payload(args)) => commands::payload::run(args, out, interrupt),
         Some(Command::Beam(cmd)) => commands::beam::run(cmd, out),
         Some(Command::Prb(args)) => commands::prb::run(args, out),
         Some(Command::Validate(args)) => commands::validate::run(args, out),

@@ -609,3 +609,42 @@ fn eta_refuses_bad_input_and_runs_coarse() {
     assert_eq!(csv.lines().count(), 17);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `flexrig payload` (issue 14): the curve's point at the bundled light-load payload (0.1 kg) is
+/// the bundled cj_light_load/cl_light_load pair run on its own; bad input names the flag, exit 2.
+#[test]
+fn the_payload_curve_runs_the_bundled_light_load_pair() {
+    let dir = scratch_dir("payload");
+    let out = dir.to_str().unwrap();
+    let v = json(&[
+        "payload", "--from", "0.1", "--to", "1", "--points", "2", "--out", out, "--json",
+    ]);
+    let row = &v["rows"][0];
+    assert_eq!(row["payload_kg"].as_f64(), Some(0.1));
+    for design in ["cj", "cl"] {
+        let scene = format!(
+            "{}/../../assets/scenes/{design}_light_load.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let alone = json(&["run", &scene, "--json"])["peak_force_n"]
+            .as_f64()
+            .unwrap();
+        let curve = row[format!("{design}_peak_n")].as_f64().unwrap();
+        assert!(rel(curve, alone) < 1e-12, "{design}: {curve} vs {alone}");
+    }
+    assert_eq!(v["logs"].as_array().unwrap().len(), 6);
+    for (args, flag) in [
+        (vec!["--from", "0"], "--from"),
+        (vec!["--from", "1", "--to", "0.5"], "--to"),
+        (vec!["--points", "1"], "--points"),
+        (vec!["--scene", "nope"], "--scene"),
+    ] {
+        let mut all = vec!["payload", "--out", out];
+        all.extend(args);
+        let o = flexrig(&all);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{all:?}: {stderr}");
+        assert!(stderr.contains(flag), "{stderr}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

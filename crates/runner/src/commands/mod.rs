@@ -7,6 +7,7 @@ pub mod experiment;
 pub mod fig6;
 pub mod fit;
 pub mod impact;
+pub mod payload;
 pub mod prb;
 pub mod run;
 pub mod sweep;
