@@ -78,15 +78,14 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     rig(&mut rows, args.quick)?;
     ensure_dir(&args.out)?;
     let mut files = Vec::new();
-    for (model, title, y_desc) in PLOTS {
+    for (model, title, y_desc, share_y) in PLOTS {
         let path = args.out.join(format!("bench_{model}.svg"));
         let subset: Vec<&Row> = rows.iter().filter(|r| r.model == model).collect();
-        let svg = crate::plots::work_precision_svg(title, y_desc, &plot_panels(&subset)).map_err(
-            |message| CliError::Plot {
-                path: path.clone(),
-                message,
-            },
-        )?;
+        let svg = crate::plots::work_precision_svg(title, y_desc, &plot_panels(&subset), share_y)
+            .map_err(|message| CliError::Plot {
+            path: path.clone(),
+            message,
+        })?;
         write_atomic(&path, svg.as_bytes())?;
         files.push(path);
     }
@@ -135,22 +134,26 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     )
 }
 
-/// The plots: model, title, y-axis description.
-const PLOTS: [(&str, &str, &str); 3] = [
+/// The plots: model, title, y-axis description, whether the panels share the error scale (they
+/// do where they compare the same methods).
+const PLOTS: [(&str, &str, &str, bool); 3] = [
     (
         "lumped",
         "Work–precision, lumped impact (m_h = 4 kg, n = 1, 2): peak force against the exact solution",
         "relative error of f_max",
+        true,
     ),
     (
         "beam",
         "Work–precision, beam: against a converged run or the exact solution",
         "relative error",
+        false,
     ),
     (
         "rig",
         "Work–precision, test rig (aluminium operator): peak force against 6400 steps/contact",
         "relative error of the peak force",
+        true,
     ),
 ];
 

@@ -1,6 +1,6 @@
-//! Log–log work–precision figures: error against run time, one panel per group of methods, all
-//! on one error scale (each panel with its own run-time decades), each series in its own colour
-//! and marker, the legend below each panel.
+//! Log–log work–precision figures: error against run time, one panel per group of methods (on
+//! one error scale when the panels are compared; each with its own run-time decades), each
+//! series in its own colour and marker, the legend below each panel.
 
 use plotters::coord::Shift;
 use plotters::coord::combinators::{IntoLogRange, LogCoord, WithKeyPoints};
@@ -60,13 +60,19 @@ fn style(i: usize) -> (RGBColor, Marker, bool) {
     (
         PALETTE[i % PALETTE.len()],
         MARKERS[i % MARKERS.len()],
-        (i / MARKERS.len()) % 2 == 0,
+        (i / MARKERS.len()).is_multiple_of(2),
     )
 }
 
-/// A work–precision figure titled `title`, errors labelled `y_desc`, one panel per entry.
-pub fn work_precision_svg(title: &str, y_desc: &str, panels: &[Panel]) -> Result<String, String> {
-    let (_, y_range) = decade_ranges(panels);
+/// A work–precision figure titled `title`, errors labelled `y_desc`, one panel per entry, all
+/// on one error scale if `share_y`.
+pub fn work_precision_svg(
+    title: &str,
+    y_desc: &str,
+    panels: &[Panel],
+    share_y: bool,
+) -> Result<String, String> {
+    let (_, shared_y) = decade_ranges(panels);
     let count = panels.len().max(1) as u32;
     let panel_width = if count >= 3 { 440 } else { 560 };
     let legend_rows = panels
@@ -88,7 +94,8 @@ pub fn work_precision_svg(title: &str, y_desc: &str, panels: &[Panel]) -> Result
             .map_err(err)?;
         for (area, panel) in body.split_evenly((1, count as usize)).iter().zip(panels) {
             let (plot, legend) = area.split_vertically(px(PLOT_HEIGHT as i32));
-            let (x_range, _) = decade_ranges(std::slice::from_ref(panel));
+            let (x_range, own_y) = decade_ranges(std::slice::from_ref(panel));
+            let y_range = if share_y { shared_y } else { own_y };
             draw_panel(&plot, panel, y_desc, (x_range, y_range))?;
             draw_legend(&legend, panel)?;
         }
