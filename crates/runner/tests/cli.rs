@@ -192,7 +192,20 @@ fn fig6_writes_csv_and_svg_and_reports_the_papers_etas() {
     assert_eq!(csv.lines().count(), 1 + 16 * 11);
     let svg = std::fs::read_to_string(dir.join("fig6.svg")).unwrap();
     assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
-    assert!(svg.contains("η(2/3)=0.892 (n=1)"), "marked and labelled");
+    // η(2/3) tabulated per panel (n = 1, m_e = 0.1 kg: the paper's 0.89 and 0.82), the legend,
+    // the four panels and the note on the coinciding curves of the soft link.
+    for label in [
+        "η(2/3)",
+        "0.892",
+        "0.823",
+        "n = 1 (linear contact)",
+        "n = 2 (Hertz contact)",
+        "(d) m",
+        "coincide",
+    ] {
+        assert!(svg.contains(label), "{label} missing from fig6.svg");
+    }
+    assert!(!svg.contains("NaN"));
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -297,6 +310,20 @@ fn experiment_reports_the_papers_comparison() {
     }
     let csv = std::fs::read_to_string(dir.join("experiment.csv")).unwrap();
     assert_eq!(csv.lines().count(), 15);
+    check_paired_ratios(&v, &csv);
+    let svg = std::fs::read_to_string(dir.join("fig9.svg")).unwrap();
+    for label in [
+        "(a) test bed",
+        "mean ± 95 % CI, 3 runs",
+        "(b) light load",
+        "1 run, no CI",
+        "(c) CL/CJ, paired by repeat",
+        "CL = CJ",
+        "peak impact force [N]",
+        "iron operator",
+    ] {
+        assert!(svg.contains(label), "{label} missing from fig9.svg");
+    }
     let _ = std::fs::remove_dir_all(&dir);
     // The same seed gives the same runs (release angles from a seeded RNG).
     let again = json(&[
@@ -312,6 +339,147 @@ fn experiment_reports_the_papers_comparison() {
     let out = flexrig(&["experiment", "--repeats", "0"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--repeats"));
+}
+
+/// The paired CL/CJ ratios of `flexrig experiment --json` (3 repeats) against an independent
+/// computation from its own runs: per-repeat ratios at the same release angle, their mean and
+/// the Student t half-width with t(0.975, 2) = 4.303 (tables); one light-load pair, no interval.
+fn check_paired_ratios(v: &serde_json::Value, csv: &str) {
+    let runs = v["runs"].as_array().unwrap();
+    let run = |scene: &str, repeat: u64| {
+        runs.iter()
+            .find(|r| r["scene"] == scene && r["repeat"] == repeat)
+            .unwrap()
+    };
+    let ratios = v["ratios"].as_array().unwrap();
+    assert_eq!(ratios.len(), 3, "{ratios:?}");
+    let find = |case: &str| ratios.iter().find(|r| r["case"] == case).unwrap();
+    for op in ["aluminium", "iron"] {
+        let (cj, cl) = (format!("cj_{op}"), format!("cl_{op}"));
+        let x: Vec<f64> = (0..3)
+            .map(|i| {
+                let (a, b) = (run(&cj, i), run(&cl, i));
+                assert_eq!(a["release_angle_deg"], b["release_angle_deg"]);
+                b["peak_force_n"].as_f64().unwrap() / a["peak_force_n"].as_f64().unwrap()
+            })
+            .collect();
+        let mean = (x[0] + x[1] + x[2]) / 3.0;
+        let s =
+            (((x[0] - mean).powi(2) + (x[1] - mean).powi(2) + (x[2] - mean).powi(2)) / 2.0).sqrt();
+        let half = 4.303 * s / 3f64.sqrt();
+        let r = find(op);
+        assert_eq!(r["pairs"], 3);
+        assert!(
+            rel(r["mean_cl_over_cj"].as_f64().unwrap(), mean) < 1e-14,
+            "{r}"
+        );
+        assert!(
+            rel(r["ci95"].as_f64().unwrap(), half) < 1e-12,
+            "{r} vs {half}"
+        );
+        // The CSV's CL rows carry the same numbers (to its 10 significant digits).
+        for line in csv.lines().filter(|l| l.starts_with(&format!("{cl},"))) {
+            let fields: Vec<&str> = line.split(',').collect();
+            let ci: f64 = fields[10].parse().unwrap();
+            assert!(rel(ci, half) < 1e-9, "{line}");
+        }
+    }
+    let light = find("light_load");
+    assert_eq!(light["pairs"], 1);
+    assert!(light.get("ci95").is_none(), "{light}");
+}
+
+/// One repeat: every mean, no interval anywhere — absent from the JSON (never 0, NaN or null),
+/// blank in the CSV and the table, and no whisker in the figure.
+#[test]
+fn one_repeat_gives_no_interval() {
+    let dir = scratch_dir("one-repeat");
+    let out_dir = dir.to_str().unwrap();
+    let v = json(&["experiment", "--repeats", "1", "--out", out_dir, "--json"]);
+    let text = v.to_string();
+    assert!(!text.contains("null") && !text.contains("NaN"), "{text}");
+    for g in v["groups"].as_array().unwrap() {
+        assert!(g.get("ci95_n").is_none(), "{g}");
+        assert!(g["mean_peak_force_n"].as_f64().unwrap() > 0.0);
+    }
+    let ratios = v["ratios"].as_array().unwrap();
+    assert_eq!(ratios.len(), 3);
+    for r in ratios {
+        assert!(r.get("ci95").is_none(), "{r}");
+        assert!(r["mean_cl_over_cj"].as_f64().unwrap() < 1.0);
+    }
+    let csv = std::fs::read_to_string(dir.join("experiment.csv")).unwrap();
+    for line in csv.lines().skip(1) {
+        assert!(line.ends_with(','), "an empty interval field: {line}");
+    }
+    let svg = std::fs::read_to_string(dir.join("fig9.svg")).unwrap();
+    assert!(svg.contains("1 run, no CI") && svg.contains("1 pair, no CI"));
+    let out = flexrig(&["experiment", "--repeats", "1", "--out", out_dir]);
+    let table = String::from_utf8(out.stdout).unwrap();
+    assert!(out.status.success());
+    assert!(
+        !table.contains("0.000") && !table.contains("NaN"),
+        "{table}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// docs/cli.md's `experiment.csv` columns are the CSV's header, and its JSON keys are the JSON's.
+#[test]
+fn experiment_docs_list_its_csv_columns_and_json_keys() {
+    let doc = std::fs::read_to_string(format!("{}/../../docs/cli.md", env!("CARGO_MANIFEST_DIR")))
+        .unwrap();
+    let section = &doc[doc.find("## flexrig experiment").unwrap()..];
+    let section = &section[..section[3..].find("\n## ").unwrap()];
+    let paragraph = |start: &str| {
+        let p = &section[section.find(start).unwrap()..];
+        let p = &p[..p.find("\n\n").unwrap_or(p.len())];
+        p.split('`')
+            .skip(1)
+            .step_by(2)
+            .filter(|k| {
+                k.chars()
+                    .all(|c| c.is_ascii_lowercase() || c == '_' || c.is_ascii_digit())
+            })
+            .map(str::to_string)
+            .collect::<Vec<String>>()
+    };
+    let columns = paragraph("`experiment.csv` columns");
+    let dir = scratch_dir("experiment-docs");
+    let v = json(&[
+        "experiment",
+        "--repeats",
+        "2",
+        "--out",
+        dir.to_str().unwrap(),
+        "--json",
+    ]);
+    let csv = std::fs::read_to_string(dir.join("experiment.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    assert_eq!(columns, header, "docs/cli.md against experiment.csv");
+    let keys = paragraph("JSON keys");
+    let mut seen: Vec<String> = Vec::new();
+    let mut collect = |value: &serde_json::Value| {
+        for k in value.as_object().unwrap().keys() {
+            if !seen.contains(k) {
+                seen.push(k.clone());
+            }
+        }
+    };
+    collect(&v);
+    for list in ["groups", "ratios", "runs"] {
+        v[list].as_array().unwrap().iter().for_each(&mut collect);
+    }
+    for k in &seen {
+        assert!(keys.contains(k), "{k} is not in docs/cli.md");
+    }
+    for k in keys
+        .iter()
+        .filter(|k| !["aluminium", "iron", "light_load"].contains(&k.as_str()))
+    {
+        assert!(seen.contains(k), "docs/cli.md lists {k}, the JSON has none");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -463,12 +631,35 @@ fn bench_quick_reports_rows_and_plots() {
         errors.len() >= 3 && errors[0] > 100.0 * errors[errors.len() - 1],
         "{errors:?}"
     );
-    for name in ["bench_lumped.svg", "bench_beam.svg", "bench_rig.svg"] {
-        assert!(
-            std::fs::read_to_string(dir.join(name))
-                .unwrap()
-                .contains("<svg")
-        );
+    // Each plot in panels with their legends (the labels of the series, not of the rows).
+    for (name, labels) in [
+        (
+            "bench_lumped.svg",
+            &[
+                "(a) stiff link",
+                "(b) soft link",
+                "indentation state, n = 1",
+                "median run time [s]",
+            ][..],
+        ),
+        (
+            "bench_beam.svg",
+            &["(a) transients", "(b) modes and statics"][..],
+        ),
+        (
+            "bench_rig.svg",
+            &[
+                "compliant joint (cj_aluminium)",
+                "compliant link (cl_aluminium)",
+                "start at contact",
+            ][..],
+        ),
+    ] {
+        let svg = std::fs::read_to_string(dir.join(name)).unwrap();
+        assert!(svg.starts_with("<svg"));
+        for label in labels {
+            assert!(svg.contains(label), "{label} missing from {name}");
+        }
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -21,6 +21,7 @@ use crate::CliError;
 use crate::commands::experiment::bundled_scene;
 use crate::mcap_log::{LogRates, McapRecorder};
 use crate::output::{ensure_dir, line, print_json, write_atomic};
+use crate::plots::{Panel, Series};
 
 /// Arguments of `flexrig bench`.
 #[derive(Debug, Args)]
@@ -77,14 +78,14 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     rig(&mut rows, args.quick)?;
     ensure_dir(&args.out)?;
     let mut files = Vec::new();
-    for model in ["lumped", "beam", "rig"] {
+    for (model, title, y_desc, share_y) in PLOTS {
         let path = args.out.join(format!("bench_{model}.svg"));
         let subset: Vec<&Row> = rows.iter().filter(|r| r.model == model).collect();
-        let svg =
-            crate::plots::work_precision_svg(model, &subset).map_err(|message| CliError::Plot {
-                path: path.clone(),
-                message,
-            })?;
+        let svg = crate::plots::work_precision_svg(title, y_desc, &plot_panels(&subset), share_y)
+            .map_err(|message| CliError::Plot {
+            path: path.clone(),
+            message,
+        })?;
         write_atomic(&path, svg.as_bytes())?;
         files.push(path);
     }
@@ -131,6 +132,107 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 .join(", ")
         ),
     )
+}
+
+/// The plots: model, title, y-axis description, whether the panels share the error scale (they
+/// do where they compare the same methods).
+const PLOTS: [(&str, &str, &str, bool); 3] = [
+    (
+        "lumped",
+        "Work–precision, lumped impact (m_h = 4 kg, n = 1, 2): peak force against the exact solution",
+        "relative error of f_max",
+        true,
+    ),
+    (
+        "beam",
+        "Work–precision, beam: against a converged run or the exact solution",
+        "relative error",
+        false,
+    ),
+    (
+        "rig",
+        "Work–precision, test rig (aluminium operator): peak force against 6400 steps/contact",
+        "relative error of the peak force",
+        true,
+    ),
+];
+
+/// Panel title (without its letter) and series label of a row; `None` for a row not plotted
+/// (the exact lumped solution, error 0).
+fn plot_place(row: &Row) -> Option<(String, String)> {
+    let method = row.method.as_str();
+    match row.model.as_str() {
+        "lumped" => {
+            if let Some((solver, _)) = method.split_once(" to the peak") {
+                return Some(("Fig. 6 CJ case (n = 2), to the peak".into(), solver.into()));
+            }
+            let rest = method.strip_prefix("ode ")?;
+            let mut words = rest.split_whitespace();
+            let (formulation, n, link) = (words.next()?, words.next()?, words.next()?);
+            let title = match link {
+                "stiff" => "stiff link, k_δ = 10⁸ N/m",
+                _ => "soft link, k_δ = 2·10² N/m",
+            };
+            let label = format!("{formulation} state, {}", n.replace('=', " = "));
+            Some((title.into(), label))
+        }
+        "beam" => {
+            let title = if method.starts_with("transient") || method.starts_with("issue 13") {
+                "transients: elements × time step"
+            } else {
+                "modes and statics: elements"
+            };
+            Some((title.into(), method.into()))
+        }
+        _ => {
+            let (scene, label) = method.split_once(": ")?;
+            let design = match scene.split('_').next() {
+                Some("cj") => "compliant joint",
+                Some("cl") => "compliant link",
+                _ => "",
+            };
+            Some((format!("{design} ({scene})"), label.into()))
+        }
+    }
+}
+
+/// The panels of one model's plot: rows grouped by [`plot_place`], panels lettered in order.
+fn plot_panels(rows: &[&Row]) -> Vec<Panel> {
+    let mut panels: Vec<Panel> = Vec::new();
+    for row in rows {
+        let Some((title, label)) = plot_place(row) else {
+            continue;
+        };
+        let index = match panels.iter().position(|p| p.title == title) {
+            Some(i) => i,
+            None => {
+                panels.push(Panel {
+                    title,
+                    series: Vec::new(),
+                    note: None,
+                });
+                panels.len() - 1
+            }
+        };
+        let panel = &mut panels[index];
+        let point = (row.seconds, row.error);
+        match panel.series.iter_mut().find(|s| s.label == label) {
+            Some(s) => s.points.push(point),
+            None => panel.series.push(Series {
+                label,
+                points: vec![point],
+            }),
+        }
+    }
+    for (i, panel) in panels.iter_mut().enumerate() {
+        if panel.title.ends_with("to the peak")
+            && !panel.series.iter().any(|s| s.label.starts_with("scipy"))
+        {
+            panel.note = Some("scipy peer not run (needs python3 with numpy and scipy)".into());
+        }
+        panel.title = format!("({}) {}", (b'a' + i as u8) as char, panel.title);
+    }
+    panels
 }
 
 fn lumped(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
@@ -361,8 +463,8 @@ fn issue13_transient(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
             / scale;
         rows.push(Row {
             model: "beam".into(),
-            method: format!("issue 13 step load, 1000 steps ρ∞ 0.9, {elements} {name} elements"),
-            setting: "h 1e-3 s".into(),
+            method: format!("issue 13 step load, 1000 steps of 1 ms, ρ∞ 0.9, {name}"),
+            setting: format!("{elements} elements"),
             error,
             seconds: median_seconds(3, 1, || trajectory(kin, elements, 1e-3)),
             evaluations: None,

@@ -139,8 +139,33 @@ pub struct GroupStats {
     pub n: usize,
     /// Mean peak force \[N\].
     pub mean_peak_force_n: f64,
-    /// Half-width of the 95 % confidence interval of the mean \[N\] (Student t).
-    pub ci95_n: f64,
+    /// Half-width of the 95 % confidence interval of the mean \[N\] (Student t); none with one
+    /// run (absent from the JSON).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ci95_n: Option<f64>,
+}
+
+/// The CJ/CL pairs of the experiment: case name, CJ scene, CL scene.
+pub const PAIRS: [(&str, &str, &str); 3] = [
+    ("aluminium", "cj_aluminium", "cl_aluminium"),
+    ("iron", "cj_iron", "cl_iron"),
+    ("light_load", "cj_light_load", "cl_light_load"),
+];
+
+/// CL/CJ peak-force ratio of one case, paired by repeat (the same release angle for CJ and CL):
+/// mean of the per-repeat ratios and its 95 % confidence interval.
+#[derive(Debug, Clone, Serialize)]
+pub struct RatioStats {
+    /// Case: `aluminium`, `iron` or `light_load`.
+    pub case: String,
+    /// Pairs (repeats run for both CJ and CL).
+    pub pairs: usize,
+    /// Mean of the per-repeat ratios CL/CJ.
+    pub mean_cl_over_cj: f64,
+    /// Half-width of the 95 % confidence interval of the mean ratio (Student t); none with one
+    /// pair (absent from the JSON).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ci95: Option<f64>,
 }
 
 /// Two-sided 95 % Student t quantile for `df` degrees of freedom.
@@ -157,15 +182,55 @@ pub fn t_quantile_975(df: usize) -> f64 {
     }
 }
 
-/// Mean and 95 % CI half-width of `values`.
-pub fn mean_ci95(values: &[f64]) -> (f64, f64) {
+/// Mean and 95 % CI half-width (Student t) of `values`; no interval from fewer than two values.
+pub fn mean_ci95(values: &[f64]) -> (f64, Option<f64>) {
     let n = values.len();
     let mean = values.iter().sum::<f64>() / n as f64;
     if n < 2 {
-        return (mean, 0.0);
+        return (mean, None);
     }
     let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
-    (mean, t_quantile_975(n - 1) * (var / n as f64).sqrt())
+    (mean, Some(t_quantile_975(n - 1) * (var / n as f64).sqrt()))
+}
+
+/// Per-repeat CL/CJ ratios of `case` (see [`PAIRS`]): `(repeat, ratio)` for every repeat run
+/// with both designs, in repeat order.
+pub fn paired_ratios(records: &[RunRecord], cj: &str, cl: &str) -> Vec<(usize, f64)> {
+    let mut ratios: Vec<(usize, f64)> = records
+        .iter()
+        .filter(|r| r.scene == cl)
+        .filter_map(|r_cl| {
+            records
+                .iter()
+                .find(|r| r.scene == cj && r.repeat == r_cl.repeat)
+                .map(|r_cj| (r_cl.repeat, r_cl.peak_force_n / r_cj.peak_force_n))
+        })
+        .collect();
+    ratios.sort_by_key(|(repeat, _)| *repeat);
+    ratios
+}
+
+/// The paired CL/CJ ratio of every case of [`PAIRS`] that was run.
+pub fn ratio_stats(records: &[RunRecord]) -> Vec<RatioStats> {
+    PAIRS
+        .iter()
+        .filter_map(|(case, cj, cl)| {
+            let ratios: Vec<f64> = paired_ratios(records, cj, cl)
+                .into_iter()
+                .map(|(_, r)| r)
+                .collect();
+            if ratios.is_empty() {
+                return None;
+            }
+            let (mean, ci) = mean_ci95(&ratios);
+            Some(RatioStats {
+                case: case.to_string(),
+                pairs: ratios.len(),
+                mean_cl_over_cj: mean,
+                ci95: ci,
+            })
+        })
+        .collect()
 }
 
 struct Job {
@@ -212,28 +277,12 @@ pub fn run(
         .collect::<Result<Vec<RunRecord>, CliError>>()?;
     progress.finish_and_clear();
 
-    let groups: Vec<GroupStats> = FIG9A_SCENES
-        .iter()
-        .chain(FIG9B_SCENES.iter())
-        .map(|name| {
-            let peaks: Vec<f64> = records
-                .iter()
-                .filter(|r| r.scene == *name)
-                .map(|r| r.peak_force_n)
-                .collect();
-            let (mean, ci) = mean_ci95(&peaks);
-            GroupStats {
-                scene: name.to_string(),
-                n: peaks.len(),
-                mean_peak_force_n: mean,
-                ci95_n: ci,
-            }
-        })
-        .collect();
+    let groups = group_stats(&records);
+    let ratios = ratio_stats(&records);
     let csv_path = args.out.join("experiment.csv");
     let svg_path = args.out.join("fig9.svg");
-    write_atomic(&csv_path, csv(&records).as_bytes())?;
-    let svg = crate::plots::fig9_svg(&groups).map_err(|message| CliError::Plot {
+    write_atomic(&csv_path, csv(&records, &ratios).as_bytes())?;
+    let svg = crate::plots::fig9_svg(&groups, &ratios).map_err(|message| CliError::Plot {
         path: svg_path.clone(),
         message,
     })?;
@@ -242,47 +291,10 @@ pub fn run(
     if args.json {
         return print_json(
             out,
-            &json!({"groups": groups, "runs": records, "csv": csv_path, "svg": svg_path}),
+            &json!({"groups": groups, "ratios": ratios, "runs": records, "csv": csv_path, "svg": svg_path}),
         );
     }
-    line(
-        out,
-        "Paper §VI replayed: peak impact force, mean ± 95 % CI (Student t)",
-    )?;
-    line(
-        out,
-        format!(
-            "{:<16} {:>4} {:>14} {:>10}",
-            "scene", "runs", "peak [N]", "± CI [N]"
-        ),
-    )?;
-    for g in &groups {
-        line(
-            out,
-            format!(
-                "{:<16} {:>4} {:>14.3} {:>10.3}",
-                g.scene, g.n, g.mean_peak_force_n, g.ci95_n
-            ),
-        )?;
-    }
-    let ratio = |cl: &str, cj: &str| {
-        let find = |s: &str| {
-            groups
-                .iter()
-                .find(|g| g.scene == s)
-                .map_or(f64::NAN, |g| g.mean_peak_force_n)
-        };
-        find(cl) / find(cj)
-    };
-    line(
-        out,
-        format!(
-            "CL/CJ: aluminium {:.4}, iron {:.4}, light load {:.4} (the paper: CL slightly below CJ; clearly below with the light load)",
-            ratio("cl_aluminium", "cj_aluminium"),
-            ratio("cl_iron", "cj_iron"),
-            ratio("cl_light_load", "cj_light_load")
-        ),
-    )?;
+    print_table(out, &groups, &ratios)?;
     line(
         out,
         format!(
@@ -296,6 +308,102 @@ pub fn run(
     line(
         out,
         "Open a log in Foxglove with assets/foxglove/layout.json (see docs/foxglove.md).",
+    )
+}
+
+/// Mean peak force and its 95 % CI of every scene of the experiment that was run.
+fn group_stats(records: &[RunRecord]) -> Vec<GroupStats> {
+    FIG9A_SCENES
+        .iter()
+        .chain(FIG9B_SCENES.iter())
+        .filter_map(|name| {
+            let peaks: Vec<f64> = records
+                .iter()
+                .filter(|r| r.scene == *name)
+                .map(|r| r.peak_force_n)
+                .collect();
+            if peaks.is_empty() {
+                return None;
+            }
+            let (mean, ci) = mean_ci95(&peaks);
+            Some(GroupStats {
+                scene: name.to_string(),
+                n: peaks.len(),
+                mean_peak_force_n: mean,
+                ci95_n: ci,
+            })
+        })
+        .collect()
+}
+
+/// `mean ± ci` of a ratio: the interval to two significant digits (in e-notation when tiny), the
+/// mean to the interval's last digit (3 to 6 decimals); the mean to 4 decimals without interval.
+pub fn mean_pm_ci(mean: f64, ci: Option<f64>) -> String {
+    let Some(ci) = ci.filter(|c| c.is_finite() && *c > 0.0) else {
+        return format!("{mean:.4}");
+    };
+    let last = (1.0 - ci.log10().floor()).max(0.0) as usize;
+    let d = last.clamp(3, 6);
+    if last > 6 {
+        format!("{mean:.d$} ± {ci:.1e}")
+    } else {
+        format!("{mean:.d$} ± {ci:.last$}")
+    }
+}
+
+/// `± ci` with `decimals`, or blank when there is no interval.
+fn plus_minus(ci: Option<f64>, decimals: usize) -> String {
+    ci.map_or(String::new(), |c| format!("± {c:.decimals$}"))
+}
+
+/// The printed table: peak force per scene, then the paired CL/CJ ratios.
+fn print_table(
+    out: &mut dyn Write,
+    groups: &[GroupStats],
+    ratios: &[RatioStats],
+) -> Result<(), CliError> {
+    line(
+        out,
+        "Paper §VI replayed: peak impact force, mean ± 95 % CI (Student t; none from one run)",
+    )?;
+    line(
+        out,
+        format!(
+            "{:<16} {:>4} {:>14} {:>10}",
+            "scene", "runs", "peak [N]", "CI [N]"
+        ),
+    )?;
+    for g in groups {
+        line(
+            out,
+            format!(
+                "{:<16} {:>4} {:>14.3} {:>10}",
+                g.scene,
+                g.n,
+                g.mean_peak_force_n,
+                plus_minus(g.ci95_n, 3)
+            ),
+        )?;
+    }
+    line(
+        out,
+        "CL/CJ peak-force ratio, paired by repeat (same release angle), mean ± 95 % CI:",
+    )?;
+    line(out, format!("{:<16} {:>5}   {}", "case", "pairs", "CL/CJ"))?;
+    for r in ratios {
+        line(
+            out,
+            format!(
+                "{:<16} {:>5}   {}",
+                r.case,
+                r.pairs,
+                mean_pm_ci(r.mean_cl_over_cj, r.ci95)
+            ),
+        )?;
+    }
+    line(
+        out,
+        "The paper: CL slightly below CJ with the 412 g payload, clearly below with the light load.",
     )
 }
 
@@ -374,26 +482,48 @@ fn run_job(
     })
 }
 
-fn csv(records: &[RunRecord]) -> String {
+/// One row per run; the CL rows also carry the paired CL/CJ ratio of their repeat and their
+/// case's mean ratio with its 95 % CI half-width (empty with one pair).
+fn csv(records: &[RunRecord], ratios: &[RatioStats]) -> String {
     let mut text = String::from(
-        "scene,repeat,release_angle_deg,peak_force_n,impact_velocity_mps,contact_duration_s,max_indentation_m,mcap\n",
+        "scene,repeat,release_angle_deg,peak_force_n,impact_velocity_mps,contact_duration_s,max_indentation_m,mcap,cl_over_cj,cl_over_cj_mean,cl_over_cj_ci95\n",
     );
+    let optional = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.9e}"));
     for r in records {
+        let (pair, stats) = pair_columns(records, ratios, r);
         let _ = writeln!(
             text,
-            "{},{},{:.6},{:.9e},{:.9e},{},{:.9e},{}",
+            "{},{},{:.6},{:.9e},{:.9e},{},{:.9e},{},{},{},{}",
             r.scene,
             r.repeat,
             r.release_angle_deg,
             r.peak_force_n,
             r.impact_velocity_mps,
-            r.contact_duration_s
-                .map_or(String::new(), |d| format!("{d:.9e}")),
+            optional(r.contact_duration_s),
             r.max_indentation_m,
-            r.mcap.display()
+            r.mcap.display(),
+            optional(pair),
+            optional(stats.map(|s| s.mean_cl_over_cj)),
+            optional(stats.and_then(|s| s.ci95)),
         );
     }
     text
+}
+
+/// For a CL run: its repeat's paired CL/CJ ratio and its case's statistics.
+fn pair_columns<'a>(
+    records: &[RunRecord],
+    ratios: &'a [RatioStats],
+    run: &RunRecord,
+) -> (Option<f64>, Option<&'a RatioStats>) {
+    let Some((case, cj, cl)) = PAIRS.iter().find(|(_, _, cl)| *cl == run.scene) else {
+        return (None, None);
+    };
+    let pair = paired_ratios(records, cj, cl)
+        .into_iter()
+        .find(|(repeat, _)| *repeat == run.repeat)
+        .map(|(_, ratio)| ratio);
+    (pair, ratios.iter().find(|r| r.case == *case))
 }
 
 #[cfg(test)]
@@ -405,12 +535,97 @@ mod tests {
         // 1..5: mean 3, s = √2.5, t(0.975, 4) = 2.776 (tables) → 2.776 √2.5/√5 = 1.96293.
         let (mean, ci) = mean_ci95(&[1.0, 2.0, 3.0, 4.0, 5.0]);
         assert_eq!(mean, 3.0);
-        assert!((ci - 2.776 * (2.5f64 / 5.0).sqrt()).abs() < 1e-12);
+        assert!((ci.unwrap() - 2.776 * (2.5f64 / 5.0).sqrt()).abs() < 1e-12);
         // The large-sample limit is the normal quantile 1.95996.
         assert!((t_quantile_975(100_000) - 1.959964).abs() < 1e-4);
         assert!(
             t_quantile_975(31) > t_quantile_975(100) && t_quantile_975(30) > t_quantile_975(31)
         );
-        assert_eq!(mean_ci95(&[7.0]), (7.0, 0.0));
+        // One value: a mean but no interval (was 0.0).
+        assert_eq!(mean_ci95(&[7.0]), (7.0, None));
+    }
+
+    fn record(scene: &str, repeat: usize, peak: f64) -> RunRecord {
+        RunRecord {
+            scene: scene.into(),
+            repeat,
+            release_angle_deg: 30.0 + repeat as f64,
+            peak_force_n: peak,
+            impact_velocity_mps: 1.0,
+            contact_duration_s: None,
+            max_indentation_m: 1e-3,
+            mcap: PathBuf::from("x.mcap"),
+        }
+    }
+
+    #[test]
+    fn paired_ratio_and_its_interval_match_a_hand_computation() {
+        // CJ 100, 110, 120, 130; CL 99, 108, 119, 130 → ratios 0.99, 0.981818…, 0.991666…, 1.
+        let cj = [100.0, 110.0, 120.0, 130.0];
+        let cl = [99.0, 108.0, 119.0, 130.0];
+        let mut records: Vec<RunRecord> = Vec::new();
+        // Out of order, as the parallel runs may finish.
+        for i in [2, 0, 3, 1] {
+            records.push(record("cl_iron", i, cl[i]));
+            records.push(record("cj_iron", i, cj[i]));
+        }
+        let stats = ratio_stats(&records);
+        assert_eq!(stats.len(), 1);
+        let r = &stats[0];
+        assert_eq!((r.case.as_str(), r.pairs), ("iron", 4));
+        // Independently: mean and sample standard deviation written out, t(0.975, 3) = 3.182.
+        let ratios = [0.99, 108.0 / 110.0, 119.0 / 120.0, 1.0];
+        let mean = (ratios[0] + ratios[1] + ratios[2] + ratios[3]) / 4.0;
+        let ss: f64 = ratios.iter().map(|x| (x - mean) * (x - mean)).sum();
+        let half = 3.182 * (ss / 3.0).sqrt() / 2.0;
+        assert!((r.mean_cl_over_cj - mean).abs() < 1e-15);
+        assert!(
+            (r.ci95.unwrap() - half).abs() < 1e-15,
+            "{:?} vs {half}",
+            r.ci95
+        );
+        // Pairs are by repeat: a pair's ratio is its own CL over its own CJ.
+        let pairs = paired_ratios(&records, "cj_iron", "cl_iron");
+        assert_eq!(pairs.iter().map(|p| p.0).collect::<Vec<_>>(), [0, 1, 2, 3]);
+        assert_eq!(pairs[1].1, 108.0 / 110.0);
+    }
+
+    #[test]
+    fn one_pair_gives_a_ratio_without_interval() {
+        let records = [
+            record("cj_light_load", 0, 100.0),
+            record("cl_light_load", 0, 93.0),
+        ];
+        let stats = ratio_stats(&records);
+        assert_eq!(stats.len(), 1);
+        assert_eq!(stats[0].mean_cl_over_cj, 0.93);
+        assert_eq!(stats[0].ci95, None);
+        let json = serde_json::to_value(&stats[0]).unwrap();
+        assert!(json.get("ci95").is_none(), "{json}");
+        let groups = group_stats(&records);
+        let json = serde_json::to_value(&groups).unwrap().to_string();
+        assert!(!json.contains("ci95_n") && !json.contains("null"), "{json}");
+        // experiment.csv: the CL row has its ratio and mean; the interval field is empty.
+        let text = csv(&records, &stats);
+        let cl_row = text
+            .lines()
+            .find(|l| l.starts_with("cl_light_load"))
+            .unwrap();
+        assert!(
+            cl_row.ends_with(",9.300000000e-1,9.300000000e-1,"),
+            "{cl_row}"
+        );
+        let cj_row = text
+            .lines()
+            .find(|l| l.starts_with("cj_light_load"))
+            .unwrap();
+        assert!(cj_row.ends_with(",,,"), "{cj_row}");
+    }
+
+    #[test]
+    fn mean_and_interval_are_written_to_the_intervals_digits() {
+        assert_eq!(mean_pm_ci(0.990008, Some(3.3e-7)), "0.990008 ± 3.3e-7");
+        assert_eq!(mean_pm_ci(0.98249, Some(0.0123)), "0.982 ± 0.012");
+        assert_eq!(mean_pm_ci(0.93566, None), "0.9357");
     }
 }

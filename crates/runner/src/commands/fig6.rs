@@ -14,6 +14,8 @@ use crate::plots::fig6_svg;
 
 /// Default number of γ samples over [0.5, 1].
 pub const DEFAULT_POINTS: usize = 101;
+/// Fewest γ samples the figure is drawn from (the CSV keeps `--points`).
+pub const PLOT_POINTS: usize = 201;
 
 /// Arguments of `flexrig fig6`.
 #[derive(Debug, Args)]
@@ -43,7 +45,15 @@ pub fn run(args: &Fig6Args, out: &mut dyn Write) -> Result<(), CliError> {
     let csv_path = args.out.join("fig6.csv");
     let svg_path = args.out.join("fig6.svg");
     write_atomic(&csv_path, csv(&curves).as_bytes())?;
-    let svg = fig6_svg(&curves).map_err(|message| CliError::Plot {
+    // The figure is drawn from at least PLOT_POINTS samples, so that its curves are smooth.
+    let dense;
+    let plotted = if args.points >= PLOT_POINTS {
+        &curves
+    } else {
+        dense = fig6::fig6(PLOT_POINTS)?;
+        &dense
+    };
+    let svg = fig6_svg(plotted).map_err(|message| CliError::Plot {
         path: svg_path.clone(),
         message,
     })?;
