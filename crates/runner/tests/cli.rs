@@ -778,7 +778,7 @@ fn eta_refuses_bad_input_and_runs_coarse() {
         let stderr = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{all:?}: {stderr}");
         assert!(stderr.contains(flag), "{all:?}: {stderr}");
-        assert!(!dir.join("eta.csv").exists());
+        assert!(!dir.join("eta.csv").exists() && !dir.join("eta.svg").exists());
     }
     let v = json(&[
         "eta",
@@ -798,6 +798,8 @@ fn eta_refuses_bad_input_and_runs_coarse() {
     }
     let csv = std::fs::read_to_string(dir.join("eta.csv")).unwrap();
     assert_eq!(csv.lines().count(), 17);
+    let svg = std::fs::read_to_string(dir.join("eta.svg")).unwrap();
+    assert!(svg.contains("finite elements (filled)") && svg.contains("held joint"));
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -26,7 +26,7 @@ pub enum JointArg {
 /// Arguments of `flexrig eta`.
 #[derive(Debug, Args)]
 pub struct EtaArgs {
-    /// Directory for eta.csv (created if missing).
+    /// Directory for eta.csv and eta.svg (created if missing).
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
     /// The joint during the impact.
@@ -155,23 +155,28 @@ pub fn run(args: &EtaArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let rows = eta_table(&settings)?;
     ensure_dir(&args.out)?;
     let csv_path = args.out.join("eta.csv");
+    let svg_path = args.out.join("eta.svg");
+    let joint = match settings.joint {
+        Joint::Held => "held".to_string(),
+        Joint::FreeHub { rotor_inertia } => format!("free-hub (J_R = {rotor_inertia} kg·m²)"),
+    };
+    let svg = crate::plots::eta_svg(&rows, &joint).map_err(|message| CliError::Plot {
+        path: svg_path.clone(),
+        message,
+    })?;
     write_atomic(&csv_path, csv(&rows).as_bytes())?;
+    write_atomic(&svg_path, svg.as_bytes())?;
     if args.json {
         return print_json(
             out,
-            &json!({ "settings": settings, "rows": rows, "csv": csv_path }),
+            &json!({ "settings": settings, "rows": rows, "csv": csv_path, "svg": svg_path }),
         );
     }
     line(
         out,
         format!(
-            "Fig. 6 cases at FE fidelity (free head, {} joint; m_r = 10 kg, k_c = 1e8, v0 = 2 m/s; CL: {} elements, {} steps per contact)",
-            match settings.joint {
-                Joint::Held => "held".to_string(),
-                Joint::FreeHub { rotor_inertia } => format!("free-hub J_R = {rotor_inertia} kg·m²"),
-            },
-            settings.solver.elements,
-            settings.solver.steps_per_contact
+            "Fig. 6 cases at FE fidelity (free head, {joint} joint; m_r = 10 kg, k_c = 1e8, v0 = 2 m/s; CL: {} elements, {} steps per contact)",
+            settings.solver.elements, settings.solver.steps_per_contact
         ),
     )?;
     line(
@@ -208,5 +213,8 @@ pub fn run(args: &EtaArgs, out: &mut dyn Write) -> Result<(), CliError> {
             ),
         )?;
     }
-    line(out, format!("Wrote {}", csv_path.display()))
+    line(
+        out,
+        format!("Wrote {} and {}", csv_path.display(), svg_path.display()),
+    )
 }

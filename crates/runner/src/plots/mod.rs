@@ -5,10 +5,12 @@
 //! coordinate to a whole pixel; drawn this way a pixel of the drawing is a quarter pixel of the
 //! figure, and curves come out smooth.
 
+mod eta;
 mod fig6;
 mod fig9;
 mod work_precision;
 
+pub use eta::eta_svg;
 pub use fig6::fig6_svg;
 pub use fig9::fig9_svg;
 pub use work_precision::{Panel, Series, work_precision_svg};
