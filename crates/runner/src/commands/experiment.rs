@@ -356,8 +356,13 @@ fn run_job(
         scene_text: &job.text,
         interrupt: interrupt.0.clone(),
         rates: LogRates::DECIMATED,
+        deformation_scale: crate::mcap_log::DEFAULT_DEFORMATION_SCALE,
     };
-    let summary = run_logged(Simulation::new(&scene, RunOptions::default())?, &scene, &target)?;
+    let summary = run_logged(
+        Simulation::new(&scene, RunOptions::default())?,
+        &scene,
+        &target,
+    )?;
     Ok(RunRecord {
         scene: job.scene.clone(),
         repeat: job.repeat,

@@ -210,6 +210,7 @@ impl Sweep {
             scene_text: &text,
             interrupt: options.interrupt.clone(),
             rates: crate::mcap_log::LogRates::DECIMATED,
+            deformation_scale: crate::mcap_log::DEFAULT_DEFORMATION_SCALE,
         };
         crate::mcap_log::run_logged(simulation, &scene, &target)
     }
