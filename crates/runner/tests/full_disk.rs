@@ -79,7 +79,13 @@ fn a_full_disk_is_named_and_leaves_no_unfinished_file() {
     assert_eq!(files_in(&disk.0), Vec::<String>::new());
 
     let dir = disk.0.join("experiment");
-    let o = flexrig(&["experiment", "--repeats", "1", "--out", dir.to_str().unwrap()]);
+    let o = flexrig(&[
+        "experiment",
+        "--repeats",
+        "1",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_ne!(o.status.code(), Some(0), "{stderr}");
     assert!(stderr.contains("the disk is full"), "{stderr}");

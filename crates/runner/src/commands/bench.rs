@@ -339,7 +339,10 @@ fn issue13_transient(rows: &mut Vec<Row>, quick: bool) -> Result<(), CliError> {
     let reference: Vec<f64> = fine.iter().zip(&coarse).map(|(f, c)| 2.0 * f - c).collect();
     let scale = reference.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let cases: &[(Kinematics, &str, usize)] = if quick {
-        &[(Kinematics::Ancf, "ANCF", 4), (Kinematics::Corotational, "corotational", 8)]
+        &[
+            (Kinematics::Ancf, "ANCF", 4),
+            (Kinematics::Corotational, "corotational", 8),
+        ]
     } else {
         &[
             (Kinematics::Ancf, "ANCF", 4),
