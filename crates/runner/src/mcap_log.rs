@@ -262,8 +262,8 @@ pub struct LogTarget<'a> {
 /// plots over the first contact; over the whole log when the run had none or failed).
 ///
 /// The log is written under a temporary name in the same directory and moved into place only
-/// when finished, so the requested name never holds an unfinished file; the layout is written
-/// atomically after it. A run that fails (or is stopped by Ctrl-C) still leaves its finished
+/// when finished, so the requested name never holds an unfinished file; the layout, which
+/// belongs to the log, is then written (replaced) atomically. A run that fails (or is stopped by Ctrl-C) still leaves its finished
 /// log, with an `error` metadata record, and returns the run's error; a write that fails (e.g.
 /// a full disk) leaves no log and returns the write error, naming the file.
 pub fn run_logged(
@@ -272,14 +272,8 @@ pub fn run_logged(
     target: &LogTarget<'_>,
 ) -> Result<RunSummary, CliError> {
     let path = target.path;
-    let layout = crate::foxglove_layout::path_beside(path);
-    if !target.force {
-        if path.exists() {
-            return Err(refuse_overwrite(path));
-        }
-        if layout.exists() {
-            return Err(refuse_overwrite_layout(path, &layout));
-        }
+    if !target.force && path.exists() {
+        return Err(refuse_overwrite(path));
     }
     let pending = PendingFile::new(path);
     let file = File::create(&pending.tmp).map_err(|e| CliError::write(path, e))?;
@@ -308,17 +302,6 @@ pub fn run_logged(
         .and_then(crate::foxglove_layout::contact_window);
     crate::foxglove_layout::write_beside(path, window)?;
     Ok(outcome?)
-}
-
-fn refuse_overwrite_layout(path: &Path, layout: &Path) -> CliError {
-    CliError::InvalidArgument {
-        arg: "--out".into(),
-        value: path.display().to_string(),
-        allowed: format!(
-            "a log whose Foxglove layout {} does not exist yet (or add --force to overwrite both)",
-            layout.display()
-        ),
-    }
 }
 
 fn refuse_overwrite(path: &Path) -> CliError {
