@@ -8,7 +8,7 @@
 //! are decimated to 250 Hz and the 3D channels to 60 Hz ([`LogRates::DECIMATED`]; every step with
 //! [`LogRates::EVERY_STEP`]). Chunks are indexed but not compressed:
 //! LZ4 took 57 % of the logging instructions (zstd 2.5× more time than LZ4) and protobuf doubles
-//! compress poorly; an uncompressed bundled run is 0.22–0.24 MB. The scene file is attached;
+//! compress poorly; an uncompressed bundled run is 0.23–0.25 MB. The scene file is attached;
 //! key parameters, the software version and the git revision are metadata. The file is always
 //! finished: [`McapRecorder::finish`] closes it, with an `error` metadata record when the run
 //! failed, and [`run_logged`] writes it under a temporary name that is renamed into place only

@@ -295,7 +295,8 @@ pub fn run(
     )?;
     line(
         out,
-        "Open a log in Foxglove with assets/foxglove/layout.json (see docs/foxglove.md).",
+        "Open a log in Foxglove with the layout written beside it (NAME.layout.json beside \
+         NAME.mcap: the plots over its contact; see docs/foxglove.md).",
     )
 }
 

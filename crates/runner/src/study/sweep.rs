@@ -77,7 +77,8 @@ pub struct Sweep {
 pub struct SweepOptions {
     /// Shard (i, N): run the points with index ≡ i (mod N). `None`: every point.
     pub shard: Option<(usize, usize)>,
-    /// Keep an MCAP log per run in this directory (`run-<index>.mcap`).
+    /// Keep an MCAP log per run in this directory (`run-<index>.mcap`, with its Foxglove layout
+    /// `run-<index>.layout.json`).
     pub mcap_dir: Option<PathBuf>,
     /// Stops the sweep (runs not yet started are left for a resume).
     pub interrupt: std::sync::Arc<AtomicBool>,
