@@ -3,7 +3,8 @@
 
 For each file: CRCs valid, summary present, per-topic message counts equal to the summary's
 statistics, log_time monotone per topic and equal to publish_time, every message decodes
-(protobuf, with the schemas stored in the file), the scene attachment and the metadata present.
+(protobuf, with the schemas stored in the file), the scene attachment and the metadata present
+(`flexrig`, and `view` with the 3D view's deformation scale).
 Prints one line per file and exits non-zero on the first problem.
 
 Usage: python3 scripts/check_mcap.py FILE.mcap [...]
@@ -51,8 +52,9 @@ def check(path):
         if "scene.toml" not in attachments:
             raise SystemExit(f"{path}: no scene.toml attachment")
         metadata = {m.name: m.metadata for m in reader.iter_metadata()}
-        if "flexrig" not in metadata:
-            raise SystemExit(f"{path}: no flexrig metadata")
+        for name in ("flexrig", "view"):
+            if name not in metadata:
+                raise SystemExit(f"{path}: no {name} metadata")
         state = "error: " + metadata["error"]["message"] if "error" in metadata else "ok"
         total = sum(counts.values())
         print(f"{path}: {total} messages on {len(counts)} topics, {state}; "

@@ -21,6 +21,7 @@
 pub mod cli;
 pub mod commands;
 pub mod error;
+pub mod foxglove_layout;
 pub mod mcap_log;
 pub mod output;
 pub mod plots;

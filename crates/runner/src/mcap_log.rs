@@ -8,7 +8,7 @@
 //! are decimated to 250 Hz and the 3D channels to 60 Hz ([`LogRates::DECIMATED`]; every step with
 //! [`LogRates::EVERY_STEP`]). Chunks are indexed but not compressed:
 //! LZ4 took 57 % of the logging instructions (zstd 2.5× more time than LZ4) and protobuf doubles
-//! compress poorly; an uncompressed bundled run is 0.22–0.24 MB. The scene file is attached;
+//! compress poorly; an uncompressed bundled run is 0.23–0.25 MB. The scene file is attached;
 //! key parameters, the software version and the git revision are metadata. The file is always
 //! finished: [`McapRecorder::finish`] closes it, with an `error` metadata record when the run
 //! failed, and [`run_logged`] writes it under a temporary name that is renamed into place only
@@ -27,8 +27,8 @@ use flexrig_rig::{Frame, Recorder, RigError, RunSummary, Scene, Simulation};
 use foxglove::Encode;
 use foxglove::messages::{
     ArrowPrimitive, Color, CubePrimitive, FrameTransform, FrameTransforms, JointState, JointStates,
-    LinePrimitive, Point3, Quaternion, SceneEntity, SceneUpdate, SpherePrimitive, Timestamp,
-    Vector3, line_primitive::Type as LineType,
+    KeyValuePair, LinePrimitive, Point3, Quaternion, SceneEntity, SceneUpdate, SpherePrimitive,
+    TextPrimitive, Timestamp, Vector3, line_primitive::Type as LineType,
 };
 
 use crate::CliError;
@@ -127,7 +127,16 @@ pub struct McapRecorder<W: Write + Seek> {
     messages: u64,
     interrupt: Option<Arc<AtomicBool>>,
     rates: LogRates,
+    /// Factor on the FE beam's displacements in the 3D view (1: true scale).
+    deformation_scale: f64,
+    /// The link is the FE beam (CL), whose deflection the 3D view exaggerates.
+    flexible_link: bool,
 }
+
+/// The factor on the FE beam's displacements in the 3D view by default: the CL link of the
+/// bundled scenes deflects 0.3–0.6 mm at the force peak (invisible on a 338 mm link) and up to
+/// 4.3 mm by separation; ×30 draws 9–17 mm at the peak and at most 128 mm (38 % of the link).
+pub const DEFAULT_DEFORMATION_SCALE: f64 = 30.0;
 
 impl<W: Write + Seek> std::fmt::Debug for McapRecorder<W> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -183,6 +192,53 @@ fn color(r: f64, g: f64, b: f64) -> Option<Color> {
     Some(Color { r, g, b, a: 1.0 })
 }
 
+/// A line strip `thickness` pixels wide.
+fn line(points: Vec<Point3>, color: Option<Color>, thickness: f64) -> LinePrimitive {
+    LinePrimitive {
+        r#type: LineType::LineStrip as i32,
+        pose: None,
+        thickness,
+        scale_invariant: true,
+        points,
+        color,
+        colors: vec![],
+        indices: vec![],
+    }
+}
+
+/// The beam's nodes as drawn, reference + `scale` × displacement (the reference is the
+/// undeformed axis, node i at (xᵢ, 0, 0)) \[m, world\], and the true transverse deflection
+/// of the tip \[m\].
+fn drawn_beam(beam: &flexrig_rig::BeamLink, scale: f64) -> (Vec<Point3>, f64) {
+    let model = beam.model();
+    let nodes = beam.node_positions();
+    let tip_m = nodes.last().map_or(0.0, |p| p.y);
+    let points = nodes
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let reference = Vector::new(model.node_x(i), 0.0, 0.0);
+            point(reference + (*p - reference) * scale)
+        })
+        .collect();
+    (points, tip_m)
+}
+
+/// Where the link's label sits \[m, world\]: on the link's line, behind the robot axis.
+const LABEL_AT: Vector = Vector::new(-0.04, 0.0, 0.0);
+
+/// A label at `at` \[m, world\], facing the camera, 15 px high.
+fn label(text: String, at: Vector) -> TextPrimitive {
+    TextPrimitive {
+        pose: Some(pose(&Pose::from_translation(at))),
+        billboard: true,
+        font_size: 15.0,
+        scale_invariant: true,
+        color: color(0.1, 0.2, 0.6),
+        text,
+    }
+}
+
 /// Where and how [`run_logged`] writes a run's MCAP log.
 #[derive(Debug, Clone)]
 pub struct LogTarget<'a> {
@@ -196,15 +252,20 @@ pub struct LogTarget<'a> {
     pub interrupt: Arc<AtomicBool>,
     /// What is logged how often.
     pub rates: LogRates,
+    /// Factor on the FE beam's displacements in the 3D view (1: true scale; see
+    /// [`McapRecorder::with_deformation_scale`]).
+    pub deformation_scale: f64,
 }
 
-/// Runs `simulation` of `scene` while logging it to `target.path`.
+/// Runs `simulation` of `scene` while logging it to `target.path`, with its Foxglove layout
+/// beside it (`run.layout.json` beside `run.mcap`, see [`crate::foxglove_layout::for_log`]: the
+/// plots over the first contact; over the whole log when the run had none or failed).
 ///
 /// The log is written under a temporary name in the same directory and moved into place only
-/// when finished, so the requested name never holds an unfinished file. A run that fails (or is
-/// stopped by Ctrl-C) still leaves its finished log, with an `error` metadata record, and returns
-/// the run's error; a write that fails (e.g. a full disk) leaves nothing and returns the write
-/// error, naming the file.
+/// when finished, so the requested name never holds an unfinished file; the layout, which
+/// belongs to the log, is then written (replaced) atomically. A run that fails (or is stopped by Ctrl-C) still leaves its finished
+/// log, with an `error` metadata record, and returns the run's error; a write that fails (e.g.
+/// a full disk) leaves no log and returns the write error, naming the file.
 pub fn run_logged(
     simulation: Simulation,
     scene: &Scene,
@@ -220,7 +281,8 @@ pub fn run_logged(
     let mut log = McapRecorder::new(BufWriter::new(file), scene, target.scene_text)
         .map_err(write_error)?
         .with_interrupt(target.interrupt.clone())
-        .with_rates(target.rates);
+        .with_rates(target.rates)
+        .with_deformation_scale(target.deformation_scale);
     let outcome = simulation.run(&mut log);
     let finished = match &outcome {
         Ok(summary) => log
@@ -234,6 +296,11 @@ pub fn run_logged(
         .map_err(|e| CliError::write(path, e.into_error()))?;
     drop(file);
     pending.commit(target.force)?;
+    let window = outcome
+        .as_ref()
+        .ok()
+        .and_then(crate::foxglove_layout::contact_window);
+    crate::foxglove_layout::write_beside(path, window)?;
     Ok(outcome?)
 }
 
@@ -408,6 +475,8 @@ impl<W: Write + Seek> McapRecorder<W> {
             messages: 0,
             interrupt: None,
             rates: LogRates::DECIMATED,
+            deformation_scale: DEFAULT_DEFORMATION_SCALE,
+            flexible_link: f.robot.design == flexrig_rig::scene::Design::Cl,
         })
     }
 
@@ -422,6 +491,15 @@ impl<W: Write + Seek> McapRecorder<W> {
     /// Writes at `rates` instead of [`LogRates::DECIMATED`].
     pub fn with_rates(mut self, rates: LogRates) -> Self {
         self.rates = rates;
+        self
+    }
+
+    /// Draws the FE beam (CL) at its undeformed axis plus `scale` × its displacements in the 3D
+    /// view (as FE post-processors exaggerate deformations), labelled in the view; 1 draws it
+    /// at true scale. The scale is recorded in the `view` metadata record; the CJ link is rigid
+    /// and always drawn at true scale.
+    pub fn with_deformation_scale(mut self, scale: f64) -> Self {
+        self.deformation_scale = scale;
         self
     }
 
@@ -451,10 +529,14 @@ impl<W: Write + Seek> McapRecorder<W> {
         Ok(())
     }
 
-    fn write_samples(&mut self, samples: &[SensorSample], every: bool) -> Result<(), RigError> {
+    fn write_samples(
+        &mut self,
+        samples: &[SensorSample],
+        in_contact: bool,
+    ) -> Result<(), RigError> {
         for s in samples {
             let ns = nanos(s.t);
-            if !every
+            if !in_contact
                 && self
                     .last_scalar_ns
                     .is_some_and(|last| ns < last + self.rates.scalar_period_ns)
@@ -533,36 +615,7 @@ impl<W: Write + Seek> McapRecorder<W> {
         self.write(self.channels.tf, f.t, &tf)?;
 
         let op = &self.geometry.operator;
-        let robot = &self.geometry.robot;
-        let world = |p: &Pose, local: Vector| p.transform_point(local);
         let block_pose = f.operator_pose * Pose::from_translation(op.block_center_local);
-        let link_points: Vec<Point3> = match f.beam {
-            Some(b) => b.node_positions().into_iter().map(point).collect(),
-            None => vec![
-                point(world(&f.dome_body_pose, Vector::ZERO)),
-                point(world(
-                    &f.dome_body_pose,
-                    Vector::new(robot.length, 0.0, 0.0),
-                )),
-            ],
-        };
-        let (dome_body, dome_local) = match f.beam {
-            Some(_) => (
-                f.dome_body_pose,
-                robot.dome_center_local - Vector::new(robot.length, 0.0, 0.0),
-            ),
-            None => (f.dome_body_pose, robot.dome_center_local),
-        };
-        let line = |points: Vec<Point3>, c: Option<Color>| LinePrimitive {
-            r#type: LineType::LineStrip as i32,
-            pose: None,
-            thickness: 4.0,
-            scale_invariant: true,
-            points,
-            color: c,
-            colors: vec![],
-            indices: vec![],
-        };
         let mut entities = vec![
             SceneEntity {
                 timestamp: Some(ts),
@@ -571,6 +624,7 @@ impl<W: Write + Seek> McapRecorder<W> {
                 lines: vec![line(
                     vec![point(op.pivot), point(block_pose.translation)],
                     color(0.6, 0.6, 0.6),
+                    4.0,
                 )],
                 cubes: vec![CubePrimitive {
                     pose: Some(pose(&block_pose)),
@@ -579,23 +633,7 @@ impl<W: Write + Seek> McapRecorder<W> {
                 }],
                 ..Default::default()
             },
-            SceneEntity {
-                timestamp: Some(ts),
-                frame_id: "world".into(),
-                id: "robot".into(),
-                lines: vec![line(link_points, color(0.2, 0.4, 0.9))],
-                spheres: vec![SpherePrimitive {
-                    pose: Some(pose(&(dome_body * Pose::from_translation(dome_local)))),
-                    size: Some(vec3(Vector::splat(2.0 * robot.dome_radius))),
-                    color: Some(Color {
-                        r: 0.8,
-                        g: 0.8,
-                        b: 0.85,
-                        a: 0.5,
-                    }),
-                }],
-                ..Default::default()
-            },
+            self.robot_entity(f, ts),
         ];
         let arrows = match f.contact {
             Some(c) if c.force > 0.0 => {
@@ -630,20 +668,101 @@ impl<W: Write + Seek> McapRecorder<W> {
         )
     }
 
+    /// The robot: the link (CJ: a rigid line on its axis; CL: the FE beam drawn at its
+    /// undeformed axis plus `deformation_scale` × its displacements, with that axis and a label)
+    /// and the dome, at true scale.
+    fn robot_entity(&self, f: &Frame<'_>, ts: Timestamp) -> SceneEntity {
+        let robot = &self.geometry.robot;
+        let length = robot.length;
+        let dome_local = match f.beam {
+            Some(_) => robot.dome_center_local - Vector::new(length, 0.0, 0.0),
+            None => robot.dome_center_local,
+        };
+        let mut entity = SceneEntity {
+            timestamp: Some(ts),
+            frame_id: "world".into(),
+            id: "robot".into(),
+            spheres: vec![SpherePrimitive {
+                pose: Some(pose(
+                    &(f.dome_body_pose * Pose::from_translation(dome_local)),
+                )),
+                size: Some(vec3(Vector::splat(2.0 * robot.dome_radius))),
+                color: Some(Color {
+                    r: 0.8,
+                    g: 0.8,
+                    b: 0.85,
+                    a: 0.35,
+                }),
+            }],
+            ..Default::default()
+        };
+        let blue = color(0.2, 0.4, 0.9);
+        match f.beam {
+            Some(beam) => {
+                let (points, tip_m) = drawn_beam(beam, self.deformation_scale);
+                entity.lines = vec![
+                    line(points, blue, 4.0),
+                    line(
+                        vec![point(Vector::ZERO), point(Vector::new(length, 0.0, 0.0))],
+                        color(0.55, 0.55, 0.6),
+                        1.5,
+                    ),
+                ];
+                entity.texts = vec![label(
+                    format!(
+                        "beam deflection ×{} (true tip deflection {:.2} mm)",
+                        self.deformation_scale,
+                        tip_m * 1e3
+                    ),
+                    LABEL_AT,
+                )];
+                entity.metadata = vec![KeyValuePair {
+                    key: "deformation_scale".into(),
+                    value: self.deformation_scale.to_string(),
+                }];
+            }
+            None => {
+                let p = &f.dome_body_pose;
+                entity.lines = vec![line(
+                    vec![
+                        point(p.transform_point(Vector::ZERO)),
+                        point(p.transform_point(Vector::new(length, 0.0, 0.0))),
+                    ],
+                    blue,
+                    4.0,
+                )];
+                entity.texts = vec![label(
+                    "rigid link on the torsion spring, true scale".into(),
+                    LABEL_AT,
+                )];
+            }
+        }
+        entity
+    }
+
     /// Closes the file; with `error`, an `error` metadata record first. Returns the summary of
     /// the written file.
     pub fn finish(mut self, error: Option<&str>) -> Result<(), mcap::McapError> {
         if let Some(e) = error {
             self.write_error(e)?;
         }
-        self.writer.finish()?;
-        Ok(())
+        self.close()
     }
 
     /// Finishes the file (as [`McapRecorder::finish`] without an error) and returns the writer.
     pub fn finish_into_inner(mut self) -> Result<W, mcap::McapError> {
-        self.writer.finish()?;
+        self.close()?;
         Ok(self.writer.into_inner())
+    }
+
+    /// Writes the `view` metadata record and the summary section.
+    fn close(&mut self) -> Result<(), mcap::McapError> {
+        self.writer.write_metadata(&mcap::records::Metadata {
+            name: "view".into(),
+            metadata: view_metadata(self.deformation_scale, self.flexible_link),
+        })?;
+        self.writer.finish()?;
+        Ok(())
     }
 
     /// Finishes the file with an `error` metadata record and returns the writer.
@@ -675,6 +794,32 @@ impl<W: Write + Seek> McapRecorder<W> {
     }
 }
 
+/// The `view` metadata record: how the 3D view draws the rig (`deformation_scale`).
+fn view_metadata(scale: f64, flexible_link: bool) -> BTreeMap<String, String> {
+    let (scale, applies) = if flexible_link {
+        (
+            scale.to_string(),
+            "the FE beam (/scene entity robot, line 0): drawn node = reference + \
+             deformation_scale × (true node − reference), the reference being the undeformed \
+             axis, node i at (x_i, 0, 0) m (line 1); true node = reference + (drawn node − \
+             reference) / deformation_scale. The dome, the block, the force arrow and /tf are \
+             at true scale.",
+        )
+    } else {
+        (
+            "1".to_string(),
+            "nothing: the CJ link is rigid; the whole view is at true scale.",
+        )
+    };
+    [
+        ("deformation_scale", scale),
+        ("deformation_applies_to", applies.to_string()),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_string(), v))
+    .collect()
+}
+
 /// The rotation taking +x (the Foxglove arrow axis) onto `direction`.
 fn arrow_rotation(direction: Vector) -> flexrig_contact::math::Rotation {
     flexrig_contact::math::Rotation::from_rotation_arc(Vector::X, direction.normalize())
@@ -692,20 +837,17 @@ impl<W: Write + Seek> Recorder for McapRecorder<W> {
         let ns = nanos(f.t);
         let in_contact = f.contact.is_some();
         self.write_samples(f.samples, in_contact)?;
-        if in_contact || self.last_scalar_ns.is_none_or(|last| ns >= last) {
-            let ts = stamp(f.t);
-            if let Some(c) = f.contact {
-                self.write(
-                    self.channels.contact,
-                    f.t,
-                    &ContactState {
-                        timestamp: ts,
-                        indentation_m: c.indentation,
-                        rate_mps: c.rate,
-                        force_n: c.force,
-                    },
-                )?;
-            }
+        if let Some(c) = f.contact {
+            self.write(
+                self.channels.contact,
+                f.t,
+                &ContactState {
+                    timestamp: stamp(f.t),
+                    indentation_m: c.indentation,
+                    rate_mps: c.rate,
+                    force_n: c.force,
+                },
+            )?;
         }
         let period = if in_contact {
             self.rates.scene_period_contact_ns

@@ -1,6 +1,7 @@
 //! MCAP logs: read back with the `mcap` crate (summary, counts, attachment, metadata), always a
-//! finished file when the run fails midway, no overwrite without --force, and the independent
-//! Python check when Python with the `mcap` package is present.
+//! finished file when the run fails midway, no overwrite without --force, the Foxglove layout
+//! beside each log (plots over the contact), the CL beam's deflection drawn at the recorded
+//! scale, and the independent Python check when Python with the `mcap` package is present.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -108,6 +109,10 @@ fn run_log_reads_back_with_everything_written() {
         let m = mcap::read::metadata(&bytes, meta).unwrap();
         assert_eq!(m.metadata["design"], design);
         assert!(m.metadata["software"].starts_with("flexrig "));
+        // the 3D view's deformation scale: the default for the CL beam, none for the rigid CJ link
+        let view = metadata(&bytes, &summary, "view");
+        let scale = if design == "cl" { "30" } else { "1" };
+        assert_eq!(view["deformation_scale"], scale, "{scene}");
         assert!(summary.metadata_indexes.iter().all(|m| m.name != "error"));
     }
     let _ = std::fs::remove_dir_all(&dir);
@@ -194,6 +199,9 @@ fn a_run_stopped_by_ctrl_c_midway_leaves_a_finished_log_and_exits_130() {
         "{:?}",
         m.metadata
     );
+    // no contact summary: the layout beside it plots the whole log
+    let layout = std::fs::read_to_string(dir.join("interrupted.layout.json")).unwrap();
+    assert!(!layout.contains("minXValue"), "{layout}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -247,6 +255,149 @@ fn refuses_to_overwrite_without_force() {
     ]);
     assert!(o.status.success());
     assert!(read_back(&out).0["/contact"] > 0);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The metadata record `name` of a finished log.
+fn metadata(
+    bytes: &[u8],
+    summary: &mcap::Summary,
+    name: &str,
+) -> std::collections::BTreeMap<String, String> {
+    let index = summary
+        .metadata_indexes
+        .iter()
+        .find(|m| m.name == name)
+        .unwrap_or_else(|| panic!("no {name} metadata"));
+    mcap::read::metadata(bytes, index).unwrap().metadata
+}
+
+#[test]
+fn each_log_has_a_layout_whose_plots_span_its_contact() {
+    let dir = scratch("layout");
+    let out = dir.join("run.mcap");
+    let o = flexrig(&[
+        "run",
+        &scene_path("cl_iron"),
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let onset = v["onset_time_s"].as_f64().unwrap();
+    let end = onset + v["contact_duration_s"].as_f64().unwrap();
+    let peak = v["time_of_peak_s"].as_f64().unwrap();
+    // the plots' time axis starts at the first message: t = 0
+    let (_, summary) = read_back(&out);
+    assert_eq!(summary.stats.unwrap().message_start_time, 0);
+    let path = dir.join("run.layout.json");
+    let layout: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let configs = layout["configById"].as_object().unwrap();
+    let mut plots = 0;
+    for (id, c) in configs.iter().filter(|(id, _)| id.starts_with("Plot!")) {
+        let (lo, hi) = (
+            c["minXValue"].as_f64().unwrap(),
+            c["maxXValue"].as_f64().unwrap(),
+        );
+        assert!(
+            lo < onset && end < hi && lo < peak && peak < hi,
+            "{id}: [{lo}, {hi}]"
+        );
+        // the pulse fills the plot
+        assert!(hi - lo < 2.0 * (end - onset), "{id}: [{lo}, {hi}]");
+        // every series of the plot is on a topic of the log
+        for p in c["paths"].as_array().unwrap() {
+            let topic = p["value"].as_str().unwrap().split('.').next().unwrap();
+            assert!(
+                summary.channels.values().any(|ch| ch.topic == topic),
+                "{id}: {topic}"
+            );
+        }
+        plots += 1;
+    }
+    assert_eq!(plots, 3);
+    let transforms = &configs["3D!rig"]["scene"]["transforms"];
+    assert_eq!(transforms["showLabel"], false);
+    assert_eq!(transforms["enablePreloading"], true);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The `/scene` entity `robot` of every message of a log.
+fn robot_entities(path: &PathBuf) -> Vec<foxglove::messages::SceneEntity> {
+    use prost::Message;
+    let bytes = std::fs::read(path).unwrap();
+    mcap::MessageStream::new(&bytes)
+        .unwrap()
+        .map(|m| m.unwrap())
+        .filter(|m| m.channel.topic == "/scene")
+        .map(|m| {
+            let update = foxglove::messages::SceneUpdate::decode(m.data.as_ref()).unwrap();
+            update
+                .entities
+                .into_iter()
+                .find(|e| e.id == "robot")
+                .unwrap()
+        })
+        .collect()
+}
+
+#[test]
+fn the_beam_is_drawn_at_the_recorded_deformation_scale() {
+    let dir = scratch("deformation");
+    let log = |name: &str, scale: &str| {
+        let out = dir.join(name);
+        let o = flexrig(&[
+            "run",
+            &scene_path("cl_aluminium"),
+            "--out",
+            out.to_str().unwrap(),
+            "--deformation-scale",
+            scale,
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        out
+    };
+    let (true_scale, scaled) = (log("one.mcap", "1"), log("ten.mcap", "10"));
+    let bytes = std::fs::read(&scaled).unwrap();
+    let (_, summary) = read_back(&scaled);
+    assert_eq!(
+        metadata(&bytes, &summary, "view")["deformation_scale"],
+        "10"
+    );
+    let (a, b) = (robot_entities(&true_scale), robot_entities(&scaled));
+    assert_eq!(a.len(), b.len());
+    let mut largest = 0.0_f64;
+    for (a, b) in a.iter().zip(&b) {
+        // line 0: the beam as drawn; line 1: the undeformed axis it is drawn from
+        let (pa, pb) = (&a.lines[0].points, &b.lines[0].points);
+        assert_eq!(pa.len(), 17, "16 elements");
+        for (p, q) in pa.iter().zip(pb) {
+            assert!((q.y - 10.0 * p.y).abs() <= 1e-12, "{} vs 10 × {}", q.y, p.y);
+            largest = largest.max(p.y.abs());
+        }
+        let axis = &b.lines[1].points;
+        assert_eq!((axis[0].x, axis[0].y), (0.0, 0.0));
+        assert_eq!(axis[1].y, 0.0);
+        assert_eq!(b.metadata[0].key, "deformation_scale");
+        assert_eq!(b.metadata[0].value, "10");
+        assert!(b.texts[0].text.contains("×10"), "{}", b.texts[0].text);
+        // the dome stays at true scale
+        assert_eq!(a.spheres[0].pose, b.spheres[0].pose);
+    }
+    assert!(largest > 1e-4, "the beam deflects: {largest} m");
+    // a scale that is not positive is refused, naming the flag
+    let o = flexrig(&[
+        "run",
+        &scene_path("cl_aluminium"),
+        "--out",
+        dir.join("zero.mcap").to_str().unwrap(),
+        "--deformation-scale",
+        "0",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--deformation-scale"));
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -307,7 +307,8 @@ pub fn run(
     )?;
     line(
         out,
-        "Open a log in Foxglove with assets/foxglove/layout.json (see docs/foxglove.md).",
+        "Open a log in Foxglove with the layout written beside it (NAME.layout.json beside \
+         NAME.mcap: the plots over its contact; see docs/foxglove.md).",
     )
 }
 
@@ -464,6 +465,7 @@ fn run_job(
         scene_text: &job.text,
         interrupt: interrupt.0.clone(),
         rates: LogRates::DECIMATED,
+        deformation_scale: crate::mcap_log::DEFAULT_DEFORMATION_SCALE,
     };
     let summary = run_logged(
         Simulation::new(&scene, RunOptions::default())?,

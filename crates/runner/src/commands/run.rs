@@ -13,8 +13,8 @@ use serde_json::json;
 
 use crate::CliError;
 use crate::cli::Interrupt;
-use crate::mcap_log::{LogRates, LogTarget, run_logged};
-use crate::output::{line, print_json};
+use crate::mcap_log::{DEFAULT_DEFORMATION_SCALE, LogRates, LogTarget, run_logged};
+use crate::output::{line, positive_arg, print_json};
 
 /// Arguments of `flexrig run`.
 #[derive(Debug, Args)]
@@ -32,6 +32,10 @@ pub struct RunArgs {
     /// sensors at 250 Hz outside contact; inside contact everything is logged either way).
     #[arg(long, requires = "out")]
     pub log_every_step: bool,
+    /// Factor on the CL beam's deflection in the log's 3D view (FE post-processing style,
+    /// labelled in the view and recorded in the log; 1 = true scale; the CJ link is rigid).
+    #[arg(long, requires = "out", value_name = "FACTOR", default_value_t = DEFAULT_DEFORMATION_SCALE)]
+    pub deformation_scale: f64,
     /// Override a scene field, e.g. `--set robot.payload_kg=0.2` or
     /// `--set operator.start.release_angle_deg=45` (repeatable; validated like the file).
     #[arg(long = "set", value_name = "PATH=VALUE")]
@@ -41,14 +45,25 @@ pub struct RunArgs {
     pub json: bool,
 }
 
-/// Loads, validates and runs a scene file, logging to `out` (MCAP) if given. The log is always
-/// finished, with an `error` metadata record if the run failed.
+/// How `flexrig run` logs: where, whether it may overwrite, how often, how the 3D view draws.
+#[derive(Debug, Clone, Copy)]
+pub struct LogRequest<'a> {
+    /// The MCAP file (`--out`); none: no log.
+    pub out: Option<&'a PathBuf>,
+    /// Overwrite the log and its layout (`--force`).
+    pub force: bool,
+    /// What is logged how often.
+    pub rates: LogRates,
+    /// Factor on the CL beam's deflection in the 3D view (`--deformation-scale`).
+    pub deformation_scale: f64,
+}
+
+/// Loads, validates and runs a scene file, logging as `log` asks (MCAP and its Foxglove
+/// layout). The log is always finished, with an `error` metadata record if the run failed.
 pub fn run_scene_file(
     path: &std::path::Path,
     overrides: &[Override],
-    out: Option<&PathBuf>,
-    force: bool,
-    rates: LogRates,
+    log: LogRequest<'_>,
     interrupt: &Interrupt,
 ) -> Result<RunSummary, CliError> {
     let text = crate::output::read_text(path)?;
@@ -56,7 +71,7 @@ pub fn run_scene_file(
     // the log records the scene as run
     let text = overrides::apply(&text, overrides)?;
     let simulation = Simulation::new(&scene, RunOptions::default())?;
-    let Some(out) = out else {
+    let Some(out) = log.out else {
         return Ok(simulation.run(&mut Interruptible(interrupt.0.clone()))?);
     };
     run_logged(
@@ -64,10 +79,11 @@ pub fn run_scene_file(
         &scene,
         &LogTarget {
             path: out,
-            force,
+            force: log.force,
             scene_text: &text,
             interrupt: interrupt.0.clone(),
-            rates,
+            rates: log.rates,
+            deformation_scale: log.deformation_scale,
         },
     )
 }
@@ -96,12 +112,16 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, interrupt: &Interrupt) -> Result
         .iter()
         .map(|s| Override::parse(s))
         .collect::<Result<Vec<_>, _>>()?;
+    let deformation_scale = positive_arg("--deformation-scale", args.deformation_scale)?;
     let s = run_scene_file(
         &args.scene,
         &overrides,
-        args.out.as_ref(),
-        args.force,
-        rates,
+        LogRequest {
+            out: args.out.as_ref(),
+            force: args.force,
+            rates,
+            deformation_scale,
+        },
         interrupt,
     )?;
     if args.json {

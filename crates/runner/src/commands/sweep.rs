@@ -39,7 +39,7 @@ pub struct SweepArgs {
     /// Also write JSON Lines (sweep.jsonl) and print the summary as JSON.
     #[arg(long)]
     pub json: bool,
-    /// Keep an MCAP log per run (DIR/runs/run-<index>.mcap).
+    /// Keep an MCAP log per run (DIR/runs/run-<index>.mcap, its Foxglove layout beside it).
     #[arg(long)]
     pub mcap: bool,
     /// Run only shard I of N (points with index ≡ I mod N), e.g. 0/4; merge the shards with

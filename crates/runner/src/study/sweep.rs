@@ -77,7 +77,8 @@ pub struct Sweep {
 pub struct SweepOptions {
     /// Shard (i, N): run the points with index ≡ i (mod N). `None`: every point.
     pub shard: Option<(usize, usize)>,
-    /// Keep an MCAP log per run in this directory (`run-<index>.mcap`).
+    /// Keep an MCAP log per run in this directory (`run-<index>.mcap`, with its Foxglove layout
+    /// `run-<index>.layout.json`).
     pub mcap_dir: Option<PathBuf>,
     /// Stops the sweep (runs not yet started are left for a resume).
     pub interrupt: std::sync::Arc<AtomicBool>,
@@ -210,6 +211,7 @@ impl Sweep {
             scene_text: &text,
             interrupt: options.interrupt.clone(),
             rates: crate::mcap_log::LogRates::DECIMATED,
+            deformation_scale: crate::mcap_log::DEFAULT_DEFORMATION_SCALE,
         };
         crate::mcap_log::run_logged(simulation, &scene, &target)
     }
