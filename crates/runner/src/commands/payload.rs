@@ -198,6 +198,7 @@ fn log_three(
                     scene_text: &text,
                     interrupt: interrupt.0.clone(),
                     rates: LogRates::DECIMATED,
+                    deformation_scale: crate::mcap_log::DEFAULT_DEFORMATION_SCALE,
                 },
             )?;
             paths.push(path);
