@@ -145,6 +145,9 @@ fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(lumped::impact_exact, m)?)?;
     m.add_function(wrap_pyfunction!(lumped::fig6, m)?)?;
     m.add_class::<sweep::Sweep>()?;
-    m.add("SUMMARY_COLUMNS", flexrig::study::sweep::SUMMARY_COLUMNS.to_vec())?;
+    m.add(
+        "SUMMARY_COLUMNS",
+        flexrig::study::sweep::SUMMARY_COLUMNS.to_vec(),
+    )?;
     Ok(())
 }

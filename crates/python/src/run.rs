@@ -31,9 +31,15 @@ pub fn scene_text(scene: &Bound<'_, PyAny>) -> PyResult<(String, Option<PathBuf>
         let toml::Value::Table(table) = to_toml("", mapping.as_any())? else {
             unreachable!("a mapping converts to a table")
         };
-        return Ok((toml::to_string(&table).map_err(|e| {
-            input_error("scene", format!("scene: cannot write the dict as TOML: {e}"))
-        })?, None));
+        return Ok((
+            toml::to_string(&table).map_err(|e| {
+                input_error(
+                    "scene",
+                    format!("scene: cannot write the dict as TOML: {e}"),
+                )
+            })?,
+            None,
+        ));
     }
     if scene.is_instance_of::<PyString>() {
         let text: String = scene.extract()?;
@@ -97,8 +103,7 @@ pub fn overrides(pairs: &[(String, Bound<'_, PyAny>)]) -> PyResult<Vec<Override>
 pub fn apply_overrides(text: &str, overrides: Vec<(String, Bound<'_, PyAny>)>) -> PyResult<String> {
     let overrides = self::overrides(&overrides)?;
     let materials = flexrig_contact::Materials::bundled().map_err(|e| to_py(e.into()))?;
-    flexrig_rig::scene_with_overrides(text, &overrides, &materials)
-        .map_err(|e| to_py(e.into()))?;
+    flexrig_rig::scene_with_overrides(text, &overrides, &materials).map_err(|e| to_py(e.into()))?;
     flexrig_rig::overrides::apply(text, &overrides).map_err(|e| to_py(e.into()))
 }
 

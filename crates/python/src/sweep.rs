@@ -102,11 +102,15 @@ impl Sweep {
             ));
         }
         if let Some(d) = dimensions.iter().find(|d| d.path.is_empty()) {
-            return Err(input_error("grid", format!("grid: empty path {:?}", d.path)));
+            return Err(input_error(
+                "grid",
+                format!("grid: empty path {:?}", d.path),
+            ));
         }
-        if zip && let Some(d) = dimensions
-            .iter()
-            .find(|d| d.values.len() != dimensions[0].values.len())
+        if zip
+            && let Some(d) = dimensions
+                .iter()
+                .find(|d| d.values.len() != dimensions[0].values.len())
         {
             return Err(input_error(
                 "zip",
@@ -215,7 +219,13 @@ impl Sweep {
             for v in &d.values {
                 values.append(toml_to_py(py, v)?)?;
             }
-            out.append(PyTuple::new(py, [d.path.clone().into_pyobject(py)?.into_any(), values.into_any()])?)?;
+            out.append(PyTuple::new(
+                py,
+                [
+                    d.path.clone().into_pyobject(py)?.into_any(),
+                    values.into_any(),
+                ],
+            )?)?;
         }
         Ok(out)
     }

@@ -10,7 +10,7 @@ import pandas as pd
 import pytest
 
 import flexrig
-from conftest import scene_path
+from conftest import missing, scene_path
 
 #: A quick sweep (from contact to the peak): 3 angles × CJ/CL, and a payload out of range
 #: whose runs fail.
@@ -159,3 +159,14 @@ def test_the_native_sweep_pickles_and_runs_chunks_like_the_whole():
     assert "5 points" in repr(s)
     with pytest.raises(ValueError, match="indices"):
         s.run([5])
+
+
+def test_the_table_round_trips_through_parquet(table, tmp_path):
+    try:
+        import pyarrow  # noqa: F401
+    except ImportError:
+        missing("pyarrow")
+    table.to_parquet(tmp_path / "sweep.parquet")
+    back = pd.read_parquet(tmp_path / "sweep.parquet")
+    pd.testing.assert_frame_equal(back, table, check_dtype=False)
+    assert back["peak_force_n"].dtype == np.float64

@@ -176,7 +176,10 @@ mod tests {
     #[test]
     fn a_set_interrupt_stops_the_run() {
         let e = run_traced(SCENE, &[], Arc::new(AtomicBool::new(true))).unwrap_err();
-        assert!(matches!(e, CliError::Rig(RigError::Interrupted { .. })), "{e}");
+        assert!(
+            matches!(e, CliError::Rig(RigError::Interrupted { .. })),
+            "{e}"
+        );
     }
 
     #[test]
