@@ -4,11 +4,15 @@
 # system interpreter.
 #   1. bash scripts/python-env.sh --package   .venv with maturin, numpy, pandas, pytest, dask
 #                                             (skipped with --no-env: .venv already made)
-#   2. cargo build --release -p flexrig       the CLI the tests compare against
+#   2. cargo test --release --workspace --no-run
+#                                             the README's test build, which holds the CLI the
+#                                             tests compare against (nothing to do after
+#                                             `cargo test --release --workspace`, as in CI)
 #   3. maturin develop --release              the extension, on the same release build as
 #                                             `cargo test --release --workspace` (same
-#                                             CARGO_TARGET_DIR, PYO3_PYTHON and, from
-#                                             .cargo/config.toml, PYO3_BUILD_EXTENSION_MODULE)
+#                                             CARGO_TARGET_DIR, PYO3_PYTHON, the features of
+#                                             crates/python/Cargo.toml's alignment section and,
+#                                             from .cargo/config.toml, PYO3_BUILD_EXTENSION_MODULE)
 #   4. pytest crates/python/tests             with FLEXRIG_REQUIRE_ALL=1: the comparisons with the
 #                                             CLI and the Dask tests fail instead of skipping
 # Usage: bash scripts/python-package.sh [--no-env] [pytest arguments...]
@@ -27,8 +31,8 @@ export PYO3_PYTHON="$VIRTUAL_ENV/bin/python"
 target=${CARGO_TARGET_DIR:-$root/target}
 case "$target" in /*) ;; *) target="$root/$target" ;; esac
 
-echo "== cargo build --release -p flexrig (the CLI)"
-cargo build --release -p flexrig --bin flexrig
+echo "== cargo test --release --workspace --no-run (the CLI)"
+cargo test --release --workspace --no-run
 echo "== maturin develop --release (crates/python into .venv)"
 (cd crates/python && maturin develop --release)
 echo "== pytest crates/python/tests"

@@ -63,6 +63,7 @@ __all__ = [
     "SUMMARY_COLUMNS",
     "SimulationError",
     "Sweep",
+    "TRACE_NAMES",
     "bundled_scenes",
     "fig6",
     "impact",
@@ -123,7 +124,7 @@ def scene_text(scene: Scene, /, overrides: Optional[Mapping[str, Any]] = None, *
     return _flexrig.apply_overrides(text, pairs)
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, eq=False)
 class RunResult:
     """The result of :func:`run`: the summary as attributes, the traces as NumPy arrays.
 
