@@ -69,11 +69,16 @@ def main():
 
     from dask.distributed import Client, LocalCluster
 
+    start = time.perf_counter()
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
         with Client(cluster) as client:
             client.wait_for_workers(2)
+            up_s = time.perf_counter() - start
+            start = time.perf_counter()
             flexrig.sweep(base, {"robot.payload_kg": [0.1, 0.2, 0.3, 0.4]}, client=client)  # warm-up
+            warm_s = time.perf_counter() - start
             dask_s, remote = best(lambda: flexrig.sweep(base, grid, client=client), 3)
+    print(f"dask cluster up in {up_s:.2f} s; first (4-run) sweep, workers importing flexrig: {warm_s:.2f} s")
     pd.testing.assert_frame_equal(local, remote)
     print(f"dask sweep (LocalCluster, 2 worker processes): {runs} runs in {dask_s:.3f} s, "
           f"{dask_s / local_s:.2f}x the local sweep; tables identical")
