@@ -1,15 +1,27 @@
 #!/usr/bin/env bash
 # Makes (or refreshes) the project's Python virtual environment at .venv (never the system
-# interpreter) with what the independent checks use:
+# interpreter) with what the independent checks and the Python package use:
 #   mcap, mcap-protobuf-support  the MCAP check (scripts/check_mcap.py, run by `cargo test`)
 #   numpy, scipy, mpmath         the peer/reference scripts (flexrig bench, scripts/*.py)
-# Usage: bash scripts/python-env.sh [--minimal]   (--minimal: only the MCAP check's packages)
+#   maturin, numpy, pandas, pyarrow, pytest, dask[distributed]
+#                                building and testing the Python package (crates/python;
+#                                scripts/python-package.sh)
+# Usage: bash scripts/python-env.sh [--minimal | --package]
+#   --minimal  only the MCAP check's packages
+#   --package  the MCAP check's and the Python package's (what .ci/run uses)
+#   (none)     everything above
 # The tests find it at .venv/bin/python, or wherever FLEXRIG_PYTHON points.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v python3 >/dev/null || { echo "python3 is not installed: the Python checks will skip"; exit 1; }
 [ -x .venv/bin/python ] || python3 -m venv .venv
 packages=(mcap mcap-protobuf-support)
-[ "${1:-}" = "--minimal" ] || packages+=(numpy scipy mpmath)
+package=("maturin>=1.9,<2" "numpy>=1.22" "pandas>=1.5" "pyarrow" "pytest>=7" "dask[distributed]>=2023.1")
+case "${1:-}" in
+  --minimal) ;;
+  --package) packages+=("${package[@]}") ;;
+  "") packages+=(scipy mpmath "${package[@]}") ;;
+  *) echo "usage: bash scripts/python-env.sh [--minimal | --package]"; exit 2 ;;
+esac
 .venv/bin/python -m pip install -q --disable-pip-version-check "${packages[@]}"
 echo "Python environment ready: $(pwd)/.venv (${packages[*]})"

@@ -26,6 +26,7 @@ pub mod mcap_log;
 pub mod output;
 pub mod plots;
 pub mod study;
+pub mod traces;
 pub mod validation;
 
 pub use error::CliError;

@@ -133,6 +133,47 @@ const MASS: (f64, f64) = (1e-9, 1e9);
 const STIFFNESS: (f64, f64) = (1e-9, 1e20);
 const SPEED: (f64, f64) = (1e-9, 1e3);
 
+/// Refuses a peak that left double precision (the error says which quantity and what to change).
+fn check_finite(peak: &Peak) -> Result<(), CliError> {
+    let advice = "the impact leaves double precision; use moderate --v0, masses and stiffnesses";
+    finite_result("peak force", peak.f_max, advice)?;
+    finite_result("peak displacement", peak.delta_max, advice)?;
+    Ok(())
+}
+
+/// The exact (energy) peak of one parameter set, validated and computed exactly as
+/// `flexrig impact --method exact` does (errors name the flag, e.g. `--m-h`): masses \[kg\],
+/// `k_delta` \[N/m\], `k_c` \[N/m^n\], Hertz exponent `n`, approach speed `v0` \[m/s\]. Returns
+/// the model (reduced mass, impact energy) and the peak.
+pub fn exact(
+    m_h: f64,
+    m_eff: f64,
+    k_delta: f64,
+    k_c: f64,
+    n: f64,
+    v0: f64,
+) -> Result<(ImpactModel, Peak), CliError> {
+    let args = ImpactArgs {
+        m_h,
+        m_eff: Some(m_eff),
+        gamma: None,
+        m_r: None,
+        m_e: None,
+        k_delta,
+        k_c,
+        n,
+        v0,
+        method: Method::Exact,
+        formulation: FormulationArg::Auto,
+        rtol: DEFAULT_RTOL,
+        json: false,
+    };
+    let model = model(&args)?;
+    let peak = peak_exact(&model);
+    check_finite(&peak)?;
+    Ok((model, peak))
+}
+
 /// Runs `flexrig impact`.
 pub fn run(args: &ImpactArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let model = model(args)?;
@@ -173,9 +214,7 @@ pub fn run(args: &ImpactArgs, out: &mut dyn Write) -> Result<(), CliError> {
             sol.peak
         }
     };
-    let advice = "the impact leaves double precision; use moderate --v0, masses and stiffnesses";
-    finite_result("peak force", peak.f_max, advice)?;
-    finite_result("peak displacement", peak.delta_max, advice)?;
+    check_finite(&peak)?;
     report["f_max_n"] = json!(peak.f_max);
     report["delta_max_m"] = json!(peak.delta_max);
     report["indentation_max_m"] = json!(peak.indentation_max);

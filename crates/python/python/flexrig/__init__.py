@@ -1,0 +1,433 @@
+"""flexrig: the drop-pendulum impact test bed (compliant joint vs compliant link) from Python.
+
+A run, its summary as attributes and its traces as NumPy arrays::
+
+    import flexrig
+    r = flexrig.run("cj_aluminium", **{"robot.payload_kg": 0.2})
+    print(r.peak_force_n, r.time_s.shape, r.force_n.max())
+
+A sweep into a pandas DataFrame (one row per run, the same table as ``flexrig sweep``)::
+
+    df = flexrig.sweep("cj_iron", {"operator.start.release_angle_deg": "10:60:11",
+                                   "robot.design": ["cj", "cl"]})
+    df.to_parquet("sweep.parquet")        # needs pyarrow
+
+The same sweep farmed out to a Dask cluster (``dask.distributed.Client``; dask-jobqueue reaches
+Slurm/PBS)::
+
+    df = flexrig.sweep(base, grid, client=client)
+
+The lumped two-mass impact, vectorised over NumPy arrays (exact energy method), and the paper's
+Fig. 6::
+
+    peaks = flexrig.impact(4.0, m_eff, 1e8, 1e8, 2.0, np.linspace(0.5, 3, 1000))
+    fig = flexrig.fig6()
+
+Scenes are given as a path (str or os.PathLike), the name of a bundled scene
+(``flexrig.bundled_scenes()``), TOML text, or a dict of the scene's tables (docs/scenes.md).
+
+Overrides set scene fields by dotted path, exactly like ``flexrig run --set PATH=VALUE``; the
+value is checked like one in the file. Give them as keyword arguments whose name is the path,
+either spelled out with ``**{"robot.payload_kg": 0.2}`` or with ``__`` for each dot
+(``robot__payload_kg=0.2``), or as a mapping ``overrides={"robot.payload_kg": 0.2}``; a keyword
+wins over the same path in the mapping. A value is a bool, int, float, str, dict (a TOML table)
+or list (a TOML array). A dict value replaces the whole table at its path.
+
+Bad input (an unknown override path, a value of the wrong type or out of range, an empty grid)
+raises :class:`InputError`, a ``ValueError`` whose message names the field and whose ``field``
+attribute holds it. A run that cannot finish raises :class:`SimulationError` (a
+``RuntimeError``); inside a sweep it is a row with status ``error`` and its message instead.
+Runs release the GIL; Ctrl-C stops them.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Dict, List, Mapping, NamedTuple, Optional, Tuple, Union
+
+import numpy as np
+
+from . import _flexrig
+from ._flexrig import SUMMARY_COLUMNS, InputError, SimulationError, Sweep, bundled_scenes
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas
+
+__version__: str = _flexrig.__version__
+
+__all__ = [
+    "ImpactPeaks",
+    "InputError",
+    "RunResult",
+    "SUMMARY_COLUMNS",
+    "SimulationError",
+    "Sweep",
+    "TRACE_NAMES",
+    "bundled_scenes",
+    "fig6",
+    "impact",
+    "run",
+    "scene_text",
+    "sweep",
+]
+
+#: A scene: a path, the name of a bundled scene, TOML text, or a dict of the scene's tables.
+Scene = Union[str, "os.PathLike[str]", Mapping[str, Any]]
+
+#: The names of the sample-rate traces (the virtual sensors), in order.
+TRACE_NAMES: Tuple[str, ...] = (
+    "time_s",
+    "force_n",
+    "indentation_m",
+    "operator_accel_mps2",
+    "load_accel_mps2",
+    "operator_angle_rad",
+    "robot_angle_rad",
+    "link_tip_deflection_m",
+)
+
+
+def _input_error(field: str, message: str) -> InputError:
+    error = InputError(message)
+    error.field = field  # type: ignore[attr-defined]
+    return error
+
+
+def _overrides(overrides: Optional[Mapping[str, Any]], keywords: Mapping[str, Any]) -> List[Tuple[str, Any]]:
+    merged: Dict[str, Any] = {}
+    if overrides is not None:
+        if not isinstance(overrides, Mapping):
+            raise _input_error(
+                "overrides",
+                f"overrides: must be a mapping of dotted scene path to value, not {type(overrides).__name__}",
+            )
+        for path, value in overrides.items():
+            if not isinstance(path, str):
+                raise _input_error("overrides", f"overrides: the path {path!r} is not a str")
+            merged[path] = value
+    for name, value in keywords.items():
+        merged[name.replace("__", ".")] = value
+    return list(merged.items())
+
+
+def scene_text(scene: Scene, /, overrides: Optional[Mapping[str, Any]] = None, **kwargs: Any) -> str:
+    """The TOML text of ``scene`` (a path, a bundled scene name, TOML text or a dict).
+
+    With overrides, the text is validated and returned with them applied (as ``flexrig run
+    --set`` would run it); an unknown path or a bad value raises :class:`InputError`.
+    """
+    text, _ = _flexrig.scene_text(scene)
+    pairs = _overrides(overrides, kwargs)
+    if not pairs:
+        return text
+    return _flexrig.apply_overrides(text, pairs)
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class RunResult:
+    """The result of :func:`run`: the summary as attributes, the traces as NumPy arrays.
+
+    The summary attributes are those of ``flexrig run --json`` (``summary`` holds that dict
+    itself); quantities of the first contact; ``None`` where they do not apply (e.g.
+    ``contact_duration_s`` for a run stopped at the peak). Units are in the names.
+
+    The traces have two time bases:
+
+    - ``traces`` (also as attributes ``time_s``, ``force_n``, ``indentation_m``,
+      ``operator_accel_mps2``, ``load_accel_mps2``, ``operator_angle_rad``, ``robot_angle_rad``,
+      ``link_tip_deflection_m``): the virtual sensors at the scene's ``record.sample_rate_hz``
+      (force sensor, accelerometers along the strike direction, encoders; the indentation
+      interpolated between step ends like the force), one float64 array each, all of one
+      length, ``time_s`` strictly increasing from 0;
+    - ``step_traces`` (``time_s``, ``dt_s``, ``force_n``, ``indentation_m``, ``energy_j``): one
+      entry per integration step, contact values at the step end (0 outside contact), total
+      mechanical energy.
+
+    ``pandas.DataFrame(r.traces)`` makes a table of the sensor traces.
+    """
+
+    scene: str
+    design: str
+    peak_force_n: float
+    time_of_peak_s: float
+    impact_velocity_mps: float
+    separation_velocity_mps: Optional[float]
+    onset_time_s: float
+    contact_duration_s: Optional[float]
+    max_indentation_m: float
+    impulse_n_s: float
+    steps: int
+    contact_steps: int
+    contact_step_s: float
+    energy_initial_j: float
+    energy_final_j: float
+    energy_through_contact_j: Optional[Tuple[float, float]]
+    contacts: List[Dict[str, Any]]
+    duration_s: float
+    samples: int
+    summary: Dict[str, Any]
+    traces: Dict[str, np.ndarray]
+    step_traces: Dict[str, np.ndarray]
+
+    @classmethod
+    def _from_native(
+        cls, summary: Dict[str, Any], traces: Dict[str, np.ndarray], step_traces: Dict[str, np.ndarray]
+    ) -> "RunResult":
+        through = summary.get("energy_through_contact_j")
+        for array in list(traces.values()) + list(step_traces.values()):
+            array.setflags(write=False)
+        return cls(
+            scene=summary["scene"],
+            design=summary["design"],
+            peak_force_n=summary["peak_force_n"],
+            time_of_peak_s=summary["time_of_peak_s"],
+            impact_velocity_mps=summary["impact_velocity_mps"],
+            separation_velocity_mps=summary.get("separation_velocity_mps"),
+            onset_time_s=summary["onset_time_s"],
+            contact_duration_s=summary.get("contact_duration_s"),
+            max_indentation_m=summary["max_indentation_m"],
+            impulse_n_s=summary["impulse_n_s"],
+            steps=summary["steps"],
+            contact_steps=summary["contact_steps"],
+            contact_step_s=summary["contact_step_s"],
+            energy_initial_j=summary["energy_initial_j"],
+            energy_final_j=summary["energy_final_j"],
+            energy_through_contact_j=None if through is None else (through[0], through[1]),
+            contacts=summary["contacts"],
+            duration_s=summary["duration_s"],
+            samples=summary["samples"],
+            summary=summary,
+            traces=traces,
+            step_traces=step_traces,
+        )
+
+    @property
+    def time_s(self) -> np.ndarray:
+        """Sample time [s]."""
+        return self.traces["time_s"]
+
+    @property
+    def force_n(self) -> np.ndarray:
+        """Force sensor between load and dome [N], per sample."""
+        return self.traces["force_n"]
+
+    @property
+    def indentation_m(self) -> np.ndarray:
+        """Contact indentation [m], per sample (0 outside contact)."""
+        return self.traces["indentation_m"]
+
+    @property
+    def operator_accel_mps2(self) -> np.ndarray:
+        """Operator block accelerometer along the strike direction [m/s²], per sample."""
+        return self.traces["operator_accel_mps2"]
+
+    @property
+    def load_accel_mps2(self) -> np.ndarray:
+        """Load accelerometer along the strike direction [m/s²], per sample."""
+        return self.traces["load_accel_mps2"]
+
+    @property
+    def operator_angle_rad(self) -> np.ndarray:
+        """Operator encoder: pendulum angle from the vertical [rad], per sample."""
+        return self.traces["operator_angle_rad"]
+
+    @property
+    def robot_angle_rad(self) -> np.ndarray:
+        """Robot encoder: angle of the robot axis [rad] (0 for CL), per sample."""
+        return self.traces["robot_angle_rad"]
+
+    @property
+    def link_tip_deflection_m(self) -> np.ndarray:
+        """Lateral tip deflection of the link [m], per sample."""
+        return self.traces["link_tip_deflection_m"]
+
+    def __repr__(self) -> str:
+        return (
+            f"RunResult(scene={self.scene!r}, design={self.design!r}, "
+            f"peak_force_n={self.peak_force_n:.6g}, impact_velocity_mps={self.impact_velocity_mps:.6g}, "
+            f"samples={self.samples}, steps={self.steps})"
+        )
+
+
+def run(scene: Scene, /, overrides: Optional[Mapping[str, Any]] = None, **kwargs: Any) -> RunResult:
+    """Runs one scene of the test rig and returns its summary and traces.
+
+    ``scene``: a path (str or os.PathLike), the name of a bundled scene
+    (:func:`bundled_scenes`), TOML text, or a dict of the scene's tables.
+
+    Overrides by dotted path (see the module documentation): ``run(s, **{"robot.payload_kg":
+    0.2})``, ``run(s, robot__payload_kg=0.2)`` or ``run(s, overrides={"robot.payload_kg": 0.2})``.
+
+    Raises :class:`InputError` (a ValueError naming the field) for bad input, FileNotFoundError
+    for a missing scene file, :class:`SimulationError` for a run that cannot finish. The GIL is
+    released while the simulation runs.
+    """
+    text, _ = _flexrig.scene_text(scene)
+    summary, traces, step_traces = _flexrig.run(text, _overrides(overrides, kwargs))
+    return RunResult._from_native(summary, traces, step_traces)
+
+
+class ImpactPeaks(NamedTuple):
+    """The peak of the lumped two-mass impact (paper Eq. 10–14), one array (or float) each."""
+
+    #: Peak contact force f_max [N].
+    f_max_n: Any
+    #: Peak displacement δ_max = f/k_δ + δ_c [m].
+    delta_max_m: Any
+    #: Contact indentation at the peak δ_c = (f/k_c)^(1/n) [m].
+    indentation_max_m: Any
+    #: Link deflection at the peak f/k_δ [m].
+    link_deflection_max_m: Any
+    #: Reduced mass μ = m_h m_eff / (m_h + m_eff) [kg].
+    mu_kg: Any
+    #: Impact energy ½ μ v0² [J].
+    impact_energy_j: Any
+
+
+_IMPACT_ARGS = ("m_h", "m_eff", "k_delta", "k_c", "n", "v0")
+
+
+def impact(m_h: Any, m_eff: Any, k_delta: Any, k_c: Any, n: Any, v0: Any) -> ImpactPeaks:
+    """The exact peak of the lumped two-mass impact for every parameter set.
+
+    The exact (energy) method of ``flexrig impact``: ½ μ v0² = f²/(2 k_δ) + f δ_c/(n + 1) with
+    δ_c = (f/k_c)^(1/n), for any Hertz exponent n; the same numbers as ``flexrig impact
+    --method exact --json``.
+
+    Arguments (floats or NumPy arrays, broadcast together): human mass ``m_h`` [kg], effective
+    robot mass ``m_eff`` [kg], link stiffness ``k_delta`` [N/m], contact stiffness ``k_c``
+    [N/m^n], Hertz exponent ``n``, approach speed ``v0`` [m/s]. Returns :class:`ImpactPeaks`
+    with arrays of the broadcast shape (floats when every argument is a scalar). Parallel over
+    the sets with the GIL released; the first set out of range raises :class:`InputError` naming
+    the argument and its flat index, e.g. ``m_h[3]``.
+    """
+    values = (m_h, m_eff, k_delta, k_c, n, v0)
+    arrays = []
+    for name, value in zip(_IMPACT_ARGS, values):
+        try:
+            arrays.append(np.asarray(value, dtype=np.float64))
+        except (TypeError, ValueError) as e:
+            raise _input_error(name, f"{name}: not a number or an array of numbers ({e})") from None
+    try:
+        arrays = np.broadcast_arrays(*arrays)
+    except ValueError:
+        shapes = ", ".join(f"{name} {a.shape}" for name, a in zip(_IMPACT_ARGS, arrays))
+        raise _input_error("m_h", f"the arguments do not broadcast to one shape: {shapes}") from None
+    shape = arrays[0].shape
+    flat = [np.ascontiguousarray(a).reshape(-1) for a in arrays]
+    out = _flexrig.impact_exact(*flat)
+    if shape == ():
+        return ImpactPeaks(*(float(o[0]) for o in out))
+    return ImpactPeaks(*(o.reshape(shape) for o in out))
+
+
+def fig6(points: int = 101) -> "pandas.DataFrame":
+    """The paper's Fig. 6 (§V, Eq. 15): η(γ) = f_max(γ)/f_max(γ = 1) for the eight design cases.
+
+    One row per (case, n, γ): columns ``m_h_kg``, ``k_delta_n_per_m``, ``m_e_kg``, ``n`` (1 and
+    2), ``gamma`` (``points`` samples over [0.5, 1]), ``eta`` and ``eta_at_2_3`` (η at γ = 2/3,
+    the uniform compliant link, the same on every row of a curve) — the columns of ``flexrig
+    fig6``'s fig6.csv plus the last. m_r = 10 kg, k_c = 1e8, v0 = 2 m/s (paper §V).
+    """
+    import pandas as pd
+
+    frames = []
+    for c in _flexrig.fig6(points):
+        size = len(c["gamma"])
+        frames.append(
+            pd.DataFrame(
+                {
+                    "m_h_kg": np.full(size, c["m_h"]),
+                    "k_delta_n_per_m": np.full(size, c["k_delta"]),
+                    "m_e_kg": np.full(size, c["m_e"]),
+                    "n": np.full(size, c["n"]),
+                    "gamma": c["gamma"],
+                    "eta": c["eta"],
+                    "eta_at_2_3": np.full(size, c["eta_at_2_3"]),
+                }
+            )
+        )
+    return pd.concat(frames, ignore_index=True)
+
+
+def sweep(
+    base: Scene,
+    grid: Mapping[str, Any],
+    *,
+    zip: bool = False,
+    client: Any = None,
+    threads: Optional[int] = None,
+    chunk_size: Optional[int] = None,
+) -> "pandas.DataFrame":
+    """Runs ``base`` over a grid of scene fields, in parallel, into a pandas DataFrame.
+
+    ``grid`` maps a dotted scene path to its values: a list, tuple, range or NumPy array (its
+    items), a str in the CLI's SPEC syntax (``"0.1,0.2,0.5"``, ``"cj,cl"``, ``"10:60:11"`` with
+    both ends, ``"1e-3:1:25:log"``, ``"@values.txt"``), or a single value. The points are the
+    full grid (the first path varies slowest) or, with ``zip=True``, the lists side by side.
+
+    The table is the one ``flexrig sweep`` writes to sweep.csv, one row per point in point
+    order: ``index``, one column per path (tables and arrays as TOML text), ``status`` (``ok``
+    or ``error``), ``error`` (the message of a failed run, else empty) and every summary
+    quantity of :data:`SUMMARY_COLUMNS` (float64, NaN where absent, e.g. for a failed run).
+    ``df.to_parquet(path)`` writes it (with pyarrow installed).
+
+    ``client``: a ``dask.distributed.Client``; the points are then run on its workers in chunks
+    of ``chunk_size`` (default: about four chunks per worker thread), each chunk in one thread,
+    with results identical to the local sweep. Without it the sweep runs here on ``threads``
+    threads (default: every core), GIL released.
+
+    Raises :class:`InputError` naming the path for an unknown path or a value of the wrong type
+    (before anything runs), naming ``grid`` for an empty grid; a run that fails (e.g. a value out
+    of its range, an unstable run) is a row with its error.
+    """
+    if not isinstance(grid, Mapping):
+        raise _input_error("grid", f"grid: must be a mapping of dotted scene path to values, not {type(grid).__name__}")
+    if len(grid) == 0:
+        raise _input_error(
+            "grid",
+            'grid: the grid is empty; give at least one scene path and its values, e.g. {"robot.payload_kg": [0.1, 0.2]}',
+        )
+    text, base_dir = _flexrig.scene_text(base)
+    native = Sweep(text, [(str(path), values) for path, values in grid.items()], zip, base_dir)
+    if client is None:
+        parts = [native.run(None, threads)]
+    else:
+        parts = _run_on_dask(native, client, chunk_size)
+    return _frame(native.paths, parts)
+
+
+def _run_chunk(indices: List[int], sweep: Sweep) -> Dict[str, Any]:
+    """A Dask task: the points ``indices`` of ``sweep``, in the worker's thread."""
+    return sweep.run(indices, 1)
+
+
+def _run_on_dask(native: Sweep, client: Any, chunk_size: Optional[int]) -> List[Dict[str, Any]]:
+    points = len(native)
+    threads = max(1, sum(client.nthreads().values()))
+    size = chunk_size if chunk_size else max(1, -(-points // (4 * threads)))
+    if size < 1:
+        raise _input_error("chunk_size", f"chunk_size = {chunk_size}: must be at least 1")
+    chunks = [list(range(i, min(i + size, points))) for i in range(0, points, size)]
+    [remote] = client.scatter([native], broadcast=True)
+    futures = client.map(_run_chunk, chunks, sweep=remote, pure=False)
+    return client.gather(futures)
+
+
+def _frame(paths: List[str], parts: List[Dict[str, Any]]) -> "pandas.DataFrame":
+    import pandas as pd
+
+    index = np.concatenate([p["index"] for p in parts]) if parts else np.zeros(0, dtype=np.int64)
+    order = np.argsort(index, kind="stable")
+    columns: Dict[str, Any] = {"index": index[order]}
+    for k, path in enumerate(paths):
+        values = [v for p in parts for v in p["values"][k]]
+        columns[path] = [values[i] for i in order]
+    for name in ("status", "error"):
+        values = [v for p in parts for v in p[name]]
+        columns[name] = [values[i] for i in order]
+    summary = np.concatenate([p["summary"] for p in parts])[order]
+    for j, name in enumerate(SUMMARY_COLUMNS):
+        columns[name] = summary[:, j]
+    return pd.DataFrame(columns)

@@ -1,0 +1,153 @@
+//! `flexrig._flexrig`: the native half of the `flexrig` Python package, over the runner library
+//! (`flexrig` crate). The Python half (`python/flexrig/__init__.py`) turns these results into
+//! NumPy arrays, pandas DataFrames and Dask tasks; the public API and its documentation live
+//! there and in `_flexrig.pyi`.
+//!
+//! Every long computation runs with the GIL released; Ctrl-C stops it (see [`detached`]).
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+use flexrig::CliError;
+use flexrig_rig::RigError;
+use pyo3::create_exception;
+use pyo3::exceptions::{PyFileNotFoundError, PyKeyboardInterrupt, PyOSError, PyRuntimeError};
+use pyo3::prelude::*;
+
+mod convert;
+mod lumped;
+mod run;
+mod sweep;
+
+create_exception!(
+    flexrig,
+    InputError,
+    pyo3::exceptions::PyValueError,
+    "Bad input (a scene field, an override, an argument): a ValueError whose message names the \
+     field, the value and what is allowed; the attribute `field` holds the field's name \
+     (e.g. `robot.payload_kg`, `m_h[3]`, `grid`)."
+);
+create_exception!(
+    flexrig,
+    SimulationError,
+    PyRuntimeError,
+    "A run that could not finish (unstable, or its stop condition not reached): the message \
+     says why and what to change."
+);
+
+/// A ValueError (`InputError`) naming `field`.
+pub(crate) fn input_error(field: &str, message: String) -> PyErr {
+    let err = InputError::new_err(message);
+    Python::attach(|py| {
+        // the attribute is a convenience: the message names the field either way
+        let _ = err.value(py).setattr("field", field);
+    });
+    err
+}
+
+/// The name of the field a runner error is about, if it is bad input.
+pub(crate) fn field_of(e: &CliError) -> Option<String> {
+    use flexrig_contact::ContactError;
+    let contact = |c: &ContactError| match c {
+        ContactError::InvalidParameter { field, .. } => Some(field.clone()),
+        _ => None,
+    };
+    match e {
+        CliError::InvalidArgument { arg, .. } => Some(arg.clone()),
+        CliError::Rig(RigError::InvalidScene { field, .. }) => Some(field.clone()),
+        CliError::Rig(RigError::SceneSyntax(_)) => Some("scene".into()),
+        CliError::Rig(RigError::Contact(c)) | CliError::Contact(c) => contact(c),
+        CliError::Lumped(flexrig_lumped::LumpedError::Parameter(c)) => contact(c),
+        _ => None,
+    }
+}
+
+/// A runner error as the Python exception a caller expects: bad input → `InputError`
+/// (a ValueError naming the field), a missing file → `FileNotFoundError`, other I/O → `OSError`,
+/// an interrupted run → `KeyboardInterrupt`, a run that failed → `SimulationError`.
+pub(crate) fn to_py(e: CliError) -> PyErr {
+    if let CliError::Read { path, source } = &e {
+        let message = format!("cannot read {}: {source}", path.display());
+        return if source.kind() == std::io::ErrorKind::NotFound {
+            PyFileNotFoundError::new_err(message)
+        } else {
+            PyOSError::new_err(message)
+        };
+    }
+    if matches!(e, CliError::Write { .. }) {
+        return PyOSError::new_err(e.to_string());
+    }
+    if matches!(e, CliError::Rig(RigError::Interrupted { .. })) {
+        return PyKeyboardInterrupt::new_err(e.to_string());
+    }
+    if e.exit_code() == 2 {
+        let field = field_of(&e).unwrap_or_default();
+        return input_error(&field, e.to_string());
+    }
+    SimulationError::new_err(e.to_string())
+}
+
+/// Runs `work` with the GIL released, watching for Ctrl-C: the calling (main) thread checks
+/// Python's signals every 50 ms while a scoped thread works; on a signal it sets `interrupt`
+/// (which the work polls and stops on) and returns the signal's exception once the work ended.
+pub(crate) fn detached<T: Send>(
+    py: Python<'_>,
+    interrupt: &Arc<AtomicBool>,
+    work: impl FnOnce() -> T + Send,
+) -> PyResult<T> {
+    let (result, signal) = py.detach(|| {
+        std::thread::scope(|scope| {
+            let (done_tx, done_rx) = std::sync::mpsc::channel::<()>();
+            let handle = scope.spawn(move || {
+                let result = work();
+                let _ = done_tx.send(());
+                result
+            });
+            let mut signal = None;
+            loop {
+                match done_rx.recv_timeout(Duration::from_millis(50)) {
+                    Ok(()) | Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => break,
+                    Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
+                        if signal.is_none()
+                            && let Err(e) = Python::attach(|py| py.check_signals())
+                        {
+                            interrupt.store(true, Ordering::Relaxed);
+                            signal = Some(e);
+                        }
+                    }
+                }
+            }
+            let result = match handle.join() {
+                Ok(r) => r,
+                Err(panic) => std::panic::resume_unwind(panic),
+            };
+            (result, signal)
+        })
+    });
+    match signal {
+        Some(e) => Err(e),
+        None => Ok(result),
+    }
+}
+
+/// The native module.
+#[pymodule]
+fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("InputError", py.get_type::<InputError>())?;
+    m.add("SimulationError", py.get_type::<SimulationError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_function(wrap_pyfunction!(run::scene_text, m)?)?;
+    m.add_function(wrap_pyfunction!(run::bundled_scenes, m)?)?;
+    m.add_function(wrap_pyfunction!(run::apply_overrides, m)?)?;
+    m.add_function(wrap_pyfunction!(run::run, m)?)?;
+    m.add_function(wrap_pyfunction!(lumped::impact_exact, m)?)?;
+    m.add_function(wrap_pyfunction!(lumped::fig6, m)?)?;
+    m.add_class::<sweep::Sweep>()?;
+    m.add(
+        "SUMMARY_COLUMNS",
+        flexrig::study::sweep::SUMMARY_COLUMNS.to_vec(),
+    )?;
+    Ok(())
+}

@@ -1,0 +1,149 @@
+//! The lumped two-mass impact, vectorised (exact method), and the paper's Fig. 6.
+
+use flexrig::CliError;
+use flexrig::commands::impact::exact;
+use numpy::{PyArray1, PyReadonlyArray1};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rayon::prelude::*;
+
+use crate::{field_of, input_error, to_py};
+
+/// Parameter sets per parallel chunk.
+const CHUNK: usize = 4096;
+
+/// The six outputs of one parameter set.
+type Outputs = [f64; 6];
+
+/// The exact (energy) peak of the lumped impact for every parameter set: six float64 arrays of
+/// one length (the Python wrapper broadcasts), validated and computed as `flexrig impact
+/// --method exact` does. Returns (f_max_n, delta_max_m, indentation_max_m,
+/// link_deflection_max_m, mu_kg, impact_energy_j). The first bad set raises InputError naming
+/// the argument and its index, e.g. `m_h[3]`. GIL released; parallel over the sets.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+#[allow(clippy::type_complexity)]
+pub fn impact_exact<'py>(
+    py: Python<'py>,
+    m_h: PyReadonlyArray1<'py, f64>,
+    m_eff: PyReadonlyArray1<'py, f64>,
+    k_delta: PyReadonlyArray1<'py, f64>,
+    k_c: PyReadonlyArray1<'py, f64>,
+    n: PyReadonlyArray1<'py, f64>,
+    v0: PyReadonlyArray1<'py, f64>,
+) -> PyResult<(
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+)> {
+    let inputs = [
+        m_h.as_slice()?,
+        m_eff.as_slice()?,
+        k_delta.as_slice()?,
+        k_c.as_slice()?,
+        n.as_slice()?,
+        v0.as_slice()?,
+    ];
+    let len = inputs[0].len();
+    if let Some(k) = inputs.iter().position(|a| a.len() != len) {
+        return Err(input_error(
+            NAMES[k],
+            format!(
+                "{}: {} values where m_h has {len} (broadcast the arrays first)",
+                NAMES[k],
+                inputs[k].len()
+            ),
+        ));
+    }
+    let mut out: Vec<Outputs> = vec![[0.0; 6]; len];
+    let failure: Option<(usize, CliError)> = py.detach(|| {
+        out.par_chunks_mut(CHUNK)
+            .enumerate()
+            .filter_map(|(c, chunk)| {
+                for (j, slot) in chunk.iter_mut().enumerate() {
+                    let i = c * CHUNK + j;
+                    let x = |k: usize| inputs[k][i];
+                    match exact(x(0), x(1), x(2), x(3), x(4), x(5)) {
+                        Ok((model, peak)) => {
+                            *slot = [
+                                peak.f_max,
+                                peak.delta_max,
+                                peak.indentation_max,
+                                peak.link_deflection_max,
+                                model.reduced_mass(),
+                                model.impact_energy(),
+                            ]
+                        }
+                        Err(e) => return Some((i, e)),
+                    }
+                }
+                None
+            })
+            .min_by_key(|(i, _)| *i)
+    });
+    if let Some((i, e)) = failure {
+        return Err(indexed(e, i));
+    }
+    let column = |k: usize| PyArray1::from_iter(py, out.iter().map(|o| o[k]));
+    Ok((
+        column(0),
+        column(1),
+        column(2),
+        column(3),
+        column(4),
+        column(5),
+    ))
+}
+
+/// The argument names, in order.
+const NAMES: [&str; 6] = ["m_h", "m_eff", "k_delta", "k_c", "n", "v0"];
+
+/// The error of set `i`, naming the argument and index (`m_h[3]`) instead of the CLI flag.
+fn indexed(e: CliError, i: usize) -> PyErr {
+    if let Some(flag) = field_of(&e)
+        && let Some(name) = NAMES
+            .iter()
+            .find(|name| flag == format!("--{}", name.replace('_', "-")))
+    {
+        let field = format!("{name}[{i}]");
+        return input_error(&field, e.to_string().replacen(&flag, &field, 1));
+    }
+    if e.exit_code() == 2 {
+        return input_error(&format!("[{i}]"), format!("parameter set {i}: {e}"));
+    }
+    to_py(e)
+}
+
+/// The paper's Fig. 6 (§V, Eq. 15): η(γ) = f_max(γ)/f_max(1) for the eight design cases and
+/// n = 1, 2, with `points` samples of γ over [0.5, 1]. A list of dicts: m_h, k_delta, m_e, n,
+/// eta_at_2_3 and the arrays gamma and eta.
+#[pyfunction]
+#[pyo3(signature = (points=flexrig::commands::fig6::DEFAULT_POINTS))]
+pub fn fig6(py: Python<'_>, points: usize) -> PyResult<Vec<Bound<'_, PyDict>>> {
+    if points < 2 {
+        return Err(input_error(
+            "points",
+            format!("points = {points}: must be at least 2"),
+        ));
+    }
+    let curves = py
+        .detach(|| flexrig_lumped::fig6::fig6(points))
+        .map_err(|e| to_py(e.into()))?;
+    curves
+        .into_iter()
+        .map(|c| {
+            let d = PyDict::new(py);
+            d.set_item("m_h", c.case.m_h)?;
+            d.set_item("k_delta", c.case.k_delta)?;
+            d.set_item("m_e", c.case.m_e)?;
+            d.set_item("n", c.n)?;
+            d.set_item("eta_at_2_3", c.eta_at_2_3)?;
+            d.set_item("gamma", PyArray1::from_vec(py, c.gamma))?;
+            d.set_item("eta", PyArray1::from_vec(py, c.eta))?;
+            Ok(d)
+        })
+        .collect()
+}

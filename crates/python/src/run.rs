@@ -1,0 +1,154 @@
+//! One run: the scene as TOML text (from a path, a bundled name, TOML text or a dict), the run
+//! with overrides and its traces.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+
+use flexrig::commands::experiment::BUNDLED_SCENES;
+use flexrig::commands::run::summary_json;
+use flexrig::traces::run_traced;
+use flexrig_rig::Override;
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyMapping, PyString};
+
+use crate::convert::{json_to_py, to_toml};
+use crate::{detached, input_error, to_py};
+
+/// The names of the bundled scenes (`flexrig.run("cj_aluminium")`).
+#[pyfunction]
+pub fn bundled_scenes() -> Vec<&'static str> {
+    BUNDLED_SCENES.iter().map(|(name, _)| *name).collect()
+}
+
+/// The TOML text of `scene`: a path (str or os.PathLike) to a scene file, the name of a bundled
+/// scene, TOML text, or a dict of the scene's tables. Returns (text, directory of the file or
+/// None).
+#[pyfunction]
+pub fn scene_text(scene: &Bound<'_, PyAny>) -> PyResult<(String, Option<PathBuf>)> {
+    if let Ok(mapping) = scene.cast::<PyMapping>() {
+        let toml::Value::Table(table) = to_toml("", mapping.as_any())? else {
+            unreachable!("a mapping converts to a table")
+        };
+        return Ok((
+            toml::to_string(&table).map_err(|e| {
+                input_error(
+                    "scene",
+                    format!("scene: cannot write the dict as TOML: {e}"),
+                )
+            })?,
+            None,
+        ));
+    }
+    if scene.is_instance_of::<PyString>() {
+        let text: String = scene.extract()?;
+        if let Some((_, bundled)) = BUNDLED_SCENES.iter().find(|(name, _)| *name == text) {
+            return Ok((bundled.to_string(), None));
+        }
+        // TOML text has a key = value line; a path has none
+        if text.contains('=') || text.contains('\n') {
+            return Ok((text, None));
+        }
+        return read(PathBuf::from(text));
+    }
+    // os.PathLike
+    if let Ok(path) = scene.extract::<PathBuf>() {
+        return read(path);
+    }
+    Err(input_error(
+        "scene",
+        format!(
+            "scene: {} is not a scene: give a path, the name of a bundled scene ({}), TOML text \
+             or a dict",
+            scene.get_type().name()?,
+            bundled_scenes().join(", ")
+        ),
+    ))
+}
+
+fn read(path: PathBuf) -> PyResult<(String, Option<PathBuf>)> {
+    let text = flexrig::output::read_text(&path).map_err(to_py)?;
+    let dir = path
+        .canonicalize()
+        .ok()
+        .and_then(|p| p.parent().map(PathBuf::from));
+    Ok((text, dir))
+}
+
+/// The overrides of a list of (dotted path, value) pairs; a malformed path or a value that is
+/// not a scene value raises InputError naming it.
+pub fn overrides(pairs: &[(String, Bound<'_, PyAny>)]) -> PyResult<Vec<Override>> {
+    pairs
+        .iter()
+        .map(|(path, value)| {
+            // the path is checked like a CLI override
+            let checked = Override::parse(&format!("{path}=0")).map_err(|_| {
+                input_error(
+                    path,
+                    format!(
+                        "override {path:?}: the path must be dotted field names, e.g. \
+                         robot.payload_kg or operator.start.release_angle_deg"
+                    ),
+                )
+            })?;
+            Ok(Override::new(&checked.path, to_toml(&checked.path, value)?))
+        })
+        .collect()
+}
+
+/// The scene `text` with `overrides` applied, validated like the file (an error names the
+/// field): the scene as a run with these overrides would run it.
+#[pyfunction]
+pub fn apply_overrides(text: &str, overrides: Vec<(String, Bound<'_, PyAny>)>) -> PyResult<String> {
+    let overrides = self::overrides(&overrides)?;
+    let materials = flexrig_contact::Materials::bundled().map_err(|e| to_py(e.into()))?;
+    flexrig_rig::scene_with_overrides(text, &overrides, &materials).map_err(|e| to_py(e.into()))?;
+    flexrig_rig::overrides::apply(text, &overrides).map_err(|e| to_py(e.into()))
+}
+
+fn array<'py>(py: Python<'py>, v: Vec<f64>) -> Bound<'py, PyAny> {
+    PyArray1::from_vec(py, v).into_any()
+}
+
+/// Runs the scene `text` with `overrides` (GIL released; Ctrl-C stops it). Returns
+/// (summary, sample traces, step traces): the summary as `flexrig run --json` prints it, the
+/// traces as dicts of NumPy arrays.
+#[pyfunction]
+pub fn run<'py>(
+    py: Python<'py>,
+    text: &str,
+    overrides: Vec<(String, Bound<'py, PyAny>)>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>, Bound<'py, PyDict>)> {
+    let overrides = self::overrides(&overrides)?;
+    let interrupt = Arc::new(AtomicBool::new(false));
+    let flag = interrupt.clone();
+    let (summary, traces) =
+        detached(py, &interrupt, move || run_traced(text, &overrides, flag))?.map_err(to_py)?;
+    let s = traces.samples;
+    let samples = PyDict::new(py);
+    for (name, column) in [
+        ("time_s", s.time_s),
+        ("force_n", s.force_n),
+        ("indentation_m", s.indentation_m),
+        ("operator_accel_mps2", s.operator_accel_mps2),
+        ("load_accel_mps2", s.load_accel_mps2),
+        ("operator_angle_rad", s.operator_angle_rad),
+        ("robot_angle_rad", s.robot_angle_rad),
+        ("link_tip_deflection_m", s.link_tip_deflection_m),
+    ] {
+        samples.set_item(name, array(py, column))?;
+    }
+    let st = traces.steps;
+    let steps = PyDict::new(py);
+    for (name, column) in [
+        ("time_s", st.time_s),
+        ("dt_s", st.dt_s),
+        ("force_n", st.force_n),
+        ("indentation_m", st.indentation_m),
+        ("energy_j", st.energy_j),
+    ] {
+        steps.set_item(name, array(py, column))?;
+    }
+    Ok((json_to_py(py, &summary_json(&summary))?, samples, steps))
+}

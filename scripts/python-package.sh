@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Builds the Python package `flexrig` (crates/python: PyO3 + maturin, abi3) into the project's
+# virtual environment .venv and runs its pytest suite (crates/python/tests). Never touches the
+# system interpreter.
+#   1. bash scripts/python-env.sh --package   .venv with maturin, numpy, pandas, pytest, dask
+#                                             (skipped with --no-env: .venv already made)
+#   2. cargo test --release --workspace --no-run
+#                                             the README's test build, which holds the CLI the
+#                                             tests compare against (nothing to do after
+#                                             `cargo test --release --workspace`, as in CI)
+#   3. maturin develop --release              the extension, on the same release build as
+#                                             `cargo test --release --workspace` (same
+#                                             CARGO_TARGET_DIR, PYO3_PYTHON, the features of
+#                                             crates/python/Cargo.toml's alignment section and,
+#                                             from .cargo/config.toml, PYO3_BUILD_EXTENSION_MODULE)
+#   4. pytest crates/python/tests             with FLEXRIG_REQUIRE_ALL=1: the comparisons with the
+#                                             CLI and the Dask tests fail instead of skipping
+# Usage: bash scripts/python-package.sh [--no-env] [pytest arguments...]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+if [ "${1:-}" = "--no-env" ]; then
+  shift
+else
+  bash scripts/python-env.sh --package
+fi
+[ -x .venv/bin/maturin ] || { echo "no maturin in .venv: run bash scripts/python-env.sh --package"; exit 1; }
+export VIRTUAL_ENV="$root/.venv"
+export PATH="$VIRTUAL_ENV/bin:$PATH"
+export PYO3_PYTHON="$VIRTUAL_ENV/bin/python"
+target=${CARGO_TARGET_DIR:-$root/target}
+case "$target" in /*) ;; *) target="$root/$target" ;; esac
+
+echo "== cargo test --release --workspace --no-run (the CLI)"
+cargo test --release --workspace --no-run
+echo "== maturin develop --release (crates/python into .venv)"
+(cd crates/python && maturin develop --release)
+echo "== pytest crates/python/tests"
+cd crates/python
+FLEXRIG_BIN="$target/release/flexrig" FLEXRIG_REQUIRE_ALL=1 \
+  python -m pytest -p no:cacheprovider -q -rfEs tests "$@"
