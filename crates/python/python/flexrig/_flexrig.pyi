@@ -3,6 +3,7 @@ its functions wrap these with the documented conveniences (scene forms, keyword 
 broadcasting, DataFrames, Dask)."""
 
 import os
+from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -25,7 +26,7 @@ class SimulationError(RuntimeError):
 def bundled_scenes() -> List[str]:
     """The names of the bundled scenes."""
 
-def scene_text(scene: Union[str, "os.PathLike[str]", Dict[str, Any]]) -> Tuple[str, Optional[str]]:
+def scene_text(scene: Union[str, "os.PathLike[str]", Dict[str, Any]]) -> Tuple[str, Optional[Path]]:
     """(TOML text, directory of the scene file or None) of a path, bundled name, TOML text or dict."""
 
 def apply_overrides(text: str, overrides: Sequence[Tuple[str, Any]]) -> str:
