@@ -841,3 +841,42 @@ fn the_payload_curve_runs_the_bundled_light_load_pair() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `flexrig experiment --set` (issue 15): the override reaches every scene; the light-load run
+/// (no jitter) equals `flexrig run --set` of the same scene; an unknown field exits 2, naming it.
+#[test]
+fn experiment_overrides_reach_every_scene() {
+    let dir = scratch_dir("experiment-set");
+    let out = dir.to_str().unwrap();
+    let v = json(&[
+        "experiment",
+        "--repeats",
+        "2",
+        "--set",
+        "robot.payload_kg=0.2",
+        "--out",
+        out,
+        "--json",
+    ]);
+    let scene = format!(
+        "{}/../../assets/scenes/cj_light_load.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let alone = json(&["run", &scene, "--set", "robot.payload_kg=0.2", "--json"]);
+    let light = v["groups"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|g| g["scene"] == "cj_light_load")
+        .unwrap();
+    let (a, b) = (
+        light["mean_peak_force_n"].as_f64().unwrap(),
+        alone["peak_force_n"].as_f64().unwrap(),
+    );
+    assert!(rel(a, b) < 1e-12, "{a} vs {b}");
+    let o = flexrig(&["experiment", "--set", "robot.nope=1", "--out", out]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("nope"), "{stderr}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

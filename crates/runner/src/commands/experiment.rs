@@ -47,6 +47,11 @@ pub struct ExperimentArgs {
     /// Directory with the scene files to use instead of the bundled ones (same names).
     #[arg(long, value_name = "DIR")]
     pub scenes: Option<PathBuf>,
+    /// Override a scene field in every scene of the experiment, as in `flexrig run --set`
+    /// (dotted path, e.g. robot.payload_kg=0.2; repeatable). The jitter is added to the
+    /// release angle that results.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub set: Vec<String>,
     /// Print JSON instead of the table.
     #[arg(long)]
     pub json: bool,
@@ -418,10 +423,16 @@ fn plan(args: &ExperimentArgs, materials: &Materials) -> Result<Vec<Job>, CliErr
         allowed: "a finite standard deviation >= 0".into(),
     })?;
     let offsets: Vec<f64> = (0..args.repeats).map(|_| jitter.sample(&mut rng)).collect();
+    let overrides = args
+        .set
+        .iter()
+        .map(|s| flexrig_rig::overrides::Override::parse(s))
+        .collect::<Result<Vec<_>, _>>()?;
     let mut jobs = Vec::new();
     for (names, repeats) in [(&FIG9A_SCENES[..], args.repeats), (&FIG9B_SCENES[..], 1)] {
         for name in names {
             let (text, origin) = scene_text(name, args.scenes.as_ref())?;
+            let text = flexrig_rig::overrides::apply(&text, &overrides)?;
             let scene = Scene::from_toml_str(&text, materials)?;
             let base = match scene.file.operator.start {
                 Start::Release { release_angle_deg } => release_angle_deg,

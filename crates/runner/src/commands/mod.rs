@@ -31,6 +31,7 @@ pub fn default_job(
         seed: 1,
         out: out_dir.to_path_buf(),
         scenes: None,
+        set: Vec::new(),
         json: false,
     };
     experiment::run(&args, out, interrupt)
