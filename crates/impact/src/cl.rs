@@ -112,8 +112,8 @@ pub fn first_mode_at_tip(
 enum Beam {
     Full {
         model: BeamModel,
-        state: State,
-        workspace: Workspace,
+        state: Box<State>,
+        workspace: Box<Workspace>,
         loads: NodalLoads,
     },
     Reduced {
@@ -144,8 +144,14 @@ impl Beam {
             for x in &mut v0[..model.n_fixed()] {
                 *x = 0.0;
             }
-            let state = State::new(&model, vec![0.0; model.n_dofs()], v0, 0.0, &loads)?;
-            let workspace = Workspace::new(&model);
+            let state = Box::new(State::new(
+                &model,
+                vec![0.0; model.n_dofs()],
+                v0,
+                0.0,
+                &loads,
+            )?);
+            let workspace = Box::new(Workspace::new(&model));
             return Ok((
                 Beam::Full {
                     model,
