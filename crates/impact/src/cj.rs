@@ -179,17 +179,17 @@ pub fn run_tip_oscillator(
                 1e-15 * t1.max(t_scale),
             );
             let y_sep = dense.eval(t_sep);
-            return Ok(ImpactOutcome {
-                first: ContactEvent {
+            return Ok(ImpactOutcome::first_only(
+                ContactEvent {
                     onset_s: 0.0,
                     peak_force_n: peak.0,
                     time_of_peak_s: peak.1,
                     duration_s: t_sep,
                 },
-                separation_rate_mps: rate(&y_sep),
-                energy_j: (system.energy(&y0), system.energy(&y_sep)),
-                work: ode.stats().rhs_evals,
-            });
+                rate(&y_sep),
+                (system.energy(&y0), system.energy(&y_sep)),
+                ode.stats().rhs_evals,
+            ));
         }
     }
 }

@@ -308,17 +308,17 @@ pub fn run_cl(setup: &FreeMassImpact, solver: &ClSolver) -> Result<ImpactOutcome
         if delta <= 0.0 {
             // the gap crossed 0 within this step: linear interpolation of the separation
             let t_sep = t - h * delta / (delta - gap_prev);
-            return Ok(ImpactOutcome {
-                first: ContactEvent {
+            return Ok(ImpactOutcome::first_only(
+                ContactEvent {
                     onset_s: 0.0,
                     peak_force_n: peak.0,
                     time_of_peak_s: peak.1,
                     duration_s: t_sep,
                 },
-                separation_rate_mps: head.v - w_dot,
-                energy_j: (e0, energy(&beam, &head, 0.0)),
-                work: step,
-            });
+                head.v - w_dot,
+                (e0, energy(&beam, &head, 0.0)),
+                step,
+            ));
         }
         gap_prev = delta;
     }

@@ -16,11 +16,16 @@
 //! [`eta`] turns the paper's Fig. 6 design cases into η_FE = f_max(CL)/f_max(CJ) and the
 //! effective γ of the lumped model.
 
+pub mod chain;
 pub mod cj;
 pub mod cl;
+pub mod cl_modal;
 mod error;
 pub mod eta;
+pub mod graded;
+pub mod modal_run;
 pub mod setup;
+pub mod tip_modes;
 
 pub use error::ImpactError;
-pub use setup::{ClSolver, FreeMassImpact, ImpactOutcome, Joint, LinkParams};
+pub use setup::{ClSolver, FreeMassImpact, ImpactOutcome, Joint, LinkParams, RunEnd};

@@ -216,16 +216,58 @@ pub struct ContactEvent {
     pub duration_s: f64,
 }
 
-/// The result of a free-mass impact: the first contact, from onset (t = 0) to separation.
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "ended", content = "at_s")]
+pub enum RunEnd {
+    /// At the separation of the first contact (the first-contact solvers).
+    FirstSeparation,
+    /// The bodies parted for good: moving apart with a gap larger than the link's tip can ever
+    /// close with its vibration energy (a bound, not a guess); the time \[s\].
+    PartedForGood(f64),
+    /// At the end of the stated window \[s\], the bodies still able to meet again.
+    Window(f64),
+    /// The step budget ran out at this time \[s\] (the contacts so far are exact to the
+    /// tolerance; later ones are not known).
+    StepBudget(f64),
+}
+
+/// The result of a free-mass impact from the onset of the first contact (t = 0).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ImpactOutcome {
     /// The first contact.
     pub first: ContactEvent,
-    /// Relative approach speed at separation (negative: the bodies part) \[m/s\].
+    /// Every contact in the window, in order (the first-contact solvers: the first alone).
+    pub contacts: Vec<ContactEvent>,
+    /// The contact with the largest peak in the window.
+    pub overall: ContactEvent,
+    /// How the run ended.
+    pub ended: RunEnd,
+    /// Relative approach speed at the last separation (negative: the bodies part) \[m/s\].
     pub separation_rate_mps: f64,
-    /// Mechanical energy at onset and at separation \[J\] (undamped contact: equal up to the
+    /// Mechanical energy at onset and at the end \[J\] (undamped contact: equal up to the
     /// integration error).
     pub energy_j: (f64, f64),
     /// Time steps taken (CL) or right-hand-side evaluations (CJ).
     pub work: usize,
+}
+
+impl ImpactOutcome {
+    /// The outcome of a run that stopped at the first separation.
+    pub(crate) fn first_only(
+        first: ContactEvent,
+        separation_rate_mps: f64,
+        energy_j: (f64, f64),
+        work: usize,
+    ) -> ImpactOutcome {
+        ImpactOutcome {
+            first,
+            contacts: vec![first],
+            overall: first,
+            ended: RunEnd::FirstSeparation,
+            separation_rate_mps,
+            energy_j,
+            work,
+        }
+    }
 }

@@ -1,0 +1,616 @@
+//! The impact on a linear structure given by its [`TipModes`], integrated exactly between force
+//! samples: every contact in a stated window, with a step that follows the contact's own time
+//! scale and free flight crossed in long exact jumps.
+//!
+//! **Scheme.** The structure is linear and the contact is the only nonlinearity, at one point.
+//! Over a step [t, t + h] the contact force is taken linear in time, f(τ) = f₀ + (f₁ − f₀) τ/h;
+//! each mode q̈ᵢ + ωᵢ² qᵢ = bᵢ f is then integrated *exactly* (Duhamel's integral of a linear
+//! load, Nigam & Jennings 1969):
+//!
+//! qᵢ(h) = cos(x) qᵢ + (sin x/ωᵢ) q̇ᵢ + bᵢ (αᵢ f₀ + βᵢ f₁),  x = ωᵢ h,
+//! βᵢ = h² (x − sin x)/x³, αᵢ = h² (1 − cos x)/x² − βᵢ,
+//!
+//! and the rates likewise; the head (m_h ẍ = −f) is the ω = 0 case, α = h²/3, β = h²/6 (the
+//! linear-acceleration method). So the structure carries no time-discretisation error at all —
+//! no period error, no numerical damping, unconditionally stable for modes of any frequency — and
+//! the only error is the linear hold of f, O(h²). The tip deflection w = Σ bᵢ qᵢ + R f and the head
+//! are linear in f₁, so the end-of-step force solves one monotone scalar equation
+//! f₁ = F(D − C f₁, E − C′ f₁) (safeguarded Newton; any law of flexrig-contact, damped ones through
+//! δ̇).
+//!
+//! **Step.** In contact, h follows the force: with f″ estimated from the last three samples, the
+//! linear hold's deviation h² |f″|/8 is kept below `tol` × the largest force so far (h changes by
+//! at most 2× per step, on a grid of 2^{1/4} so that the per-mode coefficients are computed once
+//! per level). The separation is located exactly: the last step is shortened to the h′ at which
+//! the gap closes with f₁ = 0. In free flight (f = 0) the motion is exact for any jump; the jump
+//! is bounded by gap/|ġ|max, with |ġ|max = |ẋ_h − Σ_rigid bᵢ q̇ᵢ| + Σ_flex |bᵢ| Aᵢ ωᵢ (Aᵢ the mode's
+//! amplitude), so no contact can be skipped, and the onset is located on the exact free motion.
+//! The bodies have **parted for good** when they move apart (rigid parts) with a gap larger
+//! than Σ_flex |bᵢ| Aᵢ, the most the vibrating tip can ever reach.
+
+use flexrig_contact::ContactLaw;
+
+use crate::ImpactError;
+use crate::setup::{ContactEvent, ImpactOutcome, RunEnd};
+use crate::tip_modes::TipModes;
+
+/// How long to follow the impact and how accurately.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct ModalOptions {
+    /// Relative deviation of the linear force hold per step (h² |f″|/8 against the largest
+    /// force so far).
+    pub tol: f64,
+    /// `None`: stop at the first separation; `Some(T)`: follow every contact up to T \[s\] after
+    /// the first onset (but at least to the end of the first contact), or until the bodies part
+    /// for good.
+    pub window_s: Option<f64>,
+    /// Most steps (contact and free flight) before the run stops with [`RunEnd::StepBudget`].
+    pub max_steps: usize,
+}
+
+impl ModalOptions {
+    /// tol 1e-6, first contact only, 10⁶ steps.
+    pub const DEFAULT: ModalOptions = ModalOptions {
+        tol: 1e-6,
+        window_s: None,
+        max_steps: 1_000_000,
+    };
+
+    /// Checks the options; the error names the field.
+    pub fn validate(&self) -> Result<(), ImpactError> {
+        if !(self.tol.is_finite() && (1e-14..=1e-1).contains(&self.tol)) {
+            return Err(ImpactError::invalid("tol", self.tol, "must lie in [1e-14, 0.1]"));
+        }
+        if let Some(w) = self.window_s
+            && !(w.is_finite() && w > 0.0 && w <= 1e6)
+        {
+            return Err(ImpactError::invalid(
+                "window",
+                w,
+                "must lie in (0, 1e6] s",
+            ));
+        }
+        if !(100..=100_000_000).contains(&self.max_steps) {
+            return Err(ImpactError::invalid(
+                "max_steps",
+                self.max_steps,
+                "must lie in [100, 1e8]",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The head: mass \[kg\], position \[m\] and speed [m/s] towards the structure.
+#[derive(Debug, Clone, Copy)]
+pub struct Head {
+    /// Mass m_h \[kg\].
+    pub mass: f64,
+    /// Position x_h \[m\] (the indentation is δ = x_h − w).
+    pub x: f64,
+    /// Speed ẋ_h [m/s].
+    pub v: f64,
+}
+
+/// Per-mode coefficients of one step of length h: [cos x, sin x/ω, ω sin x, α, β, α_v, β_v].
+struct StepCoefficients {
+    h: f64,
+    per_mode: Vec<[f64; 7]>,
+    /// Σ bᵢ² βᵢ and Σ bᵢ² β_v,i.
+    sum_beta: f64,
+    sum_beta_v: f64,
+}
+
+impl StepCoefficients {
+    fn new(modes: &TipModes, h: f64) -> StepCoefficients {
+        let mut per_mode = Vec::with_capacity(modes.len());
+        let (mut sum_beta, mut sum_beta_v) = (0.0, 0.0);
+        for (&w, &b) in modes.omegas.iter().zip(&modes.gains) {
+            let c = mode_coefficients(w, h);
+            sum_beta += b * b * c[4];
+            sum_beta_v += b * b * c[6];
+            per_mode.push(c);
+        }
+        StepCoefficients {
+            h,
+            per_mode,
+            sum_beta,
+            sum_beta_v,
+        }
+    }
+}
+
+/// [cos x, sin x/ω, ω sin x, α, β, α_v, β_v] for one mode ω over h (ω = 0: a free mass).
+fn mode_coefficients(omega: f64, h: f64) -> [f64; 7] {
+    let x = omega * h;
+    let (sin, cos) = x.sin_cos();
+    // (1 − cos x)/x², (x − sin x)/x³, sin x/x, by series for small x
+    let (one_minus_cos, x_minus_sin, sinc) = if x < 1e-2 {
+        let x2 = x * x;
+        (
+            0.5 - x2 / 24.0 + x2 * x2 / 720.0,
+            1.0 / 6.0 - x2 / 120.0 + x2 * x2 / 5040.0,
+            1.0 - x2 / 6.0 + x2 * x2 / 120.0,
+        )
+    } else {
+        (
+            (1.0 - cos) / (x * x),
+            (x - sin) / (x * x * x),
+            sin / x,
+        )
+    };
+    let h2 = h * h;
+    let beta = h2 * x_minus_sin;
+    let alpha = h2 * one_minus_cos - beta;
+    let beta_v = h * one_minus_cos;
+    let alpha_v = h * sinc - beta_v;
+    [cos, h * sinc, omega * sin, alpha, beta, alpha_v, beta_v]
+}
+
+/// The coefficient sets of the step levels h = h_ref 2^{k/4}.
+struct LevelCache {
+    h_ref: f64,
+    levels: Vec<(i32, StepCoefficients)>,
+}
+
+impl LevelCache {
+    fn level_for(&self, h: f64) -> i32 {
+        (4.0 * (h / self.h_ref).log2()).floor() as i32
+    }
+
+    fn get(&mut self, modes: &TipModes, level: i32) -> &StepCoefficients {
+        let index = match self.levels.iter().position(|(l, _)| *l == level) {
+            Some(i) => i,
+            None => {
+                let h = self.h_ref * 2f64.powf(level as f64 / 4.0);
+                self.levels.push((level, StepCoefficients::new(modes, h)));
+                self.levels.len() - 1
+            }
+        };
+        &self.levels[index].1
+    }
+}
+
+/// The structure, the head and the force at one instant.
+#[derive(Clone)]
+struct Motion {
+    t: f64,
+    q: Vec<f64>,
+    q_dot: Vec<f64>,
+    head: Head,
+    /// Contact force \[N\].
+    f: f64,
+    /// Indentation δ = x_h − w \[m\] and its rate.
+    delta: f64,
+    delta_dot: f64,
+}
+
+/// One step's linear part: the free motion with f₁ = 0, and δ₁ = D − C f₁, δ̇₁ = E − C′ f₁.
+struct Prediction {
+    q: Vec<f64>,
+    q_dot: Vec<f64>,
+    x: f64,
+    v: f64,
+    d: f64,
+    c: f64,
+    e: f64,
+    c_v: f64,
+}
+
+struct Integrator<'a> {
+    modes: &'a TipModes,
+    law: &'a dyn ContactLaw,
+    m_h: f64,
+}
+
+impl Integrator<'_> {
+    fn predict(&self, s: &Motion, k: &StepCoefficients) -> Prediction {
+        let (h, f0, r) = (k.h, s.f, self.modes.residual);
+        let n = self.modes.len();
+        let (mut q, mut q_dot) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        let (mut w, mut w_dot) = (0.0, 0.0);
+        for i in 0..n {
+            let [cos, sinc_h, w_sin, alpha, _, alpha_v, _] = k.per_mode[i];
+            let b = self.modes.gains[i];
+            let qi = cos * s.q[i] + sinc_h * s.q_dot[i] + b * alpha * f0;
+            let vi = -w_sin * s.q[i] + cos * s.q_dot[i] + b * alpha_v * f0;
+            w += b * qi;
+            w_dot += b * vi;
+            q.push(qi);
+            q_dot.push(vi);
+        }
+        let x = s.head.x + h * s.head.v - h * h * f0 / (3.0 * self.m_h);
+        let v = s.head.v - 0.5 * h * f0 / self.m_h;
+        Prediction {
+            q,
+            q_dot,
+            x,
+            v,
+            d: x - w,
+            c: h * h / (6.0 * self.m_h) + k.sum_beta + r,
+            // the residual spring's rate with the linear hold: R (f₁ − f₀)/h
+            e: v - w_dot + r * f0 / h,
+            c_v: 0.5 * h / self.m_h + k.sum_beta_v + r / h,
+        }
+    }
+
+    /// The end-of-step force: f₁ = F(D − C f₁, E − C′ f₁), the unique root in [0, D/C].
+    fn solve_force(&self, p: &Prediction, guess: f64) -> f64 {
+        let r = |f: f64| f - self.law.force(p.d - p.c * f, p.e - p.c_v * f);
+        if p.d <= 0.0 || r(0.0) >= 0.0 {
+            return 0.0;
+        }
+        let (mut lo, mut hi) = (0.0, p.d / p.c);
+        let mut f = guess.clamp(lo, hi);
+        for _ in 0..200 {
+            let res = r(f);
+            if res < 0.0 {
+                lo = f;
+            } else {
+                hi = f;
+            }
+            let (delta, rate) = (p.d - p.c * f, p.e - p.c_v * f);
+            let slope = 1.0
+                + p.c * self.law.stiffness(delta, rate)
+                + p.c_v * self.law.damping(delta, rate);
+            let mut next = f - res / slope;
+            if !(next > lo && next < hi) {
+                next = 0.5 * (lo + hi);
+            }
+            if (next - f).abs() <= 1e-15 * next.abs() || hi - lo <= 1e-15 * hi {
+                return next;
+            }
+            f = next;
+        }
+        f
+    }
+
+    fn finish(&self, p: Prediction, k: &StepCoefficients, f1: f64, t: f64) -> Motion {
+        let h = k.h;
+        let mut q = p.q;
+        let mut q_dot = p.q_dot;
+        for i in 0..q.len() {
+            let b = self.modes.gains[i];
+            q[i] += b * k.per_mode[i][4] * f1;
+            q_dot[i] += b * k.per_mode[i][6] * f1;
+        }
+        Motion {
+            t,
+            q,
+            q_dot,
+            head: Head {
+                mass: self.m_h,
+                x: p.x - h * h * f1 / (6.0 * self.m_h),
+                v: p.v - 0.5 * h * f1 / self.m_h,
+            },
+            f: f1,
+            delta: p.d - p.c * f1,
+            delta_dot: p.e - p.c_v * f1,
+        }
+    }
+
+    fn step(&self, s: &Motion, k: &StepCoefficients) -> Motion {
+        let p = self.predict(s, k);
+        let f1 = self.solve_force(&p, s.f);
+        self.finish(p, k, f1, s.t + k.h)
+    }
+
+    /// A step of length h with f₁ = 0 (free flight, or the last step of a contact).
+    fn step_unloaded(&self, s: &Motion, h: f64) -> Motion {
+        let k = StepCoefficients::new(self.modes, h);
+        let p = self.predict(s, &k);
+        self.finish(p, &k, 0.0, s.t + h)
+    }
+
+    /// Kinetic, modal strain, contact and residual-spring energy \[J\].
+    fn energy(&self, s: &Motion) -> f64 {
+        let modal: f64 = (0..s.q.len())
+            .map(|i| {
+                let w = self.modes.omegas[i];
+                0.5 * (s.q_dot[i] * s.q_dot[i] + w * w * s.q[i] * s.q[i])
+            })
+            .sum();
+        0.5 * self.m_h * s.head.v * s.head.v
+            + modal
+            + self.law.elastic_energy(s.delta.max(0.0))
+            + 0.5 * self.modes.residual * s.f * s.f
+    }
+
+    /// Free flight: (linear part of the gap, its rate, Σ_flex |bᵢ| Aᵢ, Σ_flex |bᵢ| Aᵢ ωᵢ).
+    fn gap_bounds(&self, s: &Motion) -> (f64, f64, f64, f64) {
+        let (mut lin, mut lin_rate) = (s.head.x, s.head.v);
+        let (mut reach, mut speed) = (0.0, 0.0);
+        for i in 0..s.q.len() {
+            let (w, b) = (self.modes.omegas[i], self.modes.gains[i]);
+            if w == 0.0 {
+                lin -= b * s.q[i];
+                lin_rate -= b * s.q_dot[i];
+            } else {
+                let amplitude = (s.q[i] * s.q[i] + (s.q_dot[i] / w).powi(2)).sqrt();
+                reach += b.abs() * amplitude;
+                speed += b.abs() * amplitude * w;
+            }
+        }
+        (lin, lin_rate, reach, speed)
+    }
+}
+
+/// Follows the impact of `head` on the structure `modes` (moving at its `rates` at t = 0, the
+/// head touching the tip) with contact law `law`; `t_scale` \[s\] is the shortest contact time
+/// the set-up can have (the first step is t_scale/100).
+pub fn run_modes(
+    modes: &TipModes,
+    head: Head,
+    law: &dyn ContactLaw,
+    t_scale: f64,
+    options: &ModalOptions,
+) -> Result<ImpactOutcome, ImpactError> {
+    options.validate()?;
+    if !(t_scale.is_finite() && t_scale > 0.0) {
+        return Err(ImpactError::invalid("contact time scale", t_scale, "> 0 s"));
+    }
+    let int = Integrator {
+        modes,
+        law,
+        m_h: head.mass,
+    };
+    let n = modes.len();
+    let mut s = Motion {
+        t: 0.0,
+        q: vec![0.0; n],
+        q_dot: modes.rates.clone(),
+        head,
+        f: 0.0,
+        delta: 0.0,
+        delta_dot: 0.0,
+    };
+    s.delta_dot = {
+        let w_dot: f64 = modes.gains.iter().zip(&s.q_dot).map(|(b, v)| b * v).sum();
+        head.v - w_dot
+    };
+    if s.delta_dot <= 0.0 {
+        return Err(ImpactError::invalid(
+            "v0",
+            s.delta_dot,
+            "a head approaching the tip (δ̇ > 0 at the onset)",
+        ));
+    }
+    let e0 = int.energy(&s);
+    let h_start = t_scale / 100.0;
+    let h_min = t_scale * 1e-6;
+    let mut cache = LevelCache {
+        h_ref: h_start,
+        levels: Vec::new(),
+    };
+    let mut contacts: Vec<ContactEvent> = Vec::new();
+    let mut f_ref = 0.0_f64;
+    let mut steps = 0usize;
+    let window = options.window_s;
+    let ended;
+    'run: loop {
+        // ---- a contact, from its onset at s.t ----
+        let onset = s.t;
+        let mut samples: Vec<(f64, f64)> = vec![(s.t, s.f)];
+        let mut peak = (0.0_f64, s.t);
+        let mut level = 0;
+        loop {
+            if steps >= options.max_steps {
+                ended = RunEnd::StepBudget(s.t);
+                contacts.push(event(onset, peak, s.t - onset));
+                break 'run;
+            }
+            // the window never cuts the first contact short
+            if let Some(w) = window
+                && s.t >= w
+                && !contacts.is_empty()
+            {
+                ended = RunEnd::Window(w);
+                contacts.push(event(onset, peak, s.t - onset));
+                break 'run;
+            }
+            steps += 1;
+            let k = cache.get(modes, level);
+            let next = int.step(&s, k);
+            // reject a step whose force bends far more than the tolerance allows
+            if let Some(&(t_a, f_a)) = samples.len().checked_sub(2).map(|i| &samples[i])
+                && level > -200
+            {
+                let (t_b, f_b) = (s.t, s.f);
+                let (h0, h1) = (t_b - t_a, k.h);
+                let f2 = 2.0 * ((next.f - f_b) / h1 - (f_b - f_a) / h0) / (h0 + h1);
+                if h1 * h1 * f2.abs() / 8.0 > 4.0 * options.tol * f_ref.max(next.f) {
+                    level -= 4;
+                    continue;
+                }
+            }
+            if next.f == 0.0 && next.delta <= 0.0 {
+                // the gap closes within the step: shorten it to the separation
+                let h_sep = separation_step(&int, &s, k.h);
+                s = int.step_unloaded(&s, h_sep);
+                s.delta = 0.0;
+                samples.push((s.t, 0.0));
+                peak = max_peak(&samples, peak);
+                if peak.0 > 0.0 {
+                    contacts.push(event(onset, peak, s.t - onset));
+                }
+                break;
+            }
+            s = next;
+            samples.push((s.t, s.f));
+            f_ref = f_ref.max(s.f);
+            peak = max_peak(&samples, peak);
+            // the next step from the force's curvature
+            let m = samples.len();
+            if m >= 3 {
+                let (a, b, c) = (samples[m - 3], samples[m - 2], samples[m - 1]);
+                let (h0, h1) = (b.0 - a.0, c.0 - b.0);
+                let f2 = 2.0 * ((c.1 - b.1) / h1 - (b.1 - a.1) / h0) / (h0 + h1);
+                let h = k.h;
+                let ideal = if f2 == 0.0 {
+                    2.0 * h
+                } else {
+                    0.9 * (8.0 * options.tol * f_ref / f2.abs()).sqrt()
+                };
+                let target = ideal.clamp(0.5 * h, 2.0 * h).max(h_min);
+                level = cache.level_for(target).min(level + 4);
+            }
+            if samples.len() > 8 {
+                samples.drain(..samples.len() - 3);
+            }
+        }
+        if window.is_none() {
+            ended = RunEnd::FirstSeparation;
+            break;
+        }
+        // ---- free flight, to the next onset or until parted for good ----
+        loop {
+            let (lin, lin_rate, reach, speed) = int.gap_bounds(&s);
+            if lin_rate <= 0.0 && lin + reach < 0.0 {
+                ended = RunEnd::PartedForGood(s.t);
+                break 'run;
+            }
+            let w = window.unwrap_or(f64::INFINITY);
+            if s.t >= w {
+                ended = RunEnd::Window(w);
+                break 'run;
+            }
+            if steps >= options.max_steps {
+                ended = RunEnd::StepBudget(s.t);
+                break 'run;
+            }
+            steps += 1;
+            let safe = -s.delta / (lin_rate.abs() + speed);
+            let jump = safe.max(h_start).min(w - s.t);
+            let next = int.step_unloaded(&s, jump);
+            if next.delta > 0.0 {
+                s = onset_in(&int, &s, jump);
+                break;
+            }
+            s = next;
+        }
+    }
+    let first = *contacts.first().ok_or(ImpactError::NotFinished {
+        design: "CL",
+        reason: "no contact".into(),
+    })?;
+    let overall = *contacts
+        .iter()
+        .max_by(|a, b| a.peak_force_n.total_cmp(&b.peak_force_n))
+        .unwrap_or(&first);
+    let out = ImpactOutcome {
+        first,
+        contacts,
+        overall,
+        ended,
+        separation_rate_mps: s.delta_dot,
+        energy_j: (e0, int.energy(&s)),
+        work: steps,
+    };
+    if !(out.energy_j.1.is_finite() && out.overall.peak_force_n.is_finite()) {
+        return Err(ImpactError::NotFinished {
+            design: "CL",
+            reason: "the integration lost finiteness".into(),
+        });
+    }
+    Ok(out)
+}
+
+fn event(onset: f64, peak: (f64, f64), duration: f64) -> ContactEvent {
+    ContactEvent {
+        onset_s: onset,
+        peak_force_n: peak.0,
+        time_of_peak_s: peak.1,
+        duration_s: duration,
+    }
+}
+
+/// The larger of `peak` and the latest local maximum of the samples (refined by the parabola
+/// through the three samples around it).
+fn max_peak(samples: &[(f64, f64)], peak: (f64, f64)) -> (f64, f64) {
+    let m = samples.len();
+    if m < 3 {
+        return peak;
+    }
+    let (a, b, c) = (samples[m - 3], samples[m - 2], samples[m - 1]);
+    if !(b.1 > a.1 && b.1 >= c.1) {
+        return peak;
+    }
+    let refined = parabola_vertex(a, b, c);
+    if refined.1 > peak.0 {
+        (refined.1, refined.0)
+    } else {
+        peak
+    }
+}
+
+/// Vertex (t, f) of the parabola through three samples (any spacing), kept within [a, c].
+fn parabola_vertex(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> (f64, f64) {
+    let (h0, h1) = (b.0 - a.0, c.0 - b.0);
+    let d0 = (b.1 - a.1) / h0;
+    let d1 = (c.1 - b.1) / h1;
+    let curvature = (d1 - d0) / (h0 + h1); // f″/2
+    if curvature >= 0.0 {
+        return (b.0, b.1);
+    }
+    // f(t) = b + s (t − b.t) + curvature (t − b.t)², s the slope at b
+    let slope = d0 + curvature * h0;
+    let tau = (-slope / (2.0 * curvature)).clamp(-h0, h1);
+    (b.0 + tau, b.1 + slope * tau + curvature * tau * tau)
+}
+
+/// The h′ ∈ (0, h] at which the gap closes, the force falling linearly from f₀ to 0 over h′
+/// (Illinois regula falsi on δ(h′)).
+fn separation_step(int: &Integrator<'_>, s: &Motion, h: f64) -> f64 {
+    let gap = |h: f64| {
+        let k = StepCoefficients::new(int.modes, h);
+        int.predict(s, &k).d
+    };
+    illinois(gap, 0.0, s.delta, h, gap(h), 1e-13 * h)
+}
+
+/// The motion at the onset of contact inside a free jump of length `jump` from `s`.
+fn onset_in(int: &Integrator<'_>, s: &Motion, jump: f64) -> Motion {
+    let gap = |h: f64| int.step_unloaded(s, h).delta;
+    let h_on = illinois(gap, 0.0, s.delta, jump, gap(jump), 1e-13 * jump);
+    let mut at = int.step_unloaded(s, h_on);
+    at.delta = 0.0;
+    at
+}
+
+/// Root of g in [a, b] with g(a) and g(b) of opposite signs (Illinois regula falsi), to `tol`
+/// in t between successive iterates.
+fn illinois(
+    g: impl Fn(f64) -> f64,
+    mut a: f64,
+    mut ga: f64,
+    mut b: f64,
+    mut gb: f64,
+    tol: f64,
+) -> f64 {
+    if ga == 0.0 {
+        return a;
+    }
+    if gb == 0.0 || ga * gb > 0.0 {
+        return b;
+    }
+    for _ in 0..200 {
+        let c = (a * gb - b * ga) / (gb - ga);
+        let gc = g(c);
+        if gc == 0.0 {
+            return c;
+        }
+        let moved = (c - b).abs();
+        if gc * gb < 0.0 {
+            a = b;
+            ga = gb;
+        } else {
+            ga *= 0.5;
+        }
+        b = c;
+        gb = gc;
+        if moved <= tol || (b - a).abs() <= tol {
+            return b;
+        }
+    }
+    b
+}

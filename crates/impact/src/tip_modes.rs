@@ -1,0 +1,122 @@
+//! A linear structure seen from the struck point: its modes' frequencies, their amplitudes at the
+//! tip and their initial rates, plus the static compliance of the modes left out.
+//!
+//! From dense K, M (symmetric, M positive definite, K positive semi-definite) over n DOFs:
+//! M = L Lᵀ (Cholesky), C = L⁻¹ K L⁻ᵀ = Ψ Ω² Ψᵀ (faer's self-adjoint eigensolver),
+//! Φ = L⁻ᵀ Ψ (M-orthonormal). In modal coordinates every mode obeys q̈ᵢ + ωᵢ² qᵢ = bᵢ f(t) with
+//! bᵢ = φᵢ(tip) \[1/√kg\] and f the force on the tip \[N\]; the tip deflection is
+//! w = Σ bᵢ qᵢ + R f, where R = Σ_{left out} bᵢ²/ωᵢ² \[m/N\] is the quasi-static response of the
+//! modes above the cut-off (the mode-acceleration correction). Initial rates q̇ᵢ(0) = φᵢᵀ M v₀.
+
+use faer::linalg::triangular_solve::{
+    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
+};
+use faer::{Mat, Par, Side};
+
+use crate::ImpactError;
+
+/// The modes of a linear structure at its struck point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TipModes {
+    /// ωᵢ [rad/s], ascending; 0 for a rigid-body mode.
+    pub omegas: Vec<f64>,
+    /// bᵢ = φᵢ(tip) [1/√kg] of the M-orthonormal modes.
+    pub gains: Vec<f64>,
+    /// q̇ᵢ(0) [√kg·m/s].
+    pub rates: Vec<f64>,
+    /// Static compliance R of the modes above the cut-off \[m/N\].
+    pub residual: f64,
+}
+
+impl TipModes {
+    /// The modes of K q̈-free vibration K φ = ω² M φ with ω ≤ `omega_cut` [rad/s] (every mode for
+    /// `f64::INFINITY`), seen at DOF `tip`, for the structure moving at `v0` [m/s, rad/s] at t = 0
+    /// and at rest in its undeformed shape.
+    pub fn from_matrices(
+        k: &Mat<f64>,
+        m: &Mat<f64>,
+        tip: usize,
+        v0: &[f64],
+        omega_cut: f64,
+    ) -> Result<TipModes, ImpactError> {
+        let n = k.nrows();
+        let llt = m.llt(Side::Lower).map_err(|e| {
+            ImpactError::NotFinished {
+                design: "modes",
+                reason: format!("the mass matrix is not positive definite ({e:?})"),
+            }
+        })?;
+        let l = llt.L();
+        // C = L⁻¹ (L⁻¹ K)ᵀ, symmetrised
+        let mut x = k.clone();
+        solve_lower_triangular_in_place(l, x.as_mut(), Par::Seq);
+        let mut c = x.transpose().to_owned();
+        solve_lower_triangular_in_place(l, c.as_mut(), Par::Seq);
+        let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
+        let evd = c
+            .self_adjoint_eigen(Side::Lower)
+            .map_err(|e| ImpactError::NotFinished {
+                design: "modes",
+                reason: format!("the eigensolver failed ({e:?})"),
+            })?;
+        let (s, u) = (evd.S(), evd.U());
+        let mut phi = u.to_owned();
+        solve_upper_triangular_in_place(l.transpose(), phi.as_mut(), Par::Seq);
+        // M v₀ for the initial rates
+        let mv0: Vec<f64> = (0..n)
+            .map(|i| (0..n).map(|j| m[(i, j)] * v0[j]).sum())
+            .collect();
+        let w2_max = (0..n).map(|i| s[i]).fold(0.0_f64, f64::max);
+        let mut modes = TipModes {
+            omegas: Vec::new(),
+            gains: Vec::new(),
+            rates: Vec::new(),
+            residual: 0.0,
+        };
+        for i in 0..n {
+            let w2 = if s[i] <= 1e-12 * w2_max { 0.0 } else { s[i] };
+            let omega = w2.sqrt();
+            let gain = phi[(tip, i)];
+            if omega > omega_cut {
+                modes.residual += gain * gain / w2;
+                continue;
+            }
+            let rate: f64 = (0..n).map(|j| phi[(j, i)] * mv0[j]).sum();
+            modes.omegas.push(omega);
+            modes.gains.push(gain);
+            modes.rates.push(rate);
+        }
+        Ok(modes)
+    }
+
+    /// Number of modes kept.
+    pub fn len(&self) -> usize {
+        self.omegas.len()
+    }
+
+    /// True when no mode is kept.
+    pub fn is_empty(&self) -> bool {
+        self.omegas.is_empty()
+    }
+
+    /// The structure's modes with every stiffness scaled by `s` > 0 (ω ∝ √s, R ∝ 1/s, the shapes
+    /// unchanged): one eigen-solve serves every k_δ of a map.
+    pub fn with_stiffness_scaled(&self, s: f64) -> TipModes {
+        TipModes {
+            omegas: self.omegas.iter().map(|w| w * s.sqrt()).collect(),
+            residual: self.residual / s,
+            ..self.clone()
+        }
+    }
+
+    /// The static tip compliance Σ bᵢ²/ωᵢ² + R over the flexible modes \[m/N\] (∞ with a rigid
+    /// mode).
+    pub fn static_compliance(&self) -> f64 {
+        self.omegas
+            .iter()
+            .zip(&self.gains)
+            .map(|(w, b)| if *w > 0.0 { b * b / (w * w) } else { f64::INFINITY })
+            .sum::<f64>()
+            + self.residual
+    }
+}
