@@ -11,8 +11,51 @@ use flexrig_lumped::peak_exact;
 use rayon::prelude::*;
 use serde::Serialize;
 
+use crate::cl_modal::{run_on_modes, run_placed};
+use crate::graded::{GradedMesh, cl_tip_modes};
+use crate::horizon::{WindowReport, run_window};
+use crate::modal_run::ModalOptions;
 use crate::setup::{ClSolver, FreeMassImpact, Joint, LinkParams};
-use crate::{ImpactError, cj, cl};
+use crate::{ImpactError, chain, cj, cl};
+
+/// How the CL link is solved.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "method")]
+pub enum ClMethod {
+    /// The FE link's modes on a mesh graded towards the tip, integrated exactly between
+    /// force samples ([`crate::modal_run`]): the fast path.
+    Modal {
+        /// The mesh and the modes kept.
+        mesh: GradedMesh,
+        /// Tolerance of the force hold.
+        tol: f64,
+    },
+    /// The FE link on a uniform mesh by generalized-α ([`crate::cl`]): the reference.
+    Alpha(ClSolver),
+}
+
+impl ClMethod {
+    /// The modal path with the default mesh at tol 1e-6.
+    pub const DEFAULT: ClMethod = ClMethod::Modal {
+        mesh: GradedMesh::DEFAULT,
+        tol: 1e-6,
+    };
+
+    /// Checks the method's parameters.
+    pub fn validate(&self) -> Result<(), ImpactError> {
+        match self {
+            ClMethod::Modal { mesh, tol } => {
+                mesh.validate()?;
+                ModalOptions {
+                    tol: *tol,
+                    ..ModalOptions::DEFAULT
+                }
+                .validate()
+            }
+            ClMethod::Alpha(solver) => solver.validate(),
+        }
+    }
+}
 
 /// How the FE study is run.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -22,19 +65,23 @@ pub struct EtaSettings {
     pub length: f64,
     /// The joint during the impact.
     pub joint: Joint,
-    /// The CL mesh and step.
-    pub solver: ClSolver,
+    /// How the CL is solved.
+    pub method: ClMethod,
     /// Relative tolerance of the CJ integration.
     pub cj_rtol: f64,
+    /// `Some(p)`: also follow every contact for p first-mode periods of the CJ link,
+    /// 2π √((m_e + m_r/3)/k_δ) (modal method only).
+    pub window_periods: Option<f64>,
 }
 
 impl EtaSettings {
-    /// L = 1 m, held joint, 256 elements, 800 steps per contact, CJ to 1e-10.
+    /// L = 1 m, held joint, the modal CL on the default graded mesh, CJ to 1e-10, first contact.
     pub const DEFAULT: EtaSettings = EtaSettings {
         length: 1.0,
         joint: Joint::Held,
-        solver: ClSolver::DEFAULT,
+        method: ClMethod::DEFAULT,
         cj_rtol: 1e-10,
+        window_periods: None,
     };
 }
 
@@ -51,7 +98,7 @@ pub enum EffectiveGamma {
 }
 
 /// One row of the table.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct EtaRow {
     /// The design case.
     pub case: Fig6Case,
@@ -69,6 +116,22 @@ pub struct EtaRow {
     pub f_cj_lumped_n: f64,
     /// The γ for which the lumped peak equals the FE CL peak.
     pub gamma_eff: EffectiveGamma,
+    /// The placed reduced model's CL peak \[N\] ([`chain::Chain::placed`]).
+    pub f_placed_n: f64,
+    /// Every contact in the window (with `window_periods`): CJ and CL.
+    pub window: Option<EtaWindow>,
+}
+
+/// The window of a row: every contact, the horizon to which they are converged, the overall
+/// peaks.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EtaWindow {
+    /// The window \[s\].
+    pub window_s: f64,
+    /// The CJ's contacts.
+    pub cj: WindowReport,
+    /// The CL's contacts.
+    pub cl: WindowReport,
 }
 
 /// The free-mass set-up of a Fig. 6 case (m_r = 10 kg, k_c = 1e8, v0 = 2 m/s).
@@ -93,9 +156,55 @@ pub fn case_setup(
 
 /// One case and exponent.
 pub fn eta_case(case: &Fig6Case, n: f64, settings: &EtaSettings) -> Result<EtaRow, ImpactError> {
+    settings.method.validate()?;
     let setup = case_setup(case, n, settings)?;
     let f_cj = cj::run_cj(&setup, settings.cj_rtol)?.first.peak_force_n;
-    let f_cl = cl::run_cl(&setup, &settings.solver)?.first.peak_force_n;
+    let mut window = None;
+    let f_cl = match settings.method {
+        ClMethod::Alpha(solver) => cl::run_cl(&setup, &solver)?.first.peak_force_n,
+        ClMethod::Modal { mesh, tol } => {
+            let modes = cl_tip_modes(&setup, &mesh)?;
+            let first = ModalOptions {
+                tol,
+                ..ModalOptions::DEFAULT
+            };
+            if let Some(periods) = settings.window_periods {
+                if !(periods.is_finite() && (0.01..=1000.0).contains(&periods)) {
+                    return Err(ImpactError::invalid(
+                        "window_periods",
+                        periods,
+                        "must lie in [0.01, 1000]",
+                    ));
+                }
+                let link = setup.link;
+                let window_s = periods
+                    * 2.0
+                    * std::f64::consts::PI
+                    * (link.cj_tip_mass() / link.k_delta).sqrt();
+                let options = ModalOptions {
+                    window_s: Some(window_s),
+                    max_steps: 2_000_000,
+                    ..first
+                };
+                let cj_modes = chain::Chain::cj(&setup).tip_modes(&setup, 0.0)?;
+                window = Some(EtaWindow {
+                    window_s,
+                    cj: run_window(&setup, &cj_modes, &options)?,
+                    cl: run_window(&setup, &modes, &options)?,
+                });
+            }
+            run_on_modes(&setup, &modes, &first)?.first.peak_force_n
+        }
+    };
+    let f_placed = run_placed(
+        &setup,
+        &ModalOptions {
+            tol: 1e-7,
+            ..ModalOptions::DEFAULT
+        },
+    )?
+    .first
+    .peak_force_n;
     Ok(EtaRow {
         case: *case,
         n,
@@ -105,6 +214,8 @@ pub fn eta_case(case: &Fig6Case, n: f64, settings: &EtaSettings) -> Result<EtaRo
         eta_lumped_2_3: case.eta(n, 2.0 / 3.0)?,
         f_cj_lumped_n: peak_exact(&case.model(n, 1.0)?).f_max,
         gamma_eff: effective_gamma(case, n, f_cl)?,
+        f_placed_n: f_placed,
+        window,
     })
 }
 

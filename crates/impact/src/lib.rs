@@ -23,6 +23,7 @@ pub mod cl_modal;
 mod error;
 pub mod eta;
 pub mod graded;
+pub mod horizon;
 pub mod modal_run;
 pub mod setup;
 pub mod tip_modes;

@@ -7,7 +7,8 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use flexrig_impact::eta::{EffectiveGamma, EtaRow, EtaSettings, eta_table};
+use flexrig_impact::eta::{ClMethod, EffectiveGamma, EtaRow, EtaSettings, eta_table};
+use flexrig_impact::graded::GradedMesh;
 use flexrig_impact::{ClSolver, Joint};
 use serde_json::json;
 
@@ -23,6 +24,17 @@ pub enum JointArg {
     FreeHub,
 }
 
+/// How the CL link is solved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum MethodArg {
+    /// The FE link's modes on a mesh graded towards the tip, integrated exactly between force
+    /// samples (fast; --tol, --zone-elements).
+    Modal,
+    /// The FE link on a uniform mesh by generalized-α (the reference; --elements,
+    /// --steps-per-contact, --modes).
+    Alpha,
+}
+
 /// Arguments of `flexrig eta`.
 #[derive(Debug, Args)]
 pub struct EtaArgs {
@@ -35,14 +47,29 @@ pub struct EtaArgs {
     /// Rotor inertia J_R of the free hub, kg·m² (with --joint free-hub).
     #[arg(long, value_name = "KG_M2")]
     pub rotor_inertia: Option<f64>,
-    /// Hermite-cubic elements of the CL beam (2 to 4096).
+    /// How the CL link is solved.
+    #[arg(long, value_enum, default_value = "modal")]
+    pub method: MethodArg,
+    /// Modal method: tolerance of the force's linear hold per step (1e-14 to 0.1).
+    #[arg(long, value_name = "TOL", default_value_t = 1e-6)]
+    pub tol: f64,
+    /// Modal method: elements across the tip zone (EI/ρA)^¼ √t_c of the graded mesh (0.5 to
+    /// 1000).
+    #[arg(long, value_name = "N", default_value_t = GradedMesh::DEFAULT.zone_elements)]
+    pub zone_elements: f64,
+    /// Modal method: also follow every contact for this many first-mode periods of the CJ link
+    /// (0.01 to 1000), run at --tol and --tol/10 to find how long the contacts are converged.
+    #[arg(long, value_name = "P")]
+    pub window_periods: Option<f64>,
+    /// Alpha method: Hermite-cubic elements of the CL beam (2 to 4096).
     #[arg(long, value_name = "N", default_value_t = ClSolver::DEFAULT.elements)]
     pub elements: usize,
-    /// Time steps over the shortest possible contact (head against the payload; 20 to 1e6).
+    /// Alpha method: time steps over the shortest possible contact (head against the payload;
+    /// 20 to 1e6).
     #[arg(long, value_name = "N", default_value_t = ClSolver::DEFAULT.steps_per_contact)]
     pub steps_per_contact: usize,
-    /// Solve the CL beam reduced to its lowest N modes plus the tip's static correction shape
-    /// (at most 1000 elements); without it, the full FE model.
+    /// Alpha method: the CL beam reduced to its lowest N modes plus the tip's static correction
+    /// shape (at most 1000 elements); without it, the full FE model.
     #[arg(long, value_name = "N")]
     pub modes: Option<usize>,
     /// Link length L, m (the transverse impact does not depend on it).
@@ -86,12 +113,37 @@ fn settings(args: &EtaArgs) -> Result<EtaSettings, CliError> {
         },
         other => CliError::Impact(other),
     };
-    let solver = ClSolver {
-        elements: args.elements,
-        steps_per_contact: args.steps_per_contact,
-        modes: args.modes,
+    let method = match args.method {
+        MethodArg::Alpha => ClMethod::Alpha(ClSolver {
+            elements: args.elements,
+            steps_per_contact: args.steps_per_contact,
+            modes: args.modes,
+        }),
+        MethodArg::Modal => ClMethod::Modal {
+            mesh: GradedMesh {
+                zone_elements: args.zone_elements,
+                ..GradedMesh::DEFAULT
+            },
+            tol: args.tol,
+        },
     };
-    solver.validate().map_err(flag)?;
+    method.validate().map_err(flag)?;
+    if let Some(p) = args.window_periods {
+        if args.method != MethodArg::Modal {
+            return Err(CliError::InvalidArgument {
+                arg: "--window-periods".into(),
+                value: p.to_string(),
+                allowed: "only with --method modal".into(),
+            });
+        }
+        if !(p.is_finite() && (0.01..=1000.0).contains(&p)) {
+            return Err(CliError::InvalidArgument {
+                arg: "--window-periods".into(),
+                value: p.to_string(),
+                allowed: "must lie in [0.01, 1000]".into(),
+            });
+        }
+    }
     if !(args.length.is_finite() && (1e-3..=1e3).contains(&args.length)) {
         return Err(CliError::InvalidArgument {
             arg: "--length".into(),
@@ -102,7 +154,8 @@ fn settings(args: &EtaArgs) -> Result<EtaSettings, CliError> {
     Ok(EtaSettings {
         length: args.length,
         joint,
-        solver,
+        method,
+        window_periods: args.window_periods,
         ..EtaSettings::DEFAULT
     })
 }
@@ -117,7 +170,7 @@ fn gamma_text(g: &EffectiveGamma) -> String {
 
 fn csv(rows: &[EtaRow]) -> String {
     let mut s = String::from(
-        "m_h_kg,k_delta_n_per_m,m_e_kg,n,f_cj_n,f_cl_n,eta_fe,eta_lumped_2_3,f_cj_lumped_n,gamma_eff,gamma_eff_note\n",
+        "m_h_kg,k_delta_n_per_m,m_e_kg,n,f_cj_n,f_cl_n,eta_fe,eta_lumped_2_3,f_cj_lumped_n,gamma_eff,gamma_eff_note,f_placed_n,placed_error,window_s,cj_contacts,cl_contacts,cj_horizon_s,cl_horizon_s,cj_overall_n,cl_overall_n,eta_overall\n",
     );
     for r in rows {
         let (gamma, note) = match r.gamma_eff {
@@ -130,9 +183,26 @@ fn csv(rows: &[EtaRow]) -> String {
                 "FE CL peak below the lumped payload-only peak",
             ),
         };
+        let window = match &r.window {
+            Some(w) => {
+                let (cj, cl) = (&w.cj, &w.cl);
+                format!(
+                    "{},{},{},{},{},{},{},{}",
+                    w.window_s,
+                    cj.converged_contacts,
+                    cl.converged_contacts,
+                    cj.horizon_s,
+                    cl.horizon_s,
+                    cj.overall_converged.peak_force_n,
+                    cl.overall_converged.peak_force_n,
+                    cl.overall_converged.peak_force_n / cj.overall_converged.peak_force_n
+                )
+            }
+            None => ",,,,,,,".to_string(),
+        };
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
             r.case.m_h,
             r.case.k_delta,
             r.case.m_e,
@@ -143,10 +213,26 @@ fn csv(rows: &[EtaRow]) -> String {
             r.eta_lumped_2_3,
             r.f_cj_lumped_n,
             gamma,
-            note
+            note,
+            r.f_placed_n,
+            r.f_placed_n / r.f_cl_n - 1.0,
+            window
         );
     }
     s
+}
+
+fn method_text(method: &ClMethod) -> String {
+    match method {
+        ClMethod::Modal { mesh, tol } => format!(
+            "CL: FE modes on a graded mesh, {} elements per tip zone, exact modal integration, tol {tol:e}",
+            mesh.zone_elements
+        ),
+        ClMethod::Alpha(s) => format!(
+            "CL: {} elements, generalized-α, {} steps per contact",
+            s.elements, s.steps_per_contact
+        ),
+    }
 }
 
 /// Runs `flexrig eta`.
@@ -175,14 +261,14 @@ pub fn run(args: &EtaArgs, out: &mut dyn Write) -> Result<(), CliError> {
     line(
         out,
         format!(
-            "Fig. 6 cases at FE fidelity (free head, {joint} joint; m_r = 10 kg, k_c = 1e8, v0 = 2 m/s; CL: {} elements, {} steps per contact)",
-            settings.solver.elements, settings.solver.steps_per_contact
+            "Fig. 6 cases at FE fidelity (free head, {joint} joint; m_r = 10 kg, k_c = 1e8, v0 = 2 m/s; {})",
+            method_text(&settings.method)
         ),
     )?;
     line(
         out,
         format!(
-            "{:>7} {:>8} {:>6} {:>3} {:>12} {:>12} {:>9} {:>11} {:>12} {:>9}",
+            "{:>7} {:>8} {:>6} {:>3} {:>12} {:>12} {:>9} {:>11} {:>12} {:>9} {:>12}",
             "m_h[kg]",
             "k_δ[N/m]",
             "m_e[kg]",
@@ -192,14 +278,15 @@ pub fn run(args: &EtaArgs, out: &mut dyn Write) -> Result<(), CliError> {
             "η_FE",
             "η_lump(2/3)",
             "f_CJ,lump[N]",
-            "γ_eff"
+            "γ_eff",
+            "f_placed[N]"
         ),
     )?;
     for r in &rows {
         line(
             out,
             format!(
-                "{:>7} {:>8.0e} {:>6} {:>3} {:>12.1} {:>12.1} {:>9.5} {:>11.5} {:>12.1} {:>9}",
+                "{:>7} {:>8.0e} {:>6} {:>3} {:>12.1} {:>12.1} {:>9.5} {:>11.5} {:>12.1} {:>9} {:>12.1}",
                 r.case.m_h,
                 r.case.k_delta,
                 r.case.m_e,
@@ -209,9 +296,59 @@ pub fn run(args: &EtaArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 r.eta_fe,
                 r.eta_lumped_2_3,
                 r.f_cj_lumped_n,
-                gamma_text(&r.gamma_eff)
+                gamma_text(&r.gamma_eff),
+                r.f_placed_n
             ),
         )?;
+    }
+    if rows.iter().any(|r| r.window.is_some()) {
+        line(
+            out,
+            "Every contact in the window (runs at --tol and --tol/10; the horizon is where they part):",
+        )?;
+        line(
+            out,
+            format!(
+                "{:>7} {:>8} {:>6} {:>3} {:>10} {:>14} {:>14} {:>12} {:>12} {:>9}",
+                "m_h[kg]",
+                "k_δ[N/m]",
+                "m_e[kg]",
+                "n",
+                "window[s]",
+                "CJ contacts/s",
+                "CL contacts/s",
+                "f_CJ,all[N]",
+                "f_CL,all[N]",
+                "η_all"
+            ),
+        )?;
+        for r in &rows {
+            let Some(w) = &r.window else { continue };
+            let contacts = |x: &flexrig_impact::horizon::WindowReport| {
+                format!(
+                    "{}/{}@{:.3}",
+                    x.converged_contacts,
+                    x.outcome.contacts.len(),
+                    x.horizon_s
+                )
+            };
+            line(
+                out,
+                format!(
+                    "{:>7} {:>8.0e} {:>6} {:>3} {:>10.4} {:>14} {:>14} {:>12.1} {:>12.1} {:>9.5}",
+                    r.case.m_h,
+                    r.case.k_delta,
+                    r.case.m_e,
+                    r.n,
+                    w.window_s,
+                    contacts(&w.cj),
+                    contacts(&w.cl),
+                    w.cj.overall_converged.peak_force_n,
+                    w.cl.overall_converged.peak_force_n,
+                    w.cl.overall_converged.peak_force_n / w.cj.overall_converged.peak_force_n
+                ),
+            )?;
+        }
     }
     line(
         out,
