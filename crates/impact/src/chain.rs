@@ -94,7 +94,10 @@ impl Chain {
             Joint::Held => vec![0.0; n],
             Joint::FreeHub { .. } => vec![-setup.v0; n],
         };
-        let mut modes = TipModes::from_matrices(&k, &m, 0, &v0, f64::INFINITY)?;
+        // shift: the softest spring on the whole mass, of the order of the lowest ω²
+        let shift = self.springs.iter().copied().fold(f64::INFINITY, f64::min)
+            / masses.iter().sum::<f64>();
+        let mut modes = TipModes::from_matrices(&k, &m, 0, &v0, f64::INFINITY, shift)?;
         modes.residual += self.series_compliance;
         Ok(modes)
     }

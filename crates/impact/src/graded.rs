@@ -167,5 +167,7 @@ pub fn cl_tip_modes(setup: &FreeMassImpact, mesh: &GradedMesh) -> Result<TipMode
     let lengths = mesh.element_lengths(setup)?;
     let (k, m, tip, v0) = cl_matrices(setup, &lengths)?;
     let cut = mesh.mode_cut * std::f64::consts::PI / setup.payload_contact_time();
-    TipModes::from_matrices(&k, &m, tip, &v0, cut)
+    let link = setup.link;
+    let shift = link.ei() / (link.rho_a() * link.length.powi(4));
+    TipModes::from_matrices(&k, &m, tip, &v0, cut, shift)
 }

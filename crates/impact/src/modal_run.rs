@@ -337,7 +337,7 @@ impl Integrator<'_> {
 
 /// Follows the impact of `head` on the structure `modes` (moving at its `rates` at t = 0, the
 /// head touching the tip) with contact law `law`; `t_scale` \[s\] is the shortest contact time
-/// the set-up can have (the first step is t_scale/100).
+/// the set-up can have (each contact's first step is t_scale/1e4).
 pub fn run_modes(
     modes: &TipModes,
     head: Head,
@@ -376,7 +376,9 @@ pub fn run_modes(
         ));
     }
     let e0 = int.energy(&s);
-    let h_start = t_scale / 100.0;
+    // each contact starts at t_scale/1e4 (the force's onset is not yet resolved by the
+    // controller, which needs three samples) and grows by ≤ 2× per step from there
+    let h_start = t_scale / 1e4;
     let h_min = t_scale * 1e-6;
     let mut cache = LevelCache {
         h_ref: h_start,
@@ -480,7 +482,7 @@ pub fn run_modes(
             }
             steps += 1;
             let safe = -s.delta / (lin_rate.abs() + speed);
-            let jump = safe.max(h_start).min(w - s.t);
+            let jump = safe.max(t_scale / 100.0).min(w - s.t);
             let next = int.step_unloaded(&s, jump);
             if next.delta > 0.0 {
                 s = onset_in(&int, &s, jump);

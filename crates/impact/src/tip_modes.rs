@@ -29,59 +29,78 @@ pub struct TipModes {
 }
 
 impl TipModes {
-    /// The modes of K q̈-free vibration K φ = ω² M φ with ω ≤ `omega_cut` [rad/s] (every mode for
-    /// `f64::INFINITY`), seen at DOF `tip`, for the structure moving at `v0` [m/s, rad/s] at t = 0
-    /// and at rest in its undeformed shape.
+    /// The modes of free vibration K φ = ω² M φ with ω ≤ `omega_cut` [rad/s] (every mode for
+    /// `f64::INFINITY`), seen at DOF `tip`, for the structure moving at `v0` [m/s, rad/s] at
+    /// t = 0 and at rest in its undeformed shape. `shift` σ [1/s²] > 0, of the order of the lowest
+    /// flexible ω², makes the solve well posed with rigid modes and keeps the *lowest* modes
+    /// accurate to round-off whatever the highest: with K + σM = L Lᵀ the eigenvalues of
+    /// L⁻¹ M L⁻ᵀ are λ = 1/(ω² + σ), largest for the lowest modes, and their error ε λ_max is
+    /// relative to them (a mesh graded to L/2000 at the tip spans ω²_max/ω₁² ≈ 1e12). Modes with
+    /// |ω²| ≤ 1e-8 σ are rigid (ω = 0).
     pub fn from_matrices(
         k: &Mat<f64>,
         m: &Mat<f64>,
         tip: usize,
         v0: &[f64],
         omega_cut: f64,
+        shift: f64,
     ) -> Result<TipModes, ImpactError> {
         let n = k.nrows();
-        let llt = m.llt(Side::Lower).map_err(|e| {
-            ImpactError::NotFinished {
-                design: "modes",
-                reason: format!("the mass matrix is not positive definite ({e:?})"),
-            }
-        })?;
+        let failed = |what: String| ImpactError::NotFinished {
+            design: "modes",
+            reason: what,
+        };
+        if !(shift.is_finite() && shift > 0.0) {
+            return Err(failed(format!("the eigen shift must be > 0, not {shift}")));
+        }
+        let a = Mat::from_fn(n, n, |i, j| k[(i, j)] + shift * m[(i, j)]);
+        let llt = a
+            .llt(Side::Lower)
+            .map_err(|e| failed(format!("K + σM is not positive definite ({e:?})")))?;
         let l = llt.L();
-        // C = L⁻¹ (L⁻¹ K)ᵀ, symmetrised
-        let mut x = k.clone();
+        // C = L⁻¹ (L⁻¹ M)ᵀ, symmetrised
+        let mut x = m.clone();
         solve_lower_triangular_in_place(l, x.as_mut(), Par::Seq);
         let mut c = x.transpose().to_owned();
         solve_lower_triangular_in_place(l, c.as_mut(), Par::Seq);
         let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
         let evd = c
             .self_adjoint_eigen(Side::Lower)
-            .map_err(|e| ImpactError::NotFinished {
-                design: "modes",
-                reason: format!("the eigensolver failed ({e:?})"),
-            })?;
+            .map_err(|e| failed(format!("the eigensolver failed ({e:?})")))?;
         let (s, u) = (evd.S(), evd.U());
+        // φ = L⁻ᵀ ψ has φᵀ(K + σM)φ = 1, so φᵀ M φ = λ
         let mut phi = u.to_owned();
         solve_upper_triangular_in_place(l.transpose(), phi.as_mut(), Par::Seq);
-        // M v₀ for the initial rates
         let mv0: Vec<f64> = (0..n)
             .map(|i| (0..n).map(|j| m[(i, j)] * v0[j]).sum())
             .collect();
-        let w2_max = (0..n).map(|i| s[i]).fold(0.0_f64, f64::max);
         let mut modes = TipModes {
             omegas: Vec::new(),
             gains: Vec::new(),
             rates: Vec::new(),
             residual: 0.0,
         };
-        for i in 0..n {
-            let w2 = if s[i] <= 1e-12 * w2_max { 0.0 } else { s[i] };
+        let lambda_max = (0..n).map(|i| s[i]).fold(0.0_f64, f64::max);
+        if !(lambda_max > 0.0) {
+            return Err(failed("the structure has no mass".into()));
+        }
+        // λ ascending: the lowest modes last
+        for i in (0..n).rev() {
+            let lambda = s[i];
+            if lambda <= 1e-14 * lambda_max {
+                // below round-off: a mode of (numerically) infinite frequency, no static part
+                break;
+            }
+            let w2 = 1.0 / lambda - shift;
+            let w2 = if w2.abs() <= 1e-8 * shift { 0.0 } else { w2.max(0.0) };
             let omega = w2.sqrt();
-            let gain = phi[(tip, i)];
+            let scale = 1.0 / lambda.sqrt();
+            let gain = phi[(tip, i)] * scale;
             if omega > omega_cut {
                 modes.residual += gain * gain / w2;
                 continue;
             }
-            let rate: f64 = (0..n).map(|j| phi[(j, i)] * mv0[j]).sum();
+            let rate: f64 = (0..n).map(|j| phi[(j, i)] * mv0[j]).sum::<f64>() * scale;
             modes.omegas.push(omega);
             modes.gains.push(gain);
             modes.rates.push(rate);
