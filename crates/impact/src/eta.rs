@@ -196,10 +196,14 @@ pub fn eta_case(case: &Fig6Case, n: f64, settings: &EtaSettings) -> Result<EtaRo
             run_on_modes(&setup, &modes, &first)?.first.peak_force_n
         }
     };
+    let placed_tol = match settings.method {
+        ClMethod::Modal { tol, .. } => tol,
+        ClMethod::Alpha(_) => 1e-6,
+    };
     let f_placed = run_placed(
         &setup,
         &ModalOptions {
-            tol: 1e-7,
+            tol: placed_tol,
             ..ModalOptions::DEFAULT
         },
     )?

@@ -24,6 +24,7 @@ mod error;
 pub mod eta;
 pub mod graded;
 pub mod horizon;
+pub mod map;
 pub mod modal_run;
 pub mod setup;
 pub mod tip_modes;

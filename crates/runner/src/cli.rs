@@ -40,6 +40,9 @@ pub enum Command {
     /// The Fig. 6 cases at finite-element fidelity: a free head on the FE compliant link and the
     /// rigid compliant joint, η_FE beside the lumped η(2/3), and the effective γ.
     Eta(commands::eta::EtaArgs),
+    /// Maps of η_FE, the lumped model's error, the effective γ and the placed model's error over
+    /// m_e/m_r × k_δ/k_c, one heat-map figure per head mass.
+    EtaMap(commands::eta_map::EtaMapArgs),
     /// The test bed's CL/CJ peak ratio over the payload (the paper's Fig. 9b light-load study as
     /// a curve), with MCAP logs of three payloads.
     Payload(commands::payload::PayloadArgs),
@@ -84,6 +87,7 @@ pub fn run_interruptible(
         Some(Command::Impact(args)) => commands::impact::run(args, out),
         Some(Command::Fig6(args)) => commands::fig6::run(args, out),
         Some(Command::Eta(args)) => commands::eta::run(args, out),
+        Some(Command::EtaMap(args)) => commands::eta_map::run(args, out),
         Some(Command::Fit(args)) => commands::fit::run(args, out),
         Some(Command::Payload(args)) => commands::payload::run(args, out, interrupt),
         Some(Command::Beam(cmd)) => commands::beam::run(cmd, out),

@@ -80,8 +80,9 @@ pub struct EtaArgs {
     pub json: bool,
 }
 
-fn settings(args: &EtaArgs) -> Result<EtaSettings, CliError> {
-    let joint = match (args.joint, args.rotor_inertia) {
+/// The joint from --joint and --rotor-inertia.
+pub fn joint_from_args(joint: JointArg, rotor_inertia: Option<f64>) -> Result<Joint, CliError> {
+    Ok(match (joint, rotor_inertia) {
         (JointArg::Held, None) => Joint::Held,
         (JointArg::Held, Some(j)) => {
             return Err(CliError::InvalidArgument {
@@ -100,8 +101,12 @@ fn settings(args: &EtaArgs) -> Result<EtaSettings, CliError> {
         (JointArg::FreeHub, Some(j)) => Joint::FreeHub {
             rotor_inertia: positive_arg("--rotor-inertia", j)?,
         },
-    };
-    let flag = |e: flexrig_impact::ImpactError| match e {
+    })
+}
+
+/// An impact parameter error as the flag the user typed (`zone_elements` → `--zone-elements`).
+pub fn as_flag(e: flexrig_impact::ImpactError) -> CliError {
+    match e {
         flexrig_impact::ImpactError::InvalidParameter {
             field,
             value,
@@ -112,7 +117,12 @@ fn settings(args: &EtaArgs) -> Result<EtaSettings, CliError> {
             allowed,
         },
         other => CliError::Impact(other),
-    };
+    }
+}
+
+fn settings(args: &EtaArgs) -> Result<EtaSettings, CliError> {
+    let joint = joint_from_args(args.joint, args.rotor_inertia)?;
+    let flag = as_flag;
     let method = match args.method {
         MethodArg::Alpha => ClMethod::Alpha(ClSolver {
             elements: args.elements,
