@@ -8,11 +8,13 @@
 mod eta;
 mod fig6;
 mod fig9;
+mod heatmap;
 mod work_precision;
 
 pub use eta::eta_svg;
 pub use fig6::fig6_svg;
 pub use fig9::fig9_svg;
+pub use heatmap::{ColorScale, HeatMap, heatmaps_svg};
 pub use work_precision::{Panel, Series, work_precision_svg};
 
 use std::ops::Range;
@@ -123,7 +125,7 @@ pub(crate) fn render(
 }
 
 /// Symbols written `m_h` in the figures' text and set with a real subscript in the SVG.
-const SUBSCRIPTED: [(&str, &str); 7] = [
+const SUBSCRIPTED: [(&str, &str); 8] = [
     ("m_h", "h"),
     ("m_e", "e"),
     ("m_r", "r"),
@@ -131,6 +133,7 @@ const SUBSCRIPTED: [(&str, &str); 7] = [
     ("k_c", "c"),
     ("v_0", "0"),
     ("f_max", "max"),
+    ("η_FE", "FE"),
 ];
 
 /// `svg` with the [`SUBSCRIPTED`] symbols' subscripts as lowered, smaller `tspan`s.
