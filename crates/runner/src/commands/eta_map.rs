@@ -16,7 +16,7 @@ use serde_json::json;
 use super::eta::{JointArg, as_flag, joint_from_args};
 use crate::CliError;
 use crate::output::{ensure_dir, line, print_json, write_atomic};
-use crate::plots::heatmap::{ColorScale, HeatMap, heatmaps_svg};
+use crate::plots::{ColorScale, HeatMap, heatmaps_svg};
 
 /// η_FE below this: the CL beats the CJ by more than 5 %.
 const BEATS: f64 = 0.95;
@@ -174,18 +174,8 @@ fn svg(m: &Computed, joint: &str) -> Result<String, String> {
     });
     let placed = value(&|r| Some(r.f_placed_n / r.f_cl_n - 1.0));
     let beats: Vec<bool> = eta.iter().map(|e| e.is_some_and(|e| e < BEATS)).collect();
-    let span = |v: &[Option<f64>]| {
-        let m = v.iter().flatten().fold(0.0_f64, |a, b| a.max(b.abs()));
-        // a round span: 1, 2 or 5 × 10^k
-        let k = m.max(1e-6).log10().floor();
-        let base = 10f64.powf(k);
-        [1.0, 2.0, 5.0, 10.0]
-            .iter()
-            .map(|c| c * base)
-            .find(|s| *s >= m)
-            .unwrap_or(10.0 * base)
-    };
-    let (lumped_span, placed_span) = (span(&lumped).min(10.0), span(&placed).min(10.0));
+    // both error maps on one scale, clamped at ±100 % so the region near 0 keeps its detail
+    let (lumped_span, placed_span) = (1.0, 1.0);
     let maps = [
         HeatMap {
             title: "η_FE = f_max(CL)/f_max(CJ)",
