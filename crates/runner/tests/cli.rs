@@ -760,8 +760,16 @@ fn eta_refuses_bad_input_and_runs_coarse() {
     let dir = scratch_dir("eta");
     let out = dir.to_str().unwrap();
     for (args, flag) in [
-        (vec!["--elements", "1"], "--elements"),
-        (vec!["--steps-per-contact", "5"], "--steps-per-contact"),
+        (vec!["--method", "alpha", "--elements", "1"], "--elements"),
+        (
+            vec!["--method", "alpha", "--steps-per-contact", "5"],
+            "--steps-per-contact",
+        ),
+        (vec!["--elements", "64"], "--elements"),
+        (vec!["--method", "alpha", "--tol", "1e-6"], "--tol"),
+        (vec!["--tol", "0"], "--tol"),
+        (vec!["--zone-elements", "nan"], "--zone-elements"),
+        (vec!["--window-periods", "0"], "--window-periods"),
         (vec!["--joint", "free-hub"], "--joint"),
         (vec!["--rotor-inertia", "2"], "--rotor-inertia"),
         (
@@ -769,8 +777,11 @@ fn eta_refuses_bad_input_and_runs_coarse() {
             "--rotor-inertia",
         ),
         (vec!["--length", "nan"], "--length"),
-        (vec!["--modes", "0"], "--modes"),
-        (vec!["--elements", "2000", "--modes", "8"], "--modes"),
+        (vec!["--method", "alpha", "--modes", "0"], "--modes"),
+        (
+            vec!["--method", "alpha", "--elements", "2000", "--modes", "8"],
+            "--modes",
+        ),
     ] {
         let mut all = vec!["eta", "--out", out];
         all.extend(args);
@@ -780,26 +791,116 @@ fn eta_refuses_bad_input_and_runs_coarse() {
         assert!(stderr.contains(flag), "{all:?}: {stderr}");
         assert!(!dir.join("eta.csv").exists() && !dir.join("eta.svg").exists());
     }
-    let v = json(&[
+    // the reference method, coarse, and the default modal method
+    let coarse = json(&[
         "eta",
         "--out",
         out,
+        "--method",
+        "alpha",
         "--elements",
         "4",
         "--steps-per-contact",
         "50",
         "--json",
     ]);
+    let v = json(&["eta", "--out", out, "--json"]);
     let rows = v["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 16);
+    assert_eq!(coarse["rows"].as_array().unwrap().len(), 16);
     for r in rows {
         let eta = r["eta_fe"].as_f64().unwrap();
         assert!(eta.is_finite() && eta > 0.0, "{r}");
+        assert!(r["f_placed_n"].as_f64().unwrap() > 0.0, "{r}");
     }
+    // the headline case against the generalized-α reference in docs/impact-fe.md (256 elements,
+    // 800 steps per contact: η_FE = 0.9207)
+    assert!((rows[0]["eta_fe"].as_f64().unwrap() - 0.9207).abs() < 1e-4, "{}", rows[0]);
     let csv = std::fs::read_to_string(dir.join("eta.csv")).unwrap();
     assert_eq!(csv.lines().count(), 17);
     let svg = std::fs::read_to_string(dir.join("eta.svg")).unwrap();
     assert!(svg.contains("finite elements (filled)") && svg.contains("held joint"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `flexrig eta-map` (issue 14): bad ranges and flags name the flag, exit 2 and leave no CSV or
+/// figure; a 2 × 2 map over the Fig. 6 soft-link/light-payload and rigid-link/heavy-payload
+/// corners reproduces `flexrig eta`'s rows (tol 1e-5 against 1e-6: within 1e-4).
+#[test]
+fn the_eta_map_refuses_bad_ranges_and_matches_the_eta_table() {
+    let dir = scratch_dir("eta_map");
+    let out = dir.to_str().unwrap();
+    for (args, flag) in [
+        (vec!["--points", "1"], "--points"),
+        (vec!["--mass-ratio", "1:0.1"], "--mass-ratio"),
+        (vec!["--mass-ratio", "abc"], "--mass-ratio"),
+        (vec!["--mass-ratio", "1e-9:1"], "--mass-ratio"),
+        (vec!["--stiffness-ratio", "0:1"], "--stiffness-ratio"),
+        (vec!["--stiffness-ratio", "1e-3:1e9"], "--stiffness-ratio"),
+        (vec!["--m-h", "0"], "--m-h"),
+        (vec!["--m-h", "4,nan"], "--m-h"),
+        (vec!["--n", "5"], "--n"),
+        (vec!["--tol", "0"], "--tol"),
+        (vec!["--joint", "free-hub"], "--joint"),
+    ] {
+        let mut all = vec!["eta-map", "--out", out];
+        all.extend(args);
+        let o = flexrig(&all);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{all:?}: {stderr}");
+        assert!(stderr.contains(flag), "{all:?}: {stderr}");
+        assert!(!dir.exists() || std::fs::read_dir(&dir).unwrap().next().is_none());
+    }
+    let v = json(&[
+        "eta-map",
+        "--out",
+        out,
+        "--m-h",
+        "4",
+        "--n",
+        "1",
+        "--points",
+        "2",
+        "--mass-ratio",
+        "1e-2:1",
+        "--stiffness-ratio",
+        "2e-6:1",
+        "--json",
+    ]);
+    assert_eq!(v["maps"][0]["points"], 4);
+    assert_eq!(v["maps"][0]["failed"], 0);
+    let csv = std::fs::read_to_string(dir.join("eta_map.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 5);
+    assert!(dir.join("eta_map_mh4.svg").exists());
+    let table = json(&["eta", "--out", out, "--json"]);
+    let eta_of = |m_e: f64, k: f64| {
+        table["rows"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| {
+                r["case"]["m_h"] == 4.0
+                    && r["case"]["m_e"] == m_e
+                    && r["case"]["k_delta"] == k
+                    && r["n"] == 1.0
+            })
+            .unwrap()["eta_fe"]
+            .as_f64()
+            .unwrap()
+    };
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    for row in csv.lines().skip(1) {
+        let f: Vec<&str> = row.split(',').collect();
+        let (m_e, k): (f64, f64) = (f[col("m_e_kg")].parse().unwrap(), f[col("k_delta_n_per_m")].parse().unwrap());
+        let eta: f64 = f[col("eta_fe")].parse().unwrap();
+        for (case_m_e, case_k) in [(0.1, 2e2), (10.0, 1e8)] {
+            if (m_e / case_m_e - 1.0).abs() < 1e-9 && (k / case_k - 1.0).abs() < 1e-9 {
+                let reference = eta_of(case_m_e, case_k);
+                assert!((eta / reference - 1.0).abs() < 1e-4, "{row}: {reference}");
+            }
+        }
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -50,24 +50,24 @@ pub struct EtaArgs {
     /// How the CL link is solved.
     #[arg(long, value_enum, default_value = "modal")]
     pub method: MethodArg,
-    /// Modal method: tolerance of the force's linear hold per step (1e-14 to 0.1).
-    #[arg(long, value_name = "TOL", default_value_t = 1e-6)]
-    pub tol: f64,
+    /// Modal method: tolerance of the force's linear hold per step (1e-14 to 0.1; default 1e-6).
+    #[arg(long, value_name = "TOL")]
+    pub tol: Option<f64>,
     /// Modal method: elements across the tip zone (EI/ρA)^¼ √t_c of the graded mesh (0.5 to
-    /// 1000).
-    #[arg(long, value_name = "N", default_value_t = GradedMesh::DEFAULT.zone_elements)]
-    pub zone_elements: f64,
+    /// 1000; default 8).
+    #[arg(long, value_name = "N")]
+    pub zone_elements: Option<f64>,
     /// Modal method: also follow every contact for this many first-mode periods of the CJ link
     /// (0.01 to 1000), run at --tol and --tol/10 to find how long the contacts are converged.
     #[arg(long, value_name = "P")]
     pub window_periods: Option<f64>,
-    /// Alpha method: Hermite-cubic elements of the CL beam (2 to 4096).
-    #[arg(long, value_name = "N", default_value_t = ClSolver::DEFAULT.elements)]
-    pub elements: usize,
+    /// Alpha method: Hermite-cubic elements of the CL beam (2 to 4096; default 256).
+    #[arg(long, value_name = "N")]
+    pub elements: Option<usize>,
     /// Alpha method: time steps over the shortest possible contact (head against the payload;
-    /// 20 to 1e6).
-    #[arg(long, value_name = "N", default_value_t = ClSolver::DEFAULT.steps_per_contact)]
-    pub steps_per_contact: usize,
+    /// 20 to 1e6; default 800).
+    #[arg(long, value_name = "N")]
+    pub steps_per_contact: Option<usize>,
     /// Alpha method: the CL beam reduced to its lowest N modes plus the tip's static correction
     /// shape (at most 1000 elements); without it, the full FE model.
     #[arg(long, value_name = "N")]
@@ -123,19 +123,43 @@ pub fn as_flag(e: flexrig_impact::ImpactError) -> CliError {
 fn settings(args: &EtaArgs) -> Result<EtaSettings, CliError> {
     let joint = joint_from_args(args.joint, args.rotor_inertia)?;
     let flag = as_flag;
+    let only = |flag: &str, given: bool, method: &str| {
+        if given {
+            Err(CliError::InvalidArgument {
+                arg: flag.into(),
+                value: "given".into(),
+                allowed: format!("only with --method {method}"),
+            })
+        } else {
+            Ok(())
+        }
+    };
     let method = match args.method {
-        MethodArg::Alpha => ClMethod::Alpha(ClSolver {
-            elements: args.elements,
-            steps_per_contact: args.steps_per_contact,
-            modes: args.modes,
-        }),
-        MethodArg::Modal => ClMethod::Modal {
-            mesh: GradedMesh {
-                zone_elements: args.zone_elements,
-                ..GradedMesh::DEFAULT
-            },
-            tol: args.tol,
-        },
+        MethodArg::Alpha => {
+            only("--tol", args.tol.is_some(), "modal")?;
+            only("--zone-elements", args.zone_elements.is_some(), "modal")?;
+            ClMethod::Alpha(ClSolver {
+                elements: args.elements.unwrap_or(ClSolver::DEFAULT.elements),
+                steps_per_contact: args
+                    .steps_per_contact
+                    .unwrap_or(ClSolver::DEFAULT.steps_per_contact),
+                modes: args.modes,
+            })
+        }
+        MethodArg::Modal => {
+            only("--elements", args.elements.is_some(), "alpha")?;
+            only("--steps-per-contact", args.steps_per_contact.is_some(), "alpha")?;
+            only("--modes", args.modes.is_some(), "alpha")?;
+            ClMethod::Modal {
+                mesh: GradedMesh {
+                    zone_elements: args
+                        .zone_elements
+                        .unwrap_or(GradedMesh::DEFAULT.zone_elements),
+                    ..GradedMesh::DEFAULT
+                },
+                tol: args.tol.unwrap_or(1e-6),
+            }
+        }
     };
     method.validate().map_err(flag)?;
     if let Some(p) = args.window_periods {
