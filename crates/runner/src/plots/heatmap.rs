@@ -84,6 +84,8 @@ const BAR_INSET: i32 = 14;
 const NO_VALUE: RGBColor = RGBColor(215, 215, 215);
 /// Hatching over the cells without a value.
 const HATCH: RGBColor = RGBColor(120, 120, 120);
+/// Edge of the legend's "no value" swatch.
+const GREY_EDGE: RGBColor = RGBColor(150, 150, 150);
 /// Distance between hatching lines [px].
 const HATCH_STEP: i32 = 7;
 /// Width of the region outline [px].
@@ -735,9 +737,6 @@ fn draw_legend(
     }
     Ok(())
 }
-
-/// Edge of the legend's "no value" swatch.
-const GREY_EDGE: RGBColor = RGBColor(150, 150, 150);
 
 #[cfg(test)]
 mod tests {

@@ -12,7 +12,7 @@ mod heatmap;
 mod work_precision;
 
 pub use eta::eta_svg;
-pub use fig6::fig6_svg;
+pub use fig6::{Fig6Point, fig6_svg, fig6_with_points_svg};
 pub use fig9::fig9_svg;
 pub use heatmap::{ColorScale, HeatMap, heatmaps_svg};
 pub use work_precision::{Panel, Series, work_precision_svg};
