@@ -260,3 +260,25 @@ pub fn effective_gamma(case: &Fig6Case, n: f64, peak: f64) -> Result<EffectiveGa
     }
     Ok(EffectiveGamma::Fits(0.5 * (lo + hi)))
 }
+
+/// The γ ∈ [`GAMMA_RANGE`](flexrig_lumped::fig6::GAMMA_RANGE) at which the lumped curve η(γ) of
+/// Fig. 6 takes the value `eta` (bisection to 1e-10; η(γ) rises with γ), or `None` when `eta`
+/// lies outside the curve's range: where an FE result sits on the paper's figure.
+pub fn gamma_on_curve(case: &Fig6Case, n: f64, eta: f64) -> Result<Option<f64>, ImpactError> {
+    let (lo, hi) = flexrig_lumped::fig6::GAMMA_RANGE;
+    let (e_lo, e_hi) = (case.eta(n, lo)?, case.eta(n, hi)?);
+    if !(eta >= e_lo.min(e_hi) && eta <= e_lo.max(e_hi)) {
+        return Ok(None);
+    }
+    let rising = e_hi >= e_lo;
+    let (mut a, mut b) = (lo, hi);
+    while b - a > 1e-10 {
+        let mid = 0.5 * (a + b);
+        if (case.eta(n, mid)? < eta) == rising {
+            a = mid;
+        } else {
+            b = mid;
+        }
+    }
+    Ok(Some(0.5 * (a + b)))
+}

@@ -269,6 +269,24 @@ fn method_text(method: &ClMethod) -> String {
     }
 }
 
+/// The paper's Fig. 6 curves with each row's η_FE placed where its lumped curve takes that value.
+fn fig6_with_fe_points(rows: &[EtaRow]) -> Result<String, String> {
+    let curves = flexrig_lumped::fig6::fig6(41).map_err(|e| e.to_string())?;
+    let points = rows
+        .iter()
+        .map(|r| {
+            Ok(crate::plots::Fig6Point {
+                case: r.case,
+                n: r.n,
+                eta_fe: r.eta_fe,
+                gamma: flexrig_impact::eta::gamma_on_curve(&r.case, r.n, r.eta_fe)
+                    .map_err(|e| e.to_string())?,
+            })
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    crate::plots::fig6_with_points_svg(&curves, &points)
+}
+
 /// Runs `flexrig eta`.
 pub fn run(args: &EtaArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let settings = settings(args)?;
@@ -276,6 +294,11 @@ pub fn run(args: &EtaArgs, out: &mut dyn Write) -> Result<(), CliError> {
     ensure_dir(&args.out)?;
     let csv_path = args.out.join("eta.csv");
     let svg_path = args.out.join("eta.svg");
+    let fig6_path = args.out.join("eta_fig6.svg");
+    let fig6_svg = fig6_with_fe_points(&rows).map_err(|message| CliError::Plot {
+        path: fig6_path.clone(),
+        message,
+    })?;
     let joint = match settings.joint {
         Joint::Held => "held".to_string(),
         Joint::FreeHub { rotor_inertia } => format!("free-hub (J_R = {rotor_inertia} kg·m²)"),
@@ -286,10 +309,11 @@ pub fn run(args: &EtaArgs, out: &mut dyn Write) -> Result<(), CliError> {
     })?;
     write_atomic(&csv_path, csv(&rows).as_bytes())?;
     write_atomic(&svg_path, svg.as_bytes())?;
+    write_atomic(&fig6_path, fig6_svg.as_bytes())?;
     if args.json {
         return print_json(
             out,
-            &json!({ "settings": settings, "rows": rows, "csv": csv_path, "svg": svg_path }),
+            &json!({ "settings": settings, "rows": rows, "csv": csv_path, "svg": svg_path, "fig6_svg": fig6_path }),
         );
     }
     line(
@@ -386,6 +410,11 @@ pub fn run(args: &EtaArgs, out: &mut dyn Write) -> Result<(), CliError> {
     }
     line(
         out,
-        format!("Wrote {} and {}", csv_path.display(), svg_path.display()),
+        format!(
+            "Wrote {}, {} and {} (the FE points on the Fig. 6 curves)",
+            csv_path.display(),
+            svg_path.display(),
+            fig6_path.display()
+        ),
     )
 }
