@@ -15,9 +15,9 @@
 
 use faer::Mat;
 
+use crate::ImpactError;
 use crate::setup::{FreeMassImpact, Joint};
 use crate::tip_modes::TipModes;
-use crate::ImpactError;
 
 /// β₁ of a cantilever's first mode: 1 + cos β cosh β = 0.
 pub const BETA_1: f64 = 1.875_104_068_711_961;
@@ -67,7 +67,11 @@ impl Chain {
 
     /// The chain's [`TipModes`] under the joint of `setup` (a free hub adds the rotor, J_R/L²
     /// plus `rotor_extra` \[kg\], and moves everything at −v0 at t = 0).
-    pub fn tip_modes(&self, setup: &FreeMassImpact, rotor_extra: f64) -> Result<TipModes, ImpactError> {
+    pub fn tip_modes(
+        &self,
+        setup: &FreeMassImpact,
+        rotor_extra: f64,
+    ) -> Result<TipModes, ImpactError> {
         let mut masses = self.masses.clone();
         let grounded = match setup.joint {
             Joint::Held => true,
@@ -95,8 +99,8 @@ impl Chain {
             Joint::FreeHub { .. } => vec![-setup.v0; n],
         };
         // shift: the softest spring on the whole mass, of the order of the lowest ω²
-        let shift = self.springs.iter().copied().fold(f64::INFINITY, f64::min)
-            / masses.iter().sum::<f64>();
+        let shift =
+            self.springs.iter().copied().fold(f64::INFINITY, f64::min) / masses.iter().sum::<f64>();
         let mut modes = TipModes::from_matrices(&k, &m, 0, &v0, f64::INFINITY, shift)?;
         modes.residual += self.series_compliance;
         Ok(modes)

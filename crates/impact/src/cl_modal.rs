@@ -3,12 +3,12 @@
 //! graded towards the tip ([`crate::graded`]); the modal integrator ([`crate::modal_run`]) carries
 //! no time-discretisation error in the link, so the step follows the contact alone.
 
+use crate::ImpactError;
 use crate::chain::Chain;
 use crate::graded::{GradedMesh, cl_tip_modes};
 use crate::modal_run::{Head, ModalOptions, run_modes};
 use crate::setup::{FreeMassImpact, ImpactOutcome, Joint};
 use crate::tip_modes::TipModes;
-use crate::ImpactError;
 
 /// The head at the onset: at v0 towards a robot at rest (held joint), or at rest with the robot
 /// moving into it (free hub).
@@ -50,13 +50,19 @@ pub fn run_cl_modal(
 }
 
 /// The CJ impact through the same integrator (the rigid link: one mode).
-pub fn run_cj_modal(setup: &FreeMassImpact, options: &ModalOptions) -> Result<ImpactOutcome, ImpactError> {
+pub fn run_cj_modal(
+    setup: &FreeMassImpact,
+    options: &ModalOptions,
+) -> Result<ImpactOutcome, ImpactError> {
     setup.validate()?;
     run_on_modes(setup, &Chain::cj(setup).tip_modes(setup, 0.0)?, options)
 }
 
 /// The placed reduced model of the CL ([`Chain::placed`]).
-pub fn run_placed(setup: &FreeMassImpact, options: &ModalOptions) -> Result<ImpactOutcome, ImpactError> {
+pub fn run_placed(
+    setup: &FreeMassImpact,
+    options: &ModalOptions,
+) -> Result<ImpactOutcome, ImpactError> {
     setup.validate()?;
     let link = setup.link;
     let modes = Chain::placed(setup).tip_modes(setup, link.m_r / 3.0 - link.m_r / 4.0)?;

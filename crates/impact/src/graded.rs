@@ -12,9 +12,9 @@ use faer::Mat;
 use flexrig_beam::element::{consistent_inertia, linear_stiffness};
 use nalgebra::Vector6;
 
+use crate::ImpactError;
 use crate::setup::{FreeMassImpact, Joint};
 use crate::tip_modes::TipModes;
-use crate::ImpactError;
 
 /// How the CL link is meshed and how many of its modes are kept.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -49,7 +49,11 @@ impl GradedMesh {
             ));
         }
         if !(self.ratio.is_finite() && (1.0..=2.0).contains(&self.ratio)) {
-            return Err(ImpactError::invalid("ratio", self.ratio, "must lie in [1, 2]"));
+            return Err(ImpactError::invalid(
+                "ratio",
+                self.ratio,
+                "must lie in [1, 2]",
+            ));
         }
         if !(2..=1000).contains(&self.min_elements) {
             return Err(ImpactError::invalid(
@@ -87,7 +91,9 @@ impl GradedMesh {
                 return Err(ImpactError::invalid(
                     "zone_elements",
                     self.zone_elements,
-                    format!("a mesh of at most {MAX_ELEMENTS} elements: fewer elements per zone or a larger ratio"),
+                    format!(
+                        "a mesh of at most {MAX_ELEMENTS} elements: fewer elements per zone or a larger ratio"
+                    ),
                 ));
             }
         }
@@ -106,13 +112,24 @@ impl GradedMesh {
 /// Largest graded mesh (a dense eigen-solve of 2 × that many DOFs).
 pub const MAX_ELEMENTS: usize = 1500;
 
+/// A linear structure's dense matrices over its free DOFs, with its struck DOF and its velocity at
+/// t = 0.
+#[derive(Debug, Clone)]
+pub struct LinkMatrices {
+    /// Stiffness K [N/m, N·m/rad].
+    pub k: Mat<f64>,
+    /// Mass M [kg, kg·m²].
+    pub m: Mat<f64>,
+    /// Index of the tip's transverse DOF.
+    pub tip: usize,
+    /// Velocity at t = 0 [m/s, rad/s].
+    pub v0: Vec<f64>,
+}
+
 /// The CL link's transverse K and M (DOFs v, θ per node, the root's v and θ held; a free hub
 /// frees θ₀ and adds the rotor's inertia there), the tip's DOF, and the link's velocity at t = 0
 /// (a free hub: rigid rotation with the tip at −v0 towards the head).
-pub fn cl_matrices(
-    setup: &FreeMassImpact,
-    lengths: &[f64],
-) -> Result<(Mat<f64>, Mat<f64>, usize, Vec<f64>), ImpactError> {
+pub fn cl_matrices(setup: &FreeMassImpact, lengths: &[f64]) -> Result<LinkMatrices, ImpactError> {
     let link = setup.link;
     let (ei, rho_a) = (link.ei(), link.rho_a());
     let nodes = lengths.len() + 1;
@@ -159,13 +176,18 @@ pub fn cl_matrices(
             }
         }
     }
-    Ok((k, m, tip_all - first, v0))
+    Ok(LinkMatrices {
+        k,
+        m,
+        tip: tip_all - first,
+        v0,
+    })
 }
 
 /// The CL link's [`TipModes`] on the graded mesh.
 pub fn cl_tip_modes(setup: &FreeMassImpact, mesh: &GradedMesh) -> Result<TipModes, ImpactError> {
     let lengths = mesh.element_lengths(setup)?;
-    let (k, m, tip, v0) = cl_matrices(setup, &lengths)?;
+    let LinkMatrices { k, m, tip, v0 } = cl_matrices(setup, &lengths)?;
     let cut = mesh.mode_cut * std::f64::consts::PI / setup.payload_contact_time();
     let link = setup.link;
     let shift = link.ei() / (link.rho_a() * link.length.powi(4));

@@ -66,14 +66,19 @@ impl MapSpec {
     /// Checks the ranges; the error names the field.
     pub fn validate(&self) -> Result<(), ImpactError> {
         if !(self.m_h.is_finite() && self.m_h > 0.0 && self.m_h <= 1e9) {
-            return Err(ImpactError::invalid("m_h", self.m_h, "must lie in (0, 1e9] kg"));
+            return Err(ImpactError::invalid(
+                "m_h",
+                self.m_h,
+                "must lie in (0, 1e9] kg",
+            ));
         }
         if !(self.n.is_finite() && (1.0..=3.0).contains(&self.n)) {
             return Err(ImpactError::invalid("n", self.n, "must lie in [1, 3]"));
         }
         // m_e ≤ 1e6 kg, k_δ in [1e-3, 1e12] N/m (the link's limits)
         self.mass_ratio.validate("mass_ratio", 1e-6, 1e5)?;
-        self.stiffness_ratio.validate("stiffness_ratio", 1e-11, 1e4)?;
+        self.stiffness_ratio
+            .validate("stiffness_ratio", 1e-11, 1e4)?;
         Ok(())
     }
 }

@@ -59,16 +59,16 @@ impl ModalOptions {
     /// Checks the options; the error names the field.
     pub fn validate(&self) -> Result<(), ImpactError> {
         if !(self.tol.is_finite() && (1e-14..=1e-1).contains(&self.tol)) {
-            return Err(ImpactError::invalid("tol", self.tol, "must lie in [1e-14, 0.1]"));
+            return Err(ImpactError::invalid(
+                "tol",
+                self.tol,
+                "must lie in [1e-14, 0.1]",
+            ));
         }
         if let Some(w) = self.window_s
             && !(w.is_finite() && w > 0.0 && w <= 1e6)
         {
-            return Err(ImpactError::invalid(
-                "window",
-                w,
-                "must lie in (0, 1e6] s",
-            ));
+            return Err(ImpactError::invalid("window", w, "must lie in (0, 1e6] s"));
         }
         if !(100..=100_000_000).contains(&self.max_steps) {
             return Err(ImpactError::invalid(
@@ -133,11 +133,7 @@ fn mode_coefficients(omega: f64, h: f64) -> [f64; 7] {
             1.0 - x2 / 6.0 + x2 * x2 / 120.0,
         )
     } else {
-        (
-            (1.0 - cos) / (x * x),
-            (x - sin) / (x * x * x),
-            sin / x,
-        )
+        ((1.0 - cos) / (x * x), (x - sin) / (x * x * x), sin / x)
     };
     let h2 = h * h;
     let beta = h2 * x_minus_sin;
@@ -250,9 +246,8 @@ impl Integrator<'_> {
                 hi = f;
             }
             let (delta, rate) = (p.d - p.c * f, p.e - p.c_v * f);
-            let slope = 1.0
-                + p.c * self.law.stiffness(delta, rate)
-                + p.c_v * self.law.damping(delta, rate);
+            let slope =
+                1.0 + p.c * self.law.stiffness(delta, rate) + p.c_v * self.law.damping(delta, rate);
             let mut next = f - res / slope;
             if !(next > lo && next < hi) {
                 next = 0.5 * (lo + hi);

@@ -92,7 +92,11 @@ impl TipModes {
                 break;
             }
             let w2 = 1.0 / lambda - shift;
-            let w2 = if w2.abs() <= 1e-8 * shift { 0.0 } else { w2.max(0.0) };
+            let w2 = if w2.abs() <= 1e-8 * shift {
+                0.0
+            } else {
+                w2.max(0.0)
+            };
             let omega = w2.sqrt();
             let scale = 1.0 / lambda.sqrt();
             let gain = phi[(tip, i)] * scale;
@@ -134,7 +138,13 @@ impl TipModes {
         self.omegas
             .iter()
             .zip(&self.gains)
-            .map(|(w, b)| if *w > 0.0 { b * b / (w * w) } else { f64::INFINITY })
+            .map(|(w, b)| {
+                if *w > 0.0 {
+                    b * b / (w * w)
+                } else {
+                    f64::INFINITY
+                }
+            })
             .sum::<f64>()
             + self.residual
     }

@@ -5,9 +5,9 @@
 
 use flexrig_contact::Hertz;
 use flexrig_impact::chain::{BETA_1, Chain};
+use flexrig_impact::cj::run_cj;
 use flexrig_impact::cl::run_cl;
 use flexrig_impact::cl_modal::{run_cj_modal, run_cl_modal, run_on_modes};
-use flexrig_impact::cj::run_cj;
 use flexrig_impact::eta::{EtaSettings, case_setup};
 use flexrig_impact::graded::{GradedMesh, cl_matrices, cl_tip_modes};
 use flexrig_impact::horizon::run_window;
@@ -59,7 +59,10 @@ fn the_modal_cj_matches_dop853() {
             let e = rel(ours.peak_force_n, reference.peak_force_n)
                 .max(rel(ours.duration_s, reference.duration_s));
             worst = worst.max(e);
-            assert!(e <= 1e-6, "{joint:?} {m_h} {k} {m_e} {n}: {ours:?} vs {reference:?}");
+            assert!(
+                e <= 1e-6,
+                "{joint:?} {m_h} {k} {m_e} {n}: {ours:?} vs {reference:?}"
+            );
         }
     }
     eprintln!("modal CJ vs DOP853: worst relative difference {worst:.1e}");
@@ -119,15 +122,27 @@ fn later_contacts_of_the_cj_match_rk4() {
             last.1 = last.1.max(force(&y));
         }
     }
-    assert_eq!(contacts.len(), ours.contacts.len(), "{contacts:?} vs {:?}", ours.contacts);
+    assert_eq!(
+        contacts.len(),
+        ours.contacts.len(),
+        "{contacts:?} vs {:?}",
+        ours.contacts
+    );
     assert!(contacts.len() >= 2, "a chattering case: {contacts:?}");
     for (r, o) in contacts.iter().zip(&ours.contacts) {
         // the RK4 peak is the largest sample: within (ω h)²/8 ≈ 1e-7 of the true peak
         assert!(rel(o.peak_force_n, r.1) <= 1e-6, "{o:?} vs {r:?}");
-        assert!((o.onset_s - r.0).abs() <= 1e-6 * parted.max(1e-3), "{o:?} vs {r:?}");
+        assert!(
+            (o.onset_s - r.0).abs() <= 1e-6 * parted.max(1e-3),
+            "{o:?} vs {r:?}"
+        );
     }
     // the energy through all contacts
-    assert!(rel(ours.energy_j.1, ours.energy_j.0) <= 1e-8, "{:?}", ours.energy_j);
+    assert!(
+        rel(ours.energy_j.1, ours.energy_j.0) <= 1e-8,
+        "{:?}",
+        ours.energy_j
+    );
 }
 
 /// The graded-mesh assembly on a uniform mesh is flexrig-beam's model (frequencies to 1e-9),
@@ -138,15 +153,18 @@ fn the_graded_mesh_is_flexrig_beams_element_and_the_analytic_cantilever() {
     let s = setup(4.0, 2e2, 0.0, 1.0, Joint::Held);
     // uniform: 16 elements of L/16
     let lengths = vec![1.0 / 16.0; 16];
-    let (k, m, tip, v0) = cl_matrices(&s, &lengths).unwrap();
+    let flexrig_impact::graded::LinkMatrices { k, m, tip, v0 } = cl_matrices(&s, &lengths).unwrap();
     let ours = TipModes::from_matrices(&k, &m, tip, &v0, f64::INFINITY, 1.0).unwrap();
     let model = flexrig_impact::cl::cl_beam(&s, 16).unwrap();
-    let beam = flexrig_beam::modal_analysis(&model, 10, flexrig_beam::ModalDirection::Transverse)
-        .unwrap();
+    let beam =
+        flexrig_beam::modal_analysis(&model, 10, flexrig_beam::ModalDirection::Transverse).unwrap();
     for i in 0..10 {
         assert!(rel(ours.omegas[i], beam.omegas[i]) <= 1e-9, "mode {i}");
         let phi_tip = beam.shapes[i][3 * model.tip_node() + 1];
-        assert!(rel(ours.gains[i].abs(), phi_tip.abs()) <= 1e-8, "mode {i} at the tip");
+        assert!(
+            rel(ours.gains[i].abs(), phi_tip.abs()) <= 1e-8,
+            "mode {i} at the tip"
+        );
     }
     // graded, every mode kept; the root elements L/24 and L/48: the Hermite cubic's O(h⁴)
     let scale = (s.link.ei() / s.link.rho_a()).sqrt();
@@ -167,11 +185,25 @@ fn the_graded_mesh_is_flexrig_beams_element_and_the_analytic_cantilever() {
     // mode 1 sits at the round-off floor of the dense solve on a graded mesh (≈ 4e-8: the
     // tip elements of L/500 make K + σM ill-conditioned); modes 2 and 3 show the O(h⁴)
     for i in 0..3 {
-        assert!(coarse[i] <= [1e-7, 1e-6, 1e-5][i], "mode {}: {:.1e}", i + 1, coarse[i]);
-        assert!(fine[i] <= [1e-7, 1e-7, 1e-6][i], "mode {}: {:.1e}", i + 1, fine[i]);
+        assert!(
+            coarse[i] <= [1e-7, 1e-6, 1e-5][i],
+            "mode {}: {:.1e}",
+            i + 1,
+            coarse[i]
+        );
+        assert!(
+            fine[i] <= [1e-7, 1e-7, 1e-6][i],
+            "mode {}: {:.1e}",
+            i + 1,
+            fine[i]
+        );
     }
     for i in 1..3 {
-        assert!(coarse[i] / fine[i] >= 10.0, "mode {}: order 4 expected", i + 1);
+        assert!(
+            coarse[i] / fine[i] >= 10.0,
+            "mode {}: order 4 expected",
+            i + 1
+        );
     }
     let graded = cl_tip_modes(
         &s,
@@ -207,15 +239,31 @@ fn the_modal_cl_matches_the_full_fe_model() {
         (4.0, 2e2, 0.1, 1.0, Joint::Held),
         (1000.0, 2e2, 10.0, 2.0, Joint::Held),
         (1000.0, 1e8, 0.1, 1.0, Joint::FreeHub { rotor_inertia: 1.0 }),
-        (4.0, 2e2, 0.1, 2.0, Joint::FreeHub { rotor_inertia: 1e-3 }),
+        (
+            4.0,
+            2e2,
+            0.1,
+            2.0,
+            Joint::FreeHub {
+                rotor_inertia: 1e-3,
+            },
+        ),
     ] {
         let s = setup(m_h, k, m_e, n, joint);
         let fe = run_cl(&s, &solver).unwrap().first;
-        let ours = run_cl_modal(&s, &GradedMesh::DEFAULT, &opts(1e-6)).unwrap().first;
+        let ours = run_cl_modal(&s, &GradedMesh::DEFAULT, &opts(1e-6))
+            .unwrap()
+            .first;
         let e = rel(ours.peak_force_n, fe.peak_force_n);
         worst = worst.max(e);
-        assert!(e <= 1e-4, "{m_h} {k} {m_e} {n} {joint:?}: {ours:?} vs {fe:?}");
-        assert!(rel(ours.duration_s, fe.duration_s) <= 1e-3, "{ours:?} vs {fe:?}");
+        assert!(
+            e <= 1e-4,
+            "{m_h} {k} {m_e} {n} {joint:?}: {ours:?} vs {fe:?}"
+        );
+        assert!(
+            rel(ours.duration_s, fe.duration_s) <= 1e-3,
+            "{ours:?} vs {fe:?}"
+        );
     }
     eprintln!("modal CL vs generalized-α FE: worst {worst:.1e}");
 }
@@ -250,18 +298,28 @@ fn eta_fe_converges_in_tolerance_and_mesh() {
 fn the_modal_cl_joins_the_joints_and_ignores_the_length() {
     let held = setup(4.0, 1e8, 0.1, 1.0, Joint::Held);
     let hub = FreeMassImpact {
-        joint: Joint::FreeHub {
-            rotor_inertia: 1e9,
-        },
+        joint: Joint::FreeHub { rotor_inertia: 1e9 },
         ..held
     };
-    let a = run_cl_modal(&held, &GradedMesh::DEFAULT, &opts(1e-8)).unwrap().first;
-    let b = run_cl_modal(&hub, &GradedMesh::DEFAULT, &opts(1e-8)).unwrap().first;
-    assert!(rel(a.peak_force_n, b.peak_force_n) <= 1e-6, "{a:?} vs {b:?}");
+    let a = run_cl_modal(&held, &GradedMesh::DEFAULT, &opts(1e-8))
+        .unwrap()
+        .first;
+    let b = run_cl_modal(&hub, &GradedMesh::DEFAULT, &opts(1e-8))
+        .unwrap()
+        .first;
+    assert!(
+        rel(a.peak_force_n, b.peak_force_n) <= 1e-6,
+        "{a:?} vs {b:?}"
+    );
     let mut long = held;
     long.link.length = 3.7;
-    let c = run_cl_modal(&long, &GradedMesh::DEFAULT, &opts(1e-8)).unwrap().first;
-    assert!(rel(a.peak_force_n, c.peak_force_n) <= 1e-9, "{a:?} vs {c:?}");
+    let c = run_cl_modal(&long, &GradedMesh::DEFAULT, &opts(1e-8))
+        .unwrap()
+        .first;
+    assert!(
+        rel(a.peak_force_n, c.peak_force_n) <= 1e-9,
+        "{a:?} vs {c:?}"
+    );
 }
 
 /// A window: every contact of the chattering soft CL, energy kept through them all, the runs at
@@ -326,7 +384,9 @@ fn bad_modal_settings_name_the_field() {
             "mode_cut",
         ),
     ] {
-        let e = run_cl_modal(&s, &mesh, &opts(1e-6)).unwrap_err().to_string();
+        let e = run_cl_modal(&s, &mesh, &opts(1e-6))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains(field), "{e}");
     }
     for (o, field) in [

@@ -815,7 +815,11 @@ fn eta_refuses_bad_input_and_runs_coarse() {
     }
     // the headline case against the generalized-α reference in docs/impact-fe.md (256 elements,
     // 800 steps per contact: η_FE = 0.9207)
-    assert!((rows[0]["eta_fe"].as_f64().unwrap() - 0.9207).abs() < 1e-4, "{}", rows[0]);
+    assert!(
+        (rows[0]["eta_fe"].as_f64().unwrap() - 0.9207).abs() < 1e-4,
+        "{}",
+        rows[0]
+    );
     let csv = std::fs::read_to_string(dir.join("eta.csv")).unwrap();
     assert_eq!(csv.lines().count(), 17);
     let svg = std::fs::read_to_string(dir.join("eta.svg")).unwrap();
@@ -892,7 +896,10 @@ fn the_eta_map_refuses_bad_ranges_and_matches_the_eta_table() {
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
     for row in csv.lines().skip(1) {
         let f: Vec<&str> = row.split(',').collect();
-        let (m_e, k): (f64, f64) = (f[col("m_e_kg")].parse().unwrap(), f[col("k_delta_n_per_m")].parse().unwrap());
+        let (m_e, k): (f64, f64) = (
+            f[col("m_e_kg")].parse().unwrap(),
+            f[col("k_delta_n_per_m")].parse().unwrap(),
+        );
         let eta: f64 = f[col("eta_fe")].parse().unwrap();
         for (case_m_e, case_k) in [(0.1, 2e2), (10.0, 1e8)] {
             if (m_e / case_m_e - 1.0).abs() < 1e-9 && (k / case_k - 1.0).abs() < 1e-9 {

@@ -148,7 +148,11 @@ fn settings(args: &EtaArgs) -> Result<EtaSettings, CliError> {
         }
         MethodArg::Modal => {
             only("--elements", args.elements.is_some(), "alpha")?;
-            only("--steps-per-contact", args.steps_per_contact.is_some(), "alpha")?;
+            only(
+                "--steps-per-contact",
+                args.steps_per_contact.is_some(),
+                "alpha",
+            )?;
             only("--modes", args.modes.is_some(), "alpha")?;
             ClMethod::Modal {
                 mesh: GradedMesh {

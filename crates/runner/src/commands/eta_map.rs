@@ -144,11 +144,7 @@ fn csv(maps: &[Computed]) -> String {
                     );
                 }
                 Err(e) => {
-                    let _ = writeln!(
-                        s,
-                        "{head},,,,,,,,,,,,\"{}\"",
-                        e.replace('"', "'")
-                    );
+                    let _ = writeln!(s, "{head},,,,,,,,,,,,\"{}\"", e.replace('"', "'"));
                 }
             }
         }
@@ -237,7 +233,11 @@ fn svg(m: &Computed, joint: &str) -> Result<String, String> {
 
 /// Summary numbers of one map: points, failures, CL-beats-CJ count and the largest errors.
 fn summary(m: &Computed) -> serde_json::Value {
-    let rows: Vec<_> = m.points.iter().filter_map(|p| p.row.as_ref().ok()).collect();
+    let rows: Vec<_> = m
+        .points
+        .iter()
+        .filter_map(|p| p.row.as_ref().ok())
+        .collect();
     let beats = rows.iter().filter(|r| r.eta_fe < BEATS).count();
     let fits = rows
         .iter()
