@@ -82,6 +82,53 @@ pub fn dense_matrices(model: &BeamModel) -> (Mat<f64>, Mat<f64>) {
     (k, m)
 }
 
+/// The symmetric pencil M φ = λ (K + σM) φ of dense K and M with a shift σ > 0 (K + σM positive
+/// definite): λ = 1/(ω² + σ), ascending, so the lowest modes have the largest λ and carry only
+/// round-off relative to themselves however stiff the highest ones are. K + σM = L Lᵀ (faer
+/// Cholesky), C = L⁻¹ M L⁻ᵀ = Ψ Λ Ψᵀ (faer's self-adjoint eigensolver), φ = L⁻ᵀ ψ with
+/// φᵀ (K + σM) φ = 1, hence φᵀ M φ = λ.
+pub struct ShiftedPencil {
+    /// λᵢ = 1/(ωᵢ² + σ), ascending.
+    pub lambda: Vec<f64>,
+    l: Mat<f64>,
+    psi: Mat<f64>,
+}
+
+impl ShiftedPencil {
+    /// Solves the pencil of `k` and `m` (n × n, symmetric) with shift `sigma` [1/s²].
+    pub fn solve(k: &Mat<f64>, m: &Mat<f64>, sigma: f64) -> Result<ShiftedPencil, BeamError> {
+        let n = k.nrows();
+        let a = Mat::from_fn(n, n, |i, j| k[(i, j)] + sigma * m[(i, j)]);
+        let llt = a
+            .llt(Side::Lower)
+            .map_err(|e| BeamError::Eigen(format!("Cholesky of K + σM failed: {e:?}")))?;
+        let l = llt.L().to_owned();
+        // C = L⁻¹ (L⁻¹ M)ᵀ
+        let mut x = m.clone();
+        solve_lower_triangular_in_place(l.as_ref(), x.as_mut(), Par::Seq);
+        let mut c = x.transpose().to_owned();
+        solve_lower_triangular_in_place(l.as_ref(), c.as_mut(), Par::Seq);
+        let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
+        let evd = c
+            .self_adjoint_eigen(Side::Lower)
+            .map_err(|e| BeamError::Eigen(format!("{e:?}")))?;
+        let s = evd.S();
+        Ok(ShiftedPencil {
+            lambda: (0..n).map(|i| s[i]).collect(),
+            l,
+            psi: evd.U().to_owned(),
+        })
+    }
+
+    /// φᵢ = L⁻ᵀ ψᵢ (an n × 1 column), φᵢᵀ (K + σM) φᵢ = 1.
+    pub fn vector(&self, i: usize) -> Mat<f64> {
+        let n = self.psi.nrows();
+        let mut phi = Mat::from_fn(n, 1, |r, _| self.psi[(r, i)]);
+        solve_upper_triangular_in_place(self.l.transpose(), phi.as_mut(), Par::Seq);
+        phi
+    }
+}
+
 /// The lowest `modes` modes of `model` in `direction`.
 pub fn modal_analysis(
     model: &BeamModel,
@@ -125,23 +172,8 @@ pub fn modal_analysis(
     let m = Mat::from_fn(n, n, |i, j| m_all[(keep[i], keep[j])]);
     let sec = model.section();
     let sigma = sec.ei() / (sec.rho_a() * model.length().powi(4));
-    let a = Mat::from_fn(n, n, |i, j| k[(i, j)] + sigma * m[(i, j)]);
-    let llt = a
-        .llt(Side::Lower)
-        .map_err(|e| BeamError::Eigen(format!("Cholesky of K + σM failed: {e:?}")))?;
-    let l = llt.L();
-    // C = L⁻¹ (L⁻¹ M)ᵀ
-    let mut x = m.clone();
-    solve_lower_triangular_in_place(l, x.as_mut(), Par::Seq);
-    let mut c = x.transpose().to_owned();
-    solve_lower_triangular_in_place(l, c.as_mut(), Par::Seq);
-    let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
-    let evd = c
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|e| BeamError::Eigen(format!("{e:?}")))?;
-    let s = evd.S();
-    let u = evd.U();
-    let lam_max = (0..n).map(|i| s[i]).fold(0.0f64, f64::max);
+    let pencil = ShiftedPencil::solve(&k, &m, sigma)?;
+    let lam_max = pencil.lambda.iter().copied().fold(0.0f64, f64::max);
     let mut omegas = Vec::new();
     let mut shapes = Vec::new();
     // λ ascending: lowest frequencies at the end.
@@ -149,7 +181,7 @@ pub fn modal_analysis(
         if omegas.len() == modes {
             break;
         }
-        let lam = s[idx];
+        let lam = pencil.lambda[idx];
         if lam <= lam_max * 1e-13 {
             break; // massless DOFs: infinite frequency
         }
@@ -159,8 +191,7 @@ pub fn modal_analysis(
         } else {
             w2.max(0.0)
         };
-        let mut psi = Mat::from_fn(n, 1, |i, _| u[(i, idx)]);
-        solve_upper_triangular_in_place(l.transpose(), psi.as_mut(), Par::Seq);
+        let psi = pencil.vector(idx);
         let mut mphi = 0.0;
         for i in 0..n {
             for j in 0..n {

@@ -85,6 +85,30 @@ impl EtaSettings {
     };
 }
 
+impl EtaSettings {
+    /// Checks the method and the window; the error names the field.
+    pub fn validate(&self) -> Result<(), ImpactError> {
+        self.method.validate()?;
+        if let Some(periods) = self.window_periods {
+            if !matches!(self.method, ClMethod::Modal { .. }) {
+                return Err(ImpactError::invalid(
+                    "window_periods",
+                    periods,
+                    "only with the modal method",
+                ));
+            }
+            if !(periods.is_finite() && (0.01..=1000.0).contains(&periods)) {
+                return Err(ImpactError::invalid(
+                    "window_periods",
+                    periods,
+                    "must lie in [0.01, 1000]",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// The γ of the lumped model that reproduces a peak.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case", tag = "kind", content = "gamma")]
@@ -156,7 +180,7 @@ pub fn case_setup(
 
 /// One case and exponent.
 pub fn eta_case(case: &Fig6Case, n: f64, settings: &EtaSettings) -> Result<EtaRow, ImpactError> {
-    settings.method.validate()?;
+    settings.validate()?;
     let setup = case_setup(case, n, settings)?;
     let f_cj = cj::run_cj(&setup, settings.cj_rtol)?.first.peak_force_n;
     let mut window = None;
@@ -169,13 +193,6 @@ pub fn eta_case(case: &Fig6Case, n: f64, settings: &EtaSettings) -> Result<EtaRo
                 ..ModalOptions::DEFAULT
             };
             if let Some(periods) = settings.window_periods {
-                if !(periods.is_finite() && (0.01..=1000.0).contains(&periods)) {
-                    return Err(ImpactError::invalid(
-                        "window_periods",
-                        periods,
-                        "must lie in [0.01, 1000]",
-                    ));
-                }
                 let link = setup.link;
                 let window_s = periods
                     * 2.0

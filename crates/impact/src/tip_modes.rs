@@ -1,17 +1,13 @@
 //! A linear structure seen from the struck point: its modes' frequencies, their amplitudes at the
 //! tip and their initial rates, plus the static compliance of the modes left out.
 //!
-//! From dense K, M (symmetric, M positive definite, K positive semi-definite) over n DOFs:
-//! M = L Lᵀ (Cholesky), C = L⁻¹ K L⁻ᵀ = Ψ Ω² Ψᵀ (faer's self-adjoint eigensolver),
-//! Φ = L⁻ᵀ Ψ (M-orthonormal). In modal coordinates every mode obeys q̈ᵢ + ωᵢ² qᵢ = bᵢ f(t) with
-//! bᵢ = φᵢ(tip) \[1/√kg\] and f the force on the tip \[N\]; the tip deflection is
+//! From dense K, M (symmetric, K + σM positive definite) over n DOFs, by flexrig-beam's shifted
+//! pencil ([`flexrig_beam::modal::ShiftedPencil`]), the modes M-normalised. In modal
+//! coordinates every mode obeys q̈ᵢ + ωᵢ² qᵢ = bᵢ f(t) with bᵢ = φᵢ(tip) \[1/√kg\] and f the force on the tip \[N\]; the tip deflection is
 //! w = Σ bᵢ qᵢ + R f, where R = Σ_{left out} bᵢ²/ωᵢ² \[m/N\] is the quasi-static response of the
 //! modes above the cut-off (the mode-acceleration correction). Initial rates q̇ᵢ(0) = φᵢᵀ M v₀.
 
-use faer::linalg::triangular_solve::{
-    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
-};
-use faer::{Mat, Par, Side};
+use faer::Mat;
 
 use crate::ImpactError;
 
@@ -53,24 +49,7 @@ impl TipModes {
         if !(shift.is_finite() && shift > 0.0) {
             return Err(failed(format!("the eigen shift must be > 0, not {shift}")));
         }
-        let a = Mat::from_fn(n, n, |i, j| k[(i, j)] + shift * m[(i, j)]);
-        let llt = a
-            .llt(Side::Lower)
-            .map_err(|e| failed(format!("K + σM is not positive definite ({e:?})")))?;
-        let l = llt.L();
-        // C = L⁻¹ (L⁻¹ M)ᵀ, symmetrised
-        let mut x = m.clone();
-        solve_lower_triangular_in_place(l, x.as_mut(), Par::Seq);
-        let mut c = x.transpose().to_owned();
-        solve_lower_triangular_in_place(l, c.as_mut(), Par::Seq);
-        let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
-        let evd = c
-            .self_adjoint_eigen(Side::Lower)
-            .map_err(|e| failed(format!("the eigensolver failed ({e:?})")))?;
-        let (s, u) = (evd.S(), evd.U());
-        // φ = L⁻ᵀ ψ has φᵀ(K + σM)φ = 1, so φᵀ M φ = λ
-        let mut phi = u.to_owned();
-        solve_upper_triangular_in_place(l.transpose(), phi.as_mut(), Par::Seq);
+        let pencil = flexrig_beam::modal::ShiftedPencil::solve(k, m, shift)?;
         let mv0: Vec<f64> = (0..n)
             .map(|i| (0..n).map(|j| m[(i, j)] * v0[j]).sum())
             .collect();
@@ -80,17 +59,18 @@ impl TipModes {
             rates: Vec::new(),
             residual: 0.0,
         };
-        let lambda_max = (0..n).map(|i| s[i]).fold(0.0_f64, f64::max);
+        let lambda_max = pencil.lambda.iter().copied().fold(0.0_f64, f64::max);
         if !(lambda_max > 0.0) {
             return Err(failed("the structure has no mass".into()));
         }
         // λ ascending: the lowest modes last
         for i in (0..n).rev() {
-            let lambda = s[i];
+            let lambda = pencil.lambda[i];
             if lambda <= 1e-14 * lambda_max {
                 // below round-off: a mode of (numerically) infinite frequency, no static part
                 break;
             }
+            let phi = pencil.vector(i);
             let w2 = 1.0 / lambda - shift;
             let w2 = if w2.abs() <= 1e-8 * shift {
                 0.0
@@ -99,12 +79,12 @@ impl TipModes {
             };
             let omega = w2.sqrt();
             let scale = 1.0 / lambda.sqrt();
-            let gain = phi[(tip, i)] * scale;
+            let gain = phi[(tip, 0)] * scale;
             if omega > omega_cut {
                 modes.residual += gain * gain / w2;
                 continue;
             }
-            let rate: f64 = (0..n).map(|j| phi[(j, i)] * mv0[j]).sum::<f64>() * scale;
+            let rate: f64 = (0..n).map(|j| phi[(j, 0)] * mv0[j]).sum::<f64>() * scale;
             modes.omegas.push(omega);
             modes.gains.push(gain);
             modes.rates.push(rate);
@@ -120,16 +100,6 @@ impl TipModes {
     /// True when no mode is kept.
     pub fn is_empty(&self) -> bool {
         self.omegas.is_empty()
-    }
-
-    /// The structure's modes with every stiffness scaled by `s` > 0 (ω ∝ √s, R ∝ 1/s, the shapes
-    /// unchanged): one eigen-solve serves every k_δ of a map.
-    pub fn with_stiffness_scaled(&self, s: f64) -> TipModes {
-        TipModes {
-            omegas: self.omegas.iter().map(|w| w * s.sqrt()).collect(),
-            residual: self.residual / s,
-            ..self.clone()
-        }
     }
 
     /// The static tip compliance Σ bᵢ²/ωᵢ² + R over the flexible modes \[m/N\] (∞ with a rigid

@@ -5,22 +5,10 @@
 use flexrig_contact::Hertz;
 use flexrig_impact::cj::run_cj;
 use flexrig_impact::cl::run_cl;
-use flexrig_impact::{ClSolver, FreeMassImpact, Joint, LinkParams};
+use flexrig_impact::{ClSolver, FreeMassImpact, Joint};
 
-fn setup(m_h: f64, k_delta: f64, m_e: f64, n: f64, joint: Joint) -> FreeMassImpact {
-    FreeMassImpact {
-        m_h,
-        v0: 2.0,
-        link: LinkParams {
-            m_r: 10.0,
-            length: 1.0,
-            k_delta,
-            m_e,
-        },
-        joint,
-        contact: Hertz::new(1e8, n).unwrap(),
-    }
-}
+mod common;
+use common::setup;
 
 /// The held CJ by classical RK4 at a fixed step h: state (x_h, v_h, w, ẇ); returns the largest
 /// force sample and the separation time (linear interpolation of the gap).

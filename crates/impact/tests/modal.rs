@@ -3,7 +3,6 @@
 //! uniform-mesh modal analysis and the analytic cantilever for the graded mesh, the
 //! generalized-α full FE model for the CL, and convergence in tolerance and mesh.
 
-use flexrig_contact::Hertz;
 use flexrig_impact::chain::{BETA_1, Chain};
 use flexrig_impact::cj::run_cj;
 use flexrig_impact::cl::run_cl;
@@ -13,22 +12,10 @@ use flexrig_impact::graded::{GradedMesh, cl_matrices, cl_tip_modes};
 use flexrig_impact::horizon::run_window;
 use flexrig_impact::modal_run::ModalOptions;
 use flexrig_impact::tip_modes::TipModes;
-use flexrig_impact::{ClSolver, FreeMassImpact, Joint, LinkParams, RunEnd};
+use flexrig_impact::{ClSolver, FreeMassImpact, Joint, RunEnd};
 
-fn setup(m_h: f64, k_delta: f64, m_e: f64, n: f64, joint: Joint) -> FreeMassImpact {
-    FreeMassImpact {
-        m_h,
-        v0: 2.0,
-        link: LinkParams {
-            m_r: 10.0,
-            length: 1.0,
-            k_delta,
-            m_e,
-        },
-        joint,
-        contact: Hertz::new(1e8, n).unwrap(),
-    }
-}
+mod common;
+use common::setup;
 
 fn opts(tol: f64) -> ModalOptions {
     ModalOptions {

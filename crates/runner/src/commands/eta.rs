@@ -122,7 +122,6 @@ pub fn as_flag(e: flexrig_impact::ImpactError) -> CliError {
 
 fn settings(args: &EtaArgs) -> Result<EtaSettings, CliError> {
     let joint = joint_from_args(args.joint, args.rotor_inertia)?;
-    let flag = as_flag;
     let only = |flag: &str, given: bool, method: &str| {
         if given {
             Err(CliError::InvalidArgument {
@@ -165,23 +164,6 @@ fn settings(args: &EtaArgs) -> Result<EtaSettings, CliError> {
             }
         }
     };
-    method.validate().map_err(flag)?;
-    if let Some(p) = args.window_periods {
-        if args.method != MethodArg::Modal {
-            return Err(CliError::InvalidArgument {
-                arg: "--window-periods".into(),
-                value: p.to_string(),
-                allowed: "only with --method modal".into(),
-            });
-        }
-        if !(p.is_finite() && (0.01..=1000.0).contains(&p)) {
-            return Err(CliError::InvalidArgument {
-                arg: "--window-periods".into(),
-                value: p.to_string(),
-                allowed: "must lie in [0.01, 1000]".into(),
-            });
-        }
-    }
     if !(args.length.is_finite() && (1e-3..=1e3).contains(&args.length)) {
         return Err(CliError::InvalidArgument {
             arg: "--length".into(),
@@ -189,13 +171,15 @@ fn settings(args: &EtaArgs) -> Result<EtaSettings, CliError> {
             allowed: "must lie in [1e-3, 1e3] m".into(),
         });
     }
-    Ok(EtaSettings {
+    let settings = EtaSettings {
         length: args.length,
         joint,
         method,
         window_periods: args.window_periods,
         ..EtaSettings::DEFAULT
-    })
+    };
+    settings.validate().map_err(as_flag)?;
+    Ok(settings)
 }
 
 fn gamma_text(g: &EffectiveGamma) -> String {

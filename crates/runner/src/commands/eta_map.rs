@@ -85,21 +85,7 @@ fn spec_for(args: &EtaMapArgs, m_h: f64) -> Result<MapSpec, CliError> {
         mass_ratio: parse_range("--mass-ratio", &args.mass_ratio, args.points)?,
         stiffness_ratio: parse_range("--stiffness-ratio", &args.stiffness_ratio, args.points)?,
     };
-    spec.validate().map_err(|e| match as_flag(e) {
-        CliError::InvalidArgument {
-            arg,
-            value,
-            allowed,
-        } => CliError::InvalidArgument {
-            arg: match arg.as_str() {
-                "--m-h" => "--m-h".into(),
-                _ => arg,
-            },
-            value,
-            allowed,
-        },
-        other => other,
-    })?;
+    spec.validate().map_err(as_flag)?;
     Ok(spec)
 }
 
