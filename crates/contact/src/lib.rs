@@ -5,6 +5,7 @@
 //!   n = 2.002; ABS k = 1.311e7, n = 1.817; dome radius 71.5 mm).
 //! - [`DampedHertz`]: f = k δ^n (1 + χ δ̇) with χ from Hunt–Crossley or Lankarani–Nikravesh.
 //! - [`AdamsImpact`]: the ADAMS IMPACT function with its cubic STEP damping ramp.
+//! - [`DampingSpec`]: the choice among these as plain data (scene files, CLI flags).
 //! - [`SeriesCompliance`]: a link spring in series with the contact (paper Eq. 6–9): the force at
 //!   a given total displacement, the stored energy, and the force at a given energy.
 //! - [`DomeBlockContact`]: the [`ContactCallback`] the test rig calls each step — the
@@ -25,6 +26,7 @@
 //! ```
 
 mod damped;
+mod damping_spec;
 mod dome_block;
 mod error;
 mod fit;
@@ -40,6 +42,7 @@ pub mod validate;
 pub use parry3d_f64::math;
 
 pub use damped::{DampedHertz, DampingModel};
+pub use damping_spec::DampingSpec;
 pub use dome_block::{BodyKinematics, ContactCallback, ContactSample, DomeBlockContact};
 pub use error::ContactError;
 pub use fit::{CSV_HEADER, CompressionPoint, HertzFit, fit_hertz, parse_compression_csv};

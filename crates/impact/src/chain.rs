@@ -106,3 +106,16 @@ impl Chain {
         Ok(modes)
     }
 }
+
+/// The paper's lumped model (Fig. 5c–d, Eq. 5) as a structure for the modal integrator: the
+/// free mass `m_eff` \[kg\] behind the massless link spring `k_delta` \[N/m\] in series with the
+/// contact, no ground anywhere. With any contact law (damped ones included) it gives the
+/// lumped peak that [`flexrig_lumped::peak_exact`] gives in closed form for the elastic law.
+pub fn paper_lumped(m_eff: f64, k_delta: f64) -> TipModes {
+    TipModes {
+        omegas: vec![0.0],
+        gains: vec![1.0 / m_eff.sqrt()],
+        rates: vec![0.0],
+        residual: 1.0 / k_delta,
+    }
+}

@@ -2,12 +2,14 @@
 //! deflection w = Lφ, tip inertia J/L² = m_e + m_r/3 on the spring k_θr/L² = k_δ), the head one
 //! more, and a free hub adds the rotor (r = Lψ, inertia J_R/L²) behind the spring:
 //!
-//! m_h ẍ_h = −f,  M ẅ = −k_δ (w − r) + f,  M_R r̈ = k_δ (w − r),  f = k_c ⟨x_h − w⟩ⁿ,
+//! m_h ẍ_h = −f,  M ẅ = −k_δ (w − r) + f,  M_R r̈ = k_δ (w − r),  f = f(δ, δ̇), δ = x_h − w,
 //!
-//! with M = m_e + m_r/3, M_R = J_R/L² (held joint: r ≡ 0). Integrated by DOP853 (flexrig-lumped)
-//! from the onset to the separation, which is located on the dense output; so is every local
-//! maximum of the force (where the indentation rate δ̇ = ẋ_h − ẇ turns negative).
+//! with M = m_e + m_r/3, M_R = J_R/L² (held joint: r ≡ 0) and f any law of flexrig-contact
+//! (k_c ⟨δ⟩ⁿ, Eq. 4, when undamped). Integrated by DOP853 (flexrig-lumped) from the onset to the
+//! separation, which is located on the dense output; so is every local maximum of the force
+//! (where ḟ = ∂f/∂δ δ̇ + ∂f/∂δ̇ δ̈ turns negative: for the elastic law, where δ̇ does).
 
+use flexrig_contact::ContactLaw;
 use flexrig_lumped::ode::dop853::{Dop853, Dop853Options, OdeSystem, find_root};
 
 use crate::ImpactError;
@@ -16,24 +18,25 @@ use crate::setup::{ContactEvent, FreeMassImpact, ImpactOutcome, Joint};
 /// State: head position and speed, tip deflection and rate, rotor (tip units) and rate.
 type Y = [f64; 6];
 
-struct CjSystem {
+struct CjSystem<'a> {
     m_h: f64,
     m_tip: f64,
     /// 1/M_R (0 for the held joint).
     inv_m_rotor: f64,
     k_delta: f64,
-    k_c: f64,
-    n: f64,
+    law: &'a dyn ContactLaw,
 }
 
-impl CjSystem {
+impl CjSystem<'_> {
     fn force(&self, y: &Y) -> f64 {
-        let delta = y[0] - y[2];
-        if delta > 0.0 {
-            self.k_c * delta.powf(self.n)
-        } else {
-            0.0
-        }
+        self.law.force(y[0] - y[2], y[1] - y[3])
+    }
+
+    /// ḟ [N/s] along the motion: ∂f/∂δ δ̇ + ∂f/∂δ̇ δ̈.
+    fn force_rate(&self, y: &Y) -> f64 {
+        let (delta, rate) = (y[0] - y[2], y[1] - y[3]);
+        let dy = self.rhs(0.0, y);
+        self.law.stiffness(delta, rate) * rate + self.law.damping(delta, rate) * (dy[1] - dy[3])
     }
 
     fn energy(&self, y: &Y) -> f64 {
@@ -48,11 +51,11 @@ impl CjSystem {
             + 0.5 * self.m_tip * y[3] * y[3]
             + rotor
             + 0.5 * self.k_delta * spring * spring
-            + self.k_c * delta.powf(self.n + 1.0) / (self.n + 1.0)
+            + self.law.elastic_energy(delta)
     }
 }
 
-impl OdeSystem<6> for CjSystem {
+impl OdeSystem<6> for CjSystem<'_> {
     fn rhs(&self, _t: f64, y: &Y) -> Y {
         let f = self.force(y);
         let spring = self.k_delta * (y[2] - y[4]);
@@ -110,6 +113,7 @@ pub fn run_tip_oscillator(
         ));
     }
     let link = setup.link;
+    let law = setup.law()?;
     let (inv_m_rotor, y0) = match setup.joint {
         Joint::Held => (0.0, [0.0, setup.v0, 0.0, 0.0, 0.0, 0.0]),
         Joint::FreeHub { rotor_inertia } => (
@@ -122,8 +126,7 @@ pub fn run_tip_oscillator(
         m_tip: tip.m_tip,
         inv_m_rotor,
         k_delta: tip.k,
-        k_c: setup.contact.k(),
-        n: setup.contact.n(),
+        law: &*law,
     };
     let t_scale = setup.payload_contact_time();
     let x_scale = setup.v0 * t_scale;
@@ -143,6 +146,7 @@ pub fn run_tip_oscillator(
     };
     let mut ode = Dop853::new(&system, 0.0, y0, options);
     let rate = |y: &Y| y[1] - y[3];
+    let force_rate = |y: &Y| system.force_rate(y);
     let gap = |y: &Y| y[0] - y[2];
     let mut peak = (0.0_f64, 0.0_f64);
     // the contact ends when the indentation returns to 0 with the bodies parting
@@ -153,14 +157,14 @@ pub fn run_tip_oscillator(
         })?;
         let (t0, t1) = (ode.t_old(), ode.t());
         let (y_old, y_new) = (*ode.y_old(), *ode.y());
-        if rate(&y_old) > 0.0 && rate(&y_new) <= 0.0 {
+        if force_rate(&y_old) > 0.0 && force_rate(&y_new) <= 0.0 {
             let dense = ode.dense_output(&system);
             let t = find_root(
-                |t| rate(&dense.eval(t)),
+                |t| force_rate(&dense.eval(t)),
                 t0,
-                rate(&y_old),
+                force_rate(&y_old),
                 t1,
-                rate(&y_new),
+                force_rate(&y_new),
                 1e-15 * t1.max(t_scale),
             );
             let f = system.force(&dense.eval(t));

@@ -15,7 +15,7 @@ use flexrig_beam::{
     BeamModel, BeamSpec, GeneralizedAlpha, Kinematics, NodalLoads, NodeForce, NodeLoad, PointMass,
     ReducedModel, ReducedState, RootSupport, Section, State, Workspace,
 };
-use flexrig_contact::{ContactLaw, Hertz};
+use flexrig_contact::ContactLaw;
 
 use crate::ImpactError;
 use crate::setup::{ClSolver, ContactEvent, FreeMassImpact, ImpactOutcome, Joint};
@@ -42,7 +42,7 @@ impl HeadMotion {
 
 /// The head's contact as a load on the tip node: F_v = f(x_h − w, ẋ_h − ẇ), ∂F_v/∂w = −∂f/∂δ.
 struct HeadContact<'a> {
-    law: &'a Hertz,
+    law: &'a dyn ContactLaw,
     head: HeadMotion,
     tip: usize,
 }
@@ -263,7 +263,7 @@ pub fn run_cl(setup: &FreeMassImpact, solver: &ClSolver) -> Result<ImpactOutcome
     // Newton to 1e-9 of the indentation scale (the tolerance is relative to L)
     let tolerance = (1e-9 * x_scale / length).clamp(1e-300, 1e-3);
     let integrator = GeneralizedAlpha::new(1.0)?.with_newton(50, tolerance)?;
-    let law = setup.contact;
+    let law = setup.law()?;
     let mut head = HeadMotion {
         t0: 0.0,
         x: 0.0,
@@ -281,16 +281,17 @@ pub fn run_cl(setup: &FreeMassImpact, solver: &ClSolver) -> Result<ImpactOutcome
     let mut gap_prev = 0.0;
     for step in 1..=max_steps {
         let mut contact = HeadContact {
-            law: &law,
+            law: &*law,
             head,
             tip,
         };
         beam.step(&integrator, h, &mut contact)?;
         let t = beam.time();
-        let (x_h, _) = head.at(t);
+        // the force the beam's Newton converged on: the head's predicted speed in its rate
+        let (x_h, v_h) = head.at(t);
         let (w, w_dot) = beam.tip(tip);
         let delta = x_h - w;
-        let f = law.force(delta, 0.0);
+        let f = law.force(delta, v_h - w_dot);
         let a_new = -f / setup.m_h;
         head = HeadMotion {
             t0: t,

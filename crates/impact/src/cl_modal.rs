@@ -33,7 +33,7 @@ pub fn run_on_modes(
     run_modes(
         modes,
         head_at_onset(setup),
-        &setup.contact,
+        &*setup.law()?,
         setup.payload_contact_time(),
         options,
     )

@@ -4,8 +4,13 @@
 //! m_eff = m_e + γ m_r/3, two free masses with the series compliance between them) reproduces
 //! the FE CL peak, found by bisection on the exact energy solution (the lumped peak grows
 //! monotonically with m_eff). Where no γ ∈ (0, 1] fits, [`EffectiveGamma`] says on which side.
+//!
+//! With a damped contact law ([`EtaSettings::damping`]) the lumped peaks have no closed form;
+//! they come from the same lumped model run through the exact modal integrator
+//! ([`chain::paper_lumped`]: a free mass behind the series spring), which reproduces the closed
+//! form for the elastic law (a test).
 
-use flexrig_contact::Hertz;
+use flexrig_contact::{DampingSpec, Hertz};
 use flexrig_lumped::fig6::{Fig6Case, K_C, M_R, V0};
 use flexrig_lumped::peak_exact;
 use rayon::prelude::*;
@@ -14,7 +19,7 @@ use serde::Serialize;
 use crate::cl_modal::{run_on_modes, run_placed};
 use crate::graded::{GradedMesh, cl_tip_modes};
 use crate::horizon::{WindowReport, run_window};
-use crate::modal_run::ModalOptions;
+use crate::modal_run::{Head, ModalOptions, run_modes};
 use crate::setup::{ClSolver, FreeMassImpact, Joint, LinkParams};
 use crate::{ImpactError, chain, cj, cl};
 
@@ -72,6 +77,8 @@ pub struct EtaSettings {
     /// `Some(p)`: also follow every contact for p first-mode periods of the CJ link,
     /// 2π √((m_e + m_r/3)/k_δ) (modal method only).
     pub window_periods: Option<f64>,
+    /// Damping added to the Hertz contact (the paper: none).
+    pub damping: DampingSpec,
 }
 
 impl EtaSettings {
@@ -82,6 +89,7 @@ impl EtaSettings {
         method: ClMethod::DEFAULT,
         cj_rtol: 1e-10,
         window_periods: None,
+        damping: DampingSpec::NONE,
     };
 }
 
@@ -175,6 +183,7 @@ pub fn case_setup(
         },
         joint: settings.joint,
         contact: Hertz::new(K_C, n)?,
+        damping: settings.damping,
     })
 }
 
@@ -232,9 +241,10 @@ pub fn eta_case(case: &Fig6Case, n: f64, settings: &EtaSettings) -> Result<EtaRo
         f_cj_n: f_cj,
         f_cl_n: f_cl,
         eta_fe: f_cl / f_cj,
-        eta_lumped_2_3: case.eta(n, 2.0 / 3.0)?,
-        f_cj_lumped_n: peak_exact(&case.model(n, 1.0)?).f_max,
-        gamma_eff: effective_gamma(case, n, f_cl)?,
+        eta_lumped_2_3: lumped_peak(case, n, 2.0 / 3.0, settings)?
+            / lumped_peak(case, n, 1.0, settings)?,
+        f_cj_lumped_n: lumped_peak(case, n, 1.0, settings)?,
+        gamma_eff: effective_gamma_with(case, n, f_cl, settings)?,
         f_placed_n: f_placed,
         window,
     })
@@ -255,10 +265,64 @@ pub fn eta_table(settings: &EtaSettings) -> Result<Vec<EtaRow>, ImpactError> {
         .collect()
 }
 
-/// The γ ∈ (0, 1] with f_lumped(γ) = `peak` \[N\] (bisection to 1e-12 in γ).
+/// Tolerance of the lumped model's modal runs with a damped law.
+const LUMPED_TOL: f64 = 1e-8;
+
+/// The lumped model's peak \[N\] at γ (m_eff = m_e + γ m_r/3, Eq. 5) with the contact of
+/// `settings`: the exact energy solution for the elastic law, the modal integrator for a damped
+/// one.
+pub fn lumped_peak(
+    case: &Fig6Case,
+    n: f64,
+    gamma: f64,
+    settings: &EtaSettings,
+) -> Result<f64, ImpactError> {
+    let model = case.model(n, gamma)?;
+    if settings.damping.is_none() {
+        return Ok(peak_exact(&model).f_max);
+    }
+    let setup = case_setup(case, n, settings)?;
+    let head = Head {
+        mass: model.m_h(),
+        x: 0.0,
+        v: model.v0(),
+    };
+    let options = ModalOptions {
+        tol: LUMPED_TOL,
+        ..ModalOptions::DEFAULT
+    };
+    let modes = chain::paper_lumped(model.m_eff(), model.spring().k_delta());
+    Ok(run_modes(
+        &modes,
+        head,
+        &*setup.law()?,
+        setup.payload_contact_time(),
+        &options,
+    )?
+    .first
+    .peak_force_n)
+}
+
+/// The γ ∈ (0, 1] with f_lumped(γ) = `peak` \[N\] for the elastic law (bisection to 1e-12 in γ).
 pub fn effective_gamma(case: &Fig6Case, n: f64, peak: f64) -> Result<EffectiveGamma, ImpactError> {
-    let f =
-        |gamma: f64| -> Result<f64, ImpactError> { Ok(peak_exact(&case.model(n, gamma)?).f_max) };
+    effective_gamma_with(case, n, peak, &EtaSettings::DEFAULT)
+}
+
+/// The γ ∈ (0, 1] with f_lumped(γ) = `peak` \[N\] under the contact of `settings` (bisection,
+/// to 1e-12 in γ for the elastic law, 1e-9 for a damped one: its lumped peaks carry the modal
+/// integrator's error, ≈ [`LUMPED_TOL`]).
+pub fn effective_gamma_with(
+    case: &Fig6Case,
+    n: f64,
+    peak: f64,
+    settings: &EtaSettings,
+) -> Result<EffectiveGamma, ImpactError> {
+    let f = |gamma: f64| lumped_peak(case, n, gamma, settings);
+    let resolution = if settings.damping.is_none() {
+        1e-12
+    } else {
+        1e-9
+    };
     const GAMMA_MIN: f64 = 1e-9;
     if peak > f(1.0)? {
         return Ok(EffectiveGamma::AboveGammaOne);
@@ -267,7 +331,7 @@ pub fn effective_gamma(case: &Fig6Case, n: f64, peak: f64) -> Result<EffectiveGa
         return Ok(EffectiveGamma::BelowPayloadOnly);
     }
     let (mut lo, mut hi) = (GAMMA_MIN, 1.0);
-    while hi - lo > 1e-12 {
+    while hi - lo > resolution {
         let mid = 0.5 * (lo + hi);
         if f(mid)? < peak {
             lo = mid;

@@ -260,6 +260,15 @@ impl Integrator<'_> {
         f
     }
 
+    /// True when the unloaded motion from `s` over `h` meets a positive contact force at one of
+    /// seven interior points (h/8 apart).
+    fn engages_within(&self, s: &Motion, h: f64) -> bool {
+        (1..8).any(|j| {
+            let m = self.step_unloaded(s, h * j as f64 / 8.0);
+            m.delta > 0.0 && self.law.force(m.delta, m.delta_dot) > 0.0
+        })
+    }
+
     fn finish(&self, p: Prediction, k: &StepCoefficients, f1: f64, t: f64) -> Motion {
         let h = k.h;
         let mut q = p.q;
@@ -381,6 +390,10 @@ pub fn run_modes(
     };
     let mut contacts: Vec<ContactEvent> = Vec::new();
     let mut f_ref = 0.0_f64;
+    // the hold's allowed deviation over a step h: tol × the largest force, and on steps longer
+    // than the contact time scale tol × f × t_scale/h, so that the impulse error of a step stays
+    // below tol f t_scale (long low-force tails: a damped law's slow release)
+    let allowed = |f: f64, h: f64| options.tol * f * (t_scale / h).min(1.0);
     let mut steps = 0usize;
     let window = options.window_s;
     let ended;
@@ -415,10 +428,17 @@ pub fn run_modes(
                 let (t_b, f_b) = (s.t, s.f);
                 let (h0, h1) = (t_b - t_a, k.h);
                 let f2 = 2.0 * ((next.f - f_b) / h1 - (f_b - f_a) / h0) / (h0 + h1);
-                if h1 * h1 * f2.abs() / 8.0 > 4.0 * options.tol * f_ref.max(next.f) {
+                if h1 * h1 * f2.abs() / 8.0 > 4.0 * allowed(f_ref.max(next.f), h1) {
                     level -= 4;
                     continue;
                 }
+            }
+            // a damped law can hold the force at 0 while the bodies still overlap (damping
+            // outpulling the elastic force); a step that starts and ends there must not jump
+            // over the force's return
+            if s.f == 0.0 && next.f == 0.0 && level > -200 && int.engages_within(&s, k.h) {
+                level -= 4;
+                continue;
             }
             if next.f == 0.0 && next.delta <= 0.0 {
                 // the gap closes within the step: shorten it to the separation
@@ -446,7 +466,9 @@ pub fn run_modes(
                 let ideal = if f2 == 0.0 {
                     2.0 * h
                 } else {
-                    0.9 * (8.0 * options.tol * f_ref / f2.abs()).sqrt()
+                    let by_force = (8.0 * options.tol * f_ref / f2.abs()).sqrt();
+                    let by_impulse = (8.0 * options.tol * f_ref * t_scale / f2.abs()).cbrt();
+                    0.9 * by_force.min(by_impulse)
                 };
                 let target = ideal.clamp(0.5 * h, 2.0 * h).max(h_min);
                 level = cache.level_for(target).min(level + 4);

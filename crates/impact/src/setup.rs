@@ -1,6 +1,6 @@
 //! The free-mass impact set-up (the paper's Fig. 5, issue 14) and its result.
 
-use flexrig_contact::Hertz;
+use flexrig_contact::{ContactLaw, DampingSpec, Hertz};
 use serde::Serialize;
 
 use crate::ImpactError;
@@ -139,8 +139,11 @@ pub struct FreeMassImpact {
     pub link: LinkParams,
     /// The joint during the impact.
     pub joint: Joint,
-    /// The contact law f = k_c δ^n (Eq. 4).
+    /// The elastic contact law f = k_c δ^n (Eq. 4).
     pub contact: Hertz,
+    /// Damping added to it ([`DampingSpec::NONE`]: the paper's elastic contact); the
+    /// restitution-based models set χ from v0.
+    pub damping: DampingSpec,
 }
 
 impl FreeMassImpact {
@@ -152,7 +155,13 @@ impl FreeMassImpact {
         if let Joint::FreeHub { rotor_inertia } = self.joint {
             in_range("rotor_inertia", rotor_inertia, 1e-12, 1e12)?;
         }
+        self.law()?;
         Ok(())
+    }
+
+    /// The contact law: [`Self::contact`] with [`Self::damping`] at the approach speed v0.
+    pub fn law(&self) -> Result<Box<dyn ContactLaw>, ImpactError> {
+        Ok(self.damping.law(self.contact, self.v0)?)
     }
 
     /// Duration \[s\] of an undamped Hertz impact of the head against the payload alone (the

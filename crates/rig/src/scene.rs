@@ -4,7 +4,8 @@
 //! materials file and derives every physical quantity once ([`Scene`] is immutable). Errors name
 //! the field path (`robot.thickness_m`), the value and what is allowed.
 
-use flexrig_contact::{AdamsImpact, ContactLaw, DampedHertz, Hertz, Materials};
+pub use flexrig_contact::DampingSpec;
+use flexrig_contact::{ContactLaw, Hertz, Materials};
 use serde::{Deserialize, Serialize};
 
 use crate::RigError;
@@ -169,32 +170,6 @@ pub struct RobotSpec {
 
 fn default_beam_elements() -> usize {
     16
-}
-
-/// Damping added to the Hertz law of the block material.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case", tag = "model", deny_unknown_fields)]
-pub enum DampingSpec {
-    /// No damping (default).
-    None {},
-    /// Hunt–Crossley with restitution `restitution` at the impact speed.
-    HuntCrossley {
-        /// Coefficient of restitution ∈ [0, 1].
-        restitution: f64,
-    },
-    /// Lankarani–Nikravesh with restitution `restitution` at the impact speed.
-    LankaraniNikravesh {
-        /// Coefficient of restitution ∈ [0, 1].
-        restitution: f64,
-    },
-    /// ADAMS IMPACT: damping ramped by a cubic STEP from 0 at first touch to `c_max` at the
-    /// penetration `depth_m` (stiffness and exponent from the Hertz law).
-    AdamsImpact {
-        /// Maximum damping [N·s/m], ≥ 0.
-        c_max_n_s_per_m: f64,
-        /// Penetration at which the damping reaches c_max \[m\], > 0.
-        depth_m: f64,
-    },
 }
 
 /// The contact law between dome and block.
@@ -506,24 +481,7 @@ impl Scene {
 
     /// The contact law for an impact at approach speed `v0` [m/s] (damping models need it).
     pub fn contact_law(&self, v0: f64) -> Result<Box<dyn ContactLaw>, RigError> {
-        Ok(match self.file.contact.damping {
-            DampingSpec::None {} => Box::new(self.hertz),
-            DampingSpec::HuntCrossley { restitution } => {
-                Box::new(DampedHertz::hunt_crossley(self.hertz, restitution, v0)?)
-            }
-            DampingSpec::LankaraniNikravesh { restitution } => Box::new(
-                DampedHertz::lankarani_nikravesh(self.hertz, restitution, v0)?,
-            ),
-            DampingSpec::AdamsImpact {
-                c_max_n_s_per_m,
-                depth_m,
-            } => Box::new(AdamsImpact::new(
-                self.hertz.k(),
-                self.hertz.n(),
-                c_max_n_s_per_m,
-                depth_m,
-            )?),
-        })
+        Ok(self.file.contact.damping.law(self.hertz, v0)?)
     }
 }
 

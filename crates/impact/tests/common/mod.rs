@@ -16,5 +16,6 @@ pub fn setup(m_h: f64, k_delta: f64, m_e: f64, n: f64, joint: Joint) -> FreeMass
         },
         joint,
         contact: Hertz::new(1e8, n).unwrap(),
+        damping: flexrig_contact::DampingSpec::NONE,
     }
 }

@@ -7,6 +7,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
+use flexrig_contact::DampingSpec;
 use flexrig_impact::eta::{ClMethod, EffectiveGamma, EtaRow, EtaSettings, eta_table};
 use flexrig_impact::graded::GradedMesh;
 use flexrig_impact::{ClSolver, Joint};
@@ -33,6 +34,118 @@ pub enum MethodArg {
     /// The FE link on a uniform mesh by generalized-α (the reference; --elements,
     /// --steps-per-contact, --modes).
     Alpha,
+}
+
+/// Damping added to the Hertz contact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum DampingArg {
+    /// The paper's elastic contact f = k_c δⁿ.
+    None,
+    /// Hunt–Crossley, f = k_c δⁿ (1 + χ δ̇), χ = 3(1 − e)/(2 v0) (--restitution).
+    HuntCrossley,
+    /// Lankarani–Nikravesh, χ = 3(1 − e²)/(4 v0) (--restitution).
+    LankaraniNikravesh,
+    /// ADAMS IMPACT: damping ramped from 0 at first touch to --c-max at --depth.
+    AdamsImpact,
+}
+
+/// The contact's damping flags (shared by `flexrig eta` and `flexrig eta-map`).
+#[derive(Debug, Args)]
+pub struct DampingArgs {
+    /// Damping added to the Hertz contact (the lumped columns then come from the lumped model
+    /// integrated with the same law).
+    #[arg(long, value_enum, default_value = "none")]
+    pub damping: DampingArg,
+    /// Coefficient of restitution e in [0, 1] (with --damping hunt-crossley or
+    /// lankarani-nikravesh).
+    #[arg(long, value_name = "E")]
+    pub restitution: Option<f64>,
+    /// Largest damping coefficient, N·s/m in [0, 1e9] (with --damping adams-impact).
+    #[arg(long, value_name = "N_S_PER_M")]
+    pub c_max: Option<f64>,
+    /// Indentation at which the damping reaches --c-max, m in [1e-9, 1] (with --damping
+    /// adams-impact).
+    #[arg(long, value_name = "M")]
+    pub depth: Option<f64>,
+}
+
+impl DampingArgs {
+    /// The damping the flags ask for; a missing, stray or out-of-range flag is named.
+    pub fn spec(&self) -> Result<DampingSpec, CliError> {
+        let bad = |arg: &str, value: String, allowed: &str| CliError::InvalidArgument {
+            arg: arg.into(),
+            value,
+            allowed: allowed.into(),
+        };
+        let in_range = |arg: &str, value: Option<f64>, lo: f64, hi: f64, what: &str| {
+            let v = value.ok_or_else(|| {
+                bad(
+                    "--damping",
+                    format!("{:?}", self.damping),
+                    &format!("needs {arg} ({what})"),
+                )
+            })?;
+            if v.is_finite() && (lo..=hi).contains(&v) {
+                Ok(v)
+            } else {
+                Err(bad(
+                    arg,
+                    v.to_string(),
+                    &format!("must lie in [{lo:e}, {hi:e}]"),
+                ))
+            }
+        };
+        let stray = |arg: &str, value: Option<f64>, with: &str| match value {
+            Some(v) => Err(bad(
+                arg,
+                v.to_string(),
+                &format!("only with --damping {with}"),
+            )),
+            None => Ok(()),
+        };
+        let restitution_models = "hunt-crossley or lankarani-nikravesh";
+        match self.damping {
+            DampingArg::None | DampingArg::AdamsImpact => {
+                stray("--restitution", self.restitution, restitution_models)?
+            }
+            _ => {}
+        }
+        if self.damping != DampingArg::AdamsImpact {
+            stray("--c-max", self.c_max, "adams-impact")?;
+            stray("--depth", self.depth, "adams-impact")?;
+        }
+        let restitution = || in_range("--restitution", self.restitution, 0.0, 1.0, "e in [0, 1]");
+        Ok(match self.damping {
+            DampingArg::None => DampingSpec::NONE,
+            DampingArg::HuntCrossley => DampingSpec::HuntCrossley {
+                restitution: restitution()?,
+            },
+            DampingArg::LankaraniNikravesh => DampingSpec::LankaraniNikravesh {
+                restitution: restitution()?,
+            },
+            DampingArg::AdamsImpact => DampingSpec::AdamsImpact {
+                c_max_n_s_per_m: in_range("--c-max", self.c_max, 0.0, 1e9, "N·s/m")?,
+                depth_m: in_range("--depth", self.depth, 1e-9, 1.0, "m")?,
+            },
+        })
+    }
+}
+
+/// The contact as the table's title says it.
+pub fn contact_text(damping: &DampingSpec) -> String {
+    match *damping {
+        DampingSpec::None {} => "elastic Hertz contact".into(),
+        DampingSpec::HuntCrossley { restitution } => {
+            format!("Hunt–Crossley contact, e = {restitution}")
+        }
+        DampingSpec::LankaraniNikravesh { restitution } => {
+            format!("Lankarani–Nikravesh contact, e = {restitution}")
+        }
+        DampingSpec::AdamsImpact {
+            c_max_n_s_per_m,
+            depth_m,
+        } => format!("ADAMS IMPACT contact, c_max = {c_max_n_s_per_m} N·s/m at {depth_m} m"),
+    }
 }
 
 /// Arguments of `flexrig eta`.
@@ -75,6 +188,9 @@ pub struct EtaArgs {
     /// Link length L, m (the transverse impact does not depend on it).
     #[arg(long, value_name = "M", default_value_t = 1.0)]
     pub length: f64,
+    /// The contact's damping.
+    #[command(flatten)]
+    pub contact: DampingArgs,
     /// Print JSON instead of the table.
     #[arg(long)]
     pub json: bool,
@@ -176,6 +292,7 @@ fn settings(args: &EtaArgs) -> Result<EtaSettings, CliError> {
         joint,
         method,
         window_periods: args.window_periods,
+        damping: args.contact.spec()?,
         ..EtaSettings::DEFAULT
     };
     settings.validate().map_err(as_flag)?;
@@ -307,7 +424,8 @@ pub fn run(args: &EtaArgs, out: &mut dyn Write) -> Result<(), CliError> {
     line(
         out,
         format!(
-            "Fig. 6 cases at FE fidelity (free head, {joint} joint; m_r = 10 kg, k_c = 1e8, v0 = 2 m/s; {})",
+            "Fig. 6 cases at FE fidelity (free head, {joint} joint; m_r = 10 kg, k_c = 1e8, v0 = 2 m/s, {}; {})",
+            contact_text(&settings.damping),
             method_text(&settings.method)
         ),
     )?;

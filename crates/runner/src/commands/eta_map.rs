@@ -13,7 +13,7 @@ use flexrig_impact::graded::GradedMesh;
 use flexrig_impact::map::{LogRange, MapPoint, MapSpec, eta_map};
 use serde_json::json;
 
-use super::eta::{JointArg, as_flag, joint_from_args};
+use super::eta::{DampingArgs, JointArg, as_flag, contact_text, joint_from_args};
 use crate::CliError;
 use crate::output::{ensure_dir, line, print_json, write_atomic};
 use crate::plots::{ColorScale, HeatMap, heatmaps_svg};
@@ -52,6 +52,9 @@ pub struct EtaMapArgs {
     /// within 5e-5 of the converged one (tested).
     #[arg(long, value_name = "TOL", default_value_t = 1e-5)]
     pub tol: f64,
+    /// The contact's damping.
+    #[command(flatten)]
+    pub contact: DampingArgs,
     /// Print JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
@@ -211,7 +214,7 @@ fn svg(m: &Computed, joint: &str) -> Result<String, String> {
         },
     ];
     let title = format!(
-        "Free head m_h = {} kg on the CL (FE) and CJ links, n = {}, {joint} joint (m_r = 10 kg, k_c = 1e8, v0 = 2 m/s)",
+        "Free head m_h = {} kg on the CL (FE) and CJ links, n = {}, {joint} (m_r = 10 kg, k_c = 1e8, v0 = 2 m/s)",
         m.spec.m_h, m.spec.n
     );
     heatmaps_svg(&title, &maps)
@@ -272,6 +275,7 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write) -> Result<(), CliError> {
             mesh: GradedMesh::DEFAULT,
             tol: args.tol,
         },
+        damping: args.contact.spec()?,
         ..EtaSettings::DEFAULT
     };
     settings.method.validate().map_err(as_flag)?;
@@ -281,6 +285,7 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write) -> Result<(), CliError> {
             format!("free-hub (J_R = {rotor_inertia} kg·m²)")
         }
     };
+    let joint_text = format!("{joint_text} joint, {}", contact_text(&settings.damping));
     let mut maps = Vec::new();
     for spec in specs {
         let start = Instant::now();
@@ -316,7 +321,7 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write) -> Result<(), CliError> {
     line(
         out,
         format!(
-            "η over m_e/m_r {} × k_δ/k_c {} ({} × {} points, n = {}, {joint_text} joint, tol {:e})",
+            "η over m_e/m_r {} × k_δ/k_c {} ({} × {} points, n = {}, {joint_text}, tol {:e})",
             args.mass_ratio, args.stiffness_ratio, args.points, args.points, args.n, args.tol
         ),
     )?;
