@@ -187,41 +187,47 @@ pub fn case_setup(
     })
 }
 
+/// The FE CL's first-contact peak \[N\] of `setup` by the method of `settings`.
+pub fn cl_first_peak(setup: &FreeMassImpact, settings: &EtaSettings) -> Result<f64, ImpactError> {
+    Ok(match settings.method {
+        ClMethod::Alpha(solver) => cl::run_cl(setup, &solver)?.first.peak_force_n,
+        ClMethod::Modal { mesh, tol } => {
+            let options = ModalOptions {
+                tol,
+                ..ModalOptions::DEFAULT
+            };
+            run_on_modes(setup, &cl_tip_modes(setup, &mesh)?, &options)?
+                .first
+                .peak_force_n
+        }
+    })
+}
+
 /// One case and exponent.
 pub fn eta_case(case: &Fig6Case, n: f64, settings: &EtaSettings) -> Result<EtaRow, ImpactError> {
     settings.validate()?;
     let setup = case_setup(case, n, settings)?;
     let f_cj = cj::run_cj(&setup, settings.cj_rtol)?.first.peak_force_n;
     let mut window = None;
-    let f_cl = match settings.method {
-        ClMethod::Alpha(solver) => cl::run_cl(&setup, &solver)?.first.peak_force_n,
-        ClMethod::Modal { mesh, tol } => {
-            let modes = cl_tip_modes(&setup, &mesh)?;
-            let first = ModalOptions {
-                tol,
-                ..ModalOptions::DEFAULT
-            };
-            if let Some(periods) = settings.window_periods {
-                let link = setup.link;
-                let window_s = periods
-                    * 2.0
-                    * std::f64::consts::PI
-                    * (link.cj_tip_mass() / link.k_delta).sqrt();
-                let options = ModalOptions {
-                    window_s: Some(window_s),
-                    max_steps: 2_000_000,
-                    ..first
-                };
-                let cj_modes = chain::Chain::cj(&setup).tip_modes(&setup, 0.0)?;
-                window = Some(EtaWindow {
-                    window_s,
-                    cj: run_window(&setup, &cj_modes, &options)?,
-                    cl: run_window(&setup, &modes, &options)?,
-                });
-            }
-            run_on_modes(&setup, &modes, &first)?.first.peak_force_n
-        }
-    };
+    if let (ClMethod::Modal { mesh, tol }, Some(periods)) =
+        (settings.method, settings.window_periods)
+    {
+        let link = setup.link;
+        let window_s =
+            periods * 2.0 * std::f64::consts::PI * (link.cj_tip_mass() / link.k_delta).sqrt();
+        let options = ModalOptions {
+            tol,
+            window_s: Some(window_s),
+            max_steps: 2_000_000,
+        };
+        let cj_modes = chain::Chain::cj(&setup).tip_modes(&setup, 0.0)?;
+        window = Some(EtaWindow {
+            window_s,
+            cj: run_window(&setup, &cj_modes, &options)?,
+            cl: run_window(&setup, &cl_tip_modes(&setup, &mesh)?, &options)?,
+        });
+    }
+    let f_cl = cl_first_peak(&setup, settings)?;
     let placed_tol = match settings.method {
         ClMethod::Modal { tol, .. } => tol,
         ClMethod::Alpha(_) => 1e-6,

@@ -26,6 +26,7 @@ pub mod graded;
 pub mod horizon;
 pub mod map;
 pub mod modal_run;
+pub mod rotor;
 pub mod setup;
 pub mod tip_modes;
 

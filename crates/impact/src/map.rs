@@ -29,7 +29,7 @@ impl LogRange {
             .collect()
     }
 
-    fn validate(&self, field: &str, lo: f64, hi: f64) -> Result<(), ImpactError> {
+    pub(crate) fn validate(&self, field: &str, lo: f64, hi: f64) -> Result<(), ImpactError> {
         let ok = |x: f64| x.is_finite() && (lo..=hi).contains(&x);
         if !(ok(self.from) && ok(self.to) && self.from < self.to) {
             return Err(ImpactError::invalid(

@@ -1,0 +1,104 @@
+//! The rotor-inertia sweep (issue 14, deliverable 1): the free hub's rotor inertia J_R from
+//! nearly nothing to nearly infinite, joining a robot whose link pivots freely during the impact
+//! to the held joint (an infinite rotor). For each Fig. 6 case and exponent the CJ and CL peaks
+//! and η_FE along J_R, with the held joint's values as the limit.
+//!
+//! J_R is given as the ratio ρ = J_R/(m_r L²/3) to the link's own inertia about the joint, so a
+//! curve does not depend on the (free) length. At ρ → 0 the CJ link pivots freely behind its
+//! spring, so the head meets the free tip mass M = m_e + m_r/3 alone; the CL beam is pinned at
+//! the hub; at ρ → ∞ both are held.
+
+use flexrig_lumped::fig6::{Fig6Case, M_R};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::ImpactError;
+use crate::cl_modal::run_cj_modal;
+use crate::eta::{EtaSettings, case_setup, cl_first_peak};
+use crate::map::LogRange;
+use crate::modal_run::ModalOptions;
+use crate::setup::Joint;
+
+/// One point of a sweep.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RotorPoint {
+    /// The design case.
+    pub case: Fig6Case,
+    /// Hertz exponent n.
+    pub n: f64,
+    /// ρ = J_R/(m_r L²/3); `None` for the held joint (ρ = ∞).
+    pub inertia_ratio: Option<f64>,
+    /// CJ peak \[N\] (the rigid link through the modal integrator).
+    pub f_cj_n: f64,
+    /// CL peak \[N\] (the FE link by the settings' method).
+    pub f_cl_n: f64,
+    /// η_FE = f_CL/f_CJ.
+    pub eta_fe: f64,
+}
+
+/// The ratios ρ allowed: J_R from 1e-12 to 1e12 kg·m² for m_r = 10 kg, L = 1 m is ρ from 3e-13
+/// to 3e11; the sweep keeps within [1e-9, 1e9].
+pub const RATIO_LIMITS: (f64, f64) = (1e-9, 1e9);
+
+/// The peaks of `case` with exponent `n` under the joint of `settings` with rotor inertia ratio
+/// `ratio` (`None`: held). The CJ runs through the modal integrator at the CL's tolerance (1e-6
+/// for the alpha method): an explicit integrator would crawl on the stiff rotor mode of a tiny
+/// J_R.
+pub fn rotor_point(
+    case: &Fig6Case,
+    n: f64,
+    ratio: Option<f64>,
+    settings: &EtaSettings,
+) -> Result<RotorPoint, ImpactError> {
+    let joint = match ratio {
+        None => Joint::Held,
+        Some(rho) => Joint::FreeHub {
+            rotor_inertia: rho * M_R * settings.length * settings.length / 3.0,
+        },
+    };
+    let settings = EtaSettings { joint, ..*settings };
+    let setup = case_setup(case, n, &settings)?;
+    let tol = match settings.method {
+        crate::eta::ClMethod::Modal { tol, .. } => tol,
+        crate::eta::ClMethod::Alpha(_) => 1e-6,
+    };
+    let options = ModalOptions {
+        tol,
+        ..ModalOptions::DEFAULT
+    };
+    let f_cj = run_cj_modal(&setup, &options)?.first.peak_force_n;
+    let f_cl = cl_first_peak(&setup, &settings)?;
+    Ok(RotorPoint {
+        case: *case,
+        n,
+        inertia_ratio: ratio,
+        f_cj_n: f_cj,
+        f_cl_n: f_cl,
+        eta_fe: f_cl / f_cj,
+    })
+}
+
+/// Every case × exponent of `exponents` along `ratios`, then held (the last point of each
+/// curve, `inertia_ratio` None), in parallel; case-major, then exponent, then ρ.
+pub fn rotor_sweep(
+    ratios: &LogRange,
+    exponents: &[f64],
+    settings: &EtaSettings,
+) -> Result<Vec<RotorPoint>, ImpactError> {
+    settings.method.validate()?;
+    ratios.validate("inertia_ratio", RATIO_LIMITS.0, RATIO_LIMITS.1)?;
+    let mut stops: Vec<Option<f64>> = ratios.values().into_iter().map(Some).collect();
+    stops.push(None);
+    let jobs: Vec<(Fig6Case, f64, Option<f64>)> = flexrig_lumped::fig6::cases()
+        .iter()
+        .flat_map(|c| {
+            let stops = &stops;
+            exponents
+                .iter()
+                .flat_map(move |&n| stops.iter().map(move |&r| (*c, n, r)))
+        })
+        .collect();
+    jobs.par_iter()
+        .map(|(case, n, ratio)| rotor_point(case, *n, *ratio, settings))
+        .collect()
+}
