@@ -238,6 +238,7 @@ fn free_mass_of(scene: &Scene) -> FreeMassOfRig {
             link,
             joint: Joint::Held,
             contact: scene.hertz,
+            damping: scene.file.contact.damping,
         },
         law: scene.contact_law(v0).unwrap(),
         design,

@@ -44,7 +44,8 @@ pub struct ModalOptions {
     /// the first onset (but at least to the end of the first contact), or until the bodies part
     /// for good.
     pub window_s: Option<f64>,
-    /// Most steps (contact and free flight) before the run stops with [`RunEnd::StepBudget`].
+    /// Most steps (contact and free flight) before the run stops with [`RunEnd::StepBudget`]
+    /// (an error if the first contact is not finished by then: its peak is not known).
     pub max_steps: usize,
 }
 
@@ -405,6 +406,17 @@ pub fn run_modes(
         let mut level = 0;
         loop {
             if steps >= options.max_steps {
+                if contacts.is_empty() {
+                    // no peak is known yet: an outcome would report a force it never computed
+                    return Err(ImpactError::NotFinished {
+                        design: "modal",
+                        reason: format!(
+                            "the step budget ({}) ran out {:.3e} s into the first contact; \
+                             loosen the tolerance (now {:e})",
+                            options.max_steps, s.t, options.tol
+                        ),
+                    });
+                }
                 ended = RunEnd::StepBudget(s.t);
                 contacts.push(event(onset, peak, s.t - onset));
                 break 'run;

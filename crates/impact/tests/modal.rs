@@ -376,6 +376,15 @@ fn bad_modal_settings_name_the_field() {
             .to_string();
         assert!(e.contains(field), "{e}");
     }
+    // a step budget too small for the first contact is an error, not a peak of 0
+    let tight = ModalOptions {
+        max_steps: 100,
+        ..opts(1e-10)
+    };
+    let e = run_cl_modal(&s, &GradedMesh::DEFAULT, &tight)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("step budget"), "{e}");
     for (o, field) in [
         (opts(0.0), "tol"),
         (

@@ -43,6 +43,9 @@ pub enum Command {
     /// Maps of η_FE, the lumped model's error, the effective γ and the placed model's error over
     /// m_e/m_r × k_δ/k_c, one heat-map figure per head mass.
     EtaMap(commands::eta_map::EtaMapArgs),
+    /// η_FE of the Fig. 6 cases along the free hub's rotor inertia, from a freely pivoting link
+    /// to the held joint.
+    EtaRotor(commands::eta_rotor::EtaRotorArgs),
     /// The test bed's CL/CJ peak ratio over the payload (the paper's Fig. 9b light-load study as
     /// a curve), with MCAP logs of three payloads.
     Payload(commands::payload::PayloadArgs),
@@ -88,6 +91,7 @@ pub fn run_interruptible(
         Some(Command::Fig6(args)) => commands::fig6::run(args, out),
         Some(Command::Eta(args)) => commands::eta::run(args, out),
         Some(Command::EtaMap(args)) => commands::eta_map::run(args, out),
+        Some(Command::EtaRotor(args)) => commands::eta_rotor::run(args, out),
         Some(Command::Fit(args)) => commands::fit::run(args, out),
         Some(Command::Payload(args)) => commands::payload::run(args, out, interrupt),
         Some(Command::Beam(cmd)) => commands::beam::run(cmd, out),

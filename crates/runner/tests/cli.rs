@@ -1035,3 +1035,63 @@ fn experiment_overrides_reach_every_scene() {
     assert!(stderr.contains("nope"), "{stderr}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `flexrig eta-rotor` (issue 14): bad input names the flag, exits 2 and writes nothing; a
+/// two-point sweep ends in the held joint, whose η_FE is `flexrig eta`'s (CJ by the modal
+/// integrator here, by DOP853 there: within 1e-5), and at ρ = 1e8 the curve has reached it.
+#[test]
+fn the_rotor_sweep_refuses_bad_input_and_ends_at_the_held_joint() {
+    let dir = scratch_dir("eta_rotor");
+    let out = dir.to_str().unwrap();
+    for (args, flag) in [
+        (vec!["--ratio", "1e-12:1"], "--ratio"),
+        (vec!["--ratio", "10:1"], "--ratio"),
+        (vec!["--ratio", "x"], "--ratio"),
+        (vec!["--points", "1"], "--points"),
+        (vec!["--n", "5"], "--n"),
+        (vec!["--tol", "0"], "--tol"),
+        (vec!["--damping", "hunt-crossley"], "--restitution"),
+    ] {
+        let mut all = vec!["eta-rotor", "--out", out];
+        all.extend(args);
+        let o = flexrig(&all);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{all:?}: {stderr}");
+        assert!(stderr.contains(flag), "{all:?}: {stderr}");
+        assert!(!dir.exists() || std::fs::read_dir(&dir).unwrap().next().is_none());
+    }
+    let v = json(&[
+        "eta-rotor",
+        "--out",
+        out,
+        "--ratio",
+        "1e-8:1e8",
+        "--points",
+        "2",
+        "--n",
+        "2",
+        "--json",
+    ]);
+    let points = v["points"].as_array().unwrap();
+    assert_eq!(points.len(), 8 * 3);
+    let table = json(&["eta", "--out", out, "--json"]);
+    for curve in points.chunks(3) {
+        let held = &curve[2];
+        assert!(held["inertia_ratio"].is_null());
+        let row = table["rows"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["case"] == held["case"] && r["n"] == held["n"])
+            .unwrap();
+        let (a, b) = (
+            held["eta_fe"].as_f64().unwrap(),
+            row["eta_fe"].as_f64().unwrap(),
+        );
+        assert!((a - b).abs() <= 1e-5 * b, "{held} vs {row}");
+        let heavy = curve[1]["eta_fe"].as_f64().unwrap();
+        assert!((heavy - a).abs() <= 1e-5 * a, "{} vs held {a}", curve[1]);
+    }
+    assert!(dir.join("eta_rotor.csv").exists() && dir.join("eta_rotor.svg").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

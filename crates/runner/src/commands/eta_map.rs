@@ -61,7 +61,7 @@ pub struct EtaMapArgs {
 }
 
 /// Parses FROM:TO for `flag`.
-fn parse_range(flag: &str, text: &str, points: usize) -> Result<LogRange, CliError> {
+pub(crate) fn parse_range(flag: &str, text: &str, points: usize) -> Result<LogRange, CliError> {
     let bad = || CliError::InvalidArgument {
         arg: flag.into(),
         value: text.into(),

@@ -4,6 +4,7 @@ pub mod beam;
 pub mod bench;
 pub mod eta;
 pub mod eta_map;
+pub mod eta_rotor;
 pub mod experiment;
 pub mod fig6;
 pub mod fit;

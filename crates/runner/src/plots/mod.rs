@@ -5,12 +5,14 @@
 //! coordinate to a whole pixel; drawn this way a pixel of the drawing is a quarter pixel of the
 //! figure, and curves come out smooth.
 
+mod curves;
 mod eta;
 mod fig6;
 mod fig9;
 mod heatmap;
 mod work_precision;
 
+pub use curves::{Curve, CurvePanel, log_x_curves_svg};
 pub use eta::eta_svg;
 pub use fig6::{Fig6Point, fig6_svg, fig6_with_points_svg};
 pub use fig9::fig9_svg;

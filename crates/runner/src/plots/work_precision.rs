@@ -39,7 +39,7 @@ const LEGEND_LINE: u32 = 17;
 /// The marker shapes, cycled with a period (5) prime to the palette's (7); filled for the first
 /// five series of a panel, hollow for the next five.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum Marker {
+pub(super) enum Marker {
     Circle,
     Square,
     Triangle,
@@ -56,7 +56,7 @@ const MARKERS: [Marker; 5] = [
 ];
 
 /// Colour, marker and whether the marker is filled, of the `i`-th series of a panel.
-fn style(i: usize) -> (RGBColor, Marker, bool) {
+pub(super) fn style(i: usize) -> (RGBColor, Marker, bool) {
     (
         PALETTE[i % PALETTE.len()],
         MARKERS[i % MARKERS.len()],
@@ -147,10 +147,10 @@ fn decade_ticks((a, b): (i32, i32)) -> Vec<f64> {
         .collect()
 }
 
-type Axis = WithKeyPoints<LogCoord<f64>>;
+pub(super) type Axis = WithKeyPoints<LogCoord<f64>>;
 
 /// A log axis over whole decades with decade ticks.
-fn log_axis((a, b): (i32, i32)) -> Axis {
+pub(super) fn log_axis((a, b): (i32, i32)) -> Axis {
     (10f64.powi(a)..10f64.powi(b))
         .log_scale()
         .with_key_points(decade_ticks((a, b)))
@@ -207,7 +207,7 @@ fn draw_panel(
 }
 
 /// A marker of `kind` centred at pixel `(x, y)` of `area`, filled or hollow (white inside).
-fn draw_marker(
+pub(super) fn draw_marker(
     area: &DrawingArea<SVGBackend, Shift>,
     (x, y): (i32, i32),
     kind: Marker,
