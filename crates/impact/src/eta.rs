@@ -46,6 +46,15 @@ impl ClMethod {
         tol: 1e-6,
     };
 
+    /// The tolerance of the modal runs beside the CL (the CJ and reduced models through the modal
+    /// integrator): the modal method's, 1e-6 with the alpha method.
+    pub fn modal_tol(&self) -> f64 {
+        match self {
+            ClMethod::Modal { tol, .. } => *tol,
+            ClMethod::Alpha(_) => 1e-6,
+        }
+    }
+
     /// Checks the method's parameters.
     pub fn validate(&self) -> Result<(), ImpactError> {
         match self {
@@ -228,14 +237,11 @@ pub fn eta_case(case: &Fig6Case, n: f64, settings: &EtaSettings) -> Result<EtaRo
         });
     }
     let f_cl = cl_first_peak(&setup, settings)?;
-    let placed_tol = match settings.method {
-        ClMethod::Modal { tol, .. } => tol,
-        ClMethod::Alpha(_) => 1e-6,
-    };
+    let f_cj_lumped = lumped_peak(case, n, 1.0, settings)?;
     let f_placed = run_placed(
         &setup,
         &ModalOptions {
-            tol: placed_tol,
+            tol: settings.method.modal_tol(),
             ..ModalOptions::DEFAULT
         },
     )?
@@ -247,10 +253,9 @@ pub fn eta_case(case: &Fig6Case, n: f64, settings: &EtaSettings) -> Result<EtaRo
         f_cj_n: f_cj,
         f_cl_n: f_cl,
         eta_fe: f_cl / f_cj,
-        eta_lumped_2_3: lumped_peak(case, n, 2.0 / 3.0, settings)?
-            / lumped_peak(case, n, 1.0, settings)?,
-        f_cj_lumped_n: lumped_peak(case, n, 1.0, settings)?,
-        gamma_eff: effective_gamma_with(case, n, f_cl, settings)?,
+        eta_lumped_2_3: lumped_peak(case, n, 2.0 / 3.0, settings)? / f_cj_lumped,
+        f_cj_lumped_n: f_cj_lumped,
+        gamma_eff: effective_gamma(case, n, f_cl, settings)?,
         f_placed_n: f_placed,
         window,
     })
@@ -309,15 +314,10 @@ pub fn lumped_peak(
     .peak_force_n)
 }
 
-/// The γ ∈ (0, 1] with f_lumped(γ) = `peak` \[N\] for the elastic law (bisection to 1e-12 in γ).
-pub fn effective_gamma(case: &Fig6Case, n: f64, peak: f64) -> Result<EffectiveGamma, ImpactError> {
-    effective_gamma_with(case, n, peak, &EtaSettings::DEFAULT)
-}
-
 /// The γ ∈ (0, 1] with f_lumped(γ) = `peak` \[N\] under the contact of `settings` (bisection,
 /// to 1e-12 in γ for the elastic law, 1e-9 for a damped one: its lumped peaks carry the modal
 /// integrator's error, ≈ [`LUMPED_TOL`]).
-pub fn effective_gamma_with(
+pub fn effective_gamma(
     case: &Fig6Case,
     n: f64,
     peak: f64,

@@ -58,12 +58,8 @@ pub fn rotor_point(
     };
     let settings = EtaSettings { joint, ..*settings };
     let setup = case_setup(case, n, &settings)?;
-    let tol = match settings.method {
-        crate::eta::ClMethod::Modal { tol, .. } => tol,
-        crate::eta::ClMethod::Alpha(_) => 1e-6,
-    };
     let options = ModalOptions {
-        tol,
+        tol: settings.method.modal_tol(),
         ..ModalOptions::DEFAULT
     };
     let f_cj = run_cj_modal(&setup, &options)?.first.peak_force_n;

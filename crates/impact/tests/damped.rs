@@ -248,7 +248,7 @@ fn eta_with_a_damped_contact() {
     );
     // a peak inside the lumped range: the damped lumped peak at γ = 0.4 fits γ = 0.4 back
     let target = lumped_peak(&case, 1.0, 0.4, &settings).unwrap();
-    match flexrig_impact::eta::effective_gamma_with(&case, 1.0, target, &settings).unwrap() {
+    match flexrig_impact::eta::effective_gamma(&case, 1.0, target, &settings).unwrap() {
         EffectiveGamma::Fits(g) => assert!((g - 0.4).abs() <= 1e-6, "{g}"),
         other => panic!("{other:?}"),
     }

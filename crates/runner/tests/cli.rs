@@ -790,7 +790,7 @@ fn eta_refuses_bad_input_and_runs_coarse() {
         (vec!["--restitution", "0.8"], "--restitution"),
         (
             vec!["--damping", "adams-impact", "--c-max", "1e3"],
-            "--depth",
+            "--damping = adams-impact: needs --depth",
         ),
         (
             vec!["--damping", "adams-impact", "--c-max=-1", "--depth", "1e-4"],

@@ -81,7 +81,9 @@ impl DampingArgs {
             let v = value.ok_or_else(|| {
                 bad(
                     "--damping",
-                    format!("{:?}", self.damping),
+                    self.damping
+                        .to_possible_value()
+                        .map_or(String::new(), |v| v.get_name().to_string()),
                     &format!("needs {arg} ({what})"),
                 )
             })?;
