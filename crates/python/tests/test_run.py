@@ -172,51 +172,54 @@ def test_a_run_that_cannot_finish_raises_a_simulation_error():
         flexrig.run("cj_aluminium", **{"solver.max_steps": 10})
 
 
-def _spinner_share(call):
-    """The CPU time a pure-Python spinning thread gets while `call()` runs, over the call's own
-    duration (with a 0.1 ms switch interval), and the call's result."""
+def _spins_during(call):
+    """How many times a pure-Python spinning thread went round while `call()` ran (0.1 ms
+    switch interval), the call's duration [s] and its result."""
+    state = {"inside": False, "spins": 0}
     stop = threading.Event()
-    spun = {}
 
     def spin():
-        spins = 0
         while not stop.is_set():
-            spins += 1
-        spun["cpu_s"] = time.thread_time()
+            if state["inside"]:
+                state["spins"] += 1
 
     interval = sys.getswitchinterval()
     sys.setswitchinterval(1e-4)
     spinner = threading.Thread(target=spin)
     try:
         spinner.start()
+        state["inside"] = True
         before = time.perf_counter()
         result = call()
         call_s = time.perf_counter() - before
+        state["inside"] = False
     finally:
         stop.set()
         spinner.join()
         sys.setswitchinterval(interval)
-    return spun["cpu_s"] / call_s, result
+    return state["spins"], call_s, result
 
 
 def test_the_gil_is_released_during_a_run():
     """Another Python thread computes while a run is inside the native code.
 
     Regression: this test once asserted that a run lasts more than 20 ms, which failed on a
-    faster machine. It now compares two quantities of the same run, whatever the machine's
-    speed: the CPU time a pure-Python spinning thread gets while the native call is under way,
-    against that call's duration. A call holding the GIL leaves the spinner only the switch
-    intervals around it (a ratio near 0: the control below, a C loop that holds the GIL); a
-    call that releases it leaves the spinner a core or its share of one (near 1; about 1/3 on
-    one core shared with the run).
+    faster machine. It now compares counts of the same machine, whatever its speed: how often a
+    pure-Python thread spins while the run is under way, against how often it spins while the
+    main thread sleeps (the GIL free) for as long. A call holding the GIL leaves the spinner
+    only the switch intervals at its ends (near 0: the control, a C loop that holds the GIL);
+    a call that releases it leaves the spinner a core or a share of one (near 1; about a half
+    on one core shared with the run).
     """
-    held, _ = _spinner_share(lambda: sum(range(3_000_000)))
-    assert held < 0.05, held
-    released, r = _spinner_share(
+    held, held_s, _ = _spins_during(lambda: sum(range(20_000_000)))
+    free, _, _ = _spins_during(lambda: time.sleep(held_s))
+    assert held < 0.05 * free, (held, free, held_s)
+    spins, run_s, r = _spins_during(
         lambda: flexrig.run("cl_aluminium", **{"solver.beam": {"model": "corotational"}})
     )
+    free, _, _ = _spins_during(lambda: time.sleep(run_s))
     assert r.peak_force_n > 0
-    assert released > 0.15, released
+    assert spins > 0.15 * free, (spins, free, run_s)
 
 
 def test_bundled_scenes_are_listed():

@@ -22,6 +22,7 @@ mod beam_link;
 pub mod canonical;
 pub mod coupling;
 mod error;
+pub mod format_message;
 pub mod geometry;
 pub mod limits;
 pub mod overrides;

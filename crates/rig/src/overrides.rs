@@ -184,7 +184,10 @@ pub fn apply(text: &str, overrides: &[Override]) -> Result<String, RigError> {
         return Ok(text.to_string());
     }
     let mut table: toml::Table = toml::from_str(text).map_err(|e| {
-        RigError::SceneSyntax(format!("{} (before the overrides)", e.message().trim()))
+        RigError::SceneSyntax(format!(
+            "{} (before the overrides)",
+            crate::format_message::plain(e.message().trim())
+        ))
     })?;
     for o in overrides {
         set(&mut table, &o.path, o.value.clone())?;
@@ -206,7 +209,7 @@ pub fn scene_with_overrides(
         // the file itself is broken: report it with its line
         match crate::Scene::from_toml_str(text, materials) {
             Err(syntax) => syntax,
-            Ok(_) => RigError::SceneSyntax(e.message().trim().to_string()),
+            Ok(_) => RigError::SceneSyntax(crate::format_message::plain(e.message().trim())),
         }
     })?;
     scene_from_table(&base, overrides, materials)
@@ -258,7 +261,9 @@ fn parse_table(
 fn deserialize(table: toml::Table) -> Result<crate::SceneFile, RigError> {
     toml::Value::Table(table)
         .try_into()
-        .map_err(|e: toml::de::Error| RigError::SceneSyntax(e.message().trim().to_string()))
+        .map_err(|e: toml::de::Error| {
+            RigError::SceneSyntax(crate::format_message::plain(e.message().trim()))
+        })
 }
 
 /// Checks that `o` fits the scene format on the parsed `base` (a known field, a value of its

@@ -136,3 +136,30 @@ fn a_very_deep_override_value_is_refused_naming_the_path() {
         0
     );
 }
+
+#[test]
+fn a_wrong_type_is_said_in_the_scene_files_words() {
+    // Regression: "expected struct RobotSpec", "internally tagged enum Start", "expected usize"
+    for (set, words) in [
+        ("robot=1", "a table of fields"),
+        ("operator.start=\"contact\"", "{ from = \"release\""),
+        ("robot.beam_elements=-3", "a whole number"),
+        ("stop.at=1", "a name"),
+        ("contact.damping=\"none\"", "{ model = \"none\" }"),
+    ] {
+        let m = with("cj_aluminium", &[set]).unwrap_err().to_string();
+        assert!(m.contains(words), "{set}: {m}");
+        for rust in ["struct ", "usize", "enum ", "variant identifier", "f64", "Spec"] {
+            assert!(!m.contains(rust), "{set}: {m}");
+        }
+    }
+    // a range says its unit and plain bounds, and spots millimetres
+    let m = with("cj_aluminium", &["robot.length_m=338"])
+        .unwrap_err()
+        .to_string();
+    assert!(m.contains("[0.01, 10] m") && m.contains("millimetres"), "{m}");
+    let m = with("cj_aluminium", &["robot.payload_kg=1e300"])
+        .unwrap_err()
+        .to_string();
+    assert!(m.contains("1e300") && m.contains("[0, 10000] kg"), "{m}");
+}
