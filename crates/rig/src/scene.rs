@@ -494,7 +494,8 @@ const QUOTE_LIMIT: usize = 200;
 fn syntax_message(text: &str, e: &toml::de::Error) -> String {
     let message = crate::format_message::plain(e.message().trim());
     let message = message.as_str();
-    let start = match (e.span(), nesting_too_deep(text)) {
+    let deep = nesting_too_deep(text).or_else(|| dotted_too_deep(text));
+    let start = match (e.span(), deep) {
         (Some(span), _) => span.start.min(text.len()),
         // the parser's recursion limit carries no position: find the nesting ourselves
         (None, Some(at)) => {
@@ -549,6 +550,24 @@ fn nesting_too_deep(text: &str) -> Option<usize> {
             ']' | '}' => depth = depth.saturating_sub(1),
             _ => {}
         }
+    }
+    None
+}
+
+/// The byte offset of the first line whose key or table header has more than [`MAX_NESTING`]
+/// dotted parts (`[a.b.c…]`, `a.b.c… = 1`), if one has.
+fn dotted_too_deep(text: &str) -> Option<usize> {
+    let mut offset = 0;
+    for line in text.split_inclusive('\n') {
+        let trimmed = line.trim_start();
+        let key = match trimmed.strip_prefix('[') {
+            Some(header) => header.split(']').next().unwrap_or(header),
+            None => trimmed.split('=').next().unwrap_or(""),
+        };
+        if key.matches('.').count() >= MAX_NESTING {
+            return Some(offset + (line.len() - trimmed.len()));
+        }
+        offset += line.len();
     }
     None
 }
