@@ -187,7 +187,10 @@ mod tests {
             interval("operator.start.release_angle_deg", 0.0, 170.0),
             "must lie in [0, 170] degrees"
         );
-        assert_eq!(interval("density_kg_m3", 1.0, 1e5), "must lie in [1, 100000] kg/m³");
+        assert_eq!(
+            interval("density_kg_m3", 1.0, 1e5),
+            "must lie in [1, 100000] kg/m³"
+        );
         assert_eq!(interval("gamma", 0.0, 1.0), "must lie in [0, 1]");
         assert_eq!(unit_of("m_h[3]"), "");
         assert_eq!(unit_of("solver.swing_step_s"), "s");
@@ -196,7 +199,10 @@ mod tests {
     #[test]
     fn a_length_in_millimetres_gets_a_hint() {
         let hint = interval_with_hint("robot.length_m", 338.0, 0.01, 10.0);
-        assert!(hint.contains("did you give millimetres? 338 mm is 0.338 m"), "{hint}");
+        assert!(
+            hint.contains("did you give millimetres? 338 mm is 0.338 m"),
+            "{hint}"
+        );
         assert!(unit_hint("robot.length_m", 20.0, 0.01, 10.0).contains("millimetres"));
         assert_eq!(unit_hint("robot.length_m", 1e9, 0.01, 10.0), "");
         assert!(unit_hint("robot.youngs_modulus_pa", 1.5, 1e5, 1.2e12).contains("GPa"));

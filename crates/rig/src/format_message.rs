@@ -41,7 +41,10 @@ pub fn plain(message: &str) -> String {
         ("expected i32", "expected a whole number"),
         ("expected f64", "expected a number"),
         ("expected f32", "expected a number"),
-        ("expected variant identifier", "expected a name (a quoted word)"),
+        (
+            "expected variant identifier",
+            "expected a name (a quoted word)",
+        ),
         ("expected a borrowed string", "expected a string"),
         ("floating point ", "number "),
         ("invalid type: map", "invalid type: table"),
@@ -134,12 +137,16 @@ mod tests {
         ] {
             assert_eq!(plain(serde), expected);
         }
-        let start = plain("invalid type: string \"contact\", expected internally tagged enum Start");
+        let start =
+            plain("invalid type: string \"contact\", expected internally tagged enum Start");
         assert!(start.contains("{ from = \"release\""), "{start}");
         for rust in ["struct", "usize", "enum", "variant identifier", "f64", "`"] {
             assert!(!start.contains(rust), "{start}");
         }
         // nothing else is touched
-        assert_eq!(plain("missing field `restitution`"), "missing field `restitution`");
+        assert_eq!(
+            plain("missing field `restitution`"),
+            "missing field `restitution`"
+        );
     }
 }

@@ -26,6 +26,7 @@ pub mod format_message;
 pub mod geometry;
 pub mod limits;
 pub mod overrides;
+pub mod plausibility;
 pub mod run;
 pub mod scene;
 pub mod sensors;

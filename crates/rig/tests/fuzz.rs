@@ -236,7 +236,11 @@ fn a_deeply_nested_table_is_located_and_said_in_the_files_words() {
         let e = Scene::from_toml_str(&format!("{base}\n{extra}"), &materials).unwrap_err();
         let m = e.to_string();
         assert!(e.is_input_error(), "{m}");
-        assert!(!m.contains("position unknown"), "{}", &m[..m.len().min(300)]);
+        assert!(
+            !m.contains("position unknown"),
+            "{}",
+            &m[..m.len().min(300)]
+        );
         assert!(m.contains("line "), "{}", &m[..m.len().min(300)]);
         assert!(m.len() < 600, "{} characters", m.len());
     }

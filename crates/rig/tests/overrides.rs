@@ -124,7 +124,10 @@ fn a_very_deep_override_value_is_refused_naming_the_path() {
     )
     .unwrap_err();
     let m = e.to_string();
-    assert!(m.contains("robot.payload_kg") && m.contains("levels deep"), "{m}");
+    assert!(
+        m.contains("robot.payload_kg") && m.contains("levels deep"),
+        "{m}"
+    );
     // the depth counter stops at its limit instead of walking the whole value
     let mut wide = toml::Value::Integer(0);
     for _ in 0..3 {
@@ -149,7 +152,14 @@ fn a_wrong_type_is_said_in_the_scene_files_words() {
     ] {
         let m = with("cj_aluminium", &[set]).unwrap_err().to_string();
         assert!(m.contains(words), "{set}: {m}");
-        for rust in ["struct ", "usize", "enum ", "variant identifier", "f64", "Spec"] {
+        for rust in [
+            "struct ",
+            "usize",
+            "enum ",
+            "variant identifier",
+            "f64",
+            "Spec",
+        ] {
             assert!(!m.contains(rust), "{set}: {m}");
         }
     }
@@ -157,7 +167,10 @@ fn a_wrong_type_is_said_in_the_scene_files_words() {
     let m = with("cj_aluminium", &["robot.length_m=338"])
         .unwrap_err()
         .to_string();
-    assert!(m.contains("[0.01, 10] m") && m.contains("millimetres"), "{m}");
+    assert!(
+        m.contains("[0.01, 10] m") && m.contains("millimetres"),
+        "{m}"
+    );
     let m = with("cj_aluminium", &["robot.payload_kg=1e300"])
         .unwrap_err()
         .to_string();
