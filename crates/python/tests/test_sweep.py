@@ -146,6 +146,28 @@ def test_other_bad_sweeps():
         flexrig.sweep("cj_iron", {"robot.payload_kg": [0.1]}, threads=0)
 
 
+@pytest.mark.parametrize(
+    "arguments, field",
+    [
+        # Regression: threads=-1 raised OverflowError, client=object() AttributeError
+        ({"threads": -1}, "threads"),
+        ({"threads": 2**70}, "threads"),
+        ({"threads": 1.5}, "threads"),
+        ({"threads": True}, "threads"),
+        ({"threads": "4"}, "threads"),
+        ({"chunk_size": 0}, "chunk_size"),
+        ({"chunk_size": -3}, "chunk_size"),
+        ({"client": object()}, "client"),
+        ({"client": "tcp://localhost:8786"}, "client"),
+    ],
+)
+def test_bad_sweep_arguments_raise_input_error_naming_them(arguments, field):
+    with pytest.raises(flexrig.InputError) as info:
+        flexrig.sweep("cj_iron", {"robot.payload_kg": [0.1]}, **arguments)
+    assert info.value.field == field
+    assert str(info.value).startswith(field), str(info.value)
+
+
 def test_the_native_sweep_pickles_and_runs_chunks_like_the_whole():
     text, _ = flexrig._flexrig.scene_text("cj_iron")
     grid = [("robot.payload_kg", "0.1:0.5:5"), ("operator.start.from", "contact"), ("stop", {"at": "peak"})]

@@ -389,6 +389,16 @@ def sweep(
             "grid",
             'grid: the grid is empty; give at least one scene path and its values, e.g. {"robot.payload_kg": [0.1, 0.2]}',
         )
+    _check_count("threads", threads, "None for every core")
+    _check_count("chunk_size", chunk_size, "None for about four chunks per worker thread")
+    if client is not None:
+        missing = [m for m in ("nthreads", "scatter", "map", "gather") if not callable(getattr(client, m, None))]
+        if missing:
+            raise _input_error(
+                "client",
+                f"client: a {type(client).__name__} is not a Dask client (it has no {', '.join(missing)}); "
+                "give a dask.distributed.Client, or None to run here",
+            )
     text, base_dir = _flexrig.scene_text(base)
     native = Sweep(text, [(str(path), values) for path, values in grid.items()], zip, base_dir)
     if client is None:
@@ -396,6 +406,17 @@ def sweep(
     else:
         parts = _run_on_dask(native, client, chunk_size)
     return _frame(native.paths, parts)
+
+
+def _check_count(name: str, value: Any, none_means: str) -> None:
+    """``value`` must be None or a whole number from 1 to 2**31 - 1 (not a bool, not a float)."""
+    if value is None:
+        return
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 1 <= int(value) < 2**31:
+        raise _input_error(
+            name,
+            f"{name} = {value!r}: must be a whole number from 1 to 2147483647 ({none_means})",
+        )
 
 
 def _run_chunk(indices: List[int], sweep: Sweep) -> Dict[str, Any]:
