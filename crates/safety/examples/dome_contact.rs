@@ -15,7 +15,9 @@ fn main() -> Result<(), SafetyError> {
     let skin = Hertz::new(k, n)?;
     let hertz = ContactAreaModel::HertzSphere { radius_m: r };
     let thin = ContactAreaModel::ThinLayer { radius_m: r };
-    println!("| force [N] | δ_c [mm] | A Hertz [cm²] | p̄ Hertz [N/cm²] | p₀ Hertz | A thin layer [cm²] | p̄ thin | p₀ thin |");
+    println!(
+        "| force [N] | δ_c [mm] | A Hertz [cm²] | p̄ Hertz [N/cm²] | p₀ Hertz | A thin layer [cm²] | p̄ thin | p₀ thin |"
+    );
     println!("|---|---|---|---|---|---|---|---|");
     for f in [65.0, 140.0, 280.0, 300.0, 420.0] {
         let d = skin.indentation(f);
@@ -46,7 +48,9 @@ fn main() -> Result<(), SafetyError> {
     // Test bed (§VI): m_r = 51 g, payload 412 g, k_θr = 1.2334 N·m/rad, L = 0.34 m (scene files).
     let k_delta = lateral_stiffness_cj(1.2334, 0.34);
     println!("test-bed link lateral stiffness k_δ = k_θr/L² = {k_delta:.3} N/m");
-    println!("| link | m_eff [kg] | standard v_max [m/s] | energy: rigid, Hertz area | energy: rigid, thin layer | energy: k_δ = 1e4 N/m | energy: k_δ = 200 N/m | energy: test-bed k_δ |");
+    println!(
+        "| link | m_eff [kg] | standard v_max [m/s] | energy: rigid, Hertz area | energy: rigid, thin layer | energy: k_δ = 1e4 N/m | energy: k_δ = 200 N/m | energy: test-bed k_δ |"
+    );
     println!("|---|---|---|---|---|---|---|---|");
     for (name, gamma) in [("CJ (γ = 1)", 1.0), ("CL (γ = 2/3)", 2.0 / 3.0)] {
         let m_eff = PrbLink::new(gamma, 0.051, 0.412)?.effective_mass();
@@ -58,7 +62,14 @@ fn main() -> Result<(), SafetyError> {
         }
         .permissible_speed()?;
         let energy = |link, area| -> Result<String, SafetyError> {
-            let c = EnergyContact::for_region(hand, ContactKind::Transient, m_eff, skin, link, Some(area))?;
+            let c = EnergyContact::for_region(
+                hand,
+                ContactKind::Transient,
+                m_eff,
+                skin,
+                link,
+                Some(area),
+            )?;
             let v = c.permissible_speed(limits)?;
             Ok(format!("{:.3} ({:?})", v.v_max, v.governing))
         };

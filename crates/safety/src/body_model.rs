@@ -25,7 +25,8 @@ pub const PA_PER_N_PER_CM2: f64 = 1.0e4;
 /// Stiffness of 1 N/mm in N/m.
 pub const N_PER_M_PER_N_PER_MM: f64 = 1.0e3;
 
-/// Quasi-static (clamping) or transient (free impact) contact, ISO/TS 15066:2016 3.x / 5.5.5.4.
+/// Quasi-static (clamping) or transient (free impact) contact (ISO/TS 15066:2016, 5.5.5.4 and
+/// Table A.2's two column groups).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ContactKind {

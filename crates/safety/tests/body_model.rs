@@ -2,9 +2,7 @@
 //! `toml`), the values match the published tables as transcribed in docs/safety.md, and broken
 //! tables are refused naming the region and the field.
 
-use flexrig_safety::{
-    BUNDLED_BODY_MODEL_TOML, BodyModel, ContactKind, SafetyError, TransientRule,
-};
+use flexrig_safety::{BUNDLED_BODY_MODEL_TOML, BodyModel, ContactKind, SafetyError, TransientRule};
 use toml::Value;
 
 fn file() -> Value {
@@ -26,8 +24,14 @@ fn every_value_round_trips_unchanged() {
     for (r, region) in regions.iter().zip(model.regions()) {
         assert_eq!(r["key"].as_str().unwrap(), region.key());
         assert_eq!(r["name"].as_str().unwrap(), region.name());
-        assert_eq!(float(r, "spring_constant_n_per_mm"), region.spring_constant_n_per_mm());
-        assert_eq!(float(r, "spring_constant_n_per_mm") * 1e3, region.spring_constant());
+        assert_eq!(
+            float(r, "spring_constant_n_per_mm"),
+            region.spring_constant_n_per_mm()
+        );
+        assert_eq!(
+            float(r, "spring_constant_n_per_mm") * 1e3,
+            region.spring_constant()
+        );
         assert_eq!(float(r, "effective_mass_kg"), region.effective_mass_kg());
         assert_eq!(float(r, "max_force_n"), region.max_force_n());
         assert_eq!(r["source"].as_str().unwrap(), region.source());
@@ -40,12 +44,22 @@ fn every_value_round_trips_unchanged() {
             } => {
                 assert!(permitted);
                 assert_eq!(float(r, "transient_force_multiplier"), *force_multiplier);
-                assert_eq!(float(r, "transient_pressure_multiplier"), *pressure_multiplier);
-                assert_eq!(r.get("transient_max_force_n").map(|_| float(r, "transient_max_force_n")), *max_force_n);
+                assert_eq!(
+                    float(r, "transient_pressure_multiplier"),
+                    *pressure_multiplier
+                );
+                assert_eq!(
+                    r.get("transient_max_force_n")
+                        .map(|_| float(r, "transient_max_force_n")),
+                    *max_force_n
+                );
             }
             TransientRule::NotPermitted { clause } => {
                 assert!(!permitted);
-                assert_eq!(r["transient_not_permitted_clause"].as_str().unwrap(), clause);
+                assert_eq!(
+                    r["transient_not_permitted_clause"].as_str().unwrap(),
+                    clause
+                );
             }
         }
         let areas = r["area"].as_array().unwrap();
@@ -53,9 +67,13 @@ fn every_value_round_trips_unchanged() {
         for (a, area) in areas.iter().zip(region.areas()) {
             assert_eq!(a["number"].as_integer().unwrap() as u32, area.number());
             assert_eq!(a["name"].as_str().unwrap(), area.name());
-            assert_eq!(float(a, "max_pressure_n_per_cm2"), area.max_pressure_n_per_cm2());
             assert_eq!(
-                a.get("transient_max_pressure_n_per_cm2").map(|_| float(a, "transient_max_pressure_n_per_cm2")),
+                float(a, "max_pressure_n_per_cm2"),
+                area.max_pressure_n_per_cm2()
+            );
+            assert_eq!(
+                a.get("transient_max_pressure_n_per_cm2")
+                    .map(|_| float(a, "transient_max_pressure_n_per_cm2")),
                 area.transient_max_pressure_n_per_cm2()
             );
         }
@@ -107,7 +125,12 @@ fn values_match_the_published_tables() {
             let i = area.number() as usize - 1;
             assert!(!seen[i], "area {} twice", area.number());
             seen[i] = true;
-            assert_eq!(area.max_pressure_n_per_cm2(), TABLE_A2_PRESSURES[i], "{}", area.name());
+            assert_eq!(
+                area.max_pressure_n_per_cm2(),
+                TABLE_A2_PRESSURES[i],
+                "{}",
+                area.name()
+            );
         }
     }
     assert!(seen.iter().all(|s| *s));
@@ -125,7 +148,10 @@ fn values_match_the_published_tables() {
                 max_force_n,
             } => {
                 assert!(!head, "{}", region.name());
-                assert_eq!((*force_multiplier, *pressure_multiplier, *max_force_n), (2.0, 2.0, None));
+                assert_eq!(
+                    (*force_multiplier, *pressure_multiplier, *max_force_n),
+                    (2.0, 2.0, None)
+                );
             }
         }
     }
@@ -152,13 +178,27 @@ fn transient_head_and_face_contact_is_refused_citing_the_clause() {
     for key in ["skull_and_forehead", "face"] {
         let region = model.region(key).unwrap();
         let area = &region.areas()[0];
-        let err = region.limits(Some(area), ContactKind::Transient).unwrap_err();
-        assert!(matches!(err, SafetyError::ContactNotPermitted { .. }), "{err}");
+        let err = region
+            .limits(Some(area), ContactKind::Transient)
+            .unwrap_err();
+        assert!(
+            matches!(err, SafetyError::ContactNotPermitted { .. }),
+            "{err}"
+        );
         let text = err.to_string();
-        assert!(text.contains("5.5.5.4") && text.contains(region.name()), "{text}");
+        assert!(
+            text.contains("5.5.5.4") && text.contains(region.name()),
+            "{text}"
+        );
         assert!(err.is_input_error());
         // Quasi-static contact is evaluated.
-        assert_eq!(region.limits(Some(area), ContactKind::QuasiStatic).unwrap().force, region.max_force_n());
+        assert_eq!(
+            region
+                .limits(Some(area), ContactKind::QuasiStatic)
+                .unwrap()
+                .force,
+            region.max_force_n()
+        );
     }
 }
 
@@ -166,9 +206,20 @@ fn transient_head_and_face_contact_is_refused_citing_the_clause() {
 fn unknown_region_and_area_list_the_known_ones() {
     let model = BodyModel::iso_ts_15066_2016().unwrap();
     let e = model.region("elbow").unwrap_err().to_string();
-    assert!(e.contains("elbow") && e.contains("hands_and_fingers"), "{e}");
-    let e = model.region("neck").unwrap().area("larynx").unwrap_err().to_string();
-    assert!(e.contains("larynx") && e.contains("Seventh neck muscle"), "{e}");
+    assert!(
+        e.contains("elbow") && e.contains("hands_and_fingers"),
+        "{e}"
+    );
+    let e = model
+        .region("neck")
+        .unwrap()
+        .area("larynx")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("larynx") && e.contains("Seventh neck muscle"),
+        "{e}"
+    );
 }
 
 /// Edits the bundled table and loads it.
@@ -224,7 +275,10 @@ fn a_missing_field_is_refused_naming_region_and_field() {
     }
     let err = load_edited(|raw| {
         let areas = region_mut(raw, "pelvis")["area"].as_array_mut().unwrap();
-        areas[0].as_table_mut().unwrap().remove("max_pressure_n_per_cm2");
+        areas[0]
+            .as_table_mut()
+            .unwrap()
+            .remove("max_pressure_n_per_cm2");
     })
     .unwrap_err();
     assert_names(err, "pelvis", "area[0].max_pressure_n_per_cm2");
@@ -252,8 +306,13 @@ fn a_negative_or_zero_limit_is_refused_naming_region_and_field() {
         assert_names(err, "hands_and_fingers", field);
     }
     let err = load_edited(|raw| {
-        let areas = region_mut(raw, "lower_legs")["area"].as_array_mut().unwrap();
-        areas[1].as_table_mut().unwrap().insert("max_pressure_n_per_cm2".into(), Value::Float(-210.0));
+        let areas = region_mut(raw, "lower_legs")["area"]
+            .as_array_mut()
+            .unwrap();
+        areas[1]
+            .as_table_mut()
+            .unwrap()
+            .insert("max_pressure_n_per_cm2".into(), Value::Float(-210.0));
     })
     .unwrap_err();
     assert_names(err, "lower_legs", "area[1].max_pressure_n_per_cm2");

@@ -59,12 +59,27 @@ fn sampled_half_sine(a: f64, t: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
 fn half_sine_closed_form_matches_brute_force_integration() {
     let a_g = 80.0;
     // (duration, window): free optimum (window does not bind) and window-limited.
-    for (t, w) in [(0.010, 0.015), (0.050, 0.015), (0.040, 0.036), (0.060, 0.036)] {
+    for (t, w) in [
+        (0.010, 0.015),
+        (0.050, 0.015),
+        (0.040, 0.036),
+        (0.060, 0.036),
+    ] {
         let reference = half_sine_reference(a_g, t, w);
         let brute = half_sine_brute_force(a_g, t, w, 3000);
-        assert!(relative_error(brute, reference, 1e-300) < 2e-6, "T = {t}: brute {brute} vs {reference}");
-        assert!(brute <= reference * (1.0 + 1e-12), "brute force exceeds the closed form");
-        let window = if w == 0.015 { HicWindow::Hic15 } else { HicWindow::Hic36 };
+        assert!(
+            relative_error(brute, reference, 1e-300) < 2e-6,
+            "T = {t}: brute {brute} vs {reference}"
+        );
+        assert!(
+            brute <= reference * (1.0 + 1e-12),
+            "brute force exceeds the closed form"
+        );
+        let window = if w == 0.015 {
+            HicWindow::Hic15
+        } else {
+            HicWindow::Hic36
+        };
         let library = hic_half_sine(a_g * STANDARD_GRAVITY, t, window).unwrap();
         assert_close("hic_half_sine", library, reference, 1e-13);
     }
@@ -78,7 +93,11 @@ fn half_sine_closed_form_matches_brute_force_integration() {
 #[test]
 fn sampled_half_sine_hic_is_within_1e_6_of_the_closed_form() {
     let a = 60.0 * STANDARD_GRAVITY;
-    for (t, window) in [(0.010, HicWindow::Hic15), (0.050, HicWindow::Hic15), (0.030, HicWindow::Hic36)] {
+    for (t, window) in [
+        (0.010, HicWindow::Hic15),
+        (0.050, HicWindow::Hic15),
+        (0.030, HicWindow::Hic36),
+    ] {
         let (times, acc) = sampled_half_sine(a, t, 4001);
         let r = hic(&times, &acc, window).unwrap();
         let w = window.max_duration().unwrap();
@@ -99,12 +118,22 @@ fn triangle_pulse_optimum_strictly_inside_segments_is_found_exactly() {
     let acc = [0.0, a_g * STANDARD_GRAVITY, 0.0];
     let reference = |w: f64| 2.0 * a_g.powf(2.5) * w * (1.0 - w / t).powf(2.5);
     let r = hic(&times, &acc, HicWindow::Custom(1.0)).unwrap();
-    assert_close("triangle HIC (free)", r.hic, reference(2.0 * t / 7.0), 1e-12);
+    assert_close(
+        "triangle HIC (free)",
+        r.hic,
+        reference(2.0 * t / 7.0),
+        1e-12,
+    );
     assert_close("t1", r.t1, 0.5 * t - 2.0 * t / 7.0, 1e-12);
     // Window-limited: w = W/2.
     let wmax = 0.004;
     let r = hic(&times, &acc, HicWindow::Custom(wmax)).unwrap();
-    assert_close("triangle HIC (limited)", r.hic, reference(0.5 * wmax), 1e-12);
+    assert_close(
+        "triangle HIC (limited)",
+        r.hic,
+        reference(0.5 * wmax),
+        1e-12,
+    );
 }
 
 #[test]
@@ -117,20 +146,34 @@ fn lumped_linear_impact_hic_matches_the_half_sine_closed_form() {
     let analytic = peak_analytic(&model).unwrap();
     let k_o: f64 = 150e3 * 1e6 / (150e3 + 1e6);
     let mu = m_h * m_eff / (m_h + m_eff);
-    assert_close("contact duration", analytic.contact_duration, PI * (mu / k_o).sqrt(), 1e-14);
+    assert_close(
+        "contact duration",
+        analytic.contact_duration,
+        PI * (mu / k_o).sqrt(),
+        1e-14,
+    );
     let (f_max, t_c) = (analytic.peak.f_max, analytic.contact_duration);
     // The time-integrated force is that half sine (8th-order integration, rtol 1e-12).
     let ode = integrate(&model, &OdeOptions::new(1e-12).unwrap().record_trace(true)).unwrap();
     assert!(ode.trace.len() > 5);
     for p in &ode.trace {
         let half_sine = f_max * (PI * p.t / t_c).sin().max(0.0);
-        assert!((p.force - half_sine).abs() <= 1e-8 * f_max, "t = {}: {} vs {half_sine}", p.t, p.force);
+        assert!(
+            (p.force - half_sine).abs() <= 1e-8 * f_max,
+            "t = {}: {} vs {half_sine}",
+            p.t,
+            p.force
+        );
     }
     let (times, force) = sampled_half_sine(f_max, t_c, 4001);
     let acc: Vec<f64> = force.iter().map(|f| f / m_h).collect();
     for window in [HicWindow::Hic15, HicWindow::Hic36] {
         let r = hic(&times, &acc, window).unwrap();
-        let reference = half_sine_reference(f_max / m_h / STANDARD_GRAVITY, t_c, window.max_duration().unwrap());
+        let reference = half_sine_reference(
+            f_max / m_h / STANDARD_GRAVITY,
+            t_c,
+            window.max_duration().unwrap(),
+        );
         assert_close("HIC of the lumped impact", r.hic, reference, 1e-6);
     }
 }
@@ -139,7 +182,10 @@ fn lumped_linear_impact_hic_matches_the_half_sine_closed_form() {
 struct Lcg(u64);
 impl Lcg {
     fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
 }
@@ -198,12 +244,25 @@ fn random_traces_agree_with_a_refined_brute_force_search() {
         let r = hic(&times, &acc, HicWindow::Custom(w)).unwrap();
         let brute = refined_brute_force(&times, &acc_g, w, 60);
         // The exact maximum bounds every grid window and is approached by the refined grid.
-        assert!(r.hic >= brute * (1.0 - 1e-12), "case {case}: {} < {brute}", r.hic);
-        assert!(relative_error(brute, r.hic, 1e-300) < 2e-3, "case {case}: {} vs {brute}", r.hic);
+        assert!(
+            r.hic >= brute * (1.0 - 1e-12),
+            "case {case}: {} < {brute}",
+            r.hic
+        );
+        assert!(
+            relative_error(brute, r.hic, 1e-300) < 2e-3,
+            "case {case}: {} vs {brute}",
+            r.hic
+        );
         // The reported window is valid and its HIC is the reported value.
         assert!(r.t1 >= times[0] && r.t2 <= times[n - 1] && r.t2 - r.t1 <= w * (1.0 + 1e-12));
         let integral = integral_of_interpolant(&times, &acc_g, r.t1, r.t2);
-        assert_close("HIC at the reported window", integral.powf(2.5) / (r.t2 - r.t1).powf(1.5), r.hic, 1e-9);
+        assert_close(
+            "HIC at the reported window",
+            integral.powf(2.5) / (r.t2 - r.t1).powf(1.5),
+            r.hic,
+            1e-9,
+        );
     }
 }
 
@@ -215,14 +274,19 @@ fn integral_of_interpolant(times: &[f64], a: &[f64], t1: f64, t2: f64) -> f64 {
     let mut pts = vec![t1];
     pts.extend(times.iter().copied().filter(|&x| x > t1 && x < t2));
     pts.push(t2);
-    pts.windows(2).map(|p| 0.5 * (p[1] - p[0]) * (at(p[0]) + at(p[1]))).sum()
+    pts.windows(2)
+        .map(|p| 0.5 * (p[1] - p[0]) * (at(p[0]) + at(p[1])))
+        .sum()
 }
 
 #[test]
 fn bad_traces_are_refused_naming_the_problem() {
     let t = [0.0, 0.001, 0.002];
     let e = hic(&t, &[1.0, 2.0], HicWindow::Hic15).unwrap_err();
-    assert!(matches!(e, SafetyError::InvalidTrace { .. }) && e.to_string().contains("same length"), "{e}");
+    assert!(
+        matches!(e, SafetyError::InvalidTrace { .. }) && e.to_string().contains("same length"),
+        "{e}"
+    );
     let e = hic(&[0.0, 0.002, 0.001], &[1.0, 2.0, 3.0], HicWindow::Hic15).unwrap_err();
     assert!(e.to_string().contains("increase strictly"), "{e}");
     let e = hic(&t, &[1.0, f64::NAN, 3.0], HicWindow::Hic15).unwrap_err();

@@ -28,7 +28,8 @@ fn area_models_follow_their_geometry() {
     let fixed = ContactAreaModel::Fixed { area_m2: 1e-4 };
     assert_eq!(fixed.mean_pressure(140.0, 0.0), 1.4e6);
     // The serialised form is a tagged enum.
-    let parsed: ContactAreaModel = toml::from_str("model = \"thin_layer\"\nradius_m = 0.0715").unwrap();
+    let parsed: ContactAreaModel =
+        toml::from_str("model = \"thin_layer\"\nradius_m = 0.0715").unwrap();
     assert_eq!(parsed, thin);
 }
 
@@ -41,7 +42,12 @@ fn peak_pressure_over_a_hertz_loading_trace() {
     let f: Vec<f64> = d.iter().map(|x| k * x.powf(n)).collect();
     let (p, i) = peak_pressure(&f, &d, &ContactAreaModel::HertzSphere { radius_m: r }).unwrap();
     assert_eq!(i, 100);
-    assert_close("peak pressure", p, k * 4e-3_f64.powf(n - 1.0) / (PI * r), 1e-13);
+    assert_close(
+        "peak pressure",
+        p,
+        k * 4e-3_f64.powf(n - 1.0) / (PI * r),
+        1e-13,
+    );
     assert!(peak_pressure(&f, &d[..50], &ContactAreaModel::HertzSphere { radius_m: r }).is_err());
 }
 
@@ -54,7 +60,9 @@ fn loading_work_equals_the_impact_energy() {
     let spring = SeriesCompliance::new(1e16, Hertz::new(k, n).unwrap()).unwrap();
     let peak = peak_exact(&ImpactModel::new(m_h, m_eff, spring, v).unwrap());
     let n_pts = 20001;
-    let d: Vec<f64> = (0..n_pts).map(|i| peak.indentation_max * i as f64 / (n_pts - 1) as f64).collect();
+    let d: Vec<f64> = (0..n_pts)
+        .map(|i| peak.indentation_max * i as f64 / (n_pts - 1) as f64)
+        .collect();
     let mut f: Vec<f64> = d.iter().map(|x| k * x.powf(n)).collect();
     // Unloading samples after the peak are ignored.
     let mut d_all = d.clone();
@@ -66,7 +74,10 @@ fn loading_work_equals_the_impact_energy() {
     let (fmax, _) = peak_force(&f).unwrap();
     assert_close("peak force", fmax, peak.f_max, 1e-9);
     // The standard's energy limit E = F²/(2k) (Eq. A.1).
-    assert_eq!(spring_energy_at_force(140.0, 75e3).unwrap(), 140.0 * 140.0 / 150e3);
+    assert_eq!(
+        spring_energy_at_force(140.0, 75e3).unwrap(),
+        140.0 * 140.0 / 150e3
+    );
     assert!(relative_kinetic_energy(-1.0, 1.0).is_err());
     assert!(peak_force(&[]).is_err());
 }
