@@ -81,3 +81,50 @@ fn loading_work_equals_the_impact_energy() {
     assert!(relative_kinetic_energy(-1.0, 1.0).is_err());
     assert!(peak_force(&[]).is_err());
 }
+
+#[test]
+fn severity_of_the_linear_impact_collects_every_measure() {
+    // n = 1, rigid-ish link: force F sin(πt/T), indentation (F/k) sin(πt/T), head a = f/m_h.
+    use flexrig_safety::{ContactTraces, HicWindow, hic_half_sine, severity};
+    let (k, m_h, m_eff, v): (f64, f64, f64, f64) = (150e3, 4.4, 2.0, 1.0);
+    let mu = m_h * m_eff / (m_h + m_eff);
+    let (f_max, t_c) = (v * (mu * k).sqrt(), PI * (mu / k).sqrt());
+    let n = 4001;
+    let t: Vec<f64> = (0..n).map(|i| t_c * i as f64 / (n - 1) as f64).collect();
+    let f: Vec<f64> = t.iter().map(|x| f_max * (PI * x / t_c).sin()).collect();
+    let d: Vec<f64> = f.iter().map(|x| x / k).collect();
+    let a: Vec<f64> = f.iter().map(|x| x / m_h).collect();
+    let traces = ContactTraces {
+        times: &t,
+        force: &f,
+        indentation: &d,
+        head_acceleration: Some(&a),
+    };
+    let s = severity(&traces, Some(&ContactAreaModel::Fixed { area_m2: 1e-4 })).unwrap();
+    assert_close("peak force", s.peak_force, f_max, 1e-12);
+    assert_close("t at peak", s.t_peak_force, 0.5 * t_c, 1e-12);
+    assert_close(
+        "peak pressure",
+        s.peak_pressure.unwrap(),
+        f_max / 1e-4,
+        1e-12,
+    );
+    assert_close(
+        "loading work = ½ μ v²",
+        s.loading_work,
+        0.5 * mu * v * v,
+        1e-6,
+    );
+    let h15 = hic_half_sine(f_max / m_h, t_c, HicWindow::Hic15).unwrap();
+    assert_close("HIC15", s.hic15.unwrap().hic, h15, 1e-6);
+    let short = ContactTraces {
+        indentation: &d[..10],
+        ..traces
+    };
+    assert!(
+        severity(&short, None)
+            .unwrap_err()
+            .to_string()
+            .contains("indentation")
+    );
+}
