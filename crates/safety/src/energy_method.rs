@@ -103,7 +103,8 @@ impl EnergyContact {
     }
 
     /// As [`EnergyContact::new`] with the human mass of `region` for `kind` (Table A.3's m_H for
-    /// transient contact, +∞ for quasi-static).
+    /// transient contact, +∞ for quasi-static); refuses transient contact where the standard
+    /// forbids it ([`SafetyError::ContactNotPermitted`]).
     pub fn for_region(
         region: &BodyRegion,
         kind: ContactKind,
@@ -112,6 +113,7 @@ impl EnergyContact {
         link: LinkStiffness,
         area: Option<ContactAreaModel>,
     ) -> Result<Self, SafetyError> {
+        region.force_limit(kind)?;
         Self::new(region.human_mass(kind), robot_mass, contact, link, area)
     }
 

@@ -315,6 +315,28 @@ fn refusals_and_bad_input() {
         "{e}"
     );
     assert!(standard.verdict(0.1).is_err());
+    let skin = Hertz::new(7.359e7, 1.961).unwrap();
+    let e = EnergyContact::for_region(
+        face,
+        ContactKind::Transient,
+        5.0,
+        skin,
+        LinkStiffness::Rigid,
+        None,
+    )
+    .unwrap_err();
+    assert!(matches!(e, SafetyError::ContactNotPermitted { .. }), "{e}");
+    assert!(
+        EnergyContact::for_region(
+            face,
+            ContactKind::QuasiStatic,
+            5.0,
+            skin,
+            LinkStiffness::Rigid,
+            None
+        )
+        .is_ok()
+    );
     let neck = model.region("neck").unwrap();
     let bad = StandardContact {
         region: neck,
