@@ -27,6 +27,7 @@ pub mod limits;
 pub mod overrides;
 pub mod run;
 pub mod scene;
+mod scene_load;
 pub mod sensors;
 pub mod world;
 
