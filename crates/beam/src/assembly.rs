@@ -12,38 +12,16 @@ use nalgebra::{Matrix6, Vector6};
 use crate::banded::BandMatrix;
 use crate::corotational::corotational_element_trig;
 use crate::element::{consistent_inertia, consistent_inertia_trig, linear_stiffness, lumped_mass};
+pub use crate::evaluation::{JacobianWeights, Kinematic};
 use crate::model::{BeamModel, Kinematics, MassMatrix};
 
 /// Half-bandwidth of the node-ordered system (one element spans 6 consecutive DOFs).
 pub const HALF_BANDWIDTH: usize = 5;
 
-/// Weights of the Jacobian J = c_k ∂r/∂q + c_v ∂r/∂q̇ + c_a ∂r/∂q̈.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct JacobianWeights {
-    /// Weight of ∂r/∂q.
-    pub stiffness: f64,
-    /// Weight of ∂r/∂q̇.
-    pub velocity: f64,
-    /// Weight of ∂r/∂q̈.
-    pub acceleration: f64,
-}
-
 /// A zero band matrix for the free DOFs of `model` (half-bandwidth 5, or 7 for ANCF).
 pub fn band_for(model: &BeamModel) -> BandMatrix {
     let hb = model.half_bandwidth();
     BandMatrix::zeros(model.n_free(), hb, hb)
-}
-
-/// Kinematic input of an evaluation: displacements, and for dynamics velocities and
-/// accelerations (all with one entry per DOF).
-#[derive(Debug, Clone, Copy)]
-pub struct Kinematic<'a> {
-    /// q [m, rad].
-    pub q: &'a [f64],
-    /// q̇, or `None` in statics.
-    pub v: Option<&'a [f64]>,
-    /// q̈, or `None` in statics.
-    pub a: Option<&'a [f64]>,
 }
 
 fn gather(x: &[f64], e: usize) -> Vector6<f64> {

@@ -24,9 +24,9 @@
 use nalgebra::Vector2;
 
 use crate::ancf::{AncfElement, Matrix8, Vector8, Want, slope_angle};
-use crate::assembly::{JacobianWeights, Kinematic};
 use crate::banded::BandMatrix;
 use crate::element::lumped_mass;
+use crate::evaluation::{JacobianWeights, Kinematic};
 use crate::model::{BeamModel, MassMatrix};
 
 /// Global DOF (relative to 4e) of element coordinate k (slot order r₁, r₁′, r₂, r₂′; x, y).

@@ -54,6 +54,7 @@ pub mod element;
 pub mod energy;
 pub mod energy_conserving;
 mod error;
+pub mod evaluation;
 pub mod modal;
 pub mod model;
 pub mod node_load;

@@ -13,20 +13,7 @@
 use flexrig_contact::math::Vector;
 
 use crate::scene::Scene;
-
-/// Angular speed [rad/s] at the bottom of the swing of a compound pendulum (mass \[kg\], centre of
-/// mass `com_distance` \[m\] below the pivot, `inertia` [kg·m²] about it) that is at `angle` \[rad\]
-/// with `rate` [rad/s]: ½ J ω_b² = ½ J ω² + M g l_c (1 − cos φ).
-pub fn rate_at_bottom(
-    mass: f64,
-    com_distance: f64,
-    inertia: f64,
-    g: f64,
-    angle: f64,
-    rate: f64,
-) -> f64 {
-    (rate * rate + 2.0 * mass * g * com_distance * (1.0 - angle.cos()) / inertia).sqrt()
-}
+pub use crate::scene::rate_at_bottom;
 
 /// The operator pendulum.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -29,6 +29,7 @@ pub mod overrides;
 pub mod plausibility;
 pub mod run;
 pub mod scene;
+mod scene_load;
 pub mod sensors;
 pub mod world;
 
