@@ -161,7 +161,7 @@ fn dome_radius_outside_the_fit(scene: &Scene, materials: &Materials, out: &mut V
 
 fn spring_left_behind_by_the_link(scene: &Scene, out: &mut Vec<Warning>) {
     let r = &scene.file.robot;
-    let Some(k) = r.torsion_spring_nm_per_rad else {
+    let Some(k) = r.torsion_spring_nm_per_rad.and_then(|k| k.value()) else {
         return;
     };
     if r.design != Design::Cj {
@@ -173,8 +173,8 @@ fn spring_left_behind_by_the_link(scene: &Scene, out: &mut Vec<Warning>) {
             "robot.torsion_spring_nm_per_rad",
             format!(
                 "{} N·m/rad differs by {} % from 3EI/L = {} N·m/rad of this link (Eq. 3): if \
-                 the link was changed, the CJ no longer matches the CL's stiffness; leave the \
-                 field out to follow the link",
+                 the link was changed, the CJ no longer matches the CL's stiffness; set it to \"matched\" \
+                 (or leave it out) to follow the link",
                 display(k),
                 display(((k / matched - 1.0) * 1000.0).round() / 10.0),
                 display((matched * 1e4).round() / 1e4)

@@ -98,7 +98,7 @@ impl Scene {
         limits::check_beam_mesh(r.beam_elements, file.solver.beam)?;
         let link_mass_kg = r.density_kg_m3 * r.width_m * r.thickness_m * r.length_m;
         let link_ei = r.youngs_modulus_pa * r.width_m * r.thickness_m.powi(3) / 12.0;
-        let torsion_spring = match r.torsion_spring_nm_per_rad {
+        let torsion_spring = match r.torsion_spring_nm_per_rad.and_then(|k| k.value()) {
             Some(k) => limits::TORSION_SPRING.check("robot.torsion_spring_nm_per_rad", k)?,
             None => 3.0 * link_ei / r.length_m,
         };

@@ -95,6 +95,41 @@ fn a_joint_spring_left_behind_by_the_link_is_suspected() {
         "{}",
         w[0].message
     );
+    // the matched spring follows the link: the run equals one with 3EI/L given
+    assert!(
+        warned(
+            "cj_aluminium",
+            &[
+                "robot.length_m=0.5",
+                "robot.torsion_spring_nm_per_rad=matched"
+            ]
+        )
+        .is_empty()
+    );
+    let materials = Materials::bundled().unwrap();
+    let text = common::scene_text("cj_aluminium");
+    let spring = |sets: &[&str]| {
+        let o: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
+        scene_with_overrides(&text, &o, &materials)
+            .unwrap()
+            .torsion_spring
+    };
+    let matched = spring(&[
+        "robot.length_m=0.5",
+        "robot.torsion_spring_nm_per_rad=matched",
+    ]);
+    assert!(
+        (matched / (3.0 * ei / 0.5) - 1.0).abs() < 1e-12,
+        "{matched}"
+    );
+    let e = scene_with_overrides(
+        &text,
+        &[Override::parse("robot.torsion_spring_nm_per_rad=stiff").unwrap()],
+        &materials,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("\"matched\""), "{e}");
     // a CL scene ignores the CJ spring
     assert!(warned("cl_aluminium", &["robot.length_m=0.5"]).is_empty());
 }
