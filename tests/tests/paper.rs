@@ -1,38 +1,32 @@
 //! End-to-end checks against the paper (§III–V) through the public APIs of the crates and the
 //! `flexrig` library, each against an independent reference.
 
-use flexrig::cli::{Cli, Command, run};
-use flexrig::commands::fig6::Fig6Args;
+use flexrig::fig6::Fig6Options;
 use flexrig_contact::tolerance::{assert_abs, assert_close, relative_error};
 use flexrig_contact::{Materials, SeriesCompliance};
 use flexrig_lumped::ode::{OdeOptions, integrate};
 use flexrig_lumped::prb::{self, PrbLink};
 use flexrig_lumped::{ImpactModel, peak_exact};
 
-/// The Fig. 6 command (as a library call, in-process) reproduces the paper's η(2/3) = 0.89 and
+/// The Fig. 6 study (the library call behind `flexrig fig6`) reproduces the paper's η(2/3) = 0.89 and
 /// 0.82 (§V), which are the n = 1 values.
 #[test]
 fn fig6_command_reproduces_the_quoted_etas() {
     let dir = std::env::temp_dir().join(format!("flexrig-paper-fig6-{}", std::process::id()));
-    let cli = Cli {
-        command: Some(Command::Fig6(Fig6Args {
-            out: dir.clone(),
-            points: 3,
-            json: true,
-        })),
-    };
-    let mut buf = Vec::new();
-    run(&cli, &mut buf).unwrap();
-    let v: serde_json::Value = serde_json::from_slice(&buf).unwrap();
+    let result = flexrig::fig6::run(&Fig6Options {
+        out: dir.clone(),
+        points: 3,
+    })
+    .unwrap();
     let eta = |m_h: f64, k_delta: f64, m_e: f64, n: f64| {
-        v["cases"]
-            .as_array()
-            .unwrap()
+        result
+            .curves
             .iter()
-            .find(|c| c["m_h"] == m_h && c["k_delta"] == k_delta && c["m_e"] == m_e && c["n"] == n)
-            .unwrap()["eta_at_2_3"]
-            .as_f64()
+            .find(|c| {
+                c.case.m_h == m_h && c.case.k_delta == k_delta && c.case.m_e == m_e && c.n == n
+            })
             .unwrap()
+            .eta_at_2_3
     };
     assert_abs(
         "paper: η = 0.89, unconstrained",

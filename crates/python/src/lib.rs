@@ -9,7 +9,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use flexrig::CliError;
+use flexrig::Error;
 use flexrig_rig::RigError;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyFileNotFoundError, PyKeyboardInterrupt, PyOSError, PyRuntimeError};
@@ -47,18 +47,18 @@ pub(crate) fn input_error(field: &str, message: String) -> PyErr {
 }
 
 /// The name of the field a runner error is about, if it is bad input.
-pub(crate) fn field_of(e: &CliError) -> Option<String> {
+pub(crate) fn field_of(e: &Error) -> Option<String> {
     use flexrig_contact::ContactError;
     let contact = |c: &ContactError| match c {
         ContactError::InvalidParameter { field, .. } => Some(field.clone()),
         _ => None,
     };
     match e {
-        CliError::InvalidArgument { arg, .. } => Some(arg.clone()),
-        CliError::Rig(RigError::InvalidScene { field, .. }) => Some(field.clone()),
-        CliError::Rig(RigError::SceneSyntax(_)) => Some("scene".into()),
-        CliError::Rig(RigError::Contact(c)) | CliError::Contact(c) => contact(c),
-        CliError::Lumped(flexrig_lumped::LumpedError::Parameter(c)) => contact(c),
+        Error::InvalidArgument { arg, .. } => Some(arg.clone()),
+        Error::Rig(RigError::InvalidScene { field, .. }) => Some(field.clone()),
+        Error::Rig(RigError::SceneSyntax(_)) => Some("scene".into()),
+        Error::Rig(RigError::Contact(c)) | Error::Contact(c) => contact(c),
+        Error::Lumped(flexrig_lumped::LumpedError::Parameter(c)) => contact(c),
         _ => None,
     }
 }
@@ -66,8 +66,8 @@ pub(crate) fn field_of(e: &CliError) -> Option<String> {
 /// A runner error as the Python exception a caller expects: bad input → `InputError`
 /// (a ValueError naming the field), a missing file → `FileNotFoundError`, other I/O → `OSError`,
 /// an interrupted run → `KeyboardInterrupt`, a run that failed → `SimulationError`.
-pub(crate) fn to_py(e: CliError) -> PyErr {
-    if let CliError::Read { path, source } = &e {
+pub(crate) fn to_py(e: Error) -> PyErr {
+    if let Error::Read { path, source } = &e {
         let message = format!("cannot read {}: {source}", path.display());
         return if source.kind() == std::io::ErrorKind::NotFound {
             PyFileNotFoundError::new_err(message)
@@ -75,10 +75,10 @@ pub(crate) fn to_py(e: CliError) -> PyErr {
             PyOSError::new_err(message)
         };
     }
-    if matches!(e, CliError::Write { .. }) {
+    if matches!(e, Error::Write { .. }) {
         return PyOSError::new_err(e.to_string());
     }
-    if matches!(e, CliError::Rig(RigError::Interrupted { .. })) {
+    if matches!(e, Error::Rig(RigError::Interrupted { .. })) {
         return PyKeyboardInterrupt::new_err(e.to_string());
     }
     if e.exit_code() == 2 {

@@ -1,7 +1,7 @@
 //! The lumped two-mass impact, vectorised (exact method), and the paper's Fig. 6.
 
-use flexrig::CliError;
-use flexrig::commands::impact::exact;
+use flexrig::Error;
+use flexrig::impact::exact;
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -59,7 +59,7 @@ pub fn impact_exact<'py>(
         ));
     }
     let mut out: Vec<Outputs> = vec![[0.0; 6]; len];
-    let failure: Option<(usize, CliError)> = py.detach(|| {
+    let failure: Option<(usize, Error)> = py.detach(|| {
         out.par_chunks_mut(CHUNK)
             .enumerate()
             .filter_map(|(c, chunk)| {
@@ -102,7 +102,7 @@ pub fn impact_exact<'py>(
 const NAMES: [&str; 6] = ["m_h", "m_eff", "k_delta", "k_c", "n", "v0"];
 
 /// The error of set `i`, naming the argument and index (`m_h[3]`) instead of the CLI flag.
-fn indexed(e: CliError, i: usize) -> PyErr {
+fn indexed(e: Error, i: usize) -> PyErr {
     if let Some(flag) = field_of(&e)
         && let Some(name) = NAMES
             .iter()
@@ -121,7 +121,7 @@ fn indexed(e: CliError, i: usize) -> PyErr {
 /// n = 1, 2, with `points` samples of γ over [0.5, 1]. A list of dicts: m_h, k_delta, m_e, n,
 /// eta_at_2_3 and the arrays gamma and eta.
 #[pyfunction]
-#[pyo3(signature = (points=flexrig::commands::fig6::DEFAULT_POINTS))]
+#[pyo3(signature = (points=flexrig::fig6::DEFAULT_POINTS))]
 pub fn fig6(py: Python<'_>, points: usize) -> PyResult<Vec<Bound<'_, PyDict>>> {
     if points < 2 {
         return Err(input_error(

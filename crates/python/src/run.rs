@@ -5,8 +5,8 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use flexrig::commands::experiment::BUNDLED_SCENES;
-use flexrig::commands::run::summary_json;
+use flexrig::run::summary_json;
+use flexrig::scenes::BUNDLED_SCENES;
 use flexrig::traces::run_traced;
 use flexrig_rig::Override;
 use numpy::PyArray1;

@@ -1,0 +1,92 @@
+//! Command-line interface (clap): the commands and their dispatch.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand};
+
+use crate::commands;
+use flexrig::{CancelToken, Error};
+
+/// flexrig: flexible-multibody impact simulator — compliant joint (CJ) versus compliant link (CL).
+///
+/// Without a command, runs the main job on the bundled defaults and says where its output is.
+#[derive(Debug, Parser)]
+#[command(name = "flexrig", version, about, long_about = None)]
+pub struct Cli {
+    /// The command to run; none runs the default job.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+/// The `flexrig` commands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Replay the paper's §VI experiment (Fig. 9): CJ vs CL, two operators, repeats with
+    /// release-angle jitter, and the light-load case; an MCAP log per run.
+    Experiment(commands::experiment::ExperimentArgs),
+    /// Run a scene of the drop-pendulum test rig (CJ or CL) and print its impact summary.
+    Run(commands::run::RunArgs),
+    /// Run a base scene over a grid (or zip) of scene fields, in parallel, into one table;
+    /// resumable, shardable for a cluster (`flexrig sweep merge` joins the shards).
+    Sweep(commands::sweep::SweepArgs),
+    /// Peak force of the lumped two-mass impact (paper Eq. 10–14) by the exact energy balance,
+    /// the n = 1 closed form, or time integration.
+    Impact(commands::impact::ImpactArgs),
+    /// The paper's Fig. 6: η(γ) = f_max(γ)/f_max(1) for the eight design cases, n = 1 and n = 2.
+    Fig6(commands::fig6::Fig6Args),
+    /// The Fig. 6 cases at finite-element fidelity: a free head on the FE compliant link and the
+    /// rigid compliant joint, η_FE beside the lumped η(2/3), and the effective γ.
+    Eta(commands::eta::EtaArgs),
+    /// Maps of η_FE, the lumped model's error, the effective γ and the placed model's error over
+    /// m_e/m_r × k_δ/k_c, one heat-map figure per head mass.
+    EtaMap(commands::eta_map::EtaMapArgs),
+    /// η_FE of the Fig. 6 cases along the free hub's rotor inertia, from a freely pivoting link
+    /// to the held joint.
+    EtaRotor(commands::eta_rotor::EtaRotorArgs),
+    /// The test bed's CL/CJ peak ratio over the payload (the paper's Fig. 9b light-load study as
+    /// a curve), with MCAP logs of three payloads.
+    Payload(commands::payload::PayloadArgs),
+    /// Least-squares fit of the Hertz law f = k δ^n to compression data (CSV).
+    Fit(commands::fit::FitArgs),
+    /// Finite-element Euler–Bernoulli beam: natural frequencies and static deflection.
+    #[command(subcommand)]
+    Beam(commands::beam::BeamCommand),
+    /// Work–precision benchmarks (run time against error) of the lumped impact, the beam and the
+    /// rig, with plots.
+    Bench(commands::bench::BenchArgs),
+    /// Run the verification suite against every reference; writes validation.md.
+    Validate(commands::validate::ValidateArgs),
+    /// Check the Pseudo-Rigid-Body model (γ, K_Θ) against the corotational FE beam.
+    Prb(commands::prb::PrbArgs),
+}
+
+/// Where the default job writes its files.
+pub const DEFAULT_OUT_DIR: &str = "out";
+
+/// Runs the parsed command line, writing the report to `out`.
+pub fn run(cli: &Cli, out: &mut dyn Write) -> Result<(), Error> {
+    run_cancellable(cli, out, &CancelToken::new())
+}
+
+/// As [`run`], stopping simulations when `cancel` is set (by the binary's Ctrl-C handler); logs
+/// are finished with an `error` record.
+pub fn run_cancellable(cli: &Cli, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
+    match &cli.command {
+        None => commands::default_job(&PathBuf::from(DEFAULT_OUT_DIR), out, cancel),
+        Some(Command::Experiment(args)) => commands::experiment::run(args, out, cancel),
+        Some(Command::Run(args)) => commands::run::run(args, out, cancel),
+        Some(Command::Sweep(args)) => commands::sweep::run(args, out, cancel),
+        Some(Command::Impact(args)) => commands::impact::run(args, out),
+        Some(Command::Fig6(args)) => commands::fig6::run(args, out),
+        Some(Command::Eta(args)) => commands::eta::run(args, out),
+        Some(Command::EtaMap(args)) => commands::eta_map::run(args, out),
+        Some(Command::EtaRotor(args)) => commands::eta_rotor::run(args, out),
+        Some(Command::Fit(args)) => commands::fit::run(args, out),
+        Some(Command::Payload(args)) => commands::payload::run(args, out, cancel),
+        Some(Command::Beam(cmd)) => commands::beam::run(cmd, out),
+        Some(Command::Prb(args)) => commands::prb::run(args, out),
+        Some(Command::Validate(args)) => commands::validate::run(args, out),
+        Some(Command::Bench(args)) => commands::bench::run(args, out),
+    }
+}

@@ -1,0 +1,137 @@
+//! `flexrig eta-rotor`: η_FE of the Fig. 6 cases along the free hub's rotor inertia, see
+//! [`flexrig::eta_rotor`].
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::Args;
+use flexrig::Error;
+use flexrig::eta::contact_text;
+use flexrig::eta_rotor::EtaRotorOptions;
+use flexrig_impact::eta::{ClMethod, EtaSettings};
+use flexrig_impact::graded::GradedMesh;
+use serde_json::json;
+
+use super::impact_args::{DampingArgs, impact_as_flag, parse_range};
+use crate::print::{line, print_json};
+
+/// Arguments of `flexrig eta-rotor`.
+#[derive(Debug, Args)]
+pub struct EtaRotorArgs {
+    /// Directory for eta_rotor.csv and eta_rotor.svg (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+    /// Rotor over link inertia J_R/(m_r L²/3), FROM:TO (log-spaced; within [1e-9, 1e9]).
+    #[arg(long, value_name = "FROM:TO", default_value = "1e-4:1e6")]
+    pub ratio: String,
+    /// Points along the ratio (2 to 200); the held joint is added as the limit.
+    #[arg(long, value_name = "N", default_value_t = 21)]
+    pub points: usize,
+    /// Hertz exponents n, comma-separated (1 to 3 each).
+    #[arg(long, value_name = "N,...", value_delimiter = ',', default_values_t = [1.0, 2.0])]
+    pub n: Vec<f64>,
+    /// Tolerance of the force's linear hold per step (1e-14 to 0.1).
+    #[arg(long, value_name = "TOL", default_value_t = 1e-6)]
+    pub tol: f64,
+    /// The contact's damping.
+    #[command(flatten)]
+    pub contact: DampingArgs,
+    /// Print JSON instead of the summary.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs `flexrig eta-rotor`.
+pub fn run(args: &EtaRotorArgs, out: &mut dyn Write) -> Result<(), Error> {
+    if !(2..=200).contains(&args.points) {
+        return Err(Error::InvalidArgument {
+            arg: "--points".into(),
+            value: args.points.to_string(),
+            allowed: "must lie in [2, 200]".into(),
+        });
+    }
+    let ratios = parse_range("--ratio", &args.ratio, args.points)?;
+    if args.n.is_empty()
+        || args
+            .n
+            .iter()
+            .any(|n| !(n.is_finite() && (1.0..=3.0).contains(n)))
+    {
+        return Err(Error::InvalidArgument {
+            arg: "--n".into(),
+            value: format!("{:?}", args.n),
+            allowed: "one or more exponents in [1, 3]".into(),
+        });
+    }
+    let settings = EtaSettings {
+        method: ClMethod::Modal {
+            mesh: GradedMesh::DEFAULT,
+            tol: args.tol,
+        },
+        damping: args.contact.spec()?,
+        ..EtaSettings::DEFAULT
+    };
+    let r = flexrig::eta_rotor::run(&EtaRotorOptions {
+        out: args.out.clone(),
+        ratios,
+        n: args.n.clone(),
+        settings,
+    })
+    .map_err(|e| match e {
+        Error::Impact(flexrig_impact::ImpactError::InvalidParameter { field, .. })
+            if field == "inertia_ratio" =>
+        {
+            Error::InvalidArgument {
+                arg: "--ratio".into(),
+                value: args.ratio.clone(),
+                allowed: "FROM:TO with 1e-9 ≤ FROM < TO ≤ 1e9".into(),
+            }
+        }
+        other => impact_as_flag(other),
+    })?;
+    let (points, csv_path, svg_path) = (&r.points, &r.csv, &r.svg);
+    if args.json {
+        return print_json(
+            out,
+            &json!({ "settings": settings, "points": points, "csv": csv_path, "svg": svg_path }),
+        );
+    }
+    line(
+        out,
+        format!(
+            "η_FE along J_R/(m_r L²/3) = {} ({} points), n = {:?}, {}: free pivot → held",
+            args.ratio,
+            args.points,
+            args.n,
+            contact_text(&settings.damping)
+        ),
+    )?;
+    for curve in points.chunk_by(|a, b| a.case == b.case && a.n == b.n) {
+        let (first, last) = (curve[0], curve[curve.len() - 1]);
+        let lowest = curve
+            .iter()
+            .min_by(|a, b| a.eta_fe.total_cmp(&b.eta_fe))
+            .expect("non-empty");
+        line(
+            out,
+            format!(
+                "m_h {:>6} kg, k_δ {:>5.0e}, m_e {:>4} kg, n {}: η_FE {:.4} (ρ = {:.1e}) … {:.4} (held), lowest {:.4} at {}",
+                first.case.m_h,
+                first.case.k_delta,
+                first.case.m_e,
+                first.n,
+                first.eta_fe,
+                first.inertia_ratio.unwrap_or(f64::NAN),
+                last.eta_fe,
+                lowest.eta_fe,
+                lowest
+                    .inertia_ratio
+                    .map_or("held".to_string(), |r| format!("ρ = {r:.2e}"))
+            ),
+        )?;
+    }
+    line(
+        out,
+        format!("Wrote {} and {}", csv_path.display(), svg_path.display()),
+    )
+}

@@ -1,0 +1,176 @@
+//! Flags shared by the FE impact commands (`eta`, `eta-map`, `eta-rotor`): the joint, the
+//! contact's damping, log ranges, and impact errors named by flag.
+
+use clap::{Args, ValueEnum};
+use flexrig::Error;
+use flexrig::output::positive_arg;
+use flexrig_contact::DampingSpec;
+use flexrig_impact::Joint;
+use flexrig_impact::map::LogRange;
+
+/// The joint during the impact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum JointArg {
+    /// Driven at constant speed: the robot at rest in the joint's frame, struck at v0.
+    Held,
+    /// A free hub with the rotor inertia --rotor-inertia; the robot moves at v0 into the head.
+    FreeHub,
+}
+
+/// Damping added to the Hertz contact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum DampingArg {
+    /// The paper's elastic contact f = k_c δⁿ.
+    None,
+    /// Hunt–Crossley, f = k_c δⁿ (1 + χ δ̇), χ = 3(1 − e)/(2 v0) (--restitution).
+    HuntCrossley,
+    /// Lankarani–Nikravesh, χ = 3(1 − e²)/(4 v0) (--restitution).
+    LankaraniNikravesh,
+    /// ADAMS IMPACT: damping ramped from 0 at first touch to --c-max at --depth.
+    AdamsImpact,
+}
+
+/// The contact's damping flags (shared by `flexrig eta` and `flexrig eta-map`).
+#[derive(Debug, Args)]
+pub struct DampingArgs {
+    /// Damping added to the Hertz contact (the lumped columns then come from the lumped model
+    /// integrated with the same law).
+    #[arg(long, value_enum, default_value = "none")]
+    pub damping: DampingArg,
+    /// Coefficient of restitution e in [0, 1] (with --damping hunt-crossley or
+    /// lankarani-nikravesh).
+    #[arg(long, value_name = "E")]
+    pub restitution: Option<f64>,
+    /// Largest damping coefficient, N·s/m in [0, 1e9] (with --damping adams-impact).
+    #[arg(long, value_name = "N_S_PER_M")]
+    pub c_max: Option<f64>,
+    /// Indentation at which the damping reaches --c-max, m in [1e-9, 1] (with --damping
+    /// adams-impact).
+    #[arg(long, value_name = "M")]
+    pub depth: Option<f64>,
+}
+
+impl DampingArgs {
+    /// The damping the flags ask for; a missing, stray or out-of-range flag is named.
+    pub fn spec(&self) -> Result<DampingSpec, Error> {
+        let bad = |arg: &str, value: String, allowed: &str| Error::InvalidArgument {
+            arg: arg.into(),
+            value,
+            allowed: allowed.into(),
+        };
+        let in_range = |arg: &str, value: Option<f64>, lo: f64, hi: f64, what: &str| {
+            let v = value.ok_or_else(|| {
+                bad(
+                    "--damping",
+                    self.damping
+                        .to_possible_value()
+                        .map_or(String::new(), |v| v.get_name().to_string()),
+                    &format!("needs {arg} ({what})"),
+                )
+            })?;
+            if v.is_finite() && (lo..=hi).contains(&v) {
+                Ok(v)
+            } else {
+                Err(bad(
+                    arg,
+                    v.to_string(),
+                    &format!("must lie in [{lo:e}, {hi:e}]"),
+                ))
+            }
+        };
+        let stray = |arg: &str, value: Option<f64>, with: &str| match value {
+            Some(v) => Err(bad(
+                arg,
+                v.to_string(),
+                &format!("only with --damping {with}"),
+            )),
+            None => Ok(()),
+        };
+        let restitution_models = "hunt-crossley or lankarani-nikravesh";
+        match self.damping {
+            DampingArg::None | DampingArg::AdamsImpact => {
+                stray("--restitution", self.restitution, restitution_models)?
+            }
+            _ => {}
+        }
+        if self.damping != DampingArg::AdamsImpact {
+            stray("--c-max", self.c_max, "adams-impact")?;
+            stray("--depth", self.depth, "adams-impact")?;
+        }
+        let restitution = || in_range("--restitution", self.restitution, 0.0, 1.0, "e in [0, 1]");
+        Ok(match self.damping {
+            DampingArg::None => DampingSpec::NONE,
+            DampingArg::HuntCrossley => DampingSpec::HuntCrossley {
+                restitution: restitution()?,
+            },
+            DampingArg::LankaraniNikravesh => DampingSpec::LankaraniNikravesh {
+                restitution: restitution()?,
+            },
+            DampingArg::AdamsImpact => DampingSpec::AdamsImpact {
+                c_max_n_s_per_m: in_range("--c-max", self.c_max, 0.0, 1e9, "N·s/m")?,
+                depth_m: in_range("--depth", self.depth, 1e-9, 1.0, "m")?,
+            },
+        })
+    }
+}
+
+/// The joint from --joint and --rotor-inertia.
+pub fn joint_from_args(joint: JointArg, rotor_inertia: Option<f64>) -> Result<Joint, Error> {
+    Ok(match (joint, rotor_inertia) {
+        (JointArg::Held, None) => Joint::Held,
+        (JointArg::Held, Some(j)) => {
+            return Err(Error::InvalidArgument {
+                arg: "--rotor-inertia".into(),
+                value: j.to_string(),
+                allowed: "only with --joint free-hub".into(),
+            });
+        }
+        (JointArg::FreeHub, None) => {
+            return Err(Error::InvalidArgument {
+                arg: "--joint".into(),
+                value: "free-hub".into(),
+                allowed: "needs --rotor-inertia (kg·m², > 0)".into(),
+            });
+        }
+        (JointArg::FreeHub, Some(j)) => Joint::FreeHub {
+            rotor_inertia: positive_arg("--rotor-inertia", j)?,
+        },
+    })
+}
+
+/// An impact parameter error as the flag the user typed (`zone_elements` → `--zone-elements`).
+pub fn as_flag(e: flexrig_impact::ImpactError) -> Error {
+    match e {
+        flexrig_impact::ImpactError::InvalidParameter {
+            field,
+            value,
+            allowed,
+        } => Error::InvalidArgument {
+            arg: format!("--{}", field.replace('_', "-")),
+            value,
+            allowed,
+        },
+        other => Error::Impact(other),
+    }
+}
+
+/// [`as_flag`] for an impact error inside a library error.
+pub fn impact_as_flag(e: Error) -> Error {
+    match e {
+        Error::Impact(e) => as_flag(e),
+        other => other,
+    }
+}
+
+/// Parses FROM:TO for `flag`.
+pub fn parse_range(flag: &str, text: &str, points: usize) -> Result<LogRange, Error> {
+    let bad = || Error::InvalidArgument {
+        arg: flag.into(),
+        value: text.into(),
+        allowed: "FROM:TO, two numbers > 0 with FROM < TO (e.g. 1e-3:1e2)".into(),
+    };
+    let (a, b) = text.split_once(':').ok_or_else(bad)?;
+    let from: f64 = a.trim().parse().map_err(|_| bad())?;
+    let to: f64 = b.trim().parse().map_err(|_| bad())?;
+    Ok(LogRange { from, to, points })
+}

@@ -1,0 +1,85 @@
+//! `flexrig payload`: the test bed's CL/CJ peak ratio over the payload, see [`flexrig::payload`].
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::Args;
+use flexrig::payload::PayloadOptions;
+use flexrig::{CancelToken, Error};
+use serde_json::json;
+
+use crate::print::{line, print_json};
+
+/// Arguments of `flexrig payload`.
+#[derive(Debug, Args)]
+pub struct PayloadArgs {
+    /// Bundled scene to vary (its `robot.design` is set to cj and to cl): cl_light_load (the
+    /// aluminium operator of the paper's light-load study) or any other bundled name.
+    #[arg(long, default_value = "cl_light_load")]
+    pub scene: String,
+    /// Smallest payload, kg.
+    #[arg(long, value_name = "KG", default_value_t = 0.01)]
+    pub from: f64,
+    /// Largest payload, kg.
+    #[arg(long, value_name = "KG", default_value_t = 1.0)]
+    pub to: f64,
+    /// Payloads, log-spaced (2 to 1000).
+    #[arg(long, value_name = "N", default_value_t = 25)]
+    pub points: usize,
+    /// Directory for payload.csv and the MCAP logs of three points (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs `flexrig payload`.
+pub fn run(args: &PayloadArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
+    let result = flexrig::payload::run(
+        &PayloadOptions {
+            scene: args.scene.clone(),
+            from: args.from,
+            to: args.to,
+            points: args.points,
+            out: args.out.clone(),
+        },
+        cancel,
+    )?;
+    let (rows, csv_path, logs) = (&result.rows, &result.csv, &result.logs);
+    if args.json {
+        return print_json(out, &json!({ "rows": rows, "csv": csv_path, "logs": logs }));
+    }
+    line(
+        out,
+        format!(
+            "Test bed ({}): CL/CJ peak over the payload, release to separation",
+            args.scene
+        ),
+    )?;
+    line(
+        out,
+        format!(
+            "{:>10} {:>12} {:>12} {:>8}",
+            "m_e[kg]", "CJ[N]", "CL[N]", "CL/CJ"
+        ),
+    )?;
+    for r in rows {
+        line(
+            out,
+            format!(
+                "{:>10.4} {:>12.3} {:>12.3} {:>8.4}",
+                r.payload_kg, r.cj_peak_n, r.cl_peak_n, r.ratio
+            ),
+        )?;
+    }
+    line(
+        out,
+        format!(
+            "Wrote {} and {} logs in {}",
+            csv_path.display(),
+            logs.len(),
+            args.out.display()
+        ),
+    )
+}

@@ -1,0 +1,85 @@
+//! Printing the reports (text lines, pretty JSON), the progress bar, and the flag conversions
+//! shared by the commands.
+
+use std::io::{IsTerminal, Write};
+use std::sync::OnceLock;
+
+use flexrig::Error;
+use flexrig_rig::Override;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+/// Writes `value` as pretty JSON and a newline to the report.
+pub fn print_json(out: &mut dyn Write, value: &serde_json::Value) -> Result<(), Error> {
+    let text = serde_json::to_string_pretty(value).expect("a serde_json::Value always serialises");
+    writeln!(out, "{text}").map_err(|e| Error::write("<stdout>", e))
+}
+
+/// Writes one line of text to the report.
+pub fn line(out: &mut dyn Write, text: impl std::fmt::Display) -> Result<(), Error> {
+    writeln!(out, "{text}").map_err(|e| Error::write("<stdout>", e))
+}
+
+/// The `--set PATH=VALUE` overrides, parsed (an error names the override).
+pub fn parse_overrides(set: &[String]) -> Result<Vec<Override>, Error> {
+    Ok(set
+        .iter()
+        .map(|s| Override::parse(s))
+        .collect::<Result<Vec<_>, _>>()?)
+}
+
+/// A progress bar on standard error in an indicatif `template`, drawn once the library says how
+/// many steps there are, cleared at the end.
+pub struct Bar {
+    template: &'static str,
+    terminal_only: bool,
+    bar: OnceLock<ProgressBar>,
+}
+
+impl Bar {
+    /// A bar drawn as indicatif decides.
+    pub fn new(template: &'static str) -> Self {
+        Bar {
+            template,
+            terminal_only: false,
+            bar: OnceLock::new(),
+        }
+    }
+
+    /// A bar drawn only when standard error is a terminal.
+    pub fn on_terminal(template: &'static str) -> Self {
+        Bar {
+            terminal_only: true,
+            ..Bar::new(template)
+        }
+    }
+}
+
+impl flexrig::Progress for Bar {
+    fn start(&self, total: usize) {
+        let style = ProgressStyle::with_template(self.template)
+            .unwrap_or_else(|_| ProgressStyle::default_bar());
+        let bar = if self.terminal_only {
+            let target = if std::io::stderr().is_terminal() {
+                ProgressDrawTarget::stderr()
+            } else {
+                ProgressDrawTarget::hidden()
+            };
+            ProgressBar::with_draw_target(Some(total as u64), target)
+        } else {
+            ProgressBar::new(total as u64)
+        };
+        let _ = self.bar.set(bar.with_style(style));
+    }
+
+    fn advance(&self) {
+        if let Some(bar) = self.bar.get() {
+            bar.inc(1);
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = self.bar.get() {
+            bar.finish_and_clear();
+        }
+    }
+}

@@ -1,0 +1,278 @@
+//! Maps of η_FE, the lumped model's error, the effective γ and the placed model's error over
+//! m_e/m_r × k_δ/k_c ([`flexrig_impact::map`]), one heat-map figure per head mass with the region
+//! where the CL beats the CJ by more than 5 %, and a CSV of every point.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use flexrig_impact::eta::{EffectiveGamma, EtaRow, EtaSettings};
+use flexrig_impact::map::{MapPoint, MapSpec, eta_map};
+use serde::Serialize;
+
+use crate::Error;
+use crate::eta::{contact_text, joint_text};
+use crate::output::{ensure_dir, write_atomic};
+use crate::plots::{ColorScale, HeatMap, heatmaps_svg};
+
+/// η_FE below this: the CL beats the CJ by more than 5 %.
+pub const BEATS: f64 = 0.95;
+
+/// The maps to compute (one per head mass) and where to write them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EtaMapOptions {
+    /// Directory for eta_map.csv and one eta_map_mh<M>.svg per map (created if missing).
+    pub out: PathBuf,
+    /// One map per spec (head mass, exponent, the two log ranges).
+    pub specs: Vec<MapSpec>,
+    /// The impact's settings (joint, CL method, damping) shared by every point.
+    pub settings: EtaSettings,
+}
+
+/// One computed map.
+#[derive(Debug, Clone)]
+pub struct ComputedMap {
+    /// Its spec.
+    pub spec: MapSpec,
+    /// Every point, row-major over the stiffness ratio then the mass ratio.
+    pub points: Vec<MapPoint>,
+    /// Wall-clock time it took \[s\].
+    pub seconds: f64,
+}
+
+/// Summary numbers of one map.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MapSummary {
+    /// Head mass \[kg\].
+    pub m_h_kg: f64,
+    /// Points of the map.
+    pub points: usize,
+    /// Points whose impact failed.
+    pub failed: usize,
+    /// Points where the CL beats the CJ by more than 5 % (η_FE < [`BEATS`]).
+    pub cl_beats_cj_by_5_percent: usize,
+    /// Points where an effective γ in (0, 1] fits.
+    pub gamma_eff_fits: usize,
+    /// Largest |η(2/3)/η_FE − 1|.
+    pub lumped_error_max: f64,
+    /// Points with |η(2/3)/η_FE − 1| ≤ 5 %.
+    pub lumped_within_5_percent: usize,
+    /// Largest |f_placed/f_CL − 1|.
+    pub placed_error_max: f64,
+    /// Points with |f_placed/f_CL − 1| ≤ 5 %.
+    pub placed_within_5_percent: usize,
+    /// Wall-clock time \[s\].
+    pub seconds: f64,
+}
+
+/// The maps, their summaries and the files written.
+#[derive(Debug, Clone)]
+pub struct EtaMapResult {
+    /// Every map.
+    pub maps: Vec<ComputedMap>,
+    /// One summary per map.
+    pub summaries: Vec<MapSummary>,
+    /// eta_map.csv, then one figure per map.
+    pub files: Vec<PathBuf>,
+}
+
+/// The joint and contact as the figures' titles say them.
+pub fn settings_text(settings: &EtaSettings) -> String {
+    format!(
+        "{} joint, {}",
+        joint_text(&settings.joint),
+        contact_text(&settings.damping)
+    )
+}
+
+/// Computes every map, renders everything, then writes the files (no partial output).
+pub fn run(options: &EtaMapOptions) -> Result<EtaMapResult, Error> {
+    options.settings.method.validate()?;
+    let joint_text = settings_text(&options.settings);
+    let mut maps = Vec::new();
+    for spec in &options.specs {
+        spec.validate()?;
+        let start = Instant::now();
+        let points = eta_map(spec, &options.settings)?;
+        maps.push(ComputedMap {
+            spec: *spec,
+            points,
+            seconds: start.elapsed().as_secs_f64(),
+        });
+    }
+    let out = &options.out;
+    let mut files = vec![(out.join("eta_map.csv"), csv(&maps))];
+    for m in &maps {
+        let path = out.join(format!("eta_map_mh{}.svg", m.spec.m_h));
+        let text = svg(m, &joint_text).map_err(|message| Error::Plot {
+            path: path.clone(),
+            message,
+        })?;
+        files.push((path, text));
+    }
+    ensure_dir(out)?;
+    for (path, text) in &files {
+        write_atomic(path, text.as_bytes())?;
+    }
+    let summaries = maps.iter().map(summary).collect();
+    Ok(EtaMapResult {
+        maps,
+        summaries,
+        files: files.into_iter().map(|(p, _)| p).collect(),
+    })
+}
+
+/// eta_map.csv: every point of every map (a failed point carries its error).
+pub fn csv(maps: &[ComputedMap]) -> String {
+    let mut s = String::from(
+        "m_h_kg,n,mass_ratio,stiffness_ratio,m_e_kg,k_delta_n_per_m,f_cj_n,f_cl_n,eta_fe,eta_lumped_2_3,lumped_error,gamma_eff,gamma_eff_note,f_placed_n,placed_error,error\n",
+    );
+    for m in maps {
+        for p in &m.points {
+            let head = format!(
+                "{},{},{},{}",
+                m.spec.m_h, m.spec.n, p.mass_ratio, p.stiffness_ratio
+            );
+            match &p.row {
+                Ok(r) => {
+                    let (gamma, note) = match r.gamma_eff {
+                        EffectiveGamma::Fits(g) => (format!("{g}"), ""),
+                        EffectiveGamma::AboveGammaOne => (String::new(), "above gamma = 1"),
+                        EffectiveGamma::BelowPayloadOnly => {
+                            (String::new(), "below the payload alone")
+                        }
+                    };
+                    let _ = writeln!(
+                        s,
+                        "{head},{},{},{},{},{},{},{},{gamma},{note},{},{},",
+                        r.case.m_e,
+                        r.case.k_delta,
+                        r.f_cj_n,
+                        r.f_cl_n,
+                        r.eta_fe,
+                        r.eta_lumped_2_3,
+                        r.eta_lumped_2_3 / r.eta_fe - 1.0,
+                        r.f_placed_n,
+                        r.f_placed_n / r.f_cl_n - 1.0
+                    );
+                }
+                Err(e) => {
+                    let _ = writeln!(s, "{head},,,,,,,,,,,,\"{}\"", e.replace('"', "'"));
+                }
+            }
+        }
+    }
+    s
+}
+
+/// The four panels of one head mass.
+pub fn svg(m: &ComputedMap, joint: &str) -> Result<String, String> {
+    let xs = m.spec.mass_ratio.values();
+    let ys = m.spec.stiffness_ratio.values();
+    let value = |f: &dyn Fn(&EtaRow) -> Option<f64>| -> Vec<Option<f64>> {
+        m.points
+            .iter()
+            .map(|p| p.row.as_ref().ok().and_then(f))
+            .collect()
+    };
+    let eta = value(&|r| Some(r.eta_fe));
+    let lumped = value(&|r| Some(r.eta_lumped_2_3 / r.eta_fe - 1.0));
+    let gamma = value(&|r| match r.gamma_eff {
+        EffectiveGamma::Fits(g) => Some(g),
+        _ => None,
+    });
+    let placed = value(&|r| Some(r.f_placed_n / r.f_cl_n - 1.0));
+    let beats: Vec<bool> = eta.iter().map(|e| e.is_some_and(|e| e < BEATS)).collect();
+    // both error maps on one scale, clamped at ±100 % so the region near 0 keeps its detail
+    let (lumped_span, placed_span) = (1.0, 1.0);
+    let maps = [
+        HeatMap {
+            title: "η_FE = f_max(CL)/f_max(CJ)",
+            x_label: "m_e/m_r",
+            y_label: "k_δ/k_c",
+            xs: &xs,
+            ys: &ys,
+            values: &eta,
+            scale: ColorScale::Sequential { lo: 0.0, hi: 1.0 },
+            value_label: "η_FE",
+            outline: Some((&beats, "CL beats CJ by > 5 % (η_FE < 0.95)")),
+        },
+        HeatMap {
+            title: "lumped model's error η(2/3)/η_FE − 1",
+            x_label: "m_e/m_r",
+            y_label: "k_δ/k_c",
+            xs: &xs,
+            ys: &ys,
+            values: &lumped,
+            scale: ColorScale::Diverging {
+                centre: 0.0,
+                span: lumped_span,
+            },
+            value_label: "η(2/3)/η_FE − 1",
+            outline: None,
+        },
+        HeatMap {
+            title: "effective γ (blank: none in (0, 1] fits)",
+            x_label: "m_e/m_r",
+            y_label: "k_δ/k_c",
+            xs: &xs,
+            ys: &ys,
+            values: &gamma,
+            scale: ColorScale::Sequential { lo: 0.0, hi: 1.0 },
+            value_label: "γ_eff",
+            outline: None,
+        },
+        HeatMap {
+            title: "placed model's error f_placed/f_CL − 1",
+            x_label: "m_e/m_r",
+            y_label: "k_δ/k_c",
+            xs: &xs,
+            ys: &ys,
+            values: &placed,
+            scale: ColorScale::Diverging {
+                centre: 0.0,
+                span: placed_span,
+            },
+            value_label: "f_placed/f_CL − 1",
+            outline: None,
+        },
+    ];
+    let title = format!(
+        "Free head m_h = {} kg on the CL (FE) and CJ links, n = {}, {joint} (m_r = 10 kg, k_c = 1e8, v0 = 2 m/s)",
+        m.spec.m_h, m.spec.n
+    );
+    heatmaps_svg(&title, &maps)
+}
+
+/// Summary numbers of one map: points, failures, CL-beats-CJ count and the largest errors.
+pub fn summary(m: &ComputedMap) -> MapSummary {
+    let rows: Vec<_> = m
+        .points
+        .iter()
+        .filter_map(|p| p.row.as_ref().ok())
+        .collect();
+    let beats = rows.iter().filter(|r| r.eta_fe < BEATS).count();
+    let fits = rows
+        .iter()
+        .filter(|r| matches!(r.gamma_eff, EffectiveGamma::Fits(_)))
+        .count();
+    let worst =
+        |f: &dyn Fn(&&EtaRow) -> f64| rows.iter().map(f).fold(0.0_f64, |a, b| a.max(b.abs()));
+    let within = |f: &dyn Fn(&&EtaRow) -> f64, limit: f64| {
+        rows.iter().filter(|r| f(r).abs() <= limit).count()
+    };
+    let lumped = |r: &&EtaRow| r.eta_lumped_2_3 / r.eta_fe - 1.0;
+    let placed = |r: &&EtaRow| r.f_placed_n / r.f_cl_n - 1.0;
+    MapSummary {
+        m_h_kg: m.spec.m_h,
+        points: m.points.len(),
+        failed: m.points.len() - rows.len(),
+        cl_beats_cj_by_5_percent: beats,
+        gamma_eff_fits: fits,
+        lumped_error_max: worst(&lumped),
+        lumped_within_5_percent: within(&lumped, 0.05),
+        placed_error_max: worst(&placed),
+        placed_within_5_percent: within(&placed, 0.05),
+        seconds: m.seconds,
+    }
+}

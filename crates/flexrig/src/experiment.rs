@@ -1,0 +1,544 @@
+//! The paper's §VI experiment replayed (Fig. 9): CJ and CL against the aluminium (398 g) and the
+//! iron (4008 g) operator, each repeated with a release-angle jitter drawn from a seeded RNG and
+//! reported as mean and 95 % confidence interval (Fig. 9a); and the light-load case
+//! m_e = 0.1 kg (Fig. 9b, the paper's ADAMS study, here the FE beam). Every run writes an MCAP
+//! log; the runs go in parallel across cores (rayon). [`plan`] lays the runs out, [`run`] runs
+//! them and writes the table and the figure, the statistics ([`group_stats`], [`ratio_stats`])
+//! are plain functions of the records.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use flexrig_contact::Materials;
+use flexrig_rig::overrides::Override;
+use flexrig_rig::{RunOptions, Scene, Simulation, scene::Start};
+use rand::SeedableRng;
+use rand::rngs::StdRng;
+use rand_distr::{Distribution, Normal};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::Error;
+use crate::cancel::CancelToken;
+use crate::mcap_log::{LogRates, LogTarget, run_logged};
+use crate::output::{ensure_dir, write_atomic};
+use crate::progress::Progress;
+use crate::scenes::scene_text;
+
+/// The bundled scenes of the experiment (paper §VI, Fig. 9), relative to the assets directory.
+pub const FIG9A_SCENES: [&str; 4] = ["cj_aluminium", "cl_aluminium", "cj_iron", "cl_iron"];
+/// The light-load scenes (Fig. 9b).
+pub const FIG9B_SCENES: [&str; 2] = ["cj_light_load", "cl_light_load"];
+
+/// What the experiment runs and where it writes (the CLI's `flexrig experiment` flags).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExperimentOptions {
+    /// Repeats of each Fig. 9a configuration, in [1, 1000] (the paper: 5; `--repeats`).
+    pub repeats: usize,
+    /// Standard deviation of the release-angle jitter \[deg\], in [0, 10] (`--jitter-deg`).
+    pub jitter_deg: f64,
+    /// Seed of the jitter RNG (`--seed`).
+    pub seed: u64,
+    /// Output directory: an MCAP log per run, fig9.svg, experiment.csv; its files are
+    /// overwritten (`--out`).
+    pub out: PathBuf,
+    /// Directory with scene files to use instead of the bundled ones, same names (`--scenes`).
+    pub scenes: Option<PathBuf>,
+    /// Overrides of every scene of the experiment (`--set`); the jitter is added to the release
+    /// angle that results.
+    pub overrides: Vec<Override>,
+}
+
+impl ExperimentOptions {
+    /// The main job's experiment on bundled defaults (the paper's 5 repeats, 0.5° jitter,
+    /// seed 1) into `out`.
+    pub fn defaults(out: PathBuf) -> Self {
+        ExperimentOptions {
+            repeats: 5,
+            jitter_deg: 0.5,
+            seed: 1,
+            out,
+            scenes: None,
+            overrides: Vec::new(),
+        }
+    }
+
+    /// Checks the ranges; errors name the flag.
+    pub fn validate(&self) -> Result<(), Error> {
+        if self.repeats == 0 || self.repeats > 1000 {
+            return Err(Error::InvalidArgument {
+                arg: "--repeats".into(),
+                value: self.repeats.to_string(),
+                allowed: "must lie in [1, 1000]".into(),
+            });
+        }
+        if !(self.jitter_deg.is_finite() && (0.0..=10.0).contains(&self.jitter_deg)) {
+            return Err(Error::InvalidArgument {
+                arg: "--jitter-deg".into(),
+                value: self.jitter_deg.to_string(),
+                allowed: "must lie in [0, 10] degrees".into(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// One run of the experiment.
+#[derive(Debug, Clone, Serialize)]
+pub struct RunRecord {
+    /// Scene name.
+    pub scene: String,
+    /// Repeat index.
+    pub repeat: usize,
+    /// Release angle used \[deg\].
+    pub release_angle_deg: f64,
+    /// Peak contact force \[N\].
+    pub peak_force_n: f64,
+    /// Impact speed [m/s].
+    pub impact_velocity_mps: f64,
+    /// Contact duration \[s\].
+    pub contact_duration_s: Option<f64>,
+    /// Largest indentation \[m\].
+    pub max_indentation_m: f64,
+    /// The MCAP log.
+    pub mcap: PathBuf,
+}
+
+/// Mean and 95 % confidence interval of one configuration.
+#[derive(Debug, Clone, Serialize)]
+pub struct GroupStats {
+    /// Scene name.
+    pub scene: String,
+    /// Runs.
+    pub n: usize,
+    /// Mean peak force \[N\].
+    pub mean_peak_force_n: f64,
+    /// Half-width of the 95 % confidence interval of the mean \[N\] (Student t); none with one
+    /// run (absent from the JSON).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ci95_n: Option<f64>,
+}
+
+/// The CJ/CL pairs of the experiment: case name, CJ scene, CL scene.
+pub const PAIRS: [(&str, &str, &str); 3] = [
+    ("aluminium", "cj_aluminium", "cl_aluminium"),
+    ("iron", "cj_iron", "cl_iron"),
+    ("light_load", "cj_light_load", "cl_light_load"),
+];
+
+/// CL/CJ peak-force ratio of one case, paired by repeat (the same release angle for CJ and CL):
+/// mean of the per-repeat ratios and its 95 % confidence interval.
+#[derive(Debug, Clone, Serialize)]
+pub struct RatioStats {
+    /// Case: `aluminium`, `iron` or `light_load`.
+    pub case: String,
+    /// Pairs (repeats run for both CJ and CL).
+    pub pairs: usize,
+    /// Mean of the per-repeat ratios CL/CJ.
+    pub mean_cl_over_cj: f64,
+    /// Half-width of the 95 % confidence interval of the mean ratio (Student t); none with one
+    /// pair (absent from the JSON).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ci95: Option<f64>,
+}
+
+/// Two-sided 95 % Student t quantile for `df` degrees of freedom.
+pub fn t_quantile_975(df: usize) -> f64 {
+    const TABLE: [f64; 30] = [
+        12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.160,
+        2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064, 2.060, 2.056,
+        2.052, 2.048, 2.045, 2.042,
+    ];
+    match df {
+        0 => f64::INFINITY,
+        1..=30 => TABLE[df - 1],
+        _ => 1.959964 + 2.37 / df as f64,
+    }
+}
+
+/// Mean and 95 % CI half-width (Student t) of `values`; no interval from fewer than two values.
+pub fn mean_ci95(values: &[f64]) -> (f64, Option<f64>) {
+    let n = values.len();
+    let mean = values.iter().sum::<f64>() / n as f64;
+    if n < 2 {
+        return (mean, None);
+    }
+    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+    (mean, Some(t_quantile_975(n - 1) * (var / n as f64).sqrt()))
+}
+
+/// Per-repeat CL/CJ ratios of `case` (see [`PAIRS`]): `(repeat, ratio)` for every repeat run
+/// with both designs, in repeat order.
+pub fn paired_ratios(records: &[RunRecord], cj: &str, cl: &str) -> Vec<(usize, f64)> {
+    let mut ratios: Vec<(usize, f64)> = records
+        .iter()
+        .filter(|r| r.scene == cl)
+        .filter_map(|r_cl| {
+            records
+                .iter()
+                .find(|r| r.scene == cj && r.repeat == r_cl.repeat)
+                .map(|r_cj| (r_cl.repeat, r_cl.peak_force_n / r_cj.peak_force_n))
+        })
+        .collect();
+    ratios.sort_by_key(|(repeat, _)| *repeat);
+    ratios
+}
+
+/// The paired CL/CJ ratio of every case of [`PAIRS`] that was run.
+pub fn ratio_stats(records: &[RunRecord]) -> Vec<RatioStats> {
+    PAIRS
+        .iter()
+        .filter_map(|(case, cj, cl)| {
+            let ratios: Vec<f64> = paired_ratios(records, cj, cl)
+                .into_iter()
+                .map(|(_, r)| r)
+                .collect();
+            if ratios.is_empty() {
+                return None;
+            }
+            let (mean, ci) = mean_ci95(&ratios);
+            Some(RatioStats {
+                case: case.to_string(),
+                pairs: ratios.len(),
+                mean_cl_over_cj: mean,
+                ci95: ci,
+            })
+        })
+        .collect()
+}
+/// One planned run: a scene (its text, overrides applied) and the release angle to use.
+#[derive(Debug, Clone)]
+pub struct Job {
+    /// Scene name.
+    pub scene: String,
+    /// Repeat index.
+    pub repeat: usize,
+    /// Release angle \[deg\].
+    pub angle_deg: f64,
+    /// The scene's text as run.
+    pub text: String,
+}
+
+/// What [`run`] produced: the statistics, every run, and the files written.
+#[derive(Debug, Clone, Serialize)]
+pub struct ExperimentResult {
+    /// Mean peak force per scene.
+    pub groups: Vec<GroupStats>,
+    /// Paired CL/CJ ratios per case.
+    pub ratios: Vec<RatioStats>,
+    /// Every run.
+    pub runs: Vec<RunRecord>,
+    /// experiment.csv.
+    pub csv: PathBuf,
+    /// fig9.svg.
+    pub svg: PathBuf,
+}
+
+/// Runs the experiment: the runs of [`plan`] in parallel (each writes its MCAP log into
+/// `options.out`; `progress` hears of each), then experiment.csv and fig9.svg. Stops when
+/// `cancel` is set.
+pub fn run(
+    options: &ExperimentOptions,
+    cancel: &CancelToken,
+    progress: &dyn Progress,
+) -> Result<ExperimentResult, Error> {
+    options.validate()?;
+    let materials = Materials::bundled()?;
+    let jobs = plan(options, &materials)?;
+    ensure_dir(&options.out)?;
+    progress.start(jobs.len());
+    let records = jobs
+        .par_iter()
+        .map(|job| {
+            let r = run_job(job, &materials, &options.out, cancel);
+            progress.advance();
+            r
+        })
+        .collect::<Result<Vec<RunRecord>, Error>>();
+    progress.finish();
+    let records = records?;
+    let groups = group_stats(&records);
+    let ratios = ratio_stats(&records);
+    let csv_path = options.out.join("experiment.csv");
+    let svg_path = options.out.join("fig9.svg");
+    write_atomic(&csv_path, csv(&records, &ratios).as_bytes())?;
+    let svg = crate::plots::fig9_svg(&groups, &ratios).map_err(|message| Error::Plot {
+        path: svg_path.clone(),
+        message,
+    })?;
+    write_atomic(&svg_path, svg.as_bytes())?;
+    Ok(ExperimentResult {
+        groups,
+        ratios,
+        runs: records,
+        csv: csv_path,
+        svg: svg_path,
+    })
+}
+
+/// Mean peak force and its 95 % CI of every scene of the experiment that was run.
+pub fn group_stats(records: &[RunRecord]) -> Vec<GroupStats> {
+    FIG9A_SCENES
+        .iter()
+        .chain(FIG9B_SCENES.iter())
+        .filter_map(|name| {
+            let peaks: Vec<f64> = records
+                .iter()
+                .filter(|r| r.scene == *name)
+                .map(|r| r.peak_force_n)
+                .collect();
+            if peaks.is_empty() {
+                return None;
+            }
+            let (mean, ci) = mean_ci95(&peaks);
+            Some(GroupStats {
+                scene: name.to_string(),
+                n: peaks.len(),
+                mean_peak_force_n: mean,
+                ci95_n: ci,
+            })
+        })
+        .collect()
+}
+
+/// `mean ± ci` of a ratio: the interval to two significant digits (in e-notation when tiny), the
+/// mean to the interval's last digit (3 to 6 decimals); the mean to 4 decimals without interval.
+pub fn mean_pm_ci(mean: f64, ci: Option<f64>) -> String {
+    let Some(ci) = ci.filter(|c| c.is_finite() && *c > 0.0) else {
+        return format!("{mean:.4}");
+    };
+    let last = (1.0 - ci.log10().floor()).max(0.0) as usize;
+    let d = last.clamp(3, 6);
+    if last > 6 {
+        format!("{mean:.d$} ± {ci:.1e}")
+    } else {
+        format!("{mean:.d$} ± {ci:.last$}")
+    }
+}
+
+/// The runs: each Fig. 9a scene `repeats` times with jittered release angles (the same angles
+/// for CJ and CL, as on the physical rig), then the two light-load scenes once.
+pub fn plan(options: &ExperimentOptions, materials: &Materials) -> Result<Vec<Job>, Error> {
+    let mut rng = StdRng::seed_from_u64(options.seed);
+    let jitter = Normal::new(0.0, options.jitter_deg).map_err(|_| Error::InvalidArgument {
+        arg: "--jitter-deg".into(),
+        value: options.jitter_deg.to_string(),
+        allowed: "a finite standard deviation >= 0".into(),
+    })?;
+    let offsets: Vec<f64> = (0..options.repeats)
+        .map(|_| jitter.sample(&mut rng))
+        .collect();
+    let mut jobs = Vec::new();
+    for (names, repeats) in [(&FIG9A_SCENES[..], options.repeats), (&FIG9B_SCENES[..], 1)] {
+        for name in names {
+            let (text, origin) = scene_text(name, options.scenes.as_deref())?;
+            let text = flexrig_rig::overrides::apply(&text, &options.overrides)?;
+            let scene = Scene::from_toml_str(&text, materials)?;
+            let base = match scene.file.operator.start {
+                Start::Release { release_angle_deg } => release_angle_deg,
+                other => {
+                    return Err(Error::InvalidArgument {
+                        arg: "--scenes".into(),
+                        value: format!("{origin}: {other:?}"),
+                        allowed: "experiment scenes start from a release".into(),
+                    });
+                }
+            };
+            for (repeat, offset) in offsets.iter().take(repeats).enumerate() {
+                let offset = if repeats == 1 { 0.0 } else { *offset };
+                jobs.push(Job {
+                    scene: name.to_string(),
+                    repeat,
+                    angle_deg: base + offset,
+                    text: text.clone(),
+                });
+            }
+        }
+    }
+    Ok(jobs)
+}
+
+fn run_job(
+    job: &Job,
+    materials: &Materials,
+    dir: &Path,
+    cancel: &CancelToken,
+) -> Result<RunRecord, Error> {
+    let mut scene = Scene::from_toml_str(&job.text, materials)?;
+    scene.file.operator.start = Start::Release {
+        release_angle_deg: job.angle_deg,
+    };
+    let scene = Scene::from_file(scene.file, materials)?;
+    let path = dir.join(format!("{}_{}.mcap", job.scene, job.repeat));
+    let target = LogTarget {
+        path: &path,
+        force: true,
+        scene_text: &job.text,
+        interrupt: cancel.flag(),
+        rates: LogRates::DECIMATED,
+        deformation_scale: crate::mcap_log::DEFAULT_DEFORMATION_SCALE,
+    };
+    let summary = run_logged(
+        Simulation::new(&scene, RunOptions::default())?,
+        &scene,
+        &target,
+    )?;
+    Ok(RunRecord {
+        scene: job.scene.clone(),
+        repeat: job.repeat,
+        release_angle_deg: job.angle_deg,
+        peak_force_n: summary.peak_force_n,
+        impact_velocity_mps: summary.impact_velocity_mps,
+        contact_duration_s: summary.contact_duration_s,
+        max_indentation_m: summary.max_indentation_m,
+        mcap: path,
+    })
+}
+
+/// One row per run; the CL rows also carry the paired CL/CJ ratio of their repeat and their
+/// case's mean ratio with its 95 % CI half-width (empty with one pair).
+pub fn csv(records: &[RunRecord], ratios: &[RatioStats]) -> String {
+    let mut text = String::from(
+        "scene,repeat,release_angle_deg,peak_force_n,impact_velocity_mps,contact_duration_s,max_indentation_m,mcap,cl_over_cj,cl_over_cj_mean,cl_over_cj_ci95\n",
+    );
+    let optional = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.9e}"));
+    for r in records {
+        let (pair, stats) = pair_columns(records, ratios, r);
+        let _ = writeln!(
+            text,
+            "{},{},{:.6},{:.9e},{:.9e},{},{:.9e},{},{},{},{}",
+            r.scene,
+            r.repeat,
+            r.release_angle_deg,
+            r.peak_force_n,
+            r.impact_velocity_mps,
+            optional(r.contact_duration_s),
+            r.max_indentation_m,
+            r.mcap.display(),
+            optional(pair),
+            optional(stats.map(|s| s.mean_cl_over_cj)),
+            optional(stats.and_then(|s| s.ci95)),
+        );
+    }
+    text
+}
+
+/// For a CL run: its repeat's paired CL/CJ ratio and its case's statistics.
+fn pair_columns<'a>(
+    records: &[RunRecord],
+    ratios: &'a [RatioStats],
+    run: &RunRecord,
+) -> (Option<f64>, Option<&'a RatioStats>) {
+    let Some((case, cj, cl)) = PAIRS.iter().find(|(_, _, cl)| *cl == run.scene) else {
+        return (None, None);
+    };
+    let pair = paired_ratios(records, cj, cl)
+        .into_iter()
+        .find(|(repeat, _)| *repeat == run.repeat)
+        .map(|(_, ratio)| ratio);
+    (pair, ratios.iter().find(|r| r.case == *case))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn confidence_interval_of_a_known_sample() {
+        // 1..5: mean 3, s = √2.5, t(0.975, 4) = 2.776 (tables) → 2.776 √2.5/√5 = 1.96293.
+        let (mean, ci) = mean_ci95(&[1.0, 2.0, 3.0, 4.0, 5.0]);
+        assert_eq!(mean, 3.0);
+        assert!((ci.unwrap() - 2.776 * (2.5f64 / 5.0).sqrt()).abs() < 1e-12);
+        // The large-sample limit is the normal quantile 1.95996.
+        assert!((t_quantile_975(100_000) - 1.959964).abs() < 1e-4);
+        assert!(
+            t_quantile_975(31) > t_quantile_975(100) && t_quantile_975(30) > t_quantile_975(31)
+        );
+        // One value: a mean but no interval (was 0.0).
+        assert_eq!(mean_ci95(&[7.0]), (7.0, None));
+    }
+
+    fn record(scene: &str, repeat: usize, peak: f64) -> RunRecord {
+        RunRecord {
+            scene: scene.into(),
+            repeat,
+            release_angle_deg: 30.0 + repeat as f64,
+            peak_force_n: peak,
+            impact_velocity_mps: 1.0,
+            contact_duration_s: None,
+            max_indentation_m: 1e-3,
+            mcap: PathBuf::from("x.mcap"),
+        }
+    }
+
+    #[test]
+    fn paired_ratio_and_its_interval_match_a_hand_computation() {
+        // CJ 100, 110, 120, 130; CL 99, 108, 119, 130 → ratios 0.99, 0.981818…, 0.991666…, 1.
+        let cj = [100.0, 110.0, 120.0, 130.0];
+        let cl = [99.0, 108.0, 119.0, 130.0];
+        let mut records: Vec<RunRecord> = Vec::new();
+        // Out of order, as the parallel runs may finish.
+        for i in [2, 0, 3, 1] {
+            records.push(record("cl_iron", i, cl[i]));
+            records.push(record("cj_iron", i, cj[i]));
+        }
+        let stats = ratio_stats(&records);
+        assert_eq!(stats.len(), 1);
+        let r = &stats[0];
+        assert_eq!((r.case.as_str(), r.pairs), ("iron", 4));
+        // Independently: mean and sample standard deviation written out, t(0.975, 3) = 3.182.
+        let ratios = [0.99, 108.0 / 110.0, 119.0 / 120.0, 1.0];
+        let mean = (ratios[0] + ratios[1] + ratios[2] + ratios[3]) / 4.0;
+        let ss: f64 = ratios.iter().map(|x| (x - mean) * (x - mean)).sum();
+        let half = 3.182 * (ss / 3.0).sqrt() / 2.0;
+        assert!((r.mean_cl_over_cj - mean).abs() < 1e-15);
+        assert!(
+            (r.ci95.unwrap() - half).abs() < 1e-15,
+            "{:?} vs {half}",
+            r.ci95
+        );
+        // Pairs are by repeat: a pair's ratio is its own CL over its own CJ.
+        let pairs = paired_ratios(&records, "cj_iron", "cl_iron");
+        assert_eq!(pairs.iter().map(|p| p.0).collect::<Vec<_>>(), [0, 1, 2, 3]);
+        assert_eq!(pairs[1].1, 108.0 / 110.0);
+    }
+
+    #[test]
+    fn one_pair_gives_a_ratio_without_interval() {
+        let records = [
+            record("cj_light_load", 0, 100.0),
+            record("cl_light_load", 0, 93.0),
+        ];
+        let stats = ratio_stats(&records);
+        assert_eq!(stats.len(), 1);
+        assert_eq!(stats[0].mean_cl_over_cj, 0.93);
+        assert_eq!(stats[0].ci95, None);
+        let json = serde_json::to_value(&stats[0]).unwrap();
+        assert!(json.get("ci95").is_none(), "{json}");
+        let groups = group_stats(&records);
+        let json = serde_json::to_value(&groups).unwrap().to_string();
+        assert!(!json.contains("ci95_n") && !json.contains("null"), "{json}");
+        // experiment.csv: the CL row has its ratio and mean; the interval field is empty.
+        let text = csv(&records, &stats);
+        let cl_row = text
+            .lines()
+            .find(|l| l.starts_with("cl_light_load"))
+            .unwrap();
+        assert!(
+            cl_row.ends_with(",9.300000000e-1,9.300000000e-1,"),
+            "{cl_row}"
+        );
+        let cj_row = text
+            .lines()
+            .find(|l| l.starts_with("cj_light_load"))
+            .unwrap();
+        assert!(cj_row.ends_with(",,,"), "{cj_row}");
+    }
+
+    #[test]
+    fn mean_and_interval_are_written_to_the_intervals_digits() {
+        assert_eq!(mean_pm_ci(0.990008, Some(3.3e-7)), "0.990008 ± 3.3e-7");
+        assert_eq!(mean_pm_ci(0.98249, Some(0.0123)), "0.982 ± 0.012");
+        assert_eq!(mean_pm_ci(0.93566, None), "0.9357");
+    }
+}

@@ -1,0 +1,293 @@
+//! Foxglove layouts for the MCAP logs (see `docs/foxglove.md`).
+//!
+//! [`for_log`] is the layout [`write_beside`] puts beside each log (`run.layout.json` beside
+//! `run.mcap`): every plot over that log's first contact window (with a margin), so the pulse
+//! shapes show without zooming. [`bundled`] is `assets/foxglove/layout.json` (a test keeps the
+//! two equal), for any log: the same without the window (a timestamp plot spans the whole log
+//! unless given a range). Both show the 3D view without frame labels, with small frame axes, the transforms
+//! preloaded, and the force sensor's line over a wide band of the contact force (the two are
+//! equal: the sensor samples the contact force).
+
+use std::path::{Path, PathBuf};
+
+use flexrig_rig::RunSummary;
+use serde_json::{Value, json};
+
+use crate::Error;
+
+/// A window of log time \[s\] (the plots' time axis: the log starts at 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimeWindow {
+    /// Start \[s\].
+    pub start_s: f64,
+    /// End \[s\].
+    pub end_s: f64,
+}
+
+/// Fraction of the contact's duration shown before its onset and after its end.
+const MARGIN: f64 = 0.15;
+
+/// The first contact of a run with a margin of [`MARGIN`] of its duration on each side (a run
+/// stopped at the peak: onset to the end of the run), or `None` without a contact.
+pub fn contact_window(s: &RunSummary) -> Option<TimeWindow> {
+    let c = s.contacts.first()?;
+    let end = c
+        .duration_s
+        .map_or(s.duration_s, |d| c.onset_time_s + d)
+        .max(c.time_of_peak_s);
+    let margin = MARGIN * (end - c.onset_time_s).max(0.0);
+    let window = TimeWindow {
+        start_s: (c.onset_time_s - margin).max(0.0),
+        end_s: end + margin,
+    };
+    (window.end_s > window.start_s && window.end_s.is_finite()).then_some(window)
+}
+
+/// `run.layout.json` beside `run.mcap` \[path\].
+pub fn path_beside(log: &Path) -> PathBuf {
+    let stem = log
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    log.with_file_name(format!("{stem}.layout.json"))
+}
+
+/// Writes [`for_log`]`(window)` beside `log` (see [`path_beside`]), atomically.
+pub fn write_beside(log: &Path, window: Option<TimeWindow>) -> Result<(), Error> {
+    let text = serde_json::to_string_pretty(&for_log(window))
+        .expect("a layout built from json! values serialises");
+    crate::output::write_atomic(&path_beside(log), format!("{text}\n").as_bytes())
+}
+
+/// The bundled layout (`assets/foxglove/layout.json`), for any log: the plots over the whole
+/// log (a log without a contact gets this one beside it).
+pub fn bundled() -> Value {
+    for_log(None)
+}
+
+/// The layout of one log whose first contact spans `window` (`None`: the whole log). The plots
+/// are synced: zooming one zooms all.
+pub fn for_log(window: Option<TimeWindow>) -> Value {
+    layout([
+        plot(
+            "Force",
+            // the first series is drawn on top: the sensor's line over the contact's band
+            vec![
+                series(
+                    "/sensors/force.force_n",
+                    "force sensor, 50 kHz [N]",
+                    SENSOR,
+                    1.0,
+                ),
+                series(
+                    "/contact.force_n",
+                    "contact force, every step [N]",
+                    BAND,
+                    12.0,
+                ),
+            ],
+            window,
+        ),
+        plot(
+            "Indentation",
+            vec![series(
+                "/contact.indentation_m",
+                "indentation [m]",
+                CONTACT,
+                2.0,
+            )],
+            window,
+        ),
+        plot(
+            "Accelerations (along the strike)",
+            vec![
+                series(
+                    "/sensors/accel/operator.accel_mps2",
+                    "operator block [m/s²]",
+                    OPERATOR,
+                    1.0,
+                ),
+                series("/sensors/accel/load.accel_mps2", "load [m/s²]", LOAD, 1.0),
+            ],
+            window,
+        ),
+    ])
+}
+
+/// Series colours: the contact force as a wide pale band under the force sensor's dark line.
+const BAND: &str = "#ffc48a";
+const SENSOR: &str = "#1d3557";
+const CONTACT: &str = "#e76f51";
+const OPERATOR: &str = "#4cc9f0";
+const LOAD: &str = "#ff6b6b";
+
+/// One plotted series, a line `width` pixels wide.
+fn series(path: &str, label: &str, color: &str, width: f64) -> Value {
+    json!({
+        "value": path,
+        "enabled": true,
+        "timestampMethod": "receiveTime",
+        "label": label,
+        "color": color,
+        "lineSize": width,
+        "showLine": true,
+    })
+}
+
+/// A plot panel's configuration: log time on the x axis.
+fn plot(title: &str, paths: Vec<Value>, window: Option<TimeWindow>) -> Value {
+    let mut config = json!({
+        "paths": paths,
+        "showXAxisLabels": true,
+        "showYAxisLabels": true,
+        "showLegend": true,
+        "legendDisplay": "floating",
+        "showPlotValuesInLegend": false,
+        "isSynced": true,
+        "xAxisVal": "timestamp",
+        "sidebarDimension": 240,
+        "foxglovePanelTitle": title,
+        "lichtblickPanelTitle": title,
+    });
+    if let (Some(w), Some(c)) = (window, config.as_object_mut()) {
+        c.insert("minXValue".into(), json!(w.start_s));
+        c.insert("maxXValue".into(), json!(w.end_s));
+    }
+    config
+}
+
+/// The 3D panel: the rig seen from above the operator's side, frame labels off, small axes,
+/// transforms preloaded.
+fn three_d() -> Value {
+    json!({
+        "cameraState": {
+            "distance": 0.75,
+            "perspective": true,
+            "phi": 30,
+            "thetaOffset": -90,
+            "targetOffset": [0.17, -0.02, 0.0],
+            "target": [0, 0, 0],
+            "targetOrientation": [0, 0, 0, 1],
+            "fovy": 45,
+            "near": 0.01,
+            "far": 100
+        },
+        "followMode": "follow-none",
+        "scene": {
+            "enableStats": false,
+            "transforms": {
+                "showLabel": false,
+                "axisScale": 0.15,
+                "lineWidth": 0,
+                "enablePreloading": true
+            }
+        },
+        "transforms": {},
+        "topics": { "/scene": { "visible": true } },
+        "layers": {
+            "grid": {
+                "visible": true,
+                "frameLocked": true,
+                "label": "Grid (5 cm)",
+                "instanceId": "grid",
+                "layerId": "foxglove.Grid",
+                "size": 1,
+                "divisions": 20,
+                "lineWidth": 1,
+                "color": "#248eff33",
+                "position": [0, 0, 0],
+                "rotation": [0, 0, 0]
+            }
+        },
+        "publish": { "type": "point" },
+        "imageMode": {},
+        "foxglovePanelTitle": "Rig",
+        "lichtblickPanelTitle": "Rig"
+    })
+}
+
+/// The 3D view on the left, the three plots stacked on the right.
+fn layout([force, indentation, third]: [Value; 3]) -> Value {
+    json!({
+        "configById": {
+            "3D!rig": three_d(),
+            "Plot!force": force,
+            "Plot!indentation": indentation,
+            "Plot!accel": third,
+        },
+        "globalVariables": {},
+        "userNodes": {},
+        "playbackConfig": { "speed": 0.05 },
+        "layout": {
+            "first": "3D!rig",
+            "second": {
+                "first": "Plot!force",
+                "second": { "first": "Plot!indentation", "second": "Plot!accel", "direction": "column" },
+                "direction": "column",
+                "splitPercentage": 34
+            },
+            "direction": "row",
+            "splitPercentage": 50
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_bundled_layout_file_is_the_generated_one() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../assets/foxglove/layout.json"
+        );
+        let expected = bundled();
+        if std::env::var_os("FLEXRIG_WRITE_LAYOUT").is_some() {
+            let text = serde_json::to_string_pretty(&expected).unwrap();
+            std::fs::write(path, format!("{text}\n")).unwrap();
+        }
+        let file: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+        assert_eq!(
+            file, expected,
+            "assets/foxglove/layout.json differs from foxglove_layout::bundled(); regenerate \
+             it with FLEXRIG_WRITE_LAYOUT=1 cargo test --release -p flexrig bundled_layout"
+        );
+    }
+
+    #[test]
+    fn layout_path_sits_beside_the_log() {
+        assert_eq!(
+            path_beside(Path::new("out/cl_iron_0.mcap")),
+            Path::new("out/cl_iron_0.layout.json")
+        );
+        assert_eq!(path_beside(Path::new("run")), Path::new("run.layout.json"));
+    }
+
+    #[test]
+    fn every_plot_of_a_log_layout_spans_the_window() {
+        let w = TimeWindow {
+            start_s: 0.28,
+            end_s: 0.287,
+        };
+        let layout = for_log(Some(w));
+        let configs = layout["configById"].as_object().unwrap();
+        let plots: Vec<_> = configs
+            .iter()
+            .filter(|(k, _)| k.starts_with("Plot!"))
+            .collect();
+        assert_eq!(plots.len(), 3);
+        for (id, c) in plots {
+            assert_eq!(c["xAxisVal"], "timestamp", "{id}");
+            assert_eq!(c["minXValue"], 0.28, "{id}");
+            assert_eq!(c["maxXValue"], 0.287, "{id}");
+        }
+        let t = &configs["3D!rig"]["scene"]["transforms"];
+        assert_eq!(t["showLabel"], false);
+        assert_eq!(t["enablePreloading"], true);
+        assert!(t["axisScale"].as_f64().unwrap() < 1.0);
+        // without a contact the plots span the whole log
+        let whole = for_log(None);
+        assert!(whole["configById"]["Plot!force"].get("minXValue").is_none());
+    }
+}

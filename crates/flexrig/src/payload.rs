@@ -1,0 +1,237 @@
+//! The test bed's CL/CJ peak ratio over the payload m_e (the paper's Fig. 9b light-load study
+//! generalised from one point to a curve). The bundled rig (a scene with `robot.design` set to
+//! `cj` and to `cl`, everything else equal) runs for each payload from release to separation, in
+//! parallel through the sweep machinery ([`crate::study`]); three chosen points keep an MCAP log
+//! of each design.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use flexrig_rig::overrides::Override;
+use flexrig_rig::{RunOptions, Simulation};
+use serde::Serialize;
+
+use crate::Error;
+use crate::cancel::CancelToken;
+use crate::mcap_log::{LogRates, LogTarget, run_logged};
+use crate::output::{ensure_dir, write_atomic};
+use crate::scenes::BUNDLED_SCENES;
+use crate::study::spec::Dimension;
+use crate::study::sweep::{Sweep, SweepOptions};
+
+/// What the study varies and where it writes (the flags of `flexrig payload`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PayloadOptions {
+    /// Bundled scene to vary, e.g. `cl_light_load` (`--scene`); its `robot.design` is set to cj
+    /// and to cl.
+    pub scene: String,
+    /// Smallest payload \[kg\], in [1e-4, 10] (`--from`).
+    pub from: f64,
+    /// Largest payload \[kg\], in [1e-4, 10] and above `from` (`--to`).
+    pub to: f64,
+    /// Payloads, log-spaced, in [2, 1000] (`--points`).
+    pub points: usize,
+    /// Directory for payload.csv and the MCAP logs of three points (created if missing; `--out`).
+    pub out: PathBuf,
+}
+
+/// One payload: both designs' peaks and their ratio.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PayloadRow {
+    /// Payload m_e \[kg\].
+    pub payload_kg: f64,
+    /// CJ peak \[N\].
+    pub cj_peak_n: f64,
+    /// CL peak \[N\].
+    pub cl_peak_n: f64,
+    /// CL/CJ.
+    pub ratio: f64,
+}
+
+/// What [`run`] produced.
+#[derive(Debug, Clone, Serialize)]
+pub struct PayloadResult {
+    /// One row per payload.
+    pub rows: Vec<PayloadRow>,
+    /// payload.csv.
+    pub csv: PathBuf,
+    /// The MCAP logs (CJ and CL at the smallest, the middle and the largest payload).
+    pub logs: Vec<PathBuf>,
+}
+
+/// The bundled scene's text, and the ranges checked (errors name the flag).
+fn check(args: &PayloadOptions) -> Result<String, Error> {
+    let bad = |arg: &str, value: String, allowed: &str| Error::InvalidArgument {
+        arg: arg.into(),
+        value,
+        allowed: allowed.into(),
+    };
+    let text = BUNDLED_SCENES
+        .iter()
+        .find(|(n, _)| *n == args.scene)
+        .map(|(_, t)| t.to_string())
+        .ok_or_else(|| {
+            let names: Vec<&str> = BUNDLED_SCENES.iter().map(|(n, _)| *n).collect();
+            bad(
+                "--scene",
+                args.scene.clone(),
+                &format!("one of {}", names.join(", ")),
+            )
+        })?;
+    for (flag, v) in [("--from", args.from), ("--to", args.to)] {
+        if !(v.is_finite() && (1e-4..=10.0).contains(&v)) {
+            return Err(bad(flag, v.to_string(), "must lie in [1e-4, 10] kg"));
+        }
+    }
+    if args.from >= args.to {
+        return Err(bad(
+            "--to",
+            args.to.to_string(),
+            "must be larger than --from",
+        ));
+    }
+    if !(2..=1000).contains(&args.points) {
+        return Err(bad(
+            "--points",
+            args.points.to_string(),
+            "must lie in [2, 1000]",
+        ));
+    }
+    Ok(text)
+}
+
+/// The payloads, log-spaced from `from` to `to` (both exactly).
+fn payloads(args: &PayloadOptions) -> Vec<f64> {
+    let (a, b) = (args.from.ln(), args.to.ln());
+    let last = args.points - 1;
+    (0..args.points)
+        .map(|i| match i {
+            0 => args.from,
+            i if i == last => args.to,
+            i => (a + (b - a) * i as f64 / last as f64).exp(),
+        })
+        .collect()
+}
+
+/// Runs the curve: both designs at every payload.
+pub fn payload_curve(
+    base_text: &str,
+    payloads: &[f64],
+    cancel: &CancelToken,
+) -> Result<Vec<PayloadRow>, Error> {
+    let dimensions = vec![
+        Dimension {
+            path: "robot.payload_kg".into(),
+            values: payloads.iter().map(|&p| toml::Value::Float(p)).collect(),
+        },
+        Dimension {
+            path: "robot.design".into(),
+            values: vec!["cj".into(), "cl".into()],
+        },
+    ];
+    let sweep = Sweep::new(base_text, dimensions, false)?;
+    let options = SweepOptions {
+        interrupt: cancel.flag(),
+        ..SweepOptions::default()
+    };
+    let indices: Vec<usize> = (0..sweep.len()).collect();
+    let rows = sweep.run(&indices, &options, &|_| ());
+    if rows.len() != sweep.len() {
+        return Err(Error::Rig(flexrig_rig::RigError::Interrupted { t: 0.0 }));
+    }
+    let peak = |i: usize| -> Result<f64, Error> {
+        let r = &rows[i];
+        match r.summary.first().copied().flatten() {
+            Some(p) if r.status == "ok" => Ok(p),
+            _ => Err(Error::InvalidArgument {
+                arg: "--from/--to".into(),
+                value: format!("payload {}", r.values[0]),
+                allowed: format!("a payload the rig can run: {}", r.error),
+            }),
+        }
+    };
+    payloads
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| {
+            let (cj, cl) = (peak(2 * i)?, peak(2 * i + 1)?);
+            Ok(PayloadRow {
+                payload_kg: p,
+                cj_peak_n: cj,
+                cl_peak_n: cl,
+                ratio: cl / cj,
+            })
+        })
+        .collect()
+}
+
+/// Logs both designs at the smallest, the middle and the largest payload.
+fn log_three(
+    base_text: &str,
+    payloads: &[f64],
+    dir: &Path,
+    cancel: &CancelToken,
+) -> Result<Vec<PathBuf>, Error> {
+    let materials = flexrig_contact::Materials::bundled()?;
+    let base: toml::Table = toml::from_str(base_text)
+        .map_err(|e| flexrig_rig::RigError::SceneSyntax(e.message().to_string()))?;
+    let chosen = [
+        payloads[0],
+        payloads[payloads.len() / 2],
+        payloads[payloads.len() - 1],
+    ];
+    let mut paths = Vec::new();
+    for p in chosen {
+        for design in ["cj", "cl"] {
+            let overrides = [
+                Override::new("robot.payload_kg", toml::Value::Float(p)),
+                Override::new("robot.design", design.into()),
+            ];
+            let scene = flexrig_rig::scene_from_table(&base, &overrides, &materials)?;
+            let text = flexrig_rig::overrides::apply(base_text, &overrides)?;
+            let path = dir.join(format!("payload_{design}_{p:.4}kg.mcap"));
+            run_logged(
+                Simulation::new(&scene, RunOptions::default())?,
+                &scene,
+                &LogTarget {
+                    path: &path,
+                    force: true,
+                    scene_text: &text,
+                    interrupt: cancel.flag(),
+                    rates: LogRates::DECIMATED,
+                    deformation_scale: crate::mcap_log::DEFAULT_DEFORMATION_SCALE,
+                },
+            )?;
+            paths.push(path);
+        }
+    }
+    Ok(paths)
+}
+
+fn csv(rows: &[PayloadRow]) -> String {
+    let mut s = String::from("payload_kg,cj_peak_n,cl_peak_n,cl_over_cj\n");
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "{},{},{},{}",
+            r.payload_kg, r.cj_peak_n, r.cl_peak_n, r.ratio
+        );
+    }
+    s
+}
+
+/// Runs the study: the curve, the three logged points, payload.csv.
+pub fn run(options: &PayloadOptions, cancel: &CancelToken) -> Result<PayloadResult, Error> {
+    let text = check(options)?;
+    let payloads = payloads(options);
+    let rows = payload_curve(&text, &payloads, cancel)?;
+    ensure_dir(&options.out)?;
+    let logs = log_three(&text, &payloads, &options.out, cancel)?;
+    let csv_path = options.out.join("payload.csv");
+    write_atomic(&csv_path, csv(&rows).as_bytes())?;
+    Ok(PayloadResult {
+        rows,
+        csv: csv_path,
+        logs,
+    })
+}

@@ -1,0 +1,122 @@
+//! The Pseudo-Rigid-Body model (γ, K_Θ) of a cantilever with a perpendicular dead end load,
+//! fitted to the large-deflection FE tip path as Howell does, to compare with the published
+//! values, the paper's k_θp = πEIγ²/L and its effective mass m_eff = m_e + γ m_r/3 (Eq. 5).
+
+use std::path::PathBuf;
+
+use flexrig_beam::canonical::unit_cantilever_with_tip_mass;
+use flexrig_beam::prb::{
+    ErrorMeasure, PrbFit, TipPoint, default_load_indices, fit_prb, trace_tip_path_with,
+};
+use flexrig_beam::{Kinematics, ModalDirection, modal_analysis};
+
+use crate::Error;
+use crate::output::{ensure_dir, write_atomic};
+use crate::plots::prb_svg;
+
+/// What the check traces and where it writes (the flags of `flexrig prb`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PrbOptions {
+    /// Elements of the traced cantilever, 4 to 1024 (`--elements`).
+    pub elements: usize,
+    /// Large-deflection element: ANCF (fourth order in the mesh) or corotational (second
+    /// order) (`--model`).
+    pub kinematics: Kinematics,
+    /// Tip-error measure of the 0.5 % criterion (`--criterion`).
+    pub criterion: ErrorMeasure,
+    /// Directory for prb.svg (created if missing; `--out`).
+    pub out: PathBuf,
+}
+
+/// Payload-to-beam mass ratios μ = m_e/m_r for the effective-mass comparison: none, the paper's
+/// light load (0.1 kg on 51 g) and its test payload (412 g on 51 g).
+pub const PAYLOAD_RATIOS: [f64; 3] = [0.0, 0.1 / 0.051, 0.412 / 0.051];
+
+/// FE effective mass of the beam at its tip, as a fraction of m_r, with a tip payload μ m_r:
+/// m_eff = k_tip/ω₁² − m_e, k_tip = 3EI/L³ (unit beam, 64 linear elements).
+pub fn fe_beam_share(mu: f64) -> Result<f64, Error> {
+    let m = unit_cantilever_with_tip_mass(64, mu)?;
+    let w = modal_analysis(&m, 1, ModalDirection::Transverse)?.omegas[0];
+    Ok(3.0 / (w * w) - mu)
+}
+
+/// The mesh size in its range (the error names `--elements`).
+pub fn check_elements(elements: usize) -> Result<usize, Error> {
+    if (4..=1024).contains(&elements) {
+        Ok(elements)
+    } else {
+        Err(Error::InvalidArgument {
+            arg: "--elements".into(),
+            value: elements.to_string(),
+            allowed: "must be an integer from 4 to 1024".into(),
+        })
+    }
+}
+
+/// The other tip-error measure.
+pub fn other_measure(measure: ErrorMeasure) -> ErrorMeasure {
+    match measure {
+        ErrorMeasure::Deflection => ErrorMeasure::Length,
+        ErrorMeasure::Length => ErrorMeasure::Deflection,
+    }
+}
+
+/// The effective-mass comparison at one payload.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassShare {
+    /// Payload over the link mass, m_e/m_r.
+    pub payload_over_m_r: f64,
+    /// The FE beam's share of the tip effective mass over m_r ([`fe_beam_share`]).
+    pub fe_beam_share: f64,
+}
+
+/// What the check found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PrbResult {
+    /// The traced FE tip path.
+    pub path: Vec<TipPoint>,
+    /// The fit by the chosen criterion.
+    pub fit: PrbFit,
+    /// The fit by the other criterion ([`other_measure`]).
+    pub other: PrbFit,
+    /// The FE beam share of the effective mass at each of [`PAYLOAD_RATIOS`].
+    pub shares: Vec<MassShare>,
+    /// prb.svg.
+    pub svg: PathBuf,
+}
+
+/// Traces the tip path, fits the PRB model by both criteria, compares the effective mass and
+/// draws prb.svg.
+pub fn run(options: &PrbOptions) -> Result<PrbResult, Error> {
+    check_elements(options.elements)?;
+    let path = trace_tip_path_with(
+        options.kinematics,
+        options.elements,
+        &default_load_indices(),
+    )?;
+    let fit = fit_prb(&path, options.criterion)?;
+    let other = fit_prb(&path, other_measure(options.criterion))?;
+    let shares = PAYLOAD_RATIOS
+        .iter()
+        .map(|&mu| {
+            Ok(MassShare {
+                payload_over_m_r: mu,
+                fe_beam_share: fe_beam_share(mu)?,
+            })
+        })
+        .collect::<Result<Vec<_>, Error>>()?;
+    ensure_dir(&options.out)?;
+    let svg_path = options.out.join("prb.svg");
+    let svg = prb_svg(&path, &fit).map_err(|message| Error::Plot {
+        path: svg_path.clone(),
+        message,
+    })?;
+    write_atomic(&svg_path, svg.as_bytes())?;
+    Ok(PrbResult {
+        path,
+        fit,
+        other,
+        shares,
+        svg: svg_path,
+    })
+}

@@ -1,0 +1,70 @@
+//! One run of a scene file with its overrides, logged to MCAP (with its Foxglove layout) or not,
+//! and its summary as JSON. See also [`crate::traces`] (a run that keeps its traces in memory).
+
+use std::path::{Path, PathBuf};
+
+use flexrig_contact::Materials;
+use flexrig_rig::overrides;
+use flexrig_rig::{
+    Interruptible, Override, RunOptions, RunSummary, Simulation, scene_with_overrides,
+};
+use serde_json::json;
+
+use crate::Error;
+use crate::cancel::CancelToken;
+use crate::mcap_log::{LogRates, LogTarget, run_logged};
+
+/// How a run logs: where, whether it may overwrite, how often, how the 3D view draws.
+#[derive(Debug, Clone, Copy)]
+pub struct LogRequest<'a> {
+    /// The MCAP file (`--out`); none: no log.
+    pub out: Option<&'a PathBuf>,
+    /// Overwrite the log and its layout (`--force`).
+    pub force: bool,
+    /// What is logged how often.
+    pub rates: LogRates,
+    /// Factor on the CL beam's deflection in the 3D view (`--deformation-scale`).
+    pub deformation_scale: f64,
+}
+
+/// Loads, validates and runs a scene file, logging as `log` asks (MCAP and its Foxglove
+/// layout). The log is always finished, with an `error` metadata record if the run failed.
+pub fn run_scene_file(
+    path: &Path,
+    overrides: &[Override],
+    log: LogRequest<'_>,
+    cancel: &CancelToken,
+) -> Result<RunSummary, Error> {
+    let text = crate::output::read_text(path)?;
+    let scene = scene_with_overrides(&text, overrides, &Materials::bundled()?)?;
+    // the log records the scene as run
+    let text = overrides::apply(&text, overrides)?;
+    let simulation = Simulation::new(&scene, RunOptions::default())?;
+    let Some(out) = log.out else {
+        return Ok(simulation.run(&mut Interruptible(cancel.flag()))?);
+    };
+    run_logged(
+        simulation,
+        &scene,
+        &LogTarget {
+            path: out,
+            force: log.force,
+            scene_text: &text,
+            interrupt: cancel.flag(),
+            rates: log.rates,
+            deformation_scale: log.deformation_scale,
+        },
+    )
+}
+
+/// The run summary as `flexrig run --json` prints it: every field of [`RunSummary`] (absent
+/// when it does not apply, e.g. `contact_duration_s` for a run stopped at the peak) and the
+/// number of sensor `samples`.
+pub fn summary_json(s: &RunSummary) -> serde_json::Value {
+    let mut value = serde_json::to_value(s).expect("a run summary serialises");
+    if let Some(map) = value.as_object_mut() {
+        map.retain(|_, v| !v.is_null());
+        map.insert("samples".into(), json!(s.samples.len()));
+    }
+    value
+}

@@ -1,0 +1,245 @@
+//! What a sweep varies: `PATH=SPEC` dimensions and the points they span.
+//!
+//! SPEC is a list (`0.1,0.2,0.5`, `cj,cl`, or a TOML array `[0.1, 0.2]`), a linear range
+//! `start:stop:count` (both ends included), a logarithmic range `start:stop:count:log`, a file
+//! `@values.txt` (one value per line, `#` comments), or a single value. The points are the full
+//! grid (the first dimension varies slowest) or, zipped, the dimensions side by side.
+
+use flexrig_rig::Override;
+use flexrig_rig::overrides::parse_value;
+
+use crate::Error;
+
+/// Most points of one sweep.
+pub const MAX_POINTS: usize = 10_000_000;
+
+/// One varied scene field and its values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dimension {
+    /// Dotted scene path, e.g. `robot.payload_kg`.
+    pub path: String,
+    /// The values, in order.
+    pub values: Vec<toml::Value>,
+}
+
+fn bad(arg: &str, value: &str, allowed: &str) -> Error {
+    let value = if value.chars().count() > 120 {
+        format!("{}…", value.chars().take(120).collect::<String>())
+    } else {
+        value.to_string()
+    };
+    Error::InvalidArgument {
+        arg: arg.into(),
+        value,
+        allowed: allowed.into(),
+    }
+}
+
+impl Dimension {
+    /// Parses `PATH=SPEC` (see the module documentation); `read` reads an `@file`.
+    pub fn parse(text: &str, read: &dyn Fn(&str) -> Result<String, Error>) -> Result<Self, Error> {
+        let Some((path, spec)) = text.split_once('=') else {
+            return Err(bad(
+                "--set",
+                text,
+                "must be PATH=SPEC, e.g. robot.payload_kg=0.1,0.2,0.5 or \
+                 operator.start.release_angle_deg=10:60:11",
+            ));
+        };
+        // the path is checked like a single override
+        let path = Override::parse(&format!("{path}=0"))?.path;
+        let spec = spec.trim();
+        let arg = format!("--set {path}");
+        let values = if let Some(file) = spec.strip_prefix('@') {
+            let text = read(file)?;
+            text.lines()
+                .map(str::trim)
+                .filter(|l| !l.is_empty() && !l.starts_with('#'))
+                .map(parse_value)
+                .collect()
+        } else if let Some(range) = parse_range(spec, &arg)? {
+            range
+        } else {
+            match parse_value(spec) {
+                toml::Value::Array(items) => items,
+                _ if spec.starts_with('{') || spec.starts_with('"') => vec![parse_value(spec)],
+                _ => spec.split(',').map(|v| parse_value(v.trim())).collect(),
+            }
+        };
+        if values.is_empty() {
+            return Err(bad(
+                &arg,
+                spec,
+                "gives no values (an empty list, range or file)",
+            ));
+        }
+        Ok(Dimension { path, values })
+    }
+}
+
+/// `start:stop:count[:log]` as values, `None` if `spec` is not a range.
+fn parse_range(spec: &str, arg: &str) -> Result<Option<Vec<toml::Value>>, Error> {
+    let parts: Vec<&str> = spec.split(':').collect();
+    if !(parts.len() == 3 || (parts.len() == 4 && parts[3] == "log")) {
+        return Ok(None);
+    }
+    let number = |s: &str| s.trim().parse::<f64>().ok().filter(|v| v.is_finite());
+    let (Some(start), Some(stop)) = (number(parts[0]), number(parts[1])) else {
+        return Ok(None);
+    };
+    let count: usize = parts[2].trim().parse().map_err(|_| {
+        bad(
+            arg,
+            spec,
+            "start:stop:count needs a whole number of points, e.g. 10:60:11",
+        )
+    })?;
+    if count == 0 || count > MAX_POINTS {
+        return Err(bad(
+            arg,
+            spec,
+            &format!("the count must lie in [1, {MAX_POINTS}] (an empty range has no points)"),
+        ));
+    }
+    let log = parts.len() == 4;
+    if log && !(start > 0.0 && stop > 0.0) {
+        return Err(bad(arg, spec, "a log range needs start > 0 and stop > 0"));
+    }
+    let at = |i: usize| {
+        if count == 1 {
+            return start;
+        }
+        let s = i as f64 / (count - 1) as f64;
+        if log {
+            (start.ln() + s * (stop.ln() - start.ln())).exp()
+        } else {
+            start + s * (stop - start)
+        }
+    };
+    Ok(Some(
+        (0..count)
+            .map(|i| {
+                // land exactly on the ends
+                let v = if i + 1 == count { stop } else { at(i) };
+                toml::Value::Float(v)
+            })
+            .collect(),
+    ))
+}
+
+/// Number of points of the dimensions: the product (grid) or the common length (zip).
+pub fn point_count(dimensions: &[Dimension], zip: bool) -> Result<usize, Error> {
+    if dimensions.is_empty() {
+        return Ok(1);
+    }
+    if zip {
+        let n = dimensions[0].values.len();
+        if let Some(d) = dimensions.iter().find(|d| d.values.len() != n) {
+            return Err(bad(
+                "--zip",
+                &format!("{} has {} values", d.path, d.values.len()),
+                &format!(
+                    "every --set needs the same number of values to zip ({} has {n})",
+                    dimensions[0].path
+                ),
+            ));
+        }
+        return Ok(n);
+    }
+    dimensions
+        .iter()
+        .try_fold(1usize, |acc, d| acc.checked_mul(d.values.len()))
+        .filter(|n| *n <= MAX_POINTS)
+        .ok_or_else(|| {
+            bad(
+                "--set",
+                &dimensions
+                    .iter()
+                    .map(|d| format!("{}: {}", d.path, d.values.len()))
+                    .collect::<Vec<_>>()
+                    .join(" × "),
+                &format!("the grid must have at most {MAX_POINTS} points"),
+            )
+        })
+}
+
+/// The overrides of point `index` (0-based, in grid or zip order).
+pub fn point(dimensions: &[Dimension], zip: bool, index: usize) -> Vec<Override> {
+    if zip {
+        return dimensions
+            .iter()
+            .map(|d| Override::new(&d.path, d.values[index].clone()))
+            .collect();
+    }
+    let mut rest = index;
+    let mut out: Vec<Override> = dimensions
+        .iter()
+        .rev()
+        .map(|d| {
+            let i = rest % d.values.len();
+            rest /= d.values.len();
+            Override::new(&d.path, d.values[i].clone())
+        })
+        .collect();
+    out.reverse();
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dim(text: &str) -> Dimension {
+        Dimension::parse(text, &|_| Ok("1\n# c\n2\n\n3\n".into())).unwrap()
+    }
+
+    #[test]
+    fn specs_give_the_documented_values() {
+        let floats = |d: &Dimension| -> Vec<f64> {
+            d.values
+                .iter()
+                .map(|v| v.as_float().or(v.as_integer().map(|i| i as f64)).unwrap())
+                .collect()
+        };
+        assert_eq!(floats(&dim("a.b=0.1,0.2,0.5")), vec![0.1, 0.2, 0.5]);
+        assert_eq!(floats(&dim("a.b=10:60:11"))[1], 15.0);
+        assert_eq!(floats(&dim("a.b=10:60:11")).len(), 11);
+        let log = floats(&dim("a.b=1e-3:1:4:log"));
+        assert!((log[1] - 1e-2).abs() < 1e-15 && log[3] == 1.0, "{log:?}");
+        assert_eq!(floats(&dim("a.b=@v.txt")), vec![1.0, 2.0, 3.0]);
+        assert_eq!(dim("robot.design=cj,cl").values.len(), 2);
+        assert_eq!(dim("a.b=[1, 2]").values.len(), 2);
+        assert_eq!(
+            dim("solver.beam={ model = \"modal\", modes = 8 }")
+                .values
+                .len(),
+            1
+        );
+    }
+
+    #[test]
+    fn bad_specs_name_the_flag() {
+        for spec in ["a.b=1:2:0", "a.b=0:1:3:log", "a.b", "a.b=1:2:x"] {
+            let e = Dimension::parse(spec, &|_| Ok(String::new())).unwrap_err();
+            assert!(e.to_string().contains("--set"), "{spec}: {e}");
+        }
+        let e = Dimension::parse("a.b=@empty", &|_| Ok("# nothing\n".into())).unwrap_err();
+        assert!(e.to_string().contains("no values"), "{e}");
+    }
+
+    #[test]
+    fn grid_and_zip_enumerate_every_point_once() {
+        let d = vec![dim("a=1,2,3"), dim("b=cj,cl")];
+        assert_eq!(point_count(&d, false).unwrap(), 6);
+        let p = point(&d, false, 4);
+        assert_eq!(p[0].value, toml::Value::Integer(3));
+        assert_eq!(p[1].value, toml::Value::String("cj".into()));
+        assert!(point_count(&d, true).is_err());
+        let z = vec![dim("a=1,2"), dim("b=cj,cl")];
+        assert_eq!(point_count(&z, true).unwrap(), 2);
+        assert_eq!(
+            point(&z, true, 1)[1].value,
+            toml::Value::String("cl".into())
+        );
+    }
+}

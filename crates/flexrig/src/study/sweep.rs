@@ -1,0 +1,592 @@
+//! A sweep: one base scene, its points (see [`super::spec`]), every point run in parallel, one
+//! tidy table with a row per run — the varied values, the status (`ok`, or `error` with its
+//! text: a failed run never stops the sweep) and every summary quantity.
+//!
+//! Deterministic (rows in point order, each run independent of the others), resumable (rows
+//! already in the table or in its `.partial` journal are not run again), and divisible: shard
+//! i of N runs the points with index ≡ i (mod N), and [`merge`] joins the shards' tables.
+
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use flexrig_contact::Materials;
+use flexrig_rig::{Interruptible, Override, RigError, RunOptions, RunSummary, Simulation};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use super::spec::{Dimension, point, point_count};
+use crate::Error;
+use crate::output::write_atomic;
+
+/// The summary quantities of a row, in column order.
+pub const SUMMARY_COLUMNS: [&str; 15] = [
+    "peak_force_n",
+    "time_of_peak_s",
+    "impact_velocity_mps",
+    "separation_velocity_mps",
+    "onset_time_s",
+    "contact_duration_s",
+    "max_indentation_m",
+    "impulse_n_s",
+    "contacts",
+    "steps",
+    "contact_steps",
+    "contact_step_s",
+    "energy_initial_j",
+    "energy_final_j",
+    "duration_s",
+];
+
+/// The summary quantities of a run, as [`SUMMARY_COLUMNS`] (absent values: `None`).
+pub fn summary_values(s: &RunSummary) -> [Option<f64>; 15] {
+    [
+        Some(s.peak_force_n),
+        Some(s.time_of_peak_s),
+        Some(s.impact_velocity_mps),
+        s.separation_velocity_mps,
+        Some(s.onset_time_s),
+        s.contact_duration_s,
+        Some(s.max_indentation_m),
+        Some(s.impulse_n_s),
+        Some(s.contacts.len() as f64),
+        Some(s.steps as f64),
+        Some(s.contact_steps as f64),
+        Some(s.contact_step_s),
+        Some(s.energy_initial_j),
+        Some(s.energy_final_j),
+        Some(s.duration_s),
+    ]
+}
+
+/// A sweep: the base scene and what varies.
+#[derive(Debug, Clone)]
+pub struct Sweep {
+    materials: Materials,
+    base_text: String,
+    base: toml::Table,
+    dimensions: Vec<Dimension>,
+    zip: bool,
+    points: usize,
+}
+
+/// Where and how a sweep runs.
+#[derive(Debug, Clone, Default)]
+pub struct SweepOptions {
+    /// Shard (i, N): run the points with index ≡ i (mod N). `None`: every point.
+    pub shard: Option<(usize, usize)>,
+    /// Keep an MCAP log per run in this directory (`run-<index>.mcap`, with its Foxglove layout
+    /// `run-<index>.layout.json`).
+    pub mcap_dir: Option<PathBuf>,
+    /// Stops the sweep (runs not yet started are left for a resume).
+    pub interrupt: std::sync::Arc<AtomicBool>,
+}
+
+/// The outcome of one point.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SweepRow {
+    /// Point index.
+    pub index: usize,
+    /// The varied values, in dimension order, as TOML text.
+    pub values: Vec<String>,
+    /// `ok`, or `error`.
+    pub status: String,
+    /// The error of a failed run (empty when ok).
+    pub error: String,
+    /// [`SUMMARY_COLUMNS`] of an ok run.
+    pub summary: Vec<Option<f64>>,
+}
+
+impl Sweep {
+    /// A sweep of `base_text` over `dimensions` (grid, or zipped); the base must be a valid
+    /// scene file (its errors name the field).
+    pub fn new(base_text: &str, dimensions: Vec<Dimension>, zip: bool) -> Result<Self, Error> {
+        let materials = Materials::bundled()?;
+        // the base alone is checked first, so that its own errors carry their line
+        flexrig_rig::Scene::from_toml_str(base_text, &materials)?;
+        let base: toml::Table = toml::from_str(base_text)
+            .map_err(|e| RigError::SceneSyntax(e.message().trim().to_string()))?;
+        // an unknown path or a value of the wrong type is refused before anything runs (a
+        // value out of its range fails its runs, which become rows with the error)
+        for d in &dimensions {
+            for v in &d.values {
+                flexrig_rig::overrides::check_format(&base, &Override::new(&d.path, v.clone()))?;
+            }
+        }
+        let points = point_count(&dimensions, zip)?;
+        Ok(Sweep {
+            materials,
+            base_text: base_text.to_string(),
+            base,
+            dimensions,
+            zip,
+            points,
+        })
+    }
+
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.points
+    }
+
+    /// True when the sweep has no points (never: a sweep of no dimension has one).
+    pub fn is_empty(&self) -> bool {
+        self.points == 0
+    }
+
+    /// The varied paths (column names).
+    pub fn paths(&self) -> Vec<&str> {
+        self.dimensions.iter().map(|d| d.path.as_str()).collect()
+    }
+
+    /// The overrides of point `index`.
+    pub fn point(&self, index: usize) -> Vec<Override> {
+        point(&self.dimensions, self.zip, index)
+    }
+
+    /// A fingerprint of the sweep (base text, dimensions, grid or zip): tables of different
+    /// sweeps are never mixed by a resume or a merge.
+    pub fn fingerprint(&self) -> String {
+        let mut text = self.base_text.clone();
+        for d in &self.dimensions {
+            text.push_str(&format!("\n{}={:?}", d.path, d.values));
+        }
+        text.push_str(if self.zip { "\nzip" } else { "\ngrid" });
+        format!("{:016x}", fnv1a(text.as_bytes()))
+    }
+
+    /// The point indices of `shard` (all without one).
+    pub fn indices(&self, shard: Option<(usize, usize)>) -> Vec<usize> {
+        match shard {
+            Some((i, n)) => (i..self.points).step_by(n).collect(),
+            None => (0..self.points).collect(),
+        }
+    }
+
+    /// Runs point `index` (with a log in `mcap_dir` if given).
+    pub fn run_point(&self, index: usize, options: &SweepOptions) -> SweepRow {
+        let overrides = self.point(index);
+        let values = overrides.iter().map(|o| o.value.to_string()).collect();
+        let result = self.run_overrides(index, &overrides, options);
+        match result {
+            Ok(s) => SweepRow {
+                index,
+                values,
+                status: "ok".into(),
+                error: String::new(),
+                summary: summary_values(&s).to_vec(),
+            },
+            Err(e) => SweepRow {
+                index,
+                values,
+                status: if matches!(e, Error::Rig(RigError::Interrupted { .. })) {
+                    "interrupted".into()
+                } else {
+                    "error".into()
+                },
+                error: e.to_string(),
+                summary: vec![None; SUMMARY_COLUMNS.len()],
+            },
+        }
+    }
+
+    fn run_overrides(
+        &self,
+        index: usize,
+        overrides: &[Override],
+        options: &SweepOptions,
+    ) -> Result<RunSummary, Error> {
+        let scene = flexrig_rig::scene_from_table(&self.base, overrides, &self.materials)?;
+        let simulation = Simulation::new(&scene, RunOptions::default())?;
+        let Some(dir) = &options.mcap_dir else {
+            return Ok(simulation.run(&mut Interruptible(options.interrupt.clone()))?);
+        };
+        let text = flexrig_rig::overrides::apply(&self.base_text, overrides)?;
+        let path = dir.join(format!("run-{index}.mcap"));
+        let target = crate::mcap_log::LogTarget {
+            path: &path,
+            force: true,
+            scene_text: &text,
+            interrupt: options.interrupt.clone(),
+            rates: crate::mcap_log::LogRates::DECIMATED,
+            deformation_scale: crate::mcap_log::DEFAULT_DEFORMATION_SCALE,
+        };
+        crate::mcap_log::run_logged(simulation, &scene, &target)
+    }
+
+    /// Runs the points of `indices` in parallel, calling `done` after each (e.g. a progress bar
+    /// or a journal); rows in index order. Points not started when the interrupt is set are
+    /// left out.
+    pub fn run(
+        &self,
+        indices: &[usize],
+        options: &SweepOptions,
+        done: &(dyn Fn(&SweepRow) + Sync),
+    ) -> Vec<SweepRow> {
+        let mut rows: Vec<SweepRow> = indices
+            .par_iter()
+            .filter_map(|&i| {
+                if options.interrupt.load(Ordering::Relaxed) {
+                    return None;
+                }
+                let row = self.run_point(i, options);
+                done(&row);
+                Some(row)
+            })
+            .collect();
+        rows.sort_by_key(|r| r.index);
+        rows
+    }
+}
+
+/// 64-bit FNV-1a.
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf29ce484222325u64, |h, b| {
+        (h ^ u64::from(*b)).wrapping_mul(0x100000001b3)
+    })
+}
+
+/// A CSV field: quoted when it holds a comma, a quote or a line break.
+fn csv_field(text: &str) -> String {
+    if text.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_string()
+    }
+}
+
+/// A varied value as a CSV cell: strings without their TOML quotes.
+fn value_cell(toml_text: &str) -> String {
+    match flexrig_rig::overrides::parse_value(toml_text) {
+        toml::Value::String(s) => s,
+        _ => toml_text.to_string(),
+    }
+}
+
+/// The CSV header of a sweep over `paths`.
+pub fn csv_header(paths: &[&str]) -> String {
+    let mut columns = vec!["index".to_string()];
+    columns.extend(paths.iter().map(|p| csv_field(p)));
+    columns.extend(["status".to_string(), "error".to_string()]);
+    columns.extend(SUMMARY_COLUMNS.iter().map(|c| c.to_string()));
+    columns.join(",")
+}
+
+/// One CSV line of `row`.
+pub fn csv_line(row: &SweepRow) -> String {
+    let mut cells = vec![row.index.to_string()];
+    cells.extend(row.values.iter().map(|v| csv_field(&value_cell(v))));
+    cells.push(row.status.clone());
+    cells.push(csv_field(&row.error));
+    cells.extend(
+        row.summary
+            .iter()
+            .map(|v| v.map_or(String::new(), |x| format!("{x:e}"))),
+    );
+    cells.join(",")
+}
+
+/// One JSON Lines object of `row` (varied values under their paths).
+pub fn json_line(row: &SweepRow, paths: &[&str]) -> serde_json::Value {
+    let mut map = serde_json::Map::new();
+    map.insert("index".into(), row.index.into());
+    for (path, value) in paths.iter().zip(&row.values) {
+        let v = match flexrig_rig::overrides::parse_value(value) {
+            toml::Value::String(s) => serde_json::Value::String(s),
+            toml::Value::Integer(i) => i.into(),
+            toml::Value::Float(f) => serde_json::json!(f),
+            toml::Value::Boolean(b) => b.into(),
+            other => serde_json::Value::String(other.to_string()),
+        };
+        map.insert((*path).into(), v);
+    }
+    map.insert("status".into(), row.status.clone().into());
+    if !row.error.is_empty() {
+        map.insert("error".into(), row.error.clone().into());
+    }
+    for (name, v) in SUMMARY_COLUMNS.iter().zip(&row.summary) {
+        if let Some(x) = v {
+            map.insert((*name).into(), serde_json::json!(x));
+        }
+    }
+    serde_json::Value::Object(map)
+}
+
+/// Parses a table written by [`csv_line`] (header included): its rows, by index. Only rows
+/// that ran to a result (`ok` or `error`) count as done.
+pub fn read_rows(text: &str, paths: usize) -> Result<BTreeMap<usize, SweepRow>, String> {
+    let mut rows = BTreeMap::new();
+    for (n, line) in text.lines().enumerate().skip(1) {
+        if line.trim().is_empty() {
+            continue;
+        }
+        let cells = split_csv(line);
+        let expected = 3 + paths + SUMMARY_COLUMNS.len();
+        if cells.len() != expected {
+            return Err(format!(
+                "line {}: {} cells, expected {expected}",
+                n + 1,
+                cells.len()
+            ));
+        }
+        let index: usize = cells[0]
+            .parse()
+            .map_err(|_| format!("line {}: index {:?}", n + 1, cells[0]))?;
+        let status = cells[1 + paths].clone();
+        if status != "ok" && status != "error" {
+            continue;
+        }
+        let summary = cells[3 + paths..]
+            .iter()
+            .map(|c| {
+                if c.is_empty() {
+                    Ok(None)
+                } else {
+                    c.parse().map(Some)
+                }
+            })
+            .collect::<Result<Vec<Option<f64>>, _>>()
+            .map_err(|_| format!("line {}: a summary value is not a number", n + 1))?;
+        rows.insert(
+            index,
+            SweepRow {
+                index,
+                values: cells[1..1 + paths]
+                    .iter()
+                    .map(|c| flexrig_rig::overrides::parse_value(c).to_string())
+                    .collect(),
+                status,
+                error: cells[2 + paths].clone(),
+                summary,
+            },
+        );
+    }
+    Ok(rows)
+}
+
+/// Splits a CSV line with quoted fields.
+fn split_csv(line: &str) -> Vec<String> {
+    let mut cells = Vec::new();
+    let mut cell = String::new();
+    let mut quoted = false;
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match (c, quoted) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                cell.push('"');
+                chars.next();
+            }
+            ('"', _) => quoted = !quoted,
+            (',', false) => cells.push(std::mem::take(&mut cell)),
+            (c, _) => cell.push(c),
+        }
+    }
+    cells.push(cell);
+    cells
+}
+
+/// The description of a sweep kept beside its tables (`sweep.json`): what a resume and a merge
+/// check before they mix rows.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SweepManifest {
+    /// [`Sweep::fingerprint`].
+    pub fingerprint: String,
+    /// Varied paths.
+    pub paths: Vec<String>,
+    /// Number of points.
+    pub points: usize,
+}
+
+/// The table file of a sweep in `dir` (of `shard`).
+pub fn table_path(dir: &Path, shard: Option<(usize, usize)>, json: bool) -> PathBuf {
+    let ext = if json { "jsonl" } else { "csv" };
+    match shard {
+        Some((i, n)) => dir.join(format!("sweep.shard-{i}-of-{n}.{ext}")),
+        None => dir.join(format!("sweep.{ext}")),
+    }
+}
+
+/// Writes the rows as CSV (and JSON Lines with `json`) atomically.
+pub fn write_tables(
+    dir: &Path,
+    shard: Option<(usize, usize)>,
+    paths: &[&str],
+    rows: &BTreeMap<usize, SweepRow>,
+    json: bool,
+) -> Result<PathBuf, Error> {
+    let mut csv = csv_header(paths);
+    csv.push('\n');
+    for row in rows.values() {
+        csv.push_str(&csv_line(row));
+        csv.push('\n');
+    }
+    let csv_path = table_path(dir, shard, false);
+    write_atomic(&csv_path, csv.as_bytes())?;
+    if json {
+        let mut text = String::new();
+        for row in rows.values() {
+            text.push_str(&json_line(row, paths).to_string());
+            text.push('\n');
+        }
+        write_atomic(&table_path(dir, shard, true), text.as_bytes())?;
+    }
+    Ok(csv_path)
+}
+
+/// The rows already done in `dir` for `shard` (table and journal), if the manifest matches.
+pub fn rows_done(
+    dir: &Path,
+    shard: Option<(usize, usize)>,
+    manifest: &SweepManifest,
+) -> Result<BTreeMap<usize, SweepRow>, Error> {
+    let manifest_path = dir.join("sweep.json");
+    let Ok(text) = std::fs::read_to_string(&manifest_path) else {
+        return Ok(BTreeMap::new());
+    };
+    let on_disk: SweepManifest =
+        serde_json::from_str(&text).map_err(|e| Error::InvalidArgument {
+            arg: "--out".into(),
+            value: manifest_path.display().to_string(),
+            allowed: format!("must hold this sweep's sweep.json (unreadable: {e})"),
+        })?;
+    if &on_disk != manifest {
+        return Err(Error::InvalidArgument {
+            arg: "--out".into(),
+            value: dir.display().to_string(),
+            allowed: "holds another sweep (its sweep.json differs): choose another directory"
+                .into(),
+        });
+    }
+    let mut rows = BTreeMap::new();
+    let table = table_path(dir, shard, false);
+    let journal = journal_path(dir, shard);
+    for path in [table, journal] {
+        if let Ok(text) = std::fs::read_to_string(&path) {
+            let found = read_rows(&text, manifest.paths.len()).map_err(|reason| {
+                Error::InvalidArgument {
+                    arg: "--out".into(),
+                    value: path.display().to_string(),
+                    allowed: format!("must be a sweep table ({reason}): remove it to start over"),
+                }
+            })?;
+            rows.extend(found);
+        }
+    }
+    Ok(rows)
+}
+
+/// The journal of finished rows written while a sweep runs (read by a resume).
+pub fn journal_path(dir: &Path, shard: Option<(usize, usize)>) -> PathBuf {
+    let mut p = table_path(dir, shard, false).into_os_string();
+    p.push(".partial");
+    PathBuf::from(p)
+}
+
+/// Appends rows to the journal as they finish (the header first).
+pub struct Journal {
+    file: Mutex<std::fs::File>,
+    path: PathBuf,
+}
+
+impl Journal {
+    /// Opens (creates or appends to) the journal of `dir`/`shard`.
+    pub fn open(dir: &Path, shard: Option<(usize, usize)>, paths: &[&str]) -> Result<Self, Error> {
+        let path = journal_path(dir, shard);
+        let fresh = !path.exists();
+        let mut file = std::fs::OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(&path)
+            .map_err(|e| Error::write(&path, e))?;
+        if fresh {
+            writeln!(file, "{}", csv_header(paths)).map_err(|e| Error::write(&path, e))?;
+        }
+        Ok(Journal {
+            file: Mutex::new(file),
+            path,
+        })
+    }
+
+    /// Appends `row` (rows that did not finish are not journalled).
+    pub fn append(&self, row: &SweepRow) {
+        if row.status == "interrupted" {
+            return;
+        }
+        if let Ok(mut f) = self.file.lock() {
+            // a journal write that fails only costs a rerun of the row on resume
+            let _ = writeln!(f, "{}", csv_line(row));
+        }
+    }
+
+    /// Removes the journal (its rows are in the table).
+    pub fn remove(self) {
+        let _ = std::fs::remove_file(&self.path);
+    }
+}
+
+/// Joins the shard tables of `dir` into `sweep.csv`: every point exactly once.
+pub fn merge(dir: &Path, json: bool) -> Result<(PathBuf, usize), Error> {
+    let manifest_path = dir.join("sweep.json");
+    let text = std::fs::read_to_string(&manifest_path).map_err(|source| Error::Read {
+        path: manifest_path.clone(),
+        source,
+    })?;
+    let manifest: SweepManifest =
+        serde_json::from_str(&text).map_err(|e| Error::InvalidArgument {
+            arg: "DIR".into(),
+            value: manifest_path.display().to_string(),
+            allowed: format!("must be a sweep manifest: {e}"),
+        })?;
+    let mut rows = BTreeMap::new();
+    let mut shards = 0;
+    let entries = std::fs::read_dir(dir).map_err(|source| Error::Read {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if !(name.starts_with("sweep.shard-") && name.ends_with(".csv")) {
+            continue;
+        }
+        shards += 1;
+        let text = std::fs::read_to_string(entry.path()).map_err(|source| Error::Read {
+            path: entry.path(),
+            source,
+        })?;
+        let found =
+            read_rows(&text, manifest.paths.len()).map_err(|reason| Error::InvalidArgument {
+                arg: "DIR".into(),
+                value: entry.path().display().to_string(),
+                allowed: format!("must hold sweep shard tables ({reason})"),
+            })?;
+        for (i, row) in found {
+            if rows.insert(i, row).is_some() {
+                return Err(Error::InvalidArgument {
+                    arg: "DIR".into(),
+                    value: dir.display().to_string(),
+                    allowed: format!("point {i} is in two shard tables"),
+                });
+            }
+        }
+    }
+    let missing: Vec<usize> = (0..manifest.points)
+        .filter(|i| !rows.contains_key(i))
+        .collect();
+    if shards == 0 || !missing.is_empty() {
+        return Err(Error::InvalidArgument {
+            arg: "DIR".into(),
+            value: dir.display().to_string(),
+            allowed: format!(
+                "must hold every shard of the sweep: {} of {} points missing (first: {:?})",
+                missing.len(),
+                manifest.points,
+                missing.first()
+            ),
+        });
+    }
+    let paths: Vec<&str> = manifest.paths.iter().map(String::as_str).collect();
+    let path = write_tables(dir, None, &paths, &rows, json)?;
+    Ok((path, rows.len()))
+}
