@@ -254,3 +254,13 @@ def test_a_cyclic_or_very_deep_override_raises_input_error_not_a_crash():
     # a scene given as a dict is bounded the same way
     with pytest.raises(flexrig.InputError, match="deep"):
         flexrig.run({"robot": deep})
+
+
+def test_a_plausibility_warning_is_a_python_warning_and_in_the_summary(cli):
+    with pytest.warns(flexrig.PlausibilityWarning, match="looks like radians"):
+        r = flexrig.run("cj_aluminium", **{"operator.start.release_angle_deg": 0.5})
+    assert [w["field"] for w in r.warnings] == ["operator.start.release_angle_deg"]
+    assert r.summary == cli.json(
+        "run", scene_path("cj_aluminium"), "--set", "operator.start.release_angle_deg=0.5"
+    )
+    assert flexrig.run("cj_aluminium").warnings == []

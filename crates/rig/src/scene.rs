@@ -389,6 +389,9 @@ pub struct Scene {
     pub link_ei: f64,
     /// CJ torsion spring k_θr [N·m/rad].
     pub torsion_spring: f64,
+    /// Plausibility warnings: what is valid but looks like a mistake
+    /// ([`crate::plausibility`]).
+    pub warnings: Vec<crate::plausibility::Warning>,
 }
 
 impl Scene {

@@ -154,15 +154,17 @@ impl Scene {
         }
         limits::SAMPLE_RATE.check("record.sample_rate_hz", file.record.sample_rate_hz)?;
 
-        let scene = Scene {
+        let mut scene = Scene {
             block_mass_kg,
             hertz,
             link_mass_kg,
             link_ei,
             torsion_spring,
             file,
+            warnings: Vec::new(),
         };
         limits::check_budget(&scene)?;
+        scene.warnings = crate::plausibility::warnings(&scene, materials);
         Ok(scene)
     }
 }
