@@ -192,3 +192,29 @@ def test_the_table_round_trips_through_parquet(table, tmp_path):
     back = pd.read_parquet(tmp_path / "sweep.parquet")
     pd.testing.assert_frame_equal(back, table, check_dtype=False)
     assert back["peak_force_n"].dtype == np.float64
+
+
+def test_a_huge_grid_is_refused_before_anything_is_made():
+    # Regression: a large grid aborted the interpreter on memory. The grid is counted from the
+    # sizes of its entries (never materialised here) and refused naming the entry.
+    big = range(10**9)
+    with pytest.raises(flexrig.InputError) as info:
+        flexrig.sweep("cj_iron", {"robot.payload_kg": big})
+    assert info.value.field == "robot.payload_kg" and "at most" in str(info.value)
+    with pytest.raises(flexrig.InputError) as info:
+        flexrig.sweep("cj_iron", {"robot.payload_kg": np.zeros(5000), "robot.length_m": np.zeros(5000)})
+    assert info.value.field == "robot.length_m"
+    with pytest.raises(flexrig.InputError, match="at most"):
+        flexrig.sweep("cj_iron", {"robot.payload_kg": "0:1:100000000"})
+    # within the grid bound but more than one process runs: refused before running, naming grid
+    with pytest.raises(flexrig.InputError) as info:
+        flexrig.sweep("cj_iron", {"robot.payload_kg": "0.1:0.2:2000", "robot.length_m": "0.1:0.5:1000"})
+    assert info.value.field == "grid" and "shards" in str(info.value)
+
+
+def test_a_field_varied_twice_is_refused():
+    with pytest.raises(flexrig.InputError, match="overlaps"):
+        flexrig.sweep(
+            "cj_iron",
+            {"operator.start": [{"from": "release", "release_angle_deg": 20.0}], "operator.start.release_angle_deg": [10, 20]},
+        )

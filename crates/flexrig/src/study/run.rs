@@ -102,6 +102,10 @@ pub fn run_sweep(
             .expect("a manifest serialises")
             .as_bytes(),
     )?;
+    crate::study::spec::check_process_points(
+        if shard.is_some() { "--shard" } else { "--set" },
+        sweep.indices(shard).len(),
+    )?;
     let todo: Vec<usize> = sweep
         .indices(shard)
         .into_iter()

@@ -13,6 +13,27 @@ use crate::Error;
 /// Most points of one sweep.
 pub const MAX_POINTS: usize = 10_000_000;
 
+/// Most points one process runs (their rows are kept in memory, a few hundred bytes each):
+/// larger sweeps are split into shards.
+pub const MAX_POINTS_PER_PROCESS: usize = 1_000_000;
+
+/// Refuses running `count` points in one process when that is more than
+/// [`MAX_POINTS_PER_PROCESS`], naming `arg` (the user's flag or argument).
+pub fn check_process_points(arg: &str, count: usize) -> Result<(), Error> {
+    if count > MAX_POINTS_PER_PROCESS {
+        return Err(bad(
+            arg,
+            &format!("{count} points"),
+            &format!(
+                "one process runs at most {MAX_POINTS_PER_PROCESS} points (their rows are kept \
+                 in memory): split the sweep into shards (flexrig sweep --shard i/N, or from \
+                 Python a Dask client)"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// One varied scene field and its values.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Dimension {
@@ -123,7 +144,11 @@ pub fn parse_all(
     let mut dimensions: Vec<Dimension> = Vec::with_capacity(set.len());
     let mut product = 1usize;
     for text in set {
-        let budget = if zip { MAX_POINTS } else { MAX_POINTS / product };
+        let budget = if zip {
+            MAX_POINTS
+        } else {
+            MAX_POINTS / product
+        };
         let d = Dimension::parse_within(text, read, budget)?;
         product = product.saturating_mul(d.values.len());
         dimensions.push(d);
@@ -164,19 +189,14 @@ pub fn check_distinct(dimensions: &[Dimension]) -> Result<(), Error> {
 }
 
 /// `start:stop:count[:log]` as values, `None` if `spec` is not a range.
-fn parse_range(
-    spec: &str,
-    arg: &str,
-    budget: usize,
-) -> Result<Option<Vec<toml::Value>>, Error> {
+fn parse_range(spec: &str, arg: &str, budget: usize) -> Result<Option<Vec<toml::Value>>, Error> {
     let parts: Vec<&str> = spec.split(':').collect();
     let number = |s: &str| s.trim().parse::<f64>().ok().filter(|v| v.is_finite());
     // a value with a colon is meant as a range (no scene value has one): a malformed range
     // gets the range syntax, not a type error about the text
     let syntax = "a range is START:STOP:COUNT with both ends included, e.g. 10:60:11, or \
                   START:STOP:COUNT:log, e.g. 1e-3:1:25:log; a list is 0.1,0.2,0.5";
-    if parts.len() < 2 || spec.starts_with('{') || spec.starts_with('"') || spec.starts_with('[')
-    {
+    if parts.len() < 2 || spec.starts_with('{') || spec.starts_with('"') || spec.starts_with('[') {
         return Ok(None);
     }
     if !(parts.len() == 3 || (parts.len() == 4 && parts[3].trim() == "log")) {
@@ -186,13 +206,17 @@ fn parse_range(
         return Err(bad(arg, spec, syntax));
     };
     // a count too large for usize is refused like any count over the budget
-    let count: usize = parts[2].trim().parse::<u128>().map(|c| c.min(usize::MAX as u128) as usize).map_err(|_| {
-        bad(
-            arg,
-            spec,
-            "start:stop:count needs a whole number of points, e.g. 10:60:11",
-        )
-    })?;
+    let count: usize = parts[2]
+        .trim()
+        .parse::<u128>()
+        .map(|c| c.min(usize::MAX as u128) as usize)
+        .map_err(|_| {
+            bad(
+                arg,
+                spec,
+                "start:stop:count needs a whole number of points, e.g. 10:60:11",
+            )
+        })?;
     if count == 0 || count > budget {
         return Err(bad(
             arg,
@@ -336,7 +360,10 @@ mod tests {
             let e = Dimension::parse(spec, &|_| Ok(String::new()))
                 .unwrap_err()
                 .to_string();
-            assert!(e.contains("START:STOP:COUNT") && e.contains("--set a.b"), "{spec}: {e}");
+            assert!(
+                e.contains("START:STOP:COUNT") && e.contains("--set a.b"),
+                "{spec}: {e}"
+            );
         }
         // a table or a quoted string with a colon is a value
         assert_eq!(dim("a.b=\"x:y\"").values.len(), 1);
@@ -350,14 +377,20 @@ mod tests {
         let read = |_: &str| -> Result<String, Error> { Ok("1\n".repeat(3_000)) };
         let set = |specs: &[&str]| specs.iter().map(|s| s.to_string()).collect::<Vec<_>>();
         for (specs, zip) in [
-            (set(&["a=0:1:10000000", "b=0:1:10000000", "c=0:1:10000000"]), false),
+            (
+                set(&["a=0:1:10000000", "b=0:1:10000000", "c=0:1:10000000"]),
+                false,
+            ),
             (set(&["a=0:1:5000", "b=0:1:5000"]), false),
             (set(&["a=@big.txt", "b=@big.txt", "c=@big.txt"]), false),
             (set(&["a=0:1:20000000"]), true),
             (set(&["a=0:1:99999999999999999999999"]), false),
         ] {
             let e = parse_all(&specs, &read, zip).unwrap_err().to_string();
-            assert!(e.contains("--set") && e.contains(&MAX_POINTS.to_string()), "{e}");
+            assert!(
+                e.contains("--set") && e.contains(&MAX_POINTS.to_string()),
+                "{e}"
+            );
         }
         // at the bound it is accepted: 1000 × 10000 = MAX_POINTS
         let d = parse_all(&set(&["a=0:1:1000", "b=0:1:10000"]), &read, false).unwrap();
@@ -380,7 +413,10 @@ mod tests {
             assert!(e.contains("twice") || e.contains("overlaps"), "{e}");
         }
         // a path that merely starts with another's name is another field
-        let specs: Vec<String> = ["a.b=1,2", "a.bc=1,2"].iter().map(|s| s.to_string()).collect();
+        let specs: Vec<String> = ["a.b=1,2", "a.bc=1,2"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
         assert_eq!(parse_all(&specs, &read, false).unwrap().len(), 2);
     }
 

@@ -65,19 +65,22 @@ pub fn summary_values(s: &RunSummary) -> [Option<f64>; 15] {
 /// the list syntax.
 fn with_list_hint(e: RigError, value: &toml::Value) -> Error {
     match (e, value) {
-        (RigError::InvalidScene { field, value: v, allowed }, toml::Value::String(text))
-            if text.contains(' ') || text.contains(';') =>
-        {
+        (
             RigError::InvalidScene {
                 field,
                 value: v,
-                allowed: format!(
-                    "{allowed} (a list of values is comma-separated, e.g. 0.1,0.2,0.5; a range \
+                allowed,
+            },
+            toml::Value::String(text),
+        ) if text.contains(' ') || text.contains(';') => RigError::InvalidScene {
+            field,
+            value: v,
+            allowed: format!(
+                "{allowed} (a list of values is comma-separated, e.g. 0.1,0.2,0.5; a range \
                      10:60:11)"
-                ),
-            }
-            .into()
+            ),
         }
+        .into(),
         (e, _) => e.into(),
     }
 }
@@ -146,11 +149,8 @@ impl Sweep {
                     other => seen.insert(other.to_string()),
                 };
                 if check {
-                    flexrig_rig::overrides::check_format(
-                        &base,
-                        &Override::new(&d.path, v.clone()),
-                    )
-                    .map_err(|e| with_list_hint(e, v))?;
+                    flexrig_rig::overrides::check_format(&base, &Override::new(&d.path, v.clone()))
+                        .map_err(|e| with_list_hint(e, v))?;
                 }
             }
         }
