@@ -30,6 +30,9 @@ pub enum ImpactError {
         /// What happened, and what to change.
         reason: String,
     },
+    /// Stopped on request (Ctrl-C) before every case was computed.
+    #[error("stopped on request before every case was computed")]
+    Interrupted,
 }
 
 impl ImpactError {
@@ -40,7 +43,7 @@ impl ImpactError {
             ImpactError::Contact(e) => e.is_input_error(),
             ImpactError::Lumped(e) => e.is_input_error(),
             ImpactError::Beam(e) => e.is_input_error(),
-            ImpactError::NotFinished { .. } => false,
+            ImpactError::NotFinished { .. } | ImpactError::Interrupted => false,
         }
     }
 

@@ -5,8 +5,8 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::Error;
 use flexrig::eta_map::{EtaMapOptions, settings_text};
+use flexrig::{CancelToken, Error};
 use flexrig_impact::eta::{ClMethod, EtaSettings};
 use flexrig_impact::graded::GradedMesh;
 use flexrig_impact::map::MapSpec;
@@ -76,7 +76,7 @@ fn spec_for(args: &EtaMapArgs, m_h: f64) -> Result<MapSpec, Error> {
 }
 
 /// Runs `flexrig eta-map`.
-pub fn run(args: &EtaMapArgs, out: &mut dyn Write) -> Result<(), Error> {
+pub fn run(args: &EtaMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     let joint = joint_from_args(args.joint, args.rotor_inertia)?;
     if args.m_h.is_empty() {
         return Err(Error::InvalidArgument {
@@ -101,11 +101,14 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write) -> Result<(), Error> {
     };
     settings.method.validate().map_err(as_flag)?;
     let joint_text = settings_text(&settings);
-    let r = flexrig::eta_map::run(&EtaMapOptions {
-        out: args.out.clone(),
-        specs,
-        settings: settings.clone(),
-    })
+    let r = flexrig::eta_map::run(
+        &EtaMapOptions {
+            out: args.out.clone(),
+            specs,
+            settings: settings.clone(),
+        },
+        cancel,
+    )
     .map_err(impact_as_flag)?;
     let summaries: Vec<serde_json::Value> = r
         .summaries

@@ -5,9 +5,9 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::Error;
 use flexrig::eta::contact_text;
 use flexrig::eta_rotor::EtaRotorOptions;
+use flexrig::{CancelToken, Error};
 use flexrig_impact::eta::{ClMethod, EtaSettings};
 use flexrig_impact::graded::GradedMesh;
 use serde_json::json;
@@ -42,7 +42,7 @@ pub struct EtaRotorArgs {
 }
 
 /// Runs `flexrig eta-rotor`.
-pub fn run(args: &EtaRotorArgs, out: &mut dyn Write) -> Result<(), Error> {
+pub fn run(args: &EtaRotorArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     if !(2..=200).contains(&args.points) {
         return Err(Error::InvalidArgument {
             arg: "--points".into(),
@@ -71,12 +71,15 @@ pub fn run(args: &EtaRotorArgs, out: &mut dyn Write) -> Result<(), Error> {
         damping: args.contact.spec()?,
         ..EtaSettings::DEFAULT
     };
-    let r = flexrig::eta_rotor::run(&EtaRotorOptions {
-        out: args.out.clone(),
-        ratios,
-        n: args.n.clone(),
-        settings,
-    })
+    let r = flexrig::eta_rotor::run(
+        &EtaRotorOptions {
+            out: args.out.clone(),
+            ratios,
+            n: args.n.clone(),
+            settings,
+        },
+        cancel,
+    )
     .map_err(|e| match e {
         Error::Impact(flexrig_impact::ImpactError::InvalidParameter { field, .. })
             if field == "inertia_ratio" =>
