@@ -13,6 +13,7 @@ use serde::Serialize;
 use crate::RigError;
 use crate::beam_link::{BeamLink, LinkVariant};
 use crate::coupling::{HingeMotion, TipContact};
+use crate::free_flight::{FlightStep, FreeFlight, FreeHinges, SwingPolicy};
 use crate::geometry::RigGeometry;
 use crate::scene::{Design, Scene, StopSpec};
 use crate::sensors::{Reading, Sampler, SensorSample};
@@ -248,6 +249,8 @@ pub struct Simulation<'s> {
     last: Reading,
     sampler: Sampler,
     stats: Stats,
+    /// The adaptive free flight in progress (`solver.swing = "adaptive"`, out of contact).
+    flight: Option<FreeFlight>,
 }
 
 /// The state a step can be taken again from.
@@ -412,6 +415,7 @@ impl<'s> Simulation<'s> {
             },
             sampler: Sampler::new(scene.file.record.sample_rate_hz),
             stats: Stats::default(),
+            flight: None,
         };
         if swing.starts_in_contact {
             sim.phase = Phase::Contact;
@@ -424,6 +428,9 @@ impl<'s> Simulation<'s> {
         sim.stats.energy_initial = sim.energy();
         sim.stats.energy = sim.stats.energy_initial;
         sim.last = sim.reading();
+        if sim.phase == Phase::Swing {
+            sim.start_free_flight();
+        }
         Ok(sim)
     }
 
@@ -661,6 +668,9 @@ impl<'s> Simulation<'s> {
 
     /// One step of the pipeline: loads → integrate → synchronise → events → check → sensors.
     pub fn step(&mut self, recorder: &mut dyn Recorder) -> Result<StepOutcome, RigError> {
+        if self.flight.is_some() {
+            return self.free_step(recorder);
+        }
         let mut dt = self.next_step();
         let start = (self.now, self.dome_kinematics(), self.block_kinematics());
         // Near an onset a step may overshoot it (a vibrating link tip defeats the prediction):
@@ -685,6 +695,9 @@ impl<'s> Simulation<'s> {
         self.stats.steps += 1;
         // Events.
         let outcome = self.classify(&start, dt);
+        if outcome == StepOutcome::Separation {
+            self.start_free_flight();
+        }
         let energy = self.energy();
         self.check_health(energy)?;
         self.stats.energy = energy;
@@ -693,7 +706,21 @@ impl<'s> Simulation<'s> {
         let sampled_before = self.sampler.samples().len();
         self.sampler.record_step(&self.last, &reading);
         self.last = reading;
-        let operator_pose = self.rapier.operator_kinematics().pose;
+        self.emit(recorder, dt, outcome, energy, sampled_before)?;
+        Ok(outcome)
+    }
+
+    /// Hands the frame of the step just taken (of `dt`, reaching `outcome`, with the samples
+    /// from index `sampled_before` on) to the recorder.
+    fn emit(
+        &self,
+        recorder: &mut dyn Recorder,
+        dt: f64,
+        outcome: StepOutcome,
+        energy: f64,
+        sampled_before: usize,
+    ) -> Result<(), RigError> {
+        let operator_pose = self.block_kinematics().pose;
         let dome_body_pose = self.dome_kinematics().pose;
         let beam = match &self.robot {
             RobotSide::Rigid { .. } => None,
@@ -711,8 +738,170 @@ impl<'s> Simulation<'s> {
             contact: self.now.contact,
             energy,
             samples: &self.sampler.samples()[sampled_before..],
-        })?;
-        Ok(outcome)
+        })
+    }
+
+    /// Starts the adaptive free flight from the synchronised state, when the scene asks for it
+    /// and the motion out of contact is the hinges' alone: always for the CJ, for the CL only
+    /// before its first contact (the beam at rest; afterwards it vibrates and is stepped with
+    /// the fixed policy).
+    fn start_free_flight(&mut self) {
+        if self.scene.file.solver.swing != SwingPolicy::Adaptive {
+            return;
+        }
+        let robot = match &self.robot {
+            RobotSide::Rigid { spring } => Some((self.geometry.robot.inertia_axis, *spring)),
+            RobotSide::Beam(_) if self.stats.contacts.is_empty() && self.stats.open.is_none() => {
+                None
+            }
+            RobotSide::Beam(_) => return,
+        };
+        let op = &self.geometry.operator;
+        let g = self.scene.file.gravity_mps2;
+        let system = FreeHinges {
+            operator_inertia: op.inertia_pivot,
+            gravity_moment: op.mass * g * op.com_distance,
+            robot,
+        };
+        // The largest step: an eighth of the shorter small-amplitude period, so that the
+        // gap is sampled finely enough for the onset whatever the tolerance lets through.
+        let tau = std::f64::consts::TAU;
+        let mut period = tau * (system.operator_inertia / system.gravity_moment).sqrt();
+        if let Some((inertia, spring)) = robot {
+            period = period.min(tau * (inertia / spring).sqrt());
+        }
+        let s = self.now.operator;
+        let r = self.now.robot.map_or((0.0, 0.0), |(r, _)| (r.angle, r.rate));
+        let rate_scale = op.bottom_angular_speed(s.angle, g).hypot(s.rate);
+        self.flight = Some(FreeFlight::new(
+            system,
+            self.t,
+            [s.angle, s.rate, r.0, r.1],
+            rate_scale,
+            period / 8.0,
+        ));
+    }
+
+    /// The signed dome–block gap \[m\] with the hinges in state `y` of the free flight (the CL
+    /// beam at rest).
+    fn flight_gap(&self, y: &[f64; 4]) -> f64 {
+        let block = self.rapier.operator_kinematics_at(HingeState {
+            angle: y[0],
+            rate: y[1],
+        });
+        let dome = match &self.robot {
+            RobotSide::Rigid { .. } => self.rapier.robot_kinematics_at(HingeState {
+                angle: y[2],
+                rate: y[3],
+            }),
+            RobotSide::Beam(b) => b.tip_kinematics(),
+        };
+        self.contact.gap(&dome.pose, &block.pose)
+    }
+
+    /// The synchronised state of the free flight's `y` (no contact).
+    fn flight_synced(&self, y: &[f64; 4]) -> Synced {
+        let operator = HingeState {
+            angle: y[0],
+            rate: y[1],
+        };
+        let robot = matches!(self.robot, RobotSide::Rigid { .. }).then_some(HingeState {
+            angle: y[2],
+            rate: y[3],
+        });
+        let (operator_accel, robot_accel) = self.accelerations(operator, robot, None);
+        Synced {
+            operator,
+            operator_accel,
+            robot: robot.zip(robot_accel),
+            contact: None,
+        }
+    }
+
+    /// The sensors at time `t` \[s\] of the free flight in state `y`, exactly (accelerations
+    /// from the equations of motion, not differenced).
+    fn flight_sample(&self, t: f64, y: &[f64; 4]) -> SensorSample {
+        let now = self.flight_synced(y);
+        let l = self.geometry.operator.arm_length;
+        let (phi, dphi, ddphi) = (y[0], y[1], now.operator_accel);
+        let (robot_angle, tip, load_accel) = match (&self.robot, now.robot) {
+            (RobotSide::Rigid { .. }, Some((r, a))) => {
+                let len = self.geometry.robot.length;
+                let (sin, cos) = r.angle.sin_cos();
+                (r.angle, len * sin, len * (cos * a - sin * r.rate * r.rate))
+            }
+            (RobotSide::Beam(b), _) => (0.0, b.tip_transverse().0, b.tip_transverse().2),
+            (RobotSide::Rigid { .. }, None) => unreachable!("a rigid robot has a hinge state"),
+        };
+        let (sin, cos) = phi.sin_cos();
+        SensorSample {
+            t,
+            operator_angle_rad: phi,
+            robot_angle_rad: robot_angle,
+            link_tip_deflection_m: tip,
+            operator_accel_mps2: l * (cos * ddphi - sin * dphi * dphi),
+            load_accel_mps2: load_accel,
+            force_n: 0.0,
+        }
+    }
+
+    /// One step of the adaptive free flight: an accepted DOP853 step (not past a stop time),
+    /// ending at the contact onset if it reaches it — then the exact onset state goes to Rapier,
+    /// whose next step is the contact's first (h_prev = 0: a half kick, as at the start) — and
+    /// the sensors sampled on the dense output.
+    fn free_step(&mut self, recorder: &mut dyn Recorder) -> Result<StepOutcome, RigError> {
+        let t_limit = match self.scene.file.stop {
+            StopSpec::Duration { duration_s } => Some(duration_s),
+            StopSpec::Peak | StopSpec::Separation => None,
+        };
+        let mut flight = self.flight.take().expect("in free flight");
+        let step: FlightStep = match flight.step(t_limit, |y| self.flight_gap(y)) {
+            Ok(step) => step,
+            Err(failure) => {
+                return Err(RigError::Unstable {
+                    t: self.t,
+                    quantity: "the free swing (adaptive integration)".into(),
+                    reason: format!("failed: {failure:?}"),
+                    suggestion: self.step_advice(),
+                });
+            }
+        };
+        // Sensors from the dense output (the exact state at each sample time).
+        let dense = flight.dense();
+        let sampled_before = self.sampler.samples().len();
+        let mut sampler = std::mem::replace(&mut self.sampler, Sampler::new(1.0));
+        sampler.record_exact(step.t_start, step.t_end, |t| {
+            let y = if t == step.t_end {
+                step.y
+            } else {
+                dense.eval(t)
+            };
+            self.flight_sample(t, &y)
+        });
+        self.sampler = sampler;
+        // The new state, in Rapier too (synchronised: the next fixed step kicks half a step).
+        self.t = step.t_end;
+        self.h_prev = 0.0;
+        self.now = self.flight_synced(&step.y);
+        self.rapier
+            .set_state(self.now.operator, self.now.robot.map(|(r, _)| r));
+        if let RobotSide::Beam(b) = &mut self.robot {
+            b.set_time(self.t);
+        }
+        self.stats.steps += 1;
+        if step.onset {
+            // The fixed policy takes over at the onset: its first step is the contact's.
+            self.phase = Phase::Swing;
+        } else {
+            self.flight = Some(flight);
+        }
+        let energy = self.energy();
+        self.check_health(energy)?;
+        self.stats.energy = energy;
+        self.last = self.reading();
+        let dt = step.t_end - step.t_start;
+        self.emit(recorder, dt, StepOutcome::Advanced, energy, sampled_before)?;
+        Ok(StepOutcome::Advanced)
     }
 
     /// Loads → integrate → synchronise for a step of `dt` from the synchronised state `start`.

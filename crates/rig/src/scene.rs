@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::RigError;
 use crate::error::invalid;
+pub use crate::free_flight::SwingPolicy;
 use crate::geometry::rate_at_bottom;
 use crate::limits;
 
@@ -205,6 +206,10 @@ pub struct SolverSpec {
     /// How the CL beam is solved (default: the full corotational FE beam).
     #[serde(default)]
     pub beam: BeamSolverSpec,
+    /// How the rig moves out of contact: `"adaptive"` (default; DOP853 with the onset located
+    /// as an event) or `"fixed"` (Rapier steps of `swing_step_s`).
+    #[serde(default)]
+    pub swing: SwingPolicy,
 }
 
 /// How the finite-element link is solved (design `cl`; ignored for `cj`). (Struct variants, so
