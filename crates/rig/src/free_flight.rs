@@ -17,6 +17,8 @@ use flexrig_lumped::ode::dop853::{
 };
 use serde::{Deserialize, Serialize};
 
+use crate::sensors::SensorSample;
+
 /// How the rig is integrated out of contact (`solver.swing`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -39,8 +41,13 @@ pub const FREE_FLIGHT_RTOL: f64 = 1e-12;
 /// grazing contact inside one step is not stepped over.
 const EVENT_SUBINTERVALS: usize = 8;
 
+/// Size of the free flight's state: y = (φ, φ̇, ψ, ψ̇, sin φ, cos φ).
+pub const DIM: usize = 6;
+
 /// The hinges out of contact as a first-order system, y = (φ \[rad\], φ̇ [rad/s], ψ \[rad\],
-/// ψ̇ [rad/s]).
+/// ψ̇ [rad/s], sin φ, cos φ): the sine and cosine of the pendulum angle ride along
+/// (d sin φ/dt = φ̇ cos φ, d cos φ/dt = −φ̇ sin φ), so that neither the right-hand side nor a
+/// sensor sample from the dense output needs a trigonometric function.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FreeHinges {
     /// Operator moment of inertia about its pivot J_op [kg·m²].
@@ -52,16 +59,18 @@ pub struct FreeHinges {
     pub robot: Option<(f64, f64)>,
 }
 
-impl OdeSystem<4> for FreeHinges {
-    fn rhs(&self, _t: f64, y: &[f64; 4]) -> [f64; 4] {
+impl OdeSystem<DIM> for FreeHinges {
+    fn rhs(&self, _t: f64, y: &[f64; DIM]) -> [f64; DIM] {
         let psi_accel = self
             .robot
             .map_or(0.0, |(inertia, spring)| -spring * y[2] / inertia);
         [
             y[1],
-            -self.gravity_moment * y[0].sin() / self.operator_inertia,
+            -self.gravity_moment * y[4] / self.operator_inertia,
             y[3],
             psi_accel,
+            y[1] * y[5],
+            -y[1] * y[4],
         ]
     }
 }
@@ -70,7 +79,7 @@ impl OdeSystem<4> for FreeHinges {
 #[derive(Debug, Clone)]
 pub struct FreeFlight {
     system: FreeHinges,
-    solver: Dop853<4>,
+    solver: Dop853<DIM>,
 }
 
 /// Where an accepted free-flight step ended.
@@ -81,7 +90,7 @@ pub struct FlightStep {
     /// End of the step \[s\]: the onset time if the step reached the contact.
     pub t_end: f64,
     /// The state at `t_end`.
-    pub y: [f64; 4],
+    pub y: [f64; DIM],
     /// True when the step ends at the contact onset (gap = 0).
     pub onset: bool,
 }
@@ -89,13 +98,16 @@ pub struct FlightStep {
 impl FreeFlight {
     /// Starts at time `t0` \[s\] in state `y0`; `rate_scale` [rad/s] sets the absolute tolerance of
     /// the rates (e.g. the swing's speed at the bottom), `max_step` \[s\] the largest step.
+    /// The state is y0 = (φ, φ̇, ψ, ψ̇) (its sine and cosine are added here).
     pub fn new(system: FreeHinges, t0: f64, y0: [f64; 4], rate_scale: f64, max_step: f64) -> Self {
+        let (sin, cos) = y0[0].sin_cos();
+        let y0 = [y0[0], y0[1], y0[2], y0[3], sin, cos];
         let rtol = FREE_FLIGHT_RTOL;
         // Angles to 1e-12 rad, rates to 1e-12 of the swing's speed.
         let rate_scale = rate_scale.max(1e-3);
         let options = Dop853Options {
             rtol,
-            atol: [rtol, rtol * rate_scale, rtol, rtol * rate_scale],
+            atol: [rtol, rtol * rate_scale, rtol, rtol * rate_scale, rtol, rtol],
             first_step: None,
             max_step,
             max_steps: usize::MAX,
@@ -116,7 +128,7 @@ impl FreeFlight {
     pub fn step(
         &mut self,
         t_limit: Option<f64>,
-        gap: impl Fn(&[f64; 4]) -> f64,
+        gap: impl Fn(&[f64; DIM]) -> f64,
     ) -> Result<FlightStep, StepFailure> {
         match t_limit {
             Some(t_end) => self.solver.step_until(&self.system, t_end)?,
@@ -145,7 +157,7 @@ impl FreeFlight {
 
     /// The interpolant over the last accepted step (valid on [`FlightStep::t_start`],
     /// [`FlightStep::t_end`]).
-    pub fn dense(&mut self) -> DenseOutput<4> {
+    pub fn dense(&mut self) -> DenseOutput<DIM> {
         self.solver.dense_output(&self.system)
     }
 
@@ -158,7 +170,7 @@ impl FreeFlight {
 /// The first time in the step of `dense` at which `gap` goes from positive to zero or negative:
 /// the gap is sampled on [`EVENT_SUBINTERVALS`] sub-intervals and the first bracket refined by
 /// regula falsi (Illinois) to the resolution of t.
-fn first_zero(dense: &DenseOutput<4>, gap: &impl Fn(&[f64; 4]) -> f64) -> Option<f64> {
+fn first_zero(dense: &DenseOutput<DIM>, gap: &impl Fn(&[f64; DIM]) -> f64) -> Option<f64> {
     let (a, b) = (dense.t_start(), dense.t_end());
     let g = |t: f64| gap(&dense.eval(t));
     let mut t0 = a;
@@ -177,4 +189,44 @@ fn first_zero(dense: &DenseOutput<4>, gap: &impl Fn(&[f64; 4]) -> f64) -> Option
         (t0, g0) = (t1, g1);
     }
     None
+}
+
+/// The sensors of the free flight, read off its state exactly (no interpolation, accelerations
+/// from the equations of motion): the constants of [`FreeHinges`] and the sensor geometry.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlightSensors {
+    /// Operator pivot to block centre l \[m\] (the accelerometer's radius).
+    pub arm_length: f64,
+    /// CJ link length L \[m\]; `None` for the CL.
+    pub link_length: Option<f64>,
+    /// CL: tip deflection \[m\] and acceleration [m/s²] of the beam at rest.
+    pub beam_tip: (f64, f64),
+}
+
+impl FlightSensors {
+    /// Every sensor at time `t` \[s\] in state `y` of `system`: encoders φ and ψ, the link tip
+    /// L sin ψ (CJ) or the beam's, the accelerations along the strike (world y) of the block,
+    /// l (cos φ φ̈ − sin φ φ̇²), and of the load, L (cos ψ ψ̈ − sin ψ ψ̇²); no contact force.
+    pub fn sample(&self, system: &FreeHinges, t: f64, y: &[f64; DIM]) -> SensorSample {
+        let (sin, cos) = (y[4], y[5]);
+        let phi_accel = -system.gravity_moment * sin / system.operator_inertia;
+        let (robot_angle, tip, load_accel) = match (self.link_length, system.robot) {
+            (Some(_), _) if y[2] == 0.0 && y[3] == 0.0 => (0.0, 0.0, 0.0),
+            (Some(len), Some((inertia, spring))) => {
+                let (s, c) = y[2].sin_cos();
+                let psi_accel = -spring * y[2] / inertia;
+                (y[2], len * s, len * (c * psi_accel - s * y[3] * y[3]))
+            }
+            _ => (0.0, self.beam_tip.0, self.beam_tip.1),
+        };
+        SensorSample {
+            t,
+            operator_angle_rad: y[0],
+            robot_angle_rad: robot_angle,
+            link_tip_deflection_m: tip,
+            operator_accel_mps2: self.arm_length * (cos * phi_accel - sin * y[1] * y[1]),
+            load_accel_mps2: load_accel,
+            force_n: 0.0,
+        }
+    }
 }

@@ -13,7 +13,7 @@ use serde::Serialize;
 use crate::RigError;
 use crate::beam_link::{BeamLink, LinkVariant};
 use crate::coupling::{HingeMotion, TipContact};
-use crate::free_flight::{FlightStep, FreeFlight, FreeHinges, SwingPolicy};
+use crate::free_flight::{DIM, FlightSensors, FlightStep, FreeFlight, FreeHinges, SwingPolicy};
 use crate::geometry::RigGeometry;
 use crate::scene::{Design, Scene, StopSpec};
 use crate::sensors::{Reading, Sampler, SensorSample};
@@ -784,7 +784,7 @@ impl<'s> Simulation<'s> {
 
     /// The signed dome–block gap \[m\] with the hinges in state `y` of the free flight (the CL
     /// beam at rest).
-    fn flight_gap(&self, y: &[f64; 4]) -> f64 {
+    fn flight_gap(&self, y: &[f64; DIM]) -> f64 {
         let block = self.rapier.operator_kinematics_at(HingeState {
             angle: y[0],
             rate: y[1],
@@ -800,7 +800,7 @@ impl<'s> Simulation<'s> {
     }
 
     /// The synchronised state of the free flight's `y` (no contact).
-    fn flight_synced(&self, y: &[f64; 4]) -> Synced {
+    fn flight_synced(&self, y: &[f64; DIM]) -> Synced {
         let operator = HingeState {
             angle: y[0],
             rate: y[1],
@@ -815,33 +815,6 @@ impl<'s> Simulation<'s> {
             operator_accel,
             robot: robot.zip(robot_accel),
             contact: None,
-        }
-    }
-
-    /// The sensors at time `t` \[s\] of the free flight in state `y`, exactly (accelerations
-    /// from the equations of motion, not differenced).
-    fn flight_sample(&self, t: f64, y: &[f64; 4]) -> SensorSample {
-        let now = self.flight_synced(y);
-        let l = self.geometry.operator.arm_length;
-        let (phi, dphi, ddphi) = (y[0], y[1], now.operator_accel);
-        let (robot_angle, tip, load_accel) = match (&self.robot, now.robot) {
-            (RobotSide::Rigid { .. }, Some((r, a))) => {
-                let len = self.geometry.robot.length;
-                let (sin, cos) = r.angle.sin_cos();
-                (r.angle, len * sin, len * (cos * a - sin * r.rate * r.rate))
-            }
-            (RobotSide::Beam(b), _) => (0.0, b.tip_transverse().0, b.tip_transverse().2),
-            (RobotSide::Rigid { .. }, None) => unreachable!("a rigid robot has a hinge state"),
-        };
-        let (sin, cos) = phi.sin_cos();
-        SensorSample {
-            t,
-            operator_angle_rad: phi,
-            robot_angle_rad: robot_angle,
-            link_tip_deflection_m: tip,
-            operator_accel_mps2: l * (cos * ddphi - sin * dphi * dphi),
-            load_accel_mps2: load_accel,
-            force_n: 0.0,
         }
     }
 
@@ -869,16 +842,28 @@ impl<'s> Simulation<'s> {
         // Sensors from the dense output (the exact state at each sample time).
         let dense = flight.dense();
         let sampled_before = self.sampler.samples().len();
-        let mut sampler = std::mem::replace(&mut self.sampler, Sampler::new(1.0));
-        sampler.record_exact(step.t_start, step.t_end, |t| {
-            let y = if t == step.t_end {
-                step.y
-            } else {
-                dense.eval(t)
-            };
-            self.flight_sample(t, &y)
-        });
-        self.sampler = sampler;
+        let sensors = FlightSensors {
+            arm_length: self.geometry.operator.arm_length,
+            link_length: matches!(self.robot, RobotSide::Rigid { .. })
+                .then_some(self.geometry.robot.length),
+            beam_tip: match &self.robot {
+                RobotSide::Beam(b) => {
+                    let (v, _, a) = b.tip_transverse();
+                    (v, a)
+                }
+                RobotSide::Rigid { .. } => (0.0, 0.0),
+            },
+        };
+        let system = *flight.system();
+        self.sampler
+            .record_exact(step.t_start, step.t_end, |t| {
+                let y = if t == step.t_end {
+                    step.y
+                } else {
+                    dense.eval(t)
+                };
+                sensors.sample(&system, t, &y)
+            });
         // The new state, in Rapier too (synchronised: the next fixed step kicks half a step).
         self.t = step.t_end;
         self.h_prev = 0.0;
