@@ -1,8 +1,9 @@
 //! The run loop: a named pipeline per step (loads → integrate → synchronise → events → check →
-//! sensors), a step policy that takes large steps in the free swing, lands on the contact onset
-//! and resolves the contact on its own time scale, and the stop condition of the scene. How the
-//! contact force is exchanged within a step (second order; implicit for the compliant link) is
-//! in [`crate::coupling`].
+//! sensors), a step policy that crosses the free flight in a few adaptive steps with the contact
+//! onset located as an event ([`crate::free_flight`]; or, with `solver.swing = "fixed"`, takes
+//! large Rapier steps in the swing and lands on the onset), resolves the contact on its own time
+//! scale, and the stop condition of the scene. How the contact force is exchanged within a step
+//! (second order; implicit for the compliant link) is in [`crate::coupling`].
 
 use flexrig_contact::math::{Pose, Vector};
 use flexrig_contact::{
@@ -771,7 +772,10 @@ impl<'s> Simulation<'s> {
             period = period.min(tau * (inertia / spring).sqrt());
         }
         let s = self.now.operator;
-        let r = self.now.robot.map_or((0.0, 0.0), |(r, _)| (r.angle, r.rate));
+        let r = self
+            .now
+            .robot
+            .map_or((0.0, 0.0), |(r, _)| (r.angle, r.rate));
         let rate_scale = op.bottom_angular_speed(s.angle, g).hypot(s.rate);
         self.flight = Some(FreeFlight::new(
             system,
@@ -855,15 +859,14 @@ impl<'s> Simulation<'s> {
             },
         };
         let system = *flight.system();
-        self.sampler
-            .record_exact(step.t_start, step.t_end, |t| {
-                let y = if t == step.t_end {
-                    step.y
-                } else {
-                    dense.eval(t)
-                };
-                sensors.sample(&system, t, &y)
-            });
+        self.sampler.record_exact(step.t_start, step.t_end, |t| {
+            let y = if t == step.t_end {
+                step.y
+            } else {
+                dense.eval(t)
+            };
+            sensors.sample(&system, t, &y)
+        });
         // The new state, in Rapier too (synchronised: the next fixed step kicks half a step).
         self.t = step.t_end;
         self.h_prev = 0.0;

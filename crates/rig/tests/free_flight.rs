@@ -81,7 +81,12 @@ fn onset_time_and_impact_speed_match_the_elliptic_integral_and_the_energy() {
                 fixed.steps - fixed.contact_steps,
             );
             // measured ≤ 6e-13 (onset and speed) in 9 … 19 steps; fixed 5e-4 s steps: 3e-8 … 1e-6
-            assert_close(&format!("{label}: onset time"), s.onset_time_s, quarter, 1e-9);
+            assert_close(
+                &format!("{label}: onset time"),
+                s.onset_time_s,
+                quarter,
+                1e-9,
+            );
             assert_close(
                 &format!("{label}: impact speed"),
                 s.impact_velocity_mps,
@@ -225,7 +230,10 @@ fn a_second_contact_after_the_free_flight_is_located() {
     let edit = [("at = \"separation\"", "at = \"duration\"\nduration_s = 1.0")];
     let adaptive = run(&common::scene("cj_aluminium", &edit));
     let mut fixed_edit = edit.to_vec();
-    fixed_edit.push(("swing_step_s = 5e-4", "swing_step_s = 5e-4\nswing = \"fixed\""));
+    fixed_edit.push((
+        "swing_step_s = 5e-4",
+        "swing_step_s = 5e-4\nswing = \"fixed\"",
+    ));
     let fixed = run(&common::scene("cj_aluminium", &fixed_edit));
     assert_eq!(adaptive.duration_s, 1.0);
     assert!(adaptive.contacts.len() >= 2, "{:?}", adaptive.contacts);
@@ -235,7 +243,10 @@ fn a_second_contact_after_the_free_flight_is_located() {
             "contact {i}: onset {} vs {} s, peak {} vs {} N",
             a.onset_time_s, f.onset_time_s, a.peak_force_n, f.peak_force_n
         );
-        assert!((a.onset_time_s - f.onset_time_s).abs() < 1e-6, "contact {i}");
+        assert!(
+            (a.onset_time_s - f.onset_time_s).abs() < 1e-6,
+            "contact {i}"
+        );
         assert_close(
             &format!("contact {i}: peak"),
             a.peak_force_n,
@@ -260,6 +271,9 @@ fn an_unknown_swing_policy_is_refused_naming_the_field() {
     let e = Scene::from_toml_str(&text, &flexrig_contact::Materials::bundled().unwrap())
         .unwrap_err()
         .to_string();
-    assert!(e.contains("rk4") && e.contains("adaptive") && e.contains("fixed"), "{e}");
+    assert!(
+        e.contains("rk4") && e.contains("adaptive") && e.contains("fixed"),
+        "{e}"
+    );
     assert!(e.contains("swing"), "{e}");
 }
