@@ -41,10 +41,13 @@ fn bench_scene(c: &mut Criterion, label: &str, s: &Scene) {
     });
 }
 
+/// A scene, its contact steps and its beam variants (label, solver lines).
+type Case<'a> = (&'a str, &'a [usize], &'a [(&'a str, &'a str)]);
+
 fn bench(c: &mut Criterion) {
     let modal = "\nbeam = { model = \"modal\", modes = 8 }";
     let fixed = "\nswing = \"fixed\"";
-    let cases: [(&str, &[usize], &[(&str, &str)]); 2] = [
+    let cases: [Case; 2] = [
         ("cj_aluminium", &[40, 100, 140, 800], &[("", "")]),
         (
             "cl_aluminium",
