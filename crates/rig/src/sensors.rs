@@ -58,7 +58,7 @@ impl Sampler {
         Sampler {
             period: 1.0 / rate_hz,
             next_index: 0,
-            samples: Vec::with_capacity(20000),
+            samples: Vec::new(),
         }
     }
 
