@@ -20,6 +20,8 @@ pub mod chain;
 pub mod cj;
 pub mod cl;
 pub mod cl_modal;
+pub mod drive;
+pub mod driven_cj;
 mod error;
 pub mod eta;
 pub mod graded;
@@ -28,7 +30,12 @@ pub mod map;
 pub mod modal_run;
 pub mod rotor;
 pub mod setup;
+pub mod strike;
 pub mod tip_modes;
 
+pub use drive::{
+    Drive, DriveCommand, Gains, HeadSupport, Motor, Person, Placement, Profile, TorqueProfile,
+};
 pub use error::ImpactError;
 pub use setup::{ClSolver, FreeMassImpact, ImpactOutcome, Joint, LinkParams, RunEnd};
+pub use strike::{DriveNote, DrivenOutcome, DrivenStrike, EnergyBalance};
