@@ -30,6 +30,7 @@ pub mod map;
 pub mod modal_run;
 pub mod rotor;
 pub mod setup;
+pub mod spin_up;
 pub mod strike;
 pub mod tip_modes;
 
