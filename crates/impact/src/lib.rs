@@ -22,6 +22,7 @@ pub mod cl;
 pub mod cl_modal;
 pub mod drive;
 pub mod driven_cj;
+pub mod driven_cl;
 mod error;
 pub mod eta;
 pub mod graded;
