@@ -648,6 +648,10 @@ pub struct Person {
     /// Damping added to it (restitution laws set χ from the approach speed at the onset).
     #[serde(default)]
     pub damping: flexrig_contact::DampingSpec,
+    /// The head's speed towards the link at t = 0 [m/s], ≥ 0 (0: at rest, struck by the robot;
+    /// > 0: the test bed's roles, the operator striking).
+    #[serde(default)]
+    pub speed: f64,
 }
 
 impl Person {
@@ -655,6 +659,14 @@ impl Person {
     pub fn validate(&self) -> Result<(), ImpactError> {
         if self.support != HeadSupport::Wall {
             positive("person.m_h", self.m_h, 1e9, "kg")?;
+        }
+        non_negative("person.speed", self.speed, 1e3, "m/s")?;
+        if self.support == HeadSupport::Wall && self.speed != 0.0 {
+            return Err(ImpactError::invalid(
+                "person.speed",
+                self.speed,
+                "0 against a wall (the skin cannot move)",
+            ));
         }
         if let HeadSupport::Neck { stiffness, damping } = self.support {
             non_negative("person.support.stiffness", stiffness, 1e12, "N/m")?;

@@ -279,6 +279,7 @@ pub fn run_driven_cj(
     let r0 = -l * lag0;
     let mut y0 = [0.0; DIM];
     y0[XH] = x_contact;
+    y0[VH] = -strike.person.speed;
     y0[W] = r0;
     y0[WD] = l * speed0;
     y0[R] = r0;
@@ -307,6 +308,7 @@ pub fn run_driven_cj(
         .drive
         .profile()
         .map_or(l * speed0.abs(), |p| l * p.final_speed().abs())
+        .max(strike.person.speed)
         .max(1e-6);
     let e_ref = 0.5 * system.m_tip * v_ref * v_ref;
     let gap = |y: &Y| y[W] - y[XH];

@@ -176,6 +176,9 @@ struct Integrator<'a> {
     x_rest: f64,
     /// Breakpoint branch (a time inside the current segment).
     branch: f64,
+    /// The controller's K_p, folded into the structure's stiffness on θ₀ (its spring is then
+    /// integrated exactly; the port carries the rest of the law) [N·m/rad].
+    folded: f64,
 }
 
 /// The linear parts of one step: end values = constant + slope × (f₁, u₁).
@@ -368,13 +371,19 @@ impl Integrator<'_> {
                 let raw0 = kp * (pc - a_t) + kd * (wc - a_v) + ki * (z_part - 0.5 * lin.h * a_t);
                 let raw_u = -(kp * s_t + kd * s_v + ki * 0.5 * lin.h * s_t);
                 // unsaturated: u = raw0 + raw_u u − c (a_v + s_v u)
-                let u = (raw0 - c * a_v) / (1.0 - raw_u + c * s_v);
+                // u = τ − c θ̇ + K_p θ (K_p θ₀'s spring is in the structure)
+                let kf = self.folded;
+                let u = (raw0 - c * a_v + kf * a_t) / (1.0 - raw_u + c * s_v - kf * s_t);
                 let tau = raw0 + raw_u * u;
                 if tau.abs() <= *limit {
                     (u, tau, false)
                 } else {
                     let tau = limit * tau.signum();
-                    ((tau - c * a_v) / (1.0 + c * s_v), tau, true)
+                    (
+                        (tau - c * a_v + kf * a_t) / (1.0 + c * s_v - kf * s_t),
+                        tau,
+                        true,
+                    )
                 }
             }
         }
@@ -531,7 +540,11 @@ impl Integrator<'_> {
                 }
                 tau
             }
-            _ => p.torque,
+            _ => {
+                // consistent with the hold: τ = u − K_p θ + c θ̇
+                let (th, tv) = self.hub(&p.q, &p.qd);
+                p.u - self.folded * th + self.friction * tv
+            }
         }
     }
 
@@ -558,7 +571,12 @@ impl Integrator<'_> {
         } else {
             0.5 * self.m_h * p.vh * p.vh + 0.5 * self.k_n * (p.xh - self.x_rest).powi(2)
         };
-        modal + rigid + contact + head
+        // the folded controller spring is not the robot's: its work is the motor's
+        let folded = match &self.port {
+            Port::Feedback { .. } => 0.5 * self.folded * self.hub(&p.q, &p.qd).0.powi(2),
+            _ => 0.0,
+        };
+        modal + rigid + contact + head - folded
     }
 
     /// The gap δ = w − x_h at a point.
@@ -719,8 +737,13 @@ pub fn run_driven_cl(
         .drive
         .profile()
         .map_or(l * speed0.abs(), |p| l * p.final_speed().abs())
+        .max(strike.person.speed)
         .max(1e-3);
     let prescribed = matches!(strike.drive.command(), DriveCommand::Trajectory { .. });
+    let folded = match strike.drive.command() {
+        DriveCommand::Controller { gains, .. } => gains.kp,
+        _ => 0.0,
+    };
     let (m_h, support) = (strike.person.m_h, strike.person.support);
     let setup = FreeMassImpact {
         m_h: if support == HeadSupport::Wall {
@@ -767,6 +790,8 @@ pub fn run_driven_cl(
         };
         (modes, q0, qd0, port)
     } else {
+        let mut mats = mats;
+        mats.k[(0, 0)] += folded;
         let mut unit = vec![0.0; n];
         unit[0] = 1.0;
         // the steady start: rigid rotation at speed0, the hub lagging by lag0
@@ -799,6 +824,7 @@ pub fn run_driven_cl(
         port,
         law: None,
         friction: motor.reflected_friction(),
+        folded,
         l,
         m_h,
         wall: support == HeadSupport::Wall,
@@ -812,7 +838,7 @@ pub fn run_driven_cl(
         q: q0,
         qd: qd0,
         xh: x_contact,
-        vh: 0.0,
+        vh: -strike.person.speed,
         f: 0.0,
         u: 0.0,
         z: z0,
@@ -833,7 +859,13 @@ pub fn run_driven_cl(
     let tol = settings.tol;
     let mut steps = 0usize;
     let mut saturation_at: Option<f64> = None;
-    let mut u_ref = s.u.abs();
+    // the hold's allowance is relative to the drive's own torque (a controller's port load
+    // carries K_p φ_cmd, which grows with the angle and says nothing of the torque's accuracy)
+    let scale_of = |p: &Point| match int.port {
+        Port::Feedback { .. } => p.torque.abs(),
+        _ => p.u.abs(),
+    };
+    let mut u_ref = scale_of(&s);
     let mut levels = Levels {
         h_ref: t_link * 1e-4,
         levels: std::collections::HashMap::new(),
@@ -906,7 +938,7 @@ pub fn run_driven_cl(
                 let (tb, ub) = history[history.len() - 1];
                 let (h0, h1) = (tb - ta, h_try);
                 let u2 = 2.0 * ((next.u - ub) / h1 - (ub - ua) / h0) / (h0 + h1);
-                let allowed = settings.approach_tol * u_ref.max(next.u.abs()).max(1e-300);
+                let allowed = settings.approach_tol * u_ref.max(scale_of(&next)).max(1e-300);
                 if h1 * h1 * u2.abs() / 8.0 > 4.0 * allowed && h_try > t_link * 1e-9 {
                     level = levels.level_for(h_try) - 4;
                     steps -= 1;
@@ -932,7 +964,7 @@ pub fn run_driven_cl(
             if next.saturated && saturation_at.is_none() {
                 saturation_at = Some(next.t);
             }
-            u_ref = u_ref.max(next.u.abs());
+            u_ref = u_ref.max(scale_of(&next));
             s = next;
             history.push((s.t, s.u));
             if history.len() > 4 {

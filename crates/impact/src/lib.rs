@@ -29,6 +29,7 @@ pub mod graded;
 pub mod horizon;
 pub mod map;
 pub mod modal_run;
+pub mod role_switch;
 pub mod rotor;
 pub mod setup;
 pub mod spin_up;

@@ -28,6 +28,7 @@ fn person(m_h: f64, support: HeadSupport, n: f64) -> Person {
         support,
         contact: Hertz::new(1e8, n).unwrap(),
         damping: DampingSpec::NONE,
+        speed: 0.0,
     }
 }
 
