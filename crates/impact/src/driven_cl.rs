@@ -1003,6 +1003,8 @@ pub fn run_driven_cl(
     let mut peak = (0.0_f64, s.t);
     let mut f_ref = 0.0_f64;
     let mut acc = [0.0_f64; 4];
+    // the powers at the step's start (the last step's end)
+    let mut p_start = int.powers(&s);
     let mut peak_torque = torque_on.abs();
     let h_min = t_c * 1e-9;
     loop {
@@ -1048,7 +1050,8 @@ pub fn run_driven_cl(
             (false, next, levels.get(&int, level - 4))
         };
         let mid = int.midpoint(&s, &e, &half);
-        let (p0, pm, p1) = (int.powers(&s), int.powers(&mid), int.powers(&e));
+        let (p0, pm, p1) = (p_start, int.powers(&mid), int.powers(&e));
+        p_start = p1;
         let dt = e.t - s.t;
         for k in 0..4 {
             acc[k] += dt / 6.0 * (p0[k] + 4.0 * pm[k] + p1[k]);

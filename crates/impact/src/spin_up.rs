@@ -337,7 +337,7 @@ impl Elastica {
         let l = spec.length;
         let basis = |j: usize, s: f64| {
             let (p, dp) = legendre(j, 2.0 * s / l - 1.0);
-            let sign = if j % 2 == 0 { 1.0 } else { -1.0 };
+            let sign = if j.is_multiple_of(2) { 1.0 } else { -1.0 };
             (p - sign, dp * 2.0 / l)
         };
         let nodes = quad.s.len();
