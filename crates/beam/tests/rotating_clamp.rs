@@ -54,8 +54,7 @@ fn a_stiff_beam_turns_with_its_hub_as_a_rigid_rod() {
 #[test]
 fn only_a_clamped_corotational_beam_is_accepted() {
     let section = Section::from_stiffness(1e6, 1e3, 1.0).unwrap();
-    let linear =
-        BeamModel::new(BeamSpec::cantilever(1.0, section, 4, Kinematics::Linear)).unwrap();
+    let linear = BeamModel::new(BeamSpec::cantilever(1.0, section, 4, Kinematics::Linear)).unwrap();
     let e = run_rotating_clamp(&linear, &hub, 1.0, 0.1, &RotatingClampOptions::DEFAULT)
         .unwrap_err()
         .to_string();

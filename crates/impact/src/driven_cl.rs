@@ -145,6 +145,24 @@ enum Port<'a> {
     },
 }
 
+/// What the drive's torque and the powers need at an instant.
+#[derive(Debug, Clone, Copy)]
+struct Ports {
+    /// Tip position and rate.
+    w: f64,
+    wv: f64,
+    /// Hub angle, rate and (prescribed) acceleration.
+    hub: f64,
+    hub_rate: f64,
+    hub_acc: f64,
+    /// Σ cᵢ ωᵢ² qᵢ.
+    cwq: f64,
+    xh: f64,
+    vh: f64,
+    f: f64,
+    u: f64,
+}
+
 /// Everything at one instant.
 #[derive(Debug, Clone)]
 struct Point {
@@ -179,6 +197,8 @@ struct Integrator<'a> {
     /// The controller's K_p, folded into the structure's stiffness on θ₀ (its spring is then
     /// integrated exactly; the port carries the rest of the law) [N·m/rad].
     folded: f64,
+    /// (Σ gᵢ bᵢ, Σ gᵢ²) of a prescribed hub (gᵢ = −cᵢ).
+    port_sums: (f64, f64),
 }
 
 /// The linear parts of one step: end values = constant + slope × (f₁, u₁).
@@ -321,25 +341,29 @@ impl Integrator<'_> {
             lin.w0 += self.l * th;
             lin.wv0 += self.l * om;
         }
+        (lin.x0, lin.xf, lin.v0, lin.vf) = self.head_map(s, sc);
+        lin
+    }
+
+    /// The head at the step's end: x = x0 + xf f₁, v = v0 + vf f₁.
+    fn head_map(&self, s: &Point, sc: &StepCoef) -> (f64, f64, f64, f64) {
+        let h = sc.h;
         if self.wall {
-            lin.x0 = s.xh;
-            lin.v0 = 0.0;
+            (s.xh, 0.0, 0.0, 0.0)
         } else if let Some(e) = &sc.head {
             let z = Vector4::new(s.xh - self.x_rest, s.vh, s.f, -s.f);
             let end = e * z;
-            lin.x0 = end[0] + self.x_rest;
-            lin.v0 = end[1];
-            lin.xf = e[(0, 3)];
-            lin.vf = e[(1, 3)];
+            (end[0] + self.x_rest, e[(0, 3)], end[1], e[(1, 3)])
         } else {
             // a free head under f linear in τ: x₁ = x + h v + h² (f₀/3 + f₁/6)/m
             let inv = 1.0 / self.m_h;
-            lin.x0 = s.xh + h * s.vh + h * h * s.f * inv / 3.0;
-            lin.xf = h * h * inv / 6.0;
-            lin.v0 = s.vh + 0.5 * h * s.f * inv;
-            lin.vf = 0.5 * h * inv;
+            (
+                s.xh + h * s.vh + h * h * s.f * inv / 3.0,
+                h * h * inv / 6.0,
+                s.vh + 0.5 * h * s.f * inv,
+                0.5 * h * inv,
+            )
         }
-        lin
     }
 
     /// The drive load u₁ and the drive torque for a given f₁ (and whether at the limit).
@@ -473,37 +497,79 @@ impl Integrator<'_> {
         self.step(s, &self.coefficients_for(h), unloaded)
     }
 
-    /// The state half-way through the step s → e of coefficients `half` (h/2), the holds at
-    /// their midpoints.
-    fn midpoint(&self, s: &Point, e: &Point, half: &StepCoef) -> Point {
-        let lin = self.linear(s, half);
-        let (f, u) = (0.5 * (s.f + e.f), 0.5 * (s.u + e.u));
-        let (x_mid, v_mid) = (lin.x0 + lin.xf * f, lin.v0 + lin.vf * f);
-        let mut q = lin.q;
-        let mut qd = lin.qd;
-        for i in 0..q.len() {
-            let p1 = -self.modes.tip[i] * f + self.modes.port[i] * u;
-            q[i] += half.modes[i][4] * p1;
-            qd[i] += half.modes[i][6] * p1;
+    /// The ports at a point: one pass over the modes.
+    fn ports(&self, p: &Point) -> Ports {
+        let m = &self.modes;
+        let (mut w, mut wv, mut th, mut tv, mut cwq) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for i in 0..p.q.len() {
+            let (b, c, om) = (m.tip[i], m.port[i], m.omegas[i]);
+            w += b * p.q[i];
+            wv += b * p.qd[i];
+            th += c * p.q[i];
+            tv += c * p.qd[i];
+            cwq += c * om * om * p.q[i];
         }
-        Point {
-            t: s.t + half.h,
-            q,
-            qd,
-            xh: x_mid,
-            vh: v_mid,
+        self.ports_from(p.t, [w, wv, th, tv, cwq], p.xh, p.vh, p.f, p.u)
+    }
+
+    /// The ports half-way through the step s → e of coefficients `half` (h/2), the holds at
+    /// their midpoints (one pass, nothing stored).
+    fn mid_ports(&self, s: &Point, e: &Point, half: &StepCoef) -> Ports {
+        let m = &self.modes;
+        let (f, u) = (0.5 * (s.f + e.f), 0.5 * (s.u + e.u));
+        let (mut w, mut wv, mut th, mut tv, mut cwq) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for i in 0..s.q.len() {
+            let k = &half.modes[i];
+            let (b, c, om) = (m.tip[i], m.port[i], m.omegas[i]);
+            let p0 = -b * s.f + c * s.u;
+            let p1 = -b * f + c * u;
+            let q = k[0] * s.q[i] + k[1] * s.qd[i] + k[3] * p0 + k[4] * p1;
+            let qd = -k[2] * s.q[i] + k[0] * s.qd[i] + k[5] * p0 + k[6] * p1;
+            w += b * q;
+            wv += b * qd;
+            th += c * q;
+            tv += c * qd;
+            cwq += c * om * om * q;
+        }
+        let (x0, xf, v0, vf) = self.head_map(s, half);
+        self.ports_from(
+            s.t + half.h,
+            [w, wv, th, tv, cwq],
+            x0 + xf * f,
+            v0 + vf * f,
             f,
             u,
-            z: 0.5 * (s.z + e.z),
-            torque: 0.5 * (s.torque + e.torque),
-            saturated: false,
+        )
+    }
+
+    fn ports_from(&self, t: f64, sums: [f64; 5], xh: f64, vh: f64, f: f64, u: f64) -> Ports {
+        let [mut w, mut wv, th, tv, cwq] = sums;
+        let (hub, hub_rate, hub_acc) = match &self.port {
+            Port::Prescribed { .. } => {
+                let (a, b, c) = self.command(t).expect("a profile");
+                w += self.l * a;
+                wv += self.l * b;
+                (a, b, c)
+            }
+            _ => (th, tv, 0.0),
+        };
+        Ports {
+            w,
+            wv,
+            hub,
+            hub_rate,
+            hub_acc,
+            cwq,
+            xh,
+            vh,
+            f,
+            u,
         }
     }
 
-    /// (motor power, friction power, damping power, impact power) at a point \[W\].
-    fn powers(&self, p: &Point) -> [f64; 4] {
-        let (w, wv) = self.tip(p.t, &p.q, &p.qd);
-        let (delta, rate) = (w - p.xh, wv - p.vh);
+    /// (motor power, friction power, damping power, impact power) \[W\].
+    fn powers(&self, p: &Ports) -> [f64; 4] {
+        let (delta, rate) = (p.w - p.xh, p.wv - p.vh);
         let contact = match self.law {
             Some(law) if delta > 0.0 => (p.f - law.elastic().force(delta, 0.0)) * rate,
             _ => 0.0,
@@ -514,10 +580,7 @@ impl Integrator<'_> {
             self.c_n * p.vh * p.vh
         };
         let impact = p.f * rate.max(0.0);
-        let speed = match &self.port {
-            Port::Prescribed { .. } => self.command(p.t).expect("a profile").1,
-            _ => self.hub(&p.q, &p.qd).1,
-        };
+        let speed = p.hub_rate;
         [
             self.torque(p) * speed,
             self.friction * speed * speed,
@@ -526,25 +589,18 @@ impl Integrator<'_> {
         ]
     }
 
-    /// Drive torque τ_j at a point [N·m] (prescribed: what the hub takes,
-    /// τ = J θ̈ + Σ gᵢ q̈ᵢ + L f + c θ̇ with q̈ᵢ = −ωᵢ² qᵢ − bᵢ f − gᵢ θ̈).
-    fn torque(&self, p: &Point) -> f64 {
+    /// Drive torque τ_j [N·m]: prescribed, what the hub takes,
+    /// τ = J θ̈ + Σ gᵢ q̈ᵢ + L f + c θ̇ with q̈ᵢ = −ωᵢ² qᵢ − bᵢ f − gᵢ θ̈ (gᵢ = −cᵢ); otherwise
+    /// consistent with the hold, τ = u − K_p θ + c θ̇.
+    fn torque(&self, p: &Ports) -> f64 {
         match &self.port {
-            Port::Prescribed { g, j_total, .. } => {
-                let (_, om, al) = self.command(p.t).expect("a profile");
-                let mut tau = j_total * al + self.l * p.f + self.friction * om;
-                for i in 0..g.len() {
-                    let w = self.modes.omegas[i];
-                    let acc = -w * w * p.q[i] - self.modes.tip[i] * p.f - g[i] * al;
-                    tau += g[i] * acc;
-                }
-                tau
+            Port::Prescribed { j_total, .. } => {
+                let (gb, gg) = self.port_sums;
+                j_total * p.hub_acc + self.l * p.f + self.friction * p.hub_rate + p.cwq
+                    - p.f * gb
+                    - p.hub_acc * gg
             }
-            _ => {
-                // consistent with the hold: τ = u − K_p θ + c θ̇
-                let (th, tv) = self.hub(&p.q, &p.qd);
-                p.u - self.folded * th + self.friction * tv
-            }
+            _ => p.u - self.folded * p.hub + self.friction * p.hub_rate,
         }
     }
 
@@ -814,6 +870,18 @@ pub fn run_driven_cl(
         };
         (modes, q0, qd0, port)
     };
+    let port_sums = match port {
+        Port::Prescribed { .. } => (
+            -modes
+                .port
+                .iter()
+                .zip(&modes.tip)
+                .map(|(c, b)| c * b)
+                .sum::<f64>(),
+            modes.port.iter().map(|c| c * c).sum::<f64>(),
+        ),
+        _ => (0.0, 0.0),
+    };
     let (k_n, c_n) = match support {
         HeadSupport::Neck { stiffness, damping } => (stiffness, damping),
         _ => (0.0, 0.0),
@@ -825,6 +893,7 @@ pub fn run_driven_cl(
         law: None,
         friction: motor.reflected_friction(),
         folded,
+        port_sums,
         l,
         m_h,
         wall: support == HeadSupport::Wall,
@@ -991,7 +1060,7 @@ pub fn run_driven_cl(
     };
     let deflection = w_on - l * hub_on;
     let (_, tip_speed_on) = int.tip(t_on, &s.q, &s.qd);
-    let torque_on = int.torque(&s);
+    let torque_on = int.torque(&int.ports(&s));
     let e0 = int.energy(&s);
     let t_c = setup.payload_contact_time() * v_expect / approach;
     let mut levels = Levels {
@@ -1004,7 +1073,7 @@ pub fn run_driven_cl(
     let mut f_ref = 0.0_f64;
     let mut acc = [0.0_f64; 4];
     // the powers at the step's start (the last step's end)
-    let mut p_start = int.powers(&s);
+    let mut p_start = int.powers(&int.ports(&s));
     let mut peak_torque = torque_on.abs();
     let h_min = t_c * 1e-9;
     loop {
@@ -1049,8 +1118,9 @@ pub fn run_driven_cl(
         } else {
             (false, next, levels.get(&int, level - 4))
         };
-        let mid = int.midpoint(&s, &e, &half);
-        let (p0, pm, p1) = (p_start, int.powers(&mid), int.powers(&e));
+        let mid = int.mid_ports(&s, &e, &half);
+        let end = int.ports(&e);
+        let (p0, pm, p1) = (p_start, int.powers(&mid), int.powers(&end));
         p_start = p1;
         let dt = e.t - s.t;
         for k in 0..4 {
@@ -1059,7 +1129,7 @@ pub fn run_driven_cl(
         if e.saturated && saturation_at.is_none() {
             saturation_at = Some(e.t);
         }
-        peak_torque = peak_torque.max(int.torque(&e).abs());
+        peak_torque = peak_torque.max(int.torque(&end).abs());
         s = e;
         samples.push((s.t, s.f));
         f_ref = f_ref.max(s.f);
