@@ -76,3 +76,30 @@ fn bad_spin_up_input_names_the_field() {
         .to_string();
     assert!(e.contains("elements"), "{e}");
 }
+
+#[test]
+fn the_fe_beam_converges_to_the_inextensible_reference_at_second_order() {
+    // with EA × 1000 the FE beam is as inextensible as the reference: the 32- and 64-element
+    // series extrapolated at second order (4 f₆₄ − f₃₂)/3 meet it
+    let mut spec = SpinUp::kane(6.0);
+    let reference = spin_up_reference(&spec, 7, 1e-11).unwrap();
+    spec.ea *= 1e3;
+    let f32 = spin_up_fe(&spec, 32, 1e-3).unwrap();
+    let f64 = spin_up_fe(&spec, 64, 1e-3).unwrap();
+    let extrapolated = flexrig_impact::spin_up::SpinUpSeries {
+        t: f64.t.clone(),
+        tip_deflection_m: f32
+            .tip_deflection_m
+            .iter()
+            .zip(&f64.tip_deflection_m)
+            .map(|(a, b)| (4.0 * b - a) / 3.0)
+            .collect(),
+    };
+    let (e32, e64, e) = (
+        f32.difference(&reference),
+        f64.difference(&reference),
+        extrapolated.difference(&reference),
+    );
+    eprintln!("32 elements {e32:.2e}, 64 {e64:.2e}, extrapolated {e:.2e}");
+    assert!(e64 < 0.35 * e32 && e < 5e-5, "{e32} {e64} {e}");
+}
