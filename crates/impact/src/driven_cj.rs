@@ -28,7 +28,7 @@ use flexrig_lumped::ode::dop853::{Dop853, Dop853Options, OdeSystem, find_root};
 use crate::ImpactError;
 use crate::drive::{DriveCommand, HeadSupport, Profile, TorqueProfile};
 use crate::setup::{ContactEvent, hertz_time_integral};
-use crate::strike::{DriveNote, DrivenOutcome, DrivenStrike, EnergyBalance};
+use crate::strike::{DriveNote, DrivenOutcome, DrivenStrike, EnergyBalance, TraceSample, Tracer};
 
 const DIM: usize = 11;
 type Y = [f64; DIM];
@@ -145,6 +145,20 @@ impl DrivenCj<'_> {
         law.stiffness(delta, rate) * rate + law.damping(delta, rate) * (dy[WD] - dy[VH])
     }
 
+    fn sample(&self, t: f64, y: &Y) -> TraceSample {
+        let (r, rd) = self.rotor(t, y);
+        TraceSample {
+            t,
+            hub_angle_rad: (r + self.shift) / self.l,
+            hub_speed_rad_s: rd / self.l,
+            tip_deflection_m: y[W] - r,
+            indentation_m: y[W] - y[XH],
+            force_n: self.force(y),
+            joint_torque_nm: self.drive_force(t, y).0 * self.l,
+            head_position_m: y[XH] + self.shift,
+        }
+    }
+
     fn mechanical_energy(&self, t: f64, y: &Y) -> f64 {
         let (r, rd) = self.rotor(t, y);
         let spring = r - y[W];
@@ -210,6 +224,8 @@ pub struct CjSettings {
     pub rtol: f64,
     /// Most DOP853 steps per phase.
     pub max_steps: usize,
+    /// `Some(dt)`: sample the motion at the integrator's steps, at most every dt \[s\].
+    pub trace_every: Option<f64>,
 }
 
 impl CjSettings {
@@ -217,6 +233,7 @@ impl CjSettings {
     pub const DEFAULT: CjSettings = CjSettings {
         rtol: 1e-10,
         max_steps: 10_000_000,
+        trace_every: None,
     };
 }
 
@@ -314,6 +331,13 @@ pub fn run_driven_cj(
     let gap = |y: &Y| y[W] - y[XH];
     let mut notes = Vec::new();
     let mut saturation_at: Option<f64> = None;
+    if let Some(dt) = settings.trace_every
+        && !(dt.is_finite() && dt > 0.0)
+    {
+        return Err(ImpactError::invalid("trace_every", dt, "a time > 0 s"));
+    }
+    let mut tracer = Tracer::new(settings.trace_every);
+    tracer.offer(0.0, true, || system.sample(0.0, &y0));
     let mut work = 0;
     let (t_on, y_on) = if gap(&y0) == 0.0 && y0[WD] - y0[VH] > 0.0 {
         (0.0, y0)
@@ -355,6 +379,9 @@ pub fn run_driven_cj(
                 })?;
             let (t0, t1) = (ode.t_old(), ode.t());
             let (ya, yb) = (*ode.y_old(), *ode.y());
+            if gap(&yb) < 0.0 {
+                tracer.offer(t1, false, || system.sample(t1, &yb));
+            }
             if saturation_at.is_none() && system.drive_force(t1, &yb).1 {
                 saturation_at = Some(t1);
             }
@@ -442,6 +469,7 @@ pub fn run_driven_cj(
         Some(t_c * 1e-3),
         t_c * 0.5,
     );
+    tracer.offer(t_on, true, || system.sample(t_on, &y));
     let mut ode = Dop853::new(&system, t_on, y, options);
     let mut peak = (0.0_f64, t_on);
     let mut peak_torque = torque_on.abs() * l;
@@ -455,6 +483,9 @@ pub fn run_driven_cj(
         let (ya, yb) = (*ode.y_old(), *ode.y());
         let (fd, sat) = system.drive_force(t1, &yb);
         peak_torque = peak_torque.max(fd.abs() * l);
+        if gap(&yb) > 0.0 {
+            tracer.offer(t1, false, || system.sample(t1, &yb));
+        }
         if sat && saturation_at.is_none() {
             saturation_at = Some(t1);
         }
@@ -489,6 +520,7 @@ pub fn run_driven_cj(
                 yb
             };
             work += ode.stats().rhs_evals;
+            tracer.offer(t_sep, true, || system.sample(t_sep, &y_sep));
             let e1 = system.mechanical_energy(t_sep, &y_sep);
             let dissipated = y_sep[FRICTION] + y_sep[DAMPING];
             let energy = EnergyBalance {
@@ -540,6 +572,7 @@ pub fn run_driven_cj(
                 separation_rate_mps: y_sep[WD] - y_sep[VH],
                 notes,
                 work,
+                trace: tracer.samples,
             };
             return finite(outcome);
         }

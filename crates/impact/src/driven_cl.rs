@@ -30,7 +30,7 @@ use crate::ImpactError;
 use crate::drive::{DriveCommand, HeadSupport, Profile, TorqueProfile};
 use crate::graded::{GradedMesh, LinkMatrices, cl_matrices};
 use crate::setup::{ContactEvent, FreeMassImpact, Joint};
-use crate::strike::{DriveNote, DrivenOutcome, DrivenStrike, EnergyBalance};
+use crate::strike::{DriveNote, DrivenOutcome, DrivenStrike, EnergyBalance, TraceSample, Tracer};
 
 /// How the driven CL is solved.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -44,6 +44,8 @@ pub struct ClDriveSettings {
     pub approach_tol: f64,
     /// Most steps, approach and contact.
     pub max_steps: usize,
+    /// `Some(dt)`: sample the motion at the integrator's steps, at most every dt \[s\].
+    pub trace_every: Option<f64>,
 }
 
 impl ClDriveSettings {
@@ -57,6 +59,7 @@ impl ClDriveSettings {
         tol: 1e-6,
         approach_tol: 1e-5,
         max_steps: 1_000_000,
+        trace_every: None,
     };
 }
 
@@ -567,6 +570,20 @@ impl Integrator<'_> {
         }
     }
 
+    fn sample(&self, p: &Point) -> TraceSample {
+        let ports = self.ports(p);
+        TraceSample {
+            t: p.t,
+            hub_angle_rad: ports.hub,
+            hub_speed_rad_s: ports.hub_rate,
+            tip_deflection_m: ports.w - self.l * ports.hub,
+            indentation_m: ports.w - ports.xh,
+            force_n: p.f,
+            joint_torque_nm: self.torque(&ports),
+            head_position_m: ports.xh,
+        }
+    }
+
     /// (motor power, friction power, damping power, impact power) \[W\].
     fn powers(&self, p: &Ports) -> [f64; 4] {
         let (delta, rate) = (p.w - p.xh, p.wv - p.vh);
@@ -922,6 +939,13 @@ pub fn run_driven_cl(
         s.torque = probe.torque;
         s.saturated = probe.saturated;
     }
+    if let Some(dt) = settings.trace_every
+        && !(dt.is_finite() && dt > 0.0)
+    {
+        return Err(ImpactError::invalid("trace_every", dt, "a time > 0 s"));
+    }
+    let mut tracer = Tracer::new(settings.trace_every);
+    tracer.offer(0.0, true, || int.sample(&s));
     let mut breaks = strike.drive.breakpoints();
     breaks.push(strike.horizon_s);
     breaks.sort_by(f64::total_cmp);
@@ -1035,6 +1059,7 @@ pub fn run_driven_cl(
             }
             u_ref = u_ref.max(scale_of(&next));
             s = next;
+            tracer.offer(s.t, false, || int.sample(&s));
             history.push((s.t, s.u));
             if history.len() > 4 {
                 history.remove(0);
@@ -1062,6 +1087,7 @@ pub fn run_driven_cl(
     let (_, tip_speed_on) = int.tip(t_on, &s.q, &s.qd);
     let torque_on = int.torque(&int.ports(&s));
     let e0 = int.energy(&s);
+    tracer.offer(s.t, true, || int.sample(&s));
     let t_c = setup.payload_contact_time() * v_expect / approach;
     let mut levels = Levels {
         h_ref: t_c * 1e-4,
@@ -1131,6 +1157,7 @@ pub fn run_driven_cl(
         }
         peak_torque = peak_torque.max(int.torque(&end).abs());
         s = e;
+        tracer.offer(s.t, finished, || int.sample(&s));
         samples.push((s.t, s.f));
         f_ref = f_ref.max(s.f);
         if samples.len() >= 3 {
@@ -1198,6 +1225,7 @@ pub fn run_driven_cl(
         separation_rate_mps: int.delta(&s).1,
         notes,
         work: steps,
+        trace: tracer.samples,
     })
 }
 

@@ -41,4 +41,4 @@ pub use drive::{
 };
 pub use error::ImpactError;
 pub use setup::{ClSolver, FreeMassImpact, ImpactOutcome, Joint, LinkParams, RunEnd};
-pub use strike::{DriveNote, DrivenOutcome, DrivenStrike, EnergyBalance};
+pub use strike::{DriveNote, DrivenOutcome, DrivenStrike, EnergyBalance, TraceSample};

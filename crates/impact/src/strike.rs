@@ -130,4 +130,58 @@ pub struct DrivenOutcome {
     pub notes: Vec<DriveNote>,
     /// Right-hand-side evaluations (CJ) or steps (CL).
     pub work: usize,
+    /// The motion sampled at the integrator's steps, at most one sample per `trace_every` of
+    /// the settings, the onset and the separation included (empty without `trace_every`).
+    pub trace: Vec<TraceSample>,
+}
+
+/// One sample of a driven strike's motion (for logs and figures).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TraceSample {
+    /// Time from the drive's start \[s\].
+    pub t: f64,
+    /// Joint (motor, after the gear) angle \[rad\].
+    pub hub_angle_rad: f64,
+    /// Joint speed [rad/s].
+    pub hub_speed_rad_s: f64,
+    /// Tip deflection from the hub's line \[m\] (positive towards the person).
+    pub tip_deflection_m: f64,
+    /// Indentation δ \[m\] (negative: the gap before the contact).
+    pub indentation_m: f64,
+    /// Contact force \[N\].
+    pub force_n: f64,
+    /// Joint torque τ_j [N·m].
+    pub joint_torque_nm: f64,
+    /// The skin's position along the tip's path \[m\].
+    pub head_position_m: f64,
+}
+
+/// Keeps at most one sample per `every` seconds (the last one always replaceable by a
+/// forced sample).
+#[derive(Debug, Clone)]
+pub(crate) struct Tracer {
+    every: Option<f64>,
+    pub(crate) samples: Vec<TraceSample>,
+}
+
+impl Tracer {
+    pub(crate) fn new(every: Option<f64>) -> Tracer {
+        Tracer {
+            every,
+            samples: Vec::new(),
+        }
+    }
+
+    /// Records `sample()` if due (or `force`d).
+    pub(crate) fn offer(&mut self, t: f64, force: bool, sample: impl FnOnce() -> TraceSample) {
+        let Some(every) = self.every else { return };
+        let due = self.samples.last().is_none_or(|last| t - last.t >= every);
+        if due || force {
+            // a forced sample at the time of the last one replaces it
+            if self.samples.last().is_some_and(|last| last.t >= t) {
+                self.samples.pop();
+            }
+            self.samples.push(sample());
+        }
+    }
 }
