@@ -132,6 +132,41 @@ impl DrivenCj<'_> {
         }
     }
 
+    /// |raw torque| − limit of a limited controller (positive: saturated), `None` otherwise.
+    fn saturation_margin(&self, t: f64, y: &Y) -> Option<f64> {
+        let Source::Feedback {
+            kp, kd, ki, limit, ..
+        } = &self.source
+        else {
+            return None;
+        };
+        if !limit.is_finite() {
+            return None;
+        }
+        let (rc, vc, _) = self.command(t).expect("a profile");
+        Some((kp * (rc - y[R]) + kd * (vc - y[RD]) + ki * y[Z]).abs() - limit)
+    }
+
+    /// The time in (t0, t1) at which the controller enters or leaves its limit, if it does.
+    fn saturation_switch(
+        &self,
+        ode: &mut Dop853<DIM>,
+        (t0, t1): (f64, f64),
+        (ya, yb): (&Y, &Y),
+    ) -> Option<f64> {
+        let (ga, gb) = (
+            self.saturation_margin(t0, ya)?,
+            self.saturation_margin(t1, yb)?,
+        );
+        if (ga > 0.0) == (gb > 0.0) || ga == 0.0 {
+            return None;
+        }
+        let dense = ode.dense_output(self);
+        let g = |t: f64| self.saturation_margin(t, &dense.eval(t)).unwrap_or(0.0);
+        let t = find_root(g, t0, ga, t1, gb, 4.0 * f64::EPSILON * t1);
+        (t > t0 + 8.0 * f64::EPSILON * t1 && t < t1).then_some(t)
+    }
+
     fn force(&self, y: &Y) -> f64 {
         self.law
             .map_or(0.0, |law| law.force(y[W] - y[XH], y[WD] - y[VH]))
@@ -379,6 +414,20 @@ pub fn run_driven_cj(
                 })?;
             let (t0, t1) = (ode.t_old(), ode.t());
             let (ya, yb) = (*ode.y_old(), *ode.y());
+            // the limit's corner: restart the integrator there (it keeps its order)
+            if let Some(t_sw) = system.saturation_switch(&mut ode, (t0, t1), (&ya, &yb)) {
+                let y_sw = ode.restep_to(&system, t_sw);
+                if gap(&y_sw) < 0.0 {
+                    work += ode.stats().rhs_evals;
+                    if saturation_at.is_none()
+                        && system.saturation_margin(t1, &yb).unwrap_or(0.0) > 0.0
+                    {
+                        saturation_at = Some(t_sw);
+                    }
+                    ode = Dop853::new(&system, t_sw, y_sw, options);
+                    continue;
+                }
+            }
             if gap(&yb) < 0.0 {
                 tracer.offer(t1, false, || system.sample(t1, &yb));
             }
@@ -481,6 +530,18 @@ pub fn run_driven_cj(
         })?;
         let (t0, t1) = (ode.t_old(), ode.t());
         let (ya, yb) = (*ode.y_old(), *ode.y());
+        if let Some(t_sw) = system.saturation_switch(&mut ode, (t0, t1), (&ya, &yb)) {
+            let y_sw = ode.restep_to(&system, t_sw);
+            if gap(&y_sw) > 0.0 && force_rate(t0, &ya) * force_rate(t_sw, &y_sw) > 0.0 {
+                work += ode.stats().rhs_evals;
+                if saturation_at.is_none() && system.saturation_margin(t1, &yb).unwrap_or(0.0) > 0.0
+                {
+                    saturation_at = Some(t_sw);
+                }
+                ode = Dop853::new(&system, t_sw, y_sw, options);
+                continue;
+            }
+        }
         let (fd, sat) = system.drive_force(t1, &yb);
         peak_torque = peak_torque.max(fd.abs() * l);
         if gap(&yb) > 0.0 {
