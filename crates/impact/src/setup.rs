@@ -1,12 +1,12 @@
 //! The free-mass impact set-up (the paper's Fig. 5, issue 14) and its result.
 
 use flexrig_contact::{ContactLaw, DampingSpec, Hertz};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::ImpactError;
 
 /// The robot link: the same for the CJ and the CL design (paper §IV).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct LinkParams {
     /// Link mass m_r \[kg\] (uniform).
     pub m_r: f64,
@@ -40,7 +40,7 @@ impl LinkParams {
         self.m_e + self.m_r / 3.0
     }
 
-    fn validate(&self) -> Result<(), ImpactError> {
+    pub(crate) fn validate(&self) -> Result<(), ImpactError> {
         in_range("m_r", self.m_r, 1e-6, 1e6)?;
         in_range("length", self.length, 1e-3, 1e3)?;
         in_range("k_delta", self.k_delta, 1e-3, 1e12)?;
@@ -183,7 +183,7 @@ impl FreeMassImpact {
 
 /// ∫₀¹ ds/√(1 − s^{n+1}), by s = 1 − u² (a smooth integrand 2u/√(1 − (1 − u²)^{n+1})) and
 /// composite Simpson on 400 panels (error < 1e-9; π/2 for n = 1).
-fn hertz_time_integral(n: f64) -> f64 {
+pub(crate) fn hertz_time_integral(n: f64) -> f64 {
     let g = |u: f64| {
         if u == 0.0 {
             2.0 / (n + 1.0).sqrt()
