@@ -1,4 +1,4 @@
-//! A sweep over the runner's [`flexrig::study::Sweep`]: the grid from Python values, its points
+//! A sweep over the library's [`flexrig::study::Sweep`]: the grid from Python values, its points
 //! run in parallel (GIL released) into columns, and pickling so that a Dask worker can run a
 //! chunk of the points.
 
