@@ -389,6 +389,67 @@ fn check_paired_ratios(v: &serde_json::Value, csv: &str) {
     assert!(light.get("ci95").is_none(), "{light}");
 }
 
+/// Regression: `experiment --json` wrote `null` for the contact duration of runs stopped at the
+/// peak, where `run --json` omits the key.
+#[test]
+fn experiment_json_omits_a_missing_duration_like_run() {
+    let dir = scratch_dir("experiment-peak");
+    let out_dir = dir.to_str().unwrap();
+    let v = json(&[
+        "experiment",
+        "--repeats",
+        "1",
+        "--set",
+        "stop.at=peak",
+        "--out",
+        out_dir,
+        "--json",
+    ]);
+    let text = v.to_string();
+    assert!(!text.contains("null") && !text.contains("NaN"), "{text}");
+    for r in v["runs"].as_array().unwrap() {
+        assert!(r.get("contact_duration_s").is_none(), "{r}");
+        assert!(r["peak_force_n"].as_f64().unwrap() > 0.0);
+    }
+    let scene = format!(
+        "{}/../../assets/scenes/cj_aluminium.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let run = json(&["run", &scene, "--set", "stop.at=peak", "--json"]);
+    assert!(run.get("contact_duration_s").is_none(), "{run}");
+}
+
+/// A plausibility warning is a line on standard error and an entry of the JSON's `warnings`;
+/// the run goes on (exit 0).
+#[test]
+fn a_plausibility_warning_is_printed_and_listed() {
+    let scene = format!(
+        "{}/../../assets/scenes/cj_aluminium.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let scene = scene.as_str();
+    let o = flexrig(&[
+        "run",
+        scene,
+        "--set",
+        "operator.start.release_angle_deg=0.5",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{o:?}");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("warning: operator.start.release_angle_deg: 0.5 looks like radians"),
+        "{stderr}"
+    );
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let warnings = v["warnings"].as_array().unwrap();
+    assert_eq!(warnings.len(), 1, "{v}");
+    assert_eq!(warnings[0]["field"], "operator.start.release_angle_deg");
+    // none for a bundled scene as it is
+    let v = json(&["run", scene, "--json"]);
+    assert_eq!(v["warnings"], serde_json::json!([]));
+}
+
 /// One repeat: every mean, no interval anywhere — absent from the JSON (never 0, NaN or null),
 /// blank in the CSV and the table, and no whisker in the figure.
 #[test]

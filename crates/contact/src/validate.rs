@@ -15,6 +15,86 @@ pub fn display(value: f64) -> String {
     }
 }
 
+/// The unit of a field, read from the suffix of its name (`payload_kg` → "kg",
+/// `youngs_modulus_pa` → "Pa"); empty when the name carries none.
+pub fn unit_of(field: &str) -> &'static str {
+    // longest suffixes first: `_kg_m3` before `_m3`, `_nm_per_rad` before `_rad`
+    const UNITS: &[(&str, &str)] = &[
+        ("_kg_m3", "kg/m³"),
+        ("_nm_per_rad", "N·m/rad"),
+        ("_n_per_m", "N/m"),
+        ("_rad_s", "rad/s"),
+        ("_mps2", "m/s²"),
+        ("_mps", "m/s"),
+        ("_kg_m2", "kg·m²"),
+        ("_kg", "kg"),
+        ("_pa", "Pa"),
+        ("_deg", "°"),
+        ("_hz", "Hz"),
+        ("_rad", "rad"),
+        ("_s", "s"),
+        ("_m", "m"),
+        ("_n", "N"),
+        ("_j", "J"),
+    ];
+    let name = field.rsplit('.').next().unwrap_or(field);
+    let name = name.split('[').next().unwrap_or(name);
+    UNITS
+        .iter()
+        .find(|(suffix, _)| name.ends_with(suffix))
+        .map_or("", |(_, unit)| unit)
+}
+
+/// "must lie in [lo, hi] unit" with the bounds as [`display`] writes them (no `0e0`).
+pub fn interval(field: &str, lo: f64, hi: f64) -> String {
+    let unit = unit_of(field);
+    let unit = match unit {
+        "" => String::new(),
+        "°" => " degrees".to_string(),
+        u => format!(" {u}"),
+    };
+    format!("must lie in [{}, {}]{unit}", display(lo), display(hi))
+}
+
+/// A hint for a value that looks given in the wrong unit: a length in millimetres where metres
+/// are asked for (its thousandth lies in the range), a mass in grams, an angle in degrees
+/// where radians are asked for, or the reverse. Empty when none fits.
+pub fn unit_hint(field: &str, value: f64, lo: f64, hi: f64) -> String {
+    let fits = |x: f64| x.is_finite() && (lo..=hi).contains(&x);
+    match unit_of(field) {
+        "m" if fits(value / 1000.0) => format!(
+            " (did you give millimetres? {} mm is {} m)",
+            display(value),
+            display(value / 1000.0)
+        ),
+        "kg" if fits(value / 1000.0) => format!(
+            " (did you give grams? {} g is {} kg)",
+            display(value),
+            display(value / 1000.0)
+        ),
+        "Pa" if fits(value * 1e9) => format!(
+            " (did you give GPa? {} GPa is {} Pa)",
+            display(value),
+            display(value * 1e9)
+        ),
+        "Pa" if fits(value * 1e6) => format!(
+            " (did you give MPa? {} MPa is {} Pa)",
+            display(value),
+            display(value * 1e6)
+        ),
+        _ => String::new(),
+    }
+}
+
+/// "must lie in [lo, hi] unit", with a unit hint when the value looks given in another unit.
+pub fn interval_with_hint(field: &str, value: f64, lo: f64, hi: f64) -> String {
+    format!(
+        "{}{}",
+        interval(field, lo, hi),
+        unit_hint(field, value, lo, hi)
+    )
+}
+
 fn invalid(field: &str, value: f64, allowed: &str) -> ContactError {
     ContactError::InvalidParameter {
         field: field.to_string(),
@@ -91,5 +171,41 @@ mod tests {
         assert!(finite("x", f64::NEG_INFINITY).is_err());
         assert_eq!(in_closed("e", 0.0, 0.0, 1.0), Ok(0.0));
         assert_eq!(non_negative("c", 0.0), Ok(0.0));
+    }
+
+    #[test]
+    fn intervals_carry_the_unit_and_plain_bounds() {
+        assert_eq!(
+            interval("robot.payload_kg", 0.0, 1e4),
+            "must lie in [0, 10000] kg"
+        );
+        assert_eq!(
+            interval("robot.youngs_modulus_pa", 1e5, 1.2e12),
+            "must lie in [100000, 1.2e12] Pa"
+        );
+        assert_eq!(
+            interval("operator.start.release_angle_deg", 0.0, 170.0),
+            "must lie in [0, 170] degrees"
+        );
+        assert_eq!(
+            interval("density_kg_m3", 1.0, 1e5),
+            "must lie in [1, 100000] kg/m³"
+        );
+        assert_eq!(interval("gamma", 0.0, 1.0), "must lie in [0, 1]");
+        assert_eq!(unit_of("m_h[3]"), "");
+        assert_eq!(unit_of("solver.swing_step_s"), "s");
+    }
+
+    #[test]
+    fn a_length_in_millimetres_gets_a_hint() {
+        let hint = interval_with_hint("robot.length_m", 338.0, 0.01, 10.0);
+        assert!(
+            hint.contains("did you give millimetres? 338 mm is 0.338 m"),
+            "{hint}"
+        );
+        assert!(unit_hint("robot.length_m", 20.0, 0.01, 10.0).contains("millimetres"));
+        assert_eq!(unit_hint("robot.length_m", 1e9, 0.01, 10.0), "");
+        assert!(unit_hint("robot.youngs_modulus_pa", 1.5, 1e5, 1.2e12).contains("GPa"));
+        assert!(unit_hint("robot.payload_kg", 412.0, 0.0, 100.0).contains("grams"));
     }
 }

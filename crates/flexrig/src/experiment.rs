@@ -96,7 +96,9 @@ pub struct RunRecord {
     pub peak_force_n: f64,
     /// Impact speed [m/s].
     pub impact_velocity_mps: f64,
-    /// Contact duration \[s\].
+    /// Contact duration \[s\] (absent from the JSON for a run stopped before separation, as in
+    /// `flexrig run --json`).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub contact_duration_s: Option<f64>,
     /// Largest indentation \[m\].
     pub max_indentation_m: f64,

@@ -57,9 +57,27 @@ pub fn run_scene_file(
     )
 }
 
+/// The plausibility warnings of a scene file with its overrides (what is valid but looks like a
+/// mistake, [`flexrig_rig::plausibility`]), for a front to show before the run starts; none if
+/// the scene cannot be loaded (the run itself then says why).
+pub fn scene_warnings(
+    path: &Path,
+    overrides: &[Override],
+) -> Vec<flexrig_rig::plausibility::Warning> {
+    let Ok(text) = crate::output::read_text(path) else {
+        return Vec::new();
+    };
+    let Ok(materials) = Materials::bundled() else {
+        return Vec::new();
+    };
+    scene_with_overrides(&text, overrides, &materials)
+        .map(|scene| scene.warnings)
+        .unwrap_or_default()
+}
+
 /// The run summary as `flexrig run --json` prints it: every field of [`RunSummary`] (absent
-/// when it does not apply, e.g. `contact_duration_s` for a run stopped at the peak) and the
-/// number of sensor `samples`.
+/// when it does not apply, e.g. `contact_duration_s` for a run stopped at the peak), the number
+/// of sensor `samples` and the plausibility `warnings` (a list, empty when there are none).
 pub fn summary_json(s: &RunSummary) -> serde_json::Value {
     let mut value = serde_json::to_value(s).expect("a run summary serialises");
     if let Some(map) = value.as_object_mut() {

@@ -207,7 +207,7 @@ fn in_range(field: &str, value: f64, lo: f64, hi: f64) -> Result<(), ImpactError
         Err(ImpactError::invalid(
             field,
             value,
-            format!("must lie in [{lo:e}, {hi:e}]"),
+            flexrig_contact::validate::interval_with_hint(field, value, lo, hi),
         ))
     }
 }

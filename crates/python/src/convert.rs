@@ -7,7 +7,28 @@ use crate::input_error;
 
 /// The TOML value of the Python value `v` at scene path `path` (named in errors): bool, int,
 /// float (and NumPy scalars), str, a mapping with str keys (a table), a list or tuple (an array).
+/// Nesting deeper than a scene value can be (a cyclic list, a very deep dict) raises InputError
+/// naming the path instead of recursing without bound.
 pub fn to_toml(path: &str, v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
+    to_toml_at(path, v, 0)
+}
+
+/// Most levels of nesting of a scene given as a dict (the file's own tables, then the values'
+/// tables and arrays).
+const MAX_NESTING: usize = flexrig_rig::overrides::MAX_VALUE_DEPTH + 4;
+
+fn to_toml_at(path: &str, v: &Bound<'_, PyAny>, depth: usize) -> PyResult<toml::Value> {
+    if depth > MAX_NESTING {
+        let shown: String = path.chars().take(80).collect();
+        return Err(input_error(
+            &shown,
+            format!(
+                "scene field {shown}: the value nests lists or dicts more than {MAX_NESTING} \
+                 levels deep (a cyclic list?); a scene value is a number, a string, a boolean, \
+                 or a dict or list of them"
+            ),
+        ));
+    }
     if v.is_instance_of::<PyBool>() {
         return Ok(toml::Value::Boolean(v.extract()?));
     }
@@ -40,7 +61,7 @@ pub fn to_toml(path: &str, v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
             } else {
                 format!("{path}.{key}")
             };
-            table.insert(key, to_toml(&sub, &value)?);
+            table.insert(key, to_toml_at(&sub, &value, depth + 1)?);
         }
         return Ok(toml::Value::Table(table));
     }
@@ -48,7 +69,7 @@ pub fn to_toml(path: &str, v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
         let items = v
             .try_iter()?
             .enumerate()
-            .map(|(i, item)| to_toml(&format!("{path}[{i}]"), &item?))
+            .map(|(i, item)| to_toml_at(&format!("{path}[{i}]"), &item?, depth + 1))
             .collect::<PyResult<Vec<_>>>()?;
         return Ok(toml::Value::Array(items));
     }
@@ -70,7 +91,7 @@ pub fn to_toml(path: &str, v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
         return Ok(toml::Value::Float(x));
     }
     if v.hasattr("tolist")? {
-        return to_toml(path, &v.call_method0("tolist")?);
+        return to_toml_at(path, &v.call_method0("tolist")?, depth + 1);
     }
     Err(input_error(
         path,

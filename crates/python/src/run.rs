@@ -82,12 +82,29 @@ pub fn overrides(pairs: &[(String, Bound<'_, PyAny>)]) -> PyResult<Vec<Override>
     pairs
         .iter()
         .map(|(path, value)| {
-            // the path is checked like a CLI override
+            // the path is checked like a CLI override (a long path is quoted shortened)
+            let shown: String = match path.char_indices().nth(80) {
+                Some((end, _)) => format!("{}…", &path[..end]),
+                None => path.clone(),
+            };
+            let levels = path.split('.').count();
             let checked = Override::parse(&format!("{path}=0")).map_err(|_| {
-                input_error(
-                    path,
+                let deep = if levels > flexrig_rig::overrides::MAX_PATH_DEPTH
+                    || path.len() > flexrig_rig::overrides::MAX_PATH_LENGTH
+                {
                     format!(
-                        "override {path:?}: the path must be dotted field names, e.g. \
+                        " at most {} levels and {} characters long (this one has {levels} \
+                         levels),",
+                        flexrig_rig::overrides::MAX_PATH_DEPTH,
+                        flexrig_rig::overrides::MAX_PATH_LENGTH
+                    )
+                } else {
+                    String::new()
+                };
+                input_error(
+                    &shown,
+                    format!(
+                        "override {shown:?}: the path must be dotted field names,{deep} e.g. \
                          robot.payload_kg or operator.start.release_angle_deg"
                     ),
                 )

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
+use flexrig::study::spec::MAX_POINTS;
 use flexrig::study::sweep::{SUMMARY_COLUMNS, SweepOptions, SweepRow};
 use flexrig::study::{Dimension, Sweep as RunnerSweep};
 use flexrig_rig::Override;
@@ -28,7 +29,14 @@ pub struct Sweep {
 
 /// The values of one grid entry: a str is a CLI SPEC (`0.1,0.2`, `10:60:11`, `1e-3:1:5:log`,
 /// `@file`), a list, tuple, range or array gives its items, anything else is one value.
-fn dimension(path: &str, spec: &Bound<'_, PyAny>, base_dir: Option<&Path>) -> PyResult<Dimension> {
+/// At most `budget` values (the grid's point bound over the other entries' counts), counted
+/// before any is converted.
+fn dimension(
+    path: &str,
+    spec: &Bound<'_, PyAny>,
+    base_dir: Option<&Path>,
+    budget: usize,
+) -> PyResult<Dimension> {
     let checked = Override::parse(&format!("{path}=0")).map_err(|_| {
         input_error(
             path,
@@ -48,10 +56,24 @@ fn dimension(path: &str, spec: &Bound<'_, PyAny>, base_dir: Option<&Path>) -> Py
                 _ => flexrig::output::read_text(&local),
             }
         };
-        return Dimension::parse(&format!("{path}={text}"), &read).map_err(|e| {
+        return Dimension::parse_within(&format!("{path}={text}"), &read, budget).map_err(|e| {
             let message = e.to_string().replace("--set ", "grid: ");
             input_error(&path, message)
         });
+    }
+    // a sized collection (list, tuple, range, NumPy array, pandas Series) is counted first
+    if spec.cast::<PyMapping>().is_err()
+        && !spec.is_instance_of::<PyString>()
+        && let Ok(count) = spec.len()
+        && count > budget
+    {
+        return Err(input_error(
+            &path,
+            format!(
+                "grid: {path} has {count} values; the grid may have at most {MAX_POINTS} \
+                 points, so this entry at most {budget} with the others"
+            ),
+        ));
     }
     let values: Vec<toml::Value> = if spec.cast::<PyMapping>().is_ok() {
         vec![to_toml(&path, spec)?]
@@ -181,10 +203,18 @@ impl Sweep {
         zip: bool,
         base_dir: Option<PathBuf>,
     ) -> PyResult<Self> {
-        let dimensions = grid
-            .iter()
-            .map(|(path, spec)| dimension(path, spec, base_dir.as_deref()))
-            .collect::<PyResult<Vec<_>>>()?;
+        let mut dimensions = Vec::with_capacity(grid.len());
+        let mut product = 1usize;
+        for (path, spec) in &grid {
+            let budget = if zip {
+                MAX_POINTS
+            } else {
+                MAX_POINTS / product
+            };
+            let d = dimension(path, spec, base_dir.as_deref(), budget)?;
+            product = product.saturating_mul(d.values.len());
+            dimensions.push(d);
+        }
         Self::build(base_text, dimensions, zip)
     }
 
@@ -249,6 +279,9 @@ impl Sweep {
         threads: Option<usize>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let n = self.inner.len();
+        if indices.is_none() {
+            flexrig::study::spec::check_process_points("grid", n).map_err(to_py)?;
+        }
         let indices = indices.unwrap_or_else(|| (0..n).collect());
         if let Some(bad) = indices.iter().find(|&&i| i >= n) {
             return Err(input_error(

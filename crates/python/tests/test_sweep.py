@@ -146,6 +146,28 @@ def test_other_bad_sweeps():
         flexrig.sweep("cj_iron", {"robot.payload_kg": [0.1]}, threads=0)
 
 
+@pytest.mark.parametrize(
+    "arguments, field",
+    [
+        # Regression: threads=-1 raised OverflowError, client=object() AttributeError
+        ({"threads": -1}, "threads"),
+        ({"threads": 2**70}, "threads"),
+        ({"threads": 1.5}, "threads"),
+        ({"threads": True}, "threads"),
+        ({"threads": "4"}, "threads"),
+        ({"chunk_size": 0}, "chunk_size"),
+        ({"chunk_size": -3}, "chunk_size"),
+        ({"client": object()}, "client"),
+        ({"client": "tcp://localhost:8786"}, "client"),
+    ],
+)
+def test_bad_sweep_arguments_raise_input_error_naming_them(arguments, field):
+    with pytest.raises(flexrig.InputError) as info:
+        flexrig.sweep("cj_iron", {"robot.payload_kg": [0.1]}, **arguments)
+    assert info.value.field == field
+    assert str(info.value).startswith(field), str(info.value)
+
+
 def test_the_native_sweep_pickles_and_runs_chunks_like_the_whole():
     text, _ = flexrig._flexrig.scene_text("cj_iron")
     grid = [("robot.payload_kg", "0.1:0.5:5"), ("operator.start.from", "contact"), ("stop", {"at": "peak"})]
@@ -170,3 +192,29 @@ def test_the_table_round_trips_through_parquet(table, tmp_path):
     back = pd.read_parquet(tmp_path / "sweep.parquet")
     pd.testing.assert_frame_equal(back, table, check_dtype=False)
     assert back["peak_force_n"].dtype == np.float64
+
+
+def test_a_huge_grid_is_refused_before_anything_is_made():
+    # Regression: a large grid aborted the interpreter on memory. The grid is counted from the
+    # sizes of its entries (never materialised here) and refused naming the entry.
+    big = range(10**9)
+    with pytest.raises(flexrig.InputError) as info:
+        flexrig.sweep("cj_iron", {"robot.payload_kg": big})
+    assert info.value.field == "robot.payload_kg" and "at most" in str(info.value)
+    with pytest.raises(flexrig.InputError) as info:
+        flexrig.sweep("cj_iron", {"robot.payload_kg": np.zeros(5000), "robot.length_m": np.zeros(5000)})
+    assert info.value.field == "robot.length_m"
+    with pytest.raises(flexrig.InputError, match="at most"):
+        flexrig.sweep("cj_iron", {"robot.payload_kg": "0:1:100000000"})
+    # within the grid bound but more than one process runs: refused before running, naming grid
+    with pytest.raises(flexrig.InputError) as info:
+        flexrig.sweep("cj_iron", {"robot.payload_kg": "0.1:0.2:2000", "robot.length_m": "0.1:0.5:1000"})
+    assert info.value.field == "grid" and "shards" in str(info.value)
+
+
+def test_a_field_varied_twice_is_refused():
+    with pytest.raises(flexrig.InputError, match="overlaps"):
+        flexrig.sweep(
+            "cj_iron",
+            {"operator.start": [{"from": "release", "release_angle_deg": 20.0}], "operator.start.release_angle_deg": [10, 20]},
+        )

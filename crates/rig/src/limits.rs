@@ -27,7 +27,7 @@ impl Range {
             Err(invalid(
                 field,
                 flexrig_contact::validate::display(value),
-                &format!("must lie in [{:e}, {:e}]", self.lo, self.hi),
+                &flexrig_contact::validate::interval_with_hint(field, value, self.lo, self.hi),
             ))
         }
     }

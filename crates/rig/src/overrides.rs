@@ -17,6 +17,18 @@ pub struct Override {
 /// Most characters of an override quoted in an error.
 const QUOTE_LIMIT: usize = 120;
 
+/// Most levels of a dotted override path. The scene's deepest field is three levels down
+/// (`operator.start.release_angle_deg`); the bound keeps a hostile path from building tables
+/// deep enough to exhaust the stack or the memory.
+pub const MAX_PATH_DEPTH: usize = 8;
+
+/// Most characters of an override path.
+pub const MAX_PATH_LENGTH: usize = 256;
+
+/// Most levels of nested arrays and tables in an override's value (a scene value is at most a
+/// table of arrays, two levels).
+pub const MAX_VALUE_DEPTH: usize = 8;
+
 fn quoted(text: &str) -> String {
     if text.chars().count() <= QUOTE_LIMIT {
         text.to_string()
@@ -44,6 +56,7 @@ impl Override {
             ));
         };
         let path = path.trim();
+        check_path_size(path)?;
         let valid_segment =
             |s: &str| !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
         if !path.split('.').all(valid_segment) {
@@ -68,6 +81,61 @@ impl Override {
     }
 }
 
+/// Refuses a path longer than [`MAX_PATH_LENGTH`] characters or deeper than
+/// [`MAX_PATH_DEPTH`] levels, naming the path (quoted, shortened).
+pub fn check_path_size(path: &str) -> Result<(), RigError> {
+    let levels = path.split('.').count();
+    if path.chars().count() > MAX_PATH_LENGTH || levels > MAX_PATH_DEPTH {
+        return Err(bad(
+            "--set",
+            path,
+            &format!(
+                "the path has {levels} levels and {} characters; a scene field is at most \
+                 {MAX_PATH_DEPTH} levels and {MAX_PATH_LENGTH} characters deep, e.g. \
+                 operator.start.release_angle_deg",
+                path.chars().count()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The nesting depth of `value` (a scalar is 0, an array or table of scalars 1), counted
+/// without recursion and no further than `limit + 1`.
+pub fn value_depth(value: &toml::Value, limit: usize) -> usize {
+    let mut deepest = 0;
+    let mut stack = vec![(value, 0usize)];
+    while let Some((v, depth)) = stack.pop() {
+        let children: Box<dyn Iterator<Item = &toml::Value>> = match v {
+            toml::Value::Array(items) => Box::new(items.iter()),
+            toml::Value::Table(t) => Box::new(t.values()),
+            _ => continue,
+        };
+        deepest = deepest.max(depth + 1);
+        if deepest > limit {
+            return deepest;
+        }
+        stack.extend(children.map(|c| (c, depth + 1)));
+    }
+    deepest
+}
+
+/// Refuses an override whose path or value nests deeper than the bounds, naming its path.
+fn check_size(path: &str, value: &toml::Value) -> Result<(), RigError> {
+    check_path_size(path)?;
+    if value_depth(value, MAX_VALUE_DEPTH) > MAX_VALUE_DEPTH {
+        return Err(bad(
+            path,
+            "(a nested value)",
+            &format!(
+                "the value nests arrays or tables more than {MAX_VALUE_DEPTH} levels deep; a \
+                 scene value is a number, a string, a boolean, or a table or array of them"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// A TOML value from its text; a bare word that is not TOML is a string.
 pub fn parse_value(text: &str) -> toml::Value {
     toml::from_str::<toml::Table>(&format!("v = {text}"))
@@ -80,6 +148,7 @@ pub fn parse_value(text: &str) -> toml::Value {
 /// an optional field is absent; a path that runs through a non-table value is an error naming
 /// the path.
 fn set(table: &mut toml::Table, path: &str, value: toml::Value) -> Result<(), RigError> {
+    check_size(path, &value)?;
     let mut segments: Vec<&str> = path.split('.').collect();
     let last = segments.pop().expect("a parsed path has a segment");
     let mut current = table;
@@ -115,7 +184,10 @@ pub fn apply(text: &str, overrides: &[Override]) -> Result<String, RigError> {
         return Ok(text.to_string());
     }
     let mut table: toml::Table = toml::from_str(text).map_err(|e| {
-        RigError::SceneSyntax(format!("{} (before the overrides)", e.message().trim()))
+        RigError::SceneSyntax(format!(
+            "{} (before the overrides)",
+            crate::format_message::plain(e.message().trim())
+        ))
     })?;
     for o in overrides {
         set(&mut table, &o.path, o.value.clone())?;
@@ -137,7 +209,7 @@ pub fn scene_with_overrides(
         // the file itself is broken: report it with its line
         match crate::Scene::from_toml_str(text, materials) {
             Err(syntax) => syntax,
-            Ok(_) => RigError::SceneSyntax(e.message().trim().to_string()),
+            Ok(_) => RigError::SceneSyntax(crate::format_message::plain(e.message().trim())),
         }
     })?;
     scene_from_table(&base, overrides, materials)
@@ -189,7 +261,9 @@ fn parse_table(
 fn deserialize(table: toml::Table) -> Result<crate::SceneFile, RigError> {
     toml::Value::Table(table)
         .try_into()
-        .map_err(|e: toml::de::Error| RigError::SceneSyntax(e.message().trim().to_string()))
+        .map_err(|e: toml::de::Error| {
+            RigError::SceneSyntax(crate::format_message::plain(e.message().trim()))
+        })
 }
 
 /// Checks that `o` fits the scene format on the parsed `base` (a known field, a value of its

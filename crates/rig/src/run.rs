@@ -166,6 +166,8 @@ pub struct RunSummary {
     pub contacts: Vec<ContactEvent>,
     /// Simulated time \[s\].
     pub duration_s: f64,
+    /// Plausibility warnings of the scene (empty: none; [`crate::plausibility`]).
+    pub warnings: Vec<crate::plausibility::Warning>,
     /// Sensor samples.
     #[serde(skip)]
     pub samples: Vec<SensorSample>,
@@ -993,6 +995,7 @@ impl<'s> Simulation<'s> {
             energy_through_contact_j: first.energy_after_j.map(|e| (first.energy_before_j, e)),
             contacts,
             duration_s: self.t,
+            warnings: self.scene.warnings.clone(),
             samples: self.sampler.into_samples(),
         })
     }

@@ -171,12 +171,70 @@ pub struct RobotSpec {
     pub dome_radius_m: f64,
     /// Distance from the link axis to the dome apex, towards the operator \[m\].
     pub dome_standoff_m: f64,
-    /// CJ torsion spring k_θr [N·m/rad]; default 3EI/L (Eq. 3).
+    /// CJ torsion spring k_θr [N·m/rad], or `"matched"`: 3EI/L of this link (Eq. 3), the
+    /// default; `"matched"` follows the link when a sweep changes it.
     #[serde(default)]
-    pub torsion_spring_nm_per_rad: Option<f64>,
+    pub torsion_spring_nm_per_rad: Option<TorsionSpring>,
     /// CL: number of beam elements.
     #[serde(default = "default_beam_elements")]
     pub beam_elements: usize,
+}
+
+/// The CJ torsion spring as a scene gives it: a stiffness, or the link's own 3EI/L.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TorsionSpring {
+    /// k_θr [N·m/rad].
+    Value(f64),
+    /// 3EI/L of the link (Eq. 3): the CJ as stiff as the CL link it stands for.
+    Matched,
+}
+
+impl TorsionSpring {
+    /// The stiffness [N·m/rad] given, `None` for the matched spring.
+    pub fn value(self) -> Option<f64> {
+        match self {
+            TorsionSpring::Value(k) => Some(k),
+            TorsionSpring::Matched => None,
+        }
+    }
+}
+
+impl Serialize for TorsionSpring {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match self {
+            TorsionSpring::Value(k) => serializer.serialize_f64(*k),
+            TorsionSpring::Matched => serializer.serialize_str("matched"),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for TorsionSpring {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl serde::de::Visitor<'_> for Visitor {
+            type Value = TorsionSpring;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("a stiffness in N·m/rad or \"matched\" (3EI/L of the link)")
+            }
+            fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<TorsionSpring, E> {
+                Ok(TorsionSpring::Value(v))
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<TorsionSpring, E> {
+                Ok(TorsionSpring::Value(v as f64))
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<TorsionSpring, E> {
+                Ok(TorsionSpring::Value(v as f64))
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<TorsionSpring, E> {
+                if v == "matched" {
+                    Ok(TorsionSpring::Matched)
+                } else {
+                    Err(E::invalid_value(serde::de::Unexpected::Str(v), &self))
+                }
+            }
+        }
+        deserializer.deserialize_any(Visitor)
+    }
 }
 
 fn default_beam_elements() -> usize {
@@ -331,6 +389,9 @@ pub struct Scene {
     pub link_ei: f64,
     /// CJ torsion spring k_θr [N·m/rad].
     pub torsion_spring: f64,
+    /// Plausibility warnings: what is valid but looks like a mistake
+    /// ([`crate::plausibility`]).
+    pub warnings: Vec<crate::plausibility::Warning>,
 }
 
 impl Scene {

@@ -98,7 +98,7 @@ impl Scene {
         limits::check_beam_mesh(r.beam_elements, file.solver.beam)?;
         let link_mass_kg = r.density_kg_m3 * r.width_m * r.thickness_m * r.length_m;
         let link_ei = r.youngs_modulus_pa * r.width_m * r.thickness_m.powi(3) / 12.0;
-        let torsion_spring = match r.torsion_spring_nm_per_rad {
+        let torsion_spring = match r.torsion_spring_nm_per_rad.and_then(|k| k.value()) {
             Some(k) => limits::TORSION_SPRING.check("robot.torsion_spring_nm_per_rad", k)?,
             None => 3.0 * link_ei / r.length_m,
         };
@@ -154,15 +154,17 @@ impl Scene {
         }
         limits::SAMPLE_RATE.check("record.sample_rate_hz", file.record.sample_rate_hz)?;
 
-        let scene = Scene {
+        let mut scene = Scene {
             block_mass_kg,
             hertz,
             link_mass_kg,
             link_ei,
             torsion_spring,
             file,
+            warnings: Vec::new(),
         };
         limits::check_budget(&scene)?;
+        scene.warnings = crate::plausibility::warnings(&scene, materials);
         Ok(scene)
     }
 }
@@ -174,11 +176,92 @@ const QUOTE_LIMIT: usize = 200;
 /// [`QUOTE_LIMIT`] characters of the line around the error (a 10 MB field must not come back
 /// as 20 MB of error text).
 fn syntax_message(text: &str, e: &toml::de::Error) -> String {
-    let message = e.message().trim();
-    let Some(span) = e.span() else {
-        return format!("{message} (position unknown)");
+    let message = crate::format_message::plain(e.message().trim());
+    let message = message.as_str();
+    let deep = nesting_too_deep(text).or_else(|| dotted_too_deep(text));
+    let start = match (e.span(), deep) {
+        (Some(span), _) => span.start.min(text.len()),
+        // the parser's recursion limit carries no position: find the nesting ourselves
+        (None, Some(at)) => {
+            return located(
+                text,
+                at,
+                &format!(
+                    "arrays or tables nest more than {MAX_NESTING} levels deep here; a scene \
+                     nests at most a few"
+                ),
+            );
+        }
+        (None, None) => return format!("{message} (position unknown)"),
     };
-    let start = span.start.min(text.len());
+    located(text, start, message)
+}
+
+/// Nesting of `[` and `{` the scene parser is asked to follow at most.
+const MAX_NESTING: usize = 32;
+
+/// The byte offset where `[`/`{` nesting (outside strings and comments) first exceeds
+/// [`MAX_NESTING`], if it does.
+fn nesting_too_deep(text: &str) -> Option<usize> {
+    let mut depth = 0usize;
+    let mut in_string: Option<char> = None;
+    let mut in_comment = false;
+    let mut escaped = false;
+    for (i, c) in text.char_indices() {
+        if in_comment {
+            in_comment = c != '\n';
+            continue;
+        }
+        if let Some(quote) = in_string {
+            if escaped {
+                escaped = false;
+            } else if c == '\\' && quote == '"' {
+                escaped = true;
+            } else if c == quote || c == '\n' {
+                in_string = None;
+            }
+            continue;
+        }
+        match c {
+            '#' => in_comment = true,
+            '"' | '\'' => in_string = Some(c),
+            '[' | '{' => {
+                depth += 1;
+                if depth > MAX_NESTING {
+                    return Some(i);
+                }
+            }
+            ']' | '}' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    None
+}
+
+/// The byte offset of the first line whose key or table header has more than [`MAX_NESTING`]
+/// dotted parts (`[a.b.c…]`, `a.b.c… = 1`), if one has.
+fn dotted_too_deep(text: &str) -> Option<usize> {
+    let mut offset = 0;
+    for line in text.split_inclusive('\n') {
+        let trimmed = line.trim_start();
+        let key = match trimmed.strip_prefix('[') {
+            Some(header) => header.split(']').next().unwrap_or(header),
+            None => trimmed.split('=').next().unwrap_or(""),
+        };
+        if key.matches('.').count() >= MAX_NESTING {
+            return Some(offset + (line.len() - trimmed.len()));
+        }
+        offset += line.len();
+    }
+    None
+}
+
+/// "line L, column C: message" and the line quoted (shortened around `start`, a byte offset).
+fn located(text: &str, start: usize, message: &str) -> String {
+    let start = (0..=start.min(text.len()))
+        .rev()
+        .find(|&i| text.is_char_boundary(i))
+        .unwrap_or(0);
     let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
     let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
     let line_number = text[..start].matches('\n').count() + 1;

@@ -13,6 +13,7 @@ pub fn scene_text(name: &str) -> String {
 }
 
 /// A bundled scene with text replacements applied (each must match).
+#[allow(dead_code)] // not every test file edits scenes
 pub fn scene(name: &str, edits: &[(&str, &str)]) -> Scene {
     let mut text = scene_text(name);
     for (from, to) in edits {

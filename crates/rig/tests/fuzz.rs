@@ -222,3 +222,38 @@ fn deep_nesting_and_huge_fields_give_short_errors_with_a_line() {
         assert!(m.len() < 600, "{} characters", m.len());
     }
 }
+
+#[test]
+fn a_deeply_nested_table_is_located_and_said_in_the_files_words() {
+    // Regression: a deeply nested table said "recursion limit (position unknown)"; a wrong type
+    // said "expected struct RobotSpec" / "expected usize" (Rust's names, not the file's).
+    let base = common::scene_text("cj_aluminium");
+    let materials = Materials::bundled().unwrap();
+    let header = format!("[{}]\nx = 1\n", vec!["deep"; 3000].join("."));
+    let inline = format!("deep = {}1{}\n", "{ a = ".repeat(400), " }".repeat(400));
+    let arrays = format!("deep = {}1{}\n", "[".repeat(400), "]".repeat(400));
+    for extra in [header, inline, arrays] {
+        let e = Scene::from_toml_str(&format!("{base}\n{extra}"), &materials).unwrap_err();
+        let m = e.to_string();
+        assert!(e.is_input_error(), "{m}");
+        assert!(
+            !m.contains("position unknown"),
+            "{}",
+            &m[..m.len().min(300)]
+        );
+        assert!(m.contains("line "), "{}", &m[..m.len().min(300)]);
+        assert!(m.len() < 600, "{} characters", m.len());
+    }
+    for (from, to) in [
+        ("beam_elements = 16", "beam_elements = -3"),
+        ("payload_kg = 0.412", "payload_kg = \"heavy\""),
+        ("at = \"separation\"", "at = 1"),
+    ] {
+        let text = base.replacen(from, to, 1);
+        let e = Scene::from_toml_str(&text, &materials).unwrap_err();
+        let m = e.to_string();
+        for rust in ["struct ", "usize", "enum ", "variant identifier", "f64"] {
+            assert!(!m.contains(rust), "{from} → {to}: {m}");
+        }
+    }
+}

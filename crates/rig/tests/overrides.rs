@@ -78,3 +78,101 @@ fn bad_overrides_name_the_path() {
     }
     assert!(Override::parse("robot.payload_kg").is_err());
 }
+
+#[test]
+fn a_very_deep_override_path_is_refused_not_a_stack_overflow() {
+    // Regression: `--set a.a.a…=1` with thousands of levels overflowed the stack (run) or
+    // exhausted the memory (experiment) while the tables were built and serialised.
+    let deep = format!("{}x=1", "robot.".repeat(20_000));
+    let e = Override::parse(&deep).unwrap_err();
+    let m = e.to_string();
+    assert!(e.is_input_error(), "{m}");
+    assert!(m.contains("--set") && m.contains("levels"), "{m}");
+    assert!(m.len() < 600, "{} characters", m.len());
+    // the bound is above every real field and refuses one level more
+    let at_bound = format!(
+        "{}x=1",
+        "a.".repeat(flexrig_rig::overrides::MAX_PATH_DEPTH - 1)
+    );
+    assert!(Override::parse(&at_bound).is_ok());
+    let over = format!("{}x=1", "a.".repeat(flexrig_rig::overrides::MAX_PATH_DEPTH));
+    assert!(Override::parse(&over).is_err());
+    // a path built in code (as the Python front does) meets the same bound when applied
+    let o = Override::new(&"robot.".repeat(5_000), toml::Value::Integer(1));
+    let e = scene_with_overrides(
+        &common::scene_text("cj_aluminium"),
+        &[o],
+        &Materials::bundled().unwrap(),
+    )
+    .unwrap_err();
+    assert!(e.is_input_error(), "{e}");
+}
+
+#[test]
+fn a_very_deep_override_value_is_refused_naming_the_path() {
+    // Regression: a value nesting arrays thousands deep (from Python: a cyclic or very deep
+    // list) reached the serialiser. (2000 levels: deep enough to be refused, shallow enough for
+    // the test's own recursive drop.)
+    let mut v = toml::Value::Integer(1);
+    for _ in 0..2_000 {
+        v = toml::Value::Array(vec![v]);
+    }
+    let e = scene_with_overrides(
+        &common::scene_text("cj_aluminium"),
+        &[Override::new("robot.payload_kg", v)],
+        &Materials::bundled().unwrap(),
+    )
+    .unwrap_err();
+    let m = e.to_string();
+    assert!(
+        m.contains("robot.payload_kg") && m.contains("levels deep"),
+        "{m}"
+    );
+    // the depth counter stops at its limit instead of walking the whole value
+    let mut wide = toml::Value::Integer(0);
+    for _ in 0..3 {
+        wide = toml::Value::Array(vec![wide.clone(), wide]);
+    }
+    assert_eq!(flexrig_rig::overrides::value_depth(&wide, 8), 3);
+    assert_eq!(
+        flexrig_rig::overrides::value_depth(&toml::Value::Float(1.0), 8),
+        0
+    );
+}
+
+#[test]
+fn a_wrong_type_is_said_in_the_scene_files_words() {
+    // Regression: "expected struct RobotSpec", "internally tagged enum Start", "expected usize"
+    for (set, words) in [
+        ("robot=1", "a table of fields"),
+        ("operator.start=\"contact\"", "{ from = \"release\""),
+        ("robot.beam_elements=-3", "a whole number"),
+        ("stop.at=1", "a name"),
+        ("contact.damping=\"none\"", "{ model = \"none\" }"),
+    ] {
+        let m = with("cj_aluminium", &[set]).unwrap_err().to_string();
+        assert!(m.contains(words), "{set}: {m}");
+        for rust in [
+            "struct ",
+            "usize",
+            "enum ",
+            "variant identifier",
+            "f64",
+            "Spec",
+        ] {
+            assert!(!m.contains(rust), "{set}: {m}");
+        }
+    }
+    // a range says its unit and plain bounds, and spots millimetres
+    let m = with("cj_aluminium", &["robot.length_m=338"])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        m.contains("[0.01, 10] m") && m.contains("millimetres"),
+        "{m}"
+    );
+    let m = with("cj_aluminium", &["robot.payload_kg=1e300"])
+        .unwrap_err()
+        .to_string();
+    assert!(m.contains("1e300") && m.contains("[0, 10000] kg"), "{m}");
+}

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use clap::Args;
 use flexrig::mcap_log::{DEFAULT_DEFORMATION_SCALE, LogRates};
 use flexrig::output::positive_arg;
-use flexrig::run::{LogRequest, run_scene_file, summary_json};
+use flexrig::run::{LogRequest, run_scene_file, scene_warnings, summary_json};
 use flexrig::{CancelToken, Error};
 
 use crate::print::{line, parse_overrides, print_json};
@@ -49,6 +49,10 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
     };
     let overrides = parse_overrides(&args.set)?;
     let deformation_scale = positive_arg("--deformation-scale", args.deformation_scale)?;
+    // plausibility warnings before the run (on standard error; the JSON lists them too)
+    for w in scene_warnings(&args.scene, &overrides) {
+        eprintln!("warning: {w}");
+    }
     let s = run_scene_file(
         &args.scene,
         &overrides,

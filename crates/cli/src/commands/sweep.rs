@@ -95,7 +95,7 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resul
     let shard = args.shard.as_deref().map(parse_shard).transpose()?;
     let request = SweepRequest {
         base: base_path.clone(),
-        dimensions: parse_dimensions(&args.set, base_path)?,
+        dimensions: parse_dimensions(&args.set, base_path, args.zip)?,
         zip: args.zip,
         out: args.out.clone(),
         jsonl: args.json,

@@ -8,7 +8,7 @@ use crate::Error;
 use crate::cancel::CancelToken;
 use crate::output::{ensure_dir, read_text, write_atomic};
 use crate::progress::Progress;
-use crate::study::spec::Dimension;
+use crate::study::spec::{Dimension, parse_all};
 use crate::study::sweep::{Journal, Sweep, SweepManifest, SweepOptions, rows_done, write_tables};
 
 /// What to sweep and where.
@@ -67,11 +67,11 @@ impl SweepReport {
 
 /// The dimensions of `PATH=SPEC` texts (see [`Dimension::parse`]); a `@file` is read beside
 /// `base` first, then as given.
-pub fn parse_dimensions(set: &[String], base: &Path) -> Result<Vec<Dimension>, Error> {
+pub fn parse_dimensions(set: &[String], base: &Path, zip: bool) -> Result<Vec<Dimension>, Error> {
     let base_dir = base.parent().map(PathBuf::from).unwrap_or_default();
     let read =
         |file: &str| read_text(&base_dir.join(file)).or_else(|_| read_text(&PathBuf::from(file)));
-    set.iter().map(|s| Dimension::parse(s, &read)).collect()
+    parse_all(set, &read, zip)
 }
 
 /// Runs the points of `request` not yet in its directory's table, in parallel; `progress` hears
@@ -101,6 +101,10 @@ pub fn run_sweep(
         serde_json::to_string_pretty(&manifest)
             .expect("a manifest serialises")
             .as_bytes(),
+    )?;
+    crate::study::spec::check_process_points(
+        if shard.is_some() { "--shard" } else { "--set" },
+        sweep.indices(shard).len(),
     )?;
     let todo: Vec<usize> = sweep
         .indices(shard)

@@ -13,6 +13,27 @@ use crate::Error;
 /// Most points of one sweep.
 pub const MAX_POINTS: usize = 10_000_000;
 
+/// Most points one process runs (their rows are kept in memory, a few hundred bytes each):
+/// larger sweeps are split into shards.
+pub const MAX_POINTS_PER_PROCESS: usize = 1_000_000;
+
+/// Refuses running `count` points in one process when that is more than
+/// [`MAX_POINTS_PER_PROCESS`], naming `arg` (the user's flag or argument).
+pub fn check_process_points(arg: &str, count: usize) -> Result<(), Error> {
+    if count > MAX_POINTS_PER_PROCESS {
+        return Err(bad(
+            arg,
+            &format!("{count} points"),
+            &format!(
+                "one process runs at most {MAX_POINTS_PER_PROCESS} points (their rows are kept \
+                 in memory): split the sweep into shards (flexrig sweep --shard i/N, or from \
+                 Python a Dask client)"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// One varied scene field and its values.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Dimension {
@@ -36,8 +57,19 @@ fn bad(arg: &str, value: &str, allowed: &str) -> Error {
 }
 
 impl Dimension {
-    /// Parses `PATH=SPEC` (see the module documentation); `read` reads an `@file`.
+    /// Parses `PATH=SPEC` (see the module documentation); `read` reads an `@file`. At most
+    /// [`MAX_POINTS`] values.
     pub fn parse(text: &str, read: &dyn Fn(&str) -> Result<String, Error>) -> Result<Self, Error> {
+        Self::parse_within(text, read, MAX_POINTS)
+    }
+
+    /// Parses `PATH=SPEC` with at most `budget` values: the count of a range, a list or a file
+    /// is checked before any value is made, so a huge grid is refused at once.
+    pub fn parse_within(
+        text: &str,
+        read: &dyn Fn(&str) -> Result<String, Error>,
+        budget: usize,
+    ) -> Result<Self, Error> {
         let Some((path, spec)) = text.split_once('=') else {
             return Err(bad(
                 "--set",
@@ -50,22 +82,46 @@ impl Dimension {
         let path = Override::parse(&format!("{path}=0"))?.path;
         let spec = spec.trim();
         let arg = format!("--set {path}");
+        let over = |count: usize| {
+            bad(
+                &arg,
+                spec,
+                &format!(
+                    "gives {count} values; with the other --set values the grid may have at \
+                     most {MAX_POINTS} points, so this one at most {budget}"
+                ),
+            )
+        };
         let values = if let Some(file) = spec.strip_prefix('@') {
             let text = read(file)?;
-            text.lines()
-                .map(str::trim)
-                .filter(|l| !l.is_empty() && !l.starts_with('#'))
-                .map(parse_value)
-                .collect()
-        } else if let Some(range) = parse_range(spec, &arg)? {
+            let lines = || {
+                text.lines()
+                    .map(str::trim)
+                    .filter(|l| !l.is_empty() && !l.starts_with('#'))
+            };
+            let count = lines().count();
+            if count > budget {
+                return Err(over(count));
+            }
+            lines().map(parse_value).collect()
+        } else if let Some(range) = parse_range(spec, &arg, budget)? {
             range
         } else {
             match parse_value(spec) {
                 toml::Value::Array(items) => items,
                 _ if spec.starts_with('{') || spec.starts_with('"') => vec![parse_value(spec)],
-                _ => spec.split(',').map(|v| parse_value(v.trim())).collect(),
+                _ => {
+                    let count = spec.split(',').count();
+                    if count > budget {
+                        return Err(over(count));
+                    }
+                    spec.split(',').map(|v| parse_value(v.trim())).collect()
+                }
             }
         };
+        if values.len() > budget {
+            return Err(over(values.len()));
+        }
         if values.is_empty() {
             return Err(bad(
                 &arg,
@@ -77,28 +133,98 @@ impl Dimension {
     }
 }
 
+/// Parses the `PATH=SPEC` texts of one sweep: the grid's (or the zip's) point count is checked
+/// against [`MAX_POINTS`] dimension by dimension before the values are made, and a field varied
+/// twice (the same path, or a path inside another's table) is refused.
+pub fn parse_all(
+    set: &[String],
+    read: &dyn Fn(&str) -> Result<String, Error>,
+    zip: bool,
+) -> Result<Vec<Dimension>, Error> {
+    let mut dimensions: Vec<Dimension> = Vec::with_capacity(set.len());
+    let mut product = 1usize;
+    for text in set {
+        let budget = if zip {
+            MAX_POINTS
+        } else {
+            MAX_POINTS / product
+        };
+        let d = Dimension::parse_within(text, read, budget)?;
+        product = product.saturating_mul(d.values.len());
+        dimensions.push(d);
+    }
+    check_distinct(&dimensions)?;
+    Ok(dimensions)
+}
+
+/// Refuses two dimensions on one field: the same path, or one path inside the other's table
+/// (`operator.start` and `operator.start.release_angle_deg`): the later override would replace
+/// the earlier one's value, and the table would claim values that never ran.
+pub fn check_distinct(dimensions: &[Dimension]) -> Result<(), Error> {
+    for (i, a) in dimensions.iter().enumerate() {
+        for b in &dimensions[..i] {
+            let inside = |outer: &str, inner: &str| {
+                inner
+                    .strip_prefix(outer)
+                    .is_some_and(|rest| rest.is_empty() || rest.starts_with('.'))
+            };
+            if inside(&a.path, &b.path) || inside(&b.path, &a.path) {
+                let how = if a.path == b.path {
+                    format!(
+                        "is varied twice: give all its values in one --set, e.g. {}=0.1,0.2",
+                        a.path
+                    )
+                } else {
+                    format!(
+                        "overlaps --set {}: one field would override the other's values; vary \
+                         each field once",
+                        b.path
+                    )
+                };
+                return Err(bad(&format!("--set {}", a.path), &a.path, &how));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// `start:stop:count[:log]` as values, `None` if `spec` is not a range.
-fn parse_range(spec: &str, arg: &str) -> Result<Option<Vec<toml::Value>>, Error> {
+fn parse_range(spec: &str, arg: &str, budget: usize) -> Result<Option<Vec<toml::Value>>, Error> {
     let parts: Vec<&str> = spec.split(':').collect();
-    if !(parts.len() == 3 || (parts.len() == 4 && parts[3] == "log")) {
+    let number = |s: &str| s.trim().parse::<f64>().ok().filter(|v| v.is_finite());
+    // a value with a colon is meant as a range (no scene value has one): a malformed range
+    // gets the range syntax, not a type error about the text
+    let syntax = "a range is START:STOP:COUNT with both ends included, e.g. 10:60:11, or \
+                  START:STOP:COUNT:log, e.g. 1e-3:1:25:log; a list is 0.1,0.2,0.5";
+    if parts.len() < 2 || spec.starts_with('{') || spec.starts_with('"') || spec.starts_with('[') {
         return Ok(None);
     }
-    let number = |s: &str| s.trim().parse::<f64>().ok().filter(|v| v.is_finite());
+    if !(parts.len() == 3 || (parts.len() == 4 && parts[3].trim() == "log")) {
+        return Err(bad(arg, spec, syntax));
+    }
     let (Some(start), Some(stop)) = (number(parts[0]), number(parts[1])) else {
-        return Ok(None);
+        return Err(bad(arg, spec, syntax));
     };
-    let count: usize = parts[2].trim().parse().map_err(|_| {
-        bad(
-            arg,
-            spec,
-            "start:stop:count needs a whole number of points, e.g. 10:60:11",
-        )
-    })?;
-    if count == 0 || count > MAX_POINTS {
+    // a count too large for usize is refused like any count over the budget
+    let count: usize = parts[2]
+        .trim()
+        .parse::<u128>()
+        .map(|c| c.min(usize::MAX as u128) as usize)
+        .map_err(|_| {
+            bad(
+                arg,
+                spec,
+                "start:stop:count needs a whole number of points, e.g. 10:60:11",
+            )
+        })?;
+    if count == 0 || count > budget {
         return Err(bad(
             arg,
             spec,
-            &format!("the count must lie in [1, {MAX_POINTS}] (an empty range has no points)"),
+            &format!(
+                "the count must lie in [1, {budget}] (an empty range has no points; the whole \
+                 grid has at most {MAX_POINTS})"
+            ),
         ));
     }
     let log = parts.len() == 4;
@@ -225,6 +351,73 @@ mod tests {
         }
         let e = Dimension::parse("a.b=@empty", &|_| Ok("# nothing\n".into())).unwrap_err();
         assert!(e.to_string().contains("no values"), "{e}");
+    }
+
+    #[test]
+    fn a_range_typo_gets_the_range_syntax() {
+        // Regression: "0.1:1" was taken as a string and refused as "expected f64"
+        for spec in ["a.b=0.1:1", "a.b=0.1:x:3", "a.b=1:2:3:lin", "a.b=1:2:3:4:5"] {
+            let e = Dimension::parse(spec, &|_| Ok(String::new()))
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains("START:STOP:COUNT") && e.contains("--set a.b"),
+                "{spec}: {e}"
+            );
+        }
+        // a table or a quoted string with a colon is a value
+        assert_eq!(dim("a.b=\"x:y\"").values.len(), 1);
+    }
+
+    #[test]
+    fn huge_grids_are_refused_before_their_values_are_made() {
+        // Regression: three large ranges were made (and checked) before the grid was counted;
+        // values from a file were not counted. Each refusal below comes from counting alone:
+        // 1e7 × 1e7 values would not fit in memory.
+        let read = |_: &str| -> Result<String, Error> { Ok("1\n".repeat(3_000)) };
+        let set = |specs: &[&str]| specs.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        for (specs, zip) in [
+            (
+                set(&["a=0:1:10000000", "b=0:1:10000000", "c=0:1:10000000"]),
+                false,
+            ),
+            (set(&["a=0:1:5000", "b=0:1:5000"]), false),
+            (set(&["a=@big.txt", "b=@big.txt", "c=@big.txt"]), false),
+            (set(&["a=0:1:20000000"]), true),
+            (set(&["a=0:1:99999999999999999999999"]), false),
+        ] {
+            let e = parse_all(&specs, &read, zip).unwrap_err().to_string();
+            assert!(
+                e.contains("--set") && e.contains(&MAX_POINTS.to_string()),
+                "{e}"
+            );
+        }
+        // at the bound it is accepted: 1000 × 10000 = MAX_POINTS
+        let d = parse_all(&set(&["a=0:1:1000", "b=0:1:10000"]), &read, false).unwrap();
+        assert_eq!(point_count(&d, false).unwrap(), MAX_POINTS);
+    }
+
+    #[test]
+    fn a_field_varied_twice_is_refused() {
+        // Regression: the same path twice ran only the last values while the table claimed both
+        let read = |_: &str| -> Result<String, Error> { Ok(String::new()) };
+        for specs in [
+            ["robot.payload_kg=0.1,0.2", "robot.payload_kg=0.3,0.4"],
+            [
+                "operator.start={ from = \"release\", release_angle_deg = 20.0 }",
+                "operator.start.release_angle_deg=10,20",
+            ],
+        ] {
+            let specs: Vec<String> = specs.iter().map(|s| s.to_string()).collect();
+            let e = parse_all(&specs, &read, false).unwrap_err().to_string();
+            assert!(e.contains("twice") || e.contains("overlaps"), "{e}");
+        }
+        // a path that merely starts with another's name is another field
+        let specs: Vec<String> = ["a.b=1,2", "a.bc=1,2"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        assert_eq!(parse_all(&specs, &read, false).unwrap().len(), 2);
     }
 
     #[test]

@@ -61,6 +61,30 @@ pub fn summary_values(s: &RunSummary) -> [Option<f64>; 15] {
     ]
 }
 
+/// A format error of a sweep value that looks like a list typed with spaces or semicolons gets
+/// the list syntax.
+fn with_list_hint(e: RigError, value: &toml::Value) -> Error {
+    match (e, value) {
+        (
+            RigError::InvalidScene {
+                field,
+                value: v,
+                allowed,
+            },
+            toml::Value::String(text),
+        ) if text.contains(' ') || text.contains(';') => RigError::InvalidScene {
+            field,
+            value: v,
+            allowed: format!(
+                "{allowed} (a list of values is comma-separated, e.g. 0.1,0.2,0.5; a range \
+                     10:60:11)"
+            ),
+        }
+        .into(),
+        (e, _) => e.into(),
+    }
+}
+
 /// A sweep: the base scene and what varies.
 #[derive(Debug, Clone)]
 pub struct Sweep {
@@ -110,12 +134,26 @@ impl Sweep {
             .map_err(|e| RigError::SceneSyntax(e.message().trim().to_string()))?;
         // an unknown path or a value of the wrong type is refused before anything runs (a
         // value out of its range fails its runs, which become rows with the error)
+        // counted first (cheap), then each field checked once per kind of value: a number of
+        // each type, every distinct string, table and array
+        let points = point_count(&dimensions, zip)?;
+        super::spec::check_distinct(&dimensions)?;
         for d in &dimensions {
+            let mut seen_float = false;
+            let mut seen_integer = false;
+            let mut seen = std::collections::HashSet::new();
             for v in &d.values {
-                flexrig_rig::overrides::check_format(&base, &Override::new(&d.path, v.clone()))?;
+                let check = match v {
+                    toml::Value::Float(_) => !std::mem::replace(&mut seen_float, true),
+                    toml::Value::Integer(_) => !std::mem::replace(&mut seen_integer, true),
+                    other => seen.insert(other.to_string()),
+                };
+                if check {
+                    flexrig_rig::overrides::check_format(&base, &Override::new(&d.path, v.clone()))
+                        .map_err(|e| with_list_hint(e, v))?;
+                }
             }
         }
-        let points = point_count(&dimensions, zip)?;
         Ok(Sweep {
             materials,
             base_text: base_text.to_string(),

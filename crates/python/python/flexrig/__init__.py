@@ -43,6 +43,7 @@ Runs release the GIL; Ctrl-C stops them.
 from __future__ import annotations
 
 import os
+import warnings as _warnings
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Dict, List, Mapping, NamedTuple, Optional, Tuple, Union
 
@@ -59,6 +60,7 @@ __version__: str = _flexrig.__version__
 __all__ = [
     "ImpactPeaks",
     "InputError",
+    "PlausibilityWarning",
     "RunResult",
     "SUMMARY_COLUMNS",
     "SimulationError",
@@ -86,6 +88,12 @@ TRACE_NAMES: Tuple[str, ...] = (
     "robot_angle_rad",
     "link_tip_deflection_m",
 )
+
+
+class PlausibilityWarning(UserWarning):
+    """A scene that is valid but looks like a mistake (a unit that looks wrong, a contact law
+    outside its fit, a joint spring left behind by the link): the run goes on; the summary's
+    ``warnings`` lists them (``field``, ``message``)."""
 
 
 def _input_error(field: str, message: str) -> InputError:
@@ -166,6 +174,7 @@ class RunResult:
     contacts: List[Dict[str, Any]]
     duration_s: float
     samples: int
+    warnings: List[Dict[str, str]]
     summary: Dict[str, Any]
     traces: Dict[str, np.ndarray]
     step_traces: Dict[str, np.ndarray]
@@ -197,6 +206,7 @@ class RunResult:
             contacts=summary["contacts"],
             duration_s=summary["duration_s"],
             samples=summary["samples"],
+            warnings=summary["warnings"],
             summary=summary,
             traces=traces,
             step_traces=step_traces,
@@ -265,6 +275,8 @@ def run(scene: Scene, /, overrides: Optional[Mapping[str, Any]] = None, **kwargs
     """
     text, _ = _flexrig.scene_text(scene)
     summary, traces, step_traces = _flexrig.run(text, _overrides(overrides, kwargs))
+    for w in summary["warnings"]:
+        _warnings.warn(f"{w['field']}: {w['message']}", PlausibilityWarning, stacklevel=2)
     return RunResult._from_native(summary, traces, step_traces)
 
 
@@ -389,6 +401,16 @@ def sweep(
             "grid",
             'grid: the grid is empty; give at least one scene path and its values, e.g. {"robot.payload_kg": [0.1, 0.2]}',
         )
+    _check_count("threads", threads, "None for every core")
+    _check_count("chunk_size", chunk_size, "None for about four chunks per worker thread")
+    if client is not None:
+        missing = [m for m in ("nthreads", "scatter", "map", "gather") if not callable(getattr(client, m, None))]
+        if missing:
+            raise _input_error(
+                "client",
+                f"client: a {type(client).__name__} is not a Dask client (it has no {', '.join(missing)}); "
+                "give a dask.distributed.Client, or None to run here",
+            )
     text, base_dir = _flexrig.scene_text(base)
     native = Sweep(text, [(str(path), values) for path, values in grid.items()], zip, base_dir)
     if client is None:
@@ -396,6 +418,17 @@ def sweep(
     else:
         parts = _run_on_dask(native, client, chunk_size)
     return _frame(native.paths, parts)
+
+
+def _check_count(name: str, value: Any, none_means: str) -> None:
+    """``value`` must be None or a whole number from 1 to 2**31 - 1 (not a bool, not a float)."""
+    if value is None:
+        return
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 1 <= int(value) < 2**31:
+        raise _input_error(
+            name,
+            f"{name} = {value!r}: must be a whole number from 1 to 2147483647 ({none_means})",
+        )
 
 
 def _run_chunk(indices: List[int], sweep: Sweep) -> Dict[str, Any]:

@@ -1,0 +1,184 @@
+//! Plausibility warnings: a scene that is valid but looks like a mistake (a unit that looks
+//! wrong, a contact law taken outside its fit, an indentation deeper than the bodies, a joint
+//! spring left behind when the link was changed). A warning never stops a run; the fronts
+//! print it and list it in their JSON.
+
+use flexrig_contact::Materials;
+use flexrig_contact::validate::display;
+
+use crate::geometry::RigGeometry;
+use crate::scene::{Design, Scene, Start};
+
+/// One plausibility warning about a scene field.
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+pub struct Warning {
+    /// The scene field it is about (dotted path).
+    pub field: String,
+    /// What looks wrong and what to do.
+    pub message: String,
+}
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.field, self.message)
+    }
+}
+
+fn warning(field: &str, message: String) -> Warning {
+    Warning {
+        field: field.to_string(),
+        message,
+    }
+}
+
+/// A release angle at most this \[deg\] looks like radians (π rad = 180°).
+const RADIAN_LIKE_DEG: f64 = std::f64::consts::PI;
+
+/// Relative mismatch of an explicit CJ spring and 3EI/L beyond which a warning is given.
+const SPRING_MISMATCH: f64 = 0.01;
+
+/// The plausibility warnings of `scene` (validated with `materials`), in field order.
+pub fn warnings(scene: &Scene, materials: &Materials) -> Vec<Warning> {
+    let mut out = Vec::new();
+    release_angle_in_radians(scene, &mut out);
+    exponent_without_its_stiffness(scene, materials, &mut out);
+    indentation_deeper_than_the_bodies(scene, &mut out);
+    dome_radius_outside_the_fit(scene, materials, &mut out);
+    spring_left_behind_by_the_link(scene, &mut out);
+    out
+}
+
+fn release_angle_in_radians(scene: &Scene, out: &mut Vec<Warning>) {
+    let (Start::Release {
+        release_angle_deg: a,
+    }
+    | Start::Contact {
+        release_angle_deg: a,
+    }) = scene.file.operator.start
+    else {
+        return;
+    };
+    if a <= RADIAN_LIKE_DEG {
+        out.push(warning(
+            "operator.start.release_angle_deg",
+            format!(
+                "{} looks like radians ({} rad = {}°); the field is in degrees",
+                display(a),
+                display(a),
+                display((a.to_degrees() * 10.0).round() / 10.0)
+            ),
+        ));
+    }
+}
+
+fn exponent_without_its_stiffness(scene: &Scene, materials: &Materials, out: &mut Vec<Warning>) {
+    let c = &scene.file.contact;
+    let (Some(n), None) = (c.n, c.k) else {
+        return;
+    };
+    let Ok(material) = materials.get(&scene.file.operator.block_material) else {
+        return;
+    };
+    let fitted = material.hertz;
+    if (n - fitted.n()).abs() > 1e-9 * fitted.n() {
+        // the same k with another n: the force at 1 mm changes by 1e-3^(n - n_fit)
+        let factor = 1e-3f64.powf(n - fitted.n());
+        out.push(warning(
+            "contact.n",
+            format!(
+                "{} with the stiffness k = {} N/m^n fitted for n = {} ({}): the force at 1 mm \
+                 indentation changes ×{}; give contact.k fitted for this exponent",
+                display(n),
+                display(fitted.k()),
+                display(fitted.n()),
+                material.name,
+                display((factor * 1000.0).round() / 1000.0)
+            ),
+        ));
+    }
+}
+
+/// The first contact's peak indentation of the lumped two-mass estimate \[m\].
+fn estimated_indentation(scene: &Scene) -> f64 {
+    let g = RigGeometry::of(scene);
+    let op = &g.operator;
+    let swing = scene.file.operator.start.initial_swing(
+        op.mass,
+        op.com_distance,
+        op.inertia_pivot,
+        scene.file.gravity_mps2,
+    );
+    let v = swing.rate_at_contact * op.arm_length;
+    let m_op = op.effective_mass();
+    let m_rob = g.robot.effective_mass();
+    let mu = m_op * m_rob / (m_op + m_rob);
+    scene.hertz.peak_indentation(mu, v)
+}
+
+fn indentation_deeper_than_the_bodies(scene: &Scene, out: &mut Vec<Warning>) {
+    let delta = estimated_indentation(scene);
+    if !delta.is_finite() {
+        return;
+    }
+    let block = scene.file.operator.block_size_m[1];
+    let dome = scene.file.robot.dome_radius_m;
+    let mm = |x: f64| display((x * 1e4).round() / 10.0);
+    if delta > 0.5 * block.min(dome) {
+        let (field, what, size) = if block <= dome {
+            ("operator.block_size_m", "the block's depth", block)
+        } else {
+            ("robot.dome_radius_m", "the dome's radius", dome)
+        };
+        out.push(warning(
+            field,
+            format!(
+                "the contact law gives an indentation of about {} mm at this impact, more \
+                 than half {what} ({} mm): the Hertz law is far outside its fit; check \
+                 contact.k and contact.n (k is in N/m^n)",
+                mm(delta),
+                mm(size)
+            ),
+        ));
+    }
+}
+
+fn dome_radius_outside_the_fit(scene: &Scene, materials: &Materials, out: &mut Vec<Warning>) {
+    let fitted = materials.dome_radius_m();
+    let r = scene.file.robot.dome_radius_m;
+    if scene.file.contact.k.is_none() && (r - fitted).abs() > 1e-6 * fitted {
+        out.push(warning(
+            "robot.dome_radius_m",
+            format!(
+                "{} m: the contact law is the block material's fit, measured with the {} m \
+                 dome; the radius changes the drawing and the contact geometry, not the law \
+                 (give contact.k and contact.n for another dome)",
+                display(r),
+                display(fitted)
+            ),
+        ));
+    }
+}
+
+fn spring_left_behind_by_the_link(scene: &Scene, out: &mut Vec<Warning>) {
+    let r = &scene.file.robot;
+    let Some(k) = r.torsion_spring_nm_per_rad.and_then(|k| k.value()) else {
+        return;
+    };
+    if r.design != Design::Cj {
+        return;
+    }
+    let matched = 3.0 * scene.link_ei / r.length_m;
+    if ((k - matched) / matched).abs() > SPRING_MISMATCH {
+        out.push(warning(
+            "robot.torsion_spring_nm_per_rad",
+            format!(
+                "{} N·m/rad differs by {} % from 3EI/L = {} N·m/rad of this link (Eq. 3): if \
+                 the link was changed, the CJ no longer matches the CL's stiffness; set it to \"matched\" \
+                 (or leave it out) to follow the link",
+                display(k),
+                display(((k / matched - 1.0) * 1000.0).round() / 10.0),
+                display((matched * 1e4).round() / 1e4)
+            ),
+        ));
+    }
+}
