@@ -5,11 +5,9 @@
 //!
 //! Every long computation runs with the GIL released; Ctrl-C stops it (see [`detached`]).
 
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use flexrig::{Error, ErrorKind};
+use flexrig::{CancelToken, Error, ErrorKind};
 use flexrig_rig::RigError;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyFileNotFoundError, PyKeyboardInterrupt, PyOSError, PyRuntimeError};
@@ -89,11 +87,11 @@ pub(crate) fn to_py(e: Error) -> PyErr {
 }
 
 /// Runs `work` with the GIL released, watching for Ctrl-C: the calling (main) thread checks
-/// Python's signals every 50 ms while a scoped thread works; on a signal it sets `interrupt`
-/// (which the work polls and stops on) and returns the signal's exception once the work ended.
+/// Python's signals every 50 ms while a scoped thread works; on a signal it cancels `cancel`
+/// (which the work watches and stops on) and returns the signal's exception once the work ended.
 pub(crate) fn detached<T: Send>(
     py: Python<'_>,
-    interrupt: &Arc<AtomicBool>,
+    cancel: &CancelToken,
     work: impl FnOnce() -> T + Send,
 ) -> PyResult<T> {
     let (result, signal) = py.detach(|| {
@@ -112,7 +110,7 @@ pub(crate) fn detached<T: Send>(
                         if signal.is_none()
                             && let Err(e) = Python::attach(|py| py.check_signals())
                         {
-                            interrupt.store(true, Ordering::Relaxed);
+                            cancel.cancel();
                             signal = Some(e);
                         }
                     }
