@@ -376,7 +376,7 @@ fn run_job(
         path: &path,
         force: true,
         scene_text: &job.text,
-        interrupt: cancel.flag(),
+        cancel: cancel.clone(),
         rates: LogRates::DECIMATED,
         deformation_scale: crate::mcap_log::DEFAULT_DEFORMATION_SCALE,
     };

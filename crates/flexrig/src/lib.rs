@@ -23,6 +23,7 @@
 //! ```
 
 pub mod beam;
+pub mod bench;
 pub mod cancel;
 pub mod error;
 pub mod eta;

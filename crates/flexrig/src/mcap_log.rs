@@ -18,8 +18,6 @@ use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::{BufWriter, Seek, Write};
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 use flexrig_contact::math::{Pose, Vector};
 use flexrig_rig::sensors::SensorSample;
@@ -32,6 +30,7 @@ use foxglove::messages::{
 };
 
 use crate::Error;
+use crate::cancel::CancelToken;
 
 /// Contact force sensor between load and dome.
 #[derive(Debug, Clone, Encode)]
@@ -125,7 +124,7 @@ pub struct McapRecorder<W: Write + Seek> {
     last_scalar_ns: Option<u64>,
     geometry: flexrig_rig::geometry::RigGeometry,
     messages: u64,
-    interrupt: Option<Arc<AtomicBool>>,
+    cancel: Option<CancelToken>,
     rates: LogRates,
     /// Factor on the FE beam's displacements in the 3D view (1: true scale).
     deformation_scale: f64,
@@ -248,8 +247,8 @@ pub struct LogTarget<'a> {
     pub force: bool,
     /// The scene text as run (attached to the log).
     pub scene_text: &'a str,
-    /// Ctrl-C: set, the run stops and its log is finished.
-    pub interrupt: Arc<AtomicBool>,
+    /// Cancelled (e.g. by Ctrl-C), the run stops and its log is finished.
+    pub cancel: CancelToken,
     /// What is logged how often.
     pub rates: LogRates,
     /// Factor on the FE beam's displacements in the 3D view (1: true scale; see
@@ -280,7 +279,7 @@ pub fn run_logged(
     let write_error = |e: mcap::McapError| Error::write(path, io_of(e));
     let mut log = McapRecorder::new(BufWriter::new(file), scene, target.scene_text)
         .map_err(write_error)?
-        .with_interrupt(target.interrupt.clone())
+        .with_cancel(target.cancel.clone())
         .with_rates(target.rates)
         .with_deformation_scale(target.deformation_scale);
     let outcome = simulation.run(&mut log);
@@ -473,18 +472,18 @@ impl<W: Write + Seek> McapRecorder<W> {
             last_scalar_ns: None,
             geometry: flexrig_rig::geometry::RigGeometry::of(scene),
             messages: 0,
-            interrupt: None,
+            cancel: None,
             rates: LogRates::DECIMATED,
             deformation_scale: DEFAULT_DEFORMATION_SCALE,
             flexible_link: f.robot.design == flexrig_rig::scene::Design::Cl,
         })
     }
 
-    /// Stops the run (with [`RigError::Interrupted`]) at the first frame after `flag` is set,
-    /// e.g. by a Ctrl-C handler; the file is then finished with an `error` record as for any
-    /// failed run.
-    pub fn with_interrupt(mut self, flag: Arc<AtomicBool>) -> Self {
-        self.interrupt = Some(flag);
+    /// Stops the run (with [`RigError::Interrupted`]) at the first frame after `cancel` is
+    /// cancelled, e.g. by a Ctrl-C handler; the file is then finished with an `error` record as
+    /// for any failed run.
+    pub fn with_cancel(mut self, cancel: CancelToken) -> Self {
+        self.cancel = Some(cancel);
         self
     }
 
@@ -827,11 +826,7 @@ fn arrow_rotation(direction: Vector) -> flexrig_contact::math::Rotation {
 
 impl<W: Write + Seek> Recorder for McapRecorder<W> {
     fn frame(&mut self, f: &Frame<'_>) -> Result<(), RigError> {
-        if self
-            .interrupt
-            .as_ref()
-            .is_some_and(|i| i.load(Ordering::Relaxed))
-        {
+        if self.cancel.as_ref().is_some_and(CancelToken::is_cancelled) {
             return Err(RigError::Interrupted { t: f.t });
         }
         let ns = nanos(f.t);

@@ -131,7 +131,7 @@ pub fn payload_curve(
     ];
     let sweep = Sweep::new(base_text, dimensions, false)?;
     let options = SweepOptions {
-        interrupt: cancel.flag(),
+        cancel: cancel.clone(),
         ..SweepOptions::default()
     };
     let indices: Vec<usize> = (0..sweep.len()).collect();
@@ -197,7 +197,7 @@ fn log_three(
                     path: &path,
                     force: true,
                     scene_text: &text,
-                    interrupt: cancel.flag(),
+                    cancel: cancel.clone(),
                     rates: LogRates::DECIMATED,
                     deformation_scale: crate::mcap_log::DEFAULT_DEFORMATION_SCALE,
                 },

@@ -50,7 +50,7 @@ pub fn run_scene_file(
             path: out,
             force: log.force,
             scene_text: &text,
-            interrupt: cancel.flag(),
+            cancel: cancel.clone(),
             rates: log.rates,
             deformation_scale: log.deformation_scale,
         },

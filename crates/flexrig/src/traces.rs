@@ -9,15 +9,13 @@
 //! - **steps**, one entry per integration step: its end time and size, the contact force and
 //!   indentation at its end (0 outside contact) and the total mechanical energy.
 
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
-
 use flexrig_contact::Materials;
 use flexrig_rig::{
     Frame, Override, Recorder, RigError, RunOptions, RunSummary, Simulation, scene_with_overrides,
 };
 
 use crate::Error;
+use crate::cancel::CancelToken;
 
 /// The sensor samples of a run as columns (one entry per sample, at the scene's sample rate).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -71,14 +69,14 @@ pub struct TraceRecorder {
     traces: Traces,
     /// (time, indentation) at the end of the previous step.
     last: (f64, f64),
-    interrupt: Arc<AtomicBool>,
+    cancel: CancelToken,
 }
 
 impl TraceRecorder {
-    /// An empty recorder watching `interrupt`.
-    pub fn new(interrupt: Arc<AtomicBool>) -> Self {
+    /// An empty recorder watching `cancel`.
+    pub fn new(cancel: CancelToken) -> Self {
         TraceRecorder {
-            interrupt,
+            cancel,
             ..Default::default()
         }
     }
@@ -91,7 +89,7 @@ impl TraceRecorder {
 
 impl Recorder for TraceRecorder {
     fn frame(&mut self, f: &Frame<'_>) -> Result<(), RigError> {
-        if self.interrupt.load(Ordering::Relaxed) {
+        if self.cancel.is_cancelled() {
             return Err(RigError::Interrupted { t: f.t });
         }
         let (force, indentation) = f.contact.map_or((0.0, 0.0), |c| (c.force, c.indentation));
@@ -128,11 +126,11 @@ impl Recorder for TraceRecorder {
 pub fn run_traced(
     text: &str,
     overrides: &[Override],
-    interrupt: Arc<AtomicBool>,
+    cancel: &CancelToken,
 ) -> Result<(RunSummary, Traces), Error> {
     let scene = scene_with_overrides(text, overrides, &Materials::bundled()?)?;
     let simulation = Simulation::new(&scene, RunOptions::default())?;
-    let mut recorder = TraceRecorder::new(interrupt);
+    let mut recorder = TraceRecorder::new(cancel.clone());
     let summary = simulation.run(&mut recorder)?;
     Ok((summary, recorder.into_traces()))
 }
@@ -143,9 +141,15 @@ mod tests {
 
     const SCENE: &str = include_str!("../../../assets/scenes/cj_aluminium.toml");
 
+    fn cancelled() -> CancelToken {
+        let cancel = CancelToken::new();
+        cancel.cancel();
+        cancel
+    }
+
     #[test]
     fn traces_hold_every_sample_and_step_of_the_run() {
-        let (summary, traces) = run_traced(SCENE, &[], Arc::default()).unwrap();
+        let (summary, traces) = run_traced(SCENE, &[], &CancelToken::new()).unwrap();
         let s = &traces.samples;
         assert_eq!(s.time_s.len(), summary.samples.len());
         for (i, sample) in summary.samples.iter().enumerate() {
@@ -175,14 +179,14 @@ mod tests {
 
     #[test]
     fn a_set_interrupt_stops_the_run() {
-        let e = run_traced(SCENE, &[], Arc::new(AtomicBool::new(true))).unwrap_err();
+        let e = run_traced(SCENE, &[], &cancelled()).unwrap_err();
         assert!(matches!(e, Error::Rig(RigError::Interrupted { .. })), "{e}");
     }
 
     #[test]
     fn a_bad_override_names_its_path() {
         let o = Override::new("robot.payload_kg", toml::Value::String("heavy".into()));
-        let e = run_traced(SCENE, &[o], Arc::default()).unwrap_err();
+        let e = run_traced(SCENE, &[o], &CancelToken::new()).unwrap_err();
         assert!(e.to_string().contains("robot.payload_kg"), "{e}");
     }
 }

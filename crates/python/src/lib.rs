@@ -1,15 +1,13 @@
-//! `flexrig._flexrig`: the native half of the `flexrig` Python package, over the runner library
+//! `flexrig._flexrig`: the native half of the `flexrig` Python package, over the flexrig library
 //! (`flexrig` crate). The Python half (`python/flexrig/__init__.py`) turns these results into
 //! NumPy arrays, pandas DataFrames and Dask tasks; the public API and its documentation live
 //! there and in `_flexrig.pyi`.
 //!
 //! Every long computation runs with the GIL released; Ctrl-C stops it (see [`detached`]).
 
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use flexrig::Error;
+use flexrig::{CancelToken, Error, ErrorKind};
 use flexrig_rig::RigError;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyFileNotFoundError, PyKeyboardInterrupt, PyOSError, PyRuntimeError};
@@ -46,7 +44,7 @@ pub(crate) fn input_error(field: &str, message: String) -> PyErr {
     err
 }
 
-/// The name of the field a runner error is about, if it is bad input.
+/// The name of the field a library error is about, if it is bad input.
 pub(crate) fn field_of(e: &Error) -> Option<String> {
     use flexrig_contact::ContactError;
     let contact = |c: &ContactError| match c {
@@ -63,37 +61,37 @@ pub(crate) fn field_of(e: &Error) -> Option<String> {
     }
 }
 
-/// A runner error as the Python exception a caller expects: bad input → `InputError`
+/// A library error as the Python exception a caller expects: bad input → `InputError`
 /// (a ValueError naming the field), a missing file → `FileNotFoundError`, other I/O → `OSError`,
 /// an interrupted run → `KeyboardInterrupt`, a run that failed → `SimulationError`.
 pub(crate) fn to_py(e: Error) -> PyErr {
-    if let Error::Read { path, source } = &e {
-        let message = format!("cannot read {}: {source}", path.display());
-        return if source.kind() == std::io::ErrorKind::NotFound {
-            PyFileNotFoundError::new_err(message)
-        } else {
-            PyOSError::new_err(message)
-        };
+    match e.kind() {
+        ErrorKind::Io => match &e {
+            Error::Read { path, source } => {
+                let message = format!("cannot read {}: {source}", path.display());
+                if source.kind() == std::io::ErrorKind::NotFound {
+                    PyFileNotFoundError::new_err(message)
+                } else {
+                    PyOSError::new_err(message)
+                }
+            }
+            _ => PyOSError::new_err(e.to_string()),
+        },
+        ErrorKind::Interrupted => PyKeyboardInterrupt::new_err(e.to_string()),
+        ErrorKind::Input => {
+            let field = field_of(&e).unwrap_or_default();
+            input_error(&field, e.to_string())
+        }
+        ErrorKind::Failed => SimulationError::new_err(e.to_string()),
     }
-    if matches!(e, Error::Write { .. }) {
-        return PyOSError::new_err(e.to_string());
-    }
-    if matches!(e, Error::Rig(RigError::Interrupted { .. })) {
-        return PyKeyboardInterrupt::new_err(e.to_string());
-    }
-    if e.exit_code() == 2 {
-        let field = field_of(&e).unwrap_or_default();
-        return input_error(&field, e.to_string());
-    }
-    SimulationError::new_err(e.to_string())
 }
 
 /// Runs `work` with the GIL released, watching for Ctrl-C: the calling (main) thread checks
-/// Python's signals every 50 ms while a scoped thread works; on a signal it sets `interrupt`
-/// (which the work polls and stops on) and returns the signal's exception once the work ended.
+/// Python's signals every 50 ms while a scoped thread works; on a signal it cancels `cancel`
+/// (which the work watches and stops on) and returns the signal's exception once the work ended.
 pub(crate) fn detached<T: Send>(
     py: Python<'_>,
-    interrupt: &Arc<AtomicBool>,
+    cancel: &CancelToken,
     work: impl FnOnce() -> T + Send,
 ) -> PyResult<T> {
     let (result, signal) = py.detach(|| {
@@ -112,7 +110,7 @@ pub(crate) fn detached<T: Send>(
                         if signal.is_none()
                             && let Err(e) = Python::attach(|py| py.check_signals())
                         {
-                            interrupt.store(true, Ordering::Relaxed);
+                            cancel.cancel();
                             signal = Some(e);
                         }
                     }

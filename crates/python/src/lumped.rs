@@ -111,7 +111,7 @@ fn indexed(e: Error, i: usize) -> PyErr {
         let field = format!("{name}[{i}]");
         return input_error(&field, e.to_string().replacen(&flag, &field, 1));
     }
-    if e.exit_code() == 2 {
+    if e.kind() == flexrig::ErrorKind::Input {
         return input_error(&format!("[{i}]"), format!("parameter set {i}: {e}"));
     }
     to_py(e)

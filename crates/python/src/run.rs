@@ -2,9 +2,8 @@
 //! with overrides and its traces.
 
 use std::path::PathBuf;
-use std::sync::Arc;
-use std::sync::atomic::AtomicBool;
 
+use flexrig::CancelToken;
 use flexrig::run::summary_json;
 use flexrig::scenes::BUNDLED_SCENES;
 use flexrig::traces::run_traced;
@@ -138,10 +137,9 @@ pub fn run<'py>(
     overrides: Vec<(String, Bound<'py, PyAny>)>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>, Bound<'py, PyDict>)> {
     let overrides = self::overrides(&overrides)?;
-    let interrupt = Arc::new(AtomicBool::new(false));
-    let flag = interrupt.clone();
+    let cancel = CancelToken::new();
     let (summary, traces) =
-        detached(py, &interrupt, move || run_traced(text, &overrides, flag))?.map_err(to_py)?;
+        detached(py, &cancel, || run_traced(text, &overrides, &cancel))?.map_err(to_py)?;
     let s = traces.samples;
     let samples = PyDict::new(py);
     for (name, column) in [

@@ -1,10 +1,8 @@
-//! A sweep over the runner's [`flexrig::study::Sweep`]: the grid from Python values, its points
+//! A sweep over the library's [`flexrig::study::Sweep`]: the grid from Python values, its points
 //! run in parallel (GIL released) into columns, and pickling so that a Dask worker can run a
 //! chunk of the points.
 
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
-use std::sync::atomic::AtomicBool;
 
 use flexrig::study::spec::MAX_POINTS;
 use flexrig::study::sweep::{SUMMARY_COLUMNS, SweepOptions, SweepRow};
@@ -295,13 +293,9 @@ impl Sweep {
                 "threads: must be at least 1 (or None for every core)".into(),
             ));
         }
-        let interrupt = Arc::new(AtomicBool::new(false));
-        let options = SweepOptions {
-            interrupt: interrupt.clone(),
-            ..SweepOptions::default()
-        };
+        let options = SweepOptions::default();
         let inner = &self.inner;
-        let rows = detached(py, &interrupt, || match threads {
+        let rows = detached(py, &options.cancel, || match threads {
             Some(1) => Ok(indices
                 .iter()
                 .map(|&i| inner.run_point(i, &options))

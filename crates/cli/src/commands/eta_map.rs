@@ -105,7 +105,7 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resu
         &EtaMapOptions {
             out: args.out.clone(),
             specs,
-            settings: settings.clone(),
+            settings,
         },
         cancel,
     )

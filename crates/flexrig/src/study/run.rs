@@ -118,7 +118,7 @@ pub fn run_sweep(
     let options = SweepOptions {
         shard,
         mcap_dir: request.mcap.then_some(mcap_dir),
-        interrupt: cancel.flag(),
+        cancel: cancel.clone(),
     };
     progress.start(todo.len());
     let journal = Journal::open(&request.out, shard, &paths)?;

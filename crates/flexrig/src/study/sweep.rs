@@ -10,7 +10,6 @@ use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 use flexrig_contact::Materials;
 use flexrig_rig::{Interruptible, Override, RigError, RunOptions, RunSummary, Simulation};
@@ -19,6 +18,7 @@ use serde::{Deserialize, Serialize};
 
 use super::spec::{Dimension, point, point_count};
 use crate::Error;
+use crate::cancel::CancelToken;
 use crate::output::write_atomic;
 
 /// The summary quantities of a row, in column order.
@@ -105,7 +105,7 @@ pub struct SweepOptions {
     /// `run-<index>.layout.json`).
     pub mcap_dir: Option<PathBuf>,
     /// Stops the sweep (runs not yet started are left for a resume).
-    pub interrupt: std::sync::Arc<AtomicBool>,
+    pub cancel: CancelToken,
 }
 
 /// The outcome of one point.
@@ -239,7 +239,7 @@ impl Sweep {
         let scene = flexrig_rig::scene_from_table(&self.base, overrides, &self.materials)?;
         let simulation = Simulation::new(&scene, RunOptions::default())?;
         let Some(dir) = &options.mcap_dir else {
-            return Ok(simulation.run(&mut Interruptible(options.interrupt.clone()))?);
+            return Ok(simulation.run(&mut Interruptible(options.cancel.flag()))?);
         };
         let text = flexrig_rig::overrides::apply(&self.base_text, overrides)?;
         let path = dir.join(format!("run-{index}.mcap"));
@@ -247,7 +247,7 @@ impl Sweep {
             path: &path,
             force: true,
             scene_text: &text,
-            interrupt: options.interrupt.clone(),
+            cancel: options.cancel.clone(),
             rates: crate::mcap_log::LogRates::DECIMATED,
             deformation_scale: crate::mcap_log::DEFAULT_DEFORMATION_SCALE,
         };
@@ -255,7 +255,7 @@ impl Sweep {
     }
 
     /// Runs the points of `indices` in parallel, calling `done` after each (e.g. a progress bar
-    /// or a journal); rows in index order. Points not started when the interrupt is set are
+    /// or a journal); rows in index order. Points not started when the sweep is cancelled are
     /// left out.
     pub fn run(
         &self,
@@ -266,7 +266,7 @@ impl Sweep {
         let mut rows: Vec<SweepRow> = indices
             .par_iter()
             .filter_map(|&i| {
-                if options.interrupt.load(Ordering::Relaxed) {
+                if options.cancel.is_cancelled() {
                     return None;
                 }
                 let row = self.run_point(i, options);

@@ -1,0 +1,582 @@
+//! Work–precision studies (`flexrig bench`) — run time against error — for the lumped impact,
+//! the beam and the rig, as tables, JSON rows and log–log SVG plots. Timings are medians of
+//! repeated runs in this process; errors are against independent references (the exact energy
+//! solution, the elastica table, a converged run).
+
+use std::io::Cursor;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use flexrig_beam::canonical::{self, ELASTICA};
+use flexrig_beam::{ModalDirection, StaticOptions, modal_analysis, solve_static};
+use flexrig_contact::{Hertz, SeriesCompliance};
+use flexrig_lumped::ode::{Formulation, OdeOptions, StopAt, integrate};
+use flexrig_lumped::{ImpactModel, peak_exact};
+use flexrig_rig::{LinkVariant, NoRecorder, RunOptions, Scene, Simulation};
+use serde::Serialize;
+
+use crate::Error;
+use crate::mcap_log::{LogRates, McapRecorder};
+use crate::output::{ensure_dir, write_atomic};
+use crate::plots::{Panel, Series};
+use crate::scenes::bundled_scene;
+
+/// One measured point.
+#[derive(Debug, Clone, Serialize)]
+pub struct Row {
+    /// `lumped`, `beam` or `rig`.
+    pub model: String,
+    /// Method or variant.
+    pub method: String,
+    /// The setting varied (tolerance, elements, steps).
+    pub setting: String,
+    /// Error against the reference.
+    pub error: f64,
+    /// Median run time [s].
+    pub seconds: f64,
+    /// Right-hand-side evaluations (time integrations only).
+    pub evaluations: Option<usize>,
+}
+
+/// Median wall time [s] of `f` over `samples` samples of `reps` calls each.
+fn median_seconds<T>(samples: usize, reps: usize, mut f: impl FnMut() -> T) -> f64 {
+    let mut times: Vec<f64> = (0..samples)
+        .map(|_| {
+            let start = Instant::now();
+            for _ in 0..reps {
+                std::hint::black_box(f());
+            }
+            start.elapsed().as_secs_f64() / reps as f64
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[times.len() / 2]
+}
+
+/// What the study measured and drew.
+#[derive(Debug, Clone, Serialize)]
+pub struct BenchReport {
+    /// Every measured point.
+    pub rows: Vec<Row>,
+    /// The plots (bench_lumped.svg, bench_beam.svg, bench_rig.svg).
+    pub plots: Vec<PathBuf>,
+    /// scipy's DOP853 run time over flexrig's at a peak error ≤ 1e-9; none when the peer could
+    /// not run (it needs python3 with numpy and scipy).
+    pub scipy_dop853_over_flexrig_at_1e_9: Option<f64>,
+}
+
+/// Runs every study (fewer settings and repetitions if `quick`: well under a minute) and draws
+/// the plots into `out`.
+pub fn run(quick: bool, out: &Path) -> Result<BenchReport, Error> {
+    let mut rows = Vec::new();
+    lumped(&mut rows, quick)?;
+    let peer_ratio = peer(&mut rows, quick)?;
+    beam(&mut rows, quick)?;
+    rig(&mut rows, quick)?;
+    ensure_dir(out)?;
+    let mut files = Vec::new();
+    for (model, title, y_desc, share_y) in PLOTS {
+        let path = out.join(format!("bench_{model}.svg"));
+        let subset: Vec<&Row> = rows.iter().filter(|r| r.model == model).collect();
+        let svg = crate::plots::work_precision_svg(title, y_desc, &plot_panels(&subset), share_y)
+            .map_err(|message| Error::Plot {
+            path: path.clone(),
+            message,
+        })?;
+        write_atomic(&path, svg.as_bytes())?;
+        files.push(path);
+    }
+    Ok(BenchReport {
+        rows,
+        plots: files,
+        scipy_dop853_over_flexrig_at_1e_9: peer_ratio,
+    })
+}
+
+/// The plots: model, title, y-axis description, whether the panels share the error scale (they
+/// do where they compare the same methods).
+const PLOTS: [(&str, &str, &str, bool); 3] = [
+    (
+        "lumped",
+        "Work–precision, lumped impact (m_h = 4 kg, n = 1, 2): peak force against the exact solution",
+        "relative error of f_max",
+        true,
+    ),
+    (
+        "beam",
+        "Work–precision, beam: against a converged run or the exact solution",
+        "relative error",
+        false,
+    ),
+    (
+        "rig",
+        "Work–precision, test rig (aluminium operator): peak force against 6400 steps/contact",
+        "relative error of the peak force",
+        true,
+    ),
+];
+
+/// Panel title (without its letter) and series label of a row; `None` for a row not plotted
+/// (the exact lumped solution, error 0).
+fn plot_place(row: &Row) -> Option<(String, String)> {
+    let method = row.method.as_str();
+    match row.model.as_str() {
+        "lumped" => {
+            if let Some((solver, _)) = method.split_once(" to the peak") {
+                return Some(("Fig. 6 CJ case (n = 2), to the peak".into(), solver.into()));
+            }
+            let rest = method.strip_prefix("ode ")?;
+            let mut words = rest.split_whitespace();
+            let (formulation, n, link) = (words.next()?, words.next()?, words.next()?);
+            let title = match link {
+                "stiff" => "stiff link, k_δ = 10⁸ N/m",
+                _ => "soft link, k_δ = 2·10² N/m",
+            };
+            let label = format!("{formulation} state, {}", n.replace('=', " = "));
+            Some((title.into(), label))
+        }
+        "beam" => {
+            let title = if method.starts_with("transient") || method.starts_with("issue 13") {
+                "transients: elements × time step"
+            } else {
+                "modes and statics: elements"
+            };
+            Some((title.into(), method.into()))
+        }
+        _ => {
+            let (scene, label) = method.split_once(": ")?;
+            let design = match scene.split('_').next() {
+                Some("cj") => "compliant joint",
+                Some("cl") => "compliant link",
+                _ => "",
+            };
+            Some((format!("{design} ({scene})"), label.into()))
+        }
+    }
+}
+
+/// The panels of one model's plot: rows grouped by [`plot_place`], panels lettered in order.
+fn plot_panels(rows: &[&Row]) -> Vec<Panel> {
+    let mut panels: Vec<Panel> = Vec::new();
+    for row in rows {
+        let Some((title, label)) = plot_place(row) else {
+            continue;
+        };
+        let index = match panels.iter().position(|p| p.title == title) {
+            Some(i) => i,
+            None => {
+                panels.push(Panel {
+                    title,
+                    series: Vec::new(),
+                    note: None,
+                });
+                panels.len() - 1
+            }
+        };
+        let panel = &mut panels[index];
+        let point = (row.seconds, row.error);
+        match panel.series.iter_mut().find(|s| s.label == label) {
+            Some(s) => s.points.push(point),
+            None => panel.series.push(Series {
+                label,
+                points: vec![point],
+            }),
+        }
+    }
+    for (i, panel) in panels.iter_mut().enumerate() {
+        if panel.title.ends_with("to the peak")
+            && !panel.series.iter().any(|s| s.label.starts_with("scipy"))
+        {
+            panel.note = Some("scipy peer not run (needs python3 with numpy and scipy)".into());
+        }
+        panel.title = format!("({}) {}", (b'a' + i as u8) as char, panel.title);
+    }
+    panels
+}
+
+fn lumped(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
+    let tolerances: &[f64] = if quick {
+        &[1e-6, 1e-9, 1e-12]
+    } else {
+        &[1e-4, 1e-6, 1e-8, 1e-10, 1e-12]
+    };
+    let (samples, reps) = if quick { (3, 20) } else { (7, 100) };
+    for (link, k_delta) in [("stiff", 1e8), ("soft", 2e2)] {
+        for n in [1.0, 2.0] {
+            let spring = SeriesCompliance::new(k_delta, Hertz::new(1e8, n)?)?;
+            let model = ImpactModel::new(4.0, 10.0 / 3.0 + 0.1, spring, 2.0)?;
+            let exact = peak_exact(&model).f_max;
+            rows.push(Row {
+                model: "lumped".into(),
+                method: format!("exact n={n} {link}"),
+                setting: "-".into(),
+                error: 0.0,
+                seconds: median_seconds(samples, reps * 10, || peak_exact(&model)),
+                evaluations: None,
+            });
+            for formulation in [Formulation::Indentation, Formulation::Displacement] {
+                for &rtol in tolerances {
+                    let options = OdeOptions::new(rtol)?.formulation(formulation);
+                    let sol = integrate(&model, &options)?;
+                    rows.push(Row {
+                        model: "lumped".into(),
+                        method: format!("ode {formulation:?} n={n} {link}").to_lowercase(),
+                        setting: format!("rtol {rtol:e}"),
+                        error: (sol.peak.f_max / exact - 1.0).abs(),
+                        seconds: median_seconds(samples, reps, || integrate(&model, &options)),
+                        evaluations: Some(sol.rhs_evals),
+                    });
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The paper's Fig. 6 CJ case (m_h = 4 kg, m_eff = 3.433 kg, k_δ = k_c = 1e8, n = 2, v0 = 2 m/s)
+/// integrated to the peak by flexrig and, when Python with scipy is present, by
+/// `scripts/peer_scipy.py` (solve_ivp DOP853, Radau, LSODA) over the same tolerances. Returns the
+/// ratio of the fastest DOP853 time to the fastest flexrig time with a peak error ≤ 1e-9.
+fn peer(rows: &mut Vec<Row>, quick: bool) -> Result<Option<f64>, Error> {
+    let spring = SeriesCompliance::new(1e8, Hertz::new(1e8, 2.0)?)?;
+    let model = ImpactModel::new(4.0, 10.0 / 3.0 + 0.1, spring, 2.0)?;
+    let exact = peak_exact(&model).f_max;
+    let rtols = [1e-6, 1e-9, 1e-12];
+    let (samples, reps) = if quick { (3, 20) } else { (7, 100) };
+    for rtol in rtols {
+        let options = OdeOptions::new(rtol)?.stop(StopAt::Peak);
+        let sol = integrate(&model, &options)?;
+        rows.push(Row {
+            model: "lumped".into(),
+            method: "flexrig ode to the peak, Fig. 6 CJ n=2".into(),
+            setting: format!("rtol {rtol:e}"),
+            error: (sol.peak.f_max / exact - 1.0).abs(),
+            seconds: median_seconds(samples, reps, || integrate(&model, &options)),
+            evaluations: Some(sol.rhs_evals),
+        });
+    }
+    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scripts/peer_scipy.py");
+    let mut command = std::process::Command::new("python3");
+    command.arg(script);
+    for v in [4.0, 10.0 / 3.0 + 0.1, 1e8, 1e8, 2.0, 2.0] {
+        command.arg(format!("{v:e}"));
+    }
+    for rtol in rtols {
+        command.arg(format!("{rtol:e}"));
+    }
+    let Ok(output) = command.output() else {
+        return Ok(None);
+    };
+    if !output.status.success() {
+        return Ok(None);
+    }
+    for text in String::from_utf8_lossy(&output.stdout).lines() {
+        let Ok(v) = serde_json::from_str::<serde_json::Value>(text) else {
+            continue;
+        };
+        rows.push(Row {
+            model: "lumped".into(),
+            method: format!(
+                "scipy {} to the peak, Fig. 6 CJ n=2",
+                v["method"].as_str().unwrap_or("?")
+            ),
+            setting: format!("rtol {:e}", v["rtol"].as_f64().unwrap_or(f64::NAN)),
+            error: v["error"].as_f64().unwrap_or(f64::NAN),
+            seconds: v["seconds"].as_f64().unwrap_or(f64::NAN),
+            evaluations: v["nfev"].as_u64().map(|n| n as usize),
+        });
+    }
+    let fastest = |prefix: &str| {
+        rows.iter()
+            .filter(|r| r.method.starts_with(prefix) && r.error <= 1e-9)
+            .map(|r| r.seconds)
+            .fold(f64::INFINITY, f64::min)
+    };
+    let ratio = fastest("scipy DOP853") / fastest("flexrig ode to the peak");
+    Ok(ratio.is_finite().then_some(ratio))
+}
+
+/// Tip displacement [m] at t = 0.3 s of the unit cantilever (corotational, `elements`) released
+/// from rest under a suddenly applied tip force 0.5 EI/L², stepped by generalized-α (ρ∞ = 0.9)
+/// with step `h` (the first bending period is 1.79 s).
+fn beam_transient(elements: usize, h: f64) -> Result<f64, Error> {
+    let model = canonical::unit_cantilever(elements, flexrig_beam::Kinematics::Corotational)?;
+    let mut loads = flexrig_beam::NodalLoads::zeros(&model);
+    loads.set_force(model.tip_node(), 0.0, 0.5)?;
+    let mut state = flexrig_beam::State::at_rest(&model, &loads)?;
+    let mut workspace = flexrig_beam::Workspace::new(&model);
+    let integrator = flexrig_beam::GeneralizedAlpha::new(0.9)?;
+    let steps = (0.3 / h).round() as usize;
+    for _ in 0..steps {
+        integrator.step(&model, &mut state, &mut workspace, h, &loads)?;
+    }
+    Ok(state.q[3 * model.tip_node() + 1])
+}
+
+fn beam(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
+    // Transient: elements × time step against a converged run (64 elements, h = 1.25e-4 s).
+    let reference = beam_transient(64, 1.25e-4)?;
+    let (meshes, steps): (&[usize], &[f64]) = if quick {
+        (&[8, 16], &[1e-2, 2.5e-3])
+    } else {
+        (&[8, 16, 32], &[1e-2, 5e-3, 2.5e-3, 1.25e-3])
+    };
+    for &n in meshes {
+        for &h in steps {
+            // A step too large for Newton (unresolved stiff axial modes) leaves no row.
+            let v = match beam_transient(n, h) {
+                Ok(v) => v,
+                Err(Error::Beam(flexrig_beam::BeamError::NotConverged { .. })) => continue,
+                Err(e) => return Err(e),
+            };
+            rows.push(Row {
+                model: "beam".into(),
+                method: format!("transient, {n} corotational elements"),
+                setting: format!("h {h:e} s"),
+                error: (v / reference - 1.0).abs(),
+                seconds: median_seconds(3, 1, || beam_transient(n, h)),
+                evaluations: None,
+            });
+        }
+    }
+    issue13_transient(rows, quick)?;
+    let elements: &[usize] = if quick {
+        &[4, 8, 16]
+    } else {
+        &[4, 8, 16, 32, 64]
+    };
+    // Frequencies: ω₁–₄ of the unit cantilever against (βᵢL)² (Euler–Bernoulli), consistent mass.
+    for &n in elements {
+        let model = canonical::unit_cantilever(n, flexrig_beam::Kinematics::Linear)?;
+        let modes = || modal_analysis(&model, 4, ModalDirection::Transverse);
+        let omegas = modes()?.omegas;
+        let error = canonical::CANTILEVER_BETA_L
+            .iter()
+            .zip(&omegas)
+            .map(|(beta_l, w)| (w / canonical::beam_omega(*beta_l, 1.0, 1.0, 1.0) - 1.0).abs())
+            .fold(0.0, f64::max);
+        rows.push(Row {
+            model: "beam".into(),
+            method: "frequencies ω₁–₄ (max error), consistent mass".into(),
+            setting: format!("{n} elements"),
+            error,
+            seconds: median_seconds(if quick { 3 } else { 5 }, 3, modes),
+            evaluations: None,
+        });
+    }
+    let (load, v_over_l, _, _) = ELASTICA[2];
+    let options = StaticOptions::new(10, 50, 1e-10)?;
+    for &n in elements {
+        let (model, loads) = canonical::elastica_problem(load, n)?;
+        let s = solve_static(&model, &loads, &options)?;
+        rows.push(Row {
+            model: "beam".into(),
+            method: "elastica PL²/EI=5, corotational".into(),
+            setting: format!("{n} elements"),
+            error: (s.q[3 * model.tip_node() + 1] / v_over_l - 1.0).abs(),
+            seconds: median_seconds(if quick { 3 } else { 5 }, 3, || {
+                solve_static(&model, &loads, &options)
+            }),
+            evaluations: None,
+        });
+    }
+    Ok(())
+}
+
+/// Issue 13's work–precision problem (the Exudyn comparison of docs/performance-beam.md): the
+/// 0.3 m cantilever under a step tip load EI/L² from rest, 1000 generalized-α steps of 1 ms at
+/// ρ∞ = 0.9. Error: max over t = 1 … 1000 ms of |v − v_ref| / max |v_ref| of the tip deflection,
+/// against 16 ANCF elements at h = 0.25 and 0.125 ms extrapolated to h → 0 (the error is first
+/// order in h: the step load excites modes no step resolves; the extrapolated reference is good
+/// to about 1e-5, docs/performance-beam.md).
+fn issue13_transient(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
+    use flexrig_beam::{GeneralizedAlpha, Kinematics};
+    let ga = GeneralizedAlpha::new(0.9)?;
+    let trajectory = |kin, elements, h| {
+        canonical::issue13_step_load(elements, kin, &ga, h, 1.0, 1e-3).map(|(v, _)| v)
+    };
+    let coarse = trajectory(Kinematics::Ancf, 16, 2.5e-4)?;
+    let fine = trajectory(Kinematics::Ancf, 16, 1.25e-4)?;
+    let reference: Vec<f64> = fine.iter().zip(&coarse).map(|(f, c)| 2.0 * f - c).collect();
+    let scale = reference.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let cases: &[(Kinematics, &str, usize)] = if quick {
+        &[
+            (Kinematics::Ancf, "ANCF", 4),
+            (Kinematics::Corotational, "corotational", 8),
+        ]
+    } else {
+        &[
+            (Kinematics::Ancf, "ANCF", 4),
+            (Kinematics::Ancf, "ANCF", 8),
+            (Kinematics::Ancf, "ANCF", 32),
+            (Kinematics::Corotational, "corotational", 8),
+            (Kinematics::Corotational, "corotational", 32),
+        ]
+    };
+    for &(kin, name, elements) in cases {
+        let v = trajectory(kin, elements, 1e-3)?;
+        let error = v
+            .iter()
+            .zip(&reference)
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
+            / scale;
+        rows.push(Row {
+            model: "beam".into(),
+            method: format!("issue 13 step load, 1000 steps of 1 ms, ρ∞ 0.9, {name}"),
+            setting: format!("{elements} elements"),
+            error,
+            seconds: median_seconds(3, 1, || trajectory(kin, elements, 1e-3)),
+            evaluations: None,
+        });
+    }
+    Ok(())
+}
+
+/// A bundled scene with owned replacement texts (see [`bundled_scene`]).
+fn scene(name: &str, edits: &[(&str, String)]) -> Result<Scene, Error> {
+    let edits: Vec<(&str, &str)> = edits.iter().map(|(a, b)| (*a, b.as_str())).collect();
+    bundled_scene(name, &edits)
+}
+
+/// A CJ built from the FE beam (EI, EA × 1e4, pinned on the torsion spring): what the Rapier
+/// rigid link saves.
+const STIFF_FE_CJ: RunOptions = RunOptions {
+    cl_link: LinkVariant::StiffOnTorsionSpring {
+        stiffness_factor: 1e4,
+    },
+    ..RunOptions::DEFAULT
+};
+
+/// A rig bench variant: label, scene text edits, a suffix for the solver line, run options.
+type RigVariant = (
+    &'static str,
+    Vec<(&'static str, String)>,
+    &'static str,
+    RunOptions,
+);
+
+fn run_scene(s: &Scene, options: RunOptions) -> Result<flexrig_rig::RunSummary, Error> {
+    Ok(Simulation::new(s, options)?.run(&mut NoRecorder)?)
+}
+
+/// Release → separation with the MCAP recorder writing to memory at `rates`: (summary, bytes).
+fn run_logged(s: &Scene, rates: LogRates) -> Result<(flexrig_rig::RunSummary, usize), Error> {
+    let mut log = McapRecorder::new(Cursor::new(Vec::new()), s, "")
+        .map_err(|e| Error::Plot {
+            path: "memory".into(),
+            message: e.to_string(),
+        })?
+        .with_rates(rates);
+    let summary = Simulation::new(s, RunOptions::default())?.run(&mut log)?;
+    let bytes = log.finish_into_inner().map_err(|e| Error::Plot {
+        path: "memory".into(),
+        message: e.to_string(),
+    })?;
+    Ok((summary, bytes.into_inner().len()))
+}
+
+fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
+    let steps: &[usize] = if quick {
+        &[50, 200, 800]
+    } else {
+        &[25, 50, 100, 200, 400, 800, 1600]
+    };
+    let samples = if quick { 3 } else { 5 };
+    let modal = "\nbeam = { model = \"modal\", modes = 8 }";
+    for name in ["cj_aluminium", "cl_aluminium"] {
+        let reference = run_scene(
+            &scene(
+                name,
+                &[("contact_steps = 800", "contact_steps = 6400".into())],
+            )?,
+            RunOptions::default(),
+        )?
+        .peak_force_n;
+        let cl = name.starts_with("cl");
+        for &n in steps {
+            let from_contact = ("from = \"release\"", "from = \"contact\"".to_string());
+            let to_peak = ("at = \"separation\"", "at = \"peak\"".to_string());
+            // (label, edits, solver line suffix, options)
+            let mut variants: Vec<RigVariant> = vec![
+                ("release to separation", vec![], "", RunOptions::DEFAULT),
+                (
+                    "start at contact",
+                    vec![from_contact.clone()],
+                    "",
+                    RunOptions::DEFAULT,
+                ),
+                (
+                    "start at contact, stop at peak",
+                    vec![from_contact.clone(), to_peak.clone()],
+                    "",
+                    RunOptions::DEFAULT,
+                ),
+            ];
+            if cl {
+                variants.push((
+                    "release to separation, modal beam (8 modes)",
+                    vec![],
+                    modal,
+                    RunOptions::DEFAULT,
+                ));
+                variants.push((
+                    "start at contact, stop at peak, modal beam (8 modes)",
+                    vec![from_contact.clone(), to_peak.clone()],
+                    modal,
+                    RunOptions::DEFAULT,
+                ));
+            } else {
+                variants.push((
+                    "release to separation, as a stiff FE beam (no rigid-link shortcut)",
+                    vec![("design = \"cj\"", "design = \"cl\"".into())],
+                    "",
+                    STIFF_FE_CJ,
+                ));
+            }
+            for (label, mut edits, suffix, options) in variants {
+                edits.push((
+                    "contact_steps = 800",
+                    format!("contact_steps = {n}{suffix}"),
+                ));
+                let s = scene(name, &edits)?;
+                // Too coarse a contact step is caught by the energy check: no row for it. Any
+                // other error is a defect of the bench and is reported.
+                let result = match run_scene(&s, options) {
+                    Ok(result) => result,
+                    Err(Error::Rig(flexrig_rig::RigError::Unstable { .. })) => continue,
+                    Err(e) => return Err(e),
+                };
+                // The swing from release adds its own (tiny) impact-speed error; the shortcuts are
+                // compared with the same converged release run.
+                rows.push(Row {
+                    model: "rig".into(),
+                    method: format!("{name}: {label}"),
+                    setting: format!("{n} steps/contact"),
+                    error: (result.peak_force_n / reference - 1.0).abs(),
+                    seconds: median_seconds(samples, 1, || run_scene(&s, options)),
+                    evaluations: None,
+                });
+            }
+        }
+        // Logging: decimated outside contact (the default) against every step.
+        let s = scene(name, &[])?;
+        for (label, rates) in [
+            ("decimated outside contact", LogRates::DECIMATED),
+            ("every step", LogRates::EVERY_STEP),
+        ] {
+            let (summary, bytes) = run_logged(&s, rates)?;
+            rows.push(Row {
+                model: "rig".into(),
+                method: format!(
+                    "{name}: release to separation, MCAP log {label} ({:.2} MB)",
+                    bytes as f64 / 1e6
+                ),
+                setting: "800 steps/contact".into(),
+                error: (summary.peak_force_n / reference - 1.0).abs(),
+                seconds: median_seconds(samples, 1, || run_logged(&s, rates)),
+                evaluations: None,
+            });
+        }
+    }
+    Ok(())
+}
