@@ -954,6 +954,12 @@ fn the_eta_map_refuses_bad_ranges_and_matches_the_eta_table() {
         (vec!["--n", "5"], "--n"),
         (vec!["--tol", "0"], "--tol"),
         (vec!["--joint", "free-hub"], "--joint"),
+        // Regression: an out-of-range rotor inertia failed every point, yet the figures were
+        // written and the exit code was 0; a 1e20 was quoted as 21 digits.
+        (
+            vec!["--joint", "free-hub", "--rotor-inertia", "1e20"],
+            "--rotor-inertia = 1e20",
+        ),
     ] {
         let mut all = vec!["eta-map", "--out", out];
         all.extend(args);

@@ -89,7 +89,7 @@ pub fn settings_text(settings: &EtaSettings) -> String {
 
 /// Computes every map, renders everything, then writes the files (no partial output).
 pub fn run(options: &EtaMapOptions, cancel: &CancelToken) -> Result<EtaMapResult, Error> {
-    options.settings.method.validate()?;
+    options.settings.validate()?;
     let joint_text = settings_text(&options.settings);
     let mut maps = Vec::new();
     for spec in &options.specs {

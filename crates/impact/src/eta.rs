@@ -108,6 +108,8 @@ impl EtaSettings {
     /// Checks the method and the window; the error names the field.
     pub fn validate(&self) -> Result<(), ImpactError> {
         self.method.validate()?;
+        // a bad joint would fail every case of a table or a map: refused before any runs
+        self.joint.validate()?;
         if let Some(periods) = self.window_periods {
             if !matches!(self.method, ClMethod::Modal { .. }) {
                 return Err(ImpactError::invalid(

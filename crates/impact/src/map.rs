@@ -109,7 +109,7 @@ pub fn eta_map_until(
     stop: &AtomicBool,
 ) -> Result<Vec<MapPoint>, ImpactError> {
     spec.validate()?;
-    settings.method.validate()?;
+    settings.validate()?;
     let xs = spec.mass_ratio.values();
     let ys = spec.stiffness_ratio.values();
     let grid: Vec<(f64, f64)> = ys

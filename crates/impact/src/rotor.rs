@@ -94,7 +94,7 @@ pub fn rotor_sweep_until(
     settings: &EtaSettings,
     stop: &AtomicBool,
 ) -> Result<Vec<RotorPoint>, ImpactError> {
-    settings.method.validate()?;
+    settings.validate()?;
     ratios.validate("inertia_ratio", RATIO_LIMITS.0, RATIO_LIMITS.1)?;
     let mut stops: Vec<Option<f64>> = ratios.values().into_iter().map(Some).collect();
     stops.push(None);

@@ -146,15 +146,23 @@ pub struct FreeMassImpact {
     pub damping: DampingSpec,
 }
 
+impl Joint {
+    /// Checks the joint's parameters (a free hub's rotor inertia in [1e-12, 1e12] kg·m²).
+    pub fn validate(&self) -> Result<(), ImpactError> {
+        if let Joint::FreeHub { rotor_inertia } = *self {
+            in_range("rotor_inertia", rotor_inertia, 1e-12, 1e12)?;
+        }
+        Ok(())
+    }
+}
+
 impl FreeMassImpact {
     /// Checks every parameter; the error names it and the allowed range.
     pub fn validate(&self) -> Result<(), ImpactError> {
         in_range("m_h", self.m_h, 1e-6, 1e9)?;
         in_range("v0", self.v0, 1e-6, 1e3)?;
         self.link.validate()?;
-        if let Joint::FreeHub { rotor_inertia } = self.joint {
-            in_range("rotor_inertia", rotor_inertia, 1e-12, 1e12)?;
-        }
+        self.joint.validate()?;
         self.law()?;
         Ok(())
     }
