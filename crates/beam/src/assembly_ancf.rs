@@ -23,7 +23,7 @@
 
 use nalgebra::Vector2;
 
-use crate::ancf::{AncfElement, Matrix8, Vector8, Want, slope_angle};
+use crate::ancf::{AncfElement, AncfEvaluation, Matrix8, Vector8, Want, slope_angle};
 use crate::assembly::{JacobianWeights, Kinematic};
 use crate::banded::BandMatrix;
 use crate::element::lumped_mass;
@@ -165,9 +165,18 @@ pub fn assemble_ancf(
     let mut energy = 0.0;
     for e in 0..model.n_elements() {
         let d = gather(kin.q, e);
-        let ev = el.evaluate(&d, want);
-        let mut f = ev.force;
-        let mut kt = ev.tangent;
+        // the residual alone (the most frequent call) forms no 8 × 8 matrix
+        let full = (want != Want::Force).then(|| el.evaluate(&d, want));
+        let (element_energy, mut f) = match &full {
+            Some(ev) => (ev.energy, ev.force),
+            None => el.force(&d),
+        };
+        let mut kt = match &full {
+            Some(ev) => ev.tangent,
+            None => Matrix8::zeros(),
+        };
+        let material =
+            |ev: &Option<AncfEvaluation>| ev.as_ref().map_or_else(Matrix8::zeros, |e| e.material);
         match discrete.as_deref_mut() {
             Some(dg) => {
                 let d1 = gather(dg.q1, e);
@@ -200,13 +209,13 @@ pub fn assemble_ancf(
                     f += wdd * c;
                 }
             }
-            None => energy += ev.energy,
+            None => energy += element_energy,
         }
         if dynamic {
             let pv = gather(kin.v.unwrap(), e);
             let pa = gather(kin.a.unwrap(), e);
             if need_material {
-                f += ev.material * pv * damping.beta_stiffness;
+                f += material(&full) * pv * damping.beta_stiffness;
             }
             let acc = pa + pv * damping.alpha_mass;
             if lumped {
@@ -226,7 +235,7 @@ pub fn assemble_ancf(
             if dynamic {
                 kt += inertia_weighted;
                 if need_material {
-                    kt += ev.material * (w.velocity * damping.beta_stiffness);
+                    kt += material(&full) * (w.velocity * damping.beta_stiffness);
                 }
             }
             for i in 0..8 {
