@@ -3,7 +3,8 @@
 //!
 //! * `probe_instructions transient KIN N [STEPS]`: issue 13's step load (L 0.3 m, 25 × 1 mm,
 //!   E 1.5 GPa, ρ 900, tip load P = EI/L² from rest), generalized-α ρ∞ = 0.9, h = 1 ms,
-//!   STEPS steps (default 1000), KIN ancf|corotational;
+//!   STEPS steps (default 1000), KIN ancf|corotational, METHOD auto (default), modified or full:
+//!   `probe_instructions transient KIN N [STEPS [METHOD]]`;
 //! * `probe_instructions static KIN N`: the elastica PL²/EI = 5, 10 load steps;
 //! * `probe_instructions modes N`: the first 4 transverse modes of the linear CL link.
 //!
@@ -18,7 +19,14 @@ fn main() {
             let kin = Kinematics::parse("kinematics", &a[2]).unwrap();
             let n: usize = a[3].parse().unwrap();
             let steps: usize = a.get(4).map_or(1000, |s| s.parse().unwrap());
-            let ga = GeneralizedAlpha::new(0.9).unwrap();
+            let method = match a.get(5).map(String::as_str) {
+                Some("full") => NewtonMethod::Full,
+                Some("modified") => NewtonMethod::Modified,
+                _ => NewtonMethod::Auto,
+            };
+            let ga = GeneralizedAlpha::new(0.9)
+                .unwrap()
+                .with_newton_method(method);
             let (model, loads) = canonical::issue13_cantilever(n, kin).unwrap();
             let mut s = State::at_rest(&model, &loads).unwrap();
             let mut ws = Workspace::new(&model);

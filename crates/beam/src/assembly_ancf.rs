@@ -32,6 +32,10 @@ use crate::model::{BeamModel, MassMatrix};
 /// Global DOF (relative to 4e) of element coordinate k (slot order r₁, r₁′, r₂, r₂′; x, y).
 pub const ELEMENT_DOFS: [usize; 8] = [0, 1, 3, 2, 4, 5, 7, 6];
 
+/// Element coordinate of global DOF 4e + k (the inverse of [`ELEMENT_DOFS`], which swaps the
+/// two slope entries of each node, so it is its own inverse).
+const PERMUTE: [usize; 8] = ELEMENT_DOFS;
+
 /// Offsets of the slope DOFs (r′ₓ, r′ᵧ) within a node.
 pub const SLOPE_X: usize = 3;
 /// Offset of r′ᵧ within a node.
@@ -238,15 +242,22 @@ pub fn assemble_ancf(
                     kt += material(&full) * (w.velocity * damping.beta_stiffness);
                 }
             }
-            for i in 0..8 {
-                let gi = 4 * e + ELEMENT_DOFS[i];
-                if gi < nfix {
-                    continue;
-                }
-                for j in 0..8 {
-                    let gj = 4 * e + ELEMENT_DOFS[j];
-                    if gj >= nfix {
-                        band.add(gi - nfix, gj - nfix, kt[(i, j)]);
+            if 4 * e >= nfix {
+                // the element's DOFs 4e … 4e+7 are consecutive: add the block column by column
+                let block: [[f64; 8]; 8] =
+                    std::array::from_fn(|j| std::array::from_fn(|i| kt[(PERMUTE[i], PERMUTE[j])]));
+                band.add_block(4 * e - nfix, &block);
+            } else {
+                for i in 0..8 {
+                    let gi = 4 * e + ELEMENT_DOFS[i];
+                    if gi < nfix {
+                        continue;
+                    }
+                    for j in 0..8 {
+                        let gj = 4 * e + ELEMENT_DOFS[j];
+                        if gj >= nfix {
+                            band.add(gi - nfix, gj - nfix, kt[(i, j)]);
+                        }
                     }
                 }
             }

@@ -67,6 +67,24 @@ impl BandMatrix {
         let k = self.idx(i, j);
         self.data[k] += value;
     }
+    /// Adds the dense block `block` (by columns: `block[j][i]` is entry (first + i, first + j))
+    /// to the rows and columns first … first + N − 1, which must lie inside the band
+    /// (N − 1 ≤ kl, ku); the same sums as N² calls of [`BandMatrix::add`].
+    #[inline]
+    pub fn add_block<const N: usize>(&mut self, first: usize, block: &[[f64; N]; N]) {
+        assert!(
+            N <= self.kl + 1 && N <= self.ku + 1 && first + N <= self.n,
+            "block of {N} at {first} outside the band"
+        );
+        for (j, col) in block.iter().enumerate() {
+            let c = first + j;
+            let start = self.idx(first, c);
+            let seg = &mut self.data[start..start + N];
+            for (x, v) in seg.iter_mut().zip(col) {
+                *x += v;
+            }
+        }
+    }
     /// y = A x (before factorisation).
     pub fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
         for (i, yi) in y.iter_mut().enumerate().take(self.n) {
