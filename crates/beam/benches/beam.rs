@@ -194,7 +194,7 @@ fn issue13(c: &mut Criterion) {
     g.finish();
 }
 
-/// The stages of one Newton iteration of issue 13's transient at 32 elements, at the state
+/// The stages of one Newton iteration of the Exudyn comparison's transient at 32 elements, at the state
 /// after 500 steps (tip at ≈ 0.5 L): the residual alone, the residual with the iteration matrix
 /// (cleared and scattered into the band), the banded LU and one solve. A step's cost is about
 /// Σ count × these unit costs, the counts from `Workspace::counters` (examples/probe_step_cost).

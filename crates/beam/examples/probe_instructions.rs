@@ -1,7 +1,7 @@
 //! One workload per call, for instruction counts under `valgrind --tool=callgrind` (a
 //! load-independent cost measure on a shared machine) or for timing from outside:
 //!
-//! * `probe_instructions transient KIN N [STEPS]`: issue 13's step load (L 0.3 m, 25 × 1 mm,
+//! * `probe_instructions transient KIN N [STEPS]`: the Exudyn comparison's step load (L 0.3 m, 25 × 1 mm,
 //!   E 1.5 GPa, ρ 900, tip load P = EI/L² from rest), generalized-α ρ∞ = 0.9, h = 1 ms,
 //!   STEPS steps (default 1000), KIN ancf|corotational, METHOD auto (default), modified or full:
 //!   `probe_instructions transient KIN N [STEPS [METHOD]]`;

@@ -1,5 +1,5 @@
 //! How far the default Newton (modified, tolerance 1e-6 L) lands from a tight full Newton
-//! (tolerance 1e-10 L) on issue 13's step-load transient (h = 1 ms, ρ∞ = 0.9): the largest
+//! (tolerance 1e-10 L) on the Exudyn comparison's step-load transient (h = 1 ms, ρ∞ = 0.9): the largest
 //! deviation of the tip deflection over the run, relative to tol·L, and the work per step.
 //!
 //! `probe_newton_accuracy KIN N STEPS`

@@ -1,4 +1,4 @@
-//! Work per step of issue 13's step-load transient (L 0.3 m, 25 × 1 mm, E 1.5 GPa, ρ 900,
+//! Work per step of the Exudyn comparison's step-load transient (L 0.3 m, 25 × 1 mm, E 1.5 GPa, ρ 900,
 //! P = EI/L² at the tip from rest, h = 1 ms, 1000 steps, generalized-α ρ∞ = 0.9): Newton
 //! iterations, residual and iteration-matrix assemblies and factorisations per step
 //! ([`StepCounters`]), and the wall time of the run (best of `REPEATS`).

@@ -1,4 +1,4 @@
-//! The static elastica of issue 13's cantilever (L 0.3 m, E 1.5 GPa, 25 × 1 mm, clamped, dead
+//! The static elastica of the Exudyn comparison's cantilever (L 0.3 m, E 1.5 GPa, 25 × 1 mm, clamped, dead
 //! tip load P = α EI/L², 10 load steps) for the side-by-side peer timing
 //! (scripts/peers/exudyn_ancf_cable.py).
 //!

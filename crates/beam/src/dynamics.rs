@@ -63,10 +63,11 @@ pub enum NewtonMethod {
     Full,
     /// The iteration matrix kept while the corrections contract by [`MODIFIED_NEWTON_RATE`]
     /// per iteration and the iterations left can reach the tolerance at the rate measured;
-    /// the same increment test. Corotational: half the instructions of full Newton on
-    /// issue 13's transient at 32 elements (1.08 instead of 3.03 factorisations per step)
-    /// and within 0.5 tol·L of the full Newton solution, but its Newton error (up to ≈ 0.3 tol
-    /// per step) shows in the energy of long runs at the 1e-8 level.
+    /// the same increment test. Corotational: half the instructions of full Newton on the
+    /// step-load transient of [`crate::canonical::issue13_cantilever`] at 32 elements (1.08
+    /// instead of 3.03 factorisations per step) and within 0.5 tol·L of the full Newton
+    /// solution, but its Newton error (up to ≈ 0.3 tol per step) shows in the energy of long
+    /// runs at the 1e-8 level.
     Modified,
 }
 
@@ -586,9 +587,10 @@ impl GeneralizedAlpha {
         report: &mut StepReport,
     ) -> Result<(), BeamError> {
         // The predictor that worked on the last step goes first. (Going back to the
-        // extrapolated one after the velocity one took over was measured to cost more: on
-        // issue 13's step load at 16 elements 4.92 against 4.83 iterations and 1.11 against
-        // 0.87 factorisations per step, ANCF; full Newton 3.31 against 3.03 iterations.)
+        // extrapolated one after the velocity one took over was measured to cost more: on the
+        // step load of canonical::issue13_cantilever at 16 elements 4.92 against 4.83
+        // iterations and 1.11 against 0.87 factorisations per step, ANCF; full Newton 3.31
+        // against 3.03 iterations.)
         let extrapolated = (
             Predictor::Extrapolated,
             self.max_iterations.min(EXTRAPOLATED_ITERATIONS),
@@ -709,8 +711,8 @@ impl GeneralizedAlpha {
         // reproducible bit for bit); an ANCF step from the one retained from the last step (its
         // mass is constant; when the turning beam has made the matrix's stiffness part stale,
         // the rate test refreshes it after two residual-only iterations, which cost less than
-        // refreshing it on every step: measured 683 against 741 M instructions for issue 13's
-        // 1000 steps at 32 elements, 1.10 against 1.36 factorisations per step).
+        // refreshing it on every step: measured 683 against 741 M instructions for 1000 steps
+        // of that step load at 32 elements, 1.10 against 1.36 factorisations per step).
         let modified = !single_solve
             && match self.newton_method {
                 NewtonMethod::Modified => true,

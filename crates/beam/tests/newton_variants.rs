@@ -1,4 +1,4 @@
-//! The generalized-α step's Newton variants on a large-deflection transient (issue 13's step
+//! The generalized-α step's Newton variants on a large-deflection transient (the Exudyn comparison's step
 //! load: L 0.3 m, 25 × 1 mm, E 1.5 GPa, ρ 900, tip load P = EI/L² from rest, h = 1 ms,
 //! ρ∞ = 0.9; the tip swings to v ≈ 0.55 L): modified Newton (the ANCF default, a choice for the
 //! corotational model) lands on the full Newton's solution to the Newton tolerance with fewer
