@@ -13,8 +13,11 @@
 //!   E 1.5 GPa, ρ 900): the ANCF element alone (force; force and tangent), the elastica
 //!   PL²/EI = 5 with 32 ANCF elements (10 load steps), and the step-load transient (P = EI/L²
 //!   from rest, h = 1e-3 s, 1000 steps, generalized-α ρ∞ = 0.9 or the energy-conserving step)
-//!   with ANCF and corotational elements; the error of each row is in
-//!   docs/performance-beam.md (scripts/work_precision_beam.py).
+//!   with ANCF and corotational elements at N = 4 … 64; the error of each row is in
+//!   docs/performance-beam.md (scripts/work_precision_beam.py; Exudyn side by side:
+//!   scripts/peers/exudyn_ancf_cable.py).
+//! * `stage/…`: the stages of one Newton iteration at 32 elements (residual, residual with the
+//!   iteration matrix, banded LU, solve).
 
 use std::hint::black_box;
 
@@ -153,10 +156,14 @@ fn issue13(c: &mut Criterion) {
     for (kin, integrator, n) in [
         (Kinematics::Ancf, "0.9", 4usize),
         (Kinematics::Ancf, "0.9", 8),
+        (Kinematics::Ancf, "0.9", 16),
         (Kinematics::Ancf, "0.9", 32),
+        (Kinematics::Ancf, "0.9", 64),
         (Kinematics::Ancf, "ec", 8),
         (Kinematics::Corotational, "0.9", 8),
+        (Kinematics::Corotational, "0.9", 16),
         (Kinematics::Corotational, "0.9", 32),
+        (Kinematics::Corotational, "0.9", 64),
     ] {
         let (model, loads) = canonical::issue13_cantilever(n, kin).unwrap();
         let ga = if integrator == "ec" {
@@ -187,7 +194,77 @@ fn issue13(c: &mut Criterion) {
     g.finish();
 }
 
+/// The stages of one Newton iteration of the Exudyn comparison's transient at 32 elements, at the state
+/// after 500 steps (tip at ≈ 0.5 L): the residual alone, the residual with the iteration matrix
+/// (cleared and scattered into the band), the banded LU and one solve. A step's cost is about
+/// Σ count × these unit costs, the counts from `Workspace::counters` (examples/probe_step_cost).
+fn stages(c: &mut Criterion) {
+    use flexrig_beam::assembly::{JacobianWeights, Kinematic, assemble, band_for};
+    let mut g = c.benchmark_group("stage");
+    for kin in [Kinematics::Ancf, Kinematics::Corotational] {
+        let name = if kin == Kinematics::Ancf {
+            "ancf"
+        } else {
+            "corotational"
+        };
+        let (model, loads) = canonical::issue13_cantilever(32, kin).unwrap();
+        let ga = GeneralizedAlpha::new(0.9).unwrap();
+        let mut s = State::at_rest(&model, &loads).unwrap();
+        let mut ws = Workspace::new(&model);
+        for _ in 0..500 {
+            ga.step(&model, &mut s, &mut ws, 1e-3, &loads).unwrap();
+        }
+        let (am, af, gm, b) = ga.parameters();
+        let h = 1e-3;
+        let w = JacobianWeights {
+            stiffness: 1.0,
+            velocity: gm / (b * h),
+            acceleration: (1.0 - am) / ((1.0 - af) * b * h * h),
+        };
+        let kinm = Kinematic {
+            q: &s.q,
+            v: Some(&s.v),
+            a: Some(&s.a),
+        };
+        let mut r = vec![0.0; model.n_dofs()];
+        let mut band = band_for(&model);
+        g.bench_function(format!("{name}_32/residual"), |bch| {
+            bch.iter(|| black_box(assemble(&model, kinm, loads.as_slice(), &mut r, None)))
+        });
+        g.bench_function(format!("{name}_32/residual_and_matrix"), |bch| {
+            bch.iter(|| {
+                black_box(assemble(
+                    &model,
+                    kinm,
+                    loads.as_slice(),
+                    &mut r,
+                    Some((&mut band, w)),
+                ))
+            })
+        });
+        assemble(&model, kinm, loads.as_slice(), &mut r, Some((&mut band, w)));
+        let mut lu = band.clone();
+        g.bench_function(format!("{name}_32/factorize"), |bch| {
+            bch.iter(|| {
+                lu.clone_from(&band);
+                lu.factorize("bench").unwrap();
+                black_box(lu.n())
+            })
+        });
+        let rhs: Vec<f64> = r[model.n_fixed()..].to_vec();
+        let mut x = rhs.clone();
+        g.bench_function(format!("{name}_32/solve"), |bch| {
+            bch.iter(|| {
+                x.copy_from_slice(&rhs);
+                lu.solve_in_place(&mut x);
+                black_box(x[0])
+            })
+        });
+    }
+    g.finish();
+}
+
 criterion_group!(
-    benches, transient, reduced, statics, scaling, modal, issue13
+    benches, transient, reduced, statics, scaling, modal, issue13, stages
 );
 criterion_main!(benches);

@@ -271,6 +271,61 @@ impl AncfElement {
         m
     }
 
+    /// Strain energy \[J\] and internal force ∂U/∂e \[N\] at the displacement `d` (as in
+    /// [`AncfElement::evaluate`] with [`Want::Force`], the same operations, without the 8 × 8
+    /// matrices: the residual-only assembly of every Newton iteration).
+    #[inline]
+    pub fn force(&self, d: &Vector8) -> (f64, Vector8) {
+        let ds: [[f64; 2]; 4] = std::array::from_fn(|a| [d[2 * a], d[2 * a + 1]]);
+        let mut f = [0.0f64; 8];
+        let mut energy = 0.0;
+        for p in &self.axial[..self.n_axial] {
+            let mut dp = [0.0f64; 2];
+            for a in 0..4 {
+                dp[0] += ds[a][0] * p.c1[a];
+                dp[1] += ds[a][1] * p.c1[a];
+            }
+            let g1 = 2.0 * dp[0] + (dp[0] * dp[0] + dp[1] * dp[1]);
+            let norm = (1.0 + g1).sqrt();
+            let eps = g1 / (norm + 1.0);
+            let n_ax = self.ea * eps;
+            energy += 0.5 * p.wl * n_ax * eps;
+            let w = p.wl * n_ax / norm;
+            let ft = [(1.0 + dp[0]) * w, dp[1] * w];
+            for a in 0..4 {
+                f[2 * a] += p.c1[a] * ft[0];
+                f[2 * a + 1] += p.c1[a] * ft[1];
+            }
+        }
+        for p in &self.bending[..self.n_bending] {
+            let mut dp = [0.0f64; 2];
+            let mut rpp = [0.0f64; 2];
+            for a in 0..4 {
+                dp[0] += ds[a][0] * p.c1[a];
+                dp[1] += ds[a][1] * p.c1[a];
+                rpp[0] += ds[a][0] * p.c2[a];
+                rpp[1] += ds[a][1] * p.c2[a];
+            }
+            let rp = [1.0 + dp[0], dp[1]];
+            let g = rp[0] * rp[0] + rp[1] * rp[1];
+            let kappa = (rp[0] * rpp[1] - rp[1] * rpp[0]) / g;
+            let m_b = self.ei * kappa;
+            energy += 0.5 * p.wl * m_b * kappa;
+            // α = J r″/g − 2κ r′/g, β = Jᵀ r′/g
+            let alpha = [
+                rpp[1] / g - rp[0] * (2.0 * kappa / g),
+                -rpp[0] / g - rp[1] * (2.0 * kappa / g),
+            ];
+            let beta = [-rp[1] / g, rp[0] / g];
+            let fm = p.wl * m_b;
+            for a in 0..4 {
+                f[2 * a] += fm * (alpha[0] * p.c1[a] + beta[0] * p.c2[a]);
+                f[2 * a + 1] += fm * (alpha[1] * p.c1[a] + beta[1] * p.c2[a]);
+            }
+        }
+        (energy, Vector8::from(f))
+    }
+
     /// Evaluates the element at the displacement `d` of its coordinates from the straight
     /// reference along x (positions (X₁, 0), (X₂, 0) and unit slopes (1, 0)), slot order
     /// (r₁, r₁′, r₂, r₂′).
@@ -322,8 +377,9 @@ impl AncfElement {
                 [mt[1][0] + geo[1][0], mt[1][1] + geo[1][1]],
             ];
             let material = want == Want::TangentAndMaterial;
+            // the tangent is symmetric: the blocks b ≥ a here, the others mirrored at the end
             for a in 0..4 {
-                for b in 0..4 {
+                for b in a..4 {
                     let cc = p.c1[a] * p.c1[b];
                     for i in 0..2 {
                         for j in 0..2 {
@@ -412,7 +468,7 @@ impl AncfElement {
                         }
                     }
                 }
-                for a in 0..4 {
+                for a in 0..=b {
                     let (c1a, c2a) = (p.c1[a], p.c2[a]);
                     for i in 0..2 {
                         for j in 0..2 {
@@ -426,11 +482,20 @@ impl AncfElement {
             }
         }
         if matches!(want, Want::Tangent | Want::TangentAndMaterial) {
-            for i in 0..8 {
-                for j in 0..8 {
-                    out.tangent[(i, j)] = k[i][j];
-                    out.material[(i, j)] = km[i][j];
+            // mirror the blocks a > b from the blocks b > a (both matrices are symmetric)
+            for a in 1..4 {
+                for b in 0..a {
+                    for i in 0..2 {
+                        for j in 0..2 {
+                            k[2 * a + i][2 * b + j] = k[2 * b + j][2 * a + i];
+                            km[2 * a + i][2 * b + j] = km[2 * b + j][2 * a + i];
+                        }
+                    }
                 }
+            }
+            out.tangent = Matrix8::from_fn(|i, j| k[i][j]);
+            if want == Want::TangentAndMaterial {
+                out.material = Matrix8::from_fn(|i, j| km[i][j]);
             }
         }
         out
@@ -487,6 +552,34 @@ mod tests {
                     (fd - e.tangent[(i, k)]).abs() < 1e-7 * kscale,
                     "K {i} {k}: {fd} vs {}",
                     e.tangent[(i, k)]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_force_kernel_matches_the_full_evaluation() {
+        // the residual-only kernel against evaluate(): same energy and force to round-off
+        for el in [
+            AncfElement::new(0.25, 5.0e4, 3.0),
+            AncfElement::with_rules(
+                0.1,
+                3.7e4,
+                3.1e-3,
+                Quadrature::Gauss(5),
+                Quadrature::Gauss(2),
+            ),
+        ] {
+            for s in [0.0, 1.0, -0.7] {
+                let d = sample() * s;
+                let (u, f) = el.force(&d);
+                let e = el.evaluate(&d, Want::Force);
+                let scale = e.force.abs().max().max(1e-300);
+                assert!((u - e.energy).abs() <= 1e-13 * e.energy.abs().max(1e-300));
+                assert!(
+                    (f - e.force).abs().max() <= 1e-13 * scale,
+                    "{f} vs {}",
+                    e.force
                 );
             }
         }

@@ -10,8 +10,11 @@
 use nalgebra::{Matrix6, Vector6};
 
 use crate::banded::BandMatrix;
-use crate::corotational::corotational_element_trig;
-use crate::element::{consistent_inertia, consistent_inertia_trig, linear_stiffness, lumped_mass};
+use crate::corotational::{corotational_element_trig, corotational_force_trig};
+use crate::element::{
+    consistent_inertia, consistent_inertia_force_trig, consistent_inertia_trig, linear_stiffness,
+    lumped_mass,
+};
 pub use crate::evaluation::{JacobianWeights, Kinematic};
 use crate::model::{BeamModel, Kinematics, MassMatrix};
 
@@ -56,6 +59,9 @@ pub fn assemble(
     let k_lin = linear_stiffness(l, sec.ea(), sec.ei());
     let m_lump = lumped_mass(l, sec.rho_a());
     let mut energy = 0.0;
+    // no Jacobian and no stiffness-proportional damping (which needs the material matrix):
+    // the force kernels alone
+    let force_only = jac.is_none() && !(dynamic && damping.beta_stiffness > 0.0);
     // (sin θ, cos θ) of the element's first node, carried over from the previous element
     let mut trig_next = if nonlinear {
         kin.q[2].sin_cos()
@@ -73,6 +79,41 @@ pub fn assemble(
             },
         ];
         trig_next = trig[1];
+        if force_only {
+            // the residual alone (modified Newton's most frequent call): no 6 × 6 matrices
+            let mut f = if nonlinear {
+                let (f, u) = corotational_force_trig(l, sec.ea(), sec.ei(), &p, trig);
+                energy += u;
+                f
+            } else {
+                let f = k_lin * p;
+                energy += 0.5 * p.dot(&f);
+                f
+            };
+            if dynamic {
+                let pv = gather(kin.v.unwrap(), e);
+                let pa = gather(kin.a.unwrap(), e);
+                if lumped {
+                    for d in 0..6 {
+                        f[d] += m_lump[d] * (pa[d] + damping.alpha_mass * pv[d]);
+                    }
+                } else {
+                    let acc = pa + pv * damping.alpha_mass;
+                    f += consistent_inertia_force_trig(
+                        l,
+                        sec.rho_a(),
+                        trig,
+                        [pv[2], pv[5]],
+                        &acc,
+                        nonlinear,
+                    );
+                }
+            }
+            for d in 0..6 {
+                r[3 * e + d] += f[d];
+            }
+            continue;
+        }
         let (mut f, mut kt, kmat) = if nonlinear {
             let ce = corotational_element_trig(l, sec.ea(), sec.ei(), &p, trig);
             energy += ce.strain_energy;

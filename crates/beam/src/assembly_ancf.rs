@@ -23,7 +23,7 @@
 
 use nalgebra::Vector2;
 
-use crate::ancf::{AncfElement, Matrix8, Vector8, Want, slope_angle};
+use crate::ancf::{AncfElement, AncfEvaluation, Matrix8, Vector8, Want, slope_angle};
 use crate::banded::BandMatrix;
 use crate::element::lumped_mass;
 use crate::evaluation::{JacobianWeights, Kinematic};
@@ -31,6 +31,10 @@ use crate::model::{BeamModel, MassMatrix};
 
 /// Global DOF (relative to 4e) of element coordinate k (slot order r₁, r₁′, r₂, r₂′; x, y).
 pub const ELEMENT_DOFS: [usize; 8] = [0, 1, 3, 2, 4, 5, 7, 6];
+
+/// Element coordinate of global DOF 4e + k (the inverse of [`ELEMENT_DOFS`], which swaps the
+/// two slope entries of each node, so it is its own inverse).
+const PERMUTE: [usize; 8] = ELEMENT_DOFS;
 
 /// Offsets of the slope DOFs (r′ₓ, r′ᵧ) within a node.
 pub const SLOPE_X: usize = 3;
@@ -165,9 +169,18 @@ pub fn assemble_ancf(
     let mut energy = 0.0;
     for e in 0..model.n_elements() {
         let d = gather(kin.q, e);
-        let ev = el.evaluate(&d, want);
-        let mut f = ev.force;
-        let mut kt = ev.tangent;
+        // the residual alone (the most frequent call) forms no 8 × 8 matrix
+        let full = (want != Want::Force).then(|| el.evaluate(&d, want));
+        let (element_energy, mut f) = match &full {
+            Some(ev) => (ev.energy, ev.force),
+            None => el.force(&d),
+        };
+        let mut kt = match &full {
+            Some(ev) => ev.tangent,
+            None => Matrix8::zeros(),
+        };
+        let material =
+            |ev: &Option<AncfEvaluation>| ev.as_ref().map_or_else(Matrix8::zeros, |e| e.material);
         match discrete.as_deref_mut() {
             Some(dg) => {
                 let d1 = gather(dg.q1, e);
@@ -200,13 +213,13 @@ pub fn assemble_ancf(
                     f += wdd * c;
                 }
             }
-            None => energy += ev.energy,
+            None => energy += element_energy,
         }
         if dynamic {
             let pv = gather(kin.v.unwrap(), e);
             let pa = gather(kin.a.unwrap(), e);
             if need_material {
-                f += ev.material * pv * damping.beta_stiffness;
+                f += material(&full) * pv * damping.beta_stiffness;
             }
             let acc = pa + pv * damping.alpha_mass;
             if lumped {
@@ -226,18 +239,25 @@ pub fn assemble_ancf(
             if dynamic {
                 kt += inertia_weighted;
                 if need_material {
-                    kt += ev.material * (w.velocity * damping.beta_stiffness);
+                    kt += material(&full) * (w.velocity * damping.beta_stiffness);
                 }
             }
-            for i in 0..8 {
-                let gi = 4 * e + ELEMENT_DOFS[i];
-                if gi < nfix {
-                    continue;
-                }
-                for j in 0..8 {
-                    let gj = 4 * e + ELEMENT_DOFS[j];
-                    if gj >= nfix {
-                        band.add(gi - nfix, gj - nfix, kt[(i, j)]);
+            if 4 * e >= nfix {
+                // the element's DOFs 4e … 4e+7 are consecutive: add the block column by column
+                let block: [[f64; 8]; 8] =
+                    std::array::from_fn(|j| std::array::from_fn(|i| kt[(PERMUTE[i], PERMUTE[j])]));
+                band.add_block(4 * e - nfix, &block);
+            } else {
+                for i in 0..8 {
+                    let gi = 4 * e + ELEMENT_DOFS[i];
+                    if gi < nfix {
+                        continue;
+                    }
+                    for j in 0..8 {
+                        let gj = 4 * e + ELEMENT_DOFS[j];
+                        if gj >= nfix {
+                            band.add(gi - nfix, gj - nfix, kt[(i, j)]);
+                        }
                     }
                 }
             }

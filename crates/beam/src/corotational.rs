@@ -92,6 +92,42 @@ pub fn corotational_element_trig(
     }
 }
 
+/// Internal force f [N, N·m] and strain energy \[J\] of [`corotational_element_trig`] alone (the
+/// same operations, without the 6 × 6 matrices: the residual-only assembly).
+#[inline]
+pub fn corotational_force_trig(
+    l0: f64,
+    ea: f64,
+    ei: f64,
+    p: &Vector6<f64>,
+    trig: [(f64, f64); 2],
+) -> (Vector6<f64>, f64) {
+    let dx = l0 + p[3] - p[0];
+    let dy = p[4] - p[1];
+    let l = dx.hypot(dy);
+    let (c, s) = (dx / l, dy / l);
+    let local_angle = |(sn, cs): (f64, f64)| (sn * c - cs * s).atan2(cs * c + sn * s);
+    let ub = l - l0;
+    let t1 = local_angle(trig[0]);
+    let t2 = local_angle(trig[1]);
+    let (ka, kb) = (ea / l0, ei / l0);
+    let n_ax = ka * ub;
+    let m1 = kb * (4.0 * t1 + 2.0 * t2);
+    let m2 = kb * (2.0 * t1 + 4.0 * t2);
+    let r = [-c, -s, 0.0, c, s, 0.0];
+    let z = [s, -c, 0.0, -s, c, 0.0];
+    let mut force = Vector6::zeros();
+    for j in 0..6 {
+        let zl = -z[j] / l;
+        let (b1, b2) = (
+            zl + if j == 2 { 1.0 } else { 0.0 },
+            zl + if j == 5 { 1.0 } else { 0.0 },
+        );
+        force[j] = r[j] * n_ax + b1 * m1 + b2 * m2;
+    }
+    (force, 0.5 * (n_ax * ub + m1 * t1 + m2 * t2))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -130,6 +166,20 @@ mod tests {
                 (du - e.force[k]).abs() < 1e-6 * e.force.abs().max(),
                 "dU/dp {k}"
             );
+        }
+    }
+
+    #[test]
+    fn the_force_kernel_matches_the_full_evaluation() {
+        let (l0, ea, ei) = (0.25, 5.0e4, 3.0);
+        for p in [
+            Vector6::new(0.01, -0.02, 0.3, -0.04, 0.09, 0.8),
+            Vector6::new(0.0, 0.0, -2.0, 0.1, -0.2, 7.0),
+        ] {
+            let e = corotational_element(l0, ea, ei, &p);
+            let (f, u) = corotational_force_trig(l0, ea, ei, &p, [p[2].sin_cos(), p[5].sin_cos()]);
+            assert_eq!(f, e.force);
+            assert_eq!(u, e.strain_energy);
         }
     }
 

@@ -94,6 +94,49 @@ pub fn consistent_inertia(
     )
 }
 
+/// The inertia force f_in alone of [`consistent_inertia_trig`] (the same operations, without
+/// the 6 × 6 matrices: the residual-only assembly).
+#[inline]
+pub fn consistent_inertia_force_trig(
+    l: f64,
+    rho_a: f64,
+    trig: [(f64, f64); 2],
+    omega: [f64; 2],
+    acc: &Vector6<f64>,
+    nonlinear: bool,
+) -> Vector6<f64> {
+    let (trig, om) = if nonlinear {
+        (trig, omega)
+    } else {
+        ([(0.0, 1.0), (0.0, 1.0)], [0.0, 0.0])
+    };
+    let t = [
+        Vector2::new(trig[0].1, trig[0].0),
+        Vector2::new(trig[1].1, trig[1].0),
+    ];
+    let n = [Vector2::new(-t[0].y, t[0].x), Vector2::new(-t[1].y, t[1].x)];
+    let h = &HERMITE_PRODUCTS;
+    let a_slot = [
+        Vector2::new(acc[0], acc[1]),
+        n[0] * (l * acc[2]) - t[0] * (l * om[0] * om[0]),
+        Vector2::new(acc[3], acc[4]),
+        n[1] * (l * acc[5]) - t[1] * (l * om[1] * om[1]),
+    ];
+    let w: [Vector2<f64>; 4] = std::array::from_fn(|a| {
+        a_slot[0] * h[a][0] + a_slot[1] * h[a][1] + a_slot[2] * h[a][2] + a_slot[3] * h[a][3]
+    });
+    let m_e = rho_a * l;
+    let ln = [n[0] * l, n[1] * l];
+    Vector6::new(
+        m_e * w[0].x,
+        m_e * w[0].y,
+        m_e * ln[0].dot(&w[1]),
+        m_e * w[2].x,
+        m_e * w[2].y,
+        m_e * ln[1].dot(&w[3]),
+    )
+}
+
 /// [`consistent_inertia`] with the nodal (sin θᵢ, cos θᵢ) given.
 pub fn consistent_inertia_trig(
     l: f64,
@@ -192,6 +235,17 @@ pub fn lumped_mass(l: f64, rho_a: f64) -> Vector6<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_inertia_force_kernel_matches_the_full_evaluation() {
+        let acc = Vector6::new(0.3, -1.2, 4.0, 0.7, 2.2, -3.0);
+        for nonlinear in [false, true] {
+            let trig = [0.4f64.sin_cos(), (-1.1f64).sin_cos()];
+            let full = consistent_inertia_trig(0.2, 1.7, trig, [2.0, -5.0], &acc, nonlinear);
+            let f = consistent_inertia_force_trig(0.2, 1.7, trig, [2.0, -5.0], &acc, nonlinear);
+            assert_eq!(f, full.force);
+        }
+    }
 
     /// The transverse part of the consistent inertia at θ = 0 is the classic bending mass
     /// (ρAl/420)[156, 22l, 54, −13l; 22l, 4l², 13l, −3l²; …].

@@ -118,6 +118,11 @@ impl GeneralizedAlpha {
             } else {
                 None
             };
+            if jac {
+                ws.counters.tangents += 1;
+            } else {
+                ws.counters.residuals += 1;
+            }
             if ancf {
                 let mut dg = Discrete {
                     q0: &state.q,
@@ -140,6 +145,7 @@ impl GeneralizedAlpha {
             .map_err(|e| (iterations, e))?;
             if jac {
                 ws.factored_for = None;
+                ws.counters.factorizations += 1;
                 let factored = ws.band.factorize("energy-conserving iteration matrix");
                 if let Err(e) = factored {
                     return Err((iterations, e));
@@ -151,6 +157,7 @@ impl GeneralizedAlpha {
                 *d = -ri;
             }
             ws.band.solve_in_place(&mut ws.dq);
+            ws.counters.iterations += 1;
             // A correction that turns a slope (ANCF) or a rotation by more than the limiter
             // allows is scaled down: from a poor start (a predictor deep inside a stiff contact)
             // an unlimited Newton can run away by kilometres.
@@ -217,6 +224,7 @@ impl GeneralizedAlpha {
         state.a_aux.copy_from_slice(&state.a);
         state.h_prev = Some(h);
         state.t = t_new;
+        ws.counters.steps += 1;
         Ok((iterations, first, last))
     }
 }

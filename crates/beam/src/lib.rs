@@ -51,6 +51,7 @@ pub mod assembly_ancf;
 pub mod banded;
 pub mod canonical;
 pub mod corotational;
+pub mod counters;
 pub mod dynamics;
 pub mod element;
 pub mod energy;
@@ -66,7 +67,10 @@ pub mod rotating_clamp;
 pub mod section;
 pub mod statics;
 
-pub use dynamics::{GeneralizedAlpha, MAX_STEP_HALVINGS, State, StepReport, Workspace};
+pub use counters::StepCounters;
+pub use dynamics::{
+    GeneralizedAlpha, MAX_STEP_HALVINGS, NewtonMethod, State, StepReport, Workspace,
+};
 pub use error::BeamError;
 pub use modal::{ModalAnalysis, ModalDirection, modal_analysis};
 pub use model::{

@@ -2,8 +2,10 @@
 //! stepping for the corotational model.
 //!
 //! Corotational: for load levels λ_k = k/K (k = 1..K) solve r(q) = f_int(q) − λ_k F = 0 by
-//! Newton, K_t Δq = −r (Δq scaled so no rotation changes by more than 0.5 rad), starting from the converged state of the previous level. Converged when
-//! ‖r‖∞ ≤ tol·max(‖λ_k F‖∞, ‖f_int‖∞) (reactions excluded) or ‖Δq‖∞ ≤ tol·L.
+//! Newton, K_t Δq = −r (Δq scaled so no rotation changes by more than 0.5 rad), starting from
+//! the secant predictor 2 q_{k−1} − q_{k−2} (from the second level on; from q_{k−1} if Newton
+//! fails from the predictor) or the converged state of the previous level. Converged when
+//! ‖r‖∞ ≤ tol·max(‖λ_k F‖∞, ‖f_int‖∞) (reactions excluded) or ‖Δq‖∞ ≤ 1e-3·tol·L.
 
 use crate::BeamError;
 use crate::assembly::{JacobianWeights, Kinematic, assemble, band_for};
@@ -164,10 +166,27 @@ pub fn solve_static_from(
     let mut total_iterations = 0;
     let mut residual = 0.0;
     let mut dq = vec![0.0; n - nfix];
-    for step in 1..=steps {
+    // the converged solutions of the last two load levels (secant predictor)
+    let mut q_level = q.clone();
+    let mut q_level_prev: Option<Vec<f64>> = None;
+    let mut predicted = false;
+    let mut step = 1;
+    while step <= steps {
         let lambda = step as f64 / steps as f64;
         for i in 0..f.len() {
             f[i] = f_start[i] + lambda * (f_full[i] - f_start[i]);
+        }
+        // Secant predictor (nonlinear models, from the second level on): the load levels are
+        // equally spaced, so q ≈ 2 q_k − q_{k−1}; Newton from there needs fewer iterations. If
+        // Newton fails from it, the level is solved again from q_k.
+        if !predicted
+            && model.kinematics() != Kinematics::Linear
+            && let Some(prev) = &q_level_prev
+        {
+            for i in nfix..n {
+                q[i] = 2.0 * q_level[i] - prev[i];
+            }
+            predicted = true;
         }
         let mut converged = false;
         let mut iterations = 0;
@@ -180,6 +199,9 @@ pub fn solve_static_from(
             assemble(model, kin, &f, &mut r, Some((&mut band, w)));
             residual = r[nfix..].iter().fold(0.0f64, |m, x| m.max(x.abs()));
             if !residual.is_finite() {
+                if predicted {
+                    break;
+                }
                 return Err(BeamError::NonFinite {
                     what: "static residual".into(),
                 });
@@ -202,7 +224,10 @@ pub fn solve_static_from(
                 converged = true;
                 break;
             }
-            band.factorize("tangent stiffness")?;
+            match band.factorize("tangent stiffness") {
+                Err(_) if predicted => break,
+                other => other?,
+            }
             dq.iter_mut().zip(&r[nfix..]).for_each(|(d, ri)| *d = -ri);
             band.solve_in_place(&mut dq);
             iterations += 1;
@@ -234,6 +259,13 @@ pub fn solve_static_from(
             }
         }
         total_iterations += iterations;
+        if !converged && predicted {
+            // from the last converged level instead
+            q.copy_from_slice(&q_level);
+            q_level_prev = None;
+            predicted = false;
+            continue;
+        }
         if !converged {
             return Err(BeamError::NotConverged {
                 solver: "corotational static solve".into(),
@@ -243,6 +275,9 @@ pub fn solve_static_from(
                 residual,
             });
         }
+        q_level_prev = Some(std::mem::replace(&mut q_level, q.clone()));
+        predicted = false;
+        step += 1;
     }
     // Final residual and reactions.
     let kin = Kinematic {
