@@ -657,7 +657,7 @@ fn joint_flags() -> Vec<(&'static str, Vec<String>)> {
     ]
 }
 
-fn borrow(flags: &[(&'static str, Vec<String>)]) -> Vec<(&'static str, &[String])> {
+fn borrow<'a>(flags: &'a [(&'static str, Vec<String>)]) -> Vec<(&'static str, &'a [String])> {
     flags.iter().map(|(f, v)| (*f, v.as_slice())).collect()
 }
 
@@ -1328,7 +1328,7 @@ fn sweep_hostile_grids_zips_and_shards() {
             vec![
                 "robot.payload_kg=0.01:1:10000",
                 "operator.start.release_angle_deg=10:60:10000",
-                "robot.beam_elements=2:100:10000",
+                "robot.length_m=0.2:0.4:10000",
             ],
         ),
         (
