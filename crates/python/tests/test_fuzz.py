@@ -11,7 +11,7 @@ The floors, per case:
 - bad input raises `flexrig.InputError` (a ValueError) whose message names the argument or field
   and whose `field` attribute holds it; no other exception type (TypeError, OverflowError,
   RecursionError, SystemError, pyo3's PanicException, ...) escapes;
-- no message shows a Rust type name or Debug value;
+- no message shows a Rust type name or Debug value (such as an escaped `\\u{feff}`);
 - a result that is returned holds no NaN where a number must be (runs and impacts).
 """
 
@@ -31,7 +31,7 @@ import pytest
 
 TIMEOUT_S = 120.0
 AS_CAP = 2 * 1024**3
-RUST_LEAKS = ("panicked", "RUST_BACKTRACE", "struct ", "enum ", "usize", "f64", "Some(", "None)", "Debug")
+RUST_LEAKS = ("panicked", "RUST_BACKTRACE", "struct ", "enum ", "usize", "f64", "Some(", "None)", "Debug", "\\u{")
 HERE = Path(__file__).resolve().parent
 SCENES = HERE.parents[2] / "assets" / "scenes"
 
@@ -109,7 +109,6 @@ def _cases():
         ("inf", lambda: float("inf")),
         ("minus_inf", lambda: float("-inf")),
         ("np_nan", lambda: np.float64("nan")),
-        ("np_int64", lambda: np.int64(1)),
         ("np_array_2d", lambda: np.zeros((2, 2))),
         ("complex", lambda: 1j),
         ("bytes", lambda: b"0.2"),
@@ -130,6 +129,7 @@ def _cases():
             lambda value=value: _run(**{payload: value()}),
         )
     # Override paths: deep dotted, long, empty, NUL, non-str key, cyclic whole-table overrides.
+    add("run_override_np_int64", "input_or_ok", [payload], lambda: _run(**{payload: np.int64(1)}))
     add("run_path_deep_dotted", "input", ["robot", "x.x"], lambda: _run(**{"robot." + "x." * 50_000 + "y": 1}))
     add("run_path_long", "input", ["a" * 40], lambda: _run(**{"a" * 1_000_000: 1}))
     add("run_path_empty", "input", ["overrides", "path", "''"], lambda: _run(**{"": 1}))
@@ -394,8 +394,6 @@ def _judge(name, expect, fields, v):
     for leak in RUST_LEAKS:
         if leak in message:
             problems.append(f"the message shows {leak!r}: {message[:300]}")
-    if "\ufeff" in message:
-        problems.append("the message holds a byte-order mark")
     if kind == "ok":
         if expect in ("input", "not_found"):
             problems.append(f"returned a result; expected {'InputError' if expect == 'input' else 'FileNotFoundError'}")
