@@ -516,8 +516,22 @@ fn hostile_lists() -> Vec<String> {
 /// Hostile `FROM:TO` ranges.
 fn hostile_ranges() -> Vec<String> {
     let mut v = strings(&[
-        "1:1", "2:1", "0:1", "-1:1", "1e-300:1e300", "nan:1", "1:inf", "1", ":", "1:", ":1",
-        "1:2:3", "1e-20:1e-19", "1e10:1e11", "a:b", "1::2",
+        "1:1",
+        "2:1",
+        "0:1",
+        "-1:1",
+        "1e-300:1e300",
+        "nan:1",
+        "1:inf",
+        "1",
+        ":",
+        "1:",
+        ":1",
+        "1:2:3",
+        "1e-20:1e-19",
+        "1e10:1e11",
+        "a:b",
+        "1::2",
     ]);
     v.push(format!("1:{}", "9".repeat(400)));
     v.extend(hostile_numbers().into_iter().take(12));
@@ -685,10 +699,7 @@ fn eta_family_hostile_flags() {
     // eta: the modal method only for the cost-driving flags' in-range values.
     let mut eta = vec![
         ("--tol", tol.clone()),
-        (
-            "--method",
-            strings(&["modal", "alpha", "Modal", "", "fe"]),
-        ),
+        ("--method", strings(&["modal", "alpha", "Modal", "", "fe"])),
         ("--zone-elements", hostile_counts(&["0.5", "0.4", "1001"])),
         ("--window-periods", hostile_counts(&["0.001", "1001"])),
         ("--elements", hostile_counts(&["1", "4097"])),
@@ -742,7 +753,14 @@ fn eta_family_hostile_flags() {
         0xE7A707,
         40,
         &[
-            "eta-rotor", "--points", "2", "--n", "2", "--out", "out", "--json",
+            "eta-rotor",
+            "--points",
+            "2",
+            "--n",
+            "2",
+            "--out",
+            "out",
+            "--json",
         ],
         &borrow(&rotor),
         Some("--out"),
@@ -791,10 +809,7 @@ fn payload_prb_impact_beam_hostile_flags() {
             "--model",
             strings(&["ancf", "corotational", "linear", "", "ANCF"]),
         ),
-        (
-            "--criterion",
-            strings(&["deflection", "length", "", "tip"]),
-        ),
+        ("--criterion", strings(&["deflection", "length", "", "tip"])),
     ];
     fuzz_surface(
         "prb",
@@ -821,7 +836,10 @@ fn payload_prb_impact_beam_hostile_flags() {
     .into_iter()
     .map(|f| (f, hostile_numbers()))
     .chain([
-        ("--method", strings(&["exact", "analytic", "ode", "", "rk4"])),
+        (
+            "--method",
+            strings(&["exact", "analytic", "ode", "", "rk4"]),
+        ),
         (
             "--formulation",
             strings(&["auto", "indentation", "displacement", "x"]),
@@ -871,10 +889,7 @@ fn payload_prb_impact_beam_hostile_flags() {
         ("--modes", hostile_counts(&["1", "100", "17"])),
         ("--load-steps", hostile_counts(&["1", "100"])),
         ("--root", strings(&["clamped", "pinned", "free", ""])),
-        (
-            "--model",
-            strings(&["linear", "corotational", "ancf", "x"]),
-        ),
+        ("--model", strings(&["linear", "corotational", "ancf", "x"])),
     ])
     .collect();
     let beam = [
@@ -1009,7 +1024,13 @@ fn hostile_paths(rng: &mut Rng) -> String {
         0 => format!("robot.{}x", "x.".repeat(1 + rng.below(40_000))),
         1 => "a".repeat(1 + rng.below(60_000)),
         2 => [
-            "", ".", "..", "robot.", ".robot", "robot..payload_kg", " robot.payload_kg",
+            "",
+            ".",
+            "..",
+            "robot.",
+            ".robot",
+            "robot..payload_kg",
+            " robot.payload_kg",
         ][rng.below(7)]
         .to_string(),
         3 => [
@@ -1175,12 +1196,7 @@ fn set_is_never_silently_ignored_or_misplaced() {
     // A value that is not TOML: the message must name the --set path, not a line of generated
     // text.
     for value in ["\"unterminated", "[1,", "{a=", "1 2"] {
-        let args = strings(&[
-            "run",
-            &scene,
-            "--set",
-            &format!("robot.payload_kg={value}"),
-        ]);
+        let args = strings(&["run", &scene, "--set", &format!("robot.payload_kg={value}")]);
         let o = run_in(&args, &dir);
         let line_number = o
             .stderr
@@ -1252,8 +1268,9 @@ fn hostile_spec(rng: &mut Rng) -> String {
             "@values-nested.txt",
         ][rng.below(10)]
         .to_string(),
-        _ => ["0.1,0.2", "0.1:0.3:2", "0.05:1:2:log", "0.3", "@values.txt"][rng.below(5)]
-            .to_string(),
+        _ => {
+            ["0.1,0.2", "0.1:0.3:2", "0.05:1:2:log", "0.3", "@values.txt"][rng.below(5)].to_string()
+        }
     }
 }
 
@@ -1314,7 +1331,15 @@ fn sweep_hostile_grids_zips_and_shards() {
         }
         if rng.below(4) == 0 {
             let shard = [
-                "0/2", "1/2", "2/2", "0/0", "-1/4", "1/", "/4", "a/b", "0/18446744073709551616",
+                "0/2",
+                "1/2",
+                "2/2",
+                "0/0",
+                "-1/4",
+                "1/",
+                "/4",
+                "a/b",
+                "0/18446744073709551616",
                 "0/1",
             ];
             args.push(format!("--shard={}", rng.pick(&shard)));
@@ -1478,7 +1503,11 @@ fn sweep_tables_with_awkward_cells_resume_and_merge() {
         failures.extend(output_floor(&dir.join(d)));
     }
     let _ = std::fs::remove_dir_all(&dir);
-    report("sweep_tables_with_awkward_cells_resume_and_merge", 7, &failures);
+    report(
+        "sweep_tables_with_awkward_cells_resume_and_merge",
+        7,
+        &failures,
+    );
 }
 
 #[test]
@@ -1512,8 +1541,7 @@ fn sweep_merge_refuses_foreign_rows_and_resume_survives_torn_journals() {
         let _ = std::fs::remove_file(dir.join("shards/sweep.csv"));
         std::fs::write(&shard0, format!("{shard0_text}{index},{rest}\n")).unwrap();
         let o = merge();
-        if o.code != Some(2) || !o.stderr.contains(index) || dir.join("shards/sweep.csv").exists()
-        {
+        if o.code != Some(2) || !o.stderr.contains(index) || dir.join("shards/sweep.csv").exists() {
             failures.push(format!(
                 "{} (a shard row with index {index}: {what})\n  -> expected exit 2 naming the index and no sweep.csv; got exit {:?}, sweep.csv {}\n  stderr: {}",
                 o.line,
@@ -1543,7 +1571,12 @@ fn sweep_merge_refuses_foreign_rows_and_resume_survives_torn_journals() {
         )
         .unwrap();
         let r = small_sweep(&dir, &base, &out, false, &[]);
-        expect_exit(&r, 0, &format!("resume after a journal ending in {tear:?}"), &mut failures);
+        expect_exit(
+            &r,
+            0,
+            &format!("resume after a journal ending in {tear:?}"),
+            &mut failures,
+        );
         if r.code == Some(0) && table(&dir.join(&out).join("sweep.csv")) != reference {
             failures.push(format!(
                 "{}\n  -> after a journal ending in {tear:?} the table differs from the whole sweep's",
@@ -1834,10 +1867,7 @@ fn ctrl_c_stops_every_long_command_with_130_and_whole_files() {
             vec!["eta-rotor", "--points", "200", "--out", "eta-rotor"],
             "eta-rotor",
         ),
-        (
-            vec!["experiment", "--repeats", "40", "--out", "exp"],
-            "exp",
-        ),
+        (vec!["experiment", "--repeats", "40", "--out", "exp"], "exp"),
         (
             vec![
                 "sweep",
@@ -1961,5 +1991,9 @@ fn concurrent_writers_leave_whole_tables_and_logs() {
     }
     failures.extend(output_floor(&dir));
     let _ = std::fs::remove_dir_all(&dir);
-    report("concurrent_writers_leave_whole_tables_and_logs", 4, &failures);
+    report(
+        "concurrent_writers_leave_whole_tables_and_logs",
+        4,
+        &failures,
+    );
 }
