@@ -573,12 +573,12 @@ fn draw(
         args.push(format!("{flag}={v}"));
         drawn.push(flag.to_string());
     }
-    if let Some(f) = out_flag {
-        if rng.below(8) == 0 {
-            args.retain_flag_removed(f);
-            args.push(format!("{f}={}", rng.pick(&hostile_outs())));
-            drawn.push(f.to_string());
-        }
+    if let Some(f) = out_flag
+        && rng.below(8) == 0
+    {
+        args.retain_flag_removed(f);
+        args.push(format!("{f}={}", rng.pick(&hostile_outs())));
+        drawn.push(f.to_string());
     }
     (args, drawn)
 }
@@ -981,7 +981,12 @@ fn fit_hostile_files() {
             allow_1: false,
             names: &["line", &p, "FILE.csv", "indentation_m", "force_n"],
         };
-        attack(&args, &dir, None, &expect, &mut failures);
+        // The file's cells count as typed by the user (a message may quote one).
+        let o = run_in(&args, &dir);
+        let typed = [args.clone(), vec![text]].concat();
+        if let Err(e) = verdict(&o, &typed, &expect) {
+            failures.push(format!("{}\n  -> {e}", o.line));
+        }
     }
     // Not a file: a directory, a missing file, a device, a binary file.
     std::fs::write(dir.join("binary.csv"), [0u8, 159, 146, 150, 255, 0, 10]).unwrap();
@@ -1321,10 +1326,10 @@ fn sweep_hostile_grids_zips_and_shards() {
         ];
         let k = 1 + rng.below(3);
         let mut names = vec!["--set", "--zip", "--shard", "grid"];
-        for i in 0..k {
+        for path in paths.iter().take(k) {
             let spec = hostile_spec(&mut rng);
-            args.push(format!("--set={}={spec}", paths[i]));
-            names.push(paths[i]);
+            args.push(format!("--set={path}={spec}"));
+            names.push(path);
         }
         if rng.below(4) == 0 {
             args.push("--zip".into());
