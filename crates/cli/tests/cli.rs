@@ -1104,7 +1104,10 @@ fn experiment_overrides_reach_every_scene() {
     // range error cited a line of the text the overrides had produced.
     for (set, named) in [
         ("robot.design=cl", "--set robot.design"),
-        ("operator.block_material=skinned_iron", "--set operator.block_material"),
+        (
+            "operator.block_material=skinned_iron",
+            "--set operator.block_material",
+        ),
         ("robot={ design = \"cl\" }", "--set robot"),
         ("robot.payload_kg=-1", "robot.payload_kg"),
     ] {

@@ -25,6 +25,8 @@ pub const CSV_HEADER: &str = "indentation_m,force_n";
 /// `indentation_m,force_n` pair of finite numbers per line. Blank lines and lines starting with
 /// `#` are skipped. Errors name the 1-based line.
 pub fn parse_compression_csv(text: &str) -> Result<Vec<CompressionPoint>, ContactError> {
+    // a byte-order mark (spreadsheets write one) is not part of the header
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut points = Vec::new();
     let mut seen_content = false;
     for (index, raw) in text.lines().enumerate() {
@@ -353,4 +355,21 @@ fn finish(
         });
     }
     Ok(fit)
+}
+
+#[cfg(test)]
+mod bom_tests {
+    use super::parse_compression_csv;
+
+    #[test]
+    fn a_byte_order_mark_before_the_header_is_skipped() {
+        // Regression: a spreadsheet's CSV (with a byte-order mark) was refused, quoting
+        // "\u{feff}indentation_m,force_n"
+        let plain = "indentation_m,force_n\n0.001,10\n0.002,40\n";
+        let marked = format!("\u{feff}{plain}");
+        assert_eq!(
+            parse_compression_csv(&marked).unwrap(),
+            parse_compression_csv(plain).unwrap()
+        );
+    }
 }

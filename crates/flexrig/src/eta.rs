@@ -26,7 +26,7 @@ pub fn check_length(length: f64) -> Result<f64, Error> {
     } else {
         Err(Error::InvalidArgument {
             arg: "--length".into(),
-            value: length.to_string(),
+            value: flexrig_contact::validate::display(length),
             allowed: "must lie in [1e-3, 1e3] m".into(),
         })
     }

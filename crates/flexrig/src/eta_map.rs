@@ -87,8 +87,18 @@ pub fn settings_text(settings: &EtaSettings) -> String {
     )
 }
 
+/// Most maps of one call (one per head mass).
+pub const MAX_MAPS: usize = 8;
+
 /// Computes every map, renders everything, then writes the files (no partial output).
 pub fn run(options: &EtaMapOptions, cancel: &CancelToken) -> Result<EtaMapResult, Error> {
+    if options.specs.is_empty() || options.specs.len() > MAX_MAPS {
+        return Err(Error::InvalidArgument {
+            arg: "--m-h".into(),
+            value: format!("{} head masses", options.specs.len()),
+            allowed: format!("one to {MAX_MAPS} head masses (one map each)"),
+        });
+    }
     options.settings.validate()?;
     let joint_text = settings_text(&options.settings);
     let mut maps = Vec::new();
@@ -105,7 +115,10 @@ pub fn run(options: &EtaMapOptions, cancel: &CancelToken) -> Result<EtaMapResult
     let out = &options.out;
     let mut files = vec![(out.join("eta_map.csv"), csv(&maps))];
     for m in &maps {
-        let path = out.join(format!("eta_map_mh{}.svg", m.spec.m_h));
+        let path = out.join(format!(
+            "eta_map_mh{}.svg",
+            flexrig_contact::validate::display(m.spec.m_h)
+        ));
         let text = svg(m, &joint_text).map_err(|message| Error::Plot {
             path: path.clone(),
             message,

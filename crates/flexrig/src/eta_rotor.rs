@@ -41,8 +41,18 @@ pub struct EtaRotorResult {
     pub svg: PathBuf,
 }
 
+/// Most Hertz exponents of one rotor sweep (each adds a curve per Fig. 6 case).
+pub const MAX_EXPONENTS: usize = 8;
+
 /// Runs the sweep, draws the figure, then writes both files.
 pub fn run(options: &EtaRotorOptions, cancel: &CancelToken) -> Result<EtaRotorResult, Error> {
+    if options.n.is_empty() || options.n.len() > MAX_EXPONENTS {
+        return Err(Error::InvalidArgument {
+            arg: "--n".into(),
+            value: format!("{} exponents", options.n.len()),
+            allowed: format!("one to {MAX_EXPONENTS} exponents (one curve each per case)"),
+        });
+    }
     let settings = &options.settings;
     let points = rotor_sweep_until(&options.ratios, &options.n, settings, &cancel.flag())?;
     let title = format!(

@@ -75,7 +75,7 @@ impl ExperimentOptions {
         if !(self.jitter_deg.is_finite() && (0.0..=10.0).contains(&self.jitter_deg)) {
             return Err(Error::InvalidArgument {
                 arg: "--jitter-deg".into(),
-                value: self.jitter_deg.to_string(),
+                value: flexrig_contact::validate::display(self.jitter_deg),
                 allowed: "must lie in [0, 10] degrees".into(),
             });
         }
@@ -324,7 +324,7 @@ pub fn plan(options: &ExperimentOptions, materials: &Materials) -> Result<Vec<Jo
     let mut rng = StdRng::seed_from_u64(options.seed);
     let jitter = Normal::new(0.0, options.jitter_deg).map_err(|_| Error::InvalidArgument {
         arg: "--jitter-deg".into(),
-        value: options.jitter_deg.to_string(),
+        value: flexrig_contact::validate::display(options.jitter_deg),
         allowed: "a finite standard deviation >= 0".into(),
     })?;
     let offsets: Vec<f64> = (0..options.repeats)
@@ -337,7 +337,8 @@ pub fn plan(options: &ExperimentOptions, materials: &Materials) -> Result<Vec<Jo
             let (original, origin) = scene_text(name, options.scenes.as_deref())?;
             // validated from the scene's own text, so an error names the override (or the
             // file's line), never a line of the text the overrides produce
-            let scene = flexrig_rig::scene_with_overrides(&original, &options.overrides, materials)?;
+            let scene =
+                flexrig_rig::scene_with_overrides(&original, &options.overrides, materials)?;
             let text = flexrig_rig::overrides::apply(&original, &options.overrides)?;
             let base = match scene.file.operator.start {
                 Start::Release { release_angle_deg } => release_angle_deg,

@@ -175,7 +175,7 @@ pub fn solve(input: &ImpactInput, method: Method) -> Result<ImpactResult, Error>
         Method::Ode { formulation, rtol } => {
             let options = OdeOptions::new(rtol).map_err(|_| Error::InvalidArgument {
                 arg: "--rtol".into(),
-                value: rtol.to_string(),
+                value: flexrig_contact::validate::display(rtol),
                 allowed: "must lie in [1e-14, 0.1]".into(),
             })?;
             let solution = integrate(&model, &options.formulation(formulation))?;

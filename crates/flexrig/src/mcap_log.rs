@@ -271,8 +271,19 @@ pub fn run_logged(
     target: &LogTarget<'_>,
 ) -> Result<RunSummary, Error> {
     let path = target.path;
-    if !target.force && path.exists() {
-        return Err(refuse_overwrite(path));
+    let layout = crate::foxglove_layout::path_beside(path);
+    crate::output::check_output_target(path)?;
+    crate::output::check_output_target(&layout)?;
+    if !target.force {
+        // neither the log nor the layout written beside it replaces a file without --force
+        for existing in [path, layout.as_path()] {
+            if existing.exists() {
+                return Err(refuse_overwrite(existing));
+            }
+        }
+    }
+    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
+        crate::output::ensure_dir(parent)?;
     }
     let pending = PendingFile::new(path);
     let file = File::create(&pending.tmp).map_err(|e| Error::write(path, e))?;
@@ -307,7 +318,9 @@ fn refuse_overwrite(path: &Path) -> Error {
     Error::InvalidArgument {
         arg: "--out".into(),
         value: path.display().to_string(),
-        allowed: "a file that does not exist yet (or add --force to overwrite)".into(),
+        allowed: "a file that does not exist yet, nor its layout beside it (or add --force to \
+                  overwrite both)"
+            .into(),
     }
 }
 
@@ -717,7 +730,7 @@ impl<W: Write + Seek> McapRecorder<W> {
                 )];
                 entity.metadata = vec![KeyValuePair {
                     key: "deformation_scale".into(),
-                    value: self.deformation_scale.to_string(),
+                    value: flexrig_contact::validate::display(self.deformation_scale),
                 }];
             }
             None => {

@@ -11,8 +11,34 @@ pub fn ensure_dir(dir: &Path) -> Result<(), Error> {
     std::fs::create_dir_all(dir).map_err(|e| Error::write(dir, e))
 }
 
-/// Writes `bytes` to `path` atomically: a half-written file is never left at `path`.
+/// Refuses an output path that names something other than a regular file or nothing: a
+/// directory, a symbolic link, a device or a pipe (replacing it with a regular file, or writing
+/// into a device, is never what was meant). The error names `--out` (exit code 2).
+pub fn check_output_target(path: &Path) -> Result<(), Error> {
+    let Ok(meta) = std::fs::symlink_metadata(path) else {
+        return Ok(());
+    };
+    let what = if meta.is_dir() {
+        "a directory: give a file name inside it"
+    } else if meta.file_type().is_symlink() {
+        "a symbolic link: flexrig replaces only regular files; give the file it points to, or \
+         another name"
+    } else if !meta.is_file() {
+        "a device, pipe or socket: flexrig writes regular files only; give another name"
+    } else {
+        return Ok(());
+    };
+    Err(Error::InvalidArgument {
+        arg: "--out".into(),
+        value: path.display().to_string(),
+        allowed: format!("is {what}"),
+    })
+}
+
+/// Writes `bytes` to `path` atomically: a half-written file is never left at `path`; a path
+/// that is not a regular file is refused ([`check_output_target`]).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    check_output_target(path)?;
     let tmp = temporary_sibling(path);
     let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
     if let Err(e) = result {
@@ -36,6 +62,38 @@ pub fn read_text(path: &Path) -> Result<String, Error> {
     std::fs::read_to_string(path).map_err(|source| Error::Read {
         path: path.to_path_buf(),
         source,
+    })
+}
+
+/// Reads a text file of at most `max_bytes` (a value list, not a stream: `/dev/zero` or a huge
+/// file is refused once the bound is passed, without reading the rest); an error names the file.
+pub fn read_text_limited(path: &Path, max_bytes: u64) -> Result<String, Error> {
+    use std::io::Read;
+    let file = std::fs::File::open(path).map_err(|source| Error::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let mut bytes = Vec::new();
+    file.take(max_bytes + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|source| Error::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(Error::Read {
+            path: path.to_path_buf(),
+            source: std::io::Error::other(format!(
+                "longer than {max_bytes} bytes (a list of values is expected)"
+            )),
+        });
+    }
+    String::from_utf8(bytes).map_err(|e| Error::Read {
+        path: path.to_path_buf(),
+        source: std::io::Error::other(format!(
+            "not UTF-8 text (byte {} is not valid)",
+            e.utf8_error().valid_up_to()
+        )),
     })
 }
 

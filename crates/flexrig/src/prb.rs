@@ -17,7 +17,7 @@ use crate::plots::prb_svg;
 /// What the check traces and where it writes (the flags of `flexrig prb`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PrbOptions {
-    /// Elements of the traced cantilever, 4 to 1024 (`--elements`).
+    /// Elements of the traced cantilever, 4 to 256 (`--elements`).
     pub elements: usize,
     /// Large-deflection element: ANCF (fourth order in the mesh) or corotational (second
     /// order) (`--model`).
@@ -42,13 +42,13 @@ pub fn fe_beam_share(mu: f64) -> Result<f64, Error> {
 
 /// The mesh size in its range (the error names `--elements`).
 pub fn check_elements(elements: usize) -> Result<usize, Error> {
-    if (4..=1024).contains(&elements) {
+    if (4..=256).contains(&elements) {
         Ok(elements)
     } else {
         Err(Error::InvalidArgument {
             arg: "--elements".into(),
             value: elements.to_string(),
-            allowed: "must be an integer from 4 to 1024".into(),
+            allowed: "must be an integer from 4 to 256".into(),
         })
     }
 }

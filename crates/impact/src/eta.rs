@@ -87,6 +87,7 @@ pub struct EtaSettings {
     pub cj_rtol: f64,
     /// `Some(p)`: also follow every contact for p first-mode periods of the CJ link,
     /// 2π √((m_e + m_r/3)/k_δ) (modal method only).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub window_periods: Option<f64>,
     /// Damping added to the Hertz contact (the paper: none).
     pub damping: DampingSpec,
@@ -163,7 +164,9 @@ pub struct EtaRow {
     pub gamma_eff: EffectiveGamma,
     /// The placed reduced model's CL peak \[N\] ([`chain::Chain::placed`]).
     pub f_placed_n: f64,
-    /// Every contact in the window (with `window_periods`): CJ and CL.
+    /// Every contact in the window (with `window_periods`): CJ and CL; absent from JSON
+    /// without a window.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub window: Option<EtaWindow>,
 }
 

@@ -29,6 +29,7 @@ pub struct RotorPoint {
     /// Hertz exponent n.
     pub n: f64,
     /// ρ = J_R/(m_r L²/3); `None` for the held joint (ρ = ∞).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub inertia_ratio: Option<f64>,
     /// CJ peak \[N\] (the rigid link through the modal integrator).
     pub f_cj_n: f64,

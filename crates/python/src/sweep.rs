@@ -50,8 +50,14 @@ fn dimension(
         let read = |file: &str| {
             let local = PathBuf::from(file);
             match base_dir {
-                Some(dir) if !local.exists() => flexrig::output::read_text(&dir.join(file)),
-                _ => flexrig::output::read_text(&local),
+                Some(dir) if !local.exists() => flexrig::output::read_text_limited(
+                    &dir.join(file),
+                    flexrig::study::spec::MAX_VALUE_FILE_BYTES,
+                ),
+                _ => flexrig::output::read_text_limited(
+                    &local,
+                    flexrig::study::spec::MAX_VALUE_FILE_BYTES,
+                ),
             }
         };
         return Dimension::parse_within(&format!("{path}={text}"), &read, budget).map_err(|e| {

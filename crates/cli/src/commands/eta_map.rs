@@ -78,11 +78,14 @@ fn spec_for(args: &EtaMapArgs, m_h: f64) -> Result<MapSpec, Error> {
 /// Runs `flexrig eta-map`.
 pub fn run(args: &EtaMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     let joint = joint_from_args(args.joint, args.rotor_inertia)?;
-    if args.m_h.is_empty() {
+    if args.m_h.is_empty() || args.m_h.len() > flexrig::eta_map::MAX_MAPS {
         return Err(Error::InvalidArgument {
             arg: "--m-h".into(),
-            value: String::new(),
-            allowed: "one or more head masses in (0, 1e9] kg".into(),
+            value: format!("{} values", args.m_h.len()),
+            allowed: format!(
+                "one to {} head masses, each in (0, 1e9] kg",
+                flexrig::eta_map::MAX_MAPS
+            ),
         });
     }
     let specs = args

@@ -52,6 +52,7 @@ pub fn run(args: &EtaRotorArgs, out: &mut dyn Write, cancel: &CancelToken) -> Re
     }
     let ratios = parse_range("--ratio", &args.ratio, args.points)?;
     if args.n.is_empty()
+        || args.n.len() > flexrig::eta_rotor::MAX_EXPONENTS
         || args
             .n
             .iter()
@@ -59,8 +60,11 @@ pub fn run(args: &EtaRotorArgs, out: &mut dyn Write, cancel: &CancelToken) -> Re
     {
         return Err(Error::InvalidArgument {
             arg: "--n".into(),
-            value: format!("{:?}", args.n),
-            allowed: "one or more exponents in [1, 3]".into(),
+            value: format!("{} values", args.n.len()),
+            allowed: format!(
+                "one to {} exponents, each in [1, 3]",
+                flexrig::eta_rotor::MAX_EXPONENTS
+            ),
         });
     }
     let settings = EtaSettings {

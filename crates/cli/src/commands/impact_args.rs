@@ -121,7 +121,7 @@ pub fn joint_from_args(joint: JointArg, rotor_inertia: Option<f64>) -> Result<Jo
         (JointArg::Held, Some(j)) => {
             return Err(Error::InvalidArgument {
                 arg: "--rotor-inertia".into(),
-                value: j.to_string(),
+                value: flexrig_contact::validate::display(j),
                 allowed: "only with --joint free-hub".into(),
             });
         }

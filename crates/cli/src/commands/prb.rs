@@ -19,7 +19,7 @@ use crate::print::{line, print_json};
 /// Arguments of `flexrig prb`.
 #[derive(Debug, Args)]
 pub struct PrbArgs {
-    /// Number of elements of the traced cantilever (4 to 1024).
+    /// Number of elements of the traced cantilever (4 to 256).
     #[arg(long, value_name = "N", default_value_t = 32)]
     pub elements: usize,
     /// Large-deflection element: ancf (default: fourth order in the mesh, 1e-7 on the elastica

@@ -6,8 +6,9 @@ use std::path::{Path, PathBuf};
 
 use crate::Error;
 use crate::cancel::CancelToken;
-use crate::output::{ensure_dir, read_text, write_atomic};
+use crate::output::{ensure_dir, read_text, read_text_limited, write_atomic};
 use crate::progress::Progress;
+use crate::study::spec::MAX_VALUE_FILE_BYTES;
 use crate::study::spec::{Dimension, parse_all};
 use crate::study::sweep::{Journal, Sweep, SweepManifest, SweepOptions, rows_done, write_tables};
 
@@ -69,8 +70,10 @@ impl SweepReport {
 /// `base` first, then as given.
 pub fn parse_dimensions(set: &[String], base: &Path, zip: bool) -> Result<Vec<Dimension>, Error> {
     let base_dir = base.parent().map(PathBuf::from).unwrap_or_default();
-    let read =
-        |file: &str| read_text(&base_dir.join(file)).or_else(|_| read_text(&PathBuf::from(file)));
+    let read = |file: &str| {
+        read_text_limited(&base_dir.join(file), MAX_VALUE_FILE_BYTES)
+            .or_else(|_| read_text_limited(&PathBuf::from(file), MAX_VALUE_FILE_BYTES))
+    };
     parse_all(set, &read, zip)
 }
 

@@ -13,6 +13,9 @@ use crate::Error;
 /// Most points of one sweep.
 pub const MAX_POINTS: usize = 10_000_000;
 
+/// Largest `@file` of values \[bytes\] (ten million short values).
+pub const MAX_VALUE_FILE_BYTES: u64 = 256 * 1024 * 1024;
+
 /// Most points one process runs (their rows are kept in memory, a few hundred bytes each):
 /// larger sweeps are split into shards.
 pub const MAX_POINTS_PER_PROCESS: usize = 1_000_000;
@@ -93,7 +96,10 @@ impl Dimension {
             )
         };
         let values = if let Some(file) = spec.strip_prefix('@') {
-            let text = read(file)?;
+            if file.trim().is_empty() {
+                return Err(bad(&arg, spec, "@ needs a file name, e.g. @values.txt"));
+            }
+            let text = read(file).map_err(|e| bad(&arg, spec, &e.to_string()))?;
             let lines = || {
                 text.lines()
                     .map(str::trim)

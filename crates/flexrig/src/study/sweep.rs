@@ -353,63 +353,108 @@ pub fn json_line(row: &SweepRow, paths: &[&str]) -> serde_json::Value {
 }
 
 /// Parses a table written by [`csv_line`] (header included): its rows, by index. Only rows
-/// that ran to a result (`ok` or `error`) count as done.
+/// that ran to a result (`ok` or `error`) count as done; a row that failed only for a passing
+/// cause (a write that failed, e.g. a full disk) does not, so a resume runs it again. Quoted
+/// cells may hold commas, quotes and line breaks. Every record must be whole.
 pub fn read_rows(text: &str, paths: usize) -> Result<BTreeMap<usize, SweepRow>, String> {
+    read_records(text, paths, false)
+}
+
+/// [`read_rows`] for a journal: a record that is not whole (the torn last line of a run that
+/// was killed, or bytes a crash left behind) is dropped, and its point runs again.
+pub fn read_journal(text: &str, paths: usize) -> BTreeMap<usize, SweepRow> {
+    read_records(text, paths, true).unwrap_or_default()
+}
+
+fn read_records(
+    text: &str,
+    paths: usize,
+    lenient: bool,
+) -> Result<BTreeMap<usize, SweepRow>, String> {
     let mut rows = BTreeMap::new();
-    for (n, line) in text.lines().enumerate().skip(1) {
-        if line.trim().is_empty() {
+    for (line, record, whole) in csv_records(text).into_iter().skip(1) {
+        if record.iter().all(|c| c.trim().is_empty()) && whole {
             continue;
         }
-        let cells = split_csv(line);
-        let expected = 3 + paths + SUMMARY_COLUMNS.len();
-        if cells.len() != expected {
-            return Err(format!(
-                "line {}: {} cells, expected {expected}",
-                n + 1,
-                cells.len()
-            ));
+        match parse_record(&record, paths, whole) {
+            Ok(Some(row)) => {
+                rows.insert(row.index, row);
+            }
+            Ok(None) => {}
+            Err(reason) if lenient => {
+                let _ = reason; // a torn or damaged journal record: the point runs again
+            }
+            Err(reason) => return Err(format!("line {line}: {reason}")),
         }
-        let index: usize = cells[0]
-            .parse()
-            .map_err(|_| format!("line {}: index {:?}", n + 1, cells[0]))?;
-        let status = cells[1 + paths].clone();
-        if status != "ok" && status != "error" {
-            continue;
-        }
-        let summary = cells[3 + paths..]
-            .iter()
-            .map(|c| {
-                if c.is_empty() {
-                    Ok(None)
-                } else {
-                    c.parse().map(Some)
-                }
-            })
-            .collect::<Result<Vec<Option<f64>>, _>>()
-            .map_err(|_| format!("line {}: a summary value is not a number", n + 1))?;
-        rows.insert(
-            index,
-            SweepRow {
-                index,
-                values: cells[1..1 + paths]
-                    .iter()
-                    .map(|c| flexrig_rig::overrides::parse_value(c).to_string())
-                    .collect(),
-                status,
-                error: cells[2 + paths].clone(),
-                summary,
-            },
-        );
     }
     Ok(rows)
 }
 
-/// Splits a CSV line with quoted fields.
-fn split_csv(line: &str) -> Vec<String> {
+/// One record as a row: `None` for a row that did not run to a result or failed for a passing
+/// cause.
+fn parse_record(cells: &[String], paths: usize, whole: bool) -> Result<Option<SweepRow>, String> {
+    let expected = 3 + paths + SUMMARY_COLUMNS.len();
+    if !whole {
+        return Err("the record is not terminated (a torn line)".into());
+    }
+    if cells.len() != expected {
+        return Err(format!("{} cells, expected {expected}", cells.len()));
+    }
+    let index: usize = cells[0]
+        .parse()
+        .map_err(|_| format!("index {:?}", cells[0]))?;
+    let status = cells[1 + paths].clone();
+    if status != "ok" && status != "error" {
+        return Ok(None);
+    }
+    let error = cells[2 + paths].clone();
+    if status == "error" && failed_for_a_passing_cause(&error) {
+        return Ok(None);
+    }
+    let summary = cells[3 + paths..]
+        .iter()
+        .map(|c| {
+            if c.is_empty() {
+                Ok(None)
+            } else {
+                c.parse::<f64>()
+                    .ok()
+                    .filter(|x| x.is_finite())
+                    .map(Some)
+                    .ok_or(())
+            }
+        })
+        .collect::<Result<Vec<Option<f64>>, _>>()
+        .map_err(|_| "a summary value is not a number".to_string())?;
+    Ok(Some(SweepRow {
+        index,
+        values: cells[1..1 + paths]
+            .iter()
+            .map(|c| flexrig_rig::overrides::parse_value(c).to_string())
+            .collect(),
+        status,
+        error,
+        summary,
+    }))
+}
+
+/// True for the error of a run that failed because its output could not be written (a full
+/// disk, a log that could not be finished): not the point's fault, worth running again.
+pub fn failed_for_a_passing_cause(error: &str) -> bool {
+    error.starts_with("cannot write ") || error.starts_with("recorder: ")
+}
+
+/// The records of CSV `text` with the line each starts on, and whether it ended with a line
+/// break outside quotes (a whole record): quoted cells may hold commas, doubled quotes and line
+/// breaks.
+fn csv_records(text: &str) -> Vec<(usize, Vec<String>, bool)> {
+    let mut records = Vec::new();
     let mut cells = Vec::new();
     let mut cell = String::new();
     let mut quoted = false;
-    let mut chars = line.chars().peekable();
+    let mut line = 1;
+    let mut start = 1;
+    let mut chars = text.chars().peekable();
     while let Some(c) = chars.next() {
         match (c, quoted) {
             ('"', true) if chars.peek() == Some(&'"') => {
@@ -418,11 +463,26 @@ fn split_csv(line: &str) -> Vec<String> {
             }
             ('"', _) => quoted = !quoted,
             (',', false) => cells.push(std::mem::take(&mut cell)),
-            (c, _) => cell.push(c),
+            ('\r', false) if chars.peek() == Some(&'\n') => {}
+            ('\n', false) => {
+                cells.push(std::mem::take(&mut cell));
+                records.push((start, std::mem::take(&mut cells), true));
+                line += 1;
+                start = line;
+            }
+            (c, _) => {
+                if c == '\n' {
+                    line += 1;
+                }
+                cell.push(c);
+            }
         }
     }
-    cells.push(cell);
-    cells
+    if !cell.is_empty() || !cells.is_empty() || quoted {
+        cells.push(cell);
+        records.push((start, cells, false));
+    }
+    records
 }
 
 /// The description of a sweep kept beside its tables (`sweep.json`): what a resume and a merge
@@ -500,18 +560,23 @@ pub fn rows_done(
     let mut rows = BTreeMap::new();
     let table = table_path(dir, shard, false);
     let journal = journal_path(dir, shard);
-    for path in [table, journal] {
-        if let Ok(text) = std::fs::read_to_string(&path) {
-            let found = read_rows(&text, manifest.paths.len()).map_err(|reason| {
-                Error::InvalidArgument {
-                    arg: "--out".into(),
-                    value: path.display().to_string(),
-                    allowed: format!("must be a sweep table ({reason}): remove it to start over"),
-                }
+    if let Ok(text) = std::fs::read_to_string(&table) {
+        let found =
+            read_rows(&text, manifest.paths.len()).map_err(|reason| Error::InvalidArgument {
+                arg: "--out".into(),
+                value: table.display().to_string(),
+                allowed: format!("must be a sweep table ({reason}): remove it to start over"),
             })?;
-            rows.extend(found);
-        }
+        rows.extend(found);
     }
+    // the journal is a cache of finished rows: whatever of it is damaged runs again
+    if let Ok(bytes) = std::fs::read(&journal) {
+        rows.extend(read_journal(
+            &String::from_utf8_lossy(&bytes),
+            manifest.paths.len(),
+        ));
+    }
+    rows.retain(|&i, _| i < manifest.points);
     Ok(rows)
 }
 
@@ -600,6 +665,18 @@ pub fn merge(dir: &Path, json: bool) -> Result<(PathBuf, usize), Error> {
                 allowed: format!("must hold sweep shard tables ({reason})"),
             })?;
         for (i, row) in found {
+            if i >= manifest.points {
+                return Err(Error::InvalidArgument {
+                    arg: "DIR".into(),
+                    value: entry.path().display().to_string(),
+                    allowed: format!(
+                        "holds point {i}, outside the sweep's {} points (0 to {}): a table of \
+                         another sweep?",
+                        manifest.points,
+                        manifest.points.saturating_sub(1)
+                    ),
+                });
+            }
             if rows.insert(i, row).is_some() {
                 return Err(Error::InvalidArgument {
                     arg: "DIR".into(),
