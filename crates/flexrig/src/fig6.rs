@@ -35,14 +35,17 @@ pub struct Fig6Result {
     pub svg: PathBuf,
 }
 
+/// Most γ samples of a curve (16 curves of them are kept in memory and written).
+pub const MAX_POINTS: usize = 1_000_000;
+
 /// Computes the curves and writes fig6.csv (`points` samples) and fig6.svg (drawn from at
 /// least [`PLOT_POINTS`] samples, so that its curves are smooth).
 pub fn run(options: &Fig6Options) -> Result<Fig6Result, Error> {
-    if options.points < 2 {
+    if !(2..=MAX_POINTS).contains(&options.points) {
         return Err(Error::InvalidArgument {
             arg: "--points".into(),
             value: options.points.to_string(),
-            allowed: "must be at least 2".into(),
+            allowed: format!("must be from 2 to {MAX_POINTS}"),
         });
     }
     let curves = fig6::fig6(options.points)?;

@@ -8,7 +8,17 @@ use crate::Error;
 
 /// Creates `dir` (and parents) if needed.
 pub fn ensure_dir(dir: &Path) -> Result<(), Error> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::write(dir, e))
+    std::fs::create_dir_all(dir).map_err(|e| match e.kind() {
+        // a file where a directory must be: the user's path, not a failure of the machine
+        std::io::ErrorKind::NotADirectory | std::io::ErrorKind::AlreadyExists => {
+            Error::InvalidArgument {
+                arg: "--out".into(),
+                value: dir.display().to_string(),
+                allowed: format!("must be a directory or a path where one can be made ({e})"),
+            }
+        }
+        _ => Error::write(dir, e),
+    })
 }
 
 /// Refuses an output path that names something other than a regular file or nothing: a

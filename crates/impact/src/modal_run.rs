@@ -59,11 +59,13 @@ impl ModalOptions {
 
     /// Checks the options; the error names the field.
     pub fn validate(&self) -> Result<(), ImpactError> {
-        if !(self.tol.is_finite() && (1e-14..=1e-1).contains(&self.tol)) {
+        // below 1e-10 the hold's step count outgrows the step budget on the stiff cases
+        // (round-off sets the floor of the force's linear hold)
+        if !(self.tol.is_finite() && (1e-10..=1e-1).contains(&self.tol)) {
             return Err(ImpactError::invalid(
                 "tol",
                 self.tol,
-                "must lie in [1e-14, 0.1]",
+                "must lie in [1e-10, 0.1]",
             ));
         }
         if let Some(w) = self.window_s

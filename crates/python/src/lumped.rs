@@ -123,10 +123,13 @@ fn indexed(e: Error, i: usize) -> PyErr {
 #[pyfunction]
 #[pyo3(signature = (points=flexrig::fig6::DEFAULT_POINTS))]
 pub fn fig6(py: Python<'_>, points: usize) -> PyResult<Vec<Bound<'_, PyDict>>> {
-    if points < 2 {
+    if !(2..=flexrig::fig6::MAX_POINTS).contains(&points) {
         return Err(input_error(
             "points",
-            format!("points = {points}: must be at least 2"),
+            format!(
+                "points = {points}: must be from 2 to {}",
+                flexrig::fig6::MAX_POINTS
+            ),
         ));
     }
     let curves = py

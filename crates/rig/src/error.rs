@@ -72,7 +72,16 @@ impl RigError {
 pub(crate) fn invalid(field: &str, value: impl std::fmt::Display, allowed: &str) -> RigError {
     RigError::InvalidScene {
         field: field.to_string(),
-        value: value.to_string(),
+        value: compact(value.to_string()),
         allowed: allowed.to_string(),
+    }
+}
+
+/// A number written out in full (1e300 as 301 digits) in the compact form of
+/// [`flexrig_contact::validate::display`]; any other text unchanged.
+fn compact(text: String) -> String {
+    match text.parse::<f64>() {
+        Ok(x) if text.len() > 20 => flexrig_contact::validate::display(x),
+        _ => text,
     }
 }

@@ -41,7 +41,7 @@ pub struct EtaArgs {
     /// How the CL link is solved.
     #[arg(long, value_enum, default_value = "modal")]
     pub method: MethodArg,
-    /// Modal method: tolerance of the force's linear hold per step (1e-14 to 0.1; default 1e-6).
+    /// Modal method: tolerance of the force's linear hold per step (1e-10 to 0.1; default 1e-6).
     #[arg(long, value_name = "TOL")]
     pub tol: Option<f64>,
     /// Modal method: elements across the tip zone (EI/ρA)^¼ √t_c of the graded mesh (0.5 to

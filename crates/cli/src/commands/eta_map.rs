@@ -44,7 +44,7 @@ pub struct EtaMapArgs {
     /// Rotor inertia J_R of the free hub, kg·m² (with --joint free-hub).
     #[arg(long, value_name = "KG_M2")]
     pub rotor_inertia: Option<f64>,
-    /// Tolerance of the force's linear hold per step (1e-14 to 0.1); 1e-5 keeps each peak
+    /// Tolerance of the force's linear hold per step (1e-10 to 0.1); 1e-5 keeps each peak
     /// within 5e-5 of the converged one (tested).
     #[arg(long, value_name = "TOL", default_value_t = 1e-5)]
     pub tol: f64,

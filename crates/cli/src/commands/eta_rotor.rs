@@ -30,7 +30,7 @@ pub struct EtaRotorArgs {
     /// Hertz exponents n, comma-separated (1 to 3 each).
     #[arg(long, value_name = "N,...", value_delimiter = ',', default_values_t = [1.0, 2.0])]
     pub n: Vec<f64>,
-    /// Tolerance of the force's linear hold per step (1e-14 to 0.1).
+    /// Tolerance of the force's linear hold per step (1e-10 to 0.1).
     #[arg(long, value_name = "TOL", default_value_t = 1e-6)]
     pub tol: f64,
     /// The contact's damping.

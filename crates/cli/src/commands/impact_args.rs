@@ -81,7 +81,7 @@ impl DampingArgs {
         let stray = |arg: &str, value: Option<f64>, with: &str| match value {
             Some(v) => Err(bad(
                 arg,
-                v.to_string(),
+                flexrig_contact::validate::display(v),
                 &format!("only with --damping {with}"),
             )),
             None => Ok(()),

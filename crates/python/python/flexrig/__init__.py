@@ -319,7 +319,7 @@ def impact(m_h: Any, m_eff: Any, k_delta: Any, k_c: Any, n: Any, v0: Any) -> Imp
     for name, value in zip(_IMPACT_ARGS, values):
         try:
             arrays.append(np.asarray(value, dtype=np.float64))
-        except (TypeError, ValueError) as e:
+        except (TypeError, ValueError, OverflowError) as e:
             raise _input_error(name, f"{name}: not a number or an array of numbers ({e})") from None
     try:
         arrays = np.broadcast_arrays(*arrays)
@@ -344,8 +344,10 @@ def fig6(points: int = 101) -> "pandas.DataFrame":
     """
     import pandas as pd
 
+    if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or not 2 <= points <= 1_000_000:
+        raise _input_error("points", f"points = {points!r}: must be a whole number from 2 to 1000000")
     frames = []
-    for c in _flexrig.fig6(points):
+    for c in _flexrig.fig6(int(points)):
         size = len(c["gamma"])
         frames.append(
             pd.DataFrame(
@@ -401,6 +403,8 @@ def sweep(
             "grid",
             'grid: the grid is empty; give at least one scene path and its values, e.g. {"robot.payload_kg": [0.1, 0.2]}',
         )
+    if not isinstance(zip, (bool, np.bool_)):
+        raise _input_error("zip", f"zip = {zip!r}: must be True or False")
     _check_count("threads", threads, "None for every core")
     _check_count("chunk_size", chunk_size, "None for about four chunks per worker thread")
     if client is not None:
