@@ -58,6 +58,30 @@ pub fn plain(message: &str) -> String {
     for kind in ["integer ", "number ", "boolean "] {
         out = unquote_after(&out, kind);
     }
+    compact_numbers(&out)
+}
+
+/// Numbers written out in full (1e300 as 301 digits) in the compact form of
+/// [`flexrig_contact::validate::display`]; the rest of the text unchanged.
+pub fn compact_numbers(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut word = String::new();
+    let flush = |word: &mut String, out: &mut String| {
+        match word.parse::<f64>() {
+            Ok(x) if word.len() > 20 => out.push_str(&flexrig_contact::validate::display(x)),
+            _ => out.push_str(word),
+        }
+        word.clear();
+    };
+    for c in text.chars() {
+        if c.is_ascii_digit() || c == '.' || c == '-' || c == 'e' || c == 'E' || c == '+' {
+            word.push(c);
+        } else {
+            flush(&mut word, &mut out);
+            out.push(c);
+        }
+    }
+    flush(&mut word, &mut out);
     out
 }
 

@@ -40,7 +40,7 @@ fn quoted(text: &str) -> String {
 fn bad(path: &str, value: &str, allowed: &str) -> RigError {
     RigError::InvalidScene {
         field: path.to_string(),
-        value: quoted(value),
+        value: quoted(&crate::format_message::compact_numbers(value)),
         allowed: allowed.to_string(),
     }
 }
