@@ -6,10 +6,8 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexrig::Error;
-use flexrig::eta_map::{EtaMapOptions, settings_text};
-use flexrig_impact::eta::{ClMethod, EtaSettings};
-use flexrig_impact::graded::GradedMesh;
-use flexrig_impact::map::MapSpec;
+use flexrig::eta::{ClMethod, EtaSettings, GradedMesh};
+use flexrig::eta_map::{EtaMapOptions, MapSpec, settings_text};
 use serde_json::json;
 
 use super::impact_args::{

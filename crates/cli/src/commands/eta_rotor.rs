@@ -6,10 +6,8 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexrig::Error;
-use flexrig::eta::contact_text;
+use flexrig::eta::{ClMethod, EtaSettings, GradedMesh, ImpactError, contact_text};
 use flexrig::eta_rotor::EtaRotorOptions;
-use flexrig_impact::eta::{ClMethod, EtaSettings};
-use flexrig_impact::graded::GradedMesh;
 use serde_json::json;
 
 use super::impact_args::{DampingArgs, impact_as_flag, parse_range};
@@ -78,9 +76,7 @@ pub fn run(args: &EtaRotorArgs, out: &mut dyn Write) -> Result<(), Error> {
         settings,
     })
     .map_err(|e| match e {
-        Error::Impact(flexrig_impact::ImpactError::InvalidParameter { field, .. })
-            if field == "inertia_ratio" =>
-        {
+        Error::Impact(ImpactError::InvalidParameter { field, .. }) if field == "inertia_ratio" => {
             Error::InvalidArgument {
                 arg: "--ratio".into(),
                 value: args.ratio.clone(),
