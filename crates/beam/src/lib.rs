@@ -19,6 +19,8 @@
 //!   stepped by the same generalized-α scheme — the shortcut for small deflections.
 //! * [`prb`]: the Pseudo-Rigid-Body (γ, K_Θ) fit to the corotational or ANCF tip path (Howell's
 //!   method).
+//! * [`rotating_clamp`]: a beam clamped to a hub whose angle is prescribed (the spin-up
+//!   benchmark), tip in the hub frame.
 //! * [`canonical`]: canonical problems and their published references, shared by tests, benches
 //!   and the CLI.
 //!
@@ -60,6 +62,7 @@ pub mod model;
 pub mod node_load;
 pub mod prb;
 pub mod reduced;
+pub mod rotating_clamp;
 pub mod section;
 pub mod statics;
 

@@ -954,6 +954,12 @@ fn the_eta_map_refuses_bad_ranges_and_matches_the_eta_table() {
         (vec!["--n", "5"], "--n"),
         (vec!["--tol", "0"], "--tol"),
         (vec!["--joint", "free-hub"], "--joint"),
+        // Regression: an out-of-range rotor inertia failed every point, yet the figures were
+        // written and the exit code was 0; a 1e20 was quoted as 21 digits.
+        (
+            vec!["--joint", "free-hub", "--rotor-inertia", "1e20"],
+            "--rotor-inertia = 1e20",
+        ),
     ] {
         let mut all = vec!["eta-map", "--out", out];
         all.extend(args);
@@ -1094,6 +1100,23 @@ fn experiment_overrides_reach_every_scene() {
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("nope"), "{stderr}");
+    // Regression: `--set robot.design=cl` ran and made every CL/CJ ratio 1.0; an override's
+    // range error cited a line of the text the overrides had produced.
+    for (set, named) in [
+        ("robot.design=cl", "--set robot.design"),
+        (
+            "operator.block_material=skinned_iron",
+            "--set operator.block_material",
+        ),
+        ("robot={ design = \"cl\" }", "--set robot"),
+        ("robot.payload_kg=-1", "robot.payload_kg"),
+    ] {
+        let o = flexrig(&["experiment", "--set", set, "--out", out]);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{set}: {stderr}");
+        assert!(stderr.contains(named), "{set}: {stderr}");
+        assert!(!stderr.contains("line "), "{set}: {stderr}");
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -102,7 +102,8 @@ impl Error {
     /// The kind of failure.
     pub fn kind(&self) -> ErrorKind {
         match self {
-            Error::Rig(flexrig_rig::RigError::Interrupted { .. }) => ErrorKind::Interrupted,
+            Error::Rig(flexrig_rig::RigError::Interrupted { .. })
+            | Error::Impact(flexrig_impact::ImpactError::Interrupted) => ErrorKind::Interrupted,
             Error::Read { .. } | Error::Write { .. } => ErrorKind::Io,
             Error::InvalidArgument { .. } | Error::NonFinite { .. } => ErrorKind::Input,
             Error::Contact(e) if e.is_input_error() => ErrorKind::Input,

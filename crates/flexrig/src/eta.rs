@@ -6,7 +6,9 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use flexrig_impact::eta::eta_table;
+use flexrig_impact::eta::eta_table_until;
+
+use crate::CancelToken;
 use serde::Serialize;
 
 use crate::Error;
@@ -50,11 +52,12 @@ pub struct EtaResult {
 }
 
 /// Computes the table for `settings` and writes eta.csv, eta.svg and eta_fig6.svg into `out`
-/// (created if missing; nothing is written if a figure cannot be drawn).
-pub fn run(settings: &EtaSettings, out: &Path) -> Result<EtaResult, Error> {
+/// (created if missing; nothing is written if a figure cannot be drawn, or if `cancel` stops
+/// the computation: then the error is an interruption).
+pub fn run(settings: &EtaSettings, out: &Path, cancel: &CancelToken) -> Result<EtaResult, Error> {
     check_length(settings.length)?;
     settings.validate()?;
-    let rows = eta_table(settings)?;
+    let rows = eta_table_until(settings, &cancel.flag())?;
     ensure_dir(out)?;
     let csv_path = out.join("eta.csv");
     let svg_path = out.join("eta.svg");

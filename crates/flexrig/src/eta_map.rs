@@ -7,7 +7,9 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use flexrig_impact::eta::{EffectiveGamma, EtaRow, EtaSettings};
-use flexrig_impact::map::eta_map;
+use flexrig_impact::map::eta_map_until;
+
+use crate::CancelToken;
 use serde::Serialize;
 
 use crate::Error;
@@ -89,14 +91,14 @@ pub fn settings_text(settings: &EtaSettings) -> String {
 }
 
 /// Computes every map, renders everything, then writes the files (no partial output).
-pub fn run(options: &EtaMapOptions) -> Result<EtaMapResult, Error> {
-    options.settings.method.validate()?;
+pub fn run(options: &EtaMapOptions, cancel: &CancelToken) -> Result<EtaMapResult, Error> {
+    options.settings.validate()?;
     let joint_text = settings_text(&options.settings);
     let mut maps = Vec::new();
     for spec in &options.specs {
         spec.validate()?;
         let start = Instant::now();
-        let points = eta_map(spec, &options.settings)?;
+        let points = eta_map_until(spec, &options.settings, &cancel.flag())?;
         maps.push(ComputedMap {
             spec: *spec,
             points,

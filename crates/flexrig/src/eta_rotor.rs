@@ -6,7 +6,9 @@ use std::path::PathBuf;
 
 use flexrig_impact::eta::EtaSettings;
 use flexrig_impact::map::LogRange;
-use flexrig_impact::rotor::rotor_sweep;
+use flexrig_impact::rotor::rotor_sweep_until;
+
+use crate::CancelToken;
 use serde::Serialize;
 
 use crate::Error;
@@ -43,9 +45,9 @@ pub struct EtaRotorResult {
 }
 
 /// Runs the sweep, draws the figure, then writes both files.
-pub fn run(options: &EtaRotorOptions) -> Result<EtaRotorResult, Error> {
+pub fn run(options: &EtaRotorOptions, cancel: &CancelToken) -> Result<EtaRotorResult, Error> {
     let settings = &options.settings;
-    let points = rotor_sweep(&options.ratios, &options.n, settings)?;
+    let points = rotor_sweep_until(&options.ratios, &options.n, settings, &cancel.flag())?;
     let title = format!(
         "η_FE from a freely pivoting link (J_R → 0) to the held joint (dashed), {} (m_r = 10 kg, k_c = 1e8, v0 = 2 m/s)",
         contact_text(&settings.damping)

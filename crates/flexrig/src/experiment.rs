@@ -330,19 +330,25 @@ pub fn plan(options: &ExperimentOptions, materials: &Materials) -> Result<Vec<Jo
     let offsets: Vec<f64> = (0..options.repeats)
         .map(|_| jitter.sample(&mut rng))
         .collect();
+    check_compared_fields(&options.overrides)?;
     let mut jobs = Vec::new();
     for (names, repeats) in [(&FIG9A_SCENES[..], options.repeats), (&FIG9B_SCENES[..], 1)] {
         for name in names {
-            let (text, origin) = scene_text(name, options.scenes.as_deref())?;
-            let text = flexrig_rig::overrides::apply(&text, &options.overrides)?;
-            let scene = Scene::from_toml_str(&text, materials)?;
+            let (original, origin) = scene_text(name, options.scenes.as_deref())?;
+            // validated from the scene's own text, so an error names the override (or the
+            // file's line), never a line of the text the overrides produce
+            let scene =
+                flexrig_rig::scene_with_overrides(&original, &options.overrides, materials)?;
+            let text = flexrig_rig::overrides::apply(&original, &options.overrides)?;
             let base = match scene.file.operator.start {
                 Start::Release { release_angle_deg } => release_angle_deg,
-                other => {
+                Start::Contact { .. } | Start::Moving { .. } => {
                     return Err(Error::InvalidArgument {
                         arg: "--scenes".into(),
-                        value: format!("{origin}: {other:?}"),
-                        allowed: "experiment scenes start from a release".into(),
+                        value: format!("{origin}: operator.start.from is not \"release\""),
+                        allowed: "experiment scenes start from a release (the repeats jitter \
+                                  the release angle)"
+                            .into(),
                     });
                 }
             };
@@ -358,6 +364,34 @@ pub fn plan(options: &ExperimentOptions, materials: &Materials) -> Result<Vec<Jo
         }
     }
     Ok(jobs)
+}
+
+/// The fields the experiment compares (CJ against CL, the aluminium against the iron operator)
+/// or names its scenes by: an override of one would make every pair compare a thing with
+/// itself while the table and the figure still name two.
+const COMPARED_FIELDS: [&str; 3] = ["robot.design", "operator.block_material", "name"];
+
+/// Refuses an override of a compared field (or of a table holding one), naming it.
+fn check_compared_fields(overrides: &[Override]) -> Result<(), Error> {
+    for o in overrides {
+        let hit = COMPARED_FIELDS.iter().find(|f| {
+            **f == o.path
+                || f.strip_prefix(o.path.as_str())
+                    .is_some_and(|rest| rest.starts_with('.'))
+        });
+        if let Some(field) = hit {
+            return Err(Error::InvalidArgument {
+                arg: format!("--set {}", o.path),
+                value: o.value.to_string(),
+                allowed: format!(
+                    "{field} is what the experiment compares (CJ against CL, the aluminium \
+                     against the iron operator): it cannot be set for every scene; use flexrig \
+                     run or flexrig sweep to vary it"
+                ),
+            });
+        }
+    }
+    Ok(())
 }
 
 fn run_job(

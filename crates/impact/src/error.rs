@@ -30,6 +30,9 @@ pub enum ImpactError {
         /// What happened, and what to change.
         reason: String,
     },
+    /// Stopped on request (Ctrl-C) before every case was computed.
+    #[error("stopped on request before every case was computed")]
+    Interrupted,
 }
 
 impl ImpactError {
@@ -40,19 +43,49 @@ impl ImpactError {
             ImpactError::Contact(e) => e.is_input_error(),
             ImpactError::Lumped(e) => e.is_input_error(),
             ImpactError::Beam(e) => e.is_input_error(),
-            ImpactError::NotFinished { .. } => false,
+            ImpactError::NotFinished { .. } | ImpactError::Interrupted => false,
         }
     }
 
     pub(crate) fn invalid(
         field: impl Into<String>,
-        value: impl std::fmt::Display,
+        value: impl Quoted,
         allowed: impl Into<String>,
     ) -> Self {
         ImpactError::InvalidParameter {
             field: field.into(),
-            value: value.to_string(),
+            value: value.quoted(),
             allowed: allowed.into(),
         }
     }
 }
+
+/// A rejected value as an error message quotes it: numbers as
+/// [`flexrig_contact::validate::display`] writes them (1e20, not 21 digits), text as it is.
+pub(crate) trait Quoted {
+    /// The value as quoted in the message.
+    fn quoted(&self) -> String;
+}
+
+impl Quoted for f64 {
+    fn quoted(&self) -> String {
+        flexrig_contact::validate::display(*self)
+    }
+}
+
+impl Quoted for &f64 {
+    fn quoted(&self) -> String {
+        flexrig_contact::validate::display(**self)
+    }
+}
+
+macro_rules! quoted_as_text {
+    ($($t:ty),*) => {$(
+        impl Quoted for $t {
+            fn quoted(&self) -> String {
+                self.to_string()
+            }
+        }
+    )*};
+}
+quoted_as_text!(usize, u64, u32, i64, i32, String, &str, &String);

@@ -10,6 +10,8 @@
 //! ([`chain::paper_lumped`]: a free mass behind the series spring), which reproduces the closed
 //! form for the elastic law (a test).
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use flexrig_contact::{DampingSpec, Hertz};
 use flexrig_lumped::fig6::{Fig6Case, K_C, M_R, V0};
 use flexrig_lumped::peak_exact;
@@ -106,6 +108,8 @@ impl EtaSettings {
     /// Checks the method and the window; the error names the field.
     pub fn validate(&self) -> Result<(), ImpactError> {
         self.method.validate()?;
+        // a bad joint would fail every case of a table or a map: refused before any runs
+        self.joint.validate()?;
         if let Some(periods) = self.window_periods {
             if !matches!(self.method, ClMethod::Modal { .. }) {
                 return Err(ImpactError::invalid(
@@ -263,6 +267,15 @@ pub fn eta_case(case: &Fig6Case, n: f64, settings: &EtaSettings) -> Result<EtaRo
 
 /// The eight cases × n ∈ {1, 2}, in parallel (case-major, as `flexrig fig6`).
 pub fn eta_table(settings: &EtaSettings) -> Result<Vec<EtaRow>, ImpactError> {
+    eta_table_until(settings, &AtomicBool::new(false))
+}
+
+/// [`eta_table`], stopping with [`ImpactError::Interrupted`] once `stop` is set (checked
+/// before each case).
+pub fn eta_table_until(
+    settings: &EtaSettings,
+    stop: &AtomicBool,
+) -> Result<Vec<EtaRow>, ImpactError> {
     let jobs: Vec<(Fig6Case, f64)> = flexrig_lumped::fig6::cases()
         .iter()
         .flat_map(|c| {
@@ -272,7 +285,12 @@ pub fn eta_table(settings: &EtaSettings) -> Result<Vec<EtaRow>, ImpactError> {
         })
         .collect();
     jobs.par_iter()
-        .map(|(case, n)| eta_case(case, *n, settings))
+        .map(|(case, n)| {
+            if stop.load(Ordering::Relaxed) {
+                return Err(ImpactError::Interrupted);
+            }
+            eta_case(case, *n, settings)
+        })
         .collect()
 }
 

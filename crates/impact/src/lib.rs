@@ -20,15 +20,25 @@ pub mod chain;
 pub mod cj;
 pub mod cl;
 pub mod cl_modal;
+pub mod drive;
+pub mod driven_cj;
+pub mod driven_cl;
 mod error;
 pub mod eta;
 pub mod graded;
 pub mod horizon;
 pub mod map;
 pub mod modal_run;
+pub mod role_switch;
 pub mod rotor;
 pub mod setup;
+pub mod spin_up;
+pub mod strike;
 pub mod tip_modes;
 
+pub use drive::{
+    Drive, DriveCommand, Gains, HeadSupport, Motor, Person, Placement, Profile, TorqueProfile,
+};
 pub use error::ImpactError;
 pub use setup::{ClSolver, FreeMassImpact, ImpactOutcome, Joint, LinkParams, RunEnd};
+pub use strike::{DriveNote, DrivenOutcome, DrivenStrike, EnergyBalance, TraceSample};

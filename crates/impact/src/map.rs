@@ -2,6 +2,8 @@
 //! model over m_e/m_r × k_δ/k_c for a head mass and an exponent, every point a Fig. 6-style case
 //! (m_r = 10 kg, k_c = 1e8, v0 = 2 m/s) run in parallel by [`crate::eta::eta_case`].
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use flexrig_lumped::fig6::{Fig6Case, K_C, M_R};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -96,27 +98,44 @@ pub struct MapPoint {
 
 /// The map, row-major over (stiffness ratio, mass ratio): point `iy * nx + ix`.
 pub fn eta_map(spec: &MapSpec, settings: &EtaSettings) -> Result<Vec<MapPoint>, ImpactError> {
+    eta_map_until(spec, settings, &AtomicBool::new(false))
+}
+
+/// [`eta_map`], stopping with [`ImpactError::Interrupted`] once `stop` is set (checked before
+/// each point).
+pub fn eta_map_until(
+    spec: &MapSpec,
+    settings: &EtaSettings,
+    stop: &AtomicBool,
+) -> Result<Vec<MapPoint>, ImpactError> {
     spec.validate()?;
-    settings.method.validate()?;
+    settings.validate()?;
     let xs = spec.mass_ratio.values();
     let ys = spec.stiffness_ratio.values();
     let grid: Vec<(f64, f64)> = ys
         .iter()
         .flat_map(|&y| xs.iter().map(move |&x| (x, y)))
         .collect();
-    Ok(grid
+    let points: Vec<Option<MapPoint>> = grid
         .par_iter()
         .map(|&(x, y)| {
+            if stop.load(Ordering::Relaxed) {
+                return None;
+            }
             let case = Fig6Case {
                 m_h: spec.m_h,
                 k_delta: y * K_C,
                 m_e: x * M_R,
             };
-            MapPoint {
+            Some(MapPoint {
                 mass_ratio: x,
                 stiffness_ratio: y,
                 row: eta_case(&case, spec.n, settings).map_err(|e| e.to_string()),
-            }
+            })
         })
-        .collect())
+        .collect();
+    points
+        .into_iter()
+        .collect::<Option<Vec<_>>>()
+        .ok_or(ImpactError::Interrupted)
 }

@@ -8,6 +8,8 @@
 //! spring, so the head meets the free tip mass M = m_e + m_r/3 alone; the CL beam is pinned at
 //! the hub; at ρ → ∞ both are held.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use flexrig_lumped::fig6::{Fig6Case, M_R};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -81,7 +83,18 @@ pub fn rotor_sweep(
     exponents: &[f64],
     settings: &EtaSettings,
 ) -> Result<Vec<RotorPoint>, ImpactError> {
-    settings.method.validate()?;
+    rotor_sweep_until(ratios, exponents, settings, &AtomicBool::new(false))
+}
+
+/// [`rotor_sweep`], stopping with [`ImpactError::Interrupted`] once `stop` is set (checked
+/// before each point).
+pub fn rotor_sweep_until(
+    ratios: &LogRange,
+    exponents: &[f64],
+    settings: &EtaSettings,
+    stop: &AtomicBool,
+) -> Result<Vec<RotorPoint>, ImpactError> {
+    settings.validate()?;
     ratios.validate("inertia_ratio", RATIO_LIMITS.0, RATIO_LIMITS.1)?;
     let mut stops: Vec<Option<f64>> = ratios.values().into_iter().map(Some).collect();
     stops.push(None);
@@ -95,6 +108,11 @@ pub fn rotor_sweep(
         })
         .collect();
     jobs.par_iter()
-        .map(|(case, n, ratio)| rotor_point(case, *n, *ratio, settings))
+        .map(|(case, n, ratio)| {
+            if stop.load(Ordering::Relaxed) {
+                return Err(ImpactError::Interrupted);
+            }
+            rotor_point(case, *n, *ratio, settings)
+        })
         .collect()
 }

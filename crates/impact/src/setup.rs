@@ -1,12 +1,12 @@
 //! The free-mass impact set-up (the paper's Fig. 5, issue 14) and its result.
 
 use flexrig_contact::{ContactLaw, DampingSpec, Hertz};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::ImpactError;
 
 /// The robot link: the same for the CJ and the CL design (paper §IV).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct LinkParams {
     /// Link mass m_r \[kg\] (uniform).
     pub m_r: f64,
@@ -40,7 +40,7 @@ impl LinkParams {
         self.m_e + self.m_r / 3.0
     }
 
-    fn validate(&self) -> Result<(), ImpactError> {
+    pub(crate) fn validate(&self) -> Result<(), ImpactError> {
         in_range("m_r", self.m_r, 1e-6, 1e6)?;
         in_range("length", self.length, 1e-3, 1e3)?;
         in_range("k_delta", self.k_delta, 1e-3, 1e12)?;
@@ -146,15 +146,23 @@ pub struct FreeMassImpact {
     pub damping: DampingSpec,
 }
 
+impl Joint {
+    /// Checks the joint's parameters (a free hub's rotor inertia in [1e-12, 1e12] kg·m²).
+    pub fn validate(&self) -> Result<(), ImpactError> {
+        if let Joint::FreeHub { rotor_inertia } = *self {
+            in_range("rotor_inertia", rotor_inertia, 1e-12, 1e12)?;
+        }
+        Ok(())
+    }
+}
+
 impl FreeMassImpact {
     /// Checks every parameter; the error names it and the allowed range.
     pub fn validate(&self) -> Result<(), ImpactError> {
         in_range("m_h", self.m_h, 1e-6, 1e9)?;
         in_range("v0", self.v0, 1e-6, 1e3)?;
         self.link.validate()?;
-        if let Joint::FreeHub { rotor_inertia } = self.joint {
-            in_range("rotor_inertia", rotor_inertia, 1e-12, 1e12)?;
-        }
+        self.joint.validate()?;
         self.law()?;
         Ok(())
     }
@@ -183,7 +191,7 @@ impl FreeMassImpact {
 
 /// ∫₀¹ ds/√(1 − s^{n+1}), by s = 1 − u² (a smooth integrand 2u/√(1 − (1 − u²)^{n+1})) and
 /// composite Simpson on 400 panels (error < 1e-9; π/2 for n = 1).
-fn hertz_time_integral(n: f64) -> f64 {
+pub(crate) fn hertz_time_integral(n: f64) -> f64 {
     let g = |u: f64| {
         if u == 0.0 {
             2.0 / (n + 1.0).sqrt()

@@ -146,6 +146,16 @@ impl BeamLink {
         self.node_motion(self.tip)
     }
 
+    /// Sets the beam's clock to `t` \[s\] (its state is unchanged): the beam at rest does not
+    /// move while the free flight carries the rig to the contact, and its motion-dependent loads
+    /// are evaluated at the rig's time.
+    pub fn set_time(&mut self, t: f64) {
+        match &mut self.dynamics {
+            LinkDynamics::Full(full) => full.0.t = t,
+            LinkDynamics::Modal { state, .. } => state.t = t,
+        }
+    }
+
     /// The beam model.
     pub fn model(&self) -> &BeamModel {
         &self.model

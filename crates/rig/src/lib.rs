@@ -23,6 +23,7 @@ pub mod canonical;
 pub mod coupling;
 mod error;
 pub mod format_message;
+pub mod free_flight;
 pub mod geometry;
 pub mod limits;
 pub mod overrides;
@@ -40,4 +41,4 @@ pub use run::{
     ContactEvent, Frame, Interruptible, NoRecorder, Recorder, RunOptions, RunSummary, Simulation,
     StepOutcome, run_scene_text,
 };
-pub use scene::{BeamSolverSpec, Design, Scene, SceneFile};
+pub use scene::{BeamSolverSpec, Design, Scene, SceneFile, SwingPolicy};

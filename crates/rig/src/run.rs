@@ -1,8 +1,9 @@
 //! The run loop: a named pipeline per step (loads → integrate → synchronise → events → check →
-//! sensors), a step policy that takes large steps in the free swing, lands on the contact onset
-//! and resolves the contact on its own time scale, and the stop condition of the scene. How the
-//! contact force is exchanged within a step (second order; implicit for the compliant link) is
-//! in [`crate::coupling`].
+//! sensors), a step policy that crosses the free flight in a few adaptive steps with the contact
+//! onset located as an event ([`crate::free_flight`]; or, with `solver.swing = "fixed"`, takes
+//! large Rapier steps in the swing and lands on the onset), resolves the contact on its own time
+//! scale, and the stop condition of the scene. How the contact force is exchanged within a step
+//! (second order; implicit for the compliant link) is in [`crate::coupling`].
 
 use flexrig_contact::math::{Pose, Vector};
 use flexrig_contact::{
@@ -13,6 +14,7 @@ use serde::Serialize;
 use crate::RigError;
 use crate::beam_link::{BeamLink, LinkVariant};
 use crate::coupling::{HingeMotion, TipContact};
+use crate::free_flight::{DIM, FlightSensors, FlightStep, FreeFlight, FreeHinges, SwingPolicy};
 use crate::geometry::RigGeometry;
 use crate::scene::{Design, Scene, StopSpec};
 use crate::sensors::{Reading, Sampler, SensorSample};
@@ -250,6 +252,8 @@ pub struct Simulation<'s> {
     last: Reading,
     sampler: Sampler,
     stats: Stats,
+    /// The adaptive free flight in progress (`solver.swing = "adaptive"`, out of contact).
+    flight: Option<FreeFlight>,
 }
 
 /// The state a step can be taken again from.
@@ -414,6 +418,7 @@ impl<'s> Simulation<'s> {
             },
             sampler: Sampler::new(scene.file.record.sample_rate_hz),
             stats: Stats::default(),
+            flight: None,
         };
         if swing.starts_in_contact {
             sim.phase = Phase::Contact;
@@ -426,6 +431,9 @@ impl<'s> Simulation<'s> {
         sim.stats.energy_initial = sim.energy();
         sim.stats.energy = sim.stats.energy_initial;
         sim.last = sim.reading();
+        if sim.phase == Phase::Swing {
+            sim.start_free_flight();
+        }
         Ok(sim)
     }
 
@@ -663,6 +671,9 @@ impl<'s> Simulation<'s> {
 
     /// One step of the pipeline: loads → integrate → synchronise → events → check → sensors.
     pub fn step(&mut self, recorder: &mut dyn Recorder) -> Result<StepOutcome, RigError> {
+        if self.flight.is_some() {
+            return self.free_step(recorder);
+        }
         let mut dt = self.next_step();
         let start = (self.now, self.dome_kinematics(), self.block_kinematics());
         // Near an onset a step may overshoot it (a vibrating link tip defeats the prediction):
@@ -687,6 +698,9 @@ impl<'s> Simulation<'s> {
         self.stats.steps += 1;
         // Events.
         let outcome = self.classify(&start, dt);
+        if outcome == StepOutcome::Separation {
+            self.start_free_flight();
+        }
         let energy = self.energy();
         self.check_health(energy)?;
         self.stats.energy = energy;
@@ -695,7 +709,21 @@ impl<'s> Simulation<'s> {
         let sampled_before = self.sampler.samples().len();
         self.sampler.record_step(&self.last, &reading);
         self.last = reading;
-        let operator_pose = self.rapier.operator_kinematics().pose;
+        self.emit(recorder, dt, outcome, energy, sampled_before)?;
+        Ok(outcome)
+    }
+
+    /// Hands the frame of the step just taken (of `dt`, reaching `outcome`, with the samples
+    /// from index `sampled_before` on) to the recorder.
+    fn emit(
+        &self,
+        recorder: &mut dyn Recorder,
+        dt: f64,
+        outcome: StepOutcome,
+        energy: f64,
+        sampled_before: usize,
+    ) -> Result<(), RigError> {
+        let operator_pose = self.block_kinematics().pose;
         let dome_body_pose = self.dome_kinematics().pose;
         let beam = match &self.robot {
             RobotSide::Rigid { .. } => None,
@@ -713,8 +741,157 @@ impl<'s> Simulation<'s> {
             contact: self.now.contact,
             energy,
             samples: &self.sampler.samples()[sampled_before..],
-        })?;
-        Ok(outcome)
+        })
+    }
+
+    /// Starts the adaptive free flight from the synchronised state, when the scene asks for it
+    /// and the motion out of contact is the hinges' alone: always for the CJ, for the CL only
+    /// before its first contact (the beam at rest; afterwards it vibrates and is stepped with
+    /// the fixed policy).
+    fn start_free_flight(&mut self) {
+        if self.scene.file.solver.swing != SwingPolicy::Adaptive {
+            return;
+        }
+        let robot = match &self.robot {
+            RobotSide::Rigid { spring } => Some((self.geometry.robot.inertia_axis, *spring)),
+            RobotSide::Beam(_) if self.stats.contacts.is_empty() && self.stats.open.is_none() => {
+                None
+            }
+            RobotSide::Beam(_) => return,
+        };
+        let op = &self.geometry.operator;
+        let g = self.scene.file.gravity_mps2;
+        let system = FreeHinges {
+            operator_inertia: op.inertia_pivot,
+            gravity_moment: op.mass * g * op.com_distance,
+            robot,
+        };
+        // The largest step: an eighth of the shorter small-amplitude period, so that the
+        // gap is sampled finely enough for the onset whatever the tolerance lets through.
+        let tau = std::f64::consts::TAU;
+        let mut period = tau * (system.operator_inertia / system.gravity_moment).sqrt();
+        if let Some((inertia, spring)) = robot {
+            period = period.min(tau * (inertia / spring).sqrt());
+        }
+        let s = self.now.operator;
+        let r = self
+            .now
+            .robot
+            .map_or((0.0, 0.0), |(r, _)| (r.angle, r.rate));
+        let rate_scale = op.bottom_angular_speed(s.angle, g).hypot(s.rate);
+        self.flight = Some(FreeFlight::new(
+            system,
+            self.t,
+            [s.angle, s.rate, r.0, r.1],
+            rate_scale,
+            period / 8.0,
+        ));
+    }
+
+    /// The signed dome–block gap \[m\] with the hinges in state `y` of the free flight (the CL
+    /// beam at rest).
+    fn flight_gap(&self, y: &[f64; DIM]) -> f64 {
+        let block = self.rapier.operator_kinematics_at(HingeState {
+            angle: y[0],
+            rate: y[1],
+        });
+        let dome = match &self.robot {
+            RobotSide::Rigid { .. } => self.rapier.robot_kinematics_at(HingeState {
+                angle: y[2],
+                rate: y[3],
+            }),
+            RobotSide::Beam(b) => b.tip_kinematics(),
+        };
+        self.contact.gap(&dome.pose, &block.pose)
+    }
+
+    /// The synchronised state of the free flight's `y` (no contact).
+    fn flight_synced(&self, y: &[f64; DIM]) -> Synced {
+        let operator = HingeState {
+            angle: y[0],
+            rate: y[1],
+        };
+        let robot = matches!(self.robot, RobotSide::Rigid { .. }).then_some(HingeState {
+            angle: y[2],
+            rate: y[3],
+        });
+        let (operator_accel, robot_accel) = self.accelerations(operator, robot, None);
+        Synced {
+            operator,
+            operator_accel,
+            robot: robot.zip(robot_accel),
+            contact: None,
+        }
+    }
+
+    /// One step of the adaptive free flight: an accepted DOP853 step (not past a stop time),
+    /// ending at the contact onset if it reaches it — then the exact onset state goes to Rapier,
+    /// whose next step is the contact's first (h_prev = 0: a half kick, as at the start) — and
+    /// the sensors sampled on the dense output.
+    fn free_step(&mut self, recorder: &mut dyn Recorder) -> Result<StepOutcome, RigError> {
+        let t_limit = match self.scene.file.stop {
+            StopSpec::Duration { duration_s } => Some(duration_s),
+            StopSpec::Peak | StopSpec::Separation => None,
+        };
+        let mut flight = self.flight.take().expect("in free flight");
+        let step: FlightStep = match flight.step(t_limit, |y| self.flight_gap(y)) {
+            Ok(step) => step,
+            Err(failure) => {
+                return Err(RigError::Unstable {
+                    t: self.t,
+                    quantity: "the free swing (adaptive integration)".into(),
+                    reason: format!("failed: {failure:?}"),
+                    suggestion: self.step_advice(),
+                });
+            }
+        };
+        // Sensors from the dense output (the exact state at each sample time).
+        let dense = flight.dense();
+        let sampled_before = self.sampler.samples().len();
+        let sensors = FlightSensors {
+            arm_length: self.geometry.operator.arm_length,
+            link_length: matches!(self.robot, RobotSide::Rigid { .. })
+                .then_some(self.geometry.robot.length),
+            beam_tip: match &self.robot {
+                RobotSide::Beam(b) => {
+                    let (v, _, a) = b.tip_transverse();
+                    (v, a)
+                }
+                RobotSide::Rigid { .. } => (0.0, 0.0),
+            },
+        };
+        let system = *flight.system();
+        self.sampler.record_exact(step.t_start, step.t_end, |t| {
+            let y = if t == step.t_end {
+                step.y
+            } else {
+                dense.eval(t)
+            };
+            sensors.sample(&system, t, &y)
+        });
+        // The new state, in Rapier too (synchronised: the next fixed step kicks half a step).
+        self.t = step.t_end;
+        self.h_prev = 0.0;
+        self.now = self.flight_synced(&step.y);
+        self.rapier
+            .set_state(self.now.operator, self.now.robot.map(|(r, _)| r));
+        if let RobotSide::Beam(b) = &mut self.robot {
+            b.set_time(self.t);
+        }
+        self.stats.steps += 1;
+        if step.onset {
+            // The fixed policy takes over at the onset: its first step is the contact's.
+            self.phase = Phase::Swing;
+        } else {
+            self.flight = Some(flight);
+        }
+        let energy = self.energy();
+        self.check_health(energy)?;
+        self.stats.energy = energy;
+        self.last = self.reading();
+        let dt = step.t_end - step.t_start;
+        self.emit(recorder, dt, StepOutcome::Advanced, energy, sampled_before)?;
+        Ok(StepOutcome::Advanced)
     }
 
     /// Loads → integrate → synchronise for a step of `dt` from the synchronised state `start`.

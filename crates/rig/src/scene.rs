@@ -9,6 +9,7 @@ use flexrig_contact::{ContactLaw, Hertz};
 use serde::{Deserialize, Serialize};
 
 use crate::RigError;
+pub use crate::free_flight::SwingPolicy;
 
 /// Compliant joint (rigid link on a torsion spring) or compliant link (flexible beam).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -274,6 +275,10 @@ pub struct SolverSpec {
     /// How the CL beam is solved (default: the full corotational FE beam).
     #[serde(default)]
     pub beam: BeamSolverSpec,
+    /// How the rig moves out of contact: `"adaptive"` (default; DOP853 with the onset located
+    /// as an event) or `"fixed"` (Rapier steps of `swing_step_s`).
+    #[serde(default)]
+    pub swing: SwingPolicy,
 }
 
 /// How the finite-element link is solved (design `cl`; ignored for `cj`). (Struct variants, so

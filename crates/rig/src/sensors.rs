@@ -93,6 +93,26 @@ impl Sampler {
         }
     }
 
+    /// Records every sample time in (`t_a`, `t_b`] (and t = 0 at the first call) from `at`, the
+    /// exact state at a time (e.g. an integrator's dense output): no interpolation between the
+    /// step's ends.
+    pub fn record_exact(&mut self, t_a: f64, t_b: f64, mut at: impl FnMut(f64) -> SensorSample) {
+        if !(t_b > t_a) {
+            return;
+        }
+        loop {
+            let t = self.next_index as f64 * self.period;
+            if t > t_b {
+                break;
+            }
+            self.next_index += 1;
+            if t < t_a {
+                continue;
+            }
+            self.samples.push(at(t));
+        }
+    }
+
     /// The samples so far.
     pub fn samples(&self) -> &[SensorSample] {
         &self.samples

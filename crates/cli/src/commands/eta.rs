@@ -5,11 +5,11 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use flexrig::Error;
 use flexrig::eta::{
     ClMethod, ClSolver, EffectiveGamma, EtaSettings, GradedMesh, WindowReport, check_length,
     contact_text, joint_text,
 };
+use flexrig::{CancelToken, Error};
 use serde_json::json;
 
 use super::impact_args::{DampingArgs, JointArg, as_flag, joint_from_args};
@@ -153,9 +153,9 @@ fn method_text(method: &ClMethod) -> String {
 }
 
 /// Runs `flexrig eta`.
-pub fn run(args: &EtaArgs, out: &mut dyn Write) -> Result<(), Error> {
+pub fn run(args: &EtaArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     let settings = settings(args)?;
-    let r = flexrig::eta::run(&settings, &args.out)?;
+    let r = flexrig::eta::run(&settings, &args.out, cancel)?;
     let (rows, csv_path, svg_path, fig6_path) = (&r.rows, &r.csv, &r.svg, &r.fig6_svg);
     let joint = joint_text(&settings.joint);
     if args.json {

@@ -5,9 +5,9 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::Error;
 use flexrig::eta::{ClMethod, EtaSettings, GradedMesh};
 use flexrig::eta_map::{EtaMapOptions, MapSpec, settings_text};
+use flexrig::{CancelToken, Error};
 use serde_json::json;
 
 use super::impact_args::{
@@ -74,7 +74,7 @@ fn spec_for(args: &EtaMapArgs, m_h: f64) -> Result<MapSpec, Error> {
 }
 
 /// Runs `flexrig eta-map`.
-pub fn run(args: &EtaMapArgs, out: &mut dyn Write) -> Result<(), Error> {
+pub fn run(args: &EtaMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     let joint = joint_from_args(args.joint, args.rotor_inertia)?;
     if args.m_h.is_empty() {
         return Err(Error::InvalidArgument {
@@ -99,11 +99,14 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write) -> Result<(), Error> {
     };
     settings.method.validate().map_err(as_flag)?;
     let joint_text = settings_text(&settings);
-    let r = flexrig::eta_map::run(&EtaMapOptions {
-        out: args.out.clone(),
-        specs,
-        settings,
-    })
+    let r = flexrig::eta_map::run(
+        &EtaMapOptions {
+            out: args.out.clone(),
+            specs,
+            settings,
+        },
+        cancel,
+    )
     .map_err(impact_as_flag)?;
     let summaries: Vec<serde_json::Value> = r
         .summaries

@@ -5,9 +5,9 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::Error;
 use flexrig::eta::{ClMethod, EtaSettings, GradedMesh, ImpactError, contact_text};
 use flexrig::eta_rotor::EtaRotorOptions;
+use flexrig::{CancelToken, Error};
 use serde_json::json;
 
 use super::impact_args::{DampingArgs, impact_as_flag, parse_range};
@@ -40,7 +40,7 @@ pub struct EtaRotorArgs {
 }
 
 /// Runs `flexrig eta-rotor`.
-pub fn run(args: &EtaRotorArgs, out: &mut dyn Write) -> Result<(), Error> {
+pub fn run(args: &EtaRotorArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     if !(2..=200).contains(&args.points) {
         return Err(Error::InvalidArgument {
             arg: "--points".into(),
@@ -69,12 +69,15 @@ pub fn run(args: &EtaRotorArgs, out: &mut dyn Write) -> Result<(), Error> {
         damping: args.contact.spec()?,
         ..EtaSettings::DEFAULT
     };
-    let r = flexrig::eta_rotor::run(&EtaRotorOptions {
-        out: args.out.clone(),
-        ratios,
-        n: args.n.clone(),
-        settings,
-    })
+    let r = flexrig::eta_rotor::run(
+        &EtaRotorOptions {
+            out: args.out.clone(),
+            ratios,
+            n: args.n.clone(),
+            settings,
+        },
+        cancel,
+    )
     .map_err(|e| match e {
         Error::Impact(ImpactError::InvalidParameter { field, .. }) if field == "inertia_ratio" => {
             Error::InvalidArgument {

@@ -1,0 +1,662 @@
+//! The driven compliant joint (a series elastic actuator) striking a person: the motor's rotor
+//! (joint-side inertia J_m N²) turns the torsion spring k_θr = k_δ L², which turns the rigid link
+//! (inertia (m_e + m_r/3) L² about the joint) into the head. In tip units (arc coordinate along
+//! the tip's path, module docs of [`crate::strike`]) with r = L φ_m, w = L φ_l:
+//!
+//! M_R r̈ = F − c_R ṙ − k_δ (r − w)          (rotor; M_R = J_m N²/L², c_R = c_m N²/L²)
+//! M ẅ   = k_δ (r − w) − f                   (link; M = m_e + m_r/3)
+//! m_h ẍ_h = f − k_n (x_h − x_c) − c_n ẋ_h   (head; a wall: x_h ≡ x_c)
+//! f = f(δ, δ̇), δ = w − x_h                 (Eq. 4 or a damped law of flexrig-contact)
+//!
+//! with the drive's force F = τ_j/L: under a controller F = sat(K_p (r_c − r) + K_d (ṙ_c − ṙ) +
+//! K_i z)/L², ż = r_c − r (r_c = L φ_cmd); under an open-loop torque F = N τ_m(t)/L; along a
+//! prescribed trajectory r ≡ L φ_cmd(t) and F = M_R r̈ + c_R ṙ + k_δ (r − w) is the torque it
+//! takes. The motor's work ∫ F ṙ dt, the friction's c_R ṙ², the damping's and the contact's
+//! impact work are integrated with the motion.
+//!
+//! Two phases, both by DOP853 (flexrig-lumped): the approach from t = 0 to the onset, located on
+//! the dense output and the state there recomputed by one step of the method; then the contact
+//! from the onset (positions re-measured from the contact point, so the indentation keeps full
+//! precision after a long swing) to the separation. Peaks where ḟ changes sign, as in
+//! [`crate::cj`].
+
+use std::cell::Cell;
+
+use flexrig_contact::ContactLaw;
+use flexrig_lumped::ode::dop853::{Dop853, Dop853Options, OdeSystem, find_root};
+
+use crate::ImpactError;
+use crate::drive::{DriveCommand, HeadSupport, Profile, TorqueProfile};
+use crate::setup::{ContactEvent, hertz_time_integral};
+use crate::strike::{DriveNote, DrivenOutcome, DrivenStrike, EnergyBalance, TraceSample, Tracer};
+
+const DIM: usize = 11;
+type Y = [f64; DIM];
+const XH: usize = 0;
+const VH: usize = 1;
+const W: usize = 2;
+const WD: usize = 3;
+const R: usize = 4;
+const RD: usize = 5;
+const Z: usize = 6;
+const WORK: usize = 7;
+const FRICTION: usize = 8;
+const DAMPING: usize = 9;
+const IMPACT: usize = 10;
+
+/// The drive in tip units.
+enum Source<'a> {
+    Prescribed(&'a Profile),
+    Feedback {
+        profile: &'a Profile,
+        kp: f64,
+        kd: f64,
+        ki: f64,
+        limit: f64,
+    },
+    OpenLoop {
+        torque: &'a TorqueProfile,
+        /// N/L: motor-shaft torque to tip force.
+        scale: f64,
+    },
+}
+
+struct DrivenCj<'a> {
+    l: f64,
+    m_tip: f64,
+    k: f64,
+    m_rotor: f64,
+    c_rotor: f64,
+    /// 1/m_h (0 against a wall).
+    inv_m_h: f64,
+    m_h: f64,
+    k_n: f64,
+    c_n: f64,
+    x_rest: f64,
+    source: Source<'a>,
+    /// Positions are measured from this point of the path \[m\].
+    shift: f64,
+    law: Option<&'a dyn ContactLaw>,
+    /// A time inside the current integration segment: the drive's command is evaluated on its
+    /// branch there (a pulse's end, a trapezoid's corner lie on segment ends).
+    branch: Cell<f64>,
+}
+
+impl DrivenCj<'_> {
+    /// Commanded (r_c, ṙ_c, r̈_c) in tip units.
+    fn command(&self, t: f64) -> Option<(f64, f64, f64)> {
+        let profile = match &self.source {
+            Source::Prescribed(p) => p,
+            Source::Feedback { profile, .. } => profile,
+            Source::OpenLoop { .. } => return None,
+        };
+        let (phi, omega, alpha) = profile.at_in(t, self.branch.get());
+        Some((self.l * phi - self.shift, self.l * omega, self.l * alpha))
+    }
+
+    /// The rotor's (r, ṙ).
+    fn rotor(&self, t: f64, y: &Y) -> (f64, f64) {
+        match &self.source {
+            Source::Prescribed(_) => {
+                let (r, v, _) = self.command(t).expect("a profile");
+                (r, v)
+            }
+            _ => (y[R], y[RD]),
+        }
+    }
+
+    /// The drive's force on the rotor F = τ_j/L \[N\] and whether it is at its limit.
+    fn drive_force(&self, t: f64, y: &Y) -> (f64, bool) {
+        match &self.source {
+            Source::Prescribed(_) => {
+                let (r, v, a) = self.command(t).expect("a profile");
+                (
+                    self.m_rotor * a + self.c_rotor * v + self.k * (r - y[W]),
+                    false,
+                )
+            }
+            Source::Feedback {
+                kp, kd, ki, limit, ..
+            } => {
+                let (rc, vc, _) = self.command(t).expect("a profile");
+                let raw = kp * (rc - y[R]) + kd * (vc - y[RD]) + ki * y[Z];
+                if raw.abs() > *limit {
+                    (limit * raw.signum(), true)
+                } else {
+                    (raw, false)
+                }
+            }
+            Source::OpenLoop { torque, scale } => {
+                (scale * torque.at_in(t, self.branch.get()), false)
+            }
+        }
+    }
+
+    /// |raw torque| − limit of a limited controller (positive: saturated), `None` otherwise.
+    fn saturation_margin(&self, t: f64, y: &Y) -> Option<f64> {
+        let Source::Feedback {
+            kp, kd, ki, limit, ..
+        } = &self.source
+        else {
+            return None;
+        };
+        if !limit.is_finite() {
+            return None;
+        }
+        let (rc, vc, _) = self.command(t).expect("a profile");
+        Some((kp * (rc - y[R]) + kd * (vc - y[RD]) + ki * y[Z]).abs() - limit)
+    }
+
+    /// The time in (t0, t1) at which the controller enters or leaves its limit, if it does.
+    fn saturation_switch(
+        &self,
+        ode: &mut Dop853<DIM>,
+        (t0, t1): (f64, f64),
+        (ya, yb): (&Y, &Y),
+    ) -> Option<f64> {
+        let (ga, gb) = (
+            self.saturation_margin(t0, ya)?,
+            self.saturation_margin(t1, yb)?,
+        );
+        if (ga > 0.0) == (gb > 0.0) || ga == 0.0 {
+            return None;
+        }
+        let dense = ode.dense_output(self);
+        let g = |t: f64| self.saturation_margin(t, &dense.eval(t)).unwrap_or(0.0);
+        let t = find_root(g, t0, ga, t1, gb, 4.0 * f64::EPSILON * t1);
+        (t > t0 + 8.0 * f64::EPSILON * t1 && t < t1).then_some(t)
+    }
+
+    fn force(&self, y: &Y) -> f64 {
+        self.law
+            .map_or(0.0, |law| law.force(y[W] - y[XH], y[WD] - y[VH]))
+    }
+
+    /// ḟ along the motion.
+    fn force_rate(&self, t: f64, y: &Y) -> f64 {
+        let Some(law) = self.law else { return 0.0 };
+        let (delta, rate) = (y[W] - y[XH], y[WD] - y[VH]);
+        let dy = self.rhs(t, y);
+        law.stiffness(delta, rate) * rate + law.damping(delta, rate) * (dy[WD] - dy[VH])
+    }
+
+    fn sample(&self, t: f64, y: &Y) -> TraceSample {
+        let (r, rd) = self.rotor(t, y);
+        TraceSample {
+            t,
+            hub_angle_rad: (r + self.shift) / self.l,
+            hub_speed_rad_s: rd / self.l,
+            tip_deflection_m: y[W] - r,
+            indentation_m: y[W] - y[XH],
+            force_n: self.force(y),
+            joint_torque_nm: self.drive_force(t, y).0 * self.l,
+            head_position_m: y[XH] + self.shift,
+        }
+    }
+
+    fn mechanical_energy(&self, t: f64, y: &Y) -> f64 {
+        let (r, rd) = self.rotor(t, y);
+        let spring = r - y[W];
+        let neck = y[XH] - self.x_rest;
+        let contact = self
+            .law
+            .map_or(0.0, |law| law.elastic_energy((y[W] - y[XH]).max(0.0)));
+        let head = if self.inv_m_h > 0.0 {
+            0.5 * self.m_h * y[VH] * y[VH]
+        } else {
+            0.0
+        };
+        head + 0.5 * self.m_tip * y[WD] * y[WD]
+            + 0.5 * self.m_rotor * rd * rd
+            + 0.5 * self.k * spring * spring
+            + 0.5 * self.k_n * neck * neck
+            + contact
+    }
+}
+
+impl OdeSystem<DIM> for DrivenCj<'_> {
+    fn rhs(&self, t: f64, y: &Y) -> Y {
+        let f = self.force(y);
+        let (r, rd) = self.rotor(t, y);
+        let spring = self.k * (r - y[W]);
+        let (drive, _) = self.drive_force(t, y);
+        let head_acc = self.inv_m_h * (f - self.k_n * (y[XH] - self.x_rest) - self.c_n * y[VH]);
+        let (rotor_acc, z_rate) = match &self.source {
+            Source::Prescribed(_) => (0.0, 0.0),
+            Source::Feedback { .. } => (
+                (drive - self.c_rotor * rd - spring) / self.m_rotor,
+                self.command(t).expect("a profile").0 - r,
+            ),
+            Source::OpenLoop { .. } => ((drive - self.c_rotor * rd - spring) / self.m_rotor, 0.0),
+        };
+        let (delta, rate) = (y[W] - y[XH], y[WD] - y[VH]);
+        let damping_power = match self.law {
+            Some(law) => (f - law.elastic().force(delta, 0.0)) * rate,
+            None => 0.0,
+        };
+        let mut dy = [0.0; DIM];
+        dy[XH] = y[VH];
+        dy[VH] = head_acc;
+        dy[W] = y[WD];
+        dy[WD] = (spring - f) / self.m_tip;
+        if !matches!(self.source, Source::Prescribed(_)) {
+            dy[R] = y[RD];
+            dy[RD] = rotor_acc;
+        }
+        dy[Z] = z_rate;
+        dy[WORK] = drive * rd;
+        dy[FRICTION] = self.c_rotor * rd * rd;
+        dy[DAMPING] = self.c_n * y[VH] * y[VH] + damping_power;
+        dy[IMPACT] = f * rate.max(0.0);
+        dy
+    }
+}
+
+/// Integration settings of the driven CJ.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct CjSettings {
+    /// DOP853 relative tolerance, in [1e-14, 1e-3].
+    pub rtol: f64,
+    /// Most DOP853 steps per phase.
+    pub max_steps: usize,
+    /// `Some(dt)`: sample the motion at the integrator's steps, at most every dt \[s\].
+    pub trace_every: Option<f64>,
+}
+
+impl CjSettings {
+    /// rtol 1e-10, 10⁷ steps per phase.
+    pub const DEFAULT: CjSettings = CjSettings {
+        rtol: 1e-10,
+        max_steps: 10_000_000,
+        trace_every: None,
+    };
+}
+
+/// Runs the driven CJ strike from the drive's start (t = 0) to the separation of the first
+/// contact.
+pub fn run_driven_cj(
+    strike: &DrivenStrike,
+    settings: &CjSettings,
+) -> Result<DrivenOutcome, ImpactError> {
+    strike.validate()?;
+    if !(settings.rtol.is_finite() && (1e-14..=1e-3).contains(&settings.rtol)) {
+        return Err(ImpactError::invalid(
+            "rtol",
+            settings.rtol,
+            "must lie in [1e-14, 1e-3]",
+        ));
+    }
+    let link = strike.link;
+    let l = link.length;
+    let motor = strike.drive.motor();
+    let n_gear = motor.gear_ratio;
+    let source = match strike.drive.command() {
+        DriveCommand::Trajectory { profile } => Source::Prescribed(profile),
+        DriveCommand::Controller { profile, gains, .. } => Source::Feedback {
+            profile,
+            kp: gains.kp / (l * l),
+            kd: gains.kd / (l * l),
+            ki: gains.ki / (l * l),
+            limit: strike.drive.joint_torque_limit() / l,
+        },
+        DriveCommand::OpenLoop { torque, .. } => Source::OpenLoop {
+            torque,
+            scale: n_gear / l,
+        },
+    };
+    let (inv_m_h, k_n, c_n) = match strike.person.support {
+        HeadSupport::Free => (1.0 / strike.person.m_h, 0.0, 0.0),
+        HeadSupport::Neck { stiffness, damping } => (1.0 / strike.person.m_h, stiffness, damping),
+        HeadSupport::Wall => (0.0, 0.0, 0.0),
+    };
+    let x_contact = l * strike.placement.angle(&strike.drive)?;
+    let mut system = DrivenCj {
+        l,
+        m_tip: link.cj_tip_mass(),
+        k: link.k_delta,
+        m_rotor: motor.reflected_inertia() / (l * l),
+        c_rotor: motor.reflected_friction() / (l * l),
+        inv_m_h,
+        m_h: strike.person.m_h,
+        k_n,
+        c_n,
+        x_rest: x_contact,
+        source,
+        shift: 0.0,
+        law: None,
+        branch: Cell::new(0.0),
+    };
+    // ---- t = 0 ----
+    let (z0, lag0, speed0) = strike.drive.steady_preload()?;
+    let r0 = -l * lag0;
+    let mut y0 = [0.0; DIM];
+    y0[XH] = x_contact;
+    y0[VH] = -strike.person.speed;
+    y0[W] = r0;
+    y0[WD] = l * speed0;
+    y0[R] = r0;
+    y0[RD] = l * speed0;
+    y0[Z] = l * z0;
+    // scales: the link's own period for the approach
+    let period = 2.0 * std::f64::consts::PI * (system.m_tip / system.k).sqrt();
+    let opts = |rtol: f64, x: f64, v: f64, t: f64, e: f64, first: Option<f64>, max: f64| {
+        let mut atol = [rtol * x; DIM];
+        for i in [VH, WD, RD] {
+            atol[i] = rtol * v;
+        }
+        atol[Z] = rtol * x * t;
+        for i in [WORK, FRICTION, DAMPING, IMPACT] {
+            atol[i] = rtol * e;
+        }
+        Dop853Options {
+            rtol,
+            atol,
+            first_step: first,
+            max_step: max,
+            max_steps: settings.max_steps,
+        }
+    };
+    let v_ref = strike
+        .drive
+        .profile()
+        .map_or(l * speed0.abs(), |p| l * p.final_speed().abs())
+        .max(strike.person.speed)
+        .max(1e-6);
+    let e_ref = 0.5 * system.m_tip * v_ref * v_ref;
+    let gap = |y: &Y| y[W] - y[XH];
+    let mut notes = Vec::new();
+    let mut saturation_at: Option<f64> = None;
+    if let Some(dt) = settings.trace_every
+        && !(dt.is_finite() && dt > 0.0)
+    {
+        return Err(ImpactError::invalid("trace_every", dt, "a time > 0 s"));
+    }
+    let mut tracer = Tracer::new(settings.trace_every);
+    tracer.offer(0.0, true, || system.sample(0.0, &y0));
+    let mut work = 0;
+    let (t_on, y_on) = if gap(&y0) == 0.0 && y0[WD] - y0[VH] > 0.0 {
+        (0.0, y0)
+    } else if gap(&y0) > 0.0 {
+        return Err(ImpactError::invalid(
+            "placement",
+            format!("{} rad", x_contact / l),
+            "a person the link has not yet reached at t = 0",
+        ));
+    } else {
+        let options = opts(
+            settings.rtol,
+            l,
+            v_ref,
+            period,
+            e_ref,
+            None,
+            (strike.horizon_s / 50.0).min(period / 4.0),
+        );
+        let mut ode = Dop853::new(&system, 0.0, y0, options);
+        let mut breaks = strike.drive.breakpoints();
+        breaks.push(strike.horizon_s);
+        loop {
+            let stop = breaks
+                .iter()
+                .copied()
+                .filter(|b| *b > ode.t())
+                .fold(strike.horizon_s, f64::min);
+            let last = breaks
+                .iter()
+                .copied()
+                .filter(|b| *b <= ode.t())
+                .fold(0.0, f64::max);
+            system.branch.set(0.5 * (last + stop));
+            ode.step_until(&system, stop)
+                .map_err(|e| ImpactError::NotFinished {
+                    design: "driven CJ",
+                    reason: format!("the approach failed: {e:?}"),
+                })?;
+            let (t0, t1) = (ode.t_old(), ode.t());
+            let (ya, yb) = (*ode.y_old(), *ode.y());
+            // the limit's corner: restart the integrator there (it keeps its order)
+            if let Some(t_sw) = system.saturation_switch(&mut ode, (t0, t1), (&ya, &yb)) {
+                let y_sw = ode.restep_to(&system, t_sw);
+                if gap(&y_sw) < 0.0 {
+                    work += ode.stats().rhs_evals;
+                    if saturation_at.is_none()
+                        && system.saturation_margin(t1, &yb).unwrap_or(0.0) > 0.0
+                    {
+                        saturation_at = Some(t_sw);
+                    }
+                    ode = Dop853::new(&system, t_sw, y_sw, options);
+                    continue;
+                }
+            }
+            if gap(&yb) < 0.0 {
+                tracer.offer(t1, false, || system.sample(t1, &yb));
+            }
+            if saturation_at.is_none() && system.drive_force(t1, &yb).1 {
+                saturation_at = Some(t1);
+            }
+            if gap(&ya) < 0.0 && gap(&yb) >= 0.0 {
+                let dense = ode.dense_output(&system);
+                let t = find_root(
+                    |t| gap(&dense.eval(t)),
+                    t0,
+                    gap(&ya),
+                    t1,
+                    gap(&yb),
+                    4.0 * f64::EPSILON * t1.max(1e-300),
+                );
+                let y = if t < t1 {
+                    ode.restep_to(&system, t)
+                } else {
+                    yb
+                };
+                work += ode.stats().rhs_evals;
+                break (t, y);
+            }
+            if t1 >= strike.horizon_s {
+                let speed = yb[WD] / l;
+                let mut reason = format!(
+                    "the link did not reach the person within horizon_s = {} s (gap {:.6e} m, \
+                     joint speed {speed:.6e} rad/s at the end)",
+                    strike.horizon_s,
+                    -gap(&yb),
+                );
+                if let Some(ts) = saturation_at {
+                    reason.push_str(&format!(
+                        "; the torque limit was reached at {ts:.6e} s and cannot hold the speed"
+                    ));
+                }
+                return Err(ImpactError::NotFinished {
+                    design: "driven CJ",
+                    reason,
+                });
+            }
+        }
+    };
+    // ---- the contact, positions from the contact point ----
+    let approach = y_on[WD] - y_on[VH];
+    if !(approach > 0.0) {
+        return Err(ImpactError::NotFinished {
+            design: "driven CJ",
+            reason: format!("the link touched the person without approaching (δ̇ = {approach})"),
+        });
+    }
+    let law = strike.person.damping.law(strike.person.contact, approach)?;
+    let shift = y_on[XH];
+    system.shift = shift;
+    // the contact lies within one segment (a corner inside it is crossed by step control)
+    system.branch.set(t_on);
+    system.x_rest -= shift;
+    system.law = Some(&*law);
+    let mut y = y_on;
+    y[XH] = 0.0;
+    y[W] -= shift;
+    if !matches!(system.source, Source::Prescribed(_)) {
+        y[R] -= shift;
+    }
+    for i in [WORK, FRICTION, DAMPING, IMPACT] {
+        y[i] = 0.0;
+    }
+    let m_struck = if inv_m_h > 0.0 {
+        system.m_tip * strike.person.m_h / (system.m_tip + strike.person.m_h)
+    } else {
+        system.m_tip
+    };
+    let (kc, nc) = (strike.person.contact.k(), strike.person.contact.n());
+    let d_max = ((nc + 1.0) * m_struck * approach * approach / (2.0 * kc)).powf(1.0 / (nc + 1.0));
+    let t_c = 2.0 * d_max / approach * hertz_time_integral(nc);
+    let x_c = approach * t_c;
+    let (torque_on, _) = system.drive_force(t_on, &y);
+    let (r_on, rd_on) = system.rotor(t_on, &y);
+    let deflection = y[W] - r_on;
+    let e0 = system.mechanical_energy(t_on, &y);
+    let options = opts(
+        settings.rtol,
+        x_c,
+        approach,
+        t_c,
+        0.5 * m_struck * approach * approach,
+        Some(t_c * 1e-3),
+        t_c * 0.5,
+    );
+    tracer.offer(t_on, true, || system.sample(t_on, &y));
+    let mut ode = Dop853::new(&system, t_on, y, options);
+    let mut peak = (0.0_f64, t_on);
+    let mut peak_torque = torque_on.abs() * l;
+    let force_rate = |t: f64, y: &Y| system.force_rate(t, y);
+    loop {
+        ode.step(&system).map_err(|e| ImpactError::NotFinished {
+            design: "driven CJ",
+            reason: format!("the contact failed: {e:?}"),
+        })?;
+        let (t0, t1) = (ode.t_old(), ode.t());
+        let (ya, yb) = (*ode.y_old(), *ode.y());
+        if let Some(t_sw) = system.saturation_switch(&mut ode, (t0, t1), (&ya, &yb)) {
+            let y_sw = ode.restep_to(&system, t_sw);
+            if gap(&y_sw) > 0.0 && force_rate(t0, &ya) * force_rate(t_sw, &y_sw) > 0.0 {
+                work += ode.stats().rhs_evals;
+                if saturation_at.is_none() && system.saturation_margin(t1, &yb).unwrap_or(0.0) > 0.0
+                {
+                    saturation_at = Some(t_sw);
+                }
+                ode = Dop853::new(&system, t_sw, y_sw, options);
+                continue;
+            }
+        }
+        let (fd, sat) = system.drive_force(t1, &yb);
+        peak_torque = peak_torque.max(fd.abs() * l);
+        if gap(&yb) > 0.0 {
+            tracer.offer(t1, false, || system.sample(t1, &yb));
+        }
+        if sat && saturation_at.is_none() {
+            saturation_at = Some(t1);
+        }
+        if force_rate(t0, &ya) > 0.0 && force_rate(t1, &yb) <= 0.0 {
+            let dense = ode.dense_output(&system);
+            let t = find_root(
+                |t| force_rate(t, &dense.eval(t)),
+                t0,
+                force_rate(t0, &ya),
+                t1,
+                force_rate(t1, &yb),
+                4.0 * f64::EPSILON * t1,
+            );
+            let f = system.force(&ode.restep_to(&system, t));
+            if f > peak.0 {
+                peak = (f, t);
+            }
+        }
+        if gap(&yb) <= 0.0 && t1 > t_on {
+            let dense = ode.dense_output(&system);
+            let t_sep = find_root(
+                |t| gap(&dense.eval(t)),
+                t0,
+                gap(&ya),
+                t1,
+                gap(&yb),
+                4.0 * f64::EPSILON * t1,
+            );
+            let y_sep = if t_sep < t1 {
+                ode.restep_to(&system, t_sep)
+            } else {
+                yb
+            };
+            work += ode.stats().rhs_evals;
+            tracer.offer(t_sep, true, || system.sample(t_sep, &y_sep));
+            let e1 = system.mechanical_energy(t_sep, &y_sep);
+            let dissipated = y_sep[FRICTION] + y_sep[DAMPING];
+            let energy = EnergyBalance {
+                impact_energy_j: y_sep[IMPACT],
+                motor_work_j: y_sep[WORK],
+                dissipated_j: dissipated,
+                mechanical_change_j: e1 - e0,
+                residual_j: y_sep[WORK] - dissipated - (e1 - e0),
+            };
+            let commanded = system.command(t_on).map(|c| c.1);
+            if let Some(ts) = saturation_at {
+                notes.push(DriveNote::TorqueLimitReached { first_s: ts });
+            }
+            if let Some(c) = commanded
+                && y_on[WD] < 0.99 * c
+            {
+                notes.push(DriveNote::SpeedBelowCommand {
+                    commanded_mps: c,
+                    actual_mps: y_on[WD],
+                });
+            }
+            // the link's vibration about its quasi-static (drive-loaded) deflection at the onset
+            let rotor_acc = match system.source {
+                Source::Prescribed(_) => system.command(t_on).expect("a profile").2,
+                _ => system.rhs(t_on, &y)[RD],
+            };
+            let omega = (system.k / system.m_tip).sqrt();
+            let quasi_static = -system.m_tip * rotor_acc / system.k;
+            let amplitude =
+                ((deflection - quasi_static).powi(2) + ((y[WD] - rd_on) / omega).powi(2)).sqrt();
+            if amplitude > 1e-2 * peak.0 / system.k {
+                notes.push(DriveNote::NotSettled {
+                    amplitude_m: amplitude,
+                });
+            }
+            let outcome = DrivenOutcome {
+                contact: ContactEvent {
+                    onset_s: t_on,
+                    peak_force_n: peak.0,
+                    time_of_peak_s: peak.1,
+                    duration_s: t_sep - t_on,
+                },
+                approach_speed_mps: approach,
+                commanded_tip_speed_mps: commanded,
+                pre_impact_deflection_m: deflection,
+                joint_torque_at_onset_nm: torque_on * l,
+                peak_joint_torque_nm: peak_torque,
+                energy,
+                separation_rate_mps: y_sep[WD] - y_sep[VH],
+                notes,
+                work,
+                trace: tracer.samples,
+            };
+            return finite(outcome);
+        }
+    }
+}
+
+/// The outcome, or an error if anything in it is not finite.
+pub(crate) fn finite(o: DrivenOutcome) -> Result<DrivenOutcome, ImpactError> {
+    let values = [
+        o.contact.peak_force_n,
+        o.contact.time_of_peak_s,
+        o.contact.duration_s,
+        o.pre_impact_deflection_m,
+        o.energy.residual_j,
+        o.separation_rate_mps,
+        o.peak_joint_torque_nm,
+    ];
+    if values.iter().all(|v| v.is_finite()) {
+        Ok(o)
+    } else {
+        Err(ImpactError::NotFinished {
+            design: "driven strike",
+            reason: "the integration lost finiteness".into(),
+        })
+    }
+}

@@ -1,0 +1,187 @@
+//! The driven strike: a robot link moved by its [`Drive`] swings into a person at rest (the
+//! paper's §IV question, Fig. 5a), and its result.
+//!
+//! **Kinematics.** Everything is measured along the tip's path (arc coordinate s = L φ), as in
+//! the free-mass impact ([`crate::FreeMassImpact`]): the skin's surface sits at s = L φ_c (the
+//! [`Placement`]), the head moves along the path's tangent there, and the indentation is
+//! δ = s_tip − s_head. This is exact for the contact as long as the link turns little during
+//! it (a contact of t_c at tip speed v turns it by v t_c/L; for the Fig. 6 set-up ≤ 1e-3 rad).
+//! The link is linear (no centrifugal stiffening: the spin-up benchmark, [`crate::spin_up`],
+//! shows where that matters; for a link turning at Ω it shifts the first bending frequency by
+//! ≈ 0.19 Ω²/ω₁² of itself).
+
+use serde::{Deserialize, Serialize};
+
+use crate::ImpactError;
+use crate::drive::{Drive, Person, Placement, positive};
+use crate::setup::{ContactEvent, LinkParams};
+
+/// A driven robot link striking a person.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DrivenStrike {
+    /// The link (the same m_r, L, k_δ, m_e for the CJ and the CL design).
+    pub link: LinkParams,
+    /// The joint's drive.
+    pub drive: Drive,
+    /// The person.
+    pub person: Person,
+    /// Where the person stands.
+    pub placement: Placement,
+    /// Longest time to wait for the link to arrive \[s\].
+    pub horizon_s: f64,
+}
+
+impl DrivenStrike {
+    /// Checks every field; the error names it.
+    pub fn validate(&self) -> Result<(), ImpactError> {
+        self.link.validate()?;
+        self.person.validate()?;
+        positive("horizon_s", self.horizon_s, 1e6, "s")?;
+        let angle = self.placement.angle(&self.drive)?;
+        if let Some(profile) = self.drive.profile() {
+            // the commanded motion must pass the person within the horizon
+            let reach = profile.at(self.horizon_s).0;
+            let start = profile.at(0.0).0;
+            let passes = if angle >= start {
+                reach >= angle
+            } else {
+                reach <= angle
+            };
+            if !passes {
+                return Err(ImpactError::invalid(
+                    "placement",
+                    format!("{angle} rad"),
+                    format!(
+                        "an angle the commanded trajectory reaches within horizon_s = {} s \
+                         (it reaches {reach:.6} rad)",
+                        self.horizon_s
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The energy balance over the contact, from its onset to the separation \[J\].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EnergyBalance {
+    /// Work of the contact force on the approach while the indentation grows, ∫ f δ̇ dt over
+    /// δ̇ > 0 (the elastic law: the contact energy at the peak).
+    pub impact_energy_j: f64,
+    /// Work of the motor on the joint, ∫ τ_j φ̇_m dt (the controller's torque included).
+    pub motor_work_j: f64,
+    /// Energy dissipated by the drive's friction, the neck's damper and the contact's damping.
+    pub dissipated_j: f64,
+    /// Change of the mechanical energy (kinetic + strain + contact + neck spring).
+    pub mechanical_change_j: f64,
+    /// motor work − dissipated − mechanical change: 0 up to the integration error.
+    pub residual_j: f64,
+}
+
+/// Something the drive did that the reader should know.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "note")]
+pub enum DriveNote {
+    /// The controller's torque reached its limit (first at `first_s`): the commanded motion was
+    /// not followed.
+    TorqueLimitReached {
+        /// First time at the limit \[s\].
+        first_s: f64,
+    },
+    /// The link arrived slower than commanded (by more than 1 %): the drive could not hold the
+    /// speed.
+    SpeedBelowCommand {
+        /// Commanded tip speed at the onset [m/s].
+        commanded_mps: f64,
+        /// The tip's actual speed at the onset [m/s].
+        actual_mps: f64,
+    },
+    /// The link still vibrates from the drive's ramp at the onset: the deflection's oscillating
+    /// part exceeds 1 % of the static deflection of the contact's peak force.
+    NotSettled {
+        /// Amplitude of the tip's vibration about its drive-loaded shape \[m\].
+        amplitude_m: f64,
+    },
+}
+
+/// The result of a driven strike (first contact, from onset to separation).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DrivenOutcome {
+    /// The contact: onset, time of the peak and the duration, times from the drive's start.
+    pub contact: ContactEvent,
+    /// Relative approach speed δ̇ at the onset [m/s].
+    pub approach_speed_mps: f64,
+    /// The commanded tip speed L ω_cmd at the onset [m/s] (`None` for an open-loop torque).
+    pub commanded_tip_speed_mps: Option<f64>,
+    /// The tip's deflection from the hub's line at the onset \[m\] (CJ: L(φ_l − φ_m); CL: the
+    /// beam's tip from the clamped hub's tangent), positive towards the person.
+    pub pre_impact_deflection_m: f64,
+    /// Joint torque τ_j at the onset [N·m].
+    pub joint_torque_at_onset_nm: f64,
+    /// Largest |τ_j| during the contact [N·m].
+    pub peak_joint_torque_nm: f64,
+    /// The energy balance over the contact.
+    pub energy: EnergyBalance,
+    /// Relative approach speed at the separation (negative: parting) [m/s].
+    pub separation_rate_mps: f64,
+    /// What the drive did.
+    pub notes: Vec<DriveNote>,
+    /// Right-hand-side evaluations (CJ) or steps (CL).
+    pub work: usize,
+    /// The motion sampled at the integrator's steps, at most one sample per `trace_every` of
+    /// the settings, the onset and the separation included (empty without `trace_every`).
+    pub trace: Vec<TraceSample>,
+}
+
+/// One sample of a driven strike's motion (for logs and figures).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TraceSample {
+    /// Time from the drive's start \[s\].
+    pub t: f64,
+    /// Joint (motor, after the gear) angle \[rad\].
+    pub hub_angle_rad: f64,
+    /// Joint speed [rad/s].
+    pub hub_speed_rad_s: f64,
+    /// Tip deflection from the hub's line \[m\] (positive towards the person).
+    pub tip_deflection_m: f64,
+    /// Indentation δ \[m\] (negative: the gap before the contact).
+    pub indentation_m: f64,
+    /// Contact force \[N\].
+    pub force_n: f64,
+    /// Joint torque τ_j [N·m].
+    pub joint_torque_nm: f64,
+    /// The skin's position along the tip's path \[m\].
+    pub head_position_m: f64,
+}
+
+/// Keeps at most one sample per `every` seconds (the last one always replaceable by a
+/// forced sample).
+#[derive(Debug, Clone)]
+pub(crate) struct Tracer {
+    every: Option<f64>,
+    pub(crate) samples: Vec<TraceSample>,
+}
+
+impl Tracer {
+    pub(crate) fn new(every: Option<f64>) -> Tracer {
+        Tracer {
+            every,
+            samples: Vec::new(),
+        }
+    }
+
+    /// Records `sample()` if due (or `force`d).
+    pub(crate) fn offer(&mut self, t: f64, force: bool, sample: impl FnOnce() -> TraceSample) {
+        let Some(every) = self.every else { return };
+        let due = self.samples.last().is_none_or(|last| t - last.t >= every);
+        if due || force {
+            // a forced sample at the time of the last one replaces it
+            if self.samples.last().is_some_and(|last| last.t >= t) {
+                self.samples.pop();
+            }
+            self.samples.push(sample());
+        }
+    }
+}
