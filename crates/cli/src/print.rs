@@ -5,7 +5,7 @@ use std::io::{IsTerminal, Write};
 use std::sync::OnceLock;
 
 use flexrig::Error;
-use flexrig_rig::Override;
+use flexrig::run::Override;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 /// Writes `value` as pretty JSON and a newline to the report.

@@ -4,13 +4,16 @@
 //! physical ranges; errors name the flag of `flexrig beam` (`--length`).
 
 use flexrig_beam::{
-    BeamModel, BeamSpec, Kinematics, Material, ModalDirection, NodalLoads, PointMass, RootSupport,
-    Section, StaticOptions, modal_analysis, solve_static,
+    BeamModel, BeamSpec, Material, ModalDirection, NodalLoads, PointMass, RootSupport, Section,
+    StaticOptions, modal_analysis, solve_static,
 };
 use serde::{Deserialize, Serialize};
 
 use crate::Error;
 use crate::output::range_arg;
+
+/// The element kinematics (flexrig-beam's), for callers of this module.
+pub use flexrig_beam::Kinematics;
 
 /// The root's support.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

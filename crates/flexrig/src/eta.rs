@@ -6,15 +6,21 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use flexrig_contact::DampingSpec;
-use flexrig_impact::Joint;
-use flexrig_impact::eta::{EffectiveGamma, EtaRow, EtaSettings, eta_table_until};
+use flexrig_impact::eta::eta_table_until;
 
 use crate::CancelToken;
 use serde::Serialize;
 
 use crate::Error;
 use crate::output::{ensure_dir, write_atomic};
+
+/// The table's inputs and rows (flexrig-impact's and flexrig-contact's), for callers of this
+/// module.
+pub use flexrig_contact::DampingSpec;
+pub use flexrig_impact::eta::{ClMethod, EffectiveGamma, EtaRow, EtaSettings};
+pub use flexrig_impact::graded::GradedMesh;
+pub use flexrig_impact::horizon::WindowReport;
+pub use flexrig_impact::{ClSolver, ImpactError, Joint};
 
 /// Shortest and longest link length L \[m\] (the transverse impact does not depend on it).
 pub const LENGTH: (f64, f64) = (1e-3, 1e3);

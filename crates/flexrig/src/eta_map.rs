@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use flexrig_impact::eta::{EffectiveGamma, EtaRow, EtaSettings};
-use flexrig_impact::map::{MapPoint, MapSpec, eta_map_until};
+use flexrig_impact::map::eta_map_until;
 
 use crate::CancelToken;
 use serde::Serialize;
@@ -16,6 +16,9 @@ use crate::Error;
 use crate::eta::{contact_text, joint_text};
 use crate::output::{ensure_dir, write_atomic};
 use crate::plots::{ColorScale, HeatMap, heatmaps_svg};
+
+/// A map's spec and points (flexrig-impact's), for callers of this module.
+pub use flexrig_impact::map::{LogRange, MapPoint, MapSpec};
 
 /// η_FE below this: the CL beats the CJ by more than 5 %.
 pub const BEATS: f64 = 0.95;

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use flexrig_impact::eta::EtaSettings;
 use flexrig_impact::map::LogRange;
-use flexrig_impact::rotor::{RotorPoint, rotor_sweep_until};
+use flexrig_impact::rotor::rotor_sweep_until;
 
 use crate::CancelToken;
 use serde::Serialize;
@@ -15,6 +15,9 @@ use crate::Error;
 use crate::eta::contact_text;
 use crate::output::{ensure_dir, write_atomic};
 use crate::plots::{Curve, CurvePanel, log_x_curves_svg};
+
+/// A point of the sweep (flexrig-impact's), for callers of this module.
+pub use flexrig_impact::rotor::RotorPoint;
 
 /// The sweep to run and where to write it.
 #[derive(Debug, Clone, PartialEq)]

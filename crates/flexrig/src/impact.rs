@@ -5,12 +5,17 @@
 use flexrig_contact::validate::in_left_open;
 use flexrig_contact::{Hertz, SeriesCompliance};
 use flexrig_lumped::AnalyticImpact;
-use flexrig_lumped::ode::{Formulation, OdeOptions, OdeSolution, integrate};
+use flexrig_lumped::ode::{OdeOptions, OdeSolution, integrate};
 use flexrig_lumped::prb::PrbLink;
-use flexrig_lumped::{ImpactModel, Peak, peak_analytic, peak_exact};
+use flexrig_lumped::{peak_analytic, peak_exact};
 
 use crate::Error;
 use crate::output::{finite_result, range_arg};
+
+/// The ode method's settings and the model and peak (flexrig-lumped's), for callers of this
+/// module.
+pub use flexrig_lumped::ode::{DEFAULT_RTOL, Formulation};
+pub use flexrig_lumped::{ImpactModel, Peak};
 
 /// The effective robot mass at the contact.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -5,14 +5,20 @@
 use std::path::PathBuf;
 
 use flexrig_beam::canonical::unit_cantilever_with_tip_mass;
-use flexrig_beam::prb::{
-    ErrorMeasure, PrbFit, TipPoint, default_load_indices, fit_prb, trace_tip_path_with,
-};
-use flexrig_beam::{Kinematics, ModalDirection, modal_analysis};
+use flexrig_beam::prb::{default_load_indices, fit_prb, trace_tip_path_with};
+use flexrig_beam::{ModalDirection, modal_analysis};
 
 use crate::Error;
 use crate::output::{ensure_dir, write_atomic};
 use crate::plots::prb_svg;
+
+/// The fit's inputs and results and the published references (flexrig-beam's), for callers of
+/// this module.
+pub use flexrig_beam::Kinematics;
+pub use flexrig_beam::canonical::{
+    CANTILEVER_BETA_L, HOWELL_GAMMA, HOWELL_K_THETA, HOWELL_THETA_MAX_DEG, PAPER_GAMMA_SMALL,
+};
+pub use flexrig_beam::prb::{ErrorMeasure, PrbFit, TipPoint};
 
 /// What the check traces and where it writes (the flags of `flexrig prb`).
 #[derive(Debug, Clone, PartialEq)]

@@ -5,14 +5,15 @@ use std::path::{Path, PathBuf};
 
 use flexrig_contact::Materials;
 use flexrig_rig::overrides;
-use flexrig_rig::{
-    Interruptible, Override, RunOptions, RunSummary, Simulation, scene_with_overrides,
-};
+use flexrig_rig::{Interruptible, RunOptions, Simulation, scene_with_overrides};
 use serde_json::json;
 
 use crate::Error;
 use crate::cancel::CancelToken;
 use crate::mcap_log::{LogRates, LogTarget, run_logged};
+
+/// The scene-edit and summary types of a run (flexrig-rig's), for callers of this module.
+pub use flexrig_rig::{Override, RunSummary};
 
 /// How a run logs: where, whether it may overwrite, how often, how the 3D view draws.
 #[derive(Debug, Clone, Copy)]

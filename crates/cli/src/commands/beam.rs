@@ -4,8 +4,7 @@
 use std::io::Write;
 
 use clap::{Args, Subcommand};
-use flexrig::beam::{BeamInput, Root, TipLoad, check_modal_elements};
-use flexrig_beam::Kinematics;
+use flexrig::beam::{BeamInput, Kinematics, Root, TipLoad, check_modal_elements};
 use serde_json::json;
 
 use crate::print::{line, print_json};

@@ -5,11 +5,11 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use flexrig::eta::{check_length, contact_text, joint_text};
+use flexrig::eta::{
+    ClMethod, ClSolver, EffectiveGamma, EtaSettings, GradedMesh, WindowReport, check_length,
+    contact_text, joint_text,
+};
 use flexrig::{CancelToken, Error};
-use flexrig_impact::ClSolver;
-use flexrig_impact::eta::{ClMethod, EffectiveGamma, EtaSettings};
-use flexrig_impact::graded::GradedMesh;
 use serde_json::json;
 
 use super::impact_args::{DampingArgs, JointArg, as_flag, joint_from_args};
@@ -231,7 +231,7 @@ pub fn run(args: &EtaArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
         )?;
         for r in rows {
             let Some(w) = &r.window else { continue };
-            let contacts = |x: &flexrig_impact::horizon::WindowReport| {
+            let contacts = |x: &WindowReport| {
                 format!(
                     "{}/{}@{:.3}",
                     x.converged_contacts,

@@ -5,11 +5,9 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::eta_map::{EtaMapOptions, settings_text};
+use flexrig::eta::{ClMethod, EtaSettings, GradedMesh};
+use flexrig::eta_map::{EtaMapOptions, MapSpec, settings_text};
 use flexrig::{CancelToken, Error};
-use flexrig_impact::eta::{ClMethod, EtaSettings};
-use flexrig_impact::graded::GradedMesh;
-use flexrig_impact::map::MapSpec;
 use serde_json::json;
 
 use super::impact_args::{

@@ -5,11 +5,9 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::eta::contact_text;
+use flexrig::eta::{ClMethod, EtaSettings, GradedMesh, ImpactError, contact_text};
 use flexrig::eta_rotor::EtaRotorOptions;
 use flexrig::{CancelToken, Error};
-use flexrig_impact::eta::{ClMethod, EtaSettings};
-use flexrig_impact::graded::GradedMesh;
 use serde_json::json;
 
 use super::impact_args::{DampingArgs, impact_as_flag, parse_range};
@@ -85,9 +83,7 @@ pub fn run(args: &EtaRotorArgs, out: &mut dyn Write, cancel: &CancelToken) -> Re
         cancel,
     )
     .map_err(|e| match e {
-        Error::Impact(flexrig_impact::ImpactError::InvalidParameter { field, .. })
-            if field == "inertia_ratio" =>
-        {
+        Error::Impact(ImpactError::InvalidParameter { field, .. }) if field == "inertia_ratio" => {
             Error::InvalidArgument {
                 arg: "--ratio".into(),
                 value: args.ratio.clone(),

@@ -5,8 +5,9 @@ use std::io::Write;
 
 use clap::{Args, ValueEnum};
 use flexrig::Error;
-use flexrig::impact::{Details, EffectiveMass, ImpactInput, Method, solve};
-use flexrig_lumped::ode::{DEFAULT_RTOL, Formulation};
+use flexrig::impact::{
+    DEFAULT_RTOL, Details, EffectiveMass, Formulation, ImpactInput, Method, solve,
+};
 use serde_json::json;
 
 use crate::print::{line, print_json};
@@ -22,7 +23,7 @@ pub enum MethodArg {
     Ode,
 }
 
-/// State variables of the ode method (see `flexrig_lumped::ode::Formulation`).
+/// State variables of the ode method (see [`Formulation`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum FormulationArg {
     /// Displacement state when the link deflection dominates, indentation state otherwise.

@@ -3,10 +3,9 @@
 
 use clap::{Args, ValueEnum};
 use flexrig::Error;
+use flexrig::eta::{DampingSpec, ImpactError, Joint};
+use flexrig::eta_map::LogRange;
 use flexrig::output::positive_arg;
-use flexrig_contact::DampingSpec;
-use flexrig_impact::Joint;
-use flexrig_impact::map::LogRange;
 
 /// The joint during the impact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -139,9 +138,9 @@ pub fn joint_from_args(joint: JointArg, rotor_inertia: Option<f64>) -> Result<Jo
 }
 
 /// An impact parameter error as the flag the user typed (`zone_elements` → `--zone-elements`).
-pub fn as_flag(e: flexrig_impact::ImpactError) -> Error {
+pub fn as_flag(e: ImpactError) -> Error {
     match e {
-        flexrig_impact::ImpactError::InvalidParameter {
+        ImpactError::InvalidParameter {
             field,
             value,
             allowed,

@@ -6,12 +6,10 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexrig::Error;
-use flexrig::prb::{PrbOptions, check_elements};
-use flexrig_beam::Kinematics;
-use flexrig_beam::canonical::{
-    CANTILEVER_BETA_L, HOWELL_GAMMA, HOWELL_K_THETA, HOWELL_THETA_MAX_DEG, PAPER_GAMMA_SMALL,
+use flexrig::prb::{
+    CANTILEVER_BETA_L, ErrorMeasure, HOWELL_GAMMA, HOWELL_K_THETA, HOWELL_THETA_MAX_DEG,
+    Kinematics, PAPER_GAMMA_SMALL, PrbOptions, check_elements,
 };
-use flexrig_beam::prb::ErrorMeasure;
 use serde_json::json;
 
 use crate::print::{line, print_json};
