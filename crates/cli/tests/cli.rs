@@ -378,9 +378,16 @@ fn check_paired_ratios(v: &serde_json::Value, csv: &str) {
             "{r} vs {half}"
         );
         // The CSV's CL rows carry the same numbers (to its 10 significant digits).
+        let column = csv
+            .lines()
+            .next()
+            .unwrap()
+            .split(',')
+            .position(|c| c == "cl_over_cj_ci95")
+            .unwrap();
         for line in csv.lines().filter(|l| l.starts_with(&format!("{cl},"))) {
             let fields: Vec<&str> = line.split(',').collect();
-            let ci: f64 = fields[10].parse().unwrap();
+            let ci: f64 = fields[column].parse().unwrap();
             assert!(rel(ci, half) < 1e-9, "{line}");
         }
     }

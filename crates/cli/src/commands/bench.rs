@@ -20,7 +20,7 @@ use serde_json::json;
 use crate::print::{line, print_json};
 use flexrig::Error;
 use flexrig::mcap_log::{LogRates, McapRecorder};
-use flexrig::output::{ensure_dir, write_atomic};
+use flexrig::output::ensure_dir;
 use flexrig::plots::{Panel, Series};
 use flexrig::scenes::bundled_scene;
 
@@ -36,6 +36,9 @@ pub struct BenchArgs {
     /// Print JSON rows instead of the tables.
     #[arg(long)]
     pub json: bool,
+    /// Size and formats of the bench_*.svg figures.
+    #[command(flatten)]
+    pub figure: super::figure_args::FigureArgs,
 }
 
 /// One measured point.
@@ -72,6 +75,7 @@ fn median_seconds<T>(samples: usize, reps: usize, mut f: impl FnMut() -> T) -> f
 
 /// Runs `flexrig bench`.
 pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), Error> {
+    let figures = args.figure.options()?;
     let mut rows = Vec::new();
     lumped(&mut rows, args.quick)?;
     let peer_ratio = peer(&mut rows, args.quick)?;
@@ -80,15 +84,22 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), Error> {
     ensure_dir(&args.out)?;
     let mut files = Vec::new();
     for (model, title, y_desc, share_y) in PLOTS {
-        let path = args.out.join(format!("bench_{model}.svg"));
+        let stem = format!("bench_{model}");
         let subset: Vec<&Row> = rows.iter().filter(|r| r.model == model).collect();
-        let svg = flexrig::plots::work_precision_svg(title, y_desc, &plot_panels(&subset), share_y)
-            .map_err(|message| Error::Plot {
-                path: path.clone(),
-                message,
-            })?;
-        write_atomic(&path, svg.as_bytes())?;
-        files.push(path);
+        let svg = flexrig::plots::work_precision_svg(
+            title,
+            y_desc,
+            &plot_panels(&subset),
+            share_y,
+            figures.width_pt(),
+        )
+        .map_err(|message| Error::Plot {
+            path: args.out.join(format!("{stem}.svg")),
+            message,
+        })?;
+        files.extend(flexrig::plots::write_figure(
+            &args.out, &stem, &svg, &figures,
+        )?);
     }
     if args.json {
         return print_json(
@@ -178,7 +189,7 @@ fn plot_place(row: &Row) -> Option<(String, String)> {
             Some((title.into(), label))
         }
         "beam" => {
-            let title = if method.starts_with("transient") || method.starts_with("issue 13") {
+            let title = if method.starts_with("transient") || method.starts_with("tip step load") {
                 "transients: elements × time step"
             } else {
                 "modes and statics: elements"
@@ -464,7 +475,7 @@ fn issue13_transient(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
             / scale;
         rows.push(Row {
             model: "beam".into(),
-            method: format!("issue 13 step load, 1000 steps of 1 ms, ρ∞ 0.9, {name}"),
+            method: format!("tip step load P = EI/L², 1000 steps of 1 ms, ρ∞ 0.9, {name}"),
             setting: format!("{elements} elements"),
             error,
             seconds: median_seconds(3, 1, || trajectory(kin, elements, 1e-3)),

@@ -54,6 +54,9 @@ pub struct EtaMapArgs {
     /// Print JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
+    /// Size and formats of the figures.
+    #[command(flatten)]
+    pub figure: super::figure_args::FigureArgs,
 }
 
 /// The map's ranges and exponent, checked, with the error named by flag.
@@ -105,6 +108,7 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write) -> Result<(), Error> {
         out: args.out.clone(),
         specs,
         settings: settings.clone(),
+        figures: args.figure.options()?,
     })
     .map_err(impact_as_flag)?;
     let summaries: Vec<serde_json::Value> = r

@@ -39,6 +39,9 @@ pub struct EtaRotorArgs {
     /// Print JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
+    /// Size and formats of eta_rotor.svg.
+    #[command(flatten)]
+    pub figure: super::figure_args::FigureArgs,
 }
 
 /// Runs `flexrig eta-rotor`.
@@ -76,6 +79,7 @@ pub fn run(args: &EtaRotorArgs, out: &mut dyn Write) -> Result<(), Error> {
         ratios,
         n: args.n.clone(),
         settings,
+        figures: args.figure.options()?,
     })
     .map_err(|e| match e {
         Error::Impact(flexrig_impact::ImpactError::InvalidParameter { field, .. })
