@@ -238,8 +238,7 @@ impl Header {
         let title = vec![
             first.to_string(),
             format!(
-                "m_r = {} g, k_c = {} N/mⁿ, v_0 = {V0} m/s",
-                M_R * 1e3,
+                "m_r = {M_R} kg, k_c = {} N/mⁿ, v_0 = {V0} m/s",
                 decade_label(K_C)
             ),
         ];
@@ -489,14 +488,14 @@ fn draw_panel(
     let mut payloads: Vec<f64> = curves.iter().map(|c| c.case.m_e).collect();
     payloads.dedup();
     let mut rows = Vec::new();
-    let mut obstacles = Vec::new();
-    for m_e in payloads {
+    let mut labels = Vec::new();
+    for m_e in &payloads {
         let pair: Vec<&EtaCurve> = curves
             .iter()
             .copied()
-            .filter(|c| c.case.m_e == m_e)
+            .filter(|c| c.case.m_e == *m_e)
             .collect();
-        obstacles.extend(draw_pair(&mut chart, &pair, span)?);
+        labels.extend(draw_pair(&mut chart, &pair, span)?);
         rows.push(table_row(&pair, span));
     }
     let origin = chart.plotting_area().get_base_pixel();
@@ -504,6 +503,7 @@ fn draw_panel(
         let (x, y) = chart.backend_coord(&p);
         (x - origin.0, y - origin.1)
     };
+    let mut obstacles = Vec::new();
     for c in curves {
         obstacles.extend(c.gamma.iter().zip(&c.eta).map(|(g, e)| {
             let (x, y) = to_pixel((*g, *e));
@@ -517,8 +517,33 @@ fn draw_panel(
             .iter()
             .map(|(_, (x, y))| ((x - r, y - r), (x + r, y + r))),
     );
-    draw_table(&chart, axis, &rows, &obstacles)?;
+    // Each payload is labelled under its pair's start; if that leaves the table no free
+    // corner, the lowest pair's label goes above its start instead.
+    let mut placed: Vec<PixelRect> = labels.iter().map(|l| l.below).collect();
+    let with = |placed: &[PixelRect]| [obstacles.as_slice(), placed].concat();
+    if table_corner(&chart, axis, &rows, &with(&placed)).is_none()
+        && let Some(lowest) = (0..labels.len()).max_by_key(|i| labels[*i].below.0.1)
+    {
+        placed[lowest] = labels[lowest].above;
+    }
+    let area = chart.plotting_area().strip_coord_spec();
+    for (label, rect) in labels.iter().zip(&placed) {
+        area.draw(&Text::new(
+            label.text.clone(),
+            rect.0,
+            text(TICK_PT, BLACK, HPos::Left, VPos::Top),
+        ))
+        .map_err(err)?;
+    }
+    draw_table(&chart, axis, &rows, &with(&placed))?;
     draw_points(&chart, &markers)
+}
+
+/// A payload's label and its two places: under its pair's start, and above it.
+struct PairLabel {
+    text: String,
+    below: PixelRect,
+    above: PixelRect,
 }
 
 /// The markers of `points` with their pixel centres: on-curve markers where they belong,
@@ -567,7 +592,7 @@ fn draw_pair(
     chart: &mut Chart,
     pair: &[&EtaCurve],
     span: f64,
-) -> Result<Option<PixelRect>, String> {
+) -> Result<Option<PairLabel>, String> {
     let mut sorted = pair.to_vec();
     sorted.sort_by(|a, b| b.n.total_cmp(&a.n));
     for c in &sorted {
@@ -596,28 +621,36 @@ fn draw_pair(
             )))
             .map_err(err)?;
     }
-    // Below the pair's lower start: the curves rise to the right, so that corner is free.
+    // Below the pair's lower start: the curves rise to the right, so that corner is free (or
+    // above its upper start, `above`).
     let start = sorted
         .iter()
         .filter_map(|c| c.eta.first().copied())
         .fold(f64::MAX, f64::min);
+    // the pair's highest η under the label (which reaches about 0.16 into the γ range)
+    let top = sorted
+        .iter()
+        .flat_map(|c| c.gamma.iter().zip(&c.eta))
+        .filter(|(g, _)| **g <= GAMMA_RANGE.0 + 0.16)
+        .map(|(_, e)| *e)
+        .fold(f64::MIN, f64::max);
     let Some(case) = sorted.first().map(|c| c.case) else {
         return Ok(None);
     };
     let area = chart.plotting_area().strip_coord_spec();
     let origin = area.get_base_pixel();
-    let (x, y) = chart.backend_coord(&(GAMMA_RANGE.0, start - 0.015 * span));
     let label = format!("m_e = {} kg", case.m_e);
-    let at = (x - origin.0 + px(4), y - origin.1);
     let width = px(text_width_pt(&label, TICK_PT).round() as i32);
     let height = px(TICK_PT as i32);
-    area.draw(&Text::new(
-        label,
-        at,
-        text(TICK_PT, BLACK, HPos::Left, VPos::Top),
-    ))
-    .map_err(err)?;
-    Ok(Some((at, (at.0 + width, at.1 + height))))
+    let (x, y_below) = chart.backend_coord(&(GAMMA_RANGE.0, start - 0.015 * span));
+    let (_, y_above) = chart.backend_coord(&(GAMMA_RANGE.0, top + 0.02 * span));
+    let x = x - origin.0 + px(4);
+    let rect = |y: i32| ((x, y), (x + width, y + height));
+    Ok(Some(PairLabel {
+        text: label,
+        below: rect(y_below - origin.1),
+        above: rect(y_above - origin.1 - height),
+    }))
 }
 
 /// Colour of the curves of exponent `n`: blue for n = 2, orange for n = 1.
@@ -703,33 +736,33 @@ fn table_row(pair: &[&EtaCurve], span: f64) -> TableRow {
     }
 }
 
-/// The η(2/3) table, with a note for coinciding curves, in the first corner of the panel (lower
-/// right, lower left, upper left) where it covers none of `obstacles` (curves, labels, markers);
-/// lower right, below every curve there, if none is free.
-fn draw_table(
-    chart: &Chart,
-    axis: EtaAxis,
-    rows: &[TableRow],
-    obstacles: &[PixelRect],
-) -> Result<(), String> {
-    let area = chart.plotting_area().strip_coord_spec();
-    let origin = area.get_base_pixel();
-    let notes: Vec<String> = rows
-        .iter()
-        .filter_map(|r| {
-            r.coincide.map(|gap| {
-                format!(
-                    "m_e = {} kg: n = 1 and 2 coincide, |Δη| ≤ {}",
-                    r.m_e,
-                    sci_label(round_up_1(gap))
-                )
-            })
-        })
-        .collect();
+/// The notes of a panel's table and its three candidate boxes (lower right, lower left, upper
+/// left), 3 points in from the frame.
+fn table_geometry(chart: &Chart, axis: EtaAxis, rows: &[TableRow]) -> (Vec<String>, [PixelRect; 3]) {
+    let origin = chart.plotting_area().get_base_pixel();
+    // one note for every payload whose n = 1 and n = 2 curves coincide on the plot
+    let gaps: Vec<f64> = rows.iter().filter_map(|r| r.coincide).collect();
+    let notes: Vec<String> = match gaps.len() {
+        0 => Vec::new(),
+        k => {
+            let gap = gaps.iter().copied().fold(0.0, f64::max);
+            let which = if k == rows.len() {
+                "n = 1 and 2 coincide".to_string()
+            } else {
+                let m: Vec<String> = rows
+                    .iter()
+                    .filter(|r| r.coincide.is_some())
+                    .map(|r| format!("{} kg", r.m_e))
+                    .collect();
+                format!("{}: n = 1 and 2 coincide", m.join(", "))
+            };
+            vec![format!("{which}, |Δη| ≤ {}", sci_label(round_up_1(gap)))]
+        }
+    };
     let line = px(10);
     let lines = 1 + rows.len() + notes.len();
     let height = line * lines as i32 + px(4);
-    let (c1, c2) = (px(30), px(60));
+    let c2 = px(60);
     let label_w = rows
         .iter()
         .map(|r| text_width_pt(&format!("m_e = {} kg", r.m_e), TICK_PT))
@@ -763,9 +796,37 @@ fn draw_table(
             (x_left + inset + width, y_top + inset + height),
         ),
     ];
-    let clear = |b: &PixelRect| !obstacles.iter().any(|o| overlap(b, o, px(2)));
-    let chosen = boxes.iter().find(|b| clear(b)).unwrap_or(&boxes[0]);
-    let ((x0, y0), (x1, y1)) = *chosen;
+    (notes, boxes)
+}
+
+/// The first candidate box of the table that covers none of `obstacles`.
+fn table_corner(
+    chart: &Chart,
+    axis: EtaAxis,
+    rows: &[TableRow],
+    obstacles: &[PixelRect],
+) -> Option<PixelRect> {
+    let (_, boxes) = table_geometry(chart, axis, rows);
+    boxes
+        .into_iter()
+        .find(|b| !obstacles.iter().any(|o| overlap(b, o, px(2))))
+}
+
+/// The η(2/3) table, with a note for coinciding curves, in the first corner of the panel (lower
+/// right, lower left, upper left) where it covers none of `obstacles` (curves, labels, markers);
+/// lower right, below every curve there, if none is free.
+fn draw_table(
+    chart: &Chart,
+    axis: EtaAxis,
+    rows: &[TableRow],
+    obstacles: &[PixelRect],
+) -> Result<(), String> {
+    let area = chart.plotting_area().strip_coord_spec();
+    let (notes, boxes) = table_geometry(chart, axis, rows);
+    let line = px(10);
+    let (c1, c2) = (px(30), px(60));
+    let chosen = table_corner(chart, axis, rows, obstacles).unwrap_or(boxes[0]);
+    let ((x0, y0), (x1, y1)) = chosen;
     // a framed box, as a legend: it reads as a label over the grid, not a hole in it
     area.draw(&Rectangle::new([(x0, y0), (x1, y1)], WHITE.filled()))
         .map_err(err)?;

@@ -8,8 +8,8 @@ use plotters::series::DashedLineSeries;
 use plotters::style::text_anchor::{HPos, VPos};
 
 use super::{
-    GREY, GRID, LABEL_PT, Linear, PALETTE, TICK_PT, TITLE_PT, boxed_text, err, font, nice_step,
-    px, render, stroke, text, ticks,
+    GREY, GRID, LABEL_PT, Linear, PALETTE, TICK_PT, TITLE_PT, err, font, nice_step, px, render,
+    stroke, text, ticks, wrap,
 };
 use crate::experiment::{GroupStats, RatioStats, RunInputs};
 
@@ -19,8 +19,8 @@ const CJ: RGBColor = PALETTE[1];
 const CL: RGBColor = PALETTE[0];
 /// Height of a panel row \[pt\].
 const ROW: u32 = 200;
-/// Height of the note under the panels \[pt\].
-const NOTE: u32 = 14;
+/// Height of a line of the note under the panels \[pt\].
+const NOTE: u32 = 11;
 /// Figures narrower than this stack the ratio panel under the bars \[pt\].
 const STACK_BELOW: f64 = 420.0;
 /// Half-width of a whisker cap \[pt\].
@@ -58,9 +58,10 @@ pub fn grams(kg: f64) -> String {
     }
 }
 
-/// `skinned_aluminium` as `skinned aluminium`.
+/// A block material as the labels say it: `skinned_aluminium` as `aluminium` (all the bundled
+/// blocks are skinned), any other name with spaces for underscores.
 fn material(name: &str) -> String {
-    name.replace('_', " ")
+    name.trim_start_matches("skinned_").replace('_', " ")
 }
 
 /// The operator of `case` as it ran (its material and mass), from the CJ run or else the CL run.
@@ -125,14 +126,16 @@ pub fn fig9_svg(
     let stacked = width_pt < STACK_BELOW;
     let w = width_pt.round() as u32;
     let rows = if stacked { 2 } else { 1 };
-    render((w, ROW * rows + NOTE), |root| {
-        let (panels, note) = root.split_vertically(px((ROW * rows) as i32));
+    let note = wrap(&note_text(groups, jitter), width_pt - 8.0, TICK_PT);
+    let note_h = NOTE * note.len() as u32;
+    render((w, ROW * rows + note_h), |root| {
+        let (panels, note_area) = root.split_vertically(px((ROW * rows) as i32));
         let (bars, ratio_area) = if stacked {
             panels.split_vertically(px(ROW as i32))
         } else {
-            panels.split_horizontally(px((0.6 * width_pt) as i32))
+            panels.split_horizontally(px((0.56 * width_pt) as i32))
         };
-        let bars_w = if stacked { width_pt } else { 0.6 * width_pt };
+        let bars_w = if stacked { width_pt } else { 0.56 * width_pt };
         let (bed, light) = bars.split_horizontally(px((0.64 * bars_w) as i32));
         let test_bed: Vec<Category> = ["aluminium", "iron"]
             .into_iter()
@@ -147,18 +150,23 @@ pub fn fig9_svg(
         draw_bars(&bed, &bed_title, &test_bed, groups, axis, true)?;
         draw_bars(&light, &light_title, &light_load, groups, axis, false)?;
         draw_ratios(&ratio_area, groups, ratios)?;
-        draw_note(&note, groups, jitter)
+        for (i, line) in note.iter().enumerate() {
+            note_area
+                .draw(&Text::new(
+                    line.clone(),
+                    (px(4), px((NOTE * i as u32 + NOTE / 2) as i32)),
+                    text(TICK_PT, GREY, HPos::Left, VPos::Center),
+                ))
+                .map_err(err)?;
+        }
+        Ok(())
     })
 }
 
 /// The note under the panels: runs, and where the intervals come from.
-fn draw_note(
-    area: &DrawingArea<SVGBackend, Shift>,
-    groups: &[GroupStats],
-    jitter: Jitter,
-) -> Result<(), String> {
+fn note_text(groups: &[GroupStats], jitter: Jitter) -> String {
     let n = groups.iter().map(|g| g.n).max().unwrap_or(0);
-    let note = if n > 1 {
+    if n > 1 {
         format!(
             "Bars: mean of {n} runs ± 95 % CI. The CI reflects only the simulated release-angle \
              scatter (σ = {}°, seed {}).",
@@ -166,13 +174,7 @@ fn draw_note(
         )
     } else {
         "One run per bar: no confidence interval.".into()
-    };
-    area.draw(&Text::new(
-        note,
-        (px(4), px(NOTE as i32 / 2)),
-        text(TICK_PT, GREY, HPos::Left, VPos::Center),
-    ))
-    .map_err(err)
+    }
 }
 
 /// The force axis shared by panels (a) and (b): top and tick step \[N\].
@@ -208,7 +210,7 @@ fn draw_bars(
     let mut chart = ChartBuilder::on(area)
         .caption(title, font(TITLE_PT))
         .margin(px(4))
-        .x_label_area_size(px(36))
+        .x_label_area_size(px(38))
         .y_label_area_size(px(if y_desc { 34 } else { 22 }))
         .build_cartesian_2d(
             Linear::new(0.0, width * cats.len() as f64, bar_centres),
@@ -248,7 +250,7 @@ fn draw_bars(
         }
     }
     let cats: Vec<&Category> = cats.iter().collect();
-    draw_category_labels(area, &chart, &cats, width, 12)
+    draw_category_labels(area, &chart, &cats, width, 13)
 }
 
 /// One bar at `x` with its capped whisker (none without an interval) and its value written
@@ -438,12 +440,13 @@ fn draw_ratios(
     if hidden {
         let plotting = chart.plotting_area().strip_coord_spec();
         let (_, h) = plotting.dim_in_pixel();
-        boxed_text(
-            &plotting,
-            "CI shorter than the marker",
-            (px(4), h as i32 - px(3)),
-            text(TICK_PT, GREY, HPos::Left, VPos::Bottom),
-        )?;
+        plotting
+            .draw(&Text::new(
+                "CI shorter than the marker",
+                (px(4), h as i32 - px(3)),
+                text(TICK_PT, GREY, HPos::Left, VPos::Bottom),
+            ))
+            .map_err(err)?;
     }
     draw_category_labels(area, &chart, &cats, 1.0, 10)
 }
@@ -471,35 +474,46 @@ fn draw_ratio(chart: &mut Chart, r: &RatioStats, x: f64) -> Result<bool, String>
             BLACK.filled(),
         )))
         .map_err(err)?;
-    let top = m + r.ci95.unwrap_or(0.0);
-    let lines = match r.ci95 {
-        Some(_) => vec![(ratio_label(m, r.ci95), BLACK)],
-        None => vec![(ratio_label(m, None), BLACK), ("1 pair, no CI".into(), GREY)],
-    };
+    let ci = r.ci95.unwrap_or(0.0);
+    let lines = [
+        (format!("{m:.3}"), BLACK),
+        (ci_label(r.ci95, r.pairs), GREY),
+    ];
     let area = chart.plotting_area().strip_coord_spec();
     let origin = area.get_base_pixel();
-    let (px_x, px_y) = chart.backend_coord(&(x, top));
-    for (k, (line, colour)) in lines.into_iter().rev().enumerate() {
-        boxed_text(
-            &area,
-            &line,
-            (px_x - origin.0, px_y - origin.1 - px(5 + 10 * k as i32)),
-            text(TICK_PT, colour, HPos::Center, VPos::Bottom),
-        )?;
+    let (_, plot_h) = area.dim_in_pixel();
+    // below the point in the upper half of the panel, above it in the lower half
+    let (_, py) = chart.backend_coord(&(x, m));
+    let below = py - origin.1 < plot_h as i32 / 2;
+    let (px_x, edge) = if below {
+        chart.backend_coord(&(x, m - ci))
+    } else {
+        chart.backend_coord(&(x, m + ci))
+    };
+    for (k, (line, colour)) in lines.into_iter().enumerate() {
+        let (y, v) = if below {
+            (edge - origin.1 + px(4 + 10 * k as i32), VPos::Top)
+        } else {
+            (edge - origin.1 - px(4 + 10 * (1 - k as i32)), VPos::Bottom)
+        };
+        area.draw(&Text::new(
+            line,
+            (px_x - origin.0, y),
+            text(TICK_PT, colour, HPos::Center, v),
+        ))
+        .map_err(err)?;
     }
     Ok(hidden)
 }
 
-/// A ratio as the figure writes it: three decimals, and its 95 % CI half-width to one
-/// significant digit, or "CI < 0.001" when it is smaller than the last decimal shown.
-pub(crate) fn ratio_label(mean: f64, ci: Option<f64>) -> String {
+/// The second line under a ratio: its CI half-width, or why there is none.
+fn ci_label(ci: Option<f64>, pairs: usize) -> String {
     match ci.filter(|c| c.is_finite() && *c > 0.0) {
-        None => format!("{mean:.3}"),
-        Some(c) if c < 0.0005 => format!("{mean:.3} (CI < 0.001)"),
+        None => format!("{pairs} pair, no CI"),
+        Some(c) if c < 0.0005 => "CI < 0.001".into(),
         Some(c) => {
             let digits = (-c.log10().floor()).max(0.0) as usize;
-            let d = digits.max(3);
-            format!("{mean:.d$} ± {c:.digits$}")
+            format!("± {c:.digits$}")
         }
     }
 }
@@ -510,9 +524,10 @@ mod tests {
 
     #[test]
     fn ratios_are_written_to_a_sensible_precision() {
-        assert_eq!(ratio_label(0.990008, Some(3.3e-7)), "0.990 (CI < 0.001)");
-        assert_eq!(ratio_label(0.98249, Some(0.0123)), "0.982 ± 0.01");
-        assert_eq!(ratio_label(0.93566, None), "0.936");
+        assert_eq!(ci_label(Some(3.3e-7), 5), "CI < 0.001");
+        assert_eq!(ci_label(Some(0.0123), 5), "± 0.01");
+        assert_eq!(ci_label(Some(0.0041), 5), "± 0.004");
+        assert_eq!(ci_label(None, 1), "1 pair, no CI");
         assert_eq!(grams(0.412), "412 g");
         assert_eq!(grams(1.0), "1000 g");
         assert_eq!(grams(0.0051), "5.1 g");

@@ -98,37 +98,6 @@ pub(crate) fn stroke(colour: RGBColor, width: f64) -> ShapeStyle {
     colour.stroke_width((width * f64::from(SCALE)).round() as u32)
 }
 
-/// Text `s` at pixel `at` of `area`, anchored as `style` says, on a white box so that no grid
-/// line runs through it. The box is sized by an estimate of DejaVu Sans' mean glyph width.
-pub(crate) fn boxed_text(
-    area: &DrawingArea<SVGBackend, Shift>,
-    s: &str,
-    at: (i32, i32),
-    style: TextStyle<'static>,
-) -> Result<(), String> {
-    // plotters writes font-size = size/1.24; a glyph is about 0.6 font-size wide on average.
-    let font_px = style.font.get_size() / PLOTTERS_FONT;
-    let w = (GLYPH * font_px * s.chars().count() as f64).round() as i32;
-    let h = font_px.round() as i32;
-    let x0 = match style.pos.h_pos {
-        HPos::Left => at.0,
-        HPos::Center => at.0 - w / 2,
-        HPos::Right => at.0 - w,
-    };
-    let y0 = match style.pos.v_pos {
-        VPos::Top => at.1,
-        VPos::Center => at.1 - h / 2,
-        VPos::Bottom => at.1 - h,
-    };
-    let pad = px(2);
-    area.draw(&Rectangle::new(
-        [(x0 - pad, y0 - pad), (x0 + w + pad, y0 + h + pad)],
-        WHITE.filled(),
-    ))
-    .map_err(err)?;
-    area.draw(&Text::new(s.to_string(), at, style)).map_err(err)
-}
-
 /// `s` broken at spaces into lines of at most `width_pt` in `size`-point text (a word longer
 /// than the width stands alone on its line).
 pub(crate) fn wrap(s: &str, width_pt: f64, size: f64) -> Vec<String> {
