@@ -13,7 +13,7 @@ use super::{
 /// Height per row \[pt\].
 const ROW: u32 = 12;
 /// Title, legend and axis \[pt\].
-const FRAME: u32 = 70;
+const FRAME: u32 = 80;
 
 /// The row label of `r`: its case and exponent.
 fn row_label(r: &EtaRow) -> String {
@@ -75,10 +75,10 @@ pub fn eta_svg(rows: &[EtaRow], joint: &str, width_pt: f64) -> Result<String, St
             text(LABEL_PT, BLACK, HPos::Left, VPos::Center),
         ))
         .map_err(err)?;
-        let body = root.margin(px(30), px(4), px(4), px(10));
+        let body = root.margin(px(40), px(4), px(4), px(10));
         body.draw(&Text::new(
             "m_h, k_δ, m_e, n",
-            (px(label_w as i32 - 6), 0),
+            (px(label_w as i32 - 6), -px(2)),
             text(TICK_PT, GREY, HPos::Right, VPos::Bottom),
         ))
         .map_err(err)?;

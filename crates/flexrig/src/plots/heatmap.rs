@@ -73,6 +73,8 @@ pub enum ColorScale {
 const MIN_PANEL_W: f64 = 240.0;
 /// Height of a panel over its width (without its legend rows).
 const PANEL_ASPECT: f64 = 0.85;
+/// Room under a panel's legend, before the next row of panels \[pt\].
+const ROW_GAP: i32 = 6;
 /// Height of a line of the figure title \[pt\].
 const HEADER_LINE: u32 = 12;
 /// Height of a panel's title row \[pt\].
@@ -149,7 +151,7 @@ pub fn heatmaps_svg(
     let rows = maps.len().div_ceil(cols);
     let legend = maps.iter().map(legend_rows).max().unwrap_or(0);
     let panel_w = width_pt / cols as f64;
-    let panel_h = (panel_w * PANEL_ASPECT).round() as u32 + (LEGEND * legend) as u32;
+    let panel_h = (panel_w * PANEL_ASPECT).round() as u32 + (LEGEND * legend + ROW_GAP) as u32;
     let header = HEADER_LINE * figure_title.len() as u32 + 4;
     let size = (width_pt.round() as u32, header + panel_h * rows as u32);
     render(size, |root| {
@@ -430,7 +432,8 @@ fn draw_panel(
     ))
     .map_err(err)?;
     let body = area.margin(px(TITLE), 0, 0, 0);
-    let (main, legend) = body.split_vertically(h - px(TITLE) - px(LEGEND * legend_rows));
+    let (main, legend) =
+        body.split_vertically(h - px(TITLE) - px(LEGEND * legend_rows + ROW_GAP));
     let (chart_area, bar_area) = main.split_horizontally(w - px(BAR_STRIP));
     let chart = build_chart(&chart_area, map, grid)?;
     let plotting = chart.plotting_area().strip_coord_spec();
@@ -470,7 +473,7 @@ fn build_chart<'a, 'b>(
     let (y0, y1) = (grid.y_edges[0], grid.y_edges[grid.y_edges.len() - 1]);
     let mut chart = ChartBuilder::on(area)
         .margin(px(3))
-        .margin_left(px(6))
+        .margin_left(px(10))
         .margin_right(px(2))
         .x_label_area_size(px(26))
         .y_label_area_size(px(36))
@@ -685,7 +688,7 @@ fn draw_colour_bar(
         text(LABEL_PT, BLACK, HPos::Center, VPos::Center).transform(FontTransform::Rotate270);
     area.draw(&Text::new(
         map.value_label.to_string(),
-        (x1 + px(36), (top + bottom) / 2),
+        (x1 + px(32), (top + bottom) / 2),
         style,
     ))
     .map_err(err)

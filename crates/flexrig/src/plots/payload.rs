@@ -3,14 +3,13 @@
 //! (100 g and 412 g) marked where they fall in the range.
 
 use plotters::coord::Shift;
-use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::series::DashedLineSeries;
 use plotters::style::text_anchor::{HPos, VPos};
 
 use super::{
-    GREY, GRID, LABEL_PT, PALETTE, TICK_PT, TITLE_PT, err, font, nice_step, px, render, stroke,
-    text,
+    GREY, GRID, LABEL_PT, Linear, PALETTE, TICK_PT, TITLE_PT, err, font, nice_step, px, render,
+    stroke, text, ticks, wrap,
 };
 use crate::payload::PayloadRow;
 
@@ -28,15 +27,19 @@ pub fn payload_svg(rows: &[PayloadRow], operator: &str, width_pt: f64) -> Result
         return Err("the payload figure needs at least two payloads".into());
     }
     let stacked = width_pt < STACK_BELOW;
-    let h = if stacked { 2 * PANEL_H } else { PANEL_H } + 16;
+    let title = wrap(&format!("Test bed, {operator}"), width_pt - 8.0, TITLE_PT);
+    let head_h = 12 * title.len() as u32 + 4;
+    let h = if stacked { 2 * PANEL_H } else { PANEL_H } + head_h;
     render((width_pt.round() as u32, h), |root| {
-        let (head, body) = root.split_vertically(px(16));
-        head.draw(&Text::new(
-            format!("Test bed, {operator}"),
-            (px(4), px(8)),
-            text(TITLE_PT, BLACK, HPos::Left, VPos::Center),
-        ))
-        .map_err(err)?;
+        let (head, body) = root.split_vertically(px(head_h as i32));
+        for (i, line) in title.iter().enumerate() {
+            head.draw(&Text::new(
+                line.clone(),
+                (px(4), px(2 + 12 * i as i32)),
+                text(TITLE_PT, BLACK, HPos::Left, VPos::Top),
+            ))
+            .map_err(err)?;
+        }
         let (a, b) = if stacked {
             body.split_vertically(px(PANEL_H as i32))
         } else {
@@ -47,11 +50,8 @@ pub fn payload_svg(rows: &[PayloadRow], operator: &str, width_pt: f64) -> Result
     })
 }
 
-type LogChart<'a, 'b> = ChartContext<
-    'a,
-    SVGBackend<'b>,
-    Cartesian2d<plotters::coord::combinators::LogCoord<f64>, RangedCoordf64>,
->;
+type LogChart<'a, 'b> =
+    ChartContext<'a, SVGBackend<'b>, Cartesian2d<plotters::coord::combinators::LogCoord<f64>, Linear>>;
 
 /// The chart of one panel over the rows' payloads \[g\] with y in `y`.
 fn chart<'a, 'b>(
@@ -63,13 +63,24 @@ fn chart<'a, 'b>(
 ) -> Result<LogChart<'a, 'b>, String> {
     let lo = rows.first().map_or(1.0, |r| r.payload_kg) * 1e3;
     let hi = rows.last().map_or(1e3, |r| r.payload_kg) * 1e3;
+    let step = nice_step(y.1 - y.0, 5);
+    let first = (y.0 / step - 1e-9).ceil() * step;
+    let decimals = (0..6)
+        .find(|d| {
+            let s = step * 10f64.powi(*d);
+            (s - s.round()).abs() < 1e-6
+        })
+        .unwrap_or(6) as usize;
     let mut chart = ChartBuilder::on(area)
         .caption(caption, font(TITLE_PT))
         .margin(px(4))
-        .margin_right(px(8))
+        .margin_right(px(14))
         .x_label_area_size(px(26))
         .y_label_area_size(px(40))
-        .build_cartesian_2d((lo..hi).log_scale(), y.0..y.1)
+        .build_cartesian_2d(
+            (lo..hi).log_scale(),
+            Linear::new(y.0, y.1, ticks(first, y.1, step)),
+        )
         .map_err(err)?;
     chart
         .configure_mesh()
@@ -82,8 +93,8 @@ fn chart<'a, 'b>(
         .x_desc("payload m_e [g]")
         .y_desc(y_desc)
         .x_labels(6)
-        .y_labels(6)
         .x_label_formatter(&|v| format!("{v}"))
+        .y_label_formatter(&|v| format!("{v:.decimals$}"))
         .draw()
         .map_err(err)?;
     Ok(chart)
@@ -105,12 +116,22 @@ fn mark_paper_payloads(chart: &mut LogChart, rows: &[PayloadRow], y: (f64, f64))
                 stroke(GREY, 0.75),
             ))
             .map_err(err)?;
-        chart
-            .draw_series(std::iter::once(Text::new(
-                format!("{name} ({g} g)"),
-                (g, y.1),
-                text(TICK_PT, GREY, HPos::Left, VPos::Top),
-            )))
+        // the light load's name at the bottom right of its line, the test bed's at the top left
+        let plotting = chart.plotting_area().strip_coord_spec();
+        let origin = plotting.get_base_pixel();
+        let light = kg < 0.2;
+        let (x, y_px) = chart.backend_coord(&(g, if light { y.0 } else { y.1 }));
+        let (dx, h, v, dy) = if light {
+            (px(2), HPos::Left, VPos::Bottom, -px(2))
+        } else {
+            (-px(2), HPos::Right, VPos::Top, px(2))
+        };
+        plotting
+            .draw(&Text::new(
+                format!("{name}, {g} g"),
+                (x - origin.0 + dx, y_px - origin.1 + dy),
+                text(TICK_PT, GREY, h, v),
+            ))
             .map_err(err)?;
     }
     Ok(())
@@ -141,9 +162,10 @@ fn draw_peaks(area: &DrawingArea<SVGBackend, Shift>, rows: &[PayloadRow]) -> Res
     chart
         .configure_series_labels()
         .label_font(font(TICK_PT))
+        .legend_area_size(px(16))
         .background_style(WHITE)
         .border_style(stroke(GREY, 0.5))
-        .position(SeriesLabelPosition::LowerRight)
+        .position(SeriesLabelPosition::UpperLeft)
         .margin(px(4))
         .draw()
         .map_err(err)
@@ -164,6 +186,13 @@ fn draw_ratio(area: &DrawingArea<SVGBackend, Shift>, rows: &[PayloadRow]) -> Res
             px(2),
             stroke(GREY, 0.75),
         ))
+        .map_err(err)?;
+    chart
+        .draw_series(std::iter::once(Text::new(
+            "CL = CJ",
+            (x0, 1.0),
+            text(TICK_PT, GREY, HPos::Left, VPos::Bottom),
+        )))
         .map_err(err)?;
     chart
         .draw_series(LineSeries::new(

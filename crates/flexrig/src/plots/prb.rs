@@ -11,11 +11,12 @@ use super::{
 
 /// Axis ranges (a/L, b/L): both in units of the beam length, drawn to the same scale.
 const X: (f64, f64) = (0.0, 1.05);
+/// The least y range (the FE path may reach higher: the range then grows).
 const Y: (f64, f64) = (0.0, 0.9);
 /// Room for the axis labels left and below, title and margins \[pt\].
 const LEFT: u32 = 40;
 const BOTTOM: u32 = 30;
-const TOP: u32 = 30;
+const TOP: u32 = 20;
 const RIGHT: u32 = 10;
 /// Widest plot \[pt\] (a wider figure keeps the plot at this size, centred).
 const MAX_PLOT: f64 = 330.0;
@@ -23,9 +24,15 @@ const MAX_PLOT: f64 = 330.0;
 /// FE tip path against the PRB circle of the fitted γ (up to Θ_max, thin beyond) and γ = 2/3, at
 /// the printed width `width_pt` \[pt\].
 pub fn prb_svg(path: &[TipPoint], fit: &PrbFit, width_pt: f64) -> Result<String, String> {
+    let b_max = path
+        .iter()
+        .map(|p| p.b)
+        .filter(|b| b.is_finite())
+        .fold(Y.1, f64::max);
+    let y_hi = ((b_max * 1.04) / 0.05).ceil() * 0.05;
     let plot_w = (width_pt - f64::from(LEFT + RIGHT)).min(MAX_PLOT);
     // equal scales: the plot's height is its width times the y span over the x span
-    let plot_h = plot_w * (Y.1 - Y.0) / (X.1 - X.0);
+    let plot_h = plot_w * (y_hi - Y.0) / (X.1 - X.0);
     let chart_w = plot_w + f64::from(LEFT + RIGHT);
     let h = (plot_h + f64::from(TOP + BOTTOM)).round() as u32;
     render((width_pt.round() as u32, h), |root| {
@@ -48,7 +55,7 @@ pub fn prb_svg(path: &[TipPoint], fit: &PrbFit, width_pt: f64) -> Result<String,
             .y_label_area_size(px(LEFT as i32))
             .build_cartesian_2d(
                 Linear::new(X.0, X.1, ticks(0.0, 1.0, 0.2)),
-                Linear::new(Y.0, Y.1, ticks(0.0, 0.8, 0.2)),
+                Linear::new(Y.0, y_hi, ticks(0.0, y_hi, 0.2)),
             )
             .map_err(err)?;
         chart
@@ -70,7 +77,7 @@ pub fn prb_svg(path: &[TipPoint], fit: &PrbFit, width_pt: f64) -> Result<String,
                     let t = t0 + (t1 - t0) * f64::from(i) / 200.0;
                     (1.0 - g + g * t.cos(), g * t.sin())
                 })
-                .filter(|(x, y)| *y <= Y.1 && *x >= X.0)
+                .filter(|(x, y)| *y <= y_hi && *x >= X.0)
                 .collect()
         };
         let tm = fit.theta_max_deg.to_radians();
@@ -107,6 +114,7 @@ pub fn prb_svg(path: &[TipPoint], fit: &PrbFit, width_pt: f64) -> Result<String,
         chart
             .configure_series_labels()
             .label_font(font(TICK_PT))
+            .legend_area_size(px(20))
             .background_style(WHITE)
             .border_style(stroke(GRID, 0.75))
             .position(SeriesLabelPosition::LowerLeft)

@@ -358,7 +358,7 @@ fn payload_and_prb_and_bench_at_print_size() {
             &payload_svg(&rows, "skinned aluminium operator, m_h = 398 g", w).unwrap(),
             w,
         );
-        assert!(text.contains("light load (100 g)") && text.contains("test bed (412 g)"));
+        assert!(text.contains("light load, 100 g") && text.contains("test bed, 412 g"));
         let text = check("prb", &prb_svg(&path, &fit, w).unwrap(), w);
         assert!(text.contains("Θ_max"), "{text}");
         check(

@@ -331,25 +331,32 @@ fn draw_panel(
             stroke(GREY, 0.5),
         ))
         .map_err(err)?;
-    // n = 2 (solid) first, n = 1 (dashed) over it: coinciding curves show both
+    // n = 2 (solid) first, n = 1 (dashed) over it, and each payload thinner than the one
+    // before: coinciding curves all show
     let mut keys: Vec<&Key> = panel.curves.keys().collect();
-    keys.sort_by(|a, b| f64::from_bits(b.1).total_cmp(&f64::from_bits(a.1)));
+    keys.sort_by(|a, b| {
+        f64::from_bits(b.1)
+            .total_cmp(&f64::from_bits(a.1))
+            .then(f64::from_bits(a.0).total_cmp(&f64::from_bits(b.0)))
+    });
     for key in keys {
         let (points, held) = &panel.curves[key];
         let (m_e, n) = (f64::from_bits(key.0), f64::from_bits(key.1));
         let c = colour(payloads, m_e);
+        let order = payloads.iter().position(|p| *p == m_e).unwrap_or(0) as f64;
+        let width = (2.5 - 1.25 * order).max(0.75);
         if n < 1.5 {
             chart
                 .draw_series(DashedLineSeries::new(
                     points.clone(),
                     px(3),
                     px(2),
-                    stroke(c, 1.25),
+                    stroke(c, width),
                 ))
                 .map_err(err)?;
         } else {
             chart
-                .draw_series(LineSeries::new(points.clone(), stroke(c, 2.0)))
+                .draw_series(LineSeries::new(points.clone(), stroke(c, width)))
                 .map_err(err)?;
         }
         if let Some(h) = held {
