@@ -6,7 +6,8 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
 use super::{
-    GRID, LABEL_PT, Linear, PALETTE, TICK_PT, TITLE_PT, err, font, px, render, stroke, text, ticks,
+    GRID, LABEL_PT, Linear, PALETTE, TICK_PT, TITLE_PT, err, font, px, render, stroke, text,
+    text_width_pt, ticks,
 };
 
 /// Axis ranges (a/L, b/L): both in units of the beam length, drawn to the same scale.
@@ -14,7 +15,7 @@ const X: (f64, f64) = (0.0, 1.05);
 /// The least y range (the FE path may reach higher: the range then grows).
 const Y: (f64, f64) = (0.0, 0.9);
 /// Room for the axis labels left and below, title and margins \[pt\].
-const LEFT: u32 = 40;
+const LEFT: u32 = 48;
 const BOTTOM: u32 = 30;
 const TOP: u32 = 20;
 const RIGHT: u32 = 10;
@@ -39,11 +40,20 @@ pub fn prb_svg(path: &[TipPoint], fit: &PrbFit, width_pt: f64) -> Result<String,
         let offset = ((width_pt - chart_w) / 2.0).max(0.0);
         let area = root.margin(0, 0, px(offset as i32), 0);
         let area = area.shrink((0, 0), (px(chart_w.round() as i32), px(h as i32)));
-        area.draw(&Text::new(
+        let long = format!(
+            "Cantilever tip path: FE vs PRB, γ = {:.4}, Θ_max = {:.1}°",
+            fit.gamma, fit.theta_max_deg
+        );
+        let title = if text_width_pt(&long, TITLE_PT) < chart_w - 4.0 {
+            long
+        } else {
             format!(
-                "Cantilever tip path: FE vs PRB, γ = {:.4}, Θ_max = {:.1}°",
+                "Tip path: FE vs PRB, γ = {:.4}, Θ_max = {:.1}°",
                 fit.gamma, fit.theta_max_deg
-            ),
+            )
+        };
+        area.draw(&Text::new(
+            title,
             (px(chart_w as i32 / 2), px(4)),
             text(TITLE_PT, BLACK, HPos::Center, VPos::Top),
         ))
