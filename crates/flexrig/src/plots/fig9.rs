@@ -274,7 +274,7 @@ fn draw_bar(
     }
     let low = m - g.ci95_n.unwrap_or(0.0);
     let (y, v, c) = if low > 0.15 * y_top {
-        (low - 0.015 * y_top, VPos::Top, WHITE)
+        (low - 0.03 * y_top, VPos::Top, WHITE)
     } else {
         (
             m + g.ci95_n.unwrap_or(0.0) + 0.015 * y_top,
