@@ -228,8 +228,8 @@ fn drawn_beam(beam: &flexrig_rig::BeamLink, scale: f64) -> (Vec<Point3>, f64) {
 
 /// Where the link's label sits \[m, world\]: on the link's line, behind the robot axis.
 const LABEL_AT: Vector = Vector::new(-0.04, 0.0, 0.0);
-/// Where the simulation clock sits \[m, world\]: behind the robot axis, below the link's label.
-const CLOCK_AT: Vector = Vector::new(-0.04, 0.0, -0.05);
+/// Where the simulation clock sits \[m, world\]: behind the robot axis, beyond the link's label.
+const CLOCK_AT: Vector = Vector::new(-0.085, 0.0, 0.0);
 
 /// Length of the contact-force arrow per newton \[m/N\]: 0.3 mm/N keeps the bundled scenes'
 /// peaks (up to about 280 N) under 85 mm, within the view.
@@ -237,22 +237,27 @@ pub const ARROW_M_PER_N: f64 = 3e-4;
 /// Its head: length and diameter \[m\], fixed so that it stays visible at any force.
 const ARROW_HEAD: (f64, f64) = (0.012, 0.012);
 
-/// The contact-force arrow on the block (Okabe–Ito reddish purple: not the axes' red) at
-/// `point` along `normal`, [`ARROW_M_PER_N`] long per newton (at least its head), and its label
-/// (the force in N) at its tail.
-fn force_arrow(point: Vector, normal: Vector, force: f64) -> (Vec<ArrowPrimitive>, Vec<TextPrimitive>) {
+/// The contact-force arrow on the block (Okabe–Ito reddish purple: not the axes' red): along
+/// `normal` (the force on the block), [`ARROW_M_PER_N`] long per newton (at least its head),
+/// its head's tip at the contact `point` so that it pushes on the block from the dome's side
+/// (seen through the translucent dome), and its label (the force in N) at its tail.
+fn force_arrow(
+    point: Vector,
+    normal: Vector,
+    force: f64,
+) -> (Vec<ArrowPrimitive>, Vec<TextPrimitive>) {
     let length = (force * ARROW_M_PER_N).max(ARROW_HEAD.0);
     let rotation = arrow_rotation(normal);
     let purple = color(0.8, 0.475, 0.655);
+    let tail = point - normal.normalize() * length;
     let arrow = ArrowPrimitive {
-        pose: Some(pose(&Pose::from_parts(point, rotation))),
+        pose: Some(pose(&Pose::from_parts(tail, rotation))),
         shaft_length: length - ARROW_HEAD.0,
         shaft_diameter: 0.004,
         head_length: ARROW_HEAD.0,
         head_diameter: ARROW_HEAD.1,
         color: purple.clone(),
     };
-    let tail = point + normal.normalize() * (length + 0.01);
     let text = TextPrimitive {
         color: color(0.5, 0.2, 0.4),
         ..label(format!("contact force {force:.0} N"), tail)
