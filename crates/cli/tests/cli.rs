@@ -324,7 +324,10 @@ fn experiment_reports_the_papers_comparison() {
         "iron",
         "m_h = 4008 g",
     ] {
-        assert!(text.contains(label), "{label} missing from fig9.svg:\n{text}");
+        assert!(
+            text.contains(label),
+            "{label} missing from fig9.svg:\n{text}"
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
     // The same seed gives the same runs (release angles from a seeded RNG).

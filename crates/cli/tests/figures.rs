@@ -161,9 +161,15 @@ fn fig9_says_the_inputs_that_ran() {
         assert!(!text.contains(stale), "'{stale}' in fig9:\n{text}");
     }
     // the note says where the interval comes from
-    assert!(text.replace('\n', " ").contains("simulated release-angle scatter (σ = 0.5°, seed 1)"));
+    assert!(
+        text.replace('\n', " ")
+            .contains("simulated release-angle scatter (σ = 0.5°, seed 1)")
+    );
     // the paper's sentence only for the paper's inputs
-    assert!(!stdout.contains("The paper: CL slightly below CJ"), "{stdout}");
+    assert!(
+        !stdout.contains("The paper: CL slightly below CJ"),
+        "{stdout}"
+    );
     assert!(stdout.contains("does not apply"), "{stdout}");
     let csv = std::fs::read_to_string(dir.join("experiment.csv")).unwrap();
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
@@ -190,7 +196,10 @@ fn fig9_says_the_inputs_that_ran() {
     let text = check_svg(&dir.join("fig9.svg"), 7.0);
     assert!(text.contains("(c) CL/CL"), "{text}");
     assert!(!text.contains("CJ"), "{text}");
-    assert!(stdout.contains("scene file cj_aluminium ran as CL"), "{stdout}");
+    assert!(
+        stdout.contains("scene file cj_aluminium ran as CL"),
+        "{stdout}"
+    );
     let meta = log_metadata(&dir.join("cj_aluminium_0.mcap"));
     assert_eq!(meta["design"], "cl");
     assert_eq!(
@@ -201,10 +210,25 @@ fn fig9_says_the_inputs_that_ran() {
     let _ = std::fs::remove_dir_all(&dir);
 
     // the paper's inputs: its sentence and its numbers
-    let stdout = ok(&["experiment", "--repeats", "2", "--out", dir.to_str().unwrap()]);
-    assert!(stdout.contains("The paper: CL slightly below CJ"), "{stdout}");
+    let stdout = ok(&[
+        "experiment",
+        "--repeats",
+        "2",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        stdout.contains("The paper: CL slightly below CJ"),
+        "{stdout}"
+    );
     let text = check_svg(&dir.join("fig9.svg"), 7.0);
-    for label in ["(a) m_e = 412 g", "(b) m_e = 100 g", "m_h = 398 g", "m_h = 4008 g", "(c) CL/CJ"] {
+    for label in [
+        "(a) m_e = 412 g",
+        "(b) m_e = 100 g",
+        "m_h = 398 g",
+        "m_h = 4008 g",
+        "(c) CL/CJ",
+    ] {
         assert!(text.contains(label), "{label} missing:\n{text}");
     }
     let _ = std::fs::remove_dir_all(&dir);

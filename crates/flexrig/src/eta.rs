@@ -66,12 +66,13 @@ pub fn run(
         path: fig6_path.clone(),
         message,
     })?;
-    let svg = crate::plots::eta_svg(&rows, &joint_text(&settings.joint), width).map_err(|message| {
-        Error::Plot {
-            path: svg_path.clone(),
-            message,
-        }
-    })?;
+    let svg =
+        crate::plots::eta_svg(&rows, &joint_text(&settings.joint), width).map_err(|message| {
+            Error::Plot {
+                path: svg_path.clone(),
+                message,
+            }
+        })?;
     write_atomic(&csv_path, csv(&rows).as_bytes())?;
     let mut written = crate::plots::write_figure(out, "eta", &svg, figures)?;
     let fig6_written = crate::plots::write_figure(out, "eta_fig6", &fig6_svg, figures)?;

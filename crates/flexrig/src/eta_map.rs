@@ -107,12 +107,11 @@ pub fn run(options: &EtaMapOptions) -> Result<EtaMapResult, Error> {
     let mut figures = Vec::new();
     for m in &maps {
         let stem = format!("eta_map_mh{}", m.spec.m_h);
-        let text = svg(m, &joint_text, options.figures.width_pt()).map_err(|message| {
-            Error::Plot {
+        let text =
+            svg(m, &joint_text, options.figures.width_pt()).map_err(|message| Error::Plot {
                 path: out.join(format!("{stem}.svg")),
                 message,
-            }
-        })?;
+            })?;
         figures.push((stem, text));
     }
     ensure_dir(out)?;
@@ -120,7 +119,12 @@ pub fn run(options: &EtaMapOptions) -> Result<EtaMapResult, Error> {
     write_atomic(&csv_path, csv(&maps).as_bytes())?;
     let mut files = vec![csv_path];
     for (stem, text) in &figures {
-        files.extend(crate::plots::write_figure(out, stem, text, &options.figures)?);
+        files.extend(crate::plots::write_figure(
+            out,
+            stem,
+            text,
+            &options.figures,
+        )?);
     }
     let summaries = maps.iter().map(summary).collect();
     Ok(EtaMapResult {

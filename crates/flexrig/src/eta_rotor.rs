@@ -56,12 +56,12 @@ pub fn run(options: &EtaRotorOptions) -> Result<EtaRotorResult, Error> {
         flexrig_lumped::fig6::V0
     );
     let csv_path = options.out.join("eta_rotor.csv");
-    let svg = eta_rotor_svg(&points, &subtitle, options.figures.width_pt()).map_err(
-        |message| Error::Plot {
+    let svg = eta_rotor_svg(&points, &subtitle, options.figures.width_pt()).map_err(|message| {
+        Error::Plot {
             path: options.out.join("eta_rotor.svg"),
             message,
-        },
-    )?;
+        }
+    })?;
     ensure_dir(&options.out)?;
     write_atomic(&csv_path, csv(&points).as_bytes())?;
     let figures = write_figure(&options.out, "eta_rotor", &svg, &options.figures)?;

@@ -235,8 +235,7 @@ pub fn run(options: &PayloadOptions, cancel: &CancelToken) -> Result<PayloadResu
     let logs = log_three(&text, &payloads, &options.out, cancel)?;
     let csv_path = options.out.join("payload.csv");
     write_atomic(&csv_path, csv(&rows).as_bytes())?;
-    let scene =
-        flexrig_rig::Scene::from_toml_str(&text, &flexrig_contact::Materials::bundled()?)?;
+    let scene = flexrig_rig::Scene::from_toml_str(&text, &flexrig_contact::Materials::bundled()?)?;
     let operator = format!(
         "{} operator, m_h = {} ({}): CJ and CL, release to separation",
         scene.file.operator.block_material.replace('_', " "),

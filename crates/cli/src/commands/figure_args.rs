@@ -14,7 +14,12 @@ pub struct FigureArgs {
     pub size: String,
     /// Figure formats, comma-separated or repeated: svg, pdf, png (PDF and PNG with the font
     /// embedded).
-    #[arg(long, value_name = "FORMATS", value_delimiter = ',', default_value = "svg")]
+    #[arg(
+        long,
+        value_name = "FORMATS",
+        value_delimiter = ',',
+        default_value = "svg"
+    )]
     pub format: Vec<String>,
     /// Resolution of PNG figures (dots per inch).
     #[arg(long, value_name = "DPI", default_value_t = 300.0)]

@@ -43,7 +43,11 @@ pub fn eta_svg(rows: &[EtaRow], joint: &str, width_pt: f64) -> Result<String, St
         + 8.0;
     render((width_pt.round() as u32, height), |root| {
         let w = width_pt.round() as i32;
-        let title = if text_width_pt("η = f_max(CL)/f_max(CJ): finite elements vs the lumped η(2/3), held joint", TITLE_PT) < width_pt {
+        let title = if text_width_pt(
+            "η = f_max(CL)/f_max(CJ): finite elements vs the lumped η(2/3), held joint",
+            TITLE_PT,
+        ) < width_pt
+        {
             format!("η = f_max(CL)/f_max(CJ): finite elements vs the lumped η(2/3), {joint} joint")
         } else {
             format!("η = f_max(CL)/f_max(CJ), {joint} joint")
@@ -67,8 +71,12 @@ pub fn eta_svg(rows: &[EtaRow], joint: &str, width_pt: f64) -> Result<String, St
         ))
         .map_err(err)?;
         let x1 = x0 + px((text_width_pt(fe, LABEL_PT) + 22.0) as i32);
-        root.draw(&Circle::new((x1 + px(3), y), px(3), stroke(PALETTE[1], 1.25)))
-            .map_err(err)?;
+        root.draw(&Circle::new(
+            (x1 + px(3), y),
+            px(3),
+            stroke(PALETTE[1], 1.25),
+        ))
+        .map_err(err)?;
         root.draw(&Text::new(
             "lumped model, η(2/3)",
             (x1 + px(9), y),

@@ -243,8 +243,14 @@ impl Header {
             ),
         ];
         let mut items = vec![
-            (Sample::Line(BLUE, false), "n = 2 (Hertz contact)".to_string()),
-            (Sample::Line(ORANGE, true), "n = 1 (linear contact)".to_string()),
+            (
+                Sample::Line(BLUE, false),
+                "n = 2 (Hertz contact)".to_string(),
+            ),
+            (
+                Sample::Line(ORANGE, true),
+                "n = 1 (linear contact)".to_string(),
+            ),
             (Sample::Dot, "η(2/3), uniform compliant link".to_string()),
         ];
         if with_points {
@@ -299,7 +305,11 @@ impl Header {
     fn draw(&self, area: &DrawingArea<SVGBackend, Shift>) -> Result<(), String> {
         let (w, _) = area.dim_in_pixel();
         for (i, line) in self.title.iter().enumerate() {
-            let (size, colour) = if i == 0 { (TITLE_PT, BLACK) } else { (LABEL_PT, GREY) };
+            let (size, colour) = if i == 0 {
+                (TITLE_PT, BLACK)
+            } else {
+                (LABEL_PT, GREY)
+            };
             area.draw(&Text::new(
                 line.clone(),
                 (w as i32 / 2, px(2 + ROW_H * i as i32)),
@@ -352,7 +362,12 @@ fn marker(
     let r = DIAMOND;
     let corners = if square {
         let h = r * 3 / 4;
-        vec![(x - h, y - h), (x + h, y - h), (x + h, y + h), (x - h, y + h)]
+        vec![
+            (x - h, y - h),
+            (x + h, y - h),
+            (x + h, y + h),
+            (x - h, y + h),
+        ]
     } else {
         vec![(x, y - r), (x + r, y), (x, y + r), (x - r, y)]
     };
@@ -738,7 +753,11 @@ fn table_row(pair: &[&EtaCurve], span: f64) -> TableRow {
 
 /// The notes of a panel's table and its three candidate boxes (lower right, lower left, upper
 /// left), 3 points in from the frame.
-fn table_geometry(chart: &Chart, axis: EtaAxis, rows: &[TableRow]) -> (Vec<String>, [PixelRect; 3]) {
+fn table_geometry(
+    chart: &Chart,
+    axis: EtaAxis,
+    rows: &[TableRow],
+) -> (Vec<String>, [PixelRect; 3]) {
     let origin = chart.plotting_area().get_base_pixel();
     // one note for every payload whose n = 1 and n = 2 curves coincide on the plot
     let gaps: Vec<f64> = rows.iter().filter_map(|r| r.coincide).collect();
@@ -847,13 +866,8 @@ fn draw_table(
     }
     for r in rows {
         y += line;
-        area.draw(&cell(
-            format!("m_e = {} kg", r.m_e),
-            right - c2,
-            y,
-            BLACK,
-        ))
-        .map_err(err)?;
+        area.draw(&cell(format!("m_e = {} kg", r.m_e), right - c2, y, BLACK))
+            .map_err(err)?;
         area.draw(&cell(format!("{:.3}", r.eta_n2), right - c1, y, BLUE))
             .map_err(err)?;
         area.draw(&cell(format!("{:.3}", r.eta_n1), right, y, ORANGE))
@@ -979,6 +993,10 @@ mod tests {
         let curves = fig6(201).unwrap();
         let svg = fig6_with_points_svg(&curves, &points(&curves), 504.0).unwrap();
         std::fs::write("/tmp/fig6_points_demo.svg", svg).unwrap();
-        std::fs::write("/tmp/fig6_plain_demo.svg", fig6_svg(&curves, 504.0).unwrap()).unwrap();
+        std::fs::write(
+            "/tmp/fig6_plain_demo.svg",
+            fig6_svg(&curves, 504.0).unwrap(),
+        )
+        .unwrap();
     }
 }

@@ -235,7 +235,11 @@ fn draw_bars(
             let (cj, cl) = cats
                 .get(i)
                 .map_or(("CJ".into(), "CL".into()), |c| designs(groups, c.key));
-            if x.rem_euclid(width) < 0.5 * width { cj } else { cl }
+            if x.rem_euclid(width) < 0.5 * width {
+                cj
+            } else {
+                cl
+            }
         })
         .y_label_formatter(&|y| format!("{y:.0}"))
         .draw()
@@ -393,7 +397,10 @@ fn draw_ratios(
     let ratio_name = format!("{num}/{den}");
     let centres: Vec<f64> = (0..cats.len()).map(|i| category_centre(i, 1.0)).collect();
     let mut chart = ChartBuilder::on(area)
-        .caption(format!("(c) {ratio_name}, paired by repeat"), font(TITLE_PT))
+        .caption(
+            format!("(c) {ratio_name}, paired by repeat"),
+            font(TITLE_PT),
+        )
         .margin(px(4))
         .margin_right(px(8))
         .x_label_area_size(px(36))

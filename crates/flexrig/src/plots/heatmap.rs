@@ -128,7 +128,8 @@ const BLUE_RED: [(u8, u8, u8); 11] = [
 
 /// Legend rows of `map`: "no value" if a cell has none, and the outline's text.
 fn legend_rows(map: &HeatMap<'_>) -> i32 {
-    i32::from(map.values.iter().any(|v| v.is_none_or(f64::is_nan))) + i32::from(map.outline.is_some())
+    i32::from(map.values.iter().any(|v| v.is_none_or(f64::is_nan)))
+        + i32::from(map.outline.is_some())
 }
 
 /// Several heat maps in a grid (as many columns as `width_pt` holds at [`MIN_PANEL_W`], each
@@ -158,7 +159,11 @@ pub fn heatmaps_svg(
         let (header_area, body) = root.split_vertically(px(header as i32));
         let (w, _) = header_area.dim_in_pixel();
         for (i, line) in figure_title.iter().enumerate() {
-            let (size, colour) = if i == 0 { (TITLE_PT, BLACK) } else { (LABEL_PT, GREY) };
+            let (size, colour) = if i == 0 {
+                (TITLE_PT, BLACK)
+            } else {
+                (LABEL_PT, GREY)
+            };
             header_area
                 .draw(&Text::new(
                     line.clone(),
@@ -432,8 +437,7 @@ fn draw_panel(
     ))
     .map_err(err)?;
     let body = area.margin(px(TITLE), 0, 0, 0);
-    let (main, legend) =
-        body.split_vertically(h - px(TITLE) - px(LEGEND * legend_rows + ROW_GAP));
+    let (main, legend) = body.split_vertically(h - px(TITLE) - px(LEGEND * legend_rows + ROW_GAP));
     let (chart_area, bar_area) = main.split_horizontally(w - px(BAR_STRIP));
     let chart = build_chart(&chart_area, map, grid)?;
     let plotting = chart.plotting_area().strip_coord_spec();
@@ -839,7 +843,12 @@ mod tests {
         let mut b = map(&xs, &ys, &positive);
         b.title = "log";
         b.scale = ColorScale::Log { lo: 1e-1, hi: 1e5 };
-        let svg = heatmaps_svg(&["three".to_string()], &[map(&xs, &ys, &values), a, b], 504.0).unwrap();
+        let svg = heatmaps_svg(
+            &["three".to_string()],
+            &[map(&xs, &ys, &values), a, b],
+            504.0,
+        )
+        .unwrap();
         assert!(svg.starts_with("<svg width=\"7in\""));
         assert!(svg.contains("diverging") && svg.contains(">\nlog\n<"));
     }
@@ -858,7 +867,8 @@ mod tests {
         let xs = grid(4, 1.0, 1e3);
         let ys = grid(3, 1.0, 1e2);
         let values = synthetic(&xs, &ys);
-        let e = heatmaps_svg(&["t".to_string()], &[map(&xs, &ys, &values[1..])], 504.0).unwrap_err();
+        let e =
+            heatmaps_svg(&["t".to_string()], &[map(&xs, &ys, &values[1..])], 504.0).unwrap_err();
         assert!(
             e.contains("values has 11 entries, expected nx·ny = 4·3 = 12"),
             "{e}"
@@ -873,7 +883,12 @@ mod tests {
         let bad_y = [1.0, -1.0, 2.0];
         let e = heatmaps_svg(&["t".to_string()], &[map(&xs, &bad_y, &values)], 504.0).unwrap_err();
         assert!(e.contains("ys must be finite and > 0"), "{e}");
-        let e = heatmaps_svg(&["t".to_string()], &[map(&xs, &[1.0, 3.0, 2.0], &values)], 504.0).unwrap_err();
+        let e = heatmaps_svg(
+            &["t".to_string()],
+            &[map(&xs, &[1.0, 3.0, 2.0], &values)],
+            504.0,
+        )
+        .unwrap_err();
         assert!(e.contains("ys must be strictly ascending"), "{e}");
         let mask = [true; 5];
         let mut m = map(&xs, &ys, &values);

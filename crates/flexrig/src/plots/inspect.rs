@@ -33,8 +33,7 @@ pub fn text_sizes_pt(svg: &str) -> Vec<f64> {
         for (i, _) in svg.match_indices(tag) {
             let element = &svg[i..];
             let element = &element[..element.find('>').unwrap_or(element.len())];
-            if let Some(size) = attribute_text(element, "font-size").and_then(|s| s.parse().ok())
-            {
+            if let Some(size) = attribute_text(element, "font-size").and_then(|s| s.parse().ok()) {
                 let size: f64 = size;
                 sizes.push(size * inches / vb_width * 72.0);
             }

@@ -281,7 +281,12 @@ mod tests {
             let e = FigureWidth::parse(bad).unwrap_err().to_string();
             assert!(e.contains("--size"), "{bad}: {e}");
         }
-        assert!(FigureFormat::parse("jpeg").unwrap_err().to_string().contains("--format"));
+        assert!(
+            FigureFormat::parse("jpeg")
+                .unwrap_err()
+                .to_string()
+                .contains("--format")
+        );
         let mut o = FigureOptions::two_column_svg();
         o.dpi = 0.0;
         assert!(o.validate().unwrap_err().to_string().contains("--dpi"));

@@ -50,8 +50,11 @@ pub fn payload_svg(rows: &[PayloadRow], operator: &str, width_pt: f64) -> Result
     })
 }
 
-type LogChart<'a, 'b> =
-    ChartContext<'a, SVGBackend<'b>, Cartesian2d<plotters::coord::combinators::LogCoord<f64>, Linear>>;
+type LogChart<'a, 'b> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<plotters::coord::combinators::LogCoord<f64>, Linear>,
+>;
 
 /// The chart of one panel over the rows' payloads \[g\] with y in `y`.
 fn chart<'a, 'b>(
@@ -101,7 +104,11 @@ fn chart<'a, 'b>(
 }
 
 /// The paper's payloads as dashed verticals with their names, where they lie in the range.
-fn mark_paper_payloads(chart: &mut LogChart, rows: &[PayloadRow], y: (f64, f64)) -> Result<(), String> {
+fn mark_paper_payloads(
+    chart: &mut LogChart,
+    rows: &[PayloadRow],
+    y: (f64, f64),
+) -> Result<(), String> {
     let (lo, hi) = (rows[0].payload_kg, rows[rows.len() - 1].payload_kg);
     for (kg, name) in PAPER_PAYLOADS {
         if kg < lo || kg > hi {
@@ -147,7 +154,11 @@ fn draw_peaks(area: &DrawingArea<SVGBackend, Shift>, rows: &[PayloadRow]) -> Res
     let mut chart = chart(area, rows, "(a) peak impact force", y, "peak force [N]")?;
     mark_paper_payloads(&mut chart, rows, y)?;
     for (name, colour, get) in [
-        ("CJ", PALETTE[1], (|r: &PayloadRow| r.cj_peak_n) as fn(&PayloadRow) -> f64),
+        (
+            "CJ",
+            PALETTE[1],
+            (|r: &PayloadRow| r.cj_peak_n) as fn(&PayloadRow) -> f64,
+        ),
         ("CL", PALETTE[0], |r: &PayloadRow| r.cl_peak_n),
     ] {
         chart
@@ -178,7 +189,10 @@ fn draw_ratio(area: &DrawingArea<SVGBackend, Shift>, rows: &[PayloadRow]) -> Res
     let y = (lo - pad, hi + 2.0 * pad);
     let mut chart = chart(area, rows, "(b) CL/CJ", y, "peak-force ratio CL/CJ")?;
     mark_paper_payloads(&mut chart, rows, y)?;
-    let (x0, x1) = (rows[0].payload_kg * 1e3, rows[rows.len() - 1].payload_kg * 1e3);
+    let (x0, x1) = (
+        rows[0].payload_kg * 1e3,
+        rows[rows.len() - 1].payload_kg * 1e3,
+    );
     chart
         .draw_series(DashedLineSeries::new(
             [(x0, 1.0), (x1, 1.0)],

@@ -19,7 +19,10 @@ const WIDTHS: [f64; 2] = [252.0, 504.0];
 /// returns its text.
 fn check(name: &str, svg: &str, width_pt: f64) -> String {
     let (inches, _) = printed_width(svg).unwrap_or_else(|| panic!("{name}: no printed width"));
-    assert!((inches - width_pt / 72.0).abs() < 1e-9, "{name}: {inches} in");
+    assert!(
+        (inches - width_pt / 72.0).abs() < 1e-9,
+        "{name}: {inches} in"
+    );
     let min = min_text_pt(svg).unwrap_or_else(|| panic!("{name}: no text"));
     assert!(
         min >= MIN_TEXT_PT - 1e-3,
@@ -218,9 +221,7 @@ fn eta_row(case: Fig6Case, n: f64, eta: f64, gamma: EffectiveGamma) -> EtaRow {
 fn eta_dot_plot_at_print_size() {
     let rows: Vec<EtaRow> = cases()
         .iter()
-        .flat_map(|c| {
-            [1.0, 2.0].map(|n| eta_row(*c, n, 0.3 + 0.08 * n, EffectiveGamma::Fits(0.7)))
-        })
+        .flat_map(|c| [1.0, 2.0].map(|n| eta_row(*c, n, 0.3 + 0.08 * n, EffectiveGamma::Fits(0.7))))
         .collect();
     for w in WIDTHS {
         let text = check("eta", &eta_svg(&rows, "held", w).unwrap(), w);

@@ -139,7 +139,9 @@ fn decades(panels: &[Panel]) -> (i32, i32) {
         .iter()
         .flat_map(|p| p.curves.values())
         .flat_map(|c| c.0.iter())
-        .fold((f64::MAX, f64::MIN), |(lo, hi), (x, _)| (lo.min(*x), hi.max(*x)));
+        .fold((f64::MAX, f64::MIN), |(lo, hi), (x, _)| {
+            (lo.min(*x), hi.max(*x))
+        });
     if lo > hi {
         return (0, 1);
     }

@@ -81,10 +81,9 @@ fn legend_lines(panel: &Panel, width_pt: f64) -> (Vec<Vec<String>>, Vec<String>)
         .iter()
         .map(|s| wrap(&s.label, room, TICK_PT))
         .collect();
-    let note = panel
-        .note
-        .as_ref()
-        .map_or_else(Vec::new, |n| wrap(n, width_pt - f64::from(LEGEND_X) - 4.0, TICK_PT));
+    let note = panel.note.as_ref().map_or_else(Vec::new, |n| {
+        wrap(n, width_pt - f64::from(LEGEND_X) - 4.0, TICK_PT)
+    });
     (series, note)
 }
 
