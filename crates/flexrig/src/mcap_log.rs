@@ -256,7 +256,7 @@ fn force_arrow(
         shaft_diameter: 0.004,
         head_length: ARROW_HEAD.0,
         head_diameter: ARROW_HEAD.1,
-        color: purple.clone(),
+        color: purple,
     };
     let text = TextPrimitive {
         color: color(0.5, 0.2, 0.4),

@@ -107,7 +107,7 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write) -> Result<(), Error> {
     let r = flexrig::eta_map::run(&EtaMapOptions {
         out: args.out.clone(),
         specs,
-        settings: settings.clone(),
+        settings,
         figures: args.figure.options()?,
     })
     .map_err(impact_as_flag)?;

@@ -26,11 +26,14 @@ const LINE: i32 = 12;
 /// A curve key: payload m_e \[kg\] and exponent n, as bit patterns for ordering.
 type Key = (u64, u64);
 
-/// One panel: (m_h, k_δ) and its curves by (m_e, n): (ratio, η) points and the held η.
+/// One curve: (log10 ratio, η) points and the held η.
+type CurvePoints = (Vec<(f64, f64)>, Option<f64>);
+
+/// One panel: (m_h, k_δ) and its curves by (m_e, n).
 struct Panel {
     m_h: f64,
     k_delta: f64,
-    curves: BTreeMap<Key, (Vec<(f64, f64)>, Option<f64>)>,
+    curves: BTreeMap<Key, CurvePoints>,
 }
 
 fn panels(points: &[RotorPoint]) -> Vec<Panel> {

@@ -199,7 +199,7 @@ fn draw_panel(
     let mut chart = ChartBuilder::on(area)
         .caption(&panel.title, font(LABEL_PT))
         .margin(px(3))
-        .margin_right(px(10))
+        .margin_right(px(14))
         .x_label_area_size(px(28))
         .y_label_area_size(px(40))
         .build_cartesian_2d(log_axis(x_range), log_axis(y_range))
