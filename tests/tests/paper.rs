@@ -16,6 +16,7 @@ fn fig6_command_reproduces_the_quoted_etas() {
     let result = flexrig::fig6::run(&Fig6Options {
         out: dir.clone(),
         points: 3,
+        figures: flexrig::plots::FigureOptions::two_column_svg(),
     })
     .unwrap();
     let eta = |m_h: f64, k_delta: f64, m_e: f64, n: f64| {

@@ -312,17 +312,22 @@ fn experiment_reports_the_papers_comparison() {
     assert_eq!(csv.lines().count(), 15);
     check_paired_ratios(&v, &csv);
     let svg = std::fs::read_to_string(dir.join("fig9.svg")).unwrap();
+    let text = flexrig::plots::inspect::texts(&svg).join("\n");
     for label in [
-        "(a) test bed",
-        "mean ± 95 % CI, 3 runs",
-        "(b) light load",
-        "1 run, no CI",
+        "(a) m_e = 412 g",
+        "Bars: mean of 3 runs ± 95 % CI.",
+        "(b) m_e = 100 g",
+        "1 pair, no CI",
         "(c) CL/CJ, paired by repeat",
         "CL = CJ",
         "peak impact force [N]",
-        "iron operator",
+        "iron",
+        "m_h = 4008 g",
     ] {
-        assert!(svg.contains(label), "{label} missing from fig9.svg");
+        assert!(
+            text.contains(label),
+            "{label} missing from fig9.svg:\n{text}"
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
     // The same seed gives the same runs (release angles from a seeded RNG).
@@ -378,9 +383,16 @@ fn check_paired_ratios(v: &serde_json::Value, csv: &str) {
             "{r} vs {half}"
         );
         // The CSV's CL rows carry the same numbers (to its 10 significant digits).
+        let column = csv
+            .lines()
+            .next()
+            .unwrap()
+            .split(',')
+            .position(|c| c == "cl_over_cj_ci95")
+            .unwrap();
         for line in csv.lines().filter(|l| l.starts_with(&format!("{cl},"))) {
             let fields: Vec<&str> = line.split(',').collect();
-            let ci: f64 = fields[10].parse().unwrap();
+            let ci: f64 = fields[column].parse().unwrap();
             assert!(rel(ci, half) < 1e-9, "{line}");
         }
     }
@@ -474,7 +486,11 @@ fn one_repeat_gives_no_interval() {
         assert!(line.ends_with(','), "an empty interval field: {line}");
     }
     let svg = std::fs::read_to_string(dir.join("fig9.svg")).unwrap();
-    assert!(svg.contains("1 run, no CI") && svg.contains("1 pair, no CI"));
+    let text = flexrig::plots::inspect::texts(&svg).join("\n");
+    assert!(
+        text.contains("One run per bar: no confidence interval.") && text.contains("1 pair, no CI"),
+        "{text}"
+    );
     let out = flexrig(&["experiment", "--repeats", "1", "--out", out_dir]);
     let table = String::from_utf8(out.stdout).unwrap();
     assert!(out.status.success());
@@ -910,7 +926,11 @@ fn eta_refuses_bad_input_and_runs_coarse() {
     let csv = std::fs::read_to_string(dir.join("eta.csv")).unwrap();
     assert_eq!(csv.lines().count(), 17);
     let svg = std::fs::read_to_string(dir.join("eta.svg")).unwrap();
-    assert!(svg.contains("finite elements (filled)") && svg.contains("held joint"));
+    let text = flexrig::plots::inspect::texts(&svg).join("\n");
+    assert!(
+        text.contains("finite elements η_FE") && text.contains("held joint"),
+        "{text}"
+    );
     // a damped contact: no peak above the elastic one (at e = 0.8 the stiff-link peaks drop by
     // 5–10 %; on the soft lumped link the contact barely moves and damping changes the peak by
     // less than the damped lumped run's tolerance, 1e-8, so the bound allows 1e-7), and the

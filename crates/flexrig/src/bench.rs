@@ -17,7 +17,7 @@ use serde::Serialize;
 
 use crate::Error;
 use crate::mcap_log::{LogRates, McapRecorder};
-use crate::output::{ensure_dir, write_atomic};
+use crate::output::ensure_dir;
 use crate::plots::{Panel, Series};
 use crate::scenes::bundled_scene;
 
@@ -67,7 +67,12 @@ pub struct BenchReport {
 
 /// Runs every study (fewer settings and repetitions if `quick`: well under a minute) and draws
 /// the plots into `out`.
-pub fn run(quick: bool, out: &Path) -> Result<BenchReport, Error> {
+pub fn run(
+    quick: bool,
+    out: &Path,
+    figures: &crate::plots::FigureOptions,
+) -> Result<BenchReport, Error> {
+    figures.validate()?;
     let mut rows = Vec::new();
     lumped(&mut rows, quick)?;
     let peer_ratio = peer(&mut rows, quick)?;
@@ -76,15 +81,18 @@ pub fn run(quick: bool, out: &Path) -> Result<BenchReport, Error> {
     ensure_dir(out)?;
     let mut files = Vec::new();
     for (model, title, y_desc, share_y) in PLOTS {
-        let path = out.join(format!("bench_{model}.svg"));
+        let stem = format!("bench_{model}");
+        let path = out.join(format!("{stem}.svg"));
         let subset: Vec<&Row> = rows.iter().filter(|r| r.model == model).collect();
-        let svg = crate::plots::work_precision_svg(title, y_desc, &plot_panels(&subset), share_y)
-            .map_err(|message| Error::Plot {
-            path: path.clone(),
-            message,
-        })?;
-        write_atomic(&path, svg.as_bytes())?;
-        files.push(path);
+        let svg = crate::plots::work_precision_svg(
+            title,
+            y_desc,
+            &plot_panels(&subset),
+            share_y,
+            figures.width_pt(),
+        )
+        .map_err(|message| Error::Plot { path, message })?;
+        files.extend(crate::plots::write_figure(out, &stem, &svg, figures)?);
     }
     Ok(BenchReport {
         rows,
@@ -136,7 +144,7 @@ fn plot_place(row: &Row) -> Option<(String, String)> {
             Some((title.into(), label))
         }
         "beam" => {
-            let title = if method.starts_with("transient") || method.starts_with("issue 13") {
+            let title = if method.starts_with("transient") || method.starts_with("tip step load") {
                 "transients: elements × time step"
             } else {
                 "modes and statics: elements"
@@ -422,7 +430,7 @@ fn issue13_transient(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
             / scale;
         rows.push(Row {
             model: "beam".into(),
-            method: format!("issue 13 step load, 1000 steps of 1 ms, ρ∞ 0.9, {name}"),
+            method: format!("tip step load P = EI/L², 1000 steps of 1 ms, ρ∞ 0.9, {name}"),
             setting: format!("{elements} elements"),
             error,
             seconds: median_seconds(3, 1, || trajectory(kin, elements, 1e-3)),

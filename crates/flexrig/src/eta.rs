@@ -49,37 +49,50 @@ pub struct EtaResult {
     pub svg: PathBuf,
     /// eta_fig6.svg (the FE points on the Fig. 6 curves).
     pub fig6_svg: PathBuf,
+    /// Both figures in every format asked for.
+    pub figures: Vec<PathBuf>,
 }
 
-/// Computes the table for `settings` and writes eta.csv, eta.svg and eta_fig6.svg into `out`
-/// (created if missing; nothing is written if a figure cannot be drawn, or if `cancel` stops
-/// the computation: then the error is an interruption).
-pub fn run(settings: &EtaSettings, out: &Path, cancel: &CancelToken) -> Result<EtaResult, Error> {
+/// Computes the table for `settings` and writes eta.csv, eta.svg and eta_fig6.svg (in the sizes
+/// and formats of `figures`) into `out` (created if missing; nothing is written if a figure
+/// cannot be drawn, or if `cancel` stops the computation: then the error is an interruption).
+pub fn run(
+    settings: &EtaSettings,
+    out: &Path,
+    figures: &crate::plots::FigureOptions,
+    cancel: &CancelToken,
+) -> Result<EtaResult, Error> {
     check_length(settings.length)?;
     settings.validate()?;
+    figures.validate()?;
     let rows = eta_table_until(settings, &cancel.flag())?;
     ensure_dir(out)?;
     let csv_path = out.join("eta.csv");
     let svg_path = out.join("eta.svg");
     let fig6_path = out.join("eta_fig6.svg");
-    let fig6_svg = fig6_with_fe_points(&rows).map_err(|message| Error::Plot {
+    let width = figures.width_pt();
+    let fig6_svg = fig6_with_fe_points(&rows, width).map_err(|message| Error::Plot {
         path: fig6_path.clone(),
         message,
     })?;
-    let svg = crate::plots::eta_svg(&rows, &joint_text(&settings.joint)).map_err(|message| {
-        Error::Plot {
-            path: svg_path.clone(),
-            message,
-        }
-    })?;
+    let svg =
+        crate::plots::eta_svg(&rows, &joint_text(&settings.joint), width).map_err(|message| {
+            Error::Plot {
+                path: svg_path.clone(),
+                message,
+            }
+        })?;
     write_atomic(&csv_path, csv(&rows).as_bytes())?;
-    write_atomic(&svg_path, svg.as_bytes())?;
-    write_atomic(&fig6_path, fig6_svg.as_bytes())?;
+    let mut written = crate::plots::write_figure(out, "eta", &svg, figures)?;
+    let fig6_written = crate::plots::write_figure(out, "eta_fig6", &fig6_svg, figures)?;
+    let (svg_path, fig6_path) = (written[0].clone(), fig6_written[0].clone());
+    written.extend(fig6_written);
     Ok(EtaResult {
         rows,
         csv: csv_path,
         svg: svg_path,
         fig6_svg: fig6_path,
+        figures: written,
     })
 }
 
@@ -164,7 +177,7 @@ pub fn csv(rows: &[EtaRow]) -> String {
 }
 
 /// The paper's Fig. 6 curves with each row's η_FE placed where its lumped curve takes that value.
-fn fig6_with_fe_points(rows: &[EtaRow]) -> Result<String, String> {
+fn fig6_with_fe_points(rows: &[EtaRow], width_pt: f64) -> Result<String, String> {
     let curves = flexrig_lumped::fig6::fig6(41).map_err(|e| e.to_string())?;
     let points = rows
         .iter()
@@ -178,5 +191,5 @@ fn fig6_with_fe_points(rows: &[EtaRow]) -> Result<String, String> {
             })
         })
         .collect::<Result<Vec<_>, String>>()?;
-    crate::plots::fig6_with_points_svg(&curves, &points)
+    crate::plots::fig6_with_points_svg(&curves, &points, width_pt)
 }

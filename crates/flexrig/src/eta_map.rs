@@ -32,6 +32,8 @@ pub struct EtaMapOptions {
     pub specs: Vec<MapSpec>,
     /// The impact's settings (joint, CL method, damping) shared by every point.
     pub settings: EtaSettings,
+    /// Printed size and formats of the figures (`--size`, `--format`, `--dpi`).
+    pub figures: crate::plots::FigureOptions,
 }
 
 /// One computed map.
@@ -103,6 +105,7 @@ pub fn run(options: &EtaMapOptions, cancel: &CancelToken) -> Result<EtaMapResult
         });
     }
     options.settings.validate()?;
+    options.figures.validate()?;
     let joint_text = settings_text(&options.settings);
     let mut maps = Vec::new();
     for spec in &options.specs {
@@ -116,27 +119,36 @@ pub fn run(options: &EtaMapOptions, cancel: &CancelToken) -> Result<EtaMapResult
         });
     }
     let out = &options.out;
-    let mut files = vec![(out.join("eta_map.csv"), csv(&maps))];
+    let mut figures = Vec::new();
     for m in &maps {
-        let path = out.join(format!(
-            "eta_map_mh{}.svg",
+        let stem = format!(
+            "eta_map_mh{}",
             flexrig_contact::validate::display(m.spec.m_h)
-        ));
-        let text = svg(m, &joint_text).map_err(|message| Error::Plot {
-            path: path.clone(),
-            message,
-        })?;
-        files.push((path, text));
+        );
+        let text =
+            svg(m, &joint_text, options.figures.width_pt()).map_err(|message| Error::Plot {
+                path: out.join(format!("{stem}.svg")),
+                message,
+            })?;
+        figures.push((stem, text));
     }
     ensure_dir(out)?;
-    for (path, text) in &files {
-        write_atomic(path, text.as_bytes())?;
+    let csv_path = out.join("eta_map.csv");
+    write_atomic(&csv_path, csv(&maps).as_bytes())?;
+    let mut files = vec![csv_path];
+    for (stem, text) in &figures {
+        files.extend(crate::plots::write_figure(
+            out,
+            stem,
+            text,
+            &options.figures,
+        )?);
     }
     let summaries = maps.iter().map(summary).collect();
     Ok(EtaMapResult {
         maps,
         summaries,
-        files: files.into_iter().map(|(p, _)| p).collect(),
+        files,
     })
 }
 
@@ -183,8 +195,10 @@ pub fn csv(maps: &[ComputedMap]) -> String {
     s
 }
 
-/// The four panels of one head mass.
-pub fn svg(m: &ComputedMap, joint: &str) -> Result<String, String> {
+/// The panels of one head mass at the printed width `width_pt` \[pt\]: η_FE, the lumped
+/// model's error, the effective γ (only when some point has one; otherwise a line under the
+/// title says why none fits) and the placed model's error.
+pub fn svg(m: &ComputedMap, joint: &str, width_pt: f64) -> Result<String, String> {
     let xs = m.spec.mass_ratio.values();
     let ys = m.spec.stiffness_ratio.values();
     let value = |f: &dyn Fn(&EtaRow) -> Option<f64>| -> Vec<Option<f64>> {
@@ -203,7 +217,7 @@ pub fn svg(m: &ComputedMap, joint: &str) -> Result<String, String> {
     let beats: Vec<bool> = eta.iter().map(|e| e.is_some_and(|e| e < BEATS)).collect();
     // both error maps on one scale, clamped at ±100 % so the region near 0 keeps its detail
     let (lumped_span, placed_span) = (1.0, 1.0);
-    let maps = [
+    let mut maps = vec![
         HeatMap {
             title: "η_FE = f_max(CL)/f_max(CJ)",
             x_label: "m_e/m_r",
@@ -255,11 +269,38 @@ pub fn svg(m: &ComputedMap, joint: &str) -> Result<String, String> {
             outline: None,
         },
     ];
-    let title = format!(
-        "Free head m_h = {} kg on the CL (FE) and CJ links, n = {}, {joint} (m_r = 10 kg, k_c = 1e8, v0 = 2 m/s)",
-        m.spec.m_h, m.spec.n
-    );
-    heatmaps_svg(&title, &maps)
+    let mut title = vec![
+        format!(
+            "Free head m_h = {} kg on the CL (FE) and CJ links, n = {}",
+            m.spec.m_h, m.spec.n
+        ),
+        format!(
+            "{joint}; m_r = {} kg, k_c = {} N/mⁿ, v_0 = {} m/s",
+            flexrig_lumped::fig6::M_R,
+            crate::plots::sci_label(flexrig_lumped::fig6::K_C),
+            flexrig_lumped::fig6::V0
+        ),
+    ];
+    if gamma.iter().all(Option::is_none) {
+        maps.remove(2);
+        title.push(gamma_note(m));
+    }
+    heatmaps_svg(&title, &maps, width_pt)
+}
+
+/// Why no point has an effective γ: how many lie above γ = 1 and below the payload alone.
+fn gamma_note(m: &ComputedMap) -> String {
+    let (mut above, mut below) = (0, 0);
+    for p in &m.points {
+        match p.row.as_ref().map(|r| r.gamma_eff) {
+            Ok(EffectiveGamma::AboveGammaOne) => above += 1,
+            Ok(EffectiveGamma::BelowPayloadOnly) => below += 1,
+            _ => {}
+        }
+    }
+    format!(
+        "Effective γ: no γ in (0, 1] fits at any point ({above} need γ > 1, {below} fall below the payload alone)"
+    )
 }
 
 /// Summary numbers of one map: points, failures, CL-beats-CJ count and the largest errors.

@@ -14,7 +14,7 @@ use serde::Serialize;
 use crate::Error;
 use crate::eta::contact_text;
 use crate::output::{ensure_dir, write_atomic};
-use crate::plots::{Curve, CurvePanel, log_x_curves_svg};
+use crate::plots::{eta_rotor_svg, write_figure};
 
 /// A point of the sweep (flexrig-impact's), for callers of this module.
 pub use flexrig_impact::rotor::RotorPoint;
@@ -31,6 +31,8 @@ pub struct EtaRotorOptions {
     pub n: Vec<f64>,
     /// The impact's settings (CL method, damping; the joint is the swept free hub).
     pub settings: EtaSettings,
+    /// Printed size and formats of the figure (`--size`, `--format`, `--dpi`).
+    pub figures: crate::plots::FigureOptions,
 }
 
 /// The sweep and the files written.
@@ -40,8 +42,10 @@ pub struct EtaRotorResult {
     pub points: Vec<RotorPoint>,
     /// eta_rotor.csv.
     pub csv: PathBuf,
-    /// eta_rotor.svg.
+    /// The figure in the first format asked for (eta_rotor.svg by default).
     pub svg: PathBuf,
+    /// The figure in every format asked for.
+    pub figures: Vec<PathBuf>,
 }
 
 /// Most Hertz exponents of one rotor sweep (each adds a curve per Fig. 6 case).
@@ -57,30 +61,30 @@ pub fn run(options: &EtaRotorOptions, cancel: &CancelToken) -> Result<EtaRotorRe
         });
     }
     let settings = &options.settings;
+    options.figures.validate()?;
     let points = rotor_sweep_until(&options.ratios, &options.n, settings, &cancel.flag())?;
-    let title = format!(
-        "η_FE from a freely pivoting link (J_R → 0) to the held joint (dashed), {} (m_r = 10 kg, k_c = 1e8, v0 = 2 m/s)",
-        contact_text(&settings.damping)
+    let subtitle = format!(
+        "{}; m_r = {} kg, k_c = {} N/mⁿ, v_0 = {} m/s",
+        contact_text(&settings.damping),
+        flexrig_lumped::fig6::M_R,
+        crate::plots::sci_label(flexrig_lumped::fig6::K_C),
+        flexrig_lumped::fig6::V0
     );
-    let svg_path = options.out.join("eta_rotor.svg");
     let csv_path = options.out.join("eta_rotor.csv");
-    let svg = log_x_curves_svg(
-        &title,
-        "rotor over link inertia J_R/(m_r L²/3)",
-        "η_FE = f_CL/f_CJ",
-        &panels(&points),
-    )
-    .map_err(|message| Error::Plot {
-        path: svg_path.clone(),
-        message,
+    let svg = eta_rotor_svg(&points, &subtitle, options.figures.width_pt()).map_err(|message| {
+        Error::Plot {
+            path: options.out.join("eta_rotor.svg"),
+            message,
+        }
     })?;
     ensure_dir(&options.out)?;
     write_atomic(&csv_path, csv(&points).as_bytes())?;
-    write_atomic(&svg_path, svg.as_bytes())?;
+    let figures = write_figure(&options.out, "eta_rotor", &svg, &options.figures)?;
     Ok(EtaRotorResult {
         points,
         csv: csv_path,
-        svg: svg_path,
+        svg: figures[0].clone(),
+        figures,
     })
 }
 
@@ -99,36 +103,4 @@ pub fn csv(points: &[RotorPoint]) -> String {
         );
     }
     s
-}
-
-/// One panel per head mass, one curve per (k_δ, m_e, n), the held η as its limit.
-fn panels(points: &[RotorPoint]) -> Vec<CurvePanel> {
-    let mut panels: Vec<CurvePanel> = Vec::new();
-    for p in points {
-        let title = format!("m_h = {} kg", p.case.m_h);
-        if panels.last().is_none_or(|panel| panel.title != title) {
-            panels.push(CurvePanel {
-                title,
-                curves: Vec::new(),
-            });
-        }
-        let panel = panels.last_mut().expect("pushed above");
-        let label = format!(
-            "k_δ = {:.0e} N/m, m_e = {} kg, n = {}",
-            p.case.k_delta, p.case.m_e, p.n
-        );
-        if panel.curves.last().is_none_or(|c| c.label != label) {
-            panel.curves.push(Curve {
-                label,
-                points: Vec::new(),
-                limit: None,
-            });
-        }
-        let curve = panel.curves.last_mut().expect("pushed above");
-        match p.inertia_ratio {
-            Some(r) => curve.points.push((r, p.eta_fe)),
-            None => curve.limit = Some(p.eta_fe),
-        }
-    }
-    panels
 }

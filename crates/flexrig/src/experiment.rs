@@ -22,6 +22,7 @@ use crate::Error;
 use crate::cancel::CancelToken;
 use crate::mcap_log::{LogRates, LogTarget, run_logged};
 use crate::output::{ensure_dir, write_atomic};
+use crate::plots::{FigureOptions, write_figure};
 use crate::progress::Progress;
 use crate::scenes::scene_text;
 
@@ -47,6 +48,8 @@ pub struct ExperimentOptions {
     /// Overrides of every scene of the experiment (`--set`); the jitter is added to the release
     /// angle that results.
     pub overrides: Vec<Override>,
+    /// Printed size and formats of fig9 (`--size`, `--format`, `--dpi`).
+    pub figures: FigureOptions,
 }
 
 impl ExperimentOptions {
@@ -60,6 +63,7 @@ impl ExperimentOptions {
             out,
             scenes: None,
             overrides: Vec::new(),
+            figures: FigureOptions::two_column_svg(),
         }
     }
 
@@ -79,21 +83,60 @@ impl ExperimentOptions {
                 allowed: "must lie in [0, 10] degrees".into(),
             });
         }
-        Ok(())
+        self.figures.validate()
+    }
+}
+
+/// What a run of the experiment ran with (read from the scene after the overrides), for the
+/// labels of its table and figure.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunInputs {
+    /// The robot's design as run: `cj` or `cl`.
+    pub design: String,
+    /// The operator block's material as run (e.g. `skinned_aluminium`).
+    pub block_material: String,
+    /// The operator block's mass m_h as run \[kg\].
+    pub block_mass_kg: f64,
+    /// The payload m_e as run \[kg\].
+    pub payload_kg: f64,
+}
+
+impl RunInputs {
+    /// The inputs of `scene` (overrides applied).
+    pub fn of(scene: &Scene) -> Self {
+        RunInputs {
+            design: design_key(scene.file.robot.design).into(),
+            block_material: scene.file.operator.block_material.clone(),
+            block_mass_kg: scene.block_mass_kg,
+            payload_kg: scene.file.robot.payload_kg,
+        }
+    }
+}
+
+/// `cj` or `cl`.
+pub fn design_key(design: flexrig_rig::scene::Design) -> &'static str {
+    match design {
+        flexrig_rig::scene::Design::Cj => "cj",
+        flexrig_rig::scene::Design::Cl => "cl",
     }
 }
 
 /// One run of the experiment.
 #[derive(Debug, Clone, Serialize)]
 pub struct RunRecord {
-    /// Scene name.
+    /// Scene name (of the scene file; what ran is in `inputs`).
     pub scene: String,
+    /// What the run ran with.
+    #[serde(flatten)]
+    pub inputs: RunInputs,
     /// Repeat index.
     pub repeat: usize,
     /// Release angle used \[deg\].
     pub release_angle_deg: f64,
     /// Peak contact force \[N\].
     pub peak_force_n: f64,
+    /// Time of the peak, from the release \[s\] (the log's time).
+    pub time_of_peak_s: f64,
     /// Impact speed [m/s].
     pub impact_velocity_mps: f64,
     /// Contact duration \[s\] (absent from the JSON for a run stopped before separation, as in
@@ -109,8 +152,12 @@ pub struct RunRecord {
 /// Mean and 95 % confidence interval of one configuration.
 #[derive(Debug, Clone, Serialize)]
 pub struct GroupStats {
-    /// Scene name.
+    /// Scene name (of the scene file; what ran is in `inputs`).
     pub scene: String,
+    /// What the runs ran with (those of the first run: the repeats differ only in the release
+    /// angle).
+    #[serde(flatten)]
+    pub inputs: RunInputs,
     /// Runs.
     pub n: usize,
     /// Mean peak force \[N\].
@@ -232,8 +279,10 @@ pub struct ExperimentResult {
     pub runs: Vec<RunRecord>,
     /// experiment.csv.
     pub csv: PathBuf,
-    /// fig9.svg.
+    /// fig9 in the first format asked for (fig9.svg by default).
     pub svg: PathBuf,
+    /// fig9 in every format asked for.
+    pub figures: Vec<PathBuf>,
 }
 
 /// Runs the experiment: the runs of [`plan`] in parallel (each writes its MCAP log into
@@ -262,19 +311,24 @@ pub fn run(
     let groups = group_stats(&records);
     let ratios = ratio_stats(&records);
     let csv_path = options.out.join("experiment.csv");
-    let svg_path = options.out.join("fig9.svg");
     write_atomic(&csv_path, csv(&records, &ratios).as_bytes())?;
-    let svg = crate::plots::fig9_svg(&groups, &ratios).map_err(|message| Error::Plot {
-        path: svg_path.clone(),
-        message,
-    })?;
-    write_atomic(&svg_path, svg.as_bytes())?;
+    let jitter = crate::plots::Jitter {
+        sd_deg: options.jitter_deg,
+        seed: options.seed,
+    };
+    let svg = crate::plots::fig9_svg(&groups, &ratios, jitter, options.figures.width_pt())
+        .map_err(|message| Error::Plot {
+            path: options.out.join("fig9.svg"),
+            message,
+        })?;
+    let figures = write_figure(&options.out, "fig9", &svg, &options.figures)?;
     Ok(ExperimentResult {
         groups,
         ratios,
         runs: records,
         csv: csv_path,
-        svg: svg_path,
+        svg: figures[0].clone(),
+        figures,
     })
 }
 
@@ -284,17 +338,13 @@ pub fn group_stats(records: &[RunRecord]) -> Vec<GroupStats> {
         .iter()
         .chain(FIG9B_SCENES.iter())
         .filter_map(|name| {
-            let peaks: Vec<f64> = records
-                .iter()
-                .filter(|r| r.scene == *name)
-                .map(|r| r.peak_force_n)
-                .collect();
-            if peaks.is_empty() {
-                return None;
-            }
+            let runs: Vec<&RunRecord> = records.iter().filter(|r| r.scene == *name).collect();
+            let peaks: Vec<f64> = runs.iter().map(|r| r.peak_force_n).collect();
+            let first = runs.first()?;
             let (mean, ci) = mean_ci95(&peaks);
             Some(GroupStats {
                 scene: name.to_string(),
+                inputs: first.inputs.clone(),
                 n: peaks.len(),
                 mean_peak_force_n: mean,
                 ci95_n: ci,
@@ -405,6 +455,7 @@ fn run_job(
         release_angle_deg: job.angle_deg,
     };
     let scene = Scene::from_file(scene.file, materials)?;
+    let inputs = RunInputs::of(&scene);
     let path = dir.join(format!("{}_{}.mcap", job.scene, job.repeat));
     let target = LogTarget {
         path: &path,
@@ -421,9 +472,11 @@ fn run_job(
     )?;
     Ok(RunRecord {
         scene: job.scene.clone(),
+        inputs,
         repeat: job.repeat,
         release_angle_deg: job.angle_deg,
         peak_force_n: summary.peak_force_n,
+        time_of_peak_s: summary.time_of_peak_s,
         impact_velocity_mps: summary.impact_velocity_mps,
         contact_duration_s: summary.contact_duration_s,
         max_indentation_m: summary.max_indentation_m,
@@ -435,18 +488,23 @@ fn run_job(
 /// case's mean ratio with its 95 % CI half-width (empty with one pair).
 pub fn csv(records: &[RunRecord], ratios: &[RatioStats]) -> String {
     let mut text = String::from(
-        "scene,repeat,release_angle_deg,peak_force_n,impact_velocity_mps,contact_duration_s,max_indentation_m,mcap,cl_over_cj,cl_over_cj_mean,cl_over_cj_ci95\n",
+        "scene,design,block_material,block_mass_kg,payload_kg,repeat,release_angle_deg,peak_force_n,time_of_peak_s,impact_velocity_mps,contact_duration_s,max_indentation_m,mcap,cl_over_cj,cl_over_cj_mean,cl_over_cj_ci95\n",
     );
     let optional = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.9e}"));
     for r in records {
         let (pair, stats) = pair_columns(records, ratios, r);
         let _ = writeln!(
             text,
-            "{},{},{:.6},{:.9e},{:.9e},{},{:.9e},{},{},{},{}",
+            "{},{},{},{},{},{},{:.6},{:.9e},{:.9e},{:.9e},{},{:.9e},{},{},{},{}",
             r.scene,
+            r.inputs.design,
+            r.inputs.block_material,
+            r.inputs.block_mass_kg,
+            r.inputs.payload_kg,
             r.repeat,
             r.release_angle_deg,
             r.peak_force_n,
+            r.time_of_peak_s,
             r.impact_velocity_mps,
             optional(r.contact_duration_s),
             r.max_indentation_m,
@@ -497,9 +555,16 @@ mod tests {
     fn record(scene: &str, repeat: usize, peak: f64) -> RunRecord {
         RunRecord {
             scene: scene.into(),
+            inputs: RunInputs {
+                design: scene[..2].into(),
+                block_material: "skinned_aluminium".into(),
+                block_mass_kg: 0.398,
+                payload_kg: 0.412,
+            },
             repeat,
             release_angle_deg: 30.0 + repeat as f64,
             peak_force_n: peak,
+            time_of_peak_s: 0.28,
             impact_velocity_mps: 1.0,
             contact_duration_s: None,
             max_indentation_m: 1e-3,

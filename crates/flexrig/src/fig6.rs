@@ -8,7 +8,7 @@ use flexrig_lumped::fig6::{self, EtaCurve};
 
 use crate::Error;
 use crate::output::{ensure_dir, write_atomic};
-use crate::plots::fig6_svg;
+use crate::plots::{FigureOptions, fig6_svg, write_figure};
 
 /// Default number of γ samples over [0.5, 1].
 pub const DEFAULT_POINTS: usize = 101;
@@ -22,6 +22,8 @@ pub struct Fig6Options {
     pub out: PathBuf,
     /// Number of γ samples over [0.5, 1], at least 2 (`--points`).
     pub points: usize,
+    /// Printed size and formats of the figure (`--size`, `--format`, `--dpi`).
+    pub figures: FigureOptions,
 }
 
 /// The curves and the files written.
@@ -31,8 +33,10 @@ pub struct Fig6Result {
     pub curves: Vec<EtaCurve>,
     /// fig6.csv.
     pub csv: PathBuf,
-    /// fig6.svg.
+    /// The figure in the first format asked for (fig6.svg by default).
     pub svg: PathBuf,
+    /// The figure in every format asked for.
+    pub figures: Vec<PathBuf>,
 }
 
 /// Most γ samples of a curve (16 curves of them are kept in memory and written).
@@ -48,10 +52,10 @@ pub fn run(options: &Fig6Options) -> Result<Fig6Result, Error> {
             allowed: format!("must be from 2 to {MAX_POINTS}"),
         });
     }
+    options.figures.validate()?;
     let curves = fig6::fig6(options.points)?;
     ensure_dir(&options.out)?;
     let csv_path = options.out.join("fig6.csv");
-    let svg_path = options.out.join("fig6.svg");
     write_atomic(&csv_path, csv(&curves).as_bytes())?;
     let dense;
     let plotted = if options.points >= PLOT_POINTS {
@@ -60,15 +64,16 @@ pub fn run(options: &Fig6Options) -> Result<Fig6Result, Error> {
         dense = fig6::fig6(PLOT_POINTS)?;
         &dense
     };
-    let svg = fig6_svg(plotted).map_err(|message| Error::Plot {
-        path: svg_path.clone(),
+    let svg = fig6_svg(plotted, options.figures.width_pt()).map_err(|message| Error::Plot {
+        path: options.out.join("fig6.svg"),
         message,
     })?;
-    write_atomic(&svg_path, svg.as_bytes())?;
+    let figures = write_figure(&options.out, "fig6", &svg, &options.figures)?;
     Ok(Fig6Result {
         curves,
         csv: csv_path,
-        svg: svg_path,
+        svg: figures[0].clone(),
+        figures,
     })
 }
 

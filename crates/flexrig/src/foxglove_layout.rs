@@ -91,8 +91,8 @@ pub fn for_log(window: Option<TimeWindow>) -> Value {
         plot(
             "Indentation",
             vec![series(
-                "/contact.indentation_m",
-                "indentation [m]",
+                "/contact.indentation_mm",
+                "indentation [mm]",
                 CONTACT,
                 2.0,
             )],
@@ -141,7 +141,7 @@ fn plot(title: &str, paths: Vec<Value>, window: Option<TimeWindow>) -> Value {
         "showXAxisLabels": true,
         "showYAxisLabels": true,
         "showLegend": true,
-        "legendDisplay": "floating",
+        "legendDisplay": "top",
         "showPlotValuesInLegend": false,
         "isSynced": true,
         "xAxisVal": "timestamp",

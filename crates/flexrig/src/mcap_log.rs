@@ -61,6 +61,8 @@ pub struct ContactState {
     pub rate_mps: f64,
     /// Contact force \[N\].
     pub force_n: f64,
+    /// Indentation δ in millimetres (the same as `indentation_m`, for the plots) \[mm\].
+    pub indentation_mm: f64,
 }
 
 /// Mechanical energy.
@@ -225,6 +227,42 @@ fn drawn_beam(beam: &flexrig_rig::BeamLink, scale: f64) -> (Vec<Point3>, f64) {
 
 /// Where the link's label sits \[m, world\]: on the link's line, behind the robot axis.
 const LABEL_AT: Vector = Vector::new(-0.04, 0.0, 0.0);
+/// Where the simulation clock sits \[m, world\]: behind the robot axis, beyond the link's label.
+const CLOCK_AT: Vector = Vector::new(-0.085, 0.0, 0.0);
+
+/// Length of the contact-force arrow per newton \[m/N\]: 0.3 mm/N keeps the bundled scenes'
+/// peaks (up to about 280 N) under 85 mm, within the view.
+pub const ARROW_M_PER_N: f64 = 3e-4;
+/// Its head: length and diameter \[m\], fixed so that it stays visible at any force.
+const ARROW_HEAD: (f64, f64) = (0.012, 0.012);
+
+/// The contact-force arrow on the block (Okabe–Ito reddish purple: not the axes' red): along
+/// `normal` (the force on the block), [`ARROW_M_PER_N`] long per newton (at least its head),
+/// its head's tip at the contact `point` so that it pushes on the block from the dome's side
+/// (seen through the translucent dome), and its label (the force in N) at its tail.
+fn force_arrow(
+    point: Vector,
+    normal: Vector,
+    force: f64,
+) -> (Vec<ArrowPrimitive>, Vec<TextPrimitive>) {
+    let length = (force * ARROW_M_PER_N).max(ARROW_HEAD.0);
+    let rotation = arrow_rotation(normal);
+    let purple = color(0.8, 0.475, 0.655);
+    let tail = point - normal.normalize() * length;
+    let arrow = ArrowPrimitive {
+        pose: Some(pose(&Pose::from_parts(tail, rotation))),
+        shaft_length: length - ARROW_HEAD.0,
+        shaft_diameter: 0.004,
+        head_length: ARROW_HEAD.0,
+        head_diameter: ARROW_HEAD.1,
+        color: purple,
+    };
+    let text = TextPrimitive {
+        color: color(0.5, 0.2, 0.4),
+        ..label(format!("contact force {force:.0} N"), tail)
+    };
+    (vec![arrow], vec![text])
+}
 
 /// A label at `at` \[m, world\], facing the camera, 15 px high.
 fn label(text: String, at: Vector) -> TextPrimitive {
@@ -455,7 +493,8 @@ impl<W: Write + Seek> McapRecorder<W> {
                     .unwrap_or("unknown")
                     .to_string(),
             ),
-            ("scene", f.name.clone()),
+            ("scene", name_as_run(&f.name, f.robot.design)),
+            ("scene_file_name", f.name.clone()),
             ("design", format!("{:?}", f.robot.design).to_lowercase()),
             ("block_material", f.operator.block_material.clone()),
             ("block_mass_kg", scene.block_mass_kg.to_string()),
@@ -647,27 +686,29 @@ impl<W: Write + Seek> McapRecorder<W> {
             },
             self.robot_entity(f, ts),
         ];
-        let arrows = match f.contact {
-            Some(c) if c.force > 0.0 => {
-                // 1 mm of arrow per N, along the force on the block.
-                let length = (c.force * 1e-3).max(1e-3);
-                let rotation = arrow_rotation(c.normal);
-                vec![ArrowPrimitive {
-                    pose: Some(pose(&Pose::from_parts(c.point, rotation))),
-                    shaft_length: 0.8 * length,
-                    shaft_diameter: 0.004,
-                    head_length: 0.2 * length,
-                    head_diameter: 0.01,
-                    color: color(0.9, 0.1, 0.1),
-                }]
-            }
-            _ => vec![],
+        let (arrows, texts) = match f.contact {
+            Some(c) if c.force > 0.0 => force_arrow(c.point, c.normal, c.force),
+            _ => (vec![], vec![]),
         };
         entities.push(SceneEntity {
             timestamp: Some(ts),
             frame_id: "world".into(),
             id: "contact_force".into(),
             arrows,
+            texts,
+            ..Default::default()
+        });
+        entities.push(SceneEntity {
+            timestamp: Some(ts),
+            frame_id: "world".into(),
+            id: "clock".into(),
+            texts: vec![TextPrimitive {
+                color: color(0.15, 0.15, 0.15),
+                ..label(
+                    format!("t = {:.2} ms of simulation (from the release)", f.t * 1e3),
+                    CLOCK_AT,
+                )
+            }],
             ..Default::default()
         });
         self.write(
@@ -722,7 +763,7 @@ impl<W: Write + Seek> McapRecorder<W> {
                 ];
                 entity.texts = vec![label(
                     format!(
-                        "beam deflection ×{} (true tip deflection {:.2} mm)",
+                        "CL: beam deflection ×{} (true tip deflection {:.2} mm)",
                         self.deformation_scale,
                         tip_m * 1e3
                     ),
@@ -735,16 +776,19 @@ impl<W: Write + Seek> McapRecorder<W> {
             }
             None => {
                 let p = &f.dome_body_pose;
-                entity.lines = vec![line(
-                    vec![
-                        point(p.transform_point(Vector::ZERO)),
-                        point(p.transform_point(Vector::new(length, 0.0, 0.0))),
-                    ],
-                    blue,
-                    4.0,
-                )];
+                entity.lines = vec![
+                    line(
+                        vec![
+                            point(p.transform_point(Vector::ZERO)),
+                            point(p.transform_point(Vector::new(length, 0.0, 0.0))),
+                        ],
+                        blue,
+                        4.0,
+                    ),
+                    line(torsion_spring(p), color(0.1, 0.55, 0.4), 2.5),
+                ];
                 entity.texts = vec![label(
-                    "rigid link on the torsion spring, true scale".into(),
+                    "CJ: rigid link on the torsion spring, true scale".into(),
                     LABEL_AT,
                 )];
             }
@@ -806,6 +850,23 @@ impl<W: Write + Seek> McapRecorder<W> {
     }
 }
 
+/// The scene's name as run: a name that begins with the other design's prefix (`cj_`, `cl_`:
+/// the design was overridden) gets the design that ran, with the file's name after it, e.g.
+/// `cl_aluminium (scene cj_aluminium, design set to CL)`.
+pub fn name_as_run(name: &str, design: flexrig_rig::scene::Design) -> String {
+    let ran = match design {
+        flexrig_rig::scene::Design::Cj => "cj",
+        flexrig_rig::scene::Design::Cl => "cl",
+    };
+    match name.split_once('_') {
+        Some((prefix, rest)) if (prefix == "cj" || prefix == "cl") && prefix != ran => format!(
+            "{ran}_{rest} (scene {name}, design set to {})",
+            ran.to_uppercase()
+        ),
+        _ => name.to_string(),
+    }
+}
+
 /// The `view` metadata record: how the 3D view draws the rig (`deformation_scale`).
 fn view_metadata(scale: f64, flexible_link: bool) -> BTreeMap<String, String> {
     let (scale, applies) = if flexible_link {
@@ -832,6 +893,24 @@ fn view_metadata(scale: f64, flexible_link: bool) -> BTreeMap<String, String> {
     .collect()
 }
 
+/// The CJ's torsion spring drawn as a flat spiral of three turns around the robot axis, 8 to
+/// 30 mm from it, just above the link, its outer end on the link (it turns with `link`) \[m,
+/// world\].
+fn torsion_spring(link: &Pose) -> Vec<Point3> {
+    let axis = link.transform_point(Vector::ZERO);
+    let along = link.rotation * Vector::X;
+    let start = along.y.atan2(along.x);
+    let n = 120;
+    (0..=n)
+        .map(|i| {
+            let t = f64::from(i) / f64::from(n);
+            let r = 0.008 + 0.022 * t;
+            let phi = start - 2.0 * std::f64::consts::PI * 3.0 * (1.0 - t);
+            point(axis + Vector::new(r * phi.cos(), r * phi.sin(), 0.012))
+        })
+        .collect()
+}
+
 /// The rotation taking +x (the Foxglove arrow axis) onto `direction`.
 fn arrow_rotation(direction: Vector) -> flexrig_contact::math::Rotation {
     flexrig_contact::math::Rotation::from_rotation_arc(Vector::X, direction.normalize())
@@ -854,6 +933,7 @@ impl<W: Write + Seek> Recorder for McapRecorder<W> {
                     indentation_m: c.indentation,
                     rate_mps: c.rate,
                     force_n: c.force,
+                    indentation_mm: c.indentation * 1e3,
                 },
             )?;
         }

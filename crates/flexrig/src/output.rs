@@ -45,6 +45,10 @@ pub fn check_output_target(path: &Path) -> Result<(), Error> {
     })
 }
 
+/// A number as a message quotes it: plain for ordinary magnitudes, in exponent form for very
+/// small or large ones (1e300, not 301 digits).
+pub use flexrig_contact::validate::display as display_number;
+
 /// Writes `bytes` to `path` atomically: a half-written file is never left at `path`; a path
 /// that is not a regular file is refused ([`check_output_target`]).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {

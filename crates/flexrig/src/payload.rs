@@ -31,8 +31,11 @@ pub struct PayloadOptions {
     pub to: f64,
     /// Payloads, log-spaced, in [2, 1000] (`--points`).
     pub points: usize,
-    /// Directory for payload.csv and the MCAP logs of three points (created if missing; `--out`).
+    /// Directory for payload.csv, the figure and the MCAP logs of three points (created if
+    /// missing; `--out`).
     pub out: PathBuf,
+    /// Printed size and formats of the figure payload.svg (`--size`, `--format`, `--dpi`).
+    pub figures: crate::plots::FigureOptions,
 }
 
 /// One payload: both designs' peaks and their ratio.
@@ -57,6 +60,8 @@ pub struct PayloadResult {
     pub csv: PathBuf,
     /// The MCAP logs (CJ and CL at the smallest, the middle and the largest payload).
     pub logs: Vec<PathBuf>,
+    /// The figure in every format asked for (payload.svg, …).
+    pub figures: Vec<PathBuf>,
 }
 
 /// The bundled scene's text, and the ranges checked (errors name the flag).
@@ -223,15 +228,31 @@ fn csv(rows: &[PayloadRow]) -> String {
 /// Runs the study: the curve, the three logged points, payload.csv.
 pub fn run(options: &PayloadOptions, cancel: &CancelToken) -> Result<PayloadResult, Error> {
     let text = check(options)?;
+    options.figures.validate()?;
     let payloads = payloads(options);
     let rows = payload_curve(&text, &payloads, cancel)?;
     ensure_dir(&options.out)?;
     let logs = log_three(&text, &payloads, &options.out, cancel)?;
     let csv_path = options.out.join("payload.csv");
     write_atomic(&csv_path, csv(&rows).as_bytes())?;
+    let scene = flexrig_rig::Scene::from_toml_str(&text, &flexrig_contact::Materials::bundled()?)?;
+    let operator = format!(
+        "{} operator, m_h = {} ({}): CJ and CL, release to separation",
+        scene.file.operator.block_material.replace('_', " "),
+        crate::plots::grams(scene.block_mass_kg),
+        options.scene
+    );
+    let svg = crate::plots::payload_svg(&rows, &operator, options.figures.width_pt()).map_err(
+        |message| Error::Plot {
+            path: options.out.join("payload.svg"),
+            message,
+        },
+    )?;
+    let figures = crate::plots::write_figure(&options.out, "payload", &svg, &options.figures)?;
     Ok(PayloadResult {
         rows,
         csv: csv_path,
         logs,
+        figures,
     })
 }

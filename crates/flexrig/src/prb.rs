@@ -9,8 +9,8 @@ use flexrig_beam::prb::{default_load_indices, fit_prb, trace_tip_path_with};
 use flexrig_beam::{ModalDirection, modal_analysis};
 
 use crate::Error;
-use crate::output::{ensure_dir, write_atomic};
-use crate::plots::prb_svg;
+use crate::output::ensure_dir;
+use crate::plots::{prb_svg, write_figure};
 
 /// The fit's inputs and results and the published references (flexrig-beam's), for callers of
 /// this module.
@@ -32,6 +32,8 @@ pub struct PrbOptions {
     pub criterion: ErrorMeasure,
     /// Directory for prb.svg (created if missing; `--out`).
     pub out: PathBuf,
+    /// Printed size and formats of the figure (`--size`, `--format`, `--dpi`).
+    pub figures: crate::plots::FigureOptions,
 }
 
 /// Payload-to-beam mass ratios μ = m_e/m_r for the effective-mass comparison: none, the paper's
@@ -87,14 +89,17 @@ pub struct PrbResult {
     pub other: PrbFit,
     /// The FE beam share of the effective mass at each of [`PAYLOAD_RATIOS`].
     pub shares: Vec<MassShare>,
-    /// prb.svg.
+    /// The figure in the first format asked for (prb.svg by default).
     pub svg: PathBuf,
+    /// The figure in every format asked for.
+    pub figures: Vec<PathBuf>,
 }
 
 /// Traces the tip path, fits the PRB model by both criteria, compares the effective mass and
 /// draws prb.svg.
 pub fn run(options: &PrbOptions) -> Result<PrbResult, Error> {
     check_elements(options.elements)?;
+    options.figures.validate()?;
     let path = trace_tip_path_with(
         options.kinematics,
         options.elements,
@@ -112,17 +117,17 @@ pub fn run(options: &PrbOptions) -> Result<PrbResult, Error> {
         })
         .collect::<Result<Vec<_>, Error>>()?;
     ensure_dir(&options.out)?;
-    let svg_path = options.out.join("prb.svg");
-    let svg = prb_svg(&path, &fit).map_err(|message| Error::Plot {
-        path: svg_path.clone(),
+    let svg = prb_svg(&path, &fit, options.figures.width_pt()).map_err(|message| Error::Plot {
+        path: options.out.join("prb.svg"),
         message,
     })?;
-    write_atomic(&svg_path, svg.as_bytes())?;
+    let figures = write_figure(&options.out, "prb", &svg, &options.figures)?;
     Ok(PrbResult {
         path,
         fit,
         other,
         shares,
-        svg: svg_path,
+        svg: figures[0].clone(),
+        figures,
     })
 }

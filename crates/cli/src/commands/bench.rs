@@ -22,11 +22,14 @@ pub struct BenchArgs {
     /// Print JSON rows instead of the tables.
     #[arg(long)]
     pub json: bool,
+    /// Size and formats of the bench_*.svg figures.
+    #[command(flatten)]
+    pub figure: super::figure_args::FigureArgs,
 }
 
 /// Runs `flexrig bench`.
 pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), Error> {
-    let report = flexrig::bench::run(args.quick, &args.out)?;
+    let report = flexrig::bench::run(args.quick, &args.out, &args.figure.options()?)?;
     let (rows, files, peer_ratio) = (
         &report.rows,
         &report.plots,

@@ -72,6 +72,9 @@ pub struct EtaArgs {
     /// Print JSON instead of the table.
     #[arg(long)]
     pub json: bool,
+    /// Size and formats of eta.svg and eta_fig6.svg.
+    #[command(flatten)]
+    pub figure: super::figure_args::FigureArgs,
 }
 
 fn settings(args: &EtaArgs) -> Result<EtaSettings, Error> {
@@ -155,7 +158,7 @@ fn method_text(method: &ClMethod) -> String {
 /// Runs `flexrig eta`.
 pub fn run(args: &EtaArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     let settings = settings(args)?;
-    let r = flexrig::eta::run(&settings, &args.out, cancel)?;
+    let r = flexrig::eta::run(&settings, &args.out, &args.figure.options()?, cancel)?;
     let (rows, csv_path, svg_path, fig6_path) = (&r.rows, &r.csv, &r.svg, &r.fig6_svg);
     let joint = joint_text(&settings.joint);
     if args.json {

@@ -52,6 +52,9 @@ pub struct EtaMapArgs {
     /// Print JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
+    /// Size and formats of the figures.
+    #[command(flatten)]
+    pub figure: super::figure_args::FigureArgs,
 }
 
 /// The map's ranges and exponent, checked, with the error named by flag.
@@ -107,6 +110,7 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resu
             out: args.out.clone(),
             specs,
             settings,
+            figures: args.figure.options()?,
         },
         cancel,
     )

@@ -37,6 +37,9 @@ pub struct EtaRotorArgs {
     /// Print JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
+    /// Size and formats of eta_rotor.svg.
+    #[command(flatten)]
+    pub figure: super::figure_args::FigureArgs,
 }
 
 /// Runs `flexrig eta-rotor`.
@@ -79,6 +82,7 @@ pub fn run(args: &EtaRotorArgs, out: &mut dyn Write, cancel: &CancelToken) -> Re
             ratios,
             n: args.n.clone(),
             settings,
+            figures: args.figure.options()?,
         },
         cancel,
     )

@@ -9,6 +9,7 @@ use flexrig::experiment::{self, ExperimentOptions, GroupStats, RatioStats, mean_
 use flexrig::{CancelToken, Error};
 use serde_json::json;
 
+use super::figure_args::FigureArgs;
 use crate::print::{Bar, line, parse_overrides, print_json};
 
 /// Arguments of `flexrig experiment`.
@@ -37,6 +38,9 @@ pub struct ExperimentArgs {
     /// Print JSON instead of the table.
     #[arg(long)]
     pub json: bool,
+    /// Size and formats of fig9.
+    #[command(flatten)]
+    pub figure: FigureArgs,
 }
 
 impl ExperimentArgs {
@@ -49,6 +53,7 @@ impl ExperimentArgs {
             out: self.out.clone(),
             scenes: self.scenes.clone(),
             overrides: Vec::new(),
+            figures: self.figure.options()?,
         };
         options.validate()?;
         options.overrides = parse_overrides(&self.set)?;
@@ -76,17 +81,22 @@ pub fn report(
     if json {
         return print_json(
             out,
-            &json!({"groups": result.groups, "ratios": result.ratios, "runs": result.runs, "csv": result.csv, "svg": result.svg}),
+            &json!({"groups": result.groups, "ratios": result.ratios, "runs": result.runs, "csv": result.csv, "svg": result.svg, "figures": result.figures}),
         );
     }
     print_table(out, &result.groups, &result.ratios)?;
+    let figures: Vec<String> = result
+        .figures
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect();
     line(
         out,
         format!(
             "Wrote {} MCAP logs, {} and {} in {}",
             result.runs.len(),
             result.csv.display(),
-            result.svg.display(),
+            figures.join(", "),
             options.out.display()
         ),
     )?;
@@ -115,16 +125,20 @@ fn print_table(
     line(
         out,
         format!(
-            "{:<16} {:>4} {:>14} {:>10}",
-            "scene", "runs", "peak [N]", "CI [N]"
+            "{:<16} {:>6} {:>18} {:>9} {:>9} {:>4} {:>14} {:>10}",
+            "scene file", "design", "operator", "m_h [g]", "m_e [g]", "runs", "peak [N]", "CI [N]"
         ),
     )?;
     for g in groups {
         line(
             out,
             format!(
-                "{:<16} {:>4} {:>14.3} {:>10}",
+                "{:<16} {:>6} {:>18} {:>9.1} {:>9.1} {:>4} {:>14.3} {:>10}",
                 g.scene,
+                g.inputs.design.to_uppercase(),
+                g.inputs.block_material,
+                g.inputs.block_mass_kg * 1e3,
+                g.inputs.payload_kg * 1e3,
                 g.n,
                 g.mean_peak_force_n,
                 plus_minus(g.ci95_n, 3)
@@ -147,8 +161,48 @@ fn print_table(
             ),
         )?;
     }
-    line(
-        out,
-        "The paper: CL slightly below CJ with the 412 g payload, clearly below with the light load.",
-    )
+    for note in design_notes(groups) {
+        line(out, note)?;
+    }
+    line(out, paper_comparison(groups))
+}
+
+/// A note for each scene whose file name says one design and whose run (after `--set`) was the
+/// other.
+fn design_notes(groups: &[GroupStats]) -> Vec<String> {
+    groups
+        .iter()
+        .filter(|g| {
+            let named = &g.scene[..2.min(g.scene.len())];
+            (named == "cj" || named == "cl") && named != g.inputs.design
+        })
+        .map(|g| {
+            format!(
+                "Note: scene file {} ran as {} (the overrides set robot.design).",
+                g.scene,
+                g.inputs.design.to_uppercase()
+            )
+        })
+        .collect()
+}
+
+/// The paper's finding for comparison, only when the runs had the paper's designs and payloads
+/// (CJ and CL, 412 g on the test bed, 100 g light load); otherwise says why it does not apply.
+fn paper_comparison(groups: &[GroupStats]) -> String {
+    let as_paper = groups.iter().all(|g| {
+        let payload = if g.scene.ends_with("light_load") {
+            0.1
+        } else {
+            0.412
+        };
+        g.scene.starts_with(&g.inputs.design) && (g.inputs.payload_kg - payload).abs() < 1e-9
+    });
+    if as_paper {
+        "The paper: CL slightly below CJ with the 412 g payload, clearly below with the light load."
+            .into()
+    } else {
+        "The paper's comparison (CJ vs CL, 412 g payload, 100 g light load) does not apply: \
+         these runs changed the design or the payload."
+            .into()
+    }
 }

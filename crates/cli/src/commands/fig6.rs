@@ -23,6 +23,9 @@ pub struct Fig6Args {
     /// Print JSON instead of the table.
     #[arg(long)]
     pub json: bool,
+    /// Size and formats of fig6.svg.
+    #[command(flatten)]
+    pub figure: super::figure_args::FigureArgs,
 }
 
 /// Runs `flexrig fig6`.
@@ -30,6 +33,7 @@ pub fn run(args: &Fig6Args, out: &mut dyn Write) -> Result<(), Error> {
     let result = flexrig::fig6::run(&Fig6Options {
         out: args.out.clone(),
         points: args.points,
+        figures: args.figure.options()?,
     })?;
     if args.json {
         let cases: Vec<_> = result

@@ -80,7 +80,7 @@ impl DampingArgs {
         let stray = |arg: &str, value: Option<f64>, with: &str| match value {
             Some(v) => Err(bad(
                 arg,
-                flexrig_contact::validate::display(v),
+                flexrig::output::display_number(v),
                 &format!("only with --damping {with}"),
             )),
             None => Ok(()),
@@ -120,7 +120,7 @@ pub fn joint_from_args(joint: JointArg, rotor_inertia: Option<f64>) -> Result<Jo
         (JointArg::Held, Some(j)) => {
             return Err(Error::InvalidArgument {
                 arg: "--rotor-inertia".into(),
-                value: flexrig_contact::validate::display(j),
+                value: flexrig::output::display_number(j),
                 allowed: "only with --joint free-hub".into(),
             });
         }

@@ -8,6 +8,7 @@ pub mod eta_map;
 pub mod eta_rotor;
 pub mod experiment;
 pub mod fig6;
+pub mod figure_args;
 pub mod fit;
 pub mod impact;
 pub mod impact_args;

@@ -32,6 +32,9 @@ pub struct PayloadArgs {
     /// Print JSON instead of the table.
     #[arg(long)]
     pub json: bool,
+    /// Size and formats of payload.svg.
+    #[command(flatten)]
+    pub figure: super::figure_args::FigureArgs,
 }
 
 /// Runs `flexrig payload`.
@@ -43,12 +46,16 @@ pub fn run(args: &PayloadArgs, out: &mut dyn Write, cancel: &CancelToken) -> Res
             to: args.to,
             points: args.points,
             out: args.out.clone(),
+            figures: args.figure.options()?,
         },
         cancel,
     )?;
     let (rows, csv_path, logs) = (&result.rows, &result.csv, &result.logs);
     if args.json {
-        return print_json(out, &json!({ "rows": rows, "csv": csv_path, "logs": logs }));
+        return print_json(
+            out,
+            &json!({ "rows": rows, "csv": csv_path, "logs": logs, "figures": result.figures }),
+        );
     }
     line(
         out,
@@ -76,8 +83,14 @@ pub fn run(args: &PayloadArgs, out: &mut dyn Write, cancel: &CancelToken) -> Res
     line(
         out,
         format!(
-            "Wrote {} and {} logs in {}",
+            "Wrote {}, {} and {} logs in {}",
             csv_path.display(),
+            result
+                .figures
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
             logs.len(),
             args.out.display()
         ),

@@ -34,6 +34,9 @@ pub struct PrbArgs {
     /// Print JSON instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Size and formats of prb.svg.
+    #[command(flatten)]
+    pub figure: super::figure_args::FigureArgs,
 }
 
 /// Runs the PRB check.
@@ -66,6 +69,7 @@ pub fn run(args: &PrbArgs, out: &mut dyn Write) -> Result<(), Error> {
         kinematics,
         criterion: measure,
         out: args.out.clone(),
+        figures: args.figure.options()?,
     })?;
     let (fit, other, svg_path) = (r.fit, r.other, &r.svg);
     let pi = std::f64::consts::PI;

@@ -5,54 +5,106 @@ use flexrig_impact::eta::EtaRow;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
-use super::{GREY, GRID, PALETTE, err, font, px, render, stroke, text};
+use super::{
+    GREY, GRID, LABEL_PT, PALETTE, TICK_PT, TITLE_PT, err, font, px, render, sci_label, stroke,
+    text, text_width_pt,
+};
 
-/// Nominal width of the figure [px]; the height grows with the rows.
-const WIDTH: u32 = 900;
-/// Height per row [px].
-const ROW: u32 = 26;
+/// Height per row \[pt\].
+const ROW: u32 = 12;
+/// Title, legend and axis \[pt\].
+const FRAME: u32 = 80;
 
-/// The dot plot of `rows` (as `flexrig eta` prints them), titled with `joint`.
-pub fn eta_svg(rows: &[EtaRow], joint: &str) -> Result<String, String> {
-    let height = 150 + ROW * rows.len() as u32;
+/// The row label of `r`: its case and exponent.
+fn row_label(r: &EtaRow) -> String {
+    format!(
+        "{} kg, {} N/m, {} kg, n = {}",
+        r.case.m_h,
+        sci_label(r.case.k_delta),
+        r.case.m_e,
+        r.n
+    )
+}
+
+/// The dot plot of `rows` (as `flexrig eta` prints them), titled with `joint`, at the printed
+/// width `width_pt` \[pt\].
+pub fn eta_svg(rows: &[EtaRow], joint: &str, width_pt: f64) -> Result<String, String> {
+    let height = FRAME + ROW * rows.len() as u32;
     let x_max = rows
         .iter()
         .flat_map(|r| [r.eta_fe, r.eta_lumped_2_3])
         .fold(1.0_f64, f64::max);
     let x_max = (x_max * 10.0).ceil() / 10.0 + 0.05;
-    render((WIDTH, height), |root| {
-        let title = format!(
-            "η = f_max(CL)/f_max(CJ): finite elements (filled) vs the lumped model's η(2/3) (hollow); {joint} joint"
-        );
+    let labels: Vec<String> = rows.iter().map(row_label).collect();
+    let label_w = labels
+        .iter()
+        .map(|l| text_width_pt(l, TICK_PT))
+        .fold(text_width_pt("m_h, k_δ, m_e, n", TICK_PT), f64::max)
+        + 8.0;
+    render((width_pt.round() as u32, height), |root| {
+        let w = width_pt.round() as i32;
+        let title = if text_width_pt(
+            "η = f_max(CL)/f_max(CJ): finite elements vs the lumped η(2/3), held joint",
+            TITLE_PT,
+        ) < width_pt
+        {
+            format!("η = f_max(CL)/f_max(CJ): finite elements vs the lumped η(2/3), {joint} joint")
+        } else {
+            format!("η = f_max(CL)/f_max(CJ), {joint} joint")
+        };
         root.draw(&Text::new(
             title,
-            (px(WIDTH as i32 / 2), px(10)),
-            text(14.0, BLACK, HPos::Center, VPos::Top),
+            (px(w / 2), px(3)),
+            text(TITLE_PT, BLACK, HPos::Center, VPos::Top),
         ))
         .map_err(err)?;
-        let body = root.margin(px(40), px(20), px(10), px(20));
+        // legend
+        let y = px(20);
+        let x0 = px(4);
+        root.draw(&Circle::new((x0 + px(3), y), px(3), PALETTE[0].filled()))
+            .map_err(err)?;
+        let fe = "finite elements η_FE";
+        root.draw(&Text::new(
+            fe,
+            (x0 + px(9), y),
+            text(LABEL_PT, BLACK, HPos::Left, VPos::Center),
+        ))
+        .map_err(err)?;
+        let x1 = x0 + px((text_width_pt(fe, LABEL_PT) + 22.0) as i32);
+        root.draw(&Circle::new(
+            (x1 + px(3), y),
+            px(3),
+            stroke(PALETTE[1], 1.25),
+        ))
+        .map_err(err)?;
+        root.draw(&Text::new(
+            "lumped model, η(2/3)",
+            (x1 + px(9), y),
+            text(LABEL_PT, BLACK, HPos::Left, VPos::Center),
+        ))
+        .map_err(err)?;
+        let body = root.margin(px(40), px(4), px(4), px(10));
+        body.draw(&Text::new(
+            "m_h, k_δ, m_e, n",
+            (px(label_w as i32 - 6), -px(2)),
+            text(TICK_PT, GREY, HPos::Right, VPos::Bottom),
+        ))
+        .map_err(err)?;
         let n = rows.len() as f64;
         let mut chart = ChartBuilder::on(&body)
-            .x_label_area_size(px(40))
-            .y_label_area_size(px(300))
+            .x_label_area_size(px(26))
+            .y_label_area_size(px(label_w as i32))
             .build_cartesian_2d(0.0..x_max, -0.5..(n - 0.5))
             .map_err(err)?;
-        let labels: Vec<String> = rows
-            .iter()
-            .map(|r| {
-                format!(
-                    "m_h {} kg, k_δ {:e} N/m, m_e {} kg, n = {}",
-                    r.case.m_h, r.case.k_delta, r.case.m_e, r.n
-                )
-            })
-            .collect();
         chart
             .configure_mesh()
             .light_line_style(WHITE)
-            .bold_line_style(GRID)
+            .bold_line_style(stroke(GRID, 0.75))
+            .axis_style(stroke(BLACK, 0.75))
+            .set_all_tick_mark_size(px(2))
             .x_desc("η")
-            .axis_desc_style(font(14.0))
-            .label_style(font(12.0))
+            .axis_desc_style(font(LABEL_PT))
+            .label_style(font(TICK_PT))
             .x_labels(8)
             .x_label_formatter(&|v| format!("{v:.1}"))
             .y_labels(rows.len())
@@ -70,7 +122,7 @@ pub fn eta_svg(rows: &[EtaRow], joint: &str) -> Result<String, String> {
         chart
             .draw_series(LineSeries::new(
                 [(1.0, -0.5), (1.0, n - 0.5)],
-                stroke(GREY, 1.0),
+                stroke(GREY, 0.75),
             ))
             .map_err(err)?;
         for (i, r) in rows.iter().enumerate() {
@@ -78,18 +130,18 @@ pub fn eta_svg(rows: &[EtaRow], joint: &str) -> Result<String, String> {
             chart
                 .draw_series(LineSeries::new(
                     [(r.eta_fe, y), (r.eta_lumped_2_3, y)],
-                    stroke(GRID, 2.0),
+                    stroke(GRID, 1.5),
                 ))
                 .map_err(err)?;
             chart
                 .draw_series([Circle::new(
                     (r.eta_lumped_2_3, y),
-                    px(5),
-                    stroke(PALETTE[1], 2.0),
+                    px(3),
+                    stroke(PALETTE[1], 1.25),
                 )])
                 .map_err(err)?;
             chart
-                .draw_series([Circle::new((r.eta_fe, y), px(5), PALETTE[0].filled())])
+                .draw_series([Circle::new((r.eta_fe, y), px(3), PALETTE[0].filled())])
                 .map_err(err)?;
         }
         Ok(())

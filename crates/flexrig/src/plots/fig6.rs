@@ -16,22 +16,22 @@ use plotters::series::DashedLineSeries;
 use plotters::style::text_anchor::{HPos, VPos};
 
 use super::{
-    GREY, GRID, Linear, boxed_text, decade_label, err, font, px, render, sci_label, stroke, text,
-    ticks,
+    GREY, GRID, LABEL_PT, Linear, TICK_PT, TITLE_PT, decade_label, err, font, px, render,
+    sci_label, stroke, text, text_width_pt, ticks,
 };
 
 /// Colour of the n = 2 curves (solid), as in the paper.
 const BLUE: RGBColor = RGBColor(31, 119, 180);
 /// Colour of the n = 1 curves (dashed), as in the paper.
 const ORANGE: RGBColor = RGBColor(230, 120, 0);
-/// Nominal size of the figure [px].
-const SIZE: (u32, u32) = (1000, 840);
-/// Height of the header (title and legend) [px].
-const HEADER: u32 = 64;
-/// Height of the legend row of the finite-element points [px].
-const LEGEND_ROW: u32 = 24;
-/// Half-diagonal of a finite-element marker (a diamond) [px].
-const DIAMOND: i32 = 7;
+/// Height of a panel \[pt\].
+const PANEL_H: u32 = 175;
+/// Figures narrower than this put the panels in one column \[pt\].
+const ONE_COLUMN_BELOW: f64 = 400.0;
+/// Height of a title or legend row \[pt\].
+const ROW_H: i32 = 12;
+/// Half-diagonal of a finite-element marker (a diamond; half-side of a square) [drawing units].
+const DIAMOND: i32 = 14;
 /// Room beyond the γ range for markers at its edge.
 const GAMMA_PAD: f64 = 0.025;
 /// Top of the shared y axis: a little above η = 1 so the curves' end points stay visible.
@@ -55,18 +55,23 @@ pub struct Fig6Point {
     pub gamma: Option<f64>,
 }
 
-/// The paper's Fig. 6 from the sixteen curves of `flexrig_lumped::fig6::fig6`.
-pub fn fig6_svg(curves: &[EtaCurve]) -> Result<String, String> {
-    draw_figure(curves, &[])
+/// The paper's Fig. 6 from the sixteen curves of `flexrig_lumped::fig6::fig6`, at the printed
+/// width `width_pt` \[pt\].
+pub fn fig6_svg(curves: &[EtaCurve], width_pt: f64) -> Result<String, String> {
+    draw_figure(curves, &[], width_pt)
 }
 
 /// Fig. 6 with finite-element results: each of `points` as a marker in the colour of its curve
 /// (filled on the curve, hollow off it), on a y scale that includes every point.
-pub fn fig6_with_points_svg(curves: &[EtaCurve], points: &[Fig6Point]) -> Result<String, String> {
+pub fn fig6_with_points_svg(
+    curves: &[EtaCurve],
+    points: &[Fig6Point],
+    width_pt: f64,
+) -> Result<String, String> {
     for p in points {
         check_point(curves, p)?;
     }
-    draw_figure(curves, points)
+    draw_figure(curves, points, width_pt)
 }
 
 /// Whether `p` is finite and has a curve among `curves`.
@@ -136,15 +141,20 @@ impl EtaAxis {
 }
 
 /// Fig. 6 from `curves`, with `points` if there are any (then with a second legend row).
-fn draw_figure(curves: &[EtaCurve], points: &[Fig6Point]) -> Result<String, String> {
+fn draw_figure(curves: &[EtaCurve], points: &[Fig6Point], width_pt: f64) -> Result<String, String> {
     let axis = EtaAxis::new(curves, points);
     let panels = panel_keys(curves);
-    let header = HEADER + if points.is_empty() { 0 } else { LEGEND_ROW };
-    let size = (SIZE.0, SIZE.1 + header - HEADER);
+    let cols = if width_pt < ONE_COLUMN_BELOW { 1 } else { 2 };
+    let rows = panels.len().div_ceil(cols).max(1);
+    let header = Header::new(width_pt, !points.is_empty());
+    let size = (
+        width_pt.round() as u32,
+        header.height() + PANEL_H * rows as u32,
+    );
     render(size, |root| {
-        let (head, body) = root.split_vertically(px(header as i32));
-        draw_header(&head, !points.is_empty())?;
-        let areas = body.split_evenly((2, 2));
+        let (head, body) = root.split_vertically(px(header.height() as i32));
+        header.draw(&head)?;
+        let areas = body.split_evenly((rows, cols));
         for (i, (area, key)) in areas.iter().zip(&panels).enumerate() {
             let of_panel: Vec<&EtaCurve> = curves
                 .iter()
@@ -156,8 +166,9 @@ fn draw_figure(curves: &[EtaCurve], points: &[Fig6Point]) -> Result<String, Stri
                 .collect();
             let place = Place {
                 letter: (b'a' + i as u8) as char,
-                left: i % 2 == 0,
-                bottom: i >= 2,
+                left: i % cols == 0,
+                bottom: i + cols >= panels.len(),
+                narrow: cols == 1,
             };
             draw_panel(area, &of_panel, &points_of_panel, axis, place)?;
         }
@@ -183,114 +194,210 @@ struct Place {
     letter: char,
     left: bool,
     bottom: bool,
+    narrow: bool,
 }
 
-/// Title and legend; `with_points` adds the row of the finite-element markers.
-fn draw_header(area: &DrawingArea<SVGBackend, Shift>, with_points: bool) -> Result<(), String> {
-    let title = format!(
-        "Peak-force ratio η = f_max(γ)/f_max(1), compliant link (γ) over compliant joint (γ = 1); m_r = {M_R} kg, k_c = {} N/mⁿ, v_0 = {V0} m/s",
-        decade_label(K_C)
-    );
-    let (w, _) = area.dim_in_pixel();
-    area.draw(&Text::new(
-        title,
-        (w as i32 / 2, px(8)),
-        text(15.0, BLACK, HPos::Center, VPos::Top),
-    ))
-    .map_err(err)?;
-    let y = px(44);
-    let mut x = px(200);
-    for (label, colour, dashed) in [
-        ("n = 2 (Hertz contact)", BLUE, false),
-        ("n = 1 (linear contact)", ORANGE, true),
-    ] {
-        legend_line(area, (x, y), colour, dashed)?;
-        area.draw(&Text::new(
-            label,
-            (x + px(36), y),
-            text(13.0, BLACK, HPos::Left, VPos::Center),
-        ))
-        .map_err(err)?;
-        x += px(210);
+/// A legend sample.
+#[derive(Clone, Copy)]
+enum Sample {
+    /// A solid or dashed line.
+    Line(RGBColor, bool),
+    /// The η(2/3) dot.
+    Dot,
+    /// Two finite-element markers (n = 2 and n = 1 colours): filled or hollow, diamond or square.
+    Markers { filled: bool, square: bool },
+}
+
+impl Sample {
+    /// Width of the sample \[pt\].
+    fn width(self) -> f64 {
+        match self {
+            Sample::Line(..) => 16.0,
+            Sample::Dot => 6.0,
+            Sample::Markers { .. } => 16.0,
+        }
     }
-    area.draw(&Circle::new((x + px(8), y), px(4), BLACK.filled()))
-        .map_err(err)?;
-    area.draw(&Text::new(
-        "η at γ = 2/3 (uniform compliant link)",
-        (x + px(20), y),
-        text(13.0, BLACK, HPos::Left, VPos::Center),
-    ))
-    .map_err(err)?;
-    if with_points {
-        draw_points_legend(area, px(44 + LEGEND_ROW as i32))?;
+}
+
+/// Title lines and legend items laid out in rows that fit the width.
+struct Header {
+    title: Vec<String>,
+    items: Vec<(Sample, String, (f64, i32))>,
+    rows: i32,
+}
+
+impl Header {
+    fn new(width_pt: f64, with_points: bool) -> Self {
+        let long = "Peak-force ratio η = f_max(γ)/f_max(1), compliant link (γ) over compliant joint (γ = 1)";
+        let short = "η = f_max(γ)/f_max(1): compliant link (γ) over joint (γ = 1)";
+        let shortest = "η = f_max(γ)/f_max(1), CL (γ) over CJ (γ = 1)";
+        let first = [long, short, shortest]
+            .into_iter()
+            .find(|t| text_width_pt(t, TITLE_PT) < width_pt - 8.0)
+            .unwrap_or(shortest);
+        let title = vec![
+            first.to_string(),
+            format!(
+                "m_r = {M_R} kg, k_c = {} N/mⁿ, v_0 = {V0} m/s",
+                decade_label(K_C)
+            ),
+        ];
+        let mut items = vec![
+            (
+                Sample::Line(BLUE, false),
+                "n = 2 (Hertz contact)".to_string(),
+            ),
+            (
+                Sample::Line(ORANGE, true),
+                "n = 1 (linear contact)".to_string(),
+            ),
+            (Sample::Dot, "η(2/3), uniform compliant link".to_string()),
+        ];
+        if with_points {
+            items.extend([
+                (
+                    Sample::Markers {
+                        filled: true,
+                        square: false,
+                    },
+                    "η_FE, m_e = 0.1 kg".to_string(),
+                ),
+                (
+                    Sample::Markers {
+                        filled: true,
+                        square: true,
+                    },
+                    "η_FE, m_e = 10 kg".to_string(),
+                ),
+                (
+                    Sample::Markers {
+                        filled: false,
+                        square: false,
+                    },
+                    "hollow: η_FE off its curve, drawn at γ = 1".to_string(),
+                ),
+            ]);
+        }
+        // flow the items into rows
+        let (mut x, mut row) = (4.0, 0);
+        let mut placed = Vec::new();
+        for (sample, label) in items {
+            let w = sample.width() + 4.0 + text_width_pt(&label, LABEL_PT) + 12.0;
+            if x + w > width_pt && x > 4.0 {
+                row += 1;
+                x = 4.0;
+            }
+            placed.push((sample, label, (x, row)));
+            x += w;
+        }
+        Header {
+            title,
+            items: placed,
+            rows: row + 1,
+        }
     }
-    Ok(())
+
+    /// Height \[pt\].
+    fn height(&self) -> u32 {
+        (ROW_H * (self.title.len() as i32 + self.rows) + 6) as u32
+    }
+
+    fn draw(&self, area: &DrawingArea<SVGBackend, Shift>) -> Result<(), String> {
+        let (w, _) = area.dim_in_pixel();
+        for (i, line) in self.title.iter().enumerate() {
+            let (size, colour) = if i == 0 {
+                (TITLE_PT, BLACK)
+            } else {
+                (LABEL_PT, GREY)
+            };
+            area.draw(&Text::new(
+                line.clone(),
+                (w as i32 / 2, px(2 + ROW_H * i as i32)),
+                text(size, colour, HPos::Center, VPos::Top),
+            ))
+            .map_err(err)?;
+        }
+        let top = ROW_H * self.title.len() as i32 + 2;
+        for (sample, label, (x, row)) in &self.items {
+            let y = px(top + ROW_H * row + ROW_H / 2);
+            let x0 = px(x.round() as i32);
+            match *sample {
+                Sample::Line(colour, dashed) => legend_line(area, (x0, y), colour, dashed)?,
+                Sample::Dot => {
+                    area.draw(&Circle::new((x0 + px(3), y), px(2), BLACK.filled()))
+                        .map_err(err)?;
+                }
+                Sample::Markers { filled, square } => {
+                    for (dx, colour) in [(4, BLUE), (12, ORANGE)] {
+                        marker(
+                            area,
+                            (x0 + px(dx), y),
+                            filled.then_some(colour),
+                            colour,
+                            square,
+                        )?;
+                    }
+                }
+            }
+            area.draw(&Text::new(
+                label.clone(),
+                (x0 + px((sample.width() + 4.0) as i32), y),
+                text(LABEL_PT, BLACK, HPos::Left, VPos::Center),
+            ))
+            .map_err(err)?;
+        }
+        Ok(())
+    }
 }
 
-/// The legend row of the finite-element markers at pixel row `y`.
-fn draw_points_legend(area: &DrawingArea<SVGBackend, Shift>, y: i32) -> Result<(), String> {
-    let label = |s: &str, x: i32| {
-        Text::new(
-            s.to_string(),
-            (x, y),
-            text(13.0, BLACK, HPos::Left, VPos::Center),
-        )
-    };
-    let mut x = px(200);
-    diamond(area, (x + px(8), y), Some(BLUE), BLUE)?;
-    diamond(area, (x + px(26), y), Some(ORANGE), ORANGE)?;
-    area.draw(&label(
-        "finite elements (η_FE), on the curve of its case and n",
-        x + px(42),
-    ))
-    .map_err(err)?;
-    x += px(420);
-    diamond(area, (x + px(8), y), None, BLUE)?;
-    diamond(area, (x + px(26), y), None, ORANGE)?;
-    area.draw(&label(
-        "η_FE off the curve, drawn at the edge (γ = 1)",
-        x + px(42),
-    ))
-    .map_err(err)
-}
-
-/// A finite-element marker at pixel `at`: a diamond filled with `fill` (white when hollow) and
-/// edged in `edge` (two pixels wide when hollow, one pixel of black when filled).
-fn diamond(
+/// A finite-element marker at `at` (drawing units): a diamond (a square when `square`) filled
+/// with `fill` (white when hollow) and edged in `edge` (wide when hollow, thin black when filled).
+fn marker(
     area: &DrawingArea<SVGBackend, Shift>,
     (x, y): (i32, i32),
     fill: Option<RGBColor>,
     edge: RGBColor,
+    square: bool,
 ) -> Result<(), String> {
-    let r = px(DIAMOND);
-    let corners = vec![(x, y - r), (x + r, y), (x, y + r), (x - r, y)];
+    let r = DIAMOND;
+    let corners = if square {
+        let h = r * 3 / 4;
+        vec![
+            (x - h, y - h),
+            (x + h, y - h),
+            (x + h, y + h),
+            (x - h, y + h),
+        ]
+    } else {
+        vec![(x, y - r), (x + r, y), (x, y + r), (x - r, y)]
+    };
     area.draw(&Polygon::new(
         corners.clone(),
         fill.unwrap_or(WHITE).filled(),
     ))
     .map_err(err)?;
-    let mut closed = corners;
-    closed.push((x, y - r));
-    closed.push((x + r, y));
+    let mut closed = corners.clone();
+    closed.push(corners[0]);
+    closed.push(corners[1]);
     let style = match fill {
-        Some(_) => stroke(BLACK, 1.0),
-        None => stroke(edge, 2.0),
+        Some(_) => stroke(BLACK, 0.5),
+        None => stroke(edge, 1.25),
     };
     area.draw(&PathElement::new(closed, style)).map_err(err)
 }
 
-/// A 28-pixel legend sample of a solid or dashed line starting at `(x, y)`.
+/// A 16-point legend sample of a solid or dashed line starting at `(x, y)`.
 fn legend_line(
     area: &DrawingArea<SVGBackend, Shift>,
     (x, y): (i32, i32),
     colour: RGBColor,
     dashed: bool,
 ) -> Result<(), String> {
-    let style = stroke(colour, 2.0);
+    let style = stroke(colour, 1.25);
     let segments: Vec<(i32, i32)> = if dashed {
-        vec![(0, 8), (12, 20), (24, 28)]
+        vec![(0, 4), (6, 10), (12, 16)]
     } else {
-        vec![(0, 28)]
+        vec![(0, 16)]
     };
     for (a, b) in segments {
         area.draw(&PathElement::new(
@@ -302,8 +409,21 @@ fn legend_line(
     Ok(())
 }
 
-/// Short description of a case's human mass and link stiffness.
-fn panel_caption(letter: char, case: &Fig6Case) -> String {
+/// Short description of a case's human mass and link stiffness, as long as fits `width_pt`.
+fn panel_caption(letter: char, case: &Fig6Case, width_pt: f64) -> String {
+    let long = panel_caption_long(letter, case);
+    if text_width_pt(&long, LABEL_PT) < width_pt - 8.0 {
+        return long;
+    }
+    format!(
+        "({letter}) m_h = {} kg, k_δ = {} N/m",
+        case.m_h,
+        sci_label(case.k_delta)
+    )
+}
+
+/// The long caption: masses, stiffness and what they mean.
+fn panel_caption_long(letter: char, case: &Fig6Case) -> String {
     let impact = if case.m_h >= 100.0 {
         "constrained impact"
     } else {
@@ -332,14 +452,16 @@ fn draw_panel(
         return Ok(());
     };
     let (g0, g1) = GAMMA_RANGE;
+    let (w, _) = area.dim_in_pixel();
+    let caption = panel_caption(place.letter, &first.case, f64::from(w) / px(1) as f64);
     let mut chart = ChartBuilder::on(area)
-        .caption(panel_caption(place.letter, &first.case), font(13.0))
-        .margin_top(px(6))
-        .margin_left(px(8))
-        .margin_right(px(14))
-        .margin_bottom(px(4))
-        .x_label_area_size(px(if place.bottom { 44 } else { 26 }))
-        .y_label_area_size(px(if place.left { 56 } else { 14 }))
+        .caption(caption, font(LABEL_PT))
+        .margin_top(px(3))
+        .margin_left(px(4))
+        .margin_right(px(8))
+        .margin_bottom(px(2))
+        .x_label_area_size(px(if place.bottom { 28 } else { 14 }))
+        .y_label_area_size(px(if place.left { 30 } else { 8 }))
         .build_cartesian_2d(
             Linear::new(axis.left, axis.right, ticks(g0, g1, 0.1)),
             Linear::new(axis.lo, axis.top, axis.ticks()),
@@ -348,15 +470,15 @@ fn draw_panel(
     let left = place.left;
     chart
         .configure_mesh()
-        .bold_line_style(stroke(GRID, 1.0))
-        .axis_style(stroke(BLACK, 1.0))
-        .set_all_tick_mark_size(px(4))
-        .label_style(font(12.0))
-        .axis_desc_style(font(14.0))
-        .x_desc(if place.bottom {
-            "γ (1 = compliant joint, 2/3 = uniform compliant link)"
-        } else {
-            ""
+        .bold_line_style(stroke(GRID, 0.75))
+        .axis_style(stroke(BLACK, 0.75))
+        .set_all_tick_mark_size(px(2))
+        .label_style(font(TICK_PT))
+        .axis_desc_style(font(LABEL_PT))
+        .x_desc(match (place.bottom, place.narrow) {
+            (false, _) => "",
+            (true, false) => "γ (1 = compliant joint, 2/3 = uniform compliant link)",
+            (true, true) => "γ (1: compliant joint, 2/3: uniform link)",
         })
         .y_desc(if left { "η" } else { "" })
         .x_label_formatter(&|g| format!("{g:.1}"))
@@ -373,22 +495,22 @@ fn draw_panel(
     chart
         .draw_series(DashedLineSeries::new(
             [(2.0 / 3.0, axis.lo), (2.0 / 3.0, axis.top)],
-            px(3),
-            px(4),
-            stroke(GREY, 1.0),
+            px(2),
+            px(2),
+            stroke(GREY, 0.75),
         ))
         .map_err(err)?;
     let mut payloads: Vec<f64> = curves.iter().map(|c| c.case.m_e).collect();
     payloads.dedup();
     let mut rows = Vec::new();
-    let mut obstacles = Vec::new();
-    for m_e in payloads {
+    let mut labels = Vec::new();
+    for m_e in &payloads {
         let pair: Vec<&EtaCurve> = curves
             .iter()
             .copied()
-            .filter(|c| c.case.m_e == m_e)
+            .filter(|c| c.case.m_e == *m_e)
             .collect();
-        obstacles.extend(draw_pair(&mut chart, &pair, span)?);
+        labels.extend(draw_pair(&mut chart, &pair, span)?);
         rows.push(table_row(&pair, span));
     }
     let origin = chart.plotting_area().get_base_pixel();
@@ -396,6 +518,7 @@ fn draw_panel(
         let (x, y) = chart.backend_coord(&p);
         (x - origin.0, y - origin.1)
     };
+    let mut obstacles = Vec::new();
     for c in curves {
         obstacles.extend(c.gamma.iter().zip(&c.eta).map(|(g, e)| {
             let (x, y) = to_pixel((*g, *e));
@@ -403,14 +526,39 @@ fn draw_panel(
         }));
     }
     let markers = place_markers(points, to_pixel);
-    let r = px(DIAMOND);
+    let r = DIAMOND;
     obstacles.extend(
         markers
             .iter()
             .map(|(_, (x, y))| ((x - r, y - r), (x + r, y + r))),
     );
-    draw_table(&chart, axis, &rows, &obstacles)?;
+    // Each payload is labelled under its pair's start; if that leaves the table no free
+    // corner, the lowest pair's label goes above its start instead.
+    let mut placed: Vec<PixelRect> = labels.iter().map(|l| l.below).collect();
+    let with = |placed: &[PixelRect]| [obstacles.as_slice(), placed].concat();
+    if table_corner(&chart, axis, &rows, &with(&placed)).is_none()
+        && let Some(lowest) = (0..labels.len()).max_by_key(|i| labels[*i].below.0.1)
+    {
+        placed[lowest] = labels[lowest].above;
+    }
+    let area = chart.plotting_area().strip_coord_spec();
+    for (label, rect) in labels.iter().zip(&placed) {
+        area.draw(&Text::new(
+            label.text.clone(),
+            rect.0,
+            text(TICK_PT, BLACK, HPos::Left, VPos::Top),
+        ))
+        .map_err(err)?;
+    }
+    draw_table(&chart, axis, &rows, &with(&placed))?;
     draw_points(&chart, &markers)
+}
+
+/// A payload's label and its two places: under its pair's start, and above it.
+struct PairLabel {
+    text: String,
+    below: PixelRect,
+    above: PixelRect,
 }
 
 /// The markers of `points` with their pixel centres: on-curve markers where they belong,
@@ -421,7 +569,7 @@ fn place_markers(
     to_pixel: impl Fn((f64, f64)) -> (i32, i32),
 ) -> Vec<(Marker, (i32, i32))> {
     let mut placed: Vec<(Marker, (i32, i32))> = Vec::new();
-    let step = 2 * px(DIAMOND) + px(2);
+    let step = 2 * DIAMOND + px(1);
     for on_curve in [true, false] {
         for p in points {
             let m = Marker::of(p);
@@ -459,7 +607,7 @@ fn draw_pair(
     chart: &mut Chart,
     pair: &[&EtaCurve],
     span: f64,
-) -> Result<Option<PixelRect>, String> {
+) -> Result<Option<PairLabel>, String> {
     let mut sorted = pair.to_vec();
     sorted.sort_by(|a, b| b.n.total_cmp(&a.n));
     for c in &sorted {
@@ -468,14 +616,14 @@ fn draw_pair(
             chart
                 .draw_series(DashedLineSeries::new(
                     points,
-                    px(7),
-                    px(5),
-                    stroke(ORANGE, 2.0),
+                    px(4),
+                    px(2),
+                    stroke(ORANGE, 1.25),
                 ))
                 .map_err(err)?;
         } else {
             chart
-                .draw_series(LineSeries::new(points, stroke(BLUE, 2.0)))
+                .draw_series(LineSeries::new(points, stroke(BLUE, 1.25)))
                 .map_err(err)?;
         }
     }
@@ -483,31 +631,41 @@ fn draw_pair(
         chart
             .draw_series(std::iter::once(Circle::new(
                 (2.0 / 3.0, c.eta_at_2_3),
-                px(4),
+                px(2),
                 curve_colour(c.n).filled(),
             )))
             .map_err(err)?;
     }
-    // Below the pair's lower start: the curves rise to the right, so that corner is free.
+    // Below the pair's lower start: the curves rise to the right, so that corner is free (or
+    // above its upper start, `above`).
     let start = sorted
         .iter()
         .filter_map(|c| c.eta.first().copied())
         .fold(f64::MAX, f64::min);
+    // the pair's highest η under the label (which reaches about 0.16 into the γ range)
+    let top = sorted
+        .iter()
+        .flat_map(|c| c.gamma.iter().zip(&c.eta))
+        .filter(|(g, _)| **g <= GAMMA_RANGE.0 + 0.16)
+        .map(|(_, e)| *e)
+        .fold(f64::MIN, f64::max);
     let Some(case) = sorted.first().map(|c| c.case) else {
         return Ok(None);
     };
     let area = chart.plotting_area().strip_coord_spec();
     let origin = area.get_base_pixel();
-    let (x, y) = chart.backend_coord(&(GAMMA_RANGE.0, start - 0.015 * span));
     let label = format!("m_e = {} kg", case.m_e);
-    let at = (x - origin.0 + px(8), y - origin.1);
-    let style = text(12.0, BLACK, HPos::Left, VPos::Top);
-    // As boxed_text sizes its box: a glyph is about 0.6 font-size wide.
-    let font_px = style.font.get_size() / 1.24;
-    let width = (0.6 * font_px * label.chars().count() as f64).round() as i32;
-    let height = font_px.round() as i32;
-    boxed_text(&area, &label, at, style)?;
-    Ok(Some((at, (at.0 + width, at.1 + height))))
+    let width = px(text_width_pt(&label, TICK_PT).round() as i32);
+    let height = px(TICK_PT as i32);
+    let (x, y_below) = chart.backend_coord(&(GAMMA_RANGE.0, start - 0.015 * span));
+    let (_, y_above) = chart.backend_coord(&(GAMMA_RANGE.0, top + 0.02 * span));
+    let x = x - origin.0 + px(4);
+    let rect = |y: i32| ((x, y), (x + width, y + height));
+    Ok(Some(PairLabel {
+        text: label,
+        below: rect(y_below - origin.1),
+        above: rect(y_above - origin.1 - height),
+    }))
 }
 
 /// Colour of the curves of exponent `n`: blue for n = 2, orange for n = 1.
@@ -515,12 +673,18 @@ fn curve_colour(n: f64) -> RGBColor {
     if n == 1.0 { ORANGE } else { BLUE }
 }
 
+/// Payloads above this are the heavy payload of their panel (square markers) \[kg\]: the
+/// cases' payloads are 0.1 and 10 kg.
+const HEAVY_PAYLOAD: f64 = 1.0;
+
 /// Where and how a finite-element point is drawn.
 struct Marker {
     gamma: f64,
     eta: f64,
     colour: RGBColor,
     on_curve: bool,
+    /// The heavier payload (drawn as a square; the lighter as a diamond).
+    square: bool,
 }
 
 impl Marker {
@@ -538,6 +702,7 @@ impl Marker {
             eta: p.eta_fe,
             colour: curve_colour(p.n),
             on_curve,
+            square: p.case.m_e > HEAVY_PAYLOAD,
         }
     }
 }
@@ -546,7 +711,13 @@ impl Marker {
 fn draw_points(chart: &Chart, markers: &[(Marker, (i32, i32))]) -> Result<(), String> {
     let area = chart.plotting_area().strip_coord_spec();
     for (m, at) in markers {
-        diamond(&area, *at, m.on_curve.then_some(m.colour), m.colour)?;
+        marker(
+            &area,
+            *at,
+            m.on_curve.then_some(m.colour),
+            m.colour,
+            m.square,
+        )?;
     }
     Ok(())
 }
@@ -580,32 +751,48 @@ fn table_row(pair: &[&EtaCurve], span: f64) -> TableRow {
     }
 }
 
-/// The η(2/3) table, with a note for coinciding curves, in the first corner of the panel (lower
-/// right, lower left, upper left) where it covers none of `obstacles` (curves, labels, markers);
-/// lower right, below every curve there, if none is free.
-fn draw_table(
+/// The notes of a panel's table and its three candidate boxes (lower right, lower left, upper
+/// left), 3 points in from the frame.
+fn table_geometry(
     chart: &Chart,
     axis: EtaAxis,
     rows: &[TableRow],
-    obstacles: &[PixelRect],
-) -> Result<(), String> {
-    let area = chart.plotting_area().strip_coord_spec();
-    let origin = area.get_base_pixel();
-    let notes: Vec<String> = rows
-        .iter()
-        .filter_map(|r| {
-            r.coincide.map(|gap| {
-                format!(
-                    "m_e = {} kg: n = 1 and n = 2 coincide (|Δη| ≤ {gap:.0e})",
-                    r.m_e
-                )
-            })
-        })
-        .collect();
-    let line = px(16);
+) -> (Vec<String>, [PixelRect; 3]) {
+    let origin = chart.plotting_area().get_base_pixel();
+    // one note for every payload whose n = 1 and n = 2 curves coincide on the plot
+    let gaps: Vec<f64> = rows.iter().filter_map(|r| r.coincide).collect();
+    let notes: Vec<String> = match gaps.len() {
+        0 => Vec::new(),
+        k => {
+            let gap = gaps.iter().copied().fold(0.0, f64::max);
+            let which = if k == rows.len() {
+                "n = 1 and 2 coincide".to_string()
+            } else {
+                let m: Vec<String> = rows
+                    .iter()
+                    .filter(|r| r.coincide.is_some())
+                    .map(|r| format!("{} kg", r.m_e))
+                    .collect();
+                format!("{}: n = 1 and 2 coincide", m.join(", "))
+            };
+            vec![format!("{which}, |Δη| ≤ {}", sci_label(round_up_1(gap)))]
+        }
+    };
+    let line = px(10);
     let lines = 1 + rows.len() + notes.len();
-    let height = line * lines as i32 + px(6);
-    let width = if notes.is_empty() { px(194) } else { px(304) };
+    let height = line * lines as i32 + px(4);
+    let c2 = px(60);
+    let label_w = rows
+        .iter()
+        .map(|r| text_width_pt(&format!("m_e = {} kg", r.m_e), TICK_PT))
+        .fold(text_width_pt("η(2/3)", TICK_PT), f64::max);
+    let table_w = px(label_w.ceil() as i32) + c2 + px(8);
+    let note_w = notes
+        .iter()
+        .map(|n| px(text_width_pt(n, TICK_PT).ceil() as i32 + 8))
+        .max()
+        .unwrap_or(0);
+    let width = table_w.max(note_w);
     let corner = |g: f64, eta: f64| {
         let (x, y) = chart.backend_coord(&(g, eta));
         (x - origin.0, y - origin.1)
@@ -613,7 +800,7 @@ fn draw_table(
     let (x_left, y_bottom) = corner(axis.left, axis.lo);
     let (x_right, y_top) = corner(axis.right, axis.top);
     // Boxes ((x0, y0), (x1, y1)), 4 pixels in from the frame.
-    let inset = px(4);
+    let inset = px(3);
     let boxes: [PixelRect; 3] = [
         (
             (x_right - inset - width, y_bottom - inset - height),
@@ -628,22 +815,50 @@ fn draw_table(
             (x_left + inset + width, y_top + inset + height),
         ),
     ];
-    let clear = |b: &PixelRect| !obstacles.iter().any(|o| overlap(b, o, px(3)));
-    let chosen = boxes.iter().find(|b| clear(b)).unwrap_or(&boxes[0]);
-    let ((x0, y0), (x1, y1)) = *chosen;
-    area.draw(&Rectangle::new(
-        [(x0, y0), (x1, y1)],
-        ShapeStyle::from(&WHITE.mix(0.9)).filled(),
-    ))
-    .map_err(err)?;
+    (notes, boxes)
+}
+
+/// The first candidate box of the table that covers none of `obstacles`.
+fn table_corner(
+    chart: &Chart,
+    axis: EtaAxis,
+    rows: &[TableRow],
+    obstacles: &[PixelRect],
+) -> Option<PixelRect> {
+    let (_, boxes) = table_geometry(chart, axis, rows);
+    boxes
+        .into_iter()
+        .find(|b| !obstacles.iter().any(|o| overlap(b, o, px(2))))
+}
+
+/// The η(2/3) table, with a note for coinciding curves, in the first corner of the panel (lower
+/// right, lower left, upper left) where it covers none of `obstacles` (curves, labels, markers);
+/// lower right, below every curve there, if none is free.
+fn draw_table(
+    chart: &Chart,
+    axis: EtaAxis,
+    rows: &[TableRow],
+    obstacles: &[PixelRect],
+) -> Result<(), String> {
+    let area = chart.plotting_area().strip_coord_spec();
+    let (notes, boxes) = table_geometry(chart, axis, rows);
+    let line = px(10);
+    let (c1, c2) = (px(30), px(60));
+    let chosen = table_corner(chart, axis, rows, obstacles).unwrap_or(boxes[0]);
+    let ((x0, y0), (x1, y1)) = chosen;
+    // a framed box, as a legend: it reads as a label over the grid, not a hole in it
+    area.draw(&Rectangle::new([(x0, y0), (x1, y1)], WHITE.filled()))
+        .map_err(err)?;
+    area.draw(&Rectangle::new([(x0, y0), (x1, y1)], stroke(GRID, 0.75)))
+        .map_err(err)?;
     let right = x1 - px(4);
     let cell = |s: String, x: i32, y: i32, colour: RGBColor| {
-        Text::new(s, (x, y), text(12.0, colour, HPos::Right, VPos::Bottom))
+        Text::new(s, (x, y), text(TICK_PT, colour, HPos::Right, VPos::Bottom))
     };
-    let mut y = y0 + line + px(2);
+    let mut y = y0 + line + px(1);
     let header = [
-        ("η(2/3)", right - px(110)),
-        ("n = 2", right - px(55)),
+        ("η(2/3)", right - c2),
+        ("n = 2", right - c1),
         ("n = 1", right),
     ];
     for (s, x) in header {
@@ -651,14 +866,9 @@ fn draw_table(
     }
     for r in rows {
         y += line;
-        area.draw(&cell(
-            format!("m_e = {} kg", r.m_e),
-            right - px(110),
-            y,
-            BLACK,
-        ))
-        .map_err(err)?;
-        area.draw(&cell(format!("{:.3}", r.eta_n2), right - px(55), y, BLUE))
+        area.draw(&cell(format!("m_e = {} kg", r.m_e), right - c2, y, BLACK))
+            .map_err(err)?;
+        area.draw(&cell(format!("{:.3}", r.eta_n2), right - c1, y, BLUE))
             .map_err(err)?;
         area.draw(&cell(format!("{:.3}", r.eta_n1), right, y, ORANGE))
             .map_err(err)?;
@@ -668,11 +878,20 @@ fn draw_table(
         area.draw(&Text::new(
             note,
             (right, y),
-            text(11.0, GREY, HPos::Right, VPos::Bottom),
+            text(TICK_PT, GREY, HPos::Right, VPos::Bottom),
         ))
         .map_err(err)?;
     }
     Ok(())
+}
+
+/// `v` rounded up to one significant digit (9.3e-5 → 1e-4, 8.2e-5 → 9e-5).
+fn round_up_1(v: f64) -> f64 {
+    if !(v > 0.0) {
+        return v;
+    }
+    let decade = 10f64.powf(v.log10().floor());
+    (v / decade - 1e-9).ceil() * decade
 }
 
 /// Whether boxes `a` and `b`, `a` grown by `pad` pixels, overlap.
@@ -733,16 +952,16 @@ mod tests {
         assert_eq!(pts.len(), 16);
         let off = pts.iter().filter(|p| p.gamma.is_none()).count();
         assert!((4..16).contains(&off), "{off} points off the curves");
-        let svg = fig6_with_points_svg(&curves, &pts).unwrap();
-        assert!(svg.starts_with("<svg width=\"1000\" height=\"864\""));
-        assert!(svg.contains("finite elements (η<tspan"));
-        assert!(svg.contains("off the curve"));
-        // 16 markers plus 4 in the legend, each a polygon
-        assert_eq!(svg.matches("<polygon").count(), 20);
+        let svg = fig6_with_points_svg(&curves, &pts, 504.0).unwrap();
+        assert!(svg.starts_with("<svg width=\"7in\""), "{}", &svg[..80]);
+        assert!(svg.contains("η<tspan"));
+        assert!(svg.contains("off its curve"));
+        // 16 markers plus 6 in the legend, each a polygon
+        assert_eq!(svg.matches("<polygon").count(), 22);
         // the curves alone keep the original figure
-        let plain = fig6_svg(&curves).unwrap();
-        assert!(plain.starts_with("<svg width=\"1000\" height=\"840\""));
-        assert!(!plain.contains("off the curve"));
+        let plain = fig6_svg(&curves, 504.0).unwrap();
+        assert!(!plain.contains("off its curve"));
+        assert!(round_up_1(9.3e-5) > 9.99e-5 && round_up_1(8.2e-5) < 9.01e-5);
     }
 
     #[test]
@@ -750,11 +969,11 @@ mod tests {
         let curves = fig6(11).unwrap();
         let mut p = points(&curves)[0];
         p.n = 1.5;
-        let e = fig6_with_points_svg(&curves, &[p]).unwrap_err();
+        let e = fig6_with_points_svg(&curves, &[p], 504.0).unwrap_err();
         assert!(e.contains("no curve of that case and n"), "{e}");
         p.n = 1.0;
         p.eta_fe = f64::NAN;
-        let e = fig6_with_points_svg(&curves, &[p]).unwrap_err();
+        let e = fig6_with_points_svg(&curves, &[p], 504.0).unwrap_err();
         assert!(e.contains("not finite"), "{e}");
     }
 
@@ -772,8 +991,12 @@ mod tests {
     #[ignore = "writes a demo figure to /tmp"]
     fn fig6_points_demo() {
         let curves = fig6(201).unwrap();
-        let svg = fig6_with_points_svg(&curves, &points(&curves)).unwrap();
+        let svg = fig6_with_points_svg(&curves, &points(&curves), 504.0).unwrap();
         std::fs::write("/tmp/fig6_points_demo.svg", svg).unwrap();
-        std::fs::write("/tmp/fig6_plain_demo.svg", fig6_svg(&curves).unwrap()).unwrap();
+        std::fs::write(
+            "/tmp/fig6_plain_demo.svg",
+            fig6_svg(&curves, 504.0).unwrap(),
+        )
+        .unwrap();
     }
 }

@@ -8,101 +8,172 @@ use plotters::series::DashedLineSeries;
 use plotters::style::text_anchor::{HPos, VPos};
 
 use super::{
-    GREY, GRID, Linear, PALETTE, boxed_text, err, font, nice_step, px, render, stroke, text, ticks,
+    GREY, GRID, LABEL_PT, Linear, PALETTE, TICK_PT, TITLE_PT, err, font, nice_step, px, render,
+    stroke, text, ticks, wrap,
 };
-use crate::experiment::{GroupStats, RatioStats, mean_pm_ci};
+use crate::experiment::{GroupStats, RatioStats, RunInputs};
 
 /// Colour of the compliant-joint bars.
 const CJ: RGBColor = PALETTE[1];
 /// Colour of the compliant-link bars.
 const CL: RGBColor = PALETTE[0];
-/// Nominal size of the figure [px].
-const SIZE: (u32, u32) = (1200, 500);
-/// Half-width of a whisker cap [px].
-const CAP: i32 = 8;
+/// Height of a panel row \[pt\].
+const ROW: u32 = 200;
+/// Height of a line of the note under the panels \[pt\].
+const NOTE: u32 = 11;
+/// Figures narrower than this stack the ratio panel under the bars \[pt\].
+const STACK_BELOW: f64 = 420.0;
+/// Half-width of a whisker cap \[pt\].
+const CAP: i32 = 3;
 
-/// A category on the x axis: its two label lines and the scene-name suffix (`aluminium`, ...).
+/// A category on the x axis: its two label lines and the scene-name suffix (`aluminium`, ...),
+/// the labels written from the values that ran.
 struct Category {
-    name: &'static str,
-    detail: &'static str,
+    name: String,
+    detail: String,
     key: &'static str,
 }
 
-const TEST_BED: [Category; 2] = [
-    Category {
-        name: "aluminium operator",
-        detail: "m_h = 398 g",
-        key: "aluminium",
-    },
-    Category {
-        name: "iron operator",
-        detail: "m_h = 4008 g",
-        key: "iron",
-    },
-];
+/// How the experiment's release angles were drawn (for the note on the intervals).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Jitter {
+    /// Standard deviation of the release-angle jitter \[deg\].
+    pub sd_deg: f64,
+    /// Seed of its RNG.
+    pub seed: u64,
+}
 
-const LIGHT_LOAD: [Category; 1] = [Category {
-    name: "aluminium operator",
-    detail: "m_h = 398 g",
-    key: "light_load",
-}];
+/// The group of `scene`.
+fn group<'a>(groups: &'a [GroupStats], scene: &str) -> Option<&'a GroupStats> {
+    groups.iter().find(|g| g.scene == scene)
+}
 
-const RATIO_CASES: [Category; 3] = [
-    Category {
-        name: "aluminium operator",
-        detail: "m_e = 412 g",
-        key: "aluminium",
-    },
-    Category {
-        name: "iron operator",
-        detail: "m_e = 412 g",
-        key: "iron",
-    },
-    Category {
-        name: "light load",
-        detail: "m_e = 0.1 kg",
-        key: "light_load",
-    },
-];
+/// A mass of `0.412` kg as `412 g`, `4.008` kg as `4008 g` (to the gram; to 0.1 g below 10 g).
+pub fn grams(kg: f64) -> String {
+    let g = kg * 1e3;
+    if g >= 10.0 {
+        format!("{} g", g.round())
+    } else {
+        format!("{:.1} g", g)
+    }
+}
 
-/// The paper's Fig. 9 from the experiment's per-scene statistics and paired ratios.
-pub fn fig9_svg(groups: &[GroupStats], ratios: &[RatioStats]) -> Result<String, String> {
+/// A block material as the labels say it: `skinned_aluminium` as `aluminium` (all the bundled
+/// blocks are skinned), any other name with spaces for underscores.
+fn material(name: &str) -> String {
+    name.trim_start_matches("skinned_").replace('_', " ")
+}
+
+/// The operator of `case` as it ran (its material and mass), from the CJ run or else the CL run.
+fn operator_of<'a>(groups: &'a [GroupStats], case: &str) -> Option<&'a RunInputs> {
+    group(groups, &format!("cj_{case}"))
+        .or_else(|| group(groups, &format!("cl_{case}")))
+        .map(|g| &g.inputs)
+}
+
+/// The payloads m_e that ran in `cases`, as a label (`m_e = 412 g` or a list when they differ).
+fn payload_label(groups: &[GroupStats], cases: &[&str]) -> String {
+    let mut values: Vec<String> = Vec::new();
+    for case in cases {
+        for design in ["cj", "cl"] {
+            if let Some(g) = group(groups, &format!("{design}_{case}")) {
+                let v = grams(g.inputs.payload_kg);
+                if !values.contains(&v) {
+                    values.push(v);
+                }
+            }
+        }
+    }
+    format!("m_e = {}", values.join(" / "))
+}
+
+/// Category labels of the operator of `case` as it ran.
+fn operator_category(groups: &[GroupStats], case: &'static str) -> Option<Category> {
+    let op = operator_of(groups, case)?;
+    Some(Category {
+        name: material(&op.block_material),
+        detail: format!("m_h = {}", grams(op.block_mass_kg)),
+        key: case,
+    })
+}
+
+/// The two designs of a case as run, e.g. `("CJ", "CL")` (upper-case keys).
+fn designs(groups: &[GroupStats], case: &str) -> (String, String) {
+    let d = |slot: &str| {
+        group(groups, &format!("{slot}_{case}"))
+            .map_or(slot.to_uppercase(), |g| g.inputs.design.to_uppercase())
+    };
+    (d("cj"), d("cl"))
+}
+
+/// The paper's Fig. 9 from the experiment's per-scene statistics and paired ratios, at the
+/// printed width `width_pt` \[pt\]: every label from the values that ran (designs, operator
+/// materials and masses, payloads), the intervals noted as coming from the release-angle jitter.
+pub fn fig9_svg(
+    groups: &[GroupStats],
+    ratios: &[RatioStats],
+    jitter: Jitter,
+    width_pt: f64,
+) -> Result<String, String> {
     let top = groups
         .iter()
         .map(|g| g.mean_peak_force_n + g.ci95_n.unwrap_or(0.0))
         .filter(|v| v.is_finite())
         .fold(0.0, f64::max)
         .max(1.0);
-    let step = nice_step(top, 6);
+    let step = nice_step(top, 5);
     let y_top = (top * 1.05 / step).ceil() * step;
-    render(SIZE, |root| {
-        let (bars, ratio_area) = root.split_horizontally(px(760));
-        let (bed, light) = bars.split_horizontally(px(470));
-        let bed_title = format!(
-            "(a) test bed, m_e = 412 g: {}",
-            runs_note(groups, "aluminium")
-        );
-        let light_title = format!(
-            "(b) light load, m_e = 0.1 kg: {}",
-            runs_note(groups, "light_load")
-        );
+    let stacked = width_pt < STACK_BELOW;
+    let w = width_pt.round() as u32;
+    let rows = if stacked { 2 } else { 1 };
+    let note = wrap(&note_text(groups, jitter), width_pt - 8.0, TICK_PT);
+    let note_h = NOTE * note.len() as u32;
+    render((w, ROW * rows + note_h), |root| {
+        let (panels, note_area) = root.split_vertically(px((ROW * rows) as i32));
+        let (bars, ratio_area) = if stacked {
+            panels.split_vertically(px(ROW as i32))
+        } else {
+            panels.split_horizontally(px((0.56 * width_pt) as i32))
+        };
+        let bars_w = if stacked { width_pt } else { 0.56 * width_pt };
+        let (bed, light) = bars.split_horizontally(px((0.64 * bars_w) as i32));
+        let test_bed: Vec<Category> = ["aluminium", "iron"]
+            .into_iter()
+            .filter_map(|c| operator_category(groups, c))
+            .collect();
+        let light_load: Vec<Category> = operator_category(groups, "light_load")
+            .into_iter()
+            .collect();
+        let bed_title = format!("(a) {}", payload_label(groups, &["aluminium", "iron"]));
+        let light_title = format!("(b) {}", payload_label(groups, &["light_load"]));
         let axis = ForceAxis { top: y_top, step };
-        draw_bars(&bed, &bed_title, &TEST_BED, groups, axis, true)?;
-        draw_bars(&light, &light_title, &LIGHT_LOAD, groups, axis, false)?;
-        draw_ratios(&ratio_area, ratios)
+        draw_bars(&bed, &bed_title, &test_bed, groups, axis, true)?;
+        draw_bars(&light, &light_title, &light_load, groups, axis, false)?;
+        draw_ratios(&ratio_area, groups, ratios)?;
+        for (i, line) in note.iter().enumerate() {
+            note_area
+                .draw(&Text::new(
+                    line.clone(),
+                    (px(4), px((NOTE * i as u32 + NOTE / 2) as i32)),
+                    text(TICK_PT, GREY, HPos::Left, VPos::Center),
+                ))
+                .map_err(err)?;
+        }
+        Ok(())
     })
 }
 
-/// "mean ± 95 % CI, 5 runs" or "single run, no CI" for the CL scene of `key`.
-fn runs_note(groups: &[GroupStats], key: &str) -> String {
-    let n = groups
-        .iter()
-        .find(|g| g.scene == format!("cl_{key}"))
-        .map_or(0, |g| g.n);
+/// The note under the panels: runs, and where the intervals come from.
+fn note_text(groups: &[GroupStats], jitter: Jitter) -> String {
+    let n = groups.iter().map(|g| g.n).max().unwrap_or(0);
     if n > 1 {
-        format!("mean ± 95 % CI, {n} runs")
+        format!(
+            "Bars: mean of {n} runs ± 95 % CI. The CI reflects only the simulated release-angle \
+             scatter (σ = {}°, seed {}).",
+            jitter.sd_deg, jitter.seed
+        )
     } else {
-        "1 run, no CI".into()
+        "One run per bar: no confidence interval.".into()
     }
 }
 
@@ -137,10 +208,10 @@ fn draw_bars(
         })
         .collect();
     let mut chart = ChartBuilder::on(area)
-        .caption(title, font(14.0))
-        .margin(px(10))
-        .x_label_area_size(px(58))
-        .y_label_area_size(px(if y_desc { 62 } else { 40 }))
+        .caption(title, font(TITLE_PT))
+        .margin(px(4))
+        .x_label_area_size(px(38))
+        .y_label_area_size(px(if y_desc { 34 } else { 22 }))
         .build_cartesian_2d(
             Linear::new(0.0, width * cats.len() as f64, bar_centres),
             Linear::new(
@@ -155,27 +226,35 @@ fn draw_bars(
         .disable_x_mesh()
         .bold_line_style(stroke(GRID, 1.0))
         .axis_style(stroke(BLACK, 1.0))
-        .set_all_tick_mark_size(px(4))
-        .label_style(font(13.0))
-        .axis_desc_style(font(14.0))
+        .set_all_tick_mark_size(px(2))
+        .label_style(font(TICK_PT))
+        .axis_desc_style(font(LABEL_PT))
         .y_desc(if y_desc { "peak impact force [N]" } else { "" })
-        .x_label_formatter(&|x| if x.rem_euclid(3.0) < 1.5 { "CJ" } else { "CL" }.into())
+        .x_label_formatter(&|x| {
+            let i = (x / width).floor().max(0.0) as usize;
+            let (cj, cl) = cats
+                .get(i)
+                .map_or(("CJ".into(), "CL".into()), |c| designs(groups, c.key));
+            if x.rem_euclid(width) < 0.5 * width {
+                cj
+            } else {
+                cl
+            }
+        })
         .y_label_formatter(&|y| format!("{y:.0}"))
         .draw()
         .map_err(err)?;
     for (i, cat) in cats.iter().enumerate() {
         let c = category_centre(i, width);
-        for (design, colour, x) in [("cj", CJ, c - 0.5), ("cl", CL, c + 0.5)] {
-            if let Some(g) = groups
-                .iter()
-                .find(|g| g.scene == format!("{design}_{}", cat.key))
-            {
+        for (slot, x) in [("cj", c - 0.5), ("cl", c + 0.5)] {
+            if let Some(g) = group(groups, &format!("{slot}_{}", cat.key)) {
+                let colour = if g.inputs.design == "cl" { CL } else { CJ };
                 draw_bar(&mut chart, g, colour, x, axis.top)?;
             }
         }
     }
     let cats: Vec<&Category> = cats.iter().collect();
-    draw_category_labels(area, &chart, &cats, width, 24)
+    draw_category_labels(area, &chart, &cats, width, 13)
 }
 
 /// One bar at `x` with its capped whisker (none without an interval) and its value written
@@ -199,7 +278,7 @@ fn draw_bar(
     }
     let low = m - g.ci95_n.unwrap_or(0.0);
     let (y, v, c) = if low > 0.15 * y_top {
-        (low - 0.015 * y_top, VPos::Top, WHITE)
+        (low - 0.03 * y_top, VPos::Top, WHITE)
     } else {
         (
             m + g.ci95_n.unwrap_or(0.0) + 0.015 * y_top,
@@ -209,9 +288,9 @@ fn draw_bar(
     };
     chart
         .draw_series(std::iter::once(Text::new(
-            format!("{m:.1}"),
+            format!("{m:.0}"),
             (x, y),
-            text(12.0, c, HPos::Center, v),
+            text(TICK_PT, c, HPos::Center, v),
         )))
         .map_err(err)?;
     Ok(())
@@ -246,15 +325,15 @@ fn draw_category_labels(
         let (x, _) = chart.backend_coord(&(category_centre(i, width), 0.0));
         let (x, y) = (x - origin.0, axis - origin.1 + px(below));
         area.draw(&Text::new(
-            cat.name,
+            cat.name.clone(),
             (x, y),
-            text(13.0, BLACK, HPos::Center, VPos::Top),
+            text(TICK_PT, BLACK, HPos::Center, VPos::Top),
         ))
         .map_err(err)?;
         area.draw(&Text::new(
-            cat.detail,
-            (x, y + px(16)),
-            text(12.0, GREY, HPos::Center, VPos::Top),
+            cat.detail.clone(),
+            (x, y + px(10)),
+            text(TICK_PT, GREY, HPos::Center, VPos::Top),
         ))
         .map_err(err)?;
     }
@@ -286,20 +365,46 @@ fn decimals(step: f64) -> usize {
         .unwrap_or(8) as usize
 }
 
-fn draw_ratios(area: &DrawingArea<SVGBackend, Shift>, ratios: &[RatioStats]) -> Result<(), String> {
+/// The ratio panel's category of `case`: its operator and payload as run.
+fn ratio_category(groups: &[GroupStats], case: &'static str) -> Option<Category> {
+    let op = operator_of(groups, case)?;
+    Some(Category {
+        name: material(&op.block_material),
+        detail: payload_label(groups, &[case]),
+        key: case,
+    })
+}
+
+fn draw_ratios(
+    area: &DrawingArea<SVGBackend, Shift>,
+    groups: &[GroupStats],
+    ratios: &[RatioStats],
+) -> Result<(), String> {
     let (lo, hi, step) = ratio_axis(ratios);
     let d = decimals(step);
-    let cats: Vec<&Category> = RATIO_CASES
-        .iter()
-        .filter(|c| ratios.iter().any(|r| r.case == c.key))
+    let owned: Vec<Category> = ["aluminium", "iron", "light_load"]
+        .into_iter()
+        .filter(|c| ratios.iter().any(|r| r.case == *c))
+        .filter_map(|c| ratio_category(groups, c))
         .collect();
+    let cats: Vec<&Category> = owned.iter().collect();
+    // the designs that ran in the two slots (CL over CJ unless --set changed them)
+    let (mut num, mut den) = ("CL".to_string(), "CJ".to_string());
+    if let Some(c) = cats.first() {
+        let (cj, cl) = designs(groups, c.key);
+        (num, den) = (cl, cj);
+    }
+    let ratio_name = format!("{num}/{den}");
     let centres: Vec<f64> = (0..cats.len()).map(|i| category_centre(i, 1.0)).collect();
     let mut chart = ChartBuilder::on(area)
-        .caption("(c) CL/CJ, paired by repeat: mean ± 95 % CI", font(14.0))
-        .margin(px(10))
-        .margin_right(px(16))
-        .x_label_area_size(px(58))
-        .y_label_area_size(px(70))
+        .caption(
+            format!("(c) {ratio_name}, paired by repeat"),
+            font(TITLE_PT),
+        )
+        .margin(px(4))
+        .margin_right(px(8))
+        .x_label_area_size(px(36))
+        .y_label_area_size(px(44))
         .build_cartesian_2d(
             Linear::new(0.0, cats.len().max(1) as f64, centres),
             Linear::new(lo, hi + 0.3 * step, ticks(lo, hi, step)),
@@ -310,10 +415,10 @@ fn draw_ratios(area: &DrawingArea<SVGBackend, Shift>, ratios: &[RatioStats]) -> 
         .disable_x_mesh()
         .bold_line_style(stroke(GRID, 1.0))
         .axis_style(stroke(BLACK, 1.0))
-        .set_all_tick_mark_size(px(4))
-        .label_style(font(13.0))
-        .axis_desc_style(font(14.0))
-        .y_desc("peak-force ratio CL/CJ")
+        .set_all_tick_mark_size(px(2))
+        .label_style(font(TICK_PT))
+        .axis_desc_style(font(LABEL_PT))
+        .y_desc(format!("peak-force ratio {ratio_name}"))
         .x_label_formatter(&|_| String::new())
         .y_label_formatter(&|y| format!("{y:.d$}"))
         .draw()
@@ -321,16 +426,16 @@ fn draw_ratios(area: &DrawingArea<SVGBackend, Shift>, ratios: &[RatioStats]) -> 
     chart
         .draw_series(DashedLineSeries::new(
             [(0.0, 1.0), (cats.len().max(1) as f64, 1.0)],
-            px(6),
-            px(4),
-            stroke(GREY, 1.0),
+            px(3),
+            px(2),
+            stroke(GREY, 0.75),
         ))
         .map_err(err)?;
     chart
         .draw_series(std::iter::once(Text::new(
-            "CL = CJ",
+            format!("{num} = {den}"),
             (cats.len() as f64 - 0.03, 1.0 + 0.01 * (hi - lo)),
-            text(12.0, GREY, HPos::Right, VPos::Bottom),
+            text(TICK_PT, GREY, HPos::Right, VPos::Bottom),
         )))
         .map_err(err)?;
     let mut hidden = false;
@@ -342,18 +447,19 @@ fn draw_ratios(area: &DrawingArea<SVGBackend, Shift>, ratios: &[RatioStats]) -> 
     if hidden {
         let plotting = chart.plotting_area().strip_coord_spec();
         let (_, h) = plotting.dim_in_pixel();
-        boxed_text(
-            &plotting,
-            "whiskers shorter than the marker are not drawn",
-            (px(8), h as i32 - px(6)),
-            text(11.0, GREY, HPos::Left, VPos::Bottom),
-        )?;
+        plotting
+            .draw(&Text::new(
+                "CI shorter than the marker",
+                (px(4), h as i32 - px(3)),
+                text(TICK_PT, GREY, HPos::Left, VPos::Bottom),
+            ))
+            .map_err(err)?;
     }
     draw_category_labels(area, &chart, &cats, 1.0, 10)
 }
 
 /// Radius of the ratio markers [px].
-const MARKER: i32 = 4;
+const MARKER: i32 = 2;
 
 /// One case's mean ratio (a point), its capped whisker and its value. Returns whether the
 /// case has an interval too short to show beside the marker (then its whisker is not drawn).
@@ -375,21 +481,62 @@ fn draw_ratio(chart: &mut Chart, r: &RatioStats, x: f64) -> Result<bool, String>
             BLACK.filled(),
         )))
         .map_err(err)?;
-    let top = m + r.ci95.unwrap_or(0.0);
-    let lines = match r.ci95 {
-        Some(_) => vec![(mean_pm_ci(m, r.ci95), BLACK)],
-        None => vec![(mean_pm_ci(m, None), BLACK), ("1 pair, no CI".into(), GREY)],
-    };
+    let ci = r.ci95.unwrap_or(0.0);
+    let lines = [
+        (format!("{m:.3}"), BLACK),
+        (ci_label(r.ci95, r.pairs), GREY),
+    ];
     let area = chart.plotting_area().strip_coord_spec();
     let origin = area.get_base_pixel();
-    let (px_x, px_y) = chart.backend_coord(&(x, top));
-    for (k, (line, colour)) in lines.into_iter().rev().enumerate() {
-        boxed_text(
-            &area,
-            &line,
-            (px_x - origin.0, px_y - origin.1 - px(10 + 16 * k as i32)),
-            text(12.0, colour, HPos::Center, VPos::Bottom),
-        )?;
+    let (_, plot_h) = area.dim_in_pixel();
+    // below the point in the upper half of the panel, above it in the lower half
+    let (_, py) = chart.backend_coord(&(x, m));
+    let below = py - origin.1 < plot_h as i32 / 2;
+    let (px_x, edge) = if below {
+        chart.backend_coord(&(x, m - ci))
+    } else {
+        chart.backend_coord(&(x, m + ci))
+    };
+    for (k, (line, colour)) in lines.into_iter().enumerate() {
+        let (y, v) = if below {
+            (edge - origin.1 + px(4 + 10 * k as i32), VPos::Top)
+        } else {
+            (edge - origin.1 - px(4 + 10 * (1 - k as i32)), VPos::Bottom)
+        };
+        area.draw(&Text::new(
+            line,
+            (px_x - origin.0, y),
+            text(TICK_PT, colour, HPos::Center, v),
+        ))
+        .map_err(err)?;
     }
     Ok(hidden)
+}
+
+/// The second line under a ratio: its CI half-width, or why there is none.
+fn ci_label(ci: Option<f64>, pairs: usize) -> String {
+    match ci.filter(|c| c.is_finite() && *c > 0.0) {
+        None => format!("{pairs} pair, no CI"),
+        Some(c) if c < 0.0005 => "CI < 0.001".into(),
+        Some(c) => {
+            let digits = (-c.log10().floor()).max(0.0) as usize;
+            format!("± {c:.digits$}")
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ratios_are_written_to_a_sensible_precision() {
+        assert_eq!(ci_label(Some(3.3e-7), 5), "CI < 0.001");
+        assert_eq!(ci_label(Some(0.0123), 5), "± 0.01");
+        assert_eq!(ci_label(Some(0.0041), 5), "± 0.004");
+        assert_eq!(ci_label(None, 1), "1 pair, no CI");
+        assert_eq!(grams(0.412), "412 g");
+        assert_eq!(grams(1.0), "1000 g");
+        assert_eq!(grams(0.0051), "5.1 g");
+    }
 }

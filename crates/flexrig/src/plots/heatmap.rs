@@ -1,4 +1,4 @@
-//! Heat maps over log–log grids: one row of panels, each a grid of cells coloured by a value on a
+//! Heat maps over log–log grids: panels in as many columns as the printed width holds, each a grid of cells coloured by a value on a
 //! sequential, diverging or logarithmic colour scale with its own colour bar, cells without a
 //! value hatched grey, and an optional thick outline around a region of cells.
 //!
@@ -12,7 +12,10 @@ use plotters::prelude::*;
 use plotters::style::FontTransform;
 use plotters::style::text_anchor::{HPos, VPos};
 
-use super::{Linear, decade_label, err, font, nice_step, px, render, sci_label, stroke, text};
+use super::{
+    GREY, LABEL_PT, Linear, TICK_PT, TITLE_PT, decade_label, err, font, nice_step, px, render,
+    sci_label, stroke, text,
+};
 
 /// One heat map over a log–log grid.
 pub struct HeatMap<'a> {
@@ -66,30 +69,34 @@ pub enum ColorScale {
     },
 }
 
-/// Nominal size of one panel [px].
-const PANEL: (u32, u32) = (520, 480);
-/// Height of the figure title [px].
-const HEADER: u32 = 40;
-/// Height of a panel's title row [px].
-const TITLE: i32 = 28;
-/// Height of a panel's legend row [px].
-const LEGEND: i32 = 30;
-/// Width of a panel's colour-bar strip [px].
-const BAR_STRIP: i32 = 112;
-/// Width of the colour bar [px].
-const BAR_WIDTH: i32 = 16;
-/// Gap between the plot's top (bottom) and the bar's, room for the clamp triangle [px].
-const BAR_INSET: i32 = 14;
+/// Narrowest panel \[pt\]: the width holds as many columns of panels as fit.
+const MIN_PANEL_W: f64 = 240.0;
+/// Height of a panel over its width (without its legend rows).
+const PANEL_ASPECT: f64 = 0.85;
+/// Room under a panel's legend, before the next row of panels \[pt\].
+const ROW_GAP: i32 = 6;
+/// Height of a line of the figure title \[pt\].
+const HEADER_LINE: u32 = 12;
+/// Height of a panel's title row \[pt\].
+const TITLE: i32 = 14;
+/// Height of a legend row \[pt\] (a panel has one per legend item).
+const LEGEND: i32 = 12;
+/// Width of a panel's colour-bar strip \[pt\].
+const BAR_STRIP: i32 = 56;
+/// Width of the colour bar \[pt\].
+const BAR_WIDTH: i32 = 8;
+/// Gap between the plot's top (bottom) and the bar's, room for the clamp triangle \[pt\].
+const BAR_INSET: i32 = 7;
 /// Fill of the cells without a value.
 const NO_VALUE: RGBColor = RGBColor(215, 215, 215);
 /// Hatching over the cells without a value.
 const HATCH: RGBColor = RGBColor(120, 120, 120);
 /// Edge of the legend's "no value" swatch.
 const GREY_EDGE: RGBColor = RGBColor(150, 150, 150);
-/// Distance between hatching lines [px].
-const HATCH_STEP: i32 = 7;
-/// Width of the region outline [px].
-const OUTLINE: f64 = 2.5;
+/// Distance between hatching lines \[pt\].
+const HATCH_STEP: i32 = 4;
+/// Width of the region outline \[pt\].
+const OUTLINE: f64 = 1.5;
 
 /// Viridis at nine evenly spaced stops (matplotlib).
 const VIRIDIS: [(u8, u8, u8); 9] = [
@@ -119,9 +126,20 @@ const BLUE_RED: [(u8, u8, u8); 11] = [
     (103, 0, 31),
 ];
 
-/// Several heat maps side by side (one row, `maps.len()` panels, each with its own colour bar),
-/// under `figure_title`. Returns SVG text, or what is wrong with the first bad map.
-pub fn heatmaps_svg(figure_title: &str, maps: &[HeatMap<'_>]) -> Result<String, String> {
+/// Legend rows of `map`: "no value" if a cell has none, and the outline's text.
+fn legend_rows(map: &HeatMap<'_>) -> i32 {
+    i32::from(map.values.iter().any(|v| v.is_none_or(f64::is_nan)))
+        + i32::from(map.outline.is_some())
+}
+
+/// Several heat maps in a grid (as many columns as `width_pt` holds at [`MIN_PANEL_W`], each
+/// with its own colour bar), under the lines of `figure_title`, at the printed width `width_pt`
+/// \[pt\]. Returns SVG text, or what is wrong with the first bad map.
+pub fn heatmaps_svg(
+    figure_title: &[String],
+    maps: &[HeatMap<'_>],
+    width_pt: f64,
+) -> Result<String, String> {
     if maps.is_empty() {
         return Err("no heat maps to draw".into());
     }
@@ -130,20 +148,33 @@ pub fn heatmaps_svg(figure_title: &str, maps: &[HeatMap<'_>]) -> Result<String, 
         .enumerate()
         .map(|(i, m)| Grid::new(m).map_err(|e| format!("heat map {} ({}): {e}", i + 1, m.title)))
         .collect::<Result<Vec<_>, _>>()?;
-    let count = maps.len() as u32;
-    render((PANEL.0 * count, HEADER + PANEL.1), |root| {
-        let (header, body) = root.split_vertically(px(HEADER as i32));
-        let (w, _) = header.dim_in_pixel();
-        header
-            .draw(&Text::new(
-                figure_title.to_string(),
-                (w as i32 / 2, px(10)),
-                text(16.0, BLACK, HPos::Center, VPos::Top),
-            ))
-            .map_err(err)?;
-        let panels = body.split_evenly((1, maps.len()));
+    let cols = ((width_pt / MIN_PANEL_W).floor() as usize).clamp(1, maps.len());
+    let rows = maps.len().div_ceil(cols);
+    let legend = maps.iter().map(legend_rows).max().unwrap_or(0);
+    let panel_w = width_pt / cols as f64;
+    let panel_h = (panel_w * PANEL_ASPECT).round() as u32 + (LEGEND * legend + ROW_GAP) as u32;
+    let header = HEADER_LINE * figure_title.len() as u32 + 4;
+    let size = (width_pt.round() as u32, header + panel_h * rows as u32);
+    render(size, |root| {
+        let (header_area, body) = root.split_vertically(px(header as i32));
+        let (w, _) = header_area.dim_in_pixel();
+        for (i, line) in figure_title.iter().enumerate() {
+            let (size, colour) = if i == 0 {
+                (TITLE_PT, BLACK)
+            } else {
+                (LABEL_PT, GREY)
+            };
+            header_area
+                .draw(&Text::new(
+                    line.clone(),
+                    (w as i32 / 2, px(2 + (HEADER_LINE * i as u32) as i32)),
+                    text(size, colour, HPos::Center, VPos::Top),
+                ))
+                .map_err(err)?;
+        }
+        let panels = body.split_evenly((rows, cols));
         for ((area, map), grid) in panels.iter().zip(maps).zip(&grids) {
-            draw_panel(area, map, grid)?;
+            draw_panel(area, map, grid, legend)?;
         }
         Ok(())
     })
@@ -395,17 +426,18 @@ fn draw_panel(
     area: &DrawingArea<SVGBackend, Shift>,
     map: &HeatMap<'_>,
     grid: &Grid,
+    legend_rows: i32,
 ) -> Result<(), String> {
     let (w, h) = area.dim_in_pixel();
     let (w, h) = (w as i32, h as i32);
     area.draw(&Text::new(
         map.title.to_string(),
-        (w / 2, px(6)),
-        text(14.0, BLACK, HPos::Center, VPos::Top),
+        (w / 2, px(3)),
+        text(LABEL_PT, BLACK, HPos::Center, VPos::Top),
     ))
     .map_err(err)?;
     let body = area.margin(px(TITLE), 0, 0, 0);
-    let (main, legend) = body.split_vertically(h - px(TITLE) - px(LEGEND));
+    let (main, legend) = body.split_vertically(h - px(TITLE) - px(LEGEND * legend_rows + ROW_GAP));
     let (chart_area, bar_area) = main.split_horizontally(w - px(BAR_STRIP));
     let chart = build_chart(&chart_area, map, grid)?;
     let plotting = chart.plotting_area().strip_coord_spec();
@@ -424,7 +456,7 @@ fn draw_panel(
             y_range.end - y_range.start - 1,
         ),
     );
-    rect_outline(&plotting, frame, stroke(BLACK, 1.0))?;
+    rect_outline(&plotting, frame, stroke(BLACK, 0.75))?;
     if let Some((mask, _)) = map.outline {
         draw_outline(&plotting, grid, mask, &cells)?;
     }
@@ -444,11 +476,11 @@ fn build_chart<'a, 'b>(
     let (x0, x1) = (grid.x_edges[0], grid.x_edges[grid.x_edges.len() - 1]);
     let (y0, y1) = (grid.y_edges[0], grid.y_edges[grid.y_edges.len() - 1]);
     let mut chart = ChartBuilder::on(area)
-        .margin(px(6))
-        .margin_left(px(18))
-        .margin_right(px(4))
-        .x_label_area_size(px(44))
-        .y_label_area_size(px(58))
+        .margin(px(3))
+        .margin_left(px(10))
+        .margin_right(px(2))
+        .x_label_area_size(px(26))
+        .y_label_area_size(px(36))
         .build_cartesian_2d(
             Linear::new(x0, x1, log_ticks(x0, x1)),
             Linear::new(y0, y1, log_ticks(y0, y1)),
@@ -458,10 +490,10 @@ fn build_chart<'a, 'b>(
         .configure_mesh()
         .disable_x_mesh()
         .disable_y_mesh()
-        .axis_style(stroke(BLACK, 1.0))
-        .set_all_tick_mark_size(px(4))
-        .label_style(font(13.0))
-        .axis_desc_style(font(14.0))
+        .axis_style(stroke(BLACK, 0.75))
+        .set_all_tick_mark_size(px(2))
+        .label_style(font(TICK_PT))
+        .axis_desc_style(font(LABEL_PT))
         .x_desc(map.x_label)
         .y_desc(map.y_label)
         .x_label_formatter(&|v| log_label(*v))
@@ -530,7 +562,7 @@ fn hatch(
         if xa < xb {
             area.draw(&PathElement::new(
                 vec![(xa, c - xa), (xb, c - xb)],
-                stroke(HATCH, 1.0),
+                stroke(HATCH, 0.5),
             ))
             .map_err(err)?;
         }
@@ -577,7 +609,7 @@ fn draw_outline(
             }
         }
     }
-    for (colour, width) in [(WHITE, OUTLINE + 2.0), (BLACK, OUTLINE)] {
+    for (colour, width) in [(WHITE, OUTLINE + 1.0), (BLACK, OUTLINE)] {
         let half = (width * f64::from(px(1)) / 2.0).round() as i32;
         for &((xa, ya), (xb, yb)) in &segments {
             let (dx, dy) = (half * (xb - xa).signum(), half * (yb - ya).signum());
@@ -599,7 +631,7 @@ fn draw_colour_bar(
     span: (i32, i32),
 ) -> Result<(), String> {
     let scale = &map.scale;
-    let (x0, x1) = (px(10), px(10 + BAR_WIDTH));
+    let (x0, x1) = (px(6), px(6 + BAR_WIDTH));
     let (top, bottom) = (span.0 + px(BAR_INSET), span.1 - px(BAR_INSET));
     let height = bottom - top;
     let slices = 128;
@@ -610,7 +642,7 @@ fn draw_colour_bar(
         area.draw(&Rectangle::new([(x0, yb), (x1, ya)], colour.filled()))
             .map_err(err)?;
     }
-    rect_outline(area, ((x0, top), (x1, bottom)), stroke(BLACK, 1.0))?;
+    rect_outline(area, ((x0, top), (x1, bottom)), stroke(BLACK, 0.75))?;
     let sides: Vec<i8> = map
         .values
         .iter()
@@ -645,21 +677,22 @@ fn draw_colour_bar(
     for (c, label) in labelled {
         let y = at(c);
         area.draw(&PathElement::new(
-            vec![(x1, y), (x1 + px(4), y)],
-            stroke(BLACK, 1.0),
+            vec![(x1, y), (x1 + px(2), y)],
+            stroke(BLACK, 0.75),
         ))
         .map_err(err)?;
         area.draw(&Text::new(
             label,
-            (x1 + px(7), y),
-            text(12.0, BLACK, HPos::Left, VPos::Center),
+            (x1 + px(3), y),
+            text(TICK_PT, BLACK, HPos::Left, VPos::Center),
         ))
         .map_err(err)?;
     }
-    let style = text(14.0, BLACK, HPos::Center, VPos::Center).transform(FontTransform::Rotate270);
+    let style =
+        text(LABEL_PT, BLACK, HPos::Center, VPos::Center).transform(FontTransform::Rotate270);
     area.draw(&Text::new(
         map.value_label.to_string(),
-        (x1 + px(60), (top + bottom) / 2),
+        (x1 + px(32), (top + bottom) / 2),
         style,
     ))
     .map_err(err)
@@ -694,46 +727,46 @@ fn triangle(
     dir: i32,
     colour: RGBColor,
 ) -> Result<(), String> {
-    let tip = (x0 + (x1 - x0) / 2, y + dir * px(BAR_INSET - 3));
+    let tip = (x0 + (x1 - x0) / 2, y + dir * px(BAR_INSET - 2));
     let points = vec![(x0, y), (x1, y), tip];
     area.draw(&Polygon::new(points.clone(), colour.filled()))
         .map_err(err)?;
     let mut closed = points;
     closed.push((x0, y));
-    area.draw(&PathElement::new(closed, stroke(BLACK, 1.0)))
+    area.draw(&PathElement::new(closed, stroke(BLACK, 0.75)))
         .map_err(err)
 }
 
-/// The legend row under the plot, from pixel `x`: the hatched "no value" swatch if a cell has no
-/// value, and the outline's swatch and text.
+/// The legend rows under the plot, from `x`: the hatched "no value" swatch if a cell has no
+/// value, and the outline's swatch and text, one row each.
 fn draw_legend(
     area: &DrawingArea<SVGBackend, Shift>,
     map: &HeatMap<'_>,
-    mut x: i32,
+    x: i32,
 ) -> Result<(), String> {
-    let y = px(LEGEND / 2);
-    let swatch = |x: i32| ((x, y - px(7)), (x + px(22), y + px(7)));
-    let label = |s: &str, x: i32| {
+    let mut y = px(LEGEND / 2);
+    let swatch = |y: i32| ((x, y - px(4)), (x + px(12), y + px(4)));
+    let label = |s: &str, y: i32| {
         Text::new(
             s.to_string(),
-            (x + px(28), y),
-            text(13.0, BLACK, HPos::Left, VPos::Center),
+            (x + px(16), y),
+            text(TICK_PT, BLACK, HPos::Left, VPos::Center),
         )
     };
     if map.values.iter().any(|v| v.is_none_or(f64::is_nan)) {
-        let r = swatch(x);
+        let r = swatch(y);
         area.draw(&Rectangle::new([r.0, r.1], NO_VALUE.filled()))
             .map_err(err)?;
         hatch(area, r)?;
-        rect_outline(area, r, stroke(GREY_EDGE, 1.0))?;
-        area.draw(&label("no value", x)).map_err(err)?;
-        x += px(120);
+        rect_outline(area, r, stroke(GREY_EDGE, 0.75))?;
+        area.draw(&label("no value", y)).map_err(err)?;
+        y += px(LEGEND);
     }
     if let Some((_, text)) = map.outline {
-        let r = swatch(x);
-        rect_outline(area, r, stroke(WHITE, OUTLINE + 2.0))?;
+        let r = swatch(y);
+        rect_outline(area, r, stroke(WHITE, OUTLINE + 1.0))?;
         rect_outline(area, r, stroke(BLACK, OUTLINE))?;
-        area.draw(&label(text, x)).map_err(err)?;
+        area.draw(&label(text, y)).map_err(err)?;
     }
     Ok(())
 }
@@ -784,8 +817,8 @@ mod tests {
         let mask: Vec<bool> = values.iter().map(|v| v.unwrap() > 0.5).collect();
         let mut m = map(&xs, &ys, &values);
         m.outline = Some((&mask, "value > 0.5"));
-        let svg = heatmaps_svg("figure title here", &[m]).unwrap();
-        assert!(svg.starts_with("<svg width=\"520\" height=\"520\""));
+        let svg = heatmaps_svg(&["figure title here".to_string()], &[m], 504.0).unwrap();
+        assert!(svg.starts_with("<svg width=\"7in\""));
         assert!(svg.contains("figure title here"));
         assert!(svg.contains("synthetic map"));
         assert!(svg.contains("value &gt; 0.5") || svg.contains("value > 0.5"));
@@ -810,8 +843,13 @@ mod tests {
         let mut b = map(&xs, &ys, &positive);
         b.title = "log";
         b.scale = ColorScale::Log { lo: 1e-1, hi: 1e5 };
-        let svg = heatmaps_svg("three", &[map(&xs, &ys, &values), a, b]).unwrap();
-        assert!(svg.starts_with("<svg width=\"1560\""));
+        let svg = heatmaps_svg(
+            &["three".to_string()],
+            &[map(&xs, &ys, &values), a, b],
+            504.0,
+        )
+        .unwrap();
+        assert!(svg.starts_with("<svg width=\"7in\""));
         assert!(svg.contains("diverging") && svg.contains(">\nlog\n<"));
     }
 
@@ -820,7 +858,7 @@ mod tests {
         let xs = grid(5, 1.0, 1e4);
         let ys = grid(4, 1.0, 1e3);
         let values = vec![None; 20];
-        let svg = heatmaps_svg("empty", &[map(&xs, &ys, &values)]).unwrap();
+        let svg = heatmaps_svg(&["empty".to_string()], &[map(&xs, &ys, &values)], 504.0).unwrap();
         assert!(svg.contains("no value"));
     }
 
@@ -829,27 +867,33 @@ mod tests {
         let xs = grid(4, 1.0, 1e3);
         let ys = grid(3, 1.0, 1e2);
         let values = synthetic(&xs, &ys);
-        let e = heatmaps_svg("t", &[map(&xs, &ys, &values[1..])]).unwrap_err();
+        let e =
+            heatmaps_svg(&["t".to_string()], &[map(&xs, &ys, &values[1..])], 504.0).unwrap_err();
         assert!(
             e.contains("values has 11 entries, expected nx·ny = 4·3 = 12"),
             "{e}"
         );
-        let e = heatmaps_svg("t", &[map(&[], &ys, &[])]).unwrap_err();
+        let e = heatmaps_svg(&["t".to_string()], &[map(&[], &ys, &[])], 504.0).unwrap_err();
         assert!(e.contains("empty grid: xs"), "{e}");
-        let e = heatmaps_svg("t", &[map(&xs, &[], &[])]).unwrap_err();
+        let e = heatmaps_svg(&["t".to_string()], &[map(&xs, &[], &[])], 504.0).unwrap_err();
         assert!(e.contains("empty grid: ys"), "{e}");
         let bad_x = [0.0, 1.0, 2.0, 3.0];
-        let e = heatmaps_svg("t", &[map(&bad_x, &ys, &values)]).unwrap_err();
+        let e = heatmaps_svg(&["t".to_string()], &[map(&bad_x, &ys, &values)], 504.0).unwrap_err();
         assert!(e.contains("xs must be finite and > 0"), "{e}");
         let bad_y = [1.0, -1.0, 2.0];
-        let e = heatmaps_svg("t", &[map(&xs, &bad_y, &values)]).unwrap_err();
+        let e = heatmaps_svg(&["t".to_string()], &[map(&xs, &bad_y, &values)], 504.0).unwrap_err();
         assert!(e.contains("ys must be finite and > 0"), "{e}");
-        let e = heatmaps_svg("t", &[map(&xs, &[1.0, 3.0, 2.0], &values)]).unwrap_err();
+        let e = heatmaps_svg(
+            &["t".to_string()],
+            &[map(&xs, &[1.0, 3.0, 2.0], &values)],
+            504.0,
+        )
+        .unwrap_err();
         assert!(e.contains("ys must be strictly ascending"), "{e}");
         let mask = [true; 5];
         let mut m = map(&xs, &ys, &values);
         m.outline = Some((&mask, "region"));
-        let e = heatmaps_svg("t", &[m]).unwrap_err();
+        let e = heatmaps_svg(&["t".to_string()], &[m], 504.0).unwrap_err();
         assert!(e.contains("outline mask has 5 entries"), "{e}");
         for scale in [
             ColorScale::Sequential { lo: 1.0, hi: 1.0 },
@@ -862,10 +906,10 @@ mod tests {
         ] {
             let mut m = map(&xs, &ys, &values);
             m.scale = scale;
-            let e = heatmaps_svg("t", &[m]).unwrap_err();
+            let e = heatmaps_svg(&["t".to_string()], &[m], 504.0).unwrap_err();
             assert!(e.contains("bad colour scale"), "{e}");
         }
-        assert!(heatmaps_svg("t", &[]).is_err());
+        assert!(heatmaps_svg(&["t".to_string()], &[], 504.0).is_err());
     }
 
     #[test]
@@ -963,8 +1007,9 @@ mod tests {
             },
         ];
         let svg = heatmaps_svg(
-            "Demo: synthetic data over the (m_e/m_r, k_δ/k_c) plane",
+            &["Demo: synthetic data over the (m_e/m_r, k_δ/k_c) plane".to_string()],
             &maps,
+            504.0,
         )
         .unwrap();
         std::fs::write("/tmp/heatmap_demo.svg", svg).unwrap();

@@ -1,24 +1,36 @@
-//! SVG figures (plotters), rendered to a string so the caller can write them atomically.
+//! Figures (plotters), rendered to an SVG string so the caller can write them atomically, and
+//! from it to PDF and PNG ([`page`]).
 //!
-//! Every figure is drawn at [`SCALE`]× its nominal size and the SVG root is then given the
-//! nominal width and height (the viewBox keeps the drawn size). The SVG backend rounds every
-//! coordinate to a whole pixel; drawn this way a pixel of the drawing is a quarter pixel of the
-//! figure, and curves come out smooth.
+//! Every figure is laid out in points (1/72 in) at its printed width ([`FigureWidth`]), with
+//! text of at least [`MIN_TEXT_PT`]; the helpers [`text`] and [`font`] take sizes in points.
+//! It is drawn at [`SCALE`] drawing units per point and the SVG root states the printed width
+//! and height in inches (the viewBox keeps the drawn size). The SVG backend rounds every
+//! coordinate to a whole unit; drawn this way a unit is a quarter point, and curves come out
+//! smooth.
 
-mod curves;
 mod eta;
 mod fig6;
 mod fig9;
 mod heatmap;
+pub mod inspect;
+pub mod page;
+mod payload;
 mod prb;
+#[cfg(test)]
+mod print_tests;
+mod rotor;
 mod work_precision;
 
-pub use curves::{Curve, CurvePanel, log_x_curves_svg};
 pub use eta::eta_svg;
 pub use fig6::{Fig6Point, fig6_svg, fig6_with_points_svg};
-pub use fig9::fig9_svg;
+pub use fig9::{Jitter, fig9_svg, grams};
 pub use heatmap::{ColorScale, HeatMap, heatmaps_svg};
+pub use page::{
+    FigureFormat, FigureOptions, FigureWidth, MIN_TEXT_PT, svg_to_pdf, svg_to_png, write_figure,
+};
+pub use payload::payload_svg;
 pub use prb::prb_svg;
+pub use rotor::eta_rotor_svg;
 pub use work_precision::{Panel, Series, work_precision_svg};
 
 use std::ops::Range;
@@ -48,22 +60,37 @@ pub(crate) const GRID: RGBColor = RGBColor(225, 225, 225);
 /// Mid grey of reference lines and notes.
 pub(crate) const GREY: RGBColor = RGBColor(110, 110, 110);
 
-/// `v` nominal pixels in drawing pixels.
+/// `v` points in drawing units.
 pub(crate) fn px(v: i32) -> i32 {
     v * SCALE
 }
 
-/// A `size`-pixel (nominal) sans-serif text style in `colour`, anchored at `(h, v)`.
+/// plotters writes a font's `font-size` as its size / 1.24; sizes are given to it times this.
+const PLOTTERS_FONT: f64 = 1.24;
+
+/// Text sizes \[pt\]: tick labels and notes, axis labels, panel titles.
+pub(crate) const TICK_PT: f64 = 8.0;
+/// Axis labels and legends \[pt\].
+pub(crate) const LABEL_PT: f64 = 8.5;
+/// Panel titles \[pt\].
+pub(crate) const TITLE_PT: f64 = 9.0;
+
+/// A `size`-point sans-serif text style in `colour`, anchored at `(h, v)`.
 pub(crate) fn text(size: f64, colour: RGBColor, h: HPos, v: VPos) -> TextStyle<'static> {
-    ("sans-serif", size * f64::from(SCALE))
-        .into_font()
-        .color(&colour)
-        .pos(Pos::new(h, v))
+    font(size).color(&colour).pos(Pos::new(h, v))
 }
 
-/// A `size`-pixel (nominal) sans-serif font for axis labels and captions.
+/// A `size`-point sans-serif font for axis labels and captions.
 pub(crate) fn font(size: f64) -> FontDesc<'static> {
-    ("sans-serif", size * f64::from(SCALE)).into_font()
+    ("sans-serif", size * PLOTTERS_FONT * f64::from(SCALE)).into_font()
+}
+
+/// The mean advance of a DejaVu Sans glyph over the font size (for boxes and layout).
+pub(crate) const GLYPH: f64 = 0.6;
+
+/// The width of `s` in `size`-point text \[pt\] (estimated from [`GLYPH`]).
+pub(crate) fn text_width_pt(s: &str, size: f64) -> f64 {
+    GLYPH * size * s.chars().count() as f64
 }
 
 /// A solid line of `width` nominal pixels.
@@ -71,35 +98,28 @@ pub(crate) fn stroke(colour: RGBColor, width: f64) -> ShapeStyle {
     colour.stroke_width((width * f64::from(SCALE)).round() as u32)
 }
 
-/// Text `s` at pixel `at` of `area`, anchored as `style` says, on a white box so that no grid
-/// line runs through it. The box is sized by an estimate of DejaVu Sans' mean glyph width.
-pub(crate) fn boxed_text(
-    area: &DrawingArea<SVGBackend, Shift>,
-    s: &str,
-    at: (i32, i32),
-    style: TextStyle<'static>,
-) -> Result<(), String> {
-    // plotters writes font-size = size/1.24; a glyph is about 0.6 font-size wide on average.
-    let font_px = style.font.get_size() / 1.24;
-    let w = (0.6 * font_px * s.chars().count() as f64).round() as i32;
-    let h = font_px.round() as i32;
-    let x0 = match style.pos.h_pos {
-        HPos::Left => at.0,
-        HPos::Center => at.0 - w / 2,
-        HPos::Right => at.0 - w,
-    };
-    let y0 = match style.pos.v_pos {
-        VPos::Top => at.1,
-        VPos::Center => at.1 - h / 2,
-        VPos::Bottom => at.1 - h,
-    };
-    let pad = px(2);
-    area.draw(&Rectangle::new(
-        [(x0 - pad, y0 - pad), (x0 + w + pad, y0 + h + pad)],
-        WHITE.filled(),
-    ))
-    .map_err(err)?;
-    area.draw(&Text::new(s.to_string(), at, style)).map_err(err)
+/// `s` broken at spaces into lines of at most `width_pt` in `size`-point text (a word longer
+/// than the width stands alone on its line).
+pub(crate) fn wrap(s: &str, width_pt: f64, size: f64) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    let mut current = String::new();
+    for word in s.split(' ') {
+        let candidate = if current.is_empty() {
+            word.to_string()
+        } else {
+            format!("{current} {word}")
+        };
+        if text_width_pt(&candidate, size) > width_pt && !current.is_empty() {
+            lines.push(std::mem::take(&mut current));
+            current = word.to_string();
+        } else {
+            current = candidate;
+        }
+    }
+    if !current.is_empty() || lines.is_empty() {
+        lines.push(current);
+    }
+    lines
 }
 
 /// Any plotting error as text.
@@ -107,7 +127,8 @@ pub(crate) fn err(e: impl std::fmt::Display) -> String {
     e.to_string()
 }
 
-/// Renders `draw` on a white canvas of nominal size `(w, h)` and returns the SVG text.
+/// Renders `draw` on a white canvas of `(w, h)` points and returns the SVG text, its size in
+/// inches.
 pub(crate) fn render(
     (w, h): (u32, u32),
     draw: impl FnOnce(&DrawingArea<SVGBackend, Shift>) -> Result<(), String>,
@@ -121,7 +142,11 @@ pub(crate) fn render(
         root.present().map_err(err)?;
     }
     let drawn = format!("<svg width=\"{}\" height=\"{}\"", w * scale, h * scale);
-    let nominal = format!("<svg width=\"{w}\" height=\"{h}\"");
+    let nominal = format!(
+        "<svg width=\"{}in\" height=\"{}in\"",
+        f64::from(w) / 72.0,
+        f64::from(h) / 72.0
+    );
     if !svg.starts_with(&drawn) {
         return Err("unexpected SVG header from the plotting backend".into());
     }
@@ -129,7 +154,13 @@ pub(crate) fn render(
 }
 
 /// Symbols written `m_h` in the figures' text and set with a real subscript in the SVG.
-const SUBSCRIPTED: [(&str, &str); 8] = [
+const SUBSCRIPTED: [(&str, &str); 14] = [
+    ("J_R", "R"),
+    ("f_placed", "placed"),
+    ("Θ_max", "max"),
+    ("γ_eff", "eff"),
+    ("f_CL", "CL"),
+    ("f_CJ", "CJ"),
     ("m_h", "h"),
     ("m_e", "e"),
     ("m_r", "r"),
@@ -140,15 +171,43 @@ const SUBSCRIPTED: [(&str, &str); 8] = [
     ("η_FE", "FE"),
 ];
 
-/// `svg` with the [`SUBSCRIPTED`] symbols' subscripts as lowered, smaller `tspan`s.
+/// `svg` with the [`SUBSCRIPTED`] symbols' subscripts as lowered `tspan`s, smaller than their
+/// text but never below [`MIN_TEXT_PT`].
 fn subscripts(svg: &str) -> String {
-    let mut out = svg.to_string();
-    for (symbol, sub) in SUBSCRIPTED {
-        let base = &symbol[..symbol.len() - sub.len() - 1];
-        let set = format!("{base}<tspan baseline-shift=\"sub\" font-size=\"75%\">{sub}</tspan>");
-        out = out.replace(symbol, &set);
+    let min = MIN_TEXT_PT * f64::from(SCALE);
+    let mut out = String::with_capacity(svg.len() + 1024);
+    let mut rest = svg;
+    while let Some(start) = rest.find("<text") {
+        let Some(end) = rest[start..].find("</text>").map(|e| start + e) else {
+            break;
+        };
+        out.push_str(&rest[..start]);
+        let element = &rest[start..end];
+        let size = attribute(element, "font-size").unwrap_or(min);
+        let sub_size = (0.8 * size).max(min);
+        let mut element = element.to_string();
+        for (symbol, sub) in SUBSCRIPTED {
+            if element.contains(symbol) {
+                let base = &symbol[..symbol.len() - sub.len() - 1];
+                let set = format!(
+                    "{base}<tspan baseline-shift=\"sub\" font-size=\"{sub_size:.2}\">{sub}</tspan>"
+                );
+                element = element.replace(symbol, &set);
+            }
+        }
+        out.push_str(&element);
+        rest = &rest[end..];
     }
+    out.push_str(rest);
     out
+}
+
+/// The number in `name="…"` of an SVG element's text.
+pub(crate) fn attribute(element: &str, name: &str) -> Option<f64> {
+    let key = format!(" {name}=\"");
+    let start = element.find(&key)? + key.len();
+    let end = start + element[start..].find('"')?;
+    element[start..end].parse().ok()
 }
 
 /// A linear axis from `lo` to `hi` with ticks (and grid lines) exactly at `ticks`.
@@ -188,8 +247,8 @@ impl Ranged for Linear {
     }
 }
 
-/// `10` with the exponent of `v` (a power of ten) in superscript digits, e.g. `10⁻⁵`.
-pub(crate) fn decade_label(v: f64) -> String {
+/// A power of ten `v` as `10` with its exponent in superscript digits, e.g. `10⁻⁵`.
+pub fn decade_label(v: f64) -> String {
     let exponent = v.log10().round() as i64;
     let digits: String = exponent
         .to_string()
@@ -211,8 +270,8 @@ pub(crate) fn decade_label(v: f64) -> String {
     format!("10{digits}")
 }
 
-/// `v` as `10ᵏ` or `m·10ᵏ` (mantissa to 6 significant digits).
-pub(crate) fn sci_label(v: f64) -> String {
+/// A number `v` as `10ᵏ` or `m·10ᵏ` (mantissa to 6 significant digits).
+pub fn sci_label(v: f64) -> String {
     let decade = 10f64.powf(v.log10().floor());
     let mantissa = v / decade;
     if (mantissa - 1.0).abs() < 1e-9 {
@@ -258,6 +317,14 @@ mod tests {
     }
 
     #[test]
+    fn text_wraps_at_spaces_within_the_width() {
+        // 8 pt: a glyph is 4.8 pt wide, so 50 pt hold 10 glyphs
+        let lines = wrap("aaaa bbbb cccc dddddddddddd e", 50.0, 8.0);
+        assert_eq!(lines, ["aaaa bbbb", "cccc", "dddddddddddd", "e"]);
+        assert_eq!(wrap("", 50.0, 8.0), [""]);
+    }
+
+    #[test]
     fn nice_steps_and_ticks() {
         assert_eq!(nice_step(300.0, 6), 50.0);
         assert_eq!(nice_step(0.4, 5), 0.1);
@@ -268,6 +335,9 @@ mod tests {
     #[test]
     fn the_svg_is_scaled_to_its_nominal_size() {
         let svg = render((100, 50), |_| Ok(())).unwrap();
-        assert!(svg.starts_with("<svg width=\"100\" height=\"50\" viewBox=\"0 0 400 200\""));
+        assert!(
+            svg.starts_with("<svg width=\"1.3888888888888888in\" height=\"0.6944444444444444in\" viewBox=\"0 0 400 200\""),
+            "{svg}"
+        );
     }
 }

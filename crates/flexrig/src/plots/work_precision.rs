@@ -7,7 +7,10 @@ use plotters::coord::combinators::{IntoLogRange, LogCoord, WithKeyPoints};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
 
-use super::{GREY, GRID, PALETTE, err, font, px, render, sci_label, stroke, text};
+use super::{
+    GREY, GRID, LABEL_PT, PALETTE, TICK_PT, TITLE_PT, err, font, px, render, sci_label, stroke,
+    text, wrap,
+};
 
 /// One method: its label and its `(run time [s], error)` points.
 #[derive(Debug, Clone, PartialEq)]
@@ -29,12 +32,17 @@ pub struct Panel {
     pub note: Option<String>,
 }
 
-/// Height of the plotting part of a panel [px].
-const PLOT_HEIGHT: u32 = 400;
-/// Height of the figure title [px].
-const HEADER: u32 = 34;
-/// Height of one legend entry [px].
-const LEGEND_LINE: u32 = 17;
+/// Height of the plotting part of a panel \[pt\].
+const PLOT_HEIGHT: u32 = 175;
+/// Height of a line of the figure title \[pt\].
+const TITLE_LINE: u32 = 12;
+/// Height of one legend line \[pt\].
+const LEGEND_LINE: u32 = 10;
+/// Narrowest panel \[pt\].
+const MIN_PANEL_W: f64 = 240.0;
+/// Left edge of the legend and the room of its samples \[pt\].
+const LEGEND_X: i32 = 8;
+const LEGEND_SAMPLE: i32 = 20;
 
 /// The marker shapes, cycled with a period (5) prime to the palette's (7); filled for the first
 /// five series of a panel, hollow for the next five.
@@ -64,40 +72,66 @@ pub(super) fn style(i: usize) -> (RGBColor, Marker, bool) {
     )
 }
 
-/// A work–precision figure titled `title`, errors labelled `y_desc`, one panel per entry, all
-/// on one error scale if `share_y`.
+/// The legend of `panel` in a panel `width_pt` wide: per series its label's lines, then the
+/// note's lines.
+fn legend_lines(panel: &Panel, width_pt: f64) -> (Vec<Vec<String>>, Vec<String>) {
+    let room = width_pt - f64::from(LEGEND_X + LEGEND_SAMPLE) - 4.0;
+    let series = panel
+        .series
+        .iter()
+        .map(|s| wrap(&s.label, room, TICK_PT))
+        .collect();
+    let note = panel.note.as_ref().map_or_else(Vec::new, |n| {
+        wrap(n, width_pt - f64::from(LEGEND_X) - 4.0, TICK_PT)
+    });
+    (series, note)
+}
+
+/// A work–precision figure titled `title`, errors labelled `y_desc`, one panel per entry (in as
+/// many columns as the printed width `width_pt` \[pt\] holds), all on one error scale if
+/// `share_y`.
 pub fn work_precision_svg(
     title: &str,
     y_desc: &str,
     panels: &[Panel],
     share_y: bool,
+    width_pt: f64,
 ) -> Result<String, String> {
     let (_, shared_y) = decade_ranges(panels);
-    let count = panels.len().max(1) as u32;
-    let panel_width = if count >= 3 { 440 } else { 560 };
+    let count = panels.len().max(1);
+    let cols = ((width_pt / MIN_PANEL_W).floor() as usize).clamp(1, count);
+    let rows = count.div_ceil(cols);
+    let panel_w = width_pt / cols as f64;
     let legend_rows = panels
         .iter()
-        .map(|p| p.series.len() + usize::from(p.note.is_some()))
+        .map(|p| {
+            let (series, note) = legend_lines(p, panel_w);
+            series.iter().map(Vec::len).sum::<usize>() + note.len()
+        })
         .max()
         .unwrap_or(0) as u32;
-    let legend_height = 16 + LEGEND_LINE * legend_rows;
-    let size = (panel_width * count, HEADER + PLOT_HEIGHT + legend_height);
+    let legend_height = 6 + LEGEND_LINE * legend_rows;
+    let title_lines = wrap(title, width_pt - 8.0, TITLE_PT);
+    let header = TITLE_LINE * title_lines.len() as u32 + 4;
+    let panel_h = PLOT_HEIGHT + legend_height;
+    let size = (width_pt.round() as u32, header + panel_h * rows as u32);
     render(size, |root| {
-        let (header, body) = root.split_vertically(px(HEADER as i32));
-        let (w, _) = header.dim_in_pixel();
-        header
-            .draw(&Text::new(
-                title.to_string(),
-                (w as i32 / 2, px(8)),
-                text(16.0, BLACK, HPos::Center, VPos::Top),
+        let (head, body) = root.split_vertically(px(header as i32));
+        let (w, _) = head.dim_in_pixel();
+        for (i, line) in title_lines.iter().enumerate() {
+            head.draw(&Text::new(
+                line.clone(),
+                (w as i32 / 2, px(2 + (TITLE_LINE * i as u32) as i32)),
+                text(TITLE_PT, BLACK, HPos::Center, VPos::Top),
             ))
             .map_err(err)?;
-        for (area, panel) in body.split_evenly((1, count as usize)).iter().zip(panels) {
+        }
+        for (area, panel) in body.split_evenly((rows, cols)).iter().zip(panels) {
             let (plot, legend) = area.split_vertically(px(PLOT_HEIGHT as i32));
             let (x_range, own_y) = decade_ranges(std::slice::from_ref(panel));
             let y_range = if share_y { shared_y } else { own_y };
             draw_panel(&plot, panel, y_desc, (x_range, y_range))?;
-            draw_legend(&legend, panel)?;
+            draw_legend(&legend, panel, panel_w)?;
         }
         Ok(())
     })
@@ -163,20 +197,21 @@ fn draw_panel(
     (x_range, y_range): ((i32, i32), (i32, i32)),
 ) -> Result<(), String> {
     let mut chart = ChartBuilder::on(area)
-        .caption(&panel.title, font(14.0))
-        .margin(px(8))
-        .margin_right(px(18))
-        .x_label_area_size(px(44))
-        .y_label_area_size(px(62))
+        .caption(&panel.title, font(LABEL_PT))
+        .margin(px(3))
+        .margin_right(px(14))
+        .x_label_area_size(px(28))
+        .y_label_area_size(px(40))
         .build_cartesian_2d(log_axis(x_range), log_axis(y_range))
         .map_err(err)?;
     chart
         .configure_mesh()
-        .bold_line_style(stroke(GRID, 1.0))
-        .axis_style(stroke(BLACK, 1.0))
-        .set_all_tick_mark_size(px(4))
-        .label_style(font(13.0))
-        .axis_desc_style(font(14.0))
+        .light_line_style(WHITE)
+        .bold_line_style(stroke(GRID, 0.75))
+        .axis_style(stroke(BLACK, 0.75))
+        .set_all_tick_mark_size(px(2))
+        .label_style(font(TICK_PT))
+        .axis_desc_style(font(LABEL_PT))
         .x_desc("median run time [s]")
         .y_desc(y_desc)
         .x_label_formatter(&|v| sci_label(*v))
@@ -190,7 +225,7 @@ fn draw_panel(
         let points: Vec<(f64, f64)> = plottable(&series.points).collect();
         if points.len() > 1 {
             chart
-                .draw_series(LineSeries::new(points.clone(), stroke(colour, 1.5)))
+                .draw_series(LineSeries::new(points.clone(), stroke(colour, 1.0)))
                 .map_err(err)?;
         }
         for p in &points {
@@ -214,10 +249,10 @@ pub(super) fn draw_marker(
     (colour, filled): (RGBColor, bool),
 ) -> Result<(), String> {
     if !filled && kind != Marker::Cross {
-        draw_shape(area, (x, y), kind, colour, px(5))?;
-        return draw_shape(area, (x, y), kind, WHITE, px(3));
+        draw_shape(area, (x, y), kind, colour, 11)?;
+        return draw_shape(area, (x, y), kind, WHITE, 6);
     }
-    draw_shape(area, (x, y), kind, colour, px(4))
+    draw_shape(area, (x, y), kind, colour, 9)
 }
 
 /// A filled marker shape of `kind` and size `r` (drawing pixels) at `(x, y)`.
@@ -229,34 +264,23 @@ fn draw_shape(
     r: i32,
 ) -> Result<(), String> {
     let fill = colour.filled();
+    let e = r / 4;
     match kind {
         Marker::Circle => area.draw(&Circle::new((x, y), r, fill)),
         Marker::Square => area.draw(&Rectangle::new(
-            [
-                (x - r + px(1), y - r + px(1)),
-                (x + r - px(1), y + r - px(1)),
-            ],
+            [(x - r + e, y - r + e), (x + r - e, y + r - e)],
             fill,
         )),
         Marker::Triangle => area.draw(&Polygon::new(
-            vec![
-                (x, y - r - px(1)),
-                (x - r, y + r - px(1)),
-                (x + r, y + r - px(1)),
-            ],
+            vec![(x, y - r - e), (x - r, y + r - e), (x + r, y + r - e)],
             fill,
         )),
         Marker::Diamond => area.draw(&Polygon::new(
-            vec![
-                (x, y - r - px(1)),
-                (x + r, y),
-                (x, y + r + px(1)),
-                (x - r, y),
-            ],
+            vec![(x, y - r - e), (x + r, y), (x, y + r + e), (x - r, y)],
             fill,
         )),
         Marker::Cross => {
-            let s = stroke(colour, 2.0);
+            let s = stroke(colour, 1.0);
             area.draw(&PathElement::new(vec![(x - r, y - r), (x + r, y + r)], s))
                 .map_err(err)?;
             area.draw(&PathElement::new(vec![(x - r, y + r), (x + r, y - r)], s))
@@ -265,35 +289,46 @@ fn draw_shape(
     .map_err(err)
 }
 
-/// The legend under a panel: one line per series with its line and marker, then the note.
-fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, panel: &Panel) -> Result<(), String> {
-    let x = px(24);
-    let line_y = |i: usize| px(10 + (LEGEND_LINE * i as u32) as i32 + LEGEND_LINE as i32 / 2);
-    for (i, s) in panel.series.iter().enumerate() {
+/// The legend under a panel `width_pt` wide: per series its line and marker and its label
+/// (wrapped), then the note.
+fn draw_legend(
+    area: &DrawingArea<SVGBackend, Shift>,
+    panel: &Panel,
+    width_pt: f64,
+) -> Result<(), String> {
+    let (series_lines, note) = legend_lines(panel, width_pt);
+    let x = px(LEGEND_X);
+    let line_y = |i: usize| px(4 + (LEGEND_LINE * i as u32) as i32 + LEGEND_LINE as i32 / 2);
+    let mut row = 0;
+    for (i, (s, lines)) in panel.series.iter().zip(&series_lines).enumerate() {
         let (colour, marker, filled) = style(i);
-        let y = line_y(i);
+        let y = line_y(row);
         if plottable(&s.points).count() > 1 {
             area.draw(&PathElement::new(
-                vec![(x, y), (x + px(26), y)],
-                stroke(colour, 1.5),
+                vec![(x, y), (x + px(14), y)],
+                stroke(colour, 1.0),
             ))
             .map_err(err)?;
         }
-        draw_marker(area, (x + px(13), y), marker, (colour, filled))?;
-        area.draw(&Text::new(
-            s.label.clone(),
-            (x + px(36), y),
-            text(12.0, BLACK, HPos::Left, VPos::Center),
-        ))
-        .map_err(err)?;
+        draw_marker(area, (x + px(7), y), marker, (colour, filled))?;
+        for line in lines {
+            area.draw(&Text::new(
+                line.clone(),
+                (x + px(LEGEND_SAMPLE), line_y(row)),
+                text(TICK_PT, BLACK, HPos::Left, VPos::Center),
+            ))
+            .map_err(err)?;
+            row += 1;
+        }
     }
-    if let Some(note) = &panel.note {
+    for line in note {
         area.draw(&Text::new(
-            note.clone(),
-            (x, line_y(panel.series.len())),
-            text(12.0, GREY, HPos::Left, VPos::Center),
+            line,
+            (x, line_y(row)),
+            text(TICK_PT, GREY, HPos::Left, VPos::Center),
         ))
         .map_err(err)?;
+        row += 1;
     }
     Ok(())
 }
