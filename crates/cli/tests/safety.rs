@@ -192,7 +192,10 @@ fn transient_head_contact_is_refused_with_the_clause() {
         let out = flexrig(&["safety", "--region", region, "--m-eff", "5"]);
         assert_eq!(out.status.code(), Some(2), "{region}");
         let err = String::from_utf8_lossy(&out.stderr);
-        assert!(err.contains("not permitted") && err.contains("5.5.5.4"), "{err}");
+        assert!(
+            err.contains("not permitted") && err.contains("5.5.5.4"),
+            "{err}"
+        );
     }
     // Quasi-static contact with the forehead is assessed.
     let v = json(&[
@@ -211,11 +214,20 @@ fn transient_head_contact_is_refused_with_the_clause() {
 fn bad_input_exits_2_naming_the_flag() {
     let cases: [(&[&str], &str); 8] = [
         (&["--region", "chest", "--m-eff", "-1"], "--m-eff"),
-        (&["--region", "chest", "--m-eff", "5", "--k-delta", "0"], "--k-delta"),
-        (&["--region", "chest", "--m-eff", "5", "--speed", "NaN"], "--speed"),
+        (
+            &["--region", "chest", "--m-eff", "5", "--k-delta", "0"],
+            "--k-delta",
+        ),
+        (
+            &["--region", "chest", "--m-eff", "5", "--speed", "NaN"],
+            "--speed",
+        ),
         (&["--region", "chest"], "--moving-mass"),
         (&["--region", "elbow", "--m-eff", "5"], "elbow"),
-        (&["--region", "chest", "--m-eff", "5", "--area", "Toe"], "Toe"),
+        (
+            &["--region", "chest", "--m-eff", "5", "--area", "Toe"],
+            "Toe",
+        ),
         (
             &["--region", "chest", "--m-eff", "5", "--material", "steel"],
             "--material",

@@ -23,11 +23,11 @@
 use flexrig_contact::{Hertz, Materials, SeriesCompliance};
 use flexrig_lumped::ImpactModel;
 use flexrig_lumped::ode::{OdeOptions, StopAt, integrate};
-pub use flexrig_safety::{BodyModel, ContactAreaModel, ContactKind, GoverningLimit};
 use flexrig_safety::{
-    BodyArea, BodyRegion, EnergyContact, Limits, LinkStiffness, PermissibleSpeed,
-    PressureCrossing, RobotMass, StandardContact, Verdict,
+    BodyArea, BodyRegion, EnergyContact, Limits, LinkStiffness, PermissibleSpeed, PressureCrossing,
+    RobotMass, StandardContact, Verdict,
 };
+pub use flexrig_safety::{BodyModel, ContactAreaModel, ContactKind, GoverningLimit};
 use serde::{Deserialize, Serialize};
 
 use crate::Error;
@@ -285,7 +285,11 @@ fn setup<'a>(input: &SafetyInput, model: &'a BodyModel) -> Result<Setup<'a>, Err
         None => None,
     };
     if !(input.payload.is_finite() && input.payload >= 0.0) {
-        return Err(bad("--payload", input.payload, "must be a finite number ≥ 0"));
+        return Err(bad(
+            "--payload",
+            input.payload,
+            "must be a finite number ≥ 0",
+        ));
     }
     let standard_robot_mass = match (input.moving_mass, m_eff) {
         (Some(m), _) => RobotMass {
@@ -319,7 +323,9 @@ fn setup<'a>(input: &SafetyInput, model: &'a BodyModel) -> Result<Setup<'a>, Err
         }
         ContactLaw::Material(name) => {
             materials = Materials::bundled()?;
-            let m = materials.get(name).map_err(|e| bad("--material", name, &e.to_string()))?;
+            let m = materials
+                .get(name)
+                .map_err(|e| bad("--material", name, &e.to_string()))?;
             (m.hertz, Some(materials.dome_radius_m()))
         }
     };
@@ -331,18 +337,23 @@ fn setup<'a>(input: &SafetyInput, model: &'a BodyModel) -> Result<Setup<'a>, Err
         .area_model
         .or(material_radius.map(|r| ContactAreaModel::HertzSphere { radius_m: r }));
     if let Some(a) = &area_model {
-        a.validate().map_err(|e| bad("--area-model", format!("{a:?}"), &e.to_string()))?;
+        a.validate()
+            .map_err(|e| bad("--area-model", format!("{a:?}"), &e.to_string()))?;
     }
     if area_model.is_none() {
         limits.pressure = None;
     }
-    if let Some(v) = input.speed {
-        if !(v.is_finite() && v >= 0.0 && v <= 1e3) {
-            return Err(bad("--speed", v, "must lie in [0, 1000] m/s"));
-        }
+    if let Some(v) = input.speed
+        && !(v.is_finite() && (0.0..=1e3).contains(&v))
+    {
+        return Err(bad("--speed", v, "must lie in [0, 1000] m/s"));
     }
     if input.methods.is_empty() {
-        return Err(bad("--method", "(none)", "give at least one of standard, energy, simulation"));
+        return Err(bad(
+            "--method",
+            "(none)",
+            "give at least one of standard, energy, simulation",
+        ));
     }
     Ok(Setup {
         region,
@@ -495,10 +506,7 @@ fn simulate(s: &Setup, v: f64) -> Result<Simulated, Error> {
 
 /// The speed at which `ratio(v)` (peak / limit, increasing in v) equals 1: a bracket grown by
 /// factors of 2 around `guess`, then the Illinois false position on ln v to [`ROOT_RTOL`].
-fn speed_at_limit(
-    guess: f64,
-    ratio: &dyn Fn(f64) -> Result<f64, Error>,
-) -> Result<f64, Error> {
+fn speed_at_limit(guess: f64, ratio: &dyn Fn(f64) -> Result<f64, Error>) -> Result<f64, Error> {
     let g = |x: f64| ratio(x.exp()).map(f64::ln);
     let mut a = (guess / 1.01).ln();
     let mut b = (guess * 1.01).ln();
@@ -557,9 +565,12 @@ fn simulation(s: &Setup, speed: Option<f64>) -> Result<MethodResult, Error> {
     let by_force = speed_at_limit(guess.by_force, &|v| Ok(simulate(s, v)?.force / force))?;
     let by_pressure = match (s.limits.pressure, guess.by_pressure) {
         (Some(p), Some(vb)) => Some(match contact.force_at_pressure(p) {
-            Some(PressureCrossing::AtForce(_)) => speed_at_limit(vb, &|v| {
-                Ok(simulate(s, v)?.pressure.unwrap_or(f64::NAN) / p)
-            })?,
+            Some(PressureCrossing::AtForce(_)) => {
+                speed_at_limit(
+                    vb,
+                    &|v| Ok(simulate(s, v)?.pressure.unwrap_or(f64::NAN) / p),
+                )?
+            }
             Some(PressureCrossing::Always) => 0.0,
             Some(PressureCrossing::Never) | None => f64::INFINITY,
         }),
@@ -579,5 +590,10 @@ fn simulation(s: &Setup, speed: Option<f64>) -> Result<MethodResult, Error> {
         Some(v) => Some(Verdict::new(v, p, 0.0, s.limits.pressure.map(|_| 0.0))),
         None => None,
     };
-    Ok(from_permissible(SafetyMethod::Simulation, s.m_eff, &p, verdict))
+    Ok(from_permissible(
+        SafetyMethod::Simulation,
+        s.m_eff,
+        &p,
+        verdict,
+    ))
 }

@@ -73,7 +73,12 @@ pub struct SafetyArgs {
     #[arg(long = "k-delta", value_name = "N_PER_M")]
     pub k_delta: Option<f64>,
     /// Contact stiffness k_c [N/m^n] (with --n; default: the region's body spring, n = 1).
-    #[arg(long = "k-c", value_name = "K", requires = "n", conflicts_with = "material")]
+    #[arg(
+        long = "k-c",
+        value_name = "K",
+        requires = "n",
+        conflicts_with = "material"
+    )]
     pub k_c: Option<f64>,
     /// Hertz exponent n (with --k-c).
     #[arg(long, value_name = "N", requires = "k_c")]
@@ -105,7 +110,12 @@ pub struct SafetyArgs {
     #[arg(long = "body-model", value_name = "FILE")]
     pub body_model: Option<PathBuf>,
     /// Methods, comma-separated.
-    #[arg(long, value_enum, value_delimiter = ',', default_value = "standard,energy")]
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "standard,energy"
+    )]
     pub method: Vec<MethodArg>,
     /// Print JSON instead of text.
     #[arg(long)]
@@ -138,9 +148,9 @@ impl SafetyArgs {
         let area_model = match self.area_model {
             None => None,
             Some(AreaModelArg::HertzSphere) => Some(ContactAreaModel::HertzSphere {
-                radius_m: self
-                    .radius
-                    .ok_or_else(|| missing("--radius", "--area-model hertz-sphere needs --radius"))?,
+                radius_m: self.radius.ok_or_else(|| {
+                    missing("--radius", "--area-model hertz-sphere needs --radius")
+                })?,
             }),
             Some(AreaModelArg::ThinLayer) => Some(ContactAreaModel::ThinLayer {
                 radius_m: self
@@ -208,7 +218,10 @@ fn speed(s: &Speed) -> String {
 }
 
 fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
-    line(out, format!("body region        {} ({})", r.region_name, r.region))?;
+    line(
+        out,
+        format!("body region        {} ({})", r.region_name, r.region),
+    )?;
     line(out, format!("area               {}", r.area))?;
     line(out, format!("contact            {:?}", r.contact))?;
     line(
