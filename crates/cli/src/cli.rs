@@ -59,6 +59,9 @@ pub enum Command {
     Validate(commands::validate::ValidateArgs),
     /// Check the Pseudo-Rigid-Body model (γ, K_Θ) against the corotational FE beam.
     Prb(commands::prb::PrbArgs),
+    /// Permissible speed near a body region (ISO/TS 15066): the standard's formula, the energy
+    /// method and the simulated impact side by side.
+    Safety(commands::safety::SafetyArgs),
 }
 
 /// Where the default job writes its files.
@@ -88,5 +91,6 @@ pub fn run_cancellable(cli: &Cli, out: &mut dyn Write, cancel: &CancelToken) -> 
         Some(Command::Prb(args)) => commands::prb::run(args, out),
         Some(Command::Validate(args)) => commands::validate::run(args, out),
         Some(Command::Bench(args)) => commands::bench::run(args, out),
+        Some(Command::Safety(args)) => commands::safety::run(args, out),
     }
 }

@@ -32,6 +32,9 @@ pub enum Error {
     /// An error from the test rig (scene, simulation).
     #[error(transparent)]
     Rig(#[from] flexrig_rig::RigError),
+    /// An error from the safety crate (body model, limits, a contact the standard forbids).
+    #[error(transparent)]
+    Safety(#[from] flexrig_safety::SafetyError),
     /// An input file could not be read.
     #[error("cannot read {path}: {source}")]
     Read {
@@ -111,6 +114,7 @@ impl Error {
             Error::Beam(e) if e.is_input_error() => ErrorKind::Input,
             Error::Rig(e) if e.is_input_error() => ErrorKind::Input,
             Error::Impact(e) if e.is_input_error() => ErrorKind::Input,
+            Error::Safety(e) if e.is_input_error() => ErrorKind::Input,
             _ => ErrorKind::Failed,
         }
     }

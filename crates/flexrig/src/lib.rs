@@ -41,6 +41,7 @@ pub mod plots;
 pub mod prb;
 pub mod progress;
 pub mod run;
+pub mod safety;
 pub mod scenes;
 pub mod study;
 pub mod traces;

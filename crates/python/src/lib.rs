@@ -16,6 +16,7 @@ use pyo3::prelude::*;
 mod convert;
 mod lumped;
 mod run;
+mod safety;
 mod sweep;
 
 create_exception!(
@@ -142,6 +143,7 @@ fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(lumped::impact_exact, m)?)?;
     m.add_function(wrap_pyfunction!(lumped::fig6, m)?)?;
+    m.add_function(wrap_pyfunction!(safety::safety_json, m)?)?;
     m.add_class::<sweep::Sweep>()?;
     m.add(
         "SUMMARY_COLUMNS",

@@ -15,6 +15,7 @@ pub mod impact_args;
 pub mod payload;
 pub mod prb;
 pub mod run;
+pub mod safety;
 pub mod sweep;
 pub mod validate;
 

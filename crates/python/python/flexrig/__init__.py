@@ -50,6 +50,7 @@ from typing import TYPE_CHECKING, Any, Dict, List, Mapping, NamedTuple, Optional
 import numpy as np
 
 from . import _flexrig
+from ._safety import safety
 from ._flexrig import SUMMARY_COLUMNS, InputError, SimulationError, Sweep, bundled_scenes
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -70,6 +71,7 @@ __all__ = [
     "fig6",
     "impact",
     "run",
+    "safety",
     "scene_text",
     "sweep",
 ]

@@ -38,6 +38,10 @@ def run(
     """Runs the scene text with overrides: (summary as ``flexrig run --json``, sample traces,
     step traces). GIL released; Ctrl-C raises KeyboardInterrupt."""
 
+def safety_json(input_json: str, body_model_toml: Optional[str] = None) -> str:
+    """The report of ``flexrig safety --json`` for a safety input given as JSON (see
+    ``flexrig.safety``)."""
+
 def impact_exact(
     m_h: npt.NDArray[np.float64],
     m_eff: npt.NDArray[np.float64],

@@ -1,0 +1,280 @@
+//! `flexrig safety`: the permissible speed of a design near a body region by the standard's
+//! formula, the paper's energy method and the simulated lumped impact, see [`flexrig::safety`].
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use flexrig::Error;
+use flexrig::safety::{
+    BodyModel, ContactAreaModel, ContactKind, ContactLaw, MethodResult, RobotEffectiveMass,
+    SafetyInput, SafetyMethod, SafetyReport, Speed, safety,
+};
+
+use crate::print::{line, print_json};
+
+/// Contact kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ContactArg {
+    /// A free body region struck (Table A.3's m_H, transient limits).
+    Transient,
+    /// A clamped body region (m_H = ∞, quasi-static limits).
+    QuasiStatic,
+}
+
+/// Permissible-speed method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum MethodArg {
+    /// The standard's formula (ISO/TS 15066 Annex A, Eq. A.1–A.6).
+    Standard,
+    /// The paper's lumped energy balance (Eq. 13 with the Hertz law and k_δ).
+    Energy,
+    /// The time-integrated lumped impact and a root search on the speed.
+    Simulation,
+}
+
+/// Contact-area model for pressure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum AreaModelArg {
+    /// A = π R δ (elastic half-space; needs --radius).
+    HertzSphere,
+    /// A = π(2Rδ − δ²) (thin layer on a rigid backing; needs --radius).
+    ThinLayer,
+    /// A fixed area (needs --contact-area).
+    Fixed,
+}
+
+/// Arguments of `flexrig safety`.
+#[derive(Debug, Args)]
+#[command(allow_negative_numbers = true)]
+pub struct SafetyArgs {
+    /// Body region key of the body model, e.g. chest, hands_and_fingers.
+    #[arg(long, value_name = "REGION")]
+    pub region: String,
+    /// Specific area of the region for the pressure limit (default: its most sensitive area).
+    #[arg(long, value_name = "NAME")]
+    pub area: Option<String>,
+    /// Contact kind.
+    #[arg(long, value_enum, default_value = "transient")]
+    pub contact: ContactArg,
+    /// Effective robot mass m_eff (kg) for the energy and simulation methods.
+    #[arg(long = "m-eff", value_name = "KG", conflicts_with_all = ["gamma", "m_r", "m_e"])]
+    pub m_eff: Option<f64>,
+    /// Link mass m_r (kg), for m_eff = m_e + γ m_r/3 (with --m-e, --gamma).
+    #[arg(long = "m-r", value_name = "KG", requires_all = ["gamma", "m_e"])]
+    pub m_r: Option<f64>,
+    /// End mass m_e (kg) (with --m-r, --gamma).
+    #[arg(long = "m-e", value_name = "KG", requires_all = ["gamma", "m_r"])]
+    pub m_e: Option<f64>,
+    /// PRB characteristic radius γ ∈ (0, 1] (with --m-r, --m-e).
+    #[arg(long, value_name = "G", requires_all = ["m_r", "m_e"])]
+    pub gamma: Option<f64>,
+    /// Link lateral stiffness k_δ [N/m] (default: a rigid link).
+    #[arg(long = "k-delta", value_name = "N_PER_M")]
+    pub k_delta: Option<f64>,
+    /// Contact stiffness k_c [N/m^n] (with --n; default: the region's body spring, n = 1).
+    #[arg(
+        long = "k-c",
+        value_name = "K",
+        requires = "n",
+        conflicts_with = "material"
+    )]
+    pub k_c: Option<f64>,
+    /// Hertz exponent n (with --k-c).
+    #[arg(long, value_name = "N", requires = "k_c")]
+    pub n: Option<f64>,
+    /// A bundled material for the Hertz law (abs, skinned_aluminium, skinned_iron); its dome
+    /// gives the default Hertz-sphere area.
+    #[arg(long, value_name = "NAME")]
+    pub material: Option<String>,
+    /// Contact-area model for pressure (default: hertz-sphere on the material's dome with
+    /// --material, else pressure is not assessed).
+    #[arg(long = "area-model", value_enum)]
+    pub area_model: Option<AreaModelArg>,
+    /// Sphere radius R (m) of the hertz-sphere and thin-layer area models.
+    #[arg(long, value_name = "M")]
+    pub radius: Option<f64>,
+    /// Contact area (m²) of the fixed area model.
+    #[arg(long = "contact-area", value_name = "M2")]
+    pub contact_area: Option<f64>,
+    /// The robot's total moving mass M (kg) for the standard's m_R = M/2 + m_L (default: m_R = m_eff).
+    #[arg(long = "moving-mass", value_name = "KG")]
+    pub moving_mass: Option<f64>,
+    /// Payload m_L (kg) for the standard's m_R.
+    #[arg(long, value_name = "KG", default_value_t = 0.0)]
+    pub payload: f64,
+    /// Relative speed (m/s) to judge.
+    #[arg(long, value_name = "M_PER_S")]
+    pub speed: Option<f64>,
+    /// A body-model TOML file in the format of assets/safety/iso_ts_15066_2016.toml.
+    #[arg(long = "body-model", value_name = "FILE")]
+    pub body_model: Option<PathBuf>,
+    /// Methods, comma-separated.
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "standard,energy"
+    )]
+    pub method: Vec<MethodArg>,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+fn missing(flag: &str, needed: &str) -> Error {
+    Error::InvalidArgument {
+        arg: flag.into(),
+        value: "(missing)".into(),
+        allowed: needed.into(),
+    }
+}
+
+impl SafetyArgs {
+    /// The library's input.
+    pub fn input(&self) -> Result<SafetyInput, Error> {
+        let m_eff = match (self.m_eff, self.gamma, self.m_r, self.m_e) {
+            (Some(m), ..) => Some(RobotEffectiveMass::Given(m)),
+            (None, Some(gamma), Some(m_r), Some(m_e)) => {
+                Some(RobotEffectiveMass::Prb { gamma, m_r, m_e })
+            }
+            _ => None,
+        };
+        let law = match (self.k_c, self.n, &self.material) {
+            (Some(k_c), Some(n), _) => ContactLaw::Hertz { k_c, n },
+            (_, _, Some(m)) => ContactLaw::Material(m.clone()),
+            _ => ContactLaw::BodySpring,
+        };
+        let area_model = match self.area_model {
+            None => None,
+            Some(AreaModelArg::HertzSphere) => Some(ContactAreaModel::HertzSphere {
+                radius_m: self.radius.ok_or_else(|| {
+                    missing("--radius", "--area-model hertz-sphere needs --radius")
+                })?,
+            }),
+            Some(AreaModelArg::ThinLayer) => Some(ContactAreaModel::ThinLayer {
+                radius_m: self
+                    .radius
+                    .ok_or_else(|| missing("--radius", "--area-model thin-layer needs --radius"))?,
+            }),
+            Some(AreaModelArg::Fixed) => Some(ContactAreaModel::Fixed {
+                area_m2: self.contact_area.ok_or_else(|| {
+                    missing("--contact-area", "--area-model fixed needs --contact-area")
+                })?,
+            }),
+        };
+        Ok(SafetyInput {
+            region: self.region.clone(),
+            area: self.area.clone(),
+            contact: match self.contact {
+                ContactArg::Transient => ContactKind::Transient,
+                ContactArg::QuasiStatic => ContactKind::QuasiStatic,
+            },
+            m_eff,
+            k_delta: self.k_delta,
+            law,
+            area_model,
+            moving_mass: self.moving_mass,
+            payload: self.payload,
+            speed: self.speed,
+            methods: self
+                .method
+                .iter()
+                .map(|m| match m {
+                    MethodArg::Standard => SafetyMethod::Standard,
+                    MethodArg::Energy => SafetyMethod::Energy,
+                    MethodArg::Simulation => SafetyMethod::Simulation,
+                })
+                .collect(),
+        })
+    }
+}
+
+/// Runs `flexrig safety`.
+pub fn run(args: &SafetyArgs, out: &mut dyn Write) -> Result<(), Error> {
+    let model = match &args.body_model {
+        Some(path) => {
+            let text = std::fs::read_to_string(path).map_err(|source| Error::Read {
+                path: path.clone(),
+                source,
+            })?;
+            Some(BodyModel::from_toml_str(&text)?)
+        }
+        None => None,
+    };
+    let report = safety(&args.input()?, model.as_ref())?;
+    if args.json {
+        let value = serde_json::to_value(&report).expect("the report serialises");
+        return print_json(out, &value);
+    }
+    print_text(out, &report)
+}
+
+fn speed(s: &Speed) -> String {
+    match s {
+        Speed::Finite(v) => format!("{v:.6}"),
+        Speed::Unlimited(_) => "unlimited".into(),
+    }
+}
+
+fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
+    line(
+        out,
+        format!("body region        {} ({})", r.region_name, r.region),
+    )?;
+    line(out, format!("area               {}", r.area))?;
+    line(out, format!("contact            {:?}", r.contact))?;
+    line(
+        out,
+        format!(
+            "limits             force {} N, pressure {} N/cm²",
+            r.force_limit_n,
+            r.pressure_limit_pa / 1e4
+        ),
+    )?;
+    let area = match &r.area_model {
+        Some(a) => format!("{a:?}"),
+        None => "none (pressure not assessed)".into(),
+    };
+    line(out, format!("contact-area model {area}"))?;
+    line(
+        out,
+        format!(
+            "{:<11} {:>12} {:>12} {:>12} {:>12} {:>9}",
+            "method", "robot kg", "v_max m/s", "by force", "by pressure", "governs"
+        ),
+    )?;
+    for m in &r.methods {
+        print_method(out, m)?;
+    }
+    Ok(())
+}
+
+fn print_method(out: &mut dyn Write, m: &MethodResult) -> Result<(), Error> {
+    let by_p = m.by_pressure_mps.as_ref().map_or("—".into(), speed);
+    line(
+        out,
+        format!(
+            "{:<11} {:>12.6} {:>12} {:>12} {:>12} {:>9}",
+            format!("{:?}", m.method).to_lowercase(),
+            m.robot_mass_kg,
+            speed(&m.v_max_mps),
+            speed(&m.by_force_mps),
+            by_p,
+            format!("{:?}", m.governing).to_lowercase()
+        ),
+    )?;
+    if let Some(v) = &m.verdict {
+        line(
+            out,
+            format!(
+                "  at {} m/s: {} (peak force {:.3} N, force margin {:.4})",
+                v.speed_mps,
+                if v.pass { "pass" } else { "FAIL" },
+                v.peak_force_n,
+                v.force_margin
+            ),
+        )?;
+    }
+    Ok(())
+}

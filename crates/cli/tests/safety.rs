@@ -1,0 +1,248 @@
+//! `flexrig safety`: the standard's formula against hand arithmetic, the identity of the energy
+//! and simulation methods with the standard's formula (n = 1, rigid link), the simulation against
+//! the energy balance for a nonlinear skin and a compliant link, the head refusal, bad flags.
+
+use std::process::{Command, Output};
+
+fn flexrig(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_flexrig"))
+        .args(args)
+        .output()
+        .expect("the flexrig binary runs")
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let mut all = vec!["safety", "--json"];
+    all.extend_from_slice(args);
+    let out = flexrig(&all);
+    assert!(
+        out.status.success(),
+        "{all:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        !text.contains("null") && !text.contains("NaN") && !text.contains("inf"),
+        "{text}"
+    );
+    serde_json::from_str(&text).expect("valid JSON on stdout")
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    ((a - b) / b).abs()
+}
+
+fn method<'a>(v: &'a serde_json::Value, name: &str) -> &'a serde_json::Value {
+    v["methods"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|m| m["method"] == name)
+        .unwrap_or_else(|| panic!("no method {name} in {v}"))
+}
+
+fn num(v: &serde_json::Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+#[test]
+fn standard_formula_matches_hand_arithmetic_for_the_chest() {
+    // Chest (Table A.2/A.3): K = 25 N/mm, m_H = 40 kg, F = 140 N quasi-static, ×2 transient;
+    // sternum 120 N/cm² (×2). Robot: M = 20 kg, m_L = 1 kg ⇒ m_R = 11 kg (Eq. A.4).
+    let k = 25.0e3;
+    let m_r = 20.0 / 2.0 + 1.0;
+    let mu = 1.0 / (1.0 / 40.0 + 1.0 / m_r);
+    let base = [
+        "--region",
+        "chest",
+        "--area",
+        "Sternum",
+        "--moving-mass",
+        "20",
+        "--payload",
+        "1",
+        "--method",
+        "standard",
+        "--area-model",
+        "fixed",
+        "--contact-area",
+        "1e-4",
+    ];
+    let v = json(&base);
+    let s = method(&v, "standard");
+    assert!(rel(num(&s["robot_mass_kg"]), 11.0) < 1e-15);
+    assert!(rel(num(&s["reduced_mass_kg"]), mu) < 1e-14);
+    let by_force = 280.0 / (mu * k).sqrt();
+    // 240 N/cm² × 1 cm² = 240 N < 280 N: the pressure governs (Eq. A.6).
+    let by_pressure = 240.0 / (mu * k).sqrt();
+    assert!(rel(num(&s["by_force_mps"]), by_force) < 1e-14);
+    assert!(rel(num(&s["by_pressure_mps"]), by_pressure) < 1e-14);
+    assert!(rel(num(&s["v_max_mps"]), by_pressure) < 1e-14);
+    assert_eq!(s["governing"], "pressure");
+
+    // Quasi-static: m_H = ∞ (clamped) ⇒ μ = m_R, F = 140 N; absent human mass key.
+    let mut qs = base.to_vec();
+    qs.extend(["--contact", "quasi-static", "--speed", "0.25"]);
+    let v = json(&qs);
+    assert!(v.get("human_mass_kg").is_none());
+    let s = method(&v, "standard");
+    let by_force = 140.0 / (m_r * k).sqrt();
+    assert!(rel(num(&s["by_force_mps"]), by_force) < 1e-14);
+    let verdict = &s["verdict"];
+    assert!(rel(num(&verdict["peak_force_n"]), 0.25 * (m_r * k).sqrt()) < 1e-14);
+    assert_eq!(verdict["pass"], 0.25 <= num(&s["v_max_mps"]));
+}
+
+#[test]
+fn energy_and_simulation_reduce_to_the_standard_with_n_1_and_a_rigid_link() {
+    // n = 1, k_c = K of the region, rigid link (the default law and link): Eq. 13 is Eq. A.5.
+    for (region, contact) in [
+        ("hands_and_fingers", "transient"),
+        ("chest", "quasi-static"),
+        ("lower_legs", "transient"),
+    ] {
+        let v = json(&[
+            "--region",
+            region,
+            "--contact",
+            contact,
+            "--moving-mass",
+            "20",
+            "--payload",
+            "1",
+            "--method",
+            "standard,energy,simulation",
+            "--speed",
+            "0.3",
+        ]);
+        let a = method(&v, "standard");
+        let b = method(&v, "energy");
+        let c = method(&v, "simulation");
+        let va = num(&a["v_max_mps"]);
+        assert!(rel(num(&b["v_max_mps"]), va) < 1e-12, "{region}: {v}");
+        // The simulation: ODE rtol 1e-11, root 1e-9 on ln v, rigid link as k_δ = 1e16 N/m.
+        assert!(rel(num(&c["v_max_mps"]), va) < 1e-7, "{region}: {v}");
+        let fa = num(&a["verdict"]["peak_force_n"]);
+        assert!(rel(num(&b["verdict"]["peak_force_n"]), fa) < 1e-12);
+        assert!(rel(num(&c["verdict"]["peak_force_n"]), fa) < 1e-7);
+    }
+    // The same with the law given explicitly and a very stiff (finite) link.
+    let v = json(&[
+        "--region",
+        "hands_and_fingers",
+        "--m-eff",
+        "11",
+        "--k-c",
+        "75000",
+        "--n",
+        "1",
+        "--k-delta",
+        "1e14",
+        "--method",
+        "standard,energy,simulation",
+    ]);
+    let va = num(&method(&v, "standard")["v_max_mps"]);
+    assert!(rel(num(&method(&v, "energy")["v_max_mps"]), va) < 1e-9);
+    assert!(rel(num(&method(&v, "simulation")["v_max_mps"]), va) < 1e-7);
+}
+
+#[test]
+fn simulation_converges_to_the_energy_method_for_a_nonlinear_skin() {
+    // The test bed's CJ (m_r = 51 g, payload 412 g, γ = 1) on skinned aluminium (n = 1.961),
+    // hand transient, Hertz-sphere area of the dome: the integrated impact must reach the limit
+    // at the speed of the energy balance (both exact for the lumped model).
+    for k_delta in ["1e4", "200"] {
+        let v = json(&[
+            "--region",
+            "hands_and_fingers",
+            "--area",
+            "Back of the hand ND",
+            "--m-r",
+            "0.051",
+            "--m-e",
+            "0.412",
+            "--gamma",
+            "1",
+            "--material",
+            "skinned_aluminium",
+            "--k-delta",
+            k_delta,
+            "--method",
+            "energy,simulation",
+            "--speed",
+            "1.5",
+        ]);
+        let b = method(&v, "energy");
+        let c = method(&v, "simulation");
+        for key in ["by_force_mps", "by_pressure_mps", "v_max_mps"] {
+            assert!(
+                rel(num(&c[key]), num(&b[key])) < 1e-7,
+                "{key}, k_δ = {k_delta}: {v}"
+            );
+        }
+        assert_eq!(b["governing"], c["governing"]);
+        let fb = num(&b["verdict"]["peak_force_n"]);
+        assert!(rel(num(&c["verdict"]["peak_force_n"]), fb) < 1e-8);
+    }
+}
+
+#[test]
+fn transient_head_contact_is_refused_with_the_clause() {
+    for region in ["skull_and_forehead", "face"] {
+        let out = flexrig(&["safety", "--region", region, "--m-eff", "5"]);
+        assert_eq!(out.status.code(), Some(2), "{region}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains("not permitted") && err.contains("5.5.5.4"),
+            "{err}"
+        );
+    }
+    // Quasi-static contact with the forehead is assessed.
+    let v = json(&[
+        "--region",
+        "skull_and_forehead",
+        "--contact",
+        "quasi-static",
+        "--m-eff",
+        "5",
+    ]);
+    let s = method(&v, "standard");
+    assert!(rel(num(&s["by_force_mps"]), 130.0 / (5.0f64 * 150e3).sqrt()) < 1e-14);
+}
+
+#[test]
+fn bad_input_exits_2_naming_the_flag() {
+    let cases: [(&[&str], &str); 8] = [
+        (&["--region", "chest", "--m-eff", "-1"], "--m-eff"),
+        (
+            &["--region", "chest", "--m-eff", "5", "--k-delta", "0"],
+            "--k-delta",
+        ),
+        (
+            &["--region", "chest", "--m-eff", "5", "--speed", "NaN"],
+            "--speed",
+        ),
+        (&["--region", "chest"], "--moving-mass"),
+        (&["--region", "elbow", "--m-eff", "5"], "elbow"),
+        (
+            &["--region", "chest", "--m-eff", "5", "--area", "Toe"],
+            "Toe",
+        ),
+        (
+            &["--region", "chest", "--m-eff", "5", "--material", "steel"],
+            "--material",
+        ),
+        (
+            &["--region", "chest", "--m-eff", "5", "--area-model", "fixed"],
+            "--contact-area",
+        ),
+    ];
+    for (args, flag) in cases {
+        let mut all = vec!["safety"];
+        all.extend_from_slice(args);
+        let out = flexrig(&all);
+        assert_eq!(out.status.code(), Some(2), "{all:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(flag), "{all:?}: {err}");
+    }
+}

@@ -1,0 +1,599 @@
+//! The permissible speed of a design near a body region (ISO/TS 15066:2016, power and force
+//! limiting), side by side by three methods:
+//!
+//! - **standard**: the standard's formula, v_max = F_max/√(μK), p_max A/√(μK) (Annex A,
+//!   Eq. A.1–A.6) with m_R = M/2 + m_L (Eq. A.4) and Table A.3's K and m_H
+//!   ([`flexrig_safety::StandardContact`]);
+//! - **energy**: the paper's lumped energy balance ½μv² = U(f_max) (Eq. 13 generalised to the
+//!   fitted Hertz law f = k_c δ_c^n, Eq. 4, in series with the link stiffness k_δ, Eq. 6–9;
+//!   [`flexrig_safety::EnergyContact`]);
+//! - **simulation**: the speed at which the time-integrated lumped impact (Eq. 10–12, DOP853 at
+//!   relative tolerance [`SIMULATION_RTOL`]) reaches the limit, by a bracket and an Illinois
+//!   root search on ln v converged to [`ROOT_RTOL`]. It checks the energy method by an
+//!   independent route (integration instead of the energy balance).
+//!
+//! Transient contact with the skull, forehead or face is refused with
+//! [`flexrig_safety::SafetyError::ContactNotPermitted`] quoting the clause of the body model
+//! (exit code 2).
+//!
+//! **JSON.** [`SafetyReport`] serialises without null, NaN or ∞: optional values are absent keys,
+//! and a speed that no limit bounds (e.g. the pressure of a linear contact whose Hertz-area
+//! pressure never reaches the limit) is the word `"unlimited"` ([`Speed::Unlimited`]).
+
+use flexrig_contact::{Hertz, Materials, SeriesCompliance};
+use flexrig_lumped::ImpactModel;
+use flexrig_lumped::ode::{OdeOptions, StopAt, integrate};
+use flexrig_safety::{
+    BodyArea, BodyRegion, EnergyContact, Limits, LinkStiffness, PermissibleSpeed, PressureCrossing,
+    RobotMass, StandardContact, Verdict,
+};
+pub use flexrig_safety::{BodyModel, ContactAreaModel, ContactKind, GoverningLimit};
+use serde::{Deserialize, Serialize};
+
+use crate::Error;
+
+/// Relative tolerance of the simulated impacts of the simulation method (below [`ROOT_RTOL`]).
+pub const SIMULATION_RTOL: f64 = 1e-11;
+/// Relative tolerance of the root search on the speed (the brief asks for 1e-4; met with margin).
+pub const ROOT_RTOL: f64 = 1e-9;
+/// The human mass \[kg\] the simulation uses for a clamped (quasi-static) body, m_H = ∞ in the
+/// closed-form methods: 1e12 × m_eff, so the reduced mass differs from m_eff by 1e-12 relative.
+const CLAMPED_MASS_FACTOR: f64 = 1e12;
+/// The link stiffness \[N/m\] the simulation uses for a rigid link (k_δ absent): its stored energy
+/// F²/(2k_δ) is ≤ 1e-9 of the contact's at forces ≤ 1 kN and indentations ≥ 0.1 mm.
+pub const RIGID_LINK_STIFFNESS: f64 = 1e16;
+
+/// Which permissible-speed method to evaluate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SafetyMethod {
+    /// The standard's formula (Annex A, Eq. A.1–A.6).
+    Standard,
+    /// The paper's lumped energy balance (Eq. 13 generalised).
+    Energy,
+    /// The time-integrated lumped impact with a root search on the speed.
+    Simulation,
+}
+
+/// The effective robot mass at the contact for the energy and simulation methods.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RobotEffectiveMass {
+    /// m_eff \[kg\] as given (`--m-eff`).
+    Given(f64),
+    /// m_eff = m_e + γ m_r/3 (paper Eq. 5): γ ∈ (0, 1] (`--gamma`), link mass m_r \[kg\]
+    /// (`--m-r`), end mass m_e \[kg\] (`--m-e`).
+    Prb {
+        /// PRB characteristic radius γ.
+        gamma: f64,
+        /// Link mass m_r \[kg\].
+        m_r: f64,
+        /// End mass (payload) m_e \[kg\].
+        m_e: f64,
+    },
+}
+
+/// The skin's contact law for the energy and simulation methods.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactLaw {
+    /// The body region's own linear spring: n = 1, k_c = K of Table A.3 (the standard's model).
+    BodySpring,
+    /// f = k_c δ_c^n: k_c \[N/m^n\] (`--k-c`), n (`--n`).
+    Hertz {
+        /// Stiffness k_c \[N/m^n\].
+        k_c: f64,
+        /// Exponent n.
+        n: f64,
+    },
+    /// A material of the bundled materials file (`--material`, e.g. `skinned_aluminium`).
+    Material(String),
+}
+
+/// One permissible-speed question, SI units throughout.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SafetyInput {
+    /// Body region key of the body model (`--region`, e.g. `chest`).
+    pub region: String,
+    /// A specific area of the region for the pressure limit (`--area`, e.g. `Sternum`); absent:
+    /// the region's most sensitive area (lowest pressure limit).
+    pub area: Option<String>,
+    /// Transient or quasi-static (clamping) contact (`--contact`).
+    pub contact: ContactKind,
+    /// Effective robot mass for the energy and simulation methods (absent: the standard's m_R).
+    pub m_eff: Option<RobotEffectiveMass>,
+    /// Link (or joint) lateral stiffness k_δ \[N/m\] (`--k-delta`); absent: a rigid link.
+    pub k_delta: Option<f64>,
+    /// The skin's contact law (`--k-c --n`, `--material`; default the body spring).
+    pub law: ContactLaw,
+    /// The contact-area model for pressure (`--area-model`, `--radius`, `--contact-area`);
+    /// absent: the Hertz sphere of the bundled dome with `--material`, else pressure not assessed.
+    pub area_model: Option<ContactAreaModel>,
+    /// The robot's total moving mass M \[kg\] (`--moving-mass`) for m_R = M/2 + m_L (Eq. A.4);
+    /// absent: m_R = m_eff.
+    pub moving_mass: Option<f64>,
+    /// Payload m_L \[kg\] (`--payload`, default 0).
+    pub payload: f64,
+    /// Relative speed to judge \[m/s\] (`--speed`); absent: no verdict.
+    pub speed: Option<f64>,
+    /// Methods to evaluate (`--method`).
+    pub methods: Vec<SafetyMethod>,
+}
+
+/// A speed that may be unbounded (serialises as a number or the word `"unlimited"`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum Speed {
+    /// A finite speed [m/s].
+    Finite(f64),
+    /// No limit: the quantity never reaches its limit.
+    Unlimited(Unbounded),
+}
+
+/// The word of an unbounded speed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Unbounded {
+    /// `"unlimited"`.
+    Unlimited,
+}
+
+impl Speed {
+    fn from_f64(v: f64) -> Self {
+        if v.is_finite() {
+            Speed::Finite(v)
+        } else {
+            Speed::Unlimited(Unbounded::Unlimited)
+        }
+    }
+
+    /// The speed [m/s] (+∞ when unlimited).
+    pub fn value(&self) -> f64 {
+        match self {
+            Speed::Finite(v) => *v,
+            Speed::Unlimited(_) => f64::INFINITY,
+        }
+    }
+}
+
+/// Pass/fail at the requested speed by one method.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SpeedVerdict {
+    /// The judged relative speed [m/s].
+    pub speed_mps: f64,
+    /// True when the speed does not exceed the permissible speed.
+    pub pass: bool,
+    /// Predicted peak force \[N\].
+    pub peak_force_n: f64,
+    /// Predicted peak mean pressure \[Pa\] (absent without an area model).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_pressure_pa: Option<f64>,
+    /// 1 − peak force / force limit (negative when exceeded).
+    pub force_margin: f64,
+    /// 1 − peak pressure / pressure limit (absent without a pressure assessment).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pressure_margin: Option<f64>,
+}
+
+/// The permissible speed by one method.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MethodResult {
+    /// The method.
+    pub method: SafetyMethod,
+    /// Robot mass the method uses \[kg\] (m_R for the standard, m_eff otherwise).
+    pub robot_mass_kg: f64,
+    /// Reduced mass μ \[kg\].
+    pub reduced_mass_kg: f64,
+    /// v_max = min(by force, by pressure) [m/s].
+    pub v_max_mps: Speed,
+    /// The speed at which the peak force reaches the force limit [m/s].
+    pub by_force_mps: Speed,
+    /// The speed at which the peak pressure reaches the pressure limit [m/s] (absent when the
+    /// pressure is not assessed by this method).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub by_pressure_mps: Option<Speed>,
+    /// The limit that sets v_max.
+    pub governing: GoverningLimit,
+    /// The verdict at the requested speed (absent without `--speed`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub verdict: Option<SpeedVerdict>,
+}
+
+/// The answer: the limits applied and each method's permissible speed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SafetyReport {
+    /// Body region key.
+    pub region: String,
+    /// Body region name.
+    pub region_name: String,
+    /// The specific area whose pressure limit applies.
+    pub area: String,
+    /// Contact kind.
+    pub contact: ContactKind,
+    /// Human mass m_H \[kg\] (absent for quasi-static contact: a clamped body, m_H = ∞).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub human_mass_kg: Option<f64>,
+    /// Body spring K of Table A.3 \[N/m\].
+    pub body_stiffness_n_per_m: f64,
+    /// Force limit \[N\].
+    pub force_limit_n: f64,
+    /// Pressure limit of the area \[Pa\].
+    pub pressure_limit_pa: f64,
+    /// The contact-area model for pressure (absent: pressure not assessed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub area_model: Option<ContactAreaModel>,
+    /// The skin's Hertz law used by the energy and simulation methods: k_c \[N/m^n\].
+    pub k_c: f64,
+    /// Its exponent n.
+    pub n: f64,
+    /// Link stiffness k_δ \[N/m\] (absent: rigid).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub k_delta_n_per_m: Option<f64>,
+    /// One result per requested method, in the order asked.
+    pub methods: Vec<MethodResult>,
+}
+
+fn bad(arg: &str, value: impl ToString, allowed: &str) -> Error {
+    Error::InvalidArgument {
+        arg: arg.into(),
+        value: value.to_string(),
+        allowed: allowed.into(),
+    }
+}
+
+fn positive(arg: &str, v: f64) -> Result<f64, Error> {
+    if v.is_finite() && v > 0.0 && v <= 1e20 {
+        Ok(v)
+    } else {
+        Err(bad(arg, v, "must be a finite number in (0, 1e20]"))
+    }
+}
+
+/// Everything the methods share, validated.
+struct Setup<'a> {
+    region: &'a BodyRegion,
+    area: &'a BodyArea,
+    kind: ContactKind,
+    limits: Limits,
+    standard_robot_mass: f64,
+    m_eff: f64,
+    hertz: Hertz,
+    link: LinkStiffness,
+    area_model: Option<ContactAreaModel>,
+}
+
+fn setup<'a>(input: &SafetyInput, model: &'a BodyModel) -> Result<Setup<'a>, Error> {
+    let region = model.region(&input.region)?;
+    let area = match &input.area {
+        Some(name) => region.area(name)?,
+        None => region.most_sensitive_area(),
+    };
+    let kind = input.contact;
+    let mut limits = region.limits(Some(area), kind)?;
+    let m_eff = match input.m_eff {
+        Some(RobotEffectiveMass::Given(m)) => Some(positive("--m-eff", m)?),
+        Some(RobotEffectiveMass::Prb { gamma, m_r, m_e }) => {
+            if !(gamma > 0.0 && gamma <= 1.0) {
+                return Err(bad("--gamma", gamma, "must lie in (0, 1]"));
+            }
+            let m_r = positive("--m-r", m_r)?;
+            if !(m_e.is_finite() && m_e >= 0.0) {
+                return Err(bad("--m-e", m_e, "must be a finite number ≥ 0"));
+            }
+            Some(m_e + gamma * m_r / 3.0)
+        }
+        None => None,
+    };
+    if !(input.payload.is_finite() && input.payload >= 0.0) {
+        return Err(bad(
+            "--payload",
+            input.payload,
+            "must be a finite number ≥ 0",
+        ));
+    }
+    let standard_robot_mass = match (input.moving_mass, m_eff) {
+        (Some(m), _) => RobotMass {
+            total_moving_mass: positive("--moving-mass", m)?,
+            payload: input.payload,
+        }
+        .effective()?,
+        (None, Some(m)) => m,
+        (None, None) => {
+            return Err(bad(
+                "--moving-mass",
+                "(missing)",
+                "give --moving-mass (and --payload), --m-eff, or --m-r --m-e --gamma",
+            ));
+        }
+    };
+    let m_eff = m_eff.unwrap_or(standard_robot_mass);
+    let materials;
+    let (hertz, material_radius) = match &input.law {
+        ContactLaw::BodySpring => (Hertz::new(region.spring_constant(), 1.0)?, None),
+        ContactLaw::Hertz { k_c, n } => {
+            let k_c = positive("--k-c", *k_c)?;
+            if !(*n > 0.0 && *n <= flexrig_contact::MAX_EXPONENT) {
+                return Err(bad(
+                    "--n",
+                    n,
+                    &format!("must lie in (0, {}]", flexrig_contact::MAX_EXPONENT),
+                ));
+            }
+            (Hertz::new(k_c, *n)?, None)
+        }
+        ContactLaw::Material(name) => {
+            materials = Materials::bundled()?;
+            let m = materials
+                .get(name)
+                .map_err(|e| bad("--material", name, &e.to_string()))?;
+            (m.hertz, Some(materials.dome_radius_m()))
+        }
+    };
+    let link = match input.k_delta {
+        Some(k) => LinkStiffness::Finite(positive("--k-delta", k)?),
+        None => LinkStiffness::Rigid,
+    };
+    let area_model = input
+        .area_model
+        .or(material_radius.map(|r| ContactAreaModel::HertzSphere { radius_m: r }));
+    if let Some(a) = &area_model {
+        a.validate()
+            .map_err(|e| bad("--area-model", format!("{a:?}"), &e.to_string()))?;
+    }
+    if area_model.is_none() {
+        limits.pressure = None;
+    }
+    if let Some(v) = input.speed
+        && !(v.is_finite() && (0.0..=1e3).contains(&v))
+    {
+        return Err(bad("--speed", v, "must lie in [0, 1000] m/s"));
+    }
+    if input.methods.is_empty() {
+        return Err(bad(
+            "--method",
+            "(none)",
+            "give at least one of standard, energy, simulation",
+        ));
+    }
+    Ok(Setup {
+        region,
+        area,
+        kind,
+        limits,
+        standard_robot_mass,
+        m_eff,
+        hertz,
+        link,
+        area_model,
+    })
+}
+
+/// The permissible speed of `input` by each requested method, with the ISO/TS 15066:2016 body
+/// model, or `model` when given (a user's table).
+pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyReport, Error> {
+    let bundled;
+    let model = match model {
+        Some(m) => m,
+        None => {
+            bundled = BodyModel::iso_ts_15066_2016()?;
+            &bundled
+        }
+    };
+    let s = setup(input, model)?;
+    let methods = input
+        .methods
+        .iter()
+        .map(|&m| match m {
+            SafetyMethod::Standard => standard(&s, input.speed),
+            SafetyMethod::Energy => energy(&s, input.speed),
+            SafetyMethod::Simulation => simulation(&s, input.speed),
+        })
+        .collect::<Result<Vec<_>, Error>>()?;
+    Ok(SafetyReport {
+        region: s.region.key().to_string(),
+        region_name: s.region.name().to_string(),
+        area: s.area.name().to_string(),
+        contact: s.kind,
+        human_mass_kg: Some(s.region.human_mass(s.kind)).filter(|m| m.is_finite()),
+        body_stiffness_n_per_m: s.region.spring_constant(),
+        force_limit_n: s.limits.force,
+        pressure_limit_pa: s.region.pressure_limit(s.area, s.kind)?,
+        area_model: s.area_model,
+        k_c: s.hertz.k(),
+        n: s.hertz.n(),
+        k_delta_n_per_m: match s.link {
+            LinkStiffness::Finite(k) => Some(k),
+            LinkStiffness::Rigid => None,
+        },
+        methods,
+    })
+}
+
+fn from_permissible(
+    method: SafetyMethod,
+    robot_mass: f64,
+    p: &PermissibleSpeed,
+    verdict: Option<Verdict>,
+) -> MethodResult {
+    MethodResult {
+        method,
+        robot_mass_kg: robot_mass,
+        reduced_mass_kg: p.reduced_mass,
+        v_max_mps: Speed::from_f64(p.v_max),
+        by_force_mps: Speed::from_f64(p.by_force),
+        by_pressure_mps: p.by_pressure.map(Speed::from_f64),
+        governing: p.governing,
+        verdict: verdict.map(|v| SpeedVerdict {
+            speed_mps: v.speed,
+            pass: v.pass,
+            peak_force_n: v.peak_force,
+            peak_pressure_pa: v.peak_pressure,
+            force_margin: v.force_margin,
+            pressure_margin: v.pressure_margin,
+        }),
+    }
+}
+
+/// The standard's formula; its pressure check needs a fixed area (Eq. A.6 has no area law), so a
+/// Hertz-sphere or thin-layer model leaves the standard's pressure unassessed.
+fn standard(s: &Setup, speed: Option<f64>) -> Result<MethodResult, Error> {
+    let area = match s.area_model {
+        Some(ContactAreaModel::Fixed { area_m2 }) if s.limits.pressure.is_some() => {
+            Some((s.area, area_m2))
+        }
+        _ => None,
+    };
+    let contact = StandardContact {
+        region: s.region,
+        area,
+        robot_mass: s.standard_robot_mass,
+        kind: s.kind,
+    };
+    let p = contact.permissible_speed()?;
+    let verdict = speed.map(|v| contact.verdict(v)).transpose()?;
+    Ok(from_permissible(
+        SafetyMethod::Standard,
+        s.standard_robot_mass,
+        &p,
+        verdict,
+    ))
+}
+
+fn energy_contact(s: &Setup) -> Result<EnergyContact, Error> {
+    Ok(EnergyContact::for_region(
+        s.region,
+        s.kind,
+        s.m_eff,
+        s.hertz,
+        s.link,
+        s.area_model,
+    )?)
+}
+
+fn energy(s: &Setup, speed: Option<f64>) -> Result<MethodResult, Error> {
+    let contact = energy_contact(s)?;
+    let p = contact.permissible_speed(s.limits)?;
+    let verdict = speed.map(|v| contact.verdict(v, s.limits)).transpose()?;
+    Ok(from_permissible(SafetyMethod::Energy, s.m_eff, &p, verdict))
+}
+
+/// The simulated peak force \[N\] and the mean pressure at it \[Pa\] at relative speed `v`.
+struct Simulated {
+    force: f64,
+    pressure: Option<f64>,
+}
+
+fn simulate(s: &Setup, v: f64) -> Result<Simulated, Error> {
+    let m_h = match s.region.human_mass(s.kind) {
+        m if m.is_finite() => m,
+        _ => CLAMPED_MASS_FACTOR * s.m_eff,
+    };
+    let k_delta = match s.link {
+        LinkStiffness::Finite(k) => k,
+        LinkStiffness::Rigid => RIGID_LINK_STIFFNESS,
+    };
+    let model = ImpactModel::new(m_h, s.m_eff, SeriesCompliance::new(k_delta, s.hertz)?, v)?;
+    let options = OdeOptions::new(SIMULATION_RTOL)?.stop(StopAt::Peak);
+    let peak = integrate(&model, &options)?.peak;
+    let pressure = s
+        .area_model
+        .map(|a| a.mean_pressure(peak.f_max, peak.indentation_max));
+    Ok(Simulated {
+        force: peak.f_max,
+        pressure,
+    })
+}
+
+/// The speed at which `ratio(v)` (peak / limit, increasing in v) equals 1: a bracket grown by
+/// factors of 2 around `guess`, then the Illinois false position on ln v to [`ROOT_RTOL`].
+fn speed_at_limit(guess: f64, ratio: &dyn Fn(f64) -> Result<f64, Error>) -> Result<f64, Error> {
+    let g = |x: f64| ratio(x.exp()).map(f64::ln);
+    let mut a = (guess / 1.01).ln();
+    let mut b = (guess * 1.01).ln();
+    let mut ga = g(a)?;
+    let mut gb = g(b)?;
+    let mut grow = 0;
+    while ga * gb > 0.0 {
+        grow += 1;
+        if grow > 60 || !ga.is_finite() || !gb.is_finite() {
+            return Err(Error::NonFinite {
+                what: "simulated speed at the limit".into(),
+                value: "no bracket".into(),
+                advice: "use moderate masses and stiffnesses".into(),
+            });
+        }
+        if ga > 0.0 {
+            a -= std::f64::consts::LN_2;
+            ga = g(a)?;
+        } else {
+            b += std::f64::consts::LN_2;
+            gb = g(b)?;
+        }
+    }
+    let mut side = 0;
+    for _ in 0..200 {
+        let x = (a * gb - b * ga) / (gb - ga);
+        if (b - a).abs() < ROOT_RTOL {
+            return Ok(x.exp());
+        }
+        let gx = g(x)?;
+        if gx == 0.0 {
+            return Ok(x.exp());
+        }
+        if gx * gb < 0.0 {
+            a = b;
+            ga = gb;
+            side = 0;
+        } else if side == -1 {
+            ga /= 2.0;
+        } else {
+            side = -1;
+        }
+        b = x;
+        gb = gx;
+        if (b - a).abs() < ROOT_RTOL || gx.abs() < ROOT_RTOL * 1e-3 {
+            return Ok(b.exp());
+        }
+    }
+    Ok(((a + b) / 2.0).exp())
+}
+
+fn simulation(s: &Setup, speed: Option<f64>) -> Result<MethodResult, Error> {
+    let contact = energy_contact(s)?;
+    let guess = contact.permissible_speed(s.limits)?;
+    let force = s.limits.force;
+    let by_force = speed_at_limit(guess.by_force, &|v| Ok(simulate(s, v)?.force / force))?;
+    let by_pressure = match (s.limits.pressure, guess.by_pressure) {
+        (Some(p), Some(vb)) => Some(match contact.force_at_pressure(p) {
+            Some(PressureCrossing::AtForce(_)) => {
+                speed_at_limit(
+                    vb,
+                    &|v| Ok(simulate(s, v)?.pressure.unwrap_or(f64::NAN) / p),
+                )?
+            }
+            Some(PressureCrossing::Always) => 0.0,
+            Some(PressureCrossing::Never) | None => f64::INFINITY,
+        }),
+        _ => None,
+    };
+    let p = PermissibleSpeed::from_parts(by_force, by_pressure, contact.reduced_mass(), s.limits);
+    let verdict = match speed {
+        Some(v) if v > 0.0 => {
+            let sim = simulate(s, v)?;
+            Some(Verdict::new(
+                v,
+                p,
+                sim.force,
+                s.limits.pressure.and(sim.pressure),
+            ))
+        }
+        Some(v) => Some(Verdict::new(v, p, 0.0, s.limits.pressure.map(|_| 0.0))),
+        None => None,
+    };
+    Ok(from_permissible(
+        SafetyMethod::Simulation,
+        s.m_eff,
+        &p,
+        verdict,
+    ))
+}

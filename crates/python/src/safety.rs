@@ -1,0 +1,31 @@
+//! The permissible speed near a body region ([`flexrig::safety`]): the input and the report
+//! cross as JSON, so the Python result holds exactly the numbers of `flexrig safety --json`.
+
+use flexrig::Error;
+use flexrig::safety::{BodyModel, SafetyInput, safety};
+use pyo3::prelude::*;
+
+use crate::{input_error, to_py};
+
+/// The report of [`flexrig::safety::safety`] as JSON for a [`SafetyInput`] given as JSON (the
+/// serde form; the Python wrapper `flexrig.safety` builds it from keyword arguments), with the
+/// body model of the TOML text `body_model_toml` or the bundled ISO/TS 15066:2016 table.
+#[pyfunction]
+#[pyo3(signature = (input_json, body_model_toml=None))]
+pub fn safety_json(
+    py: Python<'_>,
+    input_json: &str,
+    body_model_toml: Option<&str>,
+) -> PyResult<String> {
+    let input: SafetyInput = serde_json::from_str(input_json)
+        .map_err(|e| input_error("input", format!("invalid safety input: {e}")))?;
+    let model = body_model_toml
+        .map(BodyModel::from_toml_str)
+        .transpose()
+        .map_err(|e| to_py(Error::from(e)))?;
+    let report = py
+        .detach(|| safety(&input, model.as_ref()))
+        .map_err(to_py)?;
+    serde_json::to_string(&report)
+        .map_err(|e| input_error("input", format!("the report does not serialise: {e}")))
+}

@@ -1,0 +1,47 @@
+"""flexrig.safety against ``flexrig safety --json``: the same numbers, bit for bit."""
+
+import pytest
+
+import flexrig
+
+CASES = [
+    (
+        dict(region="chest", area="Sternum", moving_mass=20.0, payload=1.0, area_model="fixed",
+             contact_area=1e-4, method="standard,energy", speed=0.3),
+        ["--region", "chest", "--area", "Sternum", "--moving-mass", "20", "--payload", "1",
+         "--area-model", "fixed", "--contact-area", "1e-4", "--method", "standard,energy",
+         "--speed", "0.3"],
+    ),
+    (
+        dict(region="hands_and_fingers", area="Back of the hand ND", m_r=0.051, m_e=0.412, gamma=1.0,
+             material="skinned_aluminium", k_delta=1e4, method=["standard", "energy", "simulation"],
+             speed=1.5),
+        ["--region", "hands_and_fingers", "--area", "Back of the hand ND", "--m-r", "0.051",
+         "--m-e", "0.412", "--gamma", "1", "--material", "skinned_aluminium", "--k-delta", "1e4",
+         "--method", "standard,energy,simulation", "--speed", "1.5"],
+    ),
+    (
+        dict(region="abdomen", contact="quasi_static", m_eff=3.0, k_c=1e4, n=1.0,
+             area_model="hertz_sphere", radius=0.05),
+        ["--region", "abdomen", "--contact", "quasi-static", "--m-eff", "3", "--k-c", "1e4",
+         "--n", "1", "--area-model", "hertz-sphere", "--radius", "0.05"],
+    ),
+]
+
+
+@pytest.mark.parametrize("kwargs,flags", CASES)
+def test_safety_equals_the_cli_json(cli, kwargs, flags):
+    assert flexrig.safety(**kwargs) == cli.json("safety", *flags)
+
+
+def test_transient_head_contact_is_refused_with_the_clause():
+    with pytest.raises(flexrig.InputError, match="5.5.5.4"):
+        flexrig.safety("face", m_eff=5.0)
+
+
+def test_bad_arguments_name_the_field():
+    with pytest.raises(flexrig.InputError, match="--k-delta"):
+        flexrig.safety("chest", m_eff=5.0, k_delta=-1.0)
+    with pytest.raises(flexrig.InputError) as e:
+        flexrig.safety("chest", m_eff=5.0, area_model="fixed")
+    assert e.value.field == "contact_area"
