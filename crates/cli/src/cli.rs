@@ -59,6 +59,13 @@ pub enum Command {
     Validate(commands::validate::ValidateArgs),
     /// Check the Pseudo-Rigid-Body model (γ, K_Θ) against the corotational FE beam.
     Prb(commands::prb::PrbArgs),
+    /// The spin-up beam benchmark (Kane, Ryan & Banerjee 1987): tip deflection by FE, an
+    /// independent reference and the linear model.
+    SpinUp(commands::spin_up::SpinUpArgs),
+    /// One driven CJ or CL strike (motor, gear, controller) from a drive description or flags.
+    Strike(commands::strike::StrikeArgs),
+    /// The role-switch table: the test bed's peak against the driven robot's.
+    RoleSwitch(commands::role_switch::RoleSwitchArgs),
 }
 
 /// Where the default job writes its files.
@@ -88,5 +95,8 @@ pub fn run_cancellable(cli: &Cli, out: &mut dyn Write, cancel: &CancelToken) -> 
         Some(Command::Prb(args)) => commands::prb::run(args, out),
         Some(Command::Validate(args)) => commands::validate::run(args, out),
         Some(Command::Bench(args)) => commands::bench::run(args, out),
+        Some(Command::SpinUp(args)) => commands::spin_up::run(args, out, cancel),
+        Some(Command::Strike(args)) => commands::strike::run(args, out, cancel),
+        Some(Command::RoleSwitch(args)) => commands::role_switch::run(args, out, cancel),
     }
 }

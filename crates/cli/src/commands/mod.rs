@@ -13,7 +13,10 @@ pub mod impact;
 pub mod impact_args;
 pub mod payload;
 pub mod prb;
+pub mod role_switch;
 pub mod run;
+pub mod spin_up;
+pub mod strike;
 pub mod sweep;
 pub mod validate;
 
