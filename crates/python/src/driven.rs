@@ -67,7 +67,8 @@ pub fn spin_up<'py>(
         modes,
     };
     let cancel = CancelToken::new();
-    let result = detached(py, &cancel, || run_spin_up(&options, &out, &cancel))?.map_err(py_error)?;
+    let result =
+        detached(py, &cancel, || run_spin_up(&options, &out, &cancel))?.map_err(py_error)?;
     to_object(py, &result)
 }
 
