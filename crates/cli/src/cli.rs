@@ -62,6 +62,13 @@ pub enum Command {
     /// Permissible speed near a body region (ISO/TS 15066): the standard's formula, the energy
     /// method and the simulated impact side by side.
     Safety(commands::safety::SafetyArgs),
+    /// The spin-up beam benchmark (Kane, Ryan & Banerjee 1987): tip deflection by FE, an
+    /// independent reference and the linear model.
+    SpinUp(commands::spin_up::SpinUpArgs),
+    /// One driven CJ or CL strike (motor, gear, controller) from a drive description or flags.
+    Strike(commands::strike::StrikeArgs),
+    /// The role-switch table: the test bed's peak against the driven robot's.
+    RoleSwitch(commands::role_switch::RoleSwitchArgs),
 }
 
 /// Where the default job writes its files.
@@ -92,5 +99,8 @@ pub fn run_cancellable(cli: &Cli, out: &mut dyn Write, cancel: &CancelToken) -> 
         Some(Command::Validate(args)) => commands::validate::run(args, out),
         Some(Command::Bench(args)) => commands::bench::run(args, out),
         Some(Command::Safety(args)) => commands::safety::run(args, out),
+        Some(Command::SpinUp(args)) => commands::spin_up::run(args, out, cancel),
+        Some(Command::Strike(args)) => commands::strike::run(args, out, cancel),
+        Some(Command::RoleSwitch(args)) => commands::role_switch::run(args, out, cancel),
     }
 }

@@ -25,6 +25,7 @@
 pub mod beam;
 pub mod bench;
 pub mod cancel;
+pub mod driven;
 pub mod error;
 pub mod eta;
 pub mod eta_map;

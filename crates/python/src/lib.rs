@@ -14,6 +14,7 @@ use pyo3::exceptions::{PyFileNotFoundError, PyKeyboardInterrupt, PyOSError, PyRu
 use pyo3::prelude::*;
 
 mod convert;
+mod driven;
 mod lumped;
 mod run;
 mod safety;
@@ -144,6 +145,9 @@ fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(lumped::impact_exact, m)?)?;
     m.add_function(wrap_pyfunction!(lumped::fig6, m)?)?;
     m.add_function(wrap_pyfunction!(safety::safety_json, m)?)?;
+    m.add_function(wrap_pyfunction!(driven::spin_up, m)?)?;
+    m.add_function(wrap_pyfunction!(driven::strike, m)?)?;
+    m.add_function(wrap_pyfunction!(driven::role_switch, m)?)?;
     m.add_class::<sweep::Sweep>()?;
     m.add(
         "SUMMARY_COLUMNS",

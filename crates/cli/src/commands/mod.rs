@@ -14,8 +14,11 @@ pub mod impact;
 pub mod impact_args;
 pub mod payload;
 pub mod prb;
+pub mod role_switch;
 pub mod run;
 pub mod safety;
+pub mod spin_up;
+pub mod strike;
 pub mod sweep;
 pub mod validate;
 

@@ -8,6 +8,7 @@
 //! coordinate to a whole unit; drawn this way a unit is a quarter point, and curves come out
 //! smooth.
 
+mod curves;
 mod eta;
 mod fig6;
 mod fig9;
@@ -21,6 +22,7 @@ mod print_tests;
 mod rotor;
 mod work_precision;
 
+pub use curves::{Curve, CurvePanel, log_x_curves_svg};
 pub use eta::eta_svg;
 pub use fig6::{Fig6Point, fig6_svg, fig6_with_points_svg};
 pub use fig9::{Jitter, fig9_svg, grams};

@@ -69,6 +69,9 @@ __all__ = [
     "TRACE_NAMES",
     "bundled_scenes",
     "fig6",
+    "role_switch",
+    "spin_up",
+    "strike",
     "impact",
     "run",
     "safety",
@@ -470,3 +473,219 @@ def _frame(paths: List[str], parts: List[Dict[str, Any]]) -> "pandas.DataFrame":
     for j, name in enumerate(SUMMARY_COLUMNS):
         columns[name] = summary[:, j]
     return pd.DataFrame(columns)
+
+
+def _out_dir(out: Optional[Union[str, "os.PathLike[str]"]]):
+    """(directory, temporary-directory object or None): ``out`` or a fresh temporary directory."""
+    import tempfile
+
+    if out is not None:
+        return os.fspath(out), None
+    tmp = tempfile.TemporaryDirectory(prefix="flexrig-")
+    return tmp.name, tmp
+
+
+def spin_up(
+    *,
+    out: Optional[Union[str, "os.PathLike[str]"]] = None,
+    length: float = 10.0,
+    area: float = 4e-4,
+    second_moment: float = 2e-7,
+    youngs_modulus: float = 7e10,
+    density: float = 3000.0,
+    t_s: float = 15.0,
+    omega_s: float = 6.0,
+    elements: int = 16,
+    duration: Optional[float] = None,
+    sample_every: float = 0.1,
+    max_step: float = 1e-3,
+    modes: int = 7,
+) -> "pandas.DataFrame":
+    """The spin-up beam benchmark (Kane, Ryan & Banerjee 1987), as ``flexrig spin-up``: the tip's
+    deflection in the hub frame [m] by the corotational FE beam (``fe``), the independent elastica
+    reference (``reference``) and the linear rotating-frame beam (``linear``, which diverges),
+    one row per reported time ``t`` [s] — the columns of spin_up.csv. Keyword arguments are the
+    command's flags (SI units; defaults: the literature case, run to T_s + 5 s). With ``out`` the
+    CSV, JSON and SVG are written there. ``df.attrs`` holds ``fe_error_of_max``,
+    ``reference_max_m`` and the options.
+    """
+    import pandas as pd
+
+    directory, tmp = _out_dir(out)
+    try:
+        r = _flexrig.spin_up(
+            directory, float(length), float(area), float(second_moment), float(youngs_modulus),
+            float(density), float(t_s), float(omega_s), int(elements),
+            None if duration is None else float(duration), float(sample_every), float(max_step),
+            int(modes),
+        )
+    finally:
+        if tmp is not None:
+            tmp.cleanup()
+    df = pd.DataFrame({k: np.asarray(r[k], dtype=np.float64) for k in ("t", "fe", "reference", "linear")})
+    df.attrs.update(
+        fe_error_of_max=r["fe_error_of_max"], reference_max_m=r["reference_max_m"], options=r["options"]
+    )
+    if out is not None:
+        df.attrs.update(csv=r["csv"], json=r["json"], svg=r["svg"])
+    return df
+
+
+#: The columns of a strike's trace (strike_trace.csv).
+STRIKE_TRACE_COLUMNS: Tuple[str, ...] = (
+    "t_s", "hub_angle_rad", "hub_speed_rad_s", "tip_deflection_m", "indentation_m", "force_n",
+    "joint_torque_nm", "head_position_m",
+)
+
+_TRACE_KEYS = (
+    "t", "hub_angle_rad", "hub_speed_rad_s", "tip_deflection_m", "indentation_m", "force_n",
+    "joint_torque_nm", "head_position_m",
+)
+
+
+def _strike_toml(f: Mapping[str, Any]) -> str:
+    """The drive description that ``flexrig strike``'s flags build (a controller on a smooth ramp,
+    the person placed after the ramp)."""
+    torque_limit = f["torque_limit"]
+    return f"""design = "{f['design']}"
+horizon_s = {float(f['horizon'])!r}
+[link]
+m_r = {float(f['m_r'])!r}
+length = {float(f['length'])!r}
+k_delta = {float(f['k_delta'])!r}
+m_e = {float(f['m_e'])!r}
+[drive.motor]
+rotor_inertia = {float(f['rotor_inertia'])!r}
+gear_ratio = {float(f['gear_ratio'])!r}
+friction = {float(f['friction'])!r}
+[drive.command]
+command = "controller"
+torque_limit = {float(torque_limit)!r}
+[drive.command.profile]
+profile = "smooth_ramp"
+speed = {float(f['speed'])!r}
+ramp_time = {float(f['ramp_time'])!r}
+[drive.command.gains]
+kp = {float(f['kp'])!r}
+kd = {float(f['kd'])!r}
+[person]
+m_h = {float(f['m_h'])!r}
+speed = 0.0
+[person.support]
+support = "{f['support']}"
+[person.contact]
+k = {float(f['k_c'])!r}
+n = {float(f['n'])!r}
+[placement]
+placement = "after_ramp"
+settle = {float(f['settle'])!r}
+"""
+
+
+def strike(
+    file: Optional[Union[str, "os.PathLike[str]"]] = None,
+    *,
+    design: str = "cl",
+    m_r: float = 10.0,
+    length: float = 1.0,
+    k_delta: float = 1e8,
+    m_e: float = 0.1,
+    rotor_inertia: float = 1e-4,
+    gear_ratio: float = 50.0,
+    friction: float = 1e-5,
+    speed: float = 2.0,
+    ramp_time: float = 0.5,
+    kp: float = 500.0,
+    kd: float = 40.0,
+    torque_limit: float = 1.0,
+    m_h: float = 4.0,
+    support: str = "free",
+    k_c: float = 1e8,
+    n: float = 2.0,
+    settle: float = 0.3,
+    horizon: float = 5.0,
+    trace_every: Optional[float] = None,
+    out: Optional[Union[str, "os.PathLike[str]"]] = None,
+) -> Dict[str, Any]:
+    """One driven CJ or CL strike, as ``flexrig strike``: from a drive description ``file`` (a
+    path to TOML, see assets/drives/) or from the keyword arguments (the command's flags; their
+    defaults are assets/drives/cl_free_head.toml). Returns the outcome as a dict (``contact``:
+    onset_s, peak_force_n, time_of_peak_s, duration_s; approach speed, pre-impact deflection,
+    joint torques, ``energy``, ``notes``, ``work``) and, with ``trace_every`` [s], ``trace``: a
+    DataFrame of the motion (columns :data:`STRIKE_TRACE_COLUMNS`; written as strike_trace.csv
+    into ``out`` if given). A bad field raises :class:`InputError` naming it
+    (``drive.motor.gear_ratio``).
+    """
+    import pandas as pd
+
+    if file is not None:
+        path = os.fspath(file)
+        with open(path, encoding="utf-8") as fh:
+            text = fh.read()
+        source = path
+    else:
+        if design not in ("cj", "cl"):
+            raise _input_error("design", f"invalid argument design = {design!r}: one of 'cj', 'cl'")
+        if support not in ("free", "wall"):
+            raise _input_error("support", f"invalid argument support = {support!r}: one of 'free', 'wall'")
+        text = _strike_toml(locals())
+        source = "arguments"
+    r = _flexrig.strike(
+        text, source, None if trace_every is None else float(trace_every),
+        None if out is None else os.fspath(out),
+    )
+    outcome = dict(r["outcome"])
+    trace = outcome.pop("trace")
+    if trace_every is not None:
+        outcome["trace"] = pd.DataFrame(
+            {c: np.asarray([s[k] for s in trace], dtype=np.float64) for c, k in zip(STRIKE_TRACE_COLUMNS, _TRACE_KEYS)}
+        )
+    outcome["design"] = r["design"]
+    if r.get("trace_csv") is not None:
+        outcome["trace_csv"] = r["trace_csv"]
+    return outcome
+
+
+def role_switch(
+    *,
+    kappa: Any = (1e4, 1e2, 1.0, 1e-2),
+    rotor_ratio: float = 1.0,
+    damping_ratio: float = 0.7,
+    no_fig6: bool = False,
+    out: Optional[Union[str, "os.PathLike[str]"]] = None,
+) -> "pandas.DataFrame":
+    """The role-switch table, as ``flexrig role-switch``: one row per (case, design, drive) with
+    the columns of role_switch.csv — ``case``, ``design`` (cj, cl), ``drive`` (prescribed, pd,
+    torque_free), ``kappa`` (K_p/k_θr; inf for the ideal position source, 0 torque-free),
+    ``f_test_bed_n``, ``f_driven_n``, ``ratio``, ``f_switched_same_drive_n``. Keyword arguments
+    are the command's flags; with ``out`` the CSV and SVG are written there.
+    """
+    import pandas as pd
+
+    directory, tmp = _out_dir(out)
+    try:
+        rows, csv, svg = _flexrig.role_switch(
+            directory, [float(k) for k in np.atleast_1d(kappa)], float(rotor_ratio),
+            float(damping_ratio), not no_fig6,
+        )
+    finally:
+        if tmp is not None:
+            tmp.cleanup()
+    kappas = {"prescribed": np.inf, "torque_free": 0.0}
+    df = pd.DataFrame(
+        {
+            "case": [r["case"] for r in rows],
+            "design": [r["design"] for r in rows],
+            "drive": [r["level"]["drive"] for r in rows],
+            "kappa": np.asarray(
+                [r["level"].get("kappa", kappas.get(r["level"]["drive"])) for r in rows], dtype=np.float64
+            ),
+            **{
+                k: np.asarray([r[k] for r in rows], dtype=np.float64)
+                for k in ("f_test_bed_n", "f_driven_n", "ratio", "f_switched_same_drive_n")
+            },
+        }
+    )
+    if out is not None:
+        df.attrs.update(csv=str(csv), svg=str(svg))
+    return df

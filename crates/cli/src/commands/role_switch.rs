@@ -1,0 +1,95 @@
+//! `flexrig role-switch`: the test bed's peak against the driven robot's for the test-bed link
+//! and the Fig. 6 cases, see [`flexrig::driven::role_switch`]; a table or JSON.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::Args;
+use flexrig::driven::role_switch::{RoleSwitchOptions, design_name, level_name, run as run_table};
+use flexrig::{CancelToken, Error};
+use serde_json::json;
+
+use crate::print::{line, print_json};
+
+/// Arguments of `flexrig role-switch`.
+#[derive(Debug, Args)]
+pub struct RoleSwitchArgs {
+    /// Directory for role_switch.csv and role_switch.svg (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+    /// PD loop stiffnesses κ = K_p/k_θr, comma-separated, each > 0 (the ideal position source
+    /// and the torque-free rotor are always added).
+    #[arg(long, value_name = "K,...", value_delimiter = ',', default_values_t = [1e4, 1e2, 1.0, 1e-2])]
+    pub kappa: Vec<f64>,
+    /// Rotor inertia J_R over the link's m_r L²/3 (> 0).
+    #[arg(long, value_name = "RATIO", default_value_t = 1.0)]
+    pub rotor_ratio: f64,
+    /// Damping ratio ζ of the PD loops (≥ 0).
+    #[arg(long, value_name = "ZETA", default_value_t = 0.7)]
+    pub damping_ratio: f64,
+    /// Only the test bed's cases (leave out the Fig. 6 cases).
+    #[arg(long)]
+    pub no_fig6: bool,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs `flexrig role-switch`.
+pub fn run(args: &RoleSwitchArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
+    let options = RoleSwitchOptions {
+        kappas: args.kappa.clone(),
+        rotor_ratio: args.rotor_ratio,
+        damping_ratio: args.damping_ratio,
+        fig6: !args.no_fig6,
+    };
+    let r = run_table(&options, &args.out, cancel)?;
+    if args.json {
+        let rows: Vec<_> = r
+            .rows
+            .iter()
+            .map(|row| {
+                let (drive, kappa) = level_name(&row.level);
+                json!({
+                    "case": row.case,
+                    "design": design_name(row.design),
+                    "drive": drive,
+                    "kappa": if kappa.is_finite() { json!(kappa) } else { json!(null) },
+                    "f_test_bed_n": row.f_test_bed_n,
+                    "f_driven_n": row.f_driven_n,
+                    "ratio": row.ratio,
+                    "f_switched_same_drive_n": row.f_switched_same_drive_n,
+                })
+            })
+            .collect();
+        return print_json(out, &json!({"rows": rows, "csv": r.csv, "svg": r.svg}));
+    }
+    line(
+        out,
+        "Role switch: f_driven/f_test bed (robot at v0 under its drive into the head at rest, over the head at v0 on the held robot)",
+    )?;
+    let per_case = options.kappas.len() + 2;
+    let mut header = format!("{:<52} {:>3} {:>11}", "case", "", "test bed[N]");
+    header.push_str(&format!(" {:>9}", "prescr."));
+    for k in &options.kappas {
+        header.push_str(&format!(" {:>9}", format!("κ={k:e}")));
+    }
+    header.push_str(&format!(" {:>9}", "free"));
+    line(out, header)?;
+    for chunk in r.rows.chunks(per_case) {
+        let mut text = format!(
+            "{:<52} {:>3} {:>11.1}",
+            chunk[0].case,
+            design_name(chunk[0].design),
+            chunk[0].f_test_bed_n
+        );
+        for row in chunk {
+            text.push_str(&format!(" {:>9.4}", row.ratio));
+        }
+        line(out, text)?;
+    }
+    line(
+        out,
+        format!("Wrote {} and {}", r.csv.display(), r.svg.display()),
+    )
+}

@@ -1,0 +1,286 @@
+//! `flexrig strike`: one driven CJ or CL strike from a drive description (TOML, see
+//! assets/drives/) or from flags, see [`flexrig::driven::strike`]; a summary or JSON.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use flexrig::driven::LinkParams;
+use flexrig::driven::drive::{Drive, Gains, HeadSupport, Motor, Person, Placement, Profile};
+use flexrig::driven::strike::{StrikeDescription, StrikeDesign, StrikeOptions, run as run_strike};
+use flexrig::driven::{DampingSpec, Hertz};
+use flexrig::{CancelToken, Error};
+
+use crate::print::{line, print_json};
+
+/// The link design.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum DesignArg {
+    /// Rigid link on a torsion spring.
+    Cj,
+    /// Beam clamped to the hub.
+    Cl,
+}
+
+/// How the head is held.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum SupportArg {
+    /// A free head.
+    Free,
+    /// Against a wall.
+    Wall,
+}
+
+/// Arguments of `flexrig strike`. Without FILE the flags describe the strike (their defaults:
+/// assets/drives/cl_free_head.toml); with FILE they may not be given.
+#[derive(Debug, Args)]
+pub struct StrikeArgs {
+    /// Drive description (TOML: design, horizon_s, [link], [drive], [person], [placement]).
+    #[arg(value_name = "FILE")]
+    pub file: Option<PathBuf>,
+    /// Link design.
+    #[arg(long, value_enum, default_value = "cl", conflicts_with = "file")]
+    pub design: DesignArg,
+    /// Link mass m_r [kg].
+    #[arg(
+        long,
+        value_name = "KG",
+        default_value_t = 10.0,
+        conflicts_with = "file"
+    )]
+    pub m_r: f64,
+    /// Link length L [m].
+    #[arg(long, value_name = "M", default_value_t = 1.0, conflicts_with = "file")]
+    pub length: f64,
+    /// Lateral tip stiffness k_δ [N/m].
+    #[arg(
+        long,
+        value_name = "N_M",
+        default_value_t = 1e8,
+        conflicts_with = "file"
+    )]
+    pub k_delta: f64,
+    /// Tip payload m_e [kg].
+    #[arg(
+        long,
+        value_name = "KG",
+        default_value_t = 0.1,
+        conflicts_with = "file"
+    )]
+    pub m_e: f64,
+    /// Rotor inertia at the motor shaft J_m [kg·m²].
+    #[arg(
+        long,
+        value_name = "KG_M2",
+        default_value_t = 1e-4,
+        conflicts_with = "file"
+    )]
+    pub rotor_inertia: f64,
+    /// Gear ratio N (> 0).
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 50.0,
+        conflicts_with = "file"
+    )]
+    pub gear_ratio: f64,
+    /// Viscous friction at the motor shaft [N·m·s/rad].
+    #[arg(
+        long,
+        value_name = "NMS",
+        default_value_t = 1e-5,
+        conflicts_with = "file"
+    )]
+    pub friction: f64,
+    /// Commanded joint speed after the ramp [rad/s].
+    #[arg(
+        long,
+        value_name = "RAD_S",
+        default_value_t = 2.0,
+        conflicts_with = "file"
+    )]
+    pub speed: f64,
+    /// Duration of the smooth (quintic) speed ramp [s].
+    #[arg(long, value_name = "S", default_value_t = 0.5, conflicts_with = "file")]
+    pub ramp_time: f64,
+    /// PD gain on the joint angle K_p [N·m/rad].
+    #[arg(
+        long,
+        value_name = "NM_RAD",
+        default_value_t = 500.0,
+        conflicts_with = "file"
+    )]
+    pub kp: f64,
+    /// PD gain on the joint speed K_d [N·m·s/rad].
+    #[arg(
+        long,
+        value_name = "NMS_RAD",
+        default_value_t = 40.0,
+        conflicts_with = "file"
+    )]
+    pub kd: f64,
+    /// Largest motor-shaft torque [N·m] (> 0).
+    #[arg(
+        long,
+        value_name = "NM",
+        default_value_t = 1.0,
+        conflicts_with = "file"
+    )]
+    pub torque_limit: f64,
+    /// Head mass m_h [kg].
+    #[arg(
+        long,
+        value_name = "KG",
+        default_value_t = 4.0,
+        conflicts_with = "file"
+    )]
+    pub m_h: f64,
+    /// How the head is held.
+    #[arg(long, value_enum, default_value = "free", conflicts_with = "file")]
+    pub support: SupportArg,
+    /// Contact stiffness k_c [N/m^n].
+    #[arg(long, value_name = "K", default_value_t = 1e8, conflicts_with = "file")]
+    pub k_c: f64,
+    /// Hertz exponent n.
+    #[arg(long, value_name = "N", default_value_t = 2.0, conflicts_with = "file")]
+    pub n: f64,
+    /// The person stands where the commanded motion is this long after the ramp [s].
+    #[arg(long, value_name = "S", default_value_t = 0.3, conflicts_with = "file")]
+    pub settle: f64,
+    /// Longest wait for the link to arrive [s].
+    #[arg(long, value_name = "S", default_value_t = 5.0, conflicts_with = "file")]
+    pub horizon: f64,
+    /// Sample the motion every this many seconds and write strike_trace.csv into --out.
+    #[arg(long, value_name = "S")]
+    pub trace_every: Option<f64>,
+    /// Directory for strike_trace.csv (with --trace-every).
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+    /// Print JSON instead of the summary.
+    #[arg(long)]
+    pub json: bool,
+}
+
+impl StrikeArgs {
+    /// The description from FILE or from the flags (errors name the flag or the file's field).
+    fn description(&self) -> Result<StrikeDescription, Error> {
+        if let Some(file) = &self.file {
+            return StrikeDescription::read(file);
+        }
+        let flag = |arg: &str, e: flexrig::driven::ContactError| Error::InvalidArgument {
+            arg: arg.into(),
+            value: format!("{} / {}", self.k_c, self.n),
+            allowed: e.to_string(),
+        };
+        let contact = Hertz::new(self.k_c, self.n).map_err(|e| flag("--k-c/--n", e))?;
+        let motor = Motor::new(self.rotor_inertia, self.gear_ratio, self.friction)?;
+        let drive = Drive::controller(
+            motor,
+            Profile::SmoothRamp {
+                speed: self.speed,
+                ramp_time: self.ramp_time,
+            },
+            Gains::position_pd(self.kp, self.kd),
+            Some(self.torque_limit),
+        )?;
+        let d = StrikeDescription {
+            design: match self.design {
+                DesignArg::Cj => StrikeDesign::Cj,
+                DesignArg::Cl => StrikeDesign::Cl,
+            },
+            horizon_s: self.horizon,
+            link: LinkParams {
+                m_r: self.m_r,
+                length: self.length,
+                k_delta: self.k_delta,
+                m_e: self.m_e,
+            },
+            drive,
+            person: Person {
+                m_h: self.m_h,
+                support: match self.support {
+                    SupportArg::Free => HeadSupport::Free,
+                    SupportArg::Wall => HeadSupport::Wall,
+                },
+                contact,
+                damping: DampingSpec::NONE,
+                speed: 0.0,
+            },
+            placement: Placement::AfterRamp {
+                settle: self.settle,
+            },
+        };
+        d.strike().validate()?;
+        Ok(d)
+    }
+}
+
+/// Runs `flexrig strike`.
+pub fn run(args: &StrikeArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
+    let description = args.description()?;
+    let r = run_strike(
+        &description,
+        &StrikeOptions {
+            trace_every: args.trace_every,
+            out: Some(args.out.clone()),
+        },
+        cancel,
+    )?;
+    if args.json {
+        let v = serde_json::to_value(&r).map_err(|e| Error::NonFinite {
+            what: "strike result".into(),
+            value: e.to_string(),
+            advice: "a non-finite value cannot be printed as JSON".into(),
+        })?;
+        return print_json(out, &v);
+    }
+    let o = &r.outcome;
+    let c = &o.contact;
+    line(
+        out,
+        format!(
+            "Driven {} strike: peak {:.6e} N at t = {:.6} s (onset {:.6} s, duration {:.6e} s)",
+            if r.design == StrikeDesign::Cj {
+                "CJ"
+            } else {
+                "CL"
+            },
+            c.peak_force_n,
+            c.time_of_peak_s,
+            c.onset_s,
+            c.duration_s
+        ),
+    )?;
+    line(
+        out,
+        format!(
+            "  approach speed {:.6} m/s (commanded tip speed {}), pre-impact deflection {:.6e} m",
+            o.approach_speed_mps,
+            o.commanded_tip_speed_mps
+                .map_or("none".to_string(), |v| format!("{v:.6} m/s")),
+            o.pre_impact_deflection_m
+        ),
+    )?;
+    line(
+        out,
+        format!(
+            "  joint torque at the onset {:.4} N·m, largest in the contact {:.4} N·m",
+            o.joint_torque_at_onset_nm, o.peak_joint_torque_nm
+        ),
+    )?;
+    let e = &o.energy;
+    line(
+        out,
+        format!(
+            "  energy [J]: impact {:.6e}, motor work {:.6e}, dissipated {:.6e}, mechanical change {:.6e}, residual {:.1e}",
+            e.impact_energy_j, e.motor_work_j, e.dissipated_j, e.mechanical_change_j, e.residual_j
+        ),
+    )?;
+    for note in &o.notes {
+        line(out, format!("  note: {note:?}"))?;
+    }
+    if let Some(path) = &r.trace_csv {
+        line(out, format!("Wrote {}", path.display()))?;
+    }
+    Ok(())
+}

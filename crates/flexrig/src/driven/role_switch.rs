@@ -1,0 +1,200 @@
+//! The role-switch table (docs/driven.md): the test bed's peak (head at v0 on the robot at rest,
+//! joint held) against the driven robot's (robot at v0 under its drive into the head at rest)
+//! for the test bed's link and the Fig. 6 cases, CJ and CL, from an ideal position source through
+//! PD loops K_p = κ k_θr to a torque-free rotor ([`flexrig_impact::role_switch`]); written as
+//! role_switch.csv and role_switch.svg.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use flexrig_impact::role_switch::{
+    Design, DriveLevel, RoleCase, RoleRow, RoleSettings, fig6_cases, role_switch_table,
+    test_bed_cases,
+};
+
+use super::{check, num};
+use crate::output::{ensure_dir, non_negative_arg, positive_arg, write_atomic};
+use crate::plots::{Curve, CurvePanel, log_x_curves_svg};
+use crate::{CancelToken, Error};
+
+/// The drive levels and the cases.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RoleSwitchOptions {
+    /// PD stiffnesses κ = K_p/k_θr, each > 0 (`--kappa`; 1e4, 1e2, 1, 1e-2); the ideal position
+    /// source and the torque-free rotor are always included.
+    pub kappas: Vec<f64>,
+    /// Rotor inertia J_R over m_r L²/3 (`--rotor-ratio`; 1).
+    pub rotor_ratio: f64,
+    /// Damping ratio ζ of the PD loops (`--damping-ratio`; 0.7).
+    pub damping_ratio: f64,
+    /// Include the Fig. 6 cases (n = 1 and 2) besides the test bed's (`--no-fig6` clears it).
+    pub fig6: bool,
+}
+
+impl Default for RoleSwitchOptions {
+    fn default() -> Self {
+        RoleSwitchOptions {
+            kappas: vec![1e4, 1e2, 1.0, 1e-2],
+            rotor_ratio: 1.0,
+            damping_ratio: 0.7,
+            fig6: true,
+        }
+    }
+}
+
+/// The rows and the files written.
+#[derive(Debug, Clone)]
+pub struct RoleSwitchResult {
+    /// Case-major, then CJ/CL, then the levels (prescribed, the κ in order, torque-free).
+    pub rows: Vec<RoleRow>,
+    /// role_switch.csv.
+    pub csv: PathBuf,
+    /// role_switch.svg.
+    pub svg: PathBuf,
+}
+
+/// Runs the table case by case (each case's runs in parallel; stops between cases if `cancel`
+/// is set) and writes role_switch.csv and role_switch.svg into `out`.
+pub fn run(
+    options: &RoleSwitchOptions,
+    out: &Path,
+    cancel: &CancelToken,
+) -> Result<RoleSwitchResult, Error> {
+    let settings = settings(options)?;
+    let mut cases: Vec<RoleCase> = test_bed_cases()?;
+    if options.fig6 {
+        cases.extend(fig6_cases(1.0)?);
+        cases.extend(fig6_cases(2.0)?);
+    }
+    let mut rows = Vec::new();
+    for case in &cases {
+        check(cancel)?;
+        rows.extend(role_switch_table(std::slice::from_ref(case), &settings)?);
+    }
+    check(cancel)?;
+    ensure_dir(out)?;
+    let csv_path = out.join("role_switch.csv");
+    let svg_path = out.join("role_switch.svg");
+    write_atomic(&csv_path, csv(&rows).as_bytes())?;
+    let svg = figure(&rows, &options.kappas).map_err(|message| Error::Plot {
+        path: svg_path.clone(),
+        message,
+    })?;
+    write_atomic(&svg_path, svg.as_bytes())?;
+    Ok(RoleSwitchResult {
+        rows,
+        csv: csv_path,
+        svg: svg_path,
+    })
+}
+
+fn settings(options: &RoleSwitchOptions) -> Result<RoleSettings, Error> {
+    let mut settings = RoleSettings::standard();
+    settings.rotor_ratio = positive_arg("--rotor-ratio", options.rotor_ratio)?;
+    settings.damping_ratio = non_negative_arg("--damping-ratio", options.damping_ratio)?;
+    let mut levels = vec![DriveLevel::Prescribed];
+    for (i, &kappa) in options.kappas.iter().enumerate() {
+        positive_arg(&format!("--kappa[{i}]"), kappa)?;
+        levels.push(DriveLevel::Pd { kappa });
+    }
+    levels.push(DriveLevel::TorqueFree);
+    settings.levels = levels;
+    Ok(settings)
+}
+
+/// The level's name in the CSV: `prescribed`, `pd`, `torque_free`.
+pub fn level_name(level: &DriveLevel) -> (&'static str, f64) {
+    match *level {
+        DriveLevel::Prescribed => ("prescribed", f64::INFINITY),
+        DriveLevel::Pd { kappa } => ("pd", kappa),
+        DriveLevel::TorqueFree => ("torque_free", 0.0),
+    }
+}
+
+/// The design's name in the CSV: `cj`, `cl`.
+pub fn design_name(design: Design) -> &'static str {
+    match design {
+        Design::Cj => "cj",
+        Design::Cl => "cl",
+    }
+}
+
+/// `case,design,drive,kappa,f_test_bed_n,f_driven_n,ratio,f_switched_same_drive_n` (κ = inf for
+/// the ideal position source, 0 for the torque-free rotor), numbers in their shortest exact form.
+pub fn csv(rows: &[RoleRow]) -> String {
+    let mut text = String::from(
+        "case,design,drive,kappa,f_test_bed_n,f_driven_n,ratio,f_switched_same_drive_n\n",
+    );
+    for r in rows {
+        let (drive, kappa) = level_name(&r.level);
+        let _ = writeln!(
+            text,
+            "\"{}\",{},{drive},{},{},{},{},{}",
+            r.case.replace('"', "'"),
+            design_name(r.design),
+            num(kappa),
+            num(r.f_test_bed_n),
+            num(r.f_driven_n),
+            num(r.ratio),
+            num(r.f_switched_same_drive_n)
+        );
+    }
+    text
+}
+
+/// The ratio f_driven/f_test bed against the drive's compliance 1/κ, a panel per design; the
+/// torque-free ratio as each curve's dashed limit; the cases whose ratio stays within 1e-3 of 1
+/// at every level are left out (named in the title count).
+fn figure(rows: &[RoleRow], kappas: &[f64]) -> Result<String, String> {
+    let mut panels = Vec::new();
+    let mut flat = 0;
+    for design in [Design::Cj, Design::Cl] {
+        let mut curves = Vec::new();
+        let mut cases: Vec<&str> = Vec::new();
+        for r in rows.iter().filter(|r| r.design == design) {
+            if !cases.contains(&r.case.as_str()) {
+                cases.push(&r.case);
+            }
+        }
+        for case in cases {
+            let of_case: Vec<&RoleRow> = rows
+                .iter()
+                .filter(|r| r.design == design && r.case == case)
+                .collect();
+            if of_case.iter().all(|r| (r.ratio - 1.0).abs() <= 1e-3) {
+                flat += 1;
+                continue;
+            }
+            let points = of_case
+                .iter()
+                .filter_map(|r| match r.level {
+                    DriveLevel::Pd { kappa } if kappas.contains(&kappa) => {
+                        Some((1.0 / kappa, r.ratio))
+                    }
+                    _ => None,
+                })
+                .collect();
+            let limit = of_case
+                .iter()
+                .find(|r| r.level == DriveLevel::TorqueFree)
+                .map(|r| r.ratio);
+            curves.push(Curve {
+                label: case.to_string(),
+                points,
+                limit,
+            });
+        }
+        panels.push(CurvePanel {
+            title: format!("{} design", design_name(design).to_uppercase()),
+            curves,
+        });
+    }
+    log_x_curves_svg(
+        &format!(
+            "Role switch: driven robot's peak over the test bed's ({flat} case–design pairs within 1e-3 of 1 left out; dashed: torque-free)"
+        ),
+        "drive compliance 1/κ = k_θr/K_p",
+        "f_driven / f_test bed",
+        &panels,
+    )
+}

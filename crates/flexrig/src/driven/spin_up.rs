@@ -1,0 +1,256 @@
+//! The spin-up beam benchmark (Kane, Ryan & Banerjee 1987; Simo & Vu-Quoc 1986): a cantilever on
+//! a hub spun up by θ(t) = (ω_s/T_s)[t²/2 + (T_s/2π)²(cos(2πt/T_s) − 1)] (t < T_s), then
+//! ω_s(t − T_s/2). The tip's deflection in the hub frame by the corotational FE beam on a
+//! rotating clamp, by the independent elastica reference (Ritz on the section angle) and by the
+//! linear rotating-frame beam ([`flexrig_impact::spin_up`]); written as spin_up.csv
+//! (`t,fe,reference,linear`), spin_up.json and spin_up.svg.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use flexrig_impact::spin_up::{
+    SpinUp, SpinUpSeries, spin_up_fe, spin_up_linear, spin_up_reference,
+};
+use serde::Serialize;
+
+use super::{check, num};
+use crate::output::{ensure_dir, positive_arg, write_atomic};
+use crate::plots::{Curve, CurvePanel, log_x_curves_svg};
+use crate::{CancelToken, Error};
+
+/// The benchmark's beam, spin-up and discretisation (SI units; defaults: the literature case).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SpinUpOptions {
+    /// Beam length L \[m\] (`--length`; 10).
+    pub length: f64,
+    /// Cross-section area A \[m²\] (`--area`; 4e-4).
+    pub area: f64,
+    /// Second moment of area I \[m⁴\] (`--second-moment`; 2e-7).
+    pub second_moment: f64,
+    /// Young's modulus E \[Pa\] (`--youngs-modulus`; 7e10).
+    pub youngs_modulus: f64,
+    /// Density ρ \[kg/m³\] (`--density`; 3000).
+    pub density: f64,
+    /// Spin-up time T_s \[s\] (`--t-s`; 15).
+    pub t_s: f64,
+    /// Final hub speed ω_s \[rad/s\] (`--omega-s`; 6).
+    pub omega_s: f64,
+    /// FE elements (`--elements`; 16: 1.8e-3 of the max from the reference, docs/driven.md).
+    pub elements: usize,
+    /// Run length \[s\] (`--duration`; `None`: T_s + 5 s as in the benchmark).
+    pub duration: Option<f64>,
+    /// Reporting interval \[s\] (`--sample-every`; 0.1).
+    pub sample_every: f64,
+    /// Largest FE time step \[s\] (`--max-step`; 1e-3).
+    pub max_step: f64,
+    /// Modes of the reference and the linear model (`--modes`, 2 to 12; 7).
+    pub modes: usize,
+}
+
+impl Default for SpinUpOptions {
+    fn default() -> Self {
+        SpinUpOptions {
+            length: 10.0,
+            area: 4e-4,
+            second_moment: 2e-7,
+            youngs_modulus: 7e10,
+            density: 3000.0,
+            t_s: 15.0,
+            omega_s: 6.0,
+            elements: 16,
+            duration: None,
+            sample_every: 0.1,
+            max_step: 1e-3,
+            modes: 7,
+        }
+    }
+}
+
+/// The three series and the files written.
+#[derive(Debug, Clone, Serialize)]
+pub struct SpinUpResult {
+    /// The inputs.
+    pub options: SpinUpOptions,
+    /// Reported times \[s\].
+    pub t: Vec<f64>,
+    /// FE tip deflection in the hub frame \[m\].
+    pub fe: Vec<f64>,
+    /// The elastica reference \[m\].
+    pub reference: Vec<f64>,
+    /// The linear rotating-frame beam \[m\] (diverges once θ̇ exceeds its first frequency).
+    pub linear: Vec<f64>,
+    /// Largest |reference| \[m\].
+    pub reference_max_m: f64,
+    /// Largest |FE − reference| over the largest |reference|.
+    pub fe_error_of_max: f64,
+    /// spin_up.csv.
+    pub csv: PathBuf,
+    /// spin_up.json.
+    pub json: PathBuf,
+    /// spin_up.svg.
+    pub svg: PathBuf,
+}
+
+impl SpinUpOptions {
+    /// The physics crate's model; errors name the flag.
+    fn spec(&self) -> Result<SpinUp, Error> {
+        let e = positive_arg("--youngs-modulus", self.youngs_modulus)?;
+        let a = positive_arg("--area", self.area)?;
+        let i = positive_arg("--second-moment", self.second_moment)?;
+        let rho = positive_arg("--density", self.density)?;
+        let t_s = positive_arg("--t-s", self.t_s)?;
+        if !self.omega_s.is_finite() {
+            return Err(invalid("--omega-s", self.omega_s, "a finite speed"));
+        }
+        let t_end = match self.duration {
+            Some(d) => positive_arg("--duration", d)?,
+            None => t_s + 5.0,
+        };
+        let sample_every = positive_arg("--sample-every", self.sample_every)?;
+        if sample_every > t_end {
+            return Err(invalid(
+                "--sample-every",
+                sample_every,
+                &format!("at most the duration, {t_end} s"),
+            ));
+        }
+        if !(1..=10_000).contains(&self.elements) {
+            return Err(invalid(
+                "--elements",
+                self.elements,
+                "must lie in [1, 10000]",
+            ));
+        }
+        if !(2..=12).contains(&self.modes) {
+            return Err(invalid("--modes", self.modes, "must lie in [2, 12]"));
+        }
+        let max_step = positive_arg("--max-step", self.max_step)?;
+        if max_step > sample_every {
+            return Err(invalid("--max-step", max_step, "at most --sample-every"));
+        }
+        Ok(SpinUp {
+            length: positive_arg("--length", self.length)?,
+            ea: e * a,
+            ei: e * i,
+            rho_a: rho * a,
+            omega_s: self.omega_s,
+            t_s,
+            t_end,
+            sample_every,
+        })
+    }
+}
+
+fn invalid(arg: &str, value: impl std::fmt::Display, allowed: &str) -> Error {
+    Error::InvalidArgument {
+        arg: arg.into(),
+        value: value.to_string(),
+        allowed: allowed.into(),
+    }
+}
+
+/// Relative tolerance of the reference's and the linear model's DOP853 (the reference changes by
+/// 7e-8 of its max from 6 to 7 modes at this tolerance, docs/driven.md).
+const RTOL: f64 = 1e-11;
+
+/// Runs the three models (stopping between them if `cancel` is set) and writes spin_up.csv,
+/// spin_up.json and spin_up.svg into `out` (created if missing).
+pub fn run(
+    options: &SpinUpOptions,
+    out: &std::path::Path,
+    cancel: &CancelToken,
+) -> Result<SpinUpResult, Error> {
+    let spec = options.spec()?;
+    check(cancel)?;
+    let reference = spin_up_reference(&spec, options.modes, RTOL)?;
+    check(cancel)?;
+    let fe = spin_up_fe(&spec, options.elements, options.max_step)?;
+    check(cancel)?;
+    let linear = spin_up_linear(&spec, options.modes, RTOL)?;
+    check(cancel)?;
+    let aligned = |s: &SpinUpSeries| s.t.len() == reference.t.len();
+    if !(aligned(&fe) && aligned(&linear)) {
+        return Err(Error::NonFinite {
+            what: "spin-up series".into(),
+            value: "of unequal lengths".into(),
+            advice: "report this as a bug".into(),
+        });
+    }
+    ensure_dir(out)?;
+    let mut result = SpinUpResult {
+        options: options.clone(),
+        reference_max_m: reference.max_abs(),
+        fe_error_of_max: fe.difference(&reference),
+        t: reference.t,
+        fe: fe.tip_deflection_m,
+        reference: reference.tip_deflection_m,
+        linear: linear.tip_deflection_m,
+        csv: out.join("spin_up.csv"),
+        json: out.join("spin_up.json"),
+        svg: out.join("spin_up.svg"),
+    };
+    result.options.duration = Some(spec.t_end);
+    write_atomic(&result.csv, csv(&result).as_bytes())?;
+    let json = serde_json::to_string_pretty(&result).map_err(|e| Error::NonFinite {
+        what: "spin-up result".into(),
+        value: e.to_string(),
+        advice: "a non-finite value cannot be written as JSON".into(),
+    })?;
+    write_atomic(&result.json, json.as_bytes())?;
+    let svg = figure(&result).map_err(|message| Error::Plot {
+        path: result.svg.clone(),
+        message,
+    })?;
+    write_atomic(&result.svg, svg.as_bytes())?;
+    Ok(result)
+}
+
+/// `t,fe,reference,linear`, one row per reported time, each number in its shortest exact form.
+pub fn csv(r: &SpinUpResult) -> String {
+    let mut text = String::from("t,fe,reference,linear\n");
+    for i in 0..r.t.len() {
+        let _ = writeln!(
+            text,
+            "{},{},{},{}",
+            num(r.t[i]),
+            num(r.fe[i]),
+            num(r.reference[i]),
+            num(r.linear[i])
+        );
+    }
+    text
+}
+
+/// The FE and reference tip deflections over time (log time axis of the curve helper, t > 0; the
+/// linear model is in the CSV only: it diverges).
+fn figure(r: &SpinUpResult) -> Result<String, String> {
+    let series = |label: &str, y: &[f64]| Curve {
+        label: label.into(),
+        points: r.t.iter().copied().zip(y.iter().copied()).collect(),
+        limit: None,
+    };
+    log_x_curves_svg(
+        &format!(
+            "Spin-up beam (ω_s = {} rad/s, T_s = {} s): tip deflection in the hub frame",
+            r.options.omega_s, r.options.t_s
+        ),
+        "time t [s]",
+        "tip deflection [m]",
+        &[CurvePanel {
+            title: format!(
+                "FE {} elements vs the elastica reference ({:.1e} of the max)",
+                r.options.elements, r.fe_error_of_max
+            ),
+            curves: vec![
+                series(
+                    &format!("FE, {} corotational elements", r.options.elements),
+                    &r.fe,
+                ),
+                series(
+                    &format!("reference, {} modes", r.options.modes),
+                    &r.reference,
+                ),
+            ],
+        }],
+    )
+}

@@ -1,0 +1,81 @@
+"""flexrig.spin_up, flexrig.strike and flexrig.role_switch against the CLI: the same numbers, bit
+for bit, from the command's CSV and JSON."""
+
+import csv
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import flexrig
+
+DRIVES = Path(__file__).resolve().parents[3] / "assets" / "drives"
+
+
+def test_spin_up_equals_the_cli_csv_bit_for_bit(cli, tmp_path):
+    args = ["--omega-s", "4", "--duration", "8", "--elements", "8", "--modes", "4"]
+    cli("spin-up", "--out", tmp_path, *args)
+    with open(tmp_path / "spin_up.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    df = flexrig.spin_up(omega_s=4.0, duration=8.0, elements=8, modes=4)
+    assert list(df.columns) == ["t", "fe", "reference", "linear"]
+    assert len(df) == len(rows) == 81
+    for column in df.columns:
+        expected = np.array([float(r[column]) for r in rows])
+        assert np.array_equal(df[column].to_numpy(), expected), column
+    # the FE beam follows the independent elastica: within 1 % of the max at every time
+    assert np.max(np.abs(df.fe - df.reference)) <= 0.01 * np.max(np.abs(df.reference))
+
+
+@pytest.mark.parametrize("name", ["cj_free_head.toml", "cl_wall.toml"])
+def test_strike_equals_the_cli_json_bit_for_bit(cli, name):
+    expected = cli.json("strike", DRIVES / name)["outcome"]
+    got = flexrig.strike(DRIVES / name)
+    for key in ("contact", "energy"):
+        assert got[key] == expected[key], key
+    for key in ("approach_speed_mps", "pre_impact_deflection_m", "joint_torque_at_onset_nm",
+                "peak_joint_torque_nm", "separation_rate_mps", "work"):
+        assert got[key] == expected[key], key
+    assert got["energy"]["residual_j"] <= 1e-6 * got["energy"]["impact_energy_j"]
+
+
+def test_strike_keywords_are_the_flags(cli):
+    expected = cli.json("strike", "--design", "cj", "--m-h", "6", "--speed", "1.5")["outcome"]
+    got = flexrig.strike(design="cj", m_h=6.0, speed=1.5)
+    assert got["contact"] == expected["contact"]
+
+
+def test_strike_trace(tmp_path):
+    got = flexrig.strike(DRIVES / "cj_free_head.toml", trace_every=1e-6, out=tmp_path)
+    trace = got["trace"]
+    assert tuple(trace.columns) == flexrig.STRIKE_TRACE_COLUMNS
+    on_disk = np.loadtxt(tmp_path / "strike_trace.csv", delimiter=",", skiprows=1)
+    assert np.array_equal(trace.to_numpy(), on_disk)
+    peak = got["contact"]["peak_force_n"]
+    assert abs(trace.force_n.max() - peak) <= 1e-3 * peak
+
+
+def test_strike_bad_field_names_it(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text((DRIVES / "cl_free_head.toml").read_text().replace("gear_ratio = 50.0", "gear_ratio = 0"))
+    with pytest.raises(flexrig.InputError, match="drive.motor.gear_ratio"):
+        flexrig.strike(bad)
+    with pytest.raises(flexrig.InputError, match="gear_ratio"):
+        flexrig.strike(gear_ratio=0.0)
+
+
+def test_role_switch_equals_the_cli_csv_bit_for_bit(cli, tmp_path):
+    cli("role-switch", "--no-fig6", "--kappa", "1,0.01", "--out", tmp_path)
+    with open(tmp_path / "role_switch.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    df = flexrig.role_switch(no_fig6=True, kappa=[1.0, 0.01])
+    assert list(df.columns) == list(rows[0].keys())
+    assert len(df) == len(rows) == 2 * 2 * 4
+    for column in df.columns:
+        if column in ("case", "design", "drive"):
+            assert list(df[column]) == [r[column] for r in rows], column
+        else:
+            assert np.array_equal(df[column].to_numpy(), np.array([float(r[column]) for r in rows])), column
+    # the test bed's link: the drive does not matter (docs/driven.md), prescribed exactly 1
+    assert np.all(np.abs(df.ratio - 1.0) <= 1e-3)
+    assert np.all(np.abs(df.ratio[df.drive == "prescribed"] - 1.0) <= 1e-6)
