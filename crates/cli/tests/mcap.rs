@@ -56,7 +56,9 @@ fn run_log_reads_back_with_everything_written() {
     let dir = scratch("ok");
     let out = dir.join("run.mcap");
     for (scene, design) in [("cj_iron", "cj"), ("cl_aluminium", "cl")] {
+        // the log and its layout: neither is replaced without --force
         let _ = std::fs::remove_file(&out);
+        let _ = std::fs::remove_file(dir.join("run.layout.json"));
         let o = flexrig(&[
             "run",
             &scene_path(scene),

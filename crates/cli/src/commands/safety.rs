@@ -223,7 +223,11 @@ fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
         format!("body region        {} ({})", r.region_name, r.region),
     )?;
     line(out, format!("area               {}", r.area))?;
-    line(out, format!("contact            {:?}", r.contact))?;
+    let contact = match r.contact {
+        ContactKind::Transient => "transient (the body free to recoil)",
+        ContactKind::QuasiStatic => "quasi-static (clamped against a support)",
+    };
+    line(out, format!("contact            {contact}"))?;
     line(
         out,
         format!(
@@ -233,7 +237,16 @@ fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
         ),
     )?;
     let area = match &r.area_model {
-        Some(a) => format!("{a:?}"),
+        Some(ContactAreaModel::HertzSphere { radius_m }) => {
+            format!("Hertz sphere, A = π R δ, R = {} mm", radius_m * 1e3)
+        }
+        Some(ContactAreaModel::ThinLayer { radius_m }) => format!(
+            "thin layer on a rigid backing, A = π(2Rδ − δ²), R = {} mm",
+            radius_m * 1e3
+        ),
+        Some(ContactAreaModel::Fixed { area_m2 }) => {
+            format!("fixed area, A = {} cm²", area_m2 * 1e4)
+        }
         None => "none (pressure not assessed)".into(),
     };
     line(out, format!("contact-area model {area}"))?;
