@@ -279,26 +279,55 @@ impl Sweep {
     fn run<'py>(
         &self,
         py: Python<'py>,
-        indices: Option<Vec<usize>>,
-        threads: Option<usize>,
+        indices: Option<Vec<Bound<'py, PyAny>>>,
+        threads: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let n = self.inner.len();
         if indices.is_none() {
             flexrig::study::spec::check_process_points("grid", n).map_err(to_py)?;
         }
-        let indices = indices.unwrap_or_else(|| (0..n).collect());
-        if let Some(bad) = indices.iter().find(|&&i| i >= n) {
-            return Err(input_error(
-                "indices",
-                format!("indices: point {bad} does not exist (the sweep has {n} points)"),
-            ));
-        }
-        if threads == Some(0) {
-            return Err(input_error(
-                "threads",
-                "threads: must be at least 1 (or None for every core)".into(),
-            ));
-        }
+        // any Python int is taken and judged here (a negative or huge one is an InputError
+        // naming the argument, not an OverflowError of the conversion)
+        let indices: Vec<usize> = match indices {
+            None => (0..n).collect(),
+            Some(items) => items
+                .iter()
+                .map(|item| {
+                    item.extract::<i128>()
+                        .ok()
+                        .and_then(|i| usize::try_from(i).ok())
+                        .filter(|&i| i < n)
+                        .ok_or_else(|| {
+                            input_error(
+                                "indices",
+                                format!(
+                                    "indices: point {item} does not exist (the sweep has {n} \
+                                     points, 0 to {})",
+                                    n.saturating_sub(1)
+                                ),
+                            )
+                        })
+                })
+                .collect::<PyResult<_>>()?,
+        };
+        let threads: Option<usize> = match threads {
+            None => None,
+            Some(t) => Some(
+                t.extract::<i128>()
+                    .ok()
+                    .and_then(|k| usize::try_from(k).ok())
+                    .filter(|&k| (1..=4096).contains(&k))
+                    .ok_or_else(|| {
+                        input_error(
+                            "threads",
+                            format!(
+                                "threads = {t}: must be a whole number from 1 to 4096 (or None \
+                                 for every core)"
+                            ),
+                        )
+                    })?,
+            ),
+        };
         let options = SweepOptions::default();
         let inner = &self.inner;
         let rows = detached(py, &options.cancel, || match threads {

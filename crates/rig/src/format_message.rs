@@ -58,7 +58,35 @@ pub fn plain(message: &str) -> String {
     for kind in ["integer ", "number ", "boolean "] {
         out = unquote_after(&out, kind);
     }
-    compact_numbers(&out)
+    compact_numbers(&escapes_named(&out))
+}
+
+/// Rust's `\u{…}` escapes in a quoted value said in words: a byte-order mark, or the code
+/// point (U+XXXX).
+fn escapes_named(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find("\\u{") {
+        out.push_str(&rest[..at]);
+        let after = &rest[at + 3..];
+        match after.find('}') {
+            Some(end) if end <= 6 => {
+                let code = &after[..end];
+                if code.eq_ignore_ascii_case("feff") {
+                    out.push_str("[byte-order mark]");
+                } else {
+                    out.push_str(&format!("[U+{}]", code.to_uppercase()));
+                }
+                rest = &after[end + 1..];
+            }
+            _ => {
+                out.push_str("\\u{");
+                rest = after;
+            }
+        }
+    }
+    out.push_str(rest);
+    out
 }
 
 /// Numbers written out in full (1e300 as 301 digits) in the compact form of
@@ -171,6 +199,29 @@ mod tests {
         assert_eq!(
             plain("missing field `restitution`"),
             "missing field `restitution`"
+        );
+    }
+
+    #[test]
+    fn long_numbers_and_escapes_are_said_plainly() {
+        // Regression: 1e300 quoted as 301 digits; a byte-order mark quoted as \u{feff}
+        let long = format!(
+            "invalid type: number 1{}.0, expected a string",
+            "0".repeat(300)
+        );
+        assert_eq!(
+            plain(&long),
+            "invalid type: number 1e300, expected a string"
+        );
+        assert_eq!(
+            plain("invalid type: string \"\\u{feff}0.2\", expected a number"),
+            "invalid type: string \"[byte-order mark]0.2\", expected a number"
+        );
+        assert_eq!(plain("a \\u{7} bell"), "a [U+7] bell");
+        // short numbers and words with e are left alone
+        assert_eq!(
+            plain("between 1e-3 and 0.5 here"),
+            "between 1e-3 and 0.5 here"
         );
     }
 }
