@@ -185,11 +185,8 @@ pub fn check_budget(scene: &Scene) -> Result<Budget, RigError> {
         ));
     }
     // The contact step must be representable next to the time reached.
-    let v_impact = swing.rate_at_contact * op.arm_length;
-    let m_op = op.effective_mass();
-    let m_rob = g.robot.effective_mass();
-    let mu = m_op * m_rob / (m_op + m_rob);
-    let contact_time = 3.0 * scene.hertz.peak_indentation(mu, v_impact) / v_impact;
+    let impact = first_impact_estimate(scene);
+    let contact_time = 3.0 * impact.peak_indentation_m / impact.speed_mps;
     let contact_step = contact_time / file.solver.contact_steps as f64;
     if !(contact_step > 1e-12 * simulated_s.max(1.0) && contact_time.is_finite()) {
         return Err(invalid(
@@ -207,6 +204,41 @@ pub fn check_budget(scene: &Scene) -> Result<Budget, RigError> {
         steps,
         samples,
     })
+}
+
+/// The first impact of a scene as the lumped two-mass model sees it: the pendulum's speed at
+/// the contact (energy of the compound pendulum), the reduced mass of the operator's and the
+/// robot's effective masses at the contact point, and the undamped Hertz peak indentation
+/// from ½ μ v² = k δⁿ⁺¹/(n + 1). An estimate for budgets and plausibility, not the run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImpactEstimate {
+    /// Impact speed [m/s].
+    pub speed_mps: f64,
+    /// Reduced mass μ \[kg\].
+    pub reduced_mass_kg: f64,
+    /// Peak indentation \[m\].
+    pub peak_indentation_m: f64,
+}
+
+/// [`ImpactEstimate`] of `scene`.
+pub fn first_impact_estimate(scene: &Scene) -> ImpactEstimate {
+    let g = RigGeometry::of(scene);
+    let op = &g.operator;
+    let swing = scene.file.operator.start.initial_swing(
+        op.mass,
+        op.com_distance,
+        op.inertia_pivot,
+        scene.file.gravity_mps2,
+    );
+    let speed_mps = swing.rate_at_contact * op.arm_length;
+    let m_op = op.effective_mass();
+    let m_rob = g.robot.effective_mass();
+    let reduced_mass_kg = m_op * m_rob / (m_op + m_rob);
+    ImpactEstimate {
+        speed_mps,
+        reduced_mass_kg,
+        peak_indentation_m: scene.hertz.peak_indentation(reduced_mass_kg, speed_mps),
+    }
 }
 
 /// Checks the mesh limit of the chosen beam solver.

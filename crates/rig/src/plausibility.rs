@@ -6,7 +6,6 @@
 use flexrig_contact::Materials;
 use flexrig_contact::validate::display;
 
-use crate::geometry::RigGeometry;
 use crate::scene::{Design, Scene, Start};
 
 /// One plausibility warning about a scene field.
@@ -98,25 +97,8 @@ fn exponent_without_its_stiffness(scene: &Scene, materials: &Materials, out: &mu
     }
 }
 
-/// The first contact's peak indentation of the lumped two-mass estimate \[m\].
-fn estimated_indentation(scene: &Scene) -> f64 {
-    let g = RigGeometry::of(scene);
-    let op = &g.operator;
-    let swing = scene.file.operator.start.initial_swing(
-        op.mass,
-        op.com_distance,
-        op.inertia_pivot,
-        scene.file.gravity_mps2,
-    );
-    let v = swing.rate_at_contact * op.arm_length;
-    let m_op = op.effective_mass();
-    let m_rob = g.robot.effective_mass();
-    let mu = m_op * m_rob / (m_op + m_rob);
-    scene.hertz.peak_indentation(mu, v)
-}
-
 fn indentation_deeper_than_the_bodies(scene: &Scene, out: &mut Vec<Warning>) {
-    let delta = estimated_indentation(scene);
+    let delta = crate::limits::first_impact_estimate(scene).peak_indentation_m;
     if !delta.is_finite() {
         return;
     }
