@@ -1632,9 +1632,10 @@ fn documented_bounds_run_and_lists_are_bounded() {
         &["prb", "--elements", "256", "--out", "out", "--json"],
         &mut failures,
     );
-    // `eta --damping adams-impact`: --c-max in [0, 1e9], --depth in [1e-9, 1].
-    // (`--c-max 1e9 --depth 1e-9` together is in its own test below: still open)
-    for (c, d) in [("1e9", "1"), ("0", "1e-9")] {
+    // `eta --damping adams-impact`: --c-max in [0, 1000 × the contact's critical damping]
+    // (3.75e5 N·s/m for the light-payload n = 2 cases of the table), --depth in [1e-9, 1];
+    // beyond that bound the refusal is tested below.
+    for (c, d) in [("3.7e5", "1"), ("3.7e5", "1e-9"), ("0", "1e-9")] {
         at_bound(
             &[
                 "eta",
@@ -2008,10 +2009,9 @@ fn concurrent_writers_leave_whole_tables_and_logs() {
     );
 }
 
-/// Still open: Ctrl-C reaches the reference (generalized-α) method only between its cases, each
-/// of which runs for tens of seconds; the cancellation must reach the step loop of the FE run.
+/// Regression: Ctrl-C reached the reference (generalized-α) method of `eta` only between its
+/// cases, each of which runs for tens of seconds; the stop flag now reaches the FE step loop.
 #[test]
-#[ignore = "open: Ctrl-C is checked between the generalized-α cases, not inside one"]
 fn ctrl_c_stops_the_reference_method_of_eta_within_a_second() {
     let dir = scratch("sigint-alpha");
     let mut failures = Vec::new();
@@ -2025,11 +2025,10 @@ fn ctrl_c_stops_the_reference_method_of_eta_within_a_second() {
     report("ctrl_c_alpha", 1, &failures);
 }
 
-/// Still open: with the stiffest ADAMS damping over the thinnest depth the modal integrator's
-/// steps shrink until the step budget, over minutes, instead of an answer in seconds or a
-/// refusal of the combination up front.
+/// Regression: with the stiffest ADAMS damping over the thinnest depth the integrators' steps
+/// shrank to the contact's damping time scale and the release crept for minutes; a contact damped
+/// more than a thousand times past critical is now refused up front, naming --c-max and its bound.
 #[test]
-#[ignore = "open: eta --damping adams-impact --c-max 1e9 --depth 1e-9 runs for minutes"]
 fn the_stiffest_adams_damping_over_the_thinnest_depth_answers_in_seconds() {
     let dir = scratch("adams-bound");
     let args = strings(&[
@@ -2046,8 +2045,16 @@ fn the_stiffest_adams_damping_over_the_thinnest_depth_answers_in_seconds() {
     ]);
     let o = run_in(&args, &dir);
     let mut failures = Vec::new();
-    if !matches!(o.code, Some(0) | Some(2)) {
-        failures.push(format!("{}\n  -> exit {:?}", o.line, o.code));
+    if o.code != Some(2) || !o.stderr.contains("--c-max") || !o.stderr.contains("critical") {
+        failures.push(format!(
+            "{}\n  -> exit {:?}, expected 2 naming --c-max and the critical damping; stderr: {}",
+            o.line,
+            o.code,
+            shorten(&o.stderr, 300)
+        ));
+    }
+    if dir.join("out").join("eta.csv").exists() {
+        failures.push(format!("{}\n  -> wrote eta.csv although refused", o.line));
     }
     report("adams_bound", 1, &failures);
 }

@@ -42,7 +42,7 @@ pub mod validate;
 pub use parry3d_f64::math;
 
 pub use damped::{DampedHertz, DampingModel};
-pub use damping_spec::DampingSpec;
+pub use damping_spec::{DampingSpec, MAX_OVERDAMPING, critical_damping};
 pub use dome_block::{BodyKinematics, ContactCallback, ContactSample, DomeBlockContact};
 pub use error::ContactError;
 pub use fit::{CSV_HEADER, CompressionPoint, HertzFit, fit_hertz, parse_compression_csv};

@@ -153,7 +153,7 @@ pub fn run_tip_oscillator(
     loop {
         ode.step(&system).map_err(|e| ImpactError::NotFinished {
             design: "CJ",
-            reason: format!("{e:?}"),
+            reason: e.to_string(),
         })?;
         let (t0, t1) = (ode.t_old(), ode.t());
         let (y_old, y_new) = (*ode.y_old(), *ode.y());

@@ -11,6 +11,8 @@
 //! The peak is the largest local maximum of the force samples, refined by the parabola through
 //! the three samples around it; the separation is located by linear interpolation of the gap.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use flexrig_beam::{
     BeamModel, BeamSpec, GeneralizedAlpha, Kinematics, NodalLoads, NodeForce, NodeLoad, PointMass,
     ReducedModel, ReducedState, RootSupport, Section, State, Workspace,
@@ -250,6 +252,21 @@ impl Beam {
 
 /// Runs the CL impact from the onset (t = 0) to the separation of the first contact.
 pub fn run_cl(setup: &FreeMassImpact, solver: &ClSolver) -> Result<ImpactOutcome, ImpactError> {
+    run_cl_until(setup, solver, &AtomicBool::new(false))
+}
+
+/// Steps between two looks at the stop flag of [`run_cl_until`] (a few milliseconds of the
+/// finest meshes' steps).
+const STOP_CHECK_STEPS: usize = 16;
+
+/// [`run_cl`], stopping with [`ImpactError::Interrupted`] within [`STOP_CHECK_STEPS`] steps
+/// once `stop` is set (a fine mesh's case runs for tens of seconds: Ctrl-C must reach the step
+/// loop, not only the next case).
+pub fn run_cl_until(
+    setup: &FreeMassImpact,
+    solver: &ClSolver,
+    stop: &AtomicBool,
+) -> Result<ImpactOutcome, ImpactError> {
     setup.validate()?;
     solver.validate()?;
     let (head_speed, tip_speed) = match setup.joint {
@@ -280,6 +297,9 @@ pub fn run_cl(setup: &FreeMassImpact, solver: &ClSolver) -> Result<ImpactOutcome
     let max_steps = 400 * solver.steps_per_contact;
     let mut gap_prev = 0.0;
     for step in 1..=max_steps {
+        if step % STOP_CHECK_STEPS == 0 && stop.load(Ordering::Relaxed) {
+            return Err(ImpactError::Interrupted);
+        }
         let mut contact = HeadContact {
             law: &*law,
             head,

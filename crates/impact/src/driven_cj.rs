@@ -410,7 +410,7 @@ pub fn run_driven_cj(
             ode.step_until(&system, stop)
                 .map_err(|e| ImpactError::NotFinished {
                     design: "driven CJ",
-                    reason: format!("the approach failed: {e:?}"),
+                    reason: format!("the approach failed: {e}"),
                 })?;
             let (t0, t1) = (ode.t_old(), ode.t());
             let (ya, yb) = (*ode.y_old(), *ode.y());
@@ -526,7 +526,7 @@ pub fn run_driven_cj(
     loop {
         ode.step(&system).map_err(|e| ImpactError::NotFinished {
             design: "driven CJ",
-            reason: format!("the contact failed: {e:?}"),
+            reason: format!("the contact failed: {e}"),
         })?;
         let (t0, t1) = (ode.t_old(), ode.t());
         let (ya, yb) = (*ode.y_old(), *ode.y());

@@ -205,8 +205,18 @@ pub fn case_setup(
 
 /// The FE CL's first-contact peak \[N\] of `setup` by the method of `settings`.
 pub fn cl_first_peak(setup: &FreeMassImpact, settings: &EtaSettings) -> Result<f64, ImpactError> {
+    cl_first_peak_until(setup, settings, &AtomicBool::new(false))
+}
+
+/// [`cl_first_peak`], stopping with [`ImpactError::Interrupted`] once `stop` is set (the
+/// generalized-α run looks at it every few steps).
+pub fn cl_first_peak_until(
+    setup: &FreeMassImpact,
+    settings: &EtaSettings,
+    stop: &AtomicBool,
+) -> Result<f64, ImpactError> {
     Ok(match settings.method {
-        ClMethod::Alpha(solver) => cl::run_cl(setup, &solver)?.first.peak_force_n,
+        ClMethod::Alpha(solver) => cl::run_cl_until(setup, &solver, stop)?.first.peak_force_n,
         ClMethod::Modal { mesh, tol } => {
             let options = ModalOptions {
                 tol,
@@ -221,6 +231,17 @@ pub fn cl_first_peak(setup: &FreeMassImpact, settings: &EtaSettings) -> Result<f
 
 /// One case and exponent.
 pub fn eta_case(case: &Fig6Case, n: f64, settings: &EtaSettings) -> Result<EtaRow, ImpactError> {
+    eta_case_until(case, n, settings, &AtomicBool::new(false))
+}
+
+/// [`eta_case`], stopping with [`ImpactError::Interrupted`] once `stop` is set (checked inside
+/// the long generalized-α run of the CL, see [`cl::run_cl_until`]).
+pub fn eta_case_until(
+    case: &Fig6Case,
+    n: f64,
+    settings: &EtaSettings,
+    stop: &AtomicBool,
+) -> Result<EtaRow, ImpactError> {
     settings.validate()?;
     let setup = case_setup(case, n, settings)?;
     let f_cj = cj::run_cj(&setup, settings.cj_rtol)?.first.peak_force_n;
@@ -243,7 +264,7 @@ pub fn eta_case(case: &Fig6Case, n: f64, settings: &EtaSettings) -> Result<EtaRo
             cl: run_window(&setup, &cl_tip_modes(&setup, &mesh)?, &options)?,
         });
     }
-    let f_cl = cl_first_peak(&setup, settings)?;
+    let f_cl = cl_first_peak_until(&setup, settings, stop)?;
     let f_cj_lumped = lumped_peak(case, n, 1.0, settings)?;
     let f_placed = run_placed(
         &setup,
@@ -268,6 +289,19 @@ pub fn eta_case(case: &Fig6Case, n: f64, settings: &EtaSettings) -> Result<EtaRo
     })
 }
 
+/// Validates every set-up before any runs, the one with the lowest critical contact damping
+/// first, so that a refused damping names the bound every case can take.
+pub(crate) fn validate_most_restrictive_first(
+    setups: impl Iterator<Item = Result<FreeMassImpact, ImpactError>>,
+) -> Result<(), ImpactError> {
+    let mut setups = setups.collect::<Result<Vec<_>, _>>()?;
+    let critical = |s: &FreeMassImpact| {
+        flexrig_contact::critical_damping(s.contact, s.payload_reduced_mass(), s.v0)
+    };
+    setups.sort_by(|a, b| critical(a).total_cmp(&critical(b)));
+    setups.iter().try_for_each(FreeMassImpact::validate)
+}
+
 /// The eight cases × n ∈ {1, 2}, in parallel (case-major, as `flexrig fig6`).
 pub fn eta_table(settings: &EtaSettings) -> Result<Vec<EtaRow>, ImpactError> {
     eta_table_until(settings, &AtomicBool::new(false))
@@ -287,12 +321,16 @@ pub fn eta_table_until(
                 .map(move |&n| (*c, n))
         })
         .collect();
+    // a set-up every case would refuse (e.g. a contact damped far past critical) is refused
+    // before any case runs
+    settings.validate()?;
+    validate_most_restrictive_first(jobs.iter().map(|(case, n)| case_setup(case, *n, settings)))?;
     jobs.par_iter()
         .map(|(case, n)| {
             if stop.load(Ordering::Relaxed) {
                 return Err(ImpactError::Interrupted);
             }
-            eta_case(case, *n, settings)
+            eta_case_until(case, *n, settings, stop)
         })
         .collect()
 }

@@ -9,7 +9,9 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::ImpactError;
-use crate::eta::{EtaRow, EtaSettings, eta_case};
+use crate::eta::{
+    EtaRow, EtaSettings, case_setup, eta_case_until, validate_most_restrictive_first,
+};
 
 /// A log-spaced range of a ratio.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -101,6 +103,15 @@ pub fn eta_map(spec: &MapSpec, settings: &EtaSettings) -> Result<Vec<MapPoint>, 
     eta_map_until(spec, settings, &AtomicBool::new(false))
 }
 
+/// The Fig. 6 case at mass ratio m_e/m_r = `x` and stiffness ratio k_δ/k_c = `y`.
+fn map_case(spec: &MapSpec, x: f64, y: f64) -> Fig6Case {
+    Fig6Case {
+        m_h: spec.m_h,
+        k_delta: y * K_C,
+        m_e: x * M_R,
+    }
+}
+
 /// [`eta_map`], stopping with [`ImpactError::Interrupted`] once `stop` is set (checked before
 /// each point).
 pub fn eta_map_until(
@@ -116,21 +127,23 @@ pub fn eta_map_until(
         .iter()
         .flat_map(|&y| xs.iter().map(move |&x| (x, y)))
         .collect();
+    // a set-up a point would refuse (e.g. a contact damped far past critical at the lightest
+    // payload) is refused before any point runs
+    validate_most_restrictive_first(
+        grid.iter()
+            .map(|&(x, y)| case_setup(&map_case(spec, x, y), spec.n, settings)),
+    )?;
     let points: Vec<Option<MapPoint>> = grid
         .par_iter()
         .map(|&(x, y)| {
             if stop.load(Ordering::Relaxed) {
                 return None;
             }
-            let case = Fig6Case {
-                m_h: spec.m_h,
-                k_delta: y * K_C,
-                m_e: x * M_R,
-            };
+            let case = map_case(spec, x, y);
             Some(MapPoint {
                 mass_ratio: x,
                 stiffness_ratio: y,
-                row: eta_case(&case, spec.n, settings).map_err(|e| e.to_string()),
+                row: eta_case_until(&case, spec.n, settings, stop).map_err(|e| e.to_string()),
             })
         })
         .collect();

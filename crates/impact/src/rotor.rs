@@ -16,7 +16,7 @@ use serde::Serialize;
 
 use crate::ImpactError;
 use crate::cl_modal::run_cj_modal;
-use crate::eta::{EtaSettings, case_setup, cl_first_peak};
+use crate::eta::{EtaSettings, case_setup, cl_first_peak_until, validate_most_restrictive_first};
 use crate::map::LogRange;
 use crate::modal_run::ModalOptions;
 use crate::setup::Joint;
@@ -53,6 +53,18 @@ pub fn rotor_point(
     ratio: Option<f64>,
     settings: &EtaSettings,
 ) -> Result<RotorPoint, ImpactError> {
+    rotor_point_until(case, n, ratio, settings, &AtomicBool::new(false))
+}
+
+/// [`rotor_point`], stopping with [`ImpactError::Interrupted`] once `stop` is set (inside the
+/// generalized-α CL run).
+pub fn rotor_point_until(
+    case: &Fig6Case,
+    n: f64,
+    ratio: Option<f64>,
+    settings: &EtaSettings,
+    stop: &AtomicBool,
+) -> Result<RotorPoint, ImpactError> {
     let joint = match ratio {
         None => Joint::Held,
         Some(rho) => Joint::FreeHub {
@@ -66,7 +78,7 @@ pub fn rotor_point(
         ..ModalOptions::DEFAULT
     };
     let f_cj = run_cj_modal(&setup, &options)?.first.peak_force_n;
-    let f_cl = cl_first_peak(&setup, &settings)?;
+    let f_cl = cl_first_peak_until(&setup, &settings, stop)?;
     Ok(RotorPoint {
         case: *case,
         n,
@@ -108,12 +120,17 @@ pub fn rotor_sweep_until(
                 .flat_map(move |&n| stops.iter().map(move |&r| (*c, n, r)))
         })
         .collect();
+    // a set-up every point of a case would refuse is refused before any point runs
+    validate_most_restrictive_first(
+        jobs.iter()
+            .map(|(case, n, _)| case_setup(case, *n, settings)),
+    )?;
     jobs.par_iter()
         .map(|(case, n, ratio)| {
             if stop.load(Ordering::Relaxed) {
                 return Err(ImpactError::Interrupted);
             }
-            rotor_point(case, *n, *ratio, settings)
+            rotor_point_until(case, *n, *ratio, settings, stop)
         })
         .collect()
 }

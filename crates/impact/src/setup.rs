@@ -164,6 +164,8 @@ impl FreeMassImpact {
         self.link.validate()?;
         self.joint.validate()?;
         self.law()?;
+        self.damping
+            .check_overdamping(self.contact, self.payload_reduced_mass(), self.v0)?;
         Ok(())
     }
 
@@ -177,15 +179,23 @@ impl FreeMassImpact {
     /// ½ μ v0² = k δ_max^{n+1}/(n+1), μ the reduced mass of m_h and m_e (m_e + m_r/100 when the
     /// payload is 0).
     pub fn payload_contact_time(&self) -> f64 {
+        let mu = self.payload_reduced_mass();
+        let (k, n) = (self.contact.k(), self.contact.n());
+        let delta_max = ((n + 1.0) * mu * self.v0 * self.v0 / (2.0 * k)).powf(1.0 / (n + 1.0));
+        2.0 * delta_max / self.v0 * hertz_time_integral(n)
+    }
+}
+
+impl FreeMassImpact {
+    /// Reduced mass μ \[kg\] of the head and the payload alone (m_e, or m_r/100 when the
+    /// payload is 0): the pair of the shortest contact the link can offer.
+    pub fn payload_reduced_mass(&self) -> f64 {
         let m_tip = if self.link.m_e > 0.0 {
             self.link.m_e
         } else {
             self.link.m_r / 100.0
         };
-        let mu = self.m_h * m_tip / (self.m_h + m_tip);
-        let (k, n) = (self.contact.k(), self.contact.n());
-        let delta_max = ((n + 1.0) * mu * self.v0 * self.v0 / (2.0 * k)).powf(1.0 / (n + 1.0));
-        2.0 * delta_max / self.v0 * hertz_time_integral(n)
+        self.m_h * m_tip / (self.m_h + m_tip)
     }
 }
 

@@ -498,7 +498,7 @@ fn run_ritz<const N: usize>(
             ode.step_until(&system, t)
                 .map_err(|e| ImpactError::NotFinished {
                     design: "spin-up reference",
-                    reason: format!("{e:?}"),
+                    reason: e.to_string(),
                 })?;
         }
         let y = *ode.y();

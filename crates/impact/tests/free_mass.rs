@@ -302,3 +302,28 @@ fn the_modal_cl_converges_to_the_full_fe_model() {
         assert!(d[3] < 1e-8, "{d:?}");
     }
 }
+
+/// Regression (Ctrl-C reached `eta --method alpha` only between its cases): a stop flag set
+/// during a generalized-α run ends it with `Interrupted` within a few steps, not at the
+/// separation; with the flag clear the same run finishes with the same peak as `run_cl`.
+#[test]
+fn a_set_stop_flag_ends_the_generalized_alpha_run_inside_the_step_loop() {
+    use flexrig_impact::ImpactError;
+    use flexrig_impact::cl::run_cl_until;
+    use std::sync::atomic::AtomicBool;
+    let s = setup(4.0, 1e8, 0.1, 2.0, Joint::Held);
+    let solver = ClSolver {
+        elements: 16,
+        steps_per_contact: 100,
+        modes: None,
+    };
+    let stopped = run_cl_until(&s, &solver, &AtomicBool::new(true)).unwrap_err();
+    assert!(matches!(stopped, ImpactError::Interrupted), "{stopped}");
+    let clear = run_cl_until(&s, &solver, &AtomicBool::new(false)).unwrap();
+    let plain = run_cl(&s, &solver).unwrap();
+    assert_eq!(clear.first.peak_force_n, plain.first.peak_force_n);
+    assert!(
+        plain.work > 16,
+        "the run must be longer than one look at the flag"
+    );
+}

@@ -199,6 +199,15 @@ pub fn check_budget(scene: &Scene) -> Result<Budget, RigError> {
             ),
         ));
     }
+    // An ADAMS damping far past the contact's critical damping makes the contact stick and the
+    // coupled step unstable: refused with the bound, before the run.
+    if let Err(flexrig_contact::ContactError::InvalidParameter { value, allowed, .. }) = file
+        .contact
+        .damping
+        .check_overdamping(scene.hertz, impact.reduced_mass_kg, impact.speed_mps)
+    {
+        return Err(invalid("contact.damping.c_max_n_s_per_m", value, &allowed));
+    }
     Ok(Budget {
         simulated_s,
         steps,

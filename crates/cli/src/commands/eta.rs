@@ -158,7 +158,8 @@ fn method_text(method: &ClMethod) -> String {
 /// Runs `flexrig eta`.
 pub fn run(args: &EtaArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     let settings = settings(args)?;
-    let r = flexrig::eta::run(&settings, &args.out, &args.figure.options()?, cancel)?;
+    let r = flexrig::eta::run(&settings, &args.out, &args.figure.options()?, cancel)
+        .map_err(super::impact_args::impact_as_flag)?;
     let (rows, csv_path, svg_path, fig6_path) = (&r.rows, &r.csv, &r.svg, &r.fig6_svg);
     let joint = joint_text(&settings.joint);
     if args.json {

@@ -40,7 +40,9 @@ pub struct DampingArgs {
     /// lankarani-nikravesh).
     #[arg(long, value_name = "E")]
     pub restitution: Option<f64>,
-    /// Largest damping coefficient, N·s/m in [0, 1e9] (with --damping adams-impact).
+    /// Largest damping coefficient c_max [N·s/m] (with --damping adams-impact): from 0 to 1000
+    /// times the contact's critical damping 2√(k_lin μ) of every case (3.75e5 for the Fig. 6
+    /// table); a contact damped further sticks, and is refused.
     #[arg(long, value_name = "N_S_PER_M")]
     pub c_max: Option<f64>,
     /// Indentation at which the damping reaches --c-max, m in [1e-9, 1] (with --damping
@@ -144,7 +146,12 @@ pub fn as_flag(e: ImpactError) -> Error {
             field,
             value,
             allowed,
-        } => Error::InvalidArgument {
+        }
+        | ImpactError::Contact(flexrig::driven::ContactError::InvalidParameter {
+            field,
+            value,
+            allowed,
+        }) => Error::InvalidArgument {
             arg: format!("--{}", field.replace('_', "-")),
             value,
             allowed,

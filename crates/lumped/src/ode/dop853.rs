@@ -56,6 +56,26 @@ pub enum StepFailure {
     },
 }
 
+impl std::fmt::Display for StepFailure {
+    /// In words, with compact numbers (a message for the user, not a Rust value).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            StepFailure::StepTooSmall { t, h } => write!(
+                f,
+                "at t = {t:.6e} s the step size ({h:.3e} s) fell below the resolution of t"
+            ),
+            StepFailure::NonFinite { t } => {
+                write!(f, "at t = {t:.6e} s the state became non-finite")
+            }
+            StepFailure::TooManySteps { t, max_steps } => write!(
+                f,
+                "{max_steps} steps were not enough (stopped at t = {t:.6e} s): the motion is \
+                 stiffer or longer than the integrator's step budget"
+            ),
+        }
+    }
+}
+
 /// Work counters.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Dop853Stats {
