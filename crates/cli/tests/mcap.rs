@@ -161,7 +161,7 @@ fn a_run_stopped_by_ctrl_c_midway_leaves_a_finished_log_and_exits_130() {
         )
         .replace(
             "contact_steps = 800",
-            "contact_steps = 800\nmax_steps = 100000000",
+            "contact_steps = 800\nmax_steps = 1000000000",
         )
         .replace("sample_rate_hz = 50000.0", "sample_rate_hz = 10000.0");
     let scene = dir.join("long.toml");

@@ -149,10 +149,23 @@ pub fn check_budget(scene: &Scene) -> Result<Budget, RigError> {
     let contacts = (2.0 * simulated_s / period).ceil().max(1.0);
     let swing_steps = simulated_s / file.solver.swing_step_s;
     let contact_steps = contacts * file.solver.contact_steps as f64;
-    let steps = swing_steps + contact_steps;
+    let impact = first_impact_estimate(scene);
+    let contact_time =
+        crate::run::CONTACT_TIME_FACTOR * impact.peak_indentation_m / impact.speed_mps;
+    let contact_step = contact_time / file.solver.contact_steps as f64;
+    // A run to a fixed time may end with the pendulum resting against the block (each contact
+    // loses energy to the link's vibration or the damping, the bounces shorten, and the last
+    // contact lasts to the end): then every step after the first impact is a contact step, and
+    // the run takes up to duration / contact step steps. The estimate counts that case rather
+    // than one contact per half period, so a run it admits reaches its stop.
+    let resting_steps = match file.stop {
+        StopSpec::Duration { .. } => simulated_s / contact_step,
+        StopSpec::Peak | StopSpec::Separation => 0.0,
+    };
+    let steps = (swing_steps + contact_steps).max(resting_steps);
     let max_steps = file.solver.max_steps as f64;
     if steps > max_steps {
-        let (field, value) = if swing_steps >= contact_steps {
+        let (field, value) = if swing_steps >= contact_steps.max(resting_steps) {
             (
                 "solver.swing_step_s",
                 format!("{:e}", file.solver.swing_step_s),
@@ -167,9 +180,17 @@ pub fn check_budget(scene: &Scene) -> Result<Budget, RigError> {
             field,
             value,
             &format!(
-                "the run would take about {steps:.3e} steps ({simulated_s:.3e} s simulated, \
-                 {contacts} contact(s)), more than solver.max_steps = {max_steps:e}: raise \
-                 solver.max_steps, take larger steps, or a shorter stop"
+                "the run would take up to {steps:.3e} steps ({simulated_s:.3e} s simulated, \
+                 {}), more than solver.max_steps = {max_steps:e}: raise solver.max_steps, take \
+                 larger steps, or a shorter stop",
+                if resting_steps > swing_steps + contact_steps {
+                    format!(
+                        "in contact from the first impact on, as when the pendulum comes to \
+                         rest against the block, at a contact step of {contact_step:.3e} s"
+                    )
+                } else {
+                    format!("{contacts} contact(s)")
+                }
             ),
         ));
     }
@@ -185,9 +206,6 @@ pub fn check_budget(scene: &Scene) -> Result<Budget, RigError> {
         ));
     }
     // The contact step must be representable next to the time reached.
-    let impact = first_impact_estimate(scene);
-    let contact_time = 3.0 * impact.peak_indentation_m / impact.speed_mps;
-    let contact_step = contact_time / file.solver.contact_steps as f64;
     if !(contact_step > 1e-12 * simulated_s.max(1.0) && contact_time.is_finite()) {
         return Err(invalid(
             "solver.contact_steps",

@@ -319,7 +319,7 @@ struct Stats {
 
 /// Factor of the Hertz contact duration t_c ≈ C δ_max/v0 used to size the contact step
 /// (C = 2.94 for n = 3/2, π for n = 1; 3 is close for the fitted exponents 1.8–2.0).
-const CONTACT_TIME_FACTOR: f64 = 3.0;
+pub(crate) const CONTACT_TIME_FACTOR: f64 = 3.0;
 
 impl<'s> Simulation<'s> {
     /// Builds the rig of `scene` in its initial state.
@@ -1112,7 +1112,7 @@ impl<'s> Simulation<'s> {
         loop {
             if self.stats.steps >= max_steps {
                 return Err(RigError::NotReached {
-                    what: format!("{stop:?}"),
+                    what: stop.describe(),
                     limit: format!("solver.max_steps = {max_steps}"),
                 });
             }

@@ -346,6 +346,23 @@ pub enum StopSpec {
     },
 }
 
+impl StopSpec {
+    /// The stop in words, for messages ("the separation of the first contact",
+    /// "t = 5 s (stop.duration_s)").
+    pub fn describe(&self) -> String {
+        match *self {
+            StopSpec::Peak => "the peak of the first contact (stop.at = \"peak\")".into(),
+            StopSpec::Separation => {
+                "the separation of the first contact (stop.at = \"separation\")".into()
+            }
+            StopSpec::Duration { duration_s } => format!(
+                "t = {} s (stop.duration_s)",
+                flexrig_contact::validate::display(duration_s)
+            ),
+        }
+    }
+}
+
 /// What is recorded.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -68,3 +68,34 @@ fn a_ten_second_compliant_link_run_keeps_its_energy() {
         }
     }
 }
+
+/// Regression: a run to a fixed time of the compliant link against the iron operator ends with
+/// the link and the pendulum in contact for most of the time (some 200 contacts over 5 s, 82 000
+/// steps), while the work estimate counted one contact per half period (17 000 steps): a scene
+/// with solver.max_steps between the two passed the estimate and failed after half a minute.
+/// The estimate now counts every step after the first impact as a contact step, so a run it
+/// admits reaches its stop, in no more steps than estimated, and one step fewer is refused up
+/// front naming the field.
+#[test]
+fn a_run_to_a_fixed_time_that_passes_the_work_estimate_reaches_its_stop() {
+    let edits = [("at = \"separation\"", "at = \"duration\"\nduration_s = 5.0")];
+    let mut scene = common::scene("cl_iron", &edits);
+    let budget = flexrig_rig::limits::check_budget(&scene).unwrap();
+    let admitted = budget.steps.ceil() as usize;
+    scene.file.solver.max_steps = admitted;
+    let s = Simulation::new(&scene, RunOptions::default())
+        .unwrap()
+        .run(&mut Drift {
+            e0: None,
+            worst: 0.0,
+        })
+        .unwrap();
+    assert!(s.duration_s >= 5.0);
+    assert!(s.steps <= admitted, "{} steps > {admitted}", s.steps);
+    assert!(s.contacts.len() > 20, "{} contacts", s.contacts.len());
+    scene.file.solver.max_steps = admitted - 1;
+    match flexrig_rig::limits::check_budget(&scene) {
+        Err(e) => assert!(e.to_string().contains("solver.contact_steps"), "{e}"),
+        Ok(b) => panic!("admitted {b:?} with solver.max_steps = {}", admitted - 1),
+    }
+}
