@@ -141,7 +141,7 @@ fn plot(title: &str, paths: Vec<Value>, window: Option<TimeWindow>) -> Value {
         "showXAxisLabels": true,
         "showYAxisLabels": true,
         "showLegend": true,
-        "legendDisplay": "top",
+        "legendDisplay": "floating",
         "showPlotValuesInLegend": false,
         "isSynced": true,
         "xAxisVal": "timestamp",

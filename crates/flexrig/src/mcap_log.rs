@@ -225,10 +225,14 @@ fn drawn_beam(beam: &flexrig_rig::BeamLink, scale: f64) -> (Vec<Point3>, f64) {
     (points, tip_m)
 }
 
-/// Where the link's label sits \[m, world\]: on the link's line, behind the robot axis.
-const LABEL_AT: Vector = Vector::new(-0.04, 0.0, 0.0);
+/// Where the link's label sits \[m, world\]: on the link's line, behind the robot axis, clear
+/// of the CJ's drawn spring (30 mm around the axis).
+const LABEL_AT: Vector = Vector::new(-0.055, 0.0, 0.0);
 /// Where the simulation clock sits \[m, world\]: behind the robot axis, beyond the link's label.
-const CLOCK_AT: Vector = Vector::new(-0.085, 0.0, 0.0);
+const CLOCK_AT: Vector = Vector::new(-0.1, 0.0, 0.0);
+/// The world direction that points down the screen in the layout's 3D view (the links hang
+/// from their axes along +x as seen from above).
+const VIEW_DOWN: Vector = Vector::new(1.0, 0.0, 0.0);
 
 /// Length of the contact-force arrow per newton \[m/N\]: 0.3 mm/N keeps the bundled scenes'
 /// peaks (up to about 280 N) under 85 mm, within the view.
@@ -239,11 +243,13 @@ const ARROW_HEAD: (f64, f64) = (0.012, 0.012);
 /// The contact-force arrow on the block (Okabe–Ito reddish purple: not the axes' red): along
 /// `normal` (the force on the block), [`ARROW_M_PER_N`] long per newton (at least its head),
 /// its head's tip at the contact `point` so that it pushes on the block from the dome's side
-/// (seen through the translucent dome), and its label (the force in N) at its tail.
+/// (seen through the translucent dome), and its label (the force in N) below the dome of
+/// radius `dome_radius` \[m\] in the view, outside it (inside, the translucent sphere fades it).
 fn force_arrow(
     point: Vector,
     normal: Vector,
     force: f64,
+    dome_radius: f64,
 ) -> (Vec<ArrowPrimitive>, Vec<TextPrimitive>) {
     let length = (force * ARROW_M_PER_N).max(ARROW_HEAD.0);
     let rotation = arrow_rotation(normal);
@@ -259,7 +265,10 @@ fn force_arrow(
     };
     let text = TextPrimitive {
         color: color(0.5, 0.2, 0.4),
-        ..label(format!("contact force {force:.0} N"), tail)
+        ..label(
+            format!("contact force {force:.0} N"),
+            point - normal.normalize() * dome_radius + VIEW_DOWN * (dome_radius + 0.012),
+        )
     };
     (vec![arrow], vec![text])
 }
@@ -687,7 +696,9 @@ impl<W: Write + Seek> McapRecorder<W> {
             self.robot_entity(f, ts),
         ];
         let (arrows, texts) = match f.contact {
-            Some(c) if c.force > 0.0 => force_arrow(c.point, c.normal, c.force),
+            Some(c) if c.force > 0.0 => {
+                force_arrow(c.point, c.normal, c.force, self.geometry.robot.dome_radius)
+            }
             _ => (vec![], vec![]),
         };
         entities.push(SceneEntity {
