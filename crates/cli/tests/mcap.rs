@@ -320,6 +320,29 @@ fn each_log_has_a_layout_whose_plots_span_its_contact() {
         plots += 1;
     }
     assert_eq!(plots, 3);
+    // the value axes hold every plotted value, and leave the top third of the force plot (its
+    // floating two-row legend) and the top fifth of the indentation plot free of the curve
+    let force_peak = v["peak_force_n"].as_f64().unwrap();
+    let indentation_mm = v["max_indentation_m"].as_f64().unwrap() * 1e3;
+    for (id, top, legend_rows) in [
+        ("Plot!force", force_peak, 2.0),
+        ("Plot!indentation", indentation_mm, 1.0),
+    ] {
+        let c = &configs[id];
+        let (lo, hi) = (
+            c["minYValue"].as_f64().unwrap(),
+            c["maxYValue"].as_f64().unwrap(),
+        );
+        assert!(
+            lo <= 0.0 && top > lo,
+            "{id}: [{lo}, {hi}] for a peak of {top}"
+        );
+        let free = 0.15 * legend_rows;
+        assert!(
+            top <= lo + (1.0 - free) * (hi - lo) && top >= lo + 0.4 * (hi - lo),
+            "{id}: [{lo}, {hi}] for a peak of {top}"
+        );
+    }
     let transforms = &configs["3D!rig"]["scene"]["transforms"];
     assert_eq!(transforms["showLabel"], false);
     assert_eq!(transforms["enablePreloading"], true);

@@ -24,6 +24,93 @@ pub struct TimeWindow {
     pub end_s: f64,
 }
 
+/// A plot's value axis \[in the plotted unit\].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ValueRange {
+    /// Bottom of the axis.
+    pub min: f64,
+    /// Top of the axis.
+    pub max: f64,
+}
+
+/// The value axes of a log's three plots; `None` leaves an axis to the viewer's autoscale.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PlotAxes {
+    /// Force plot \[N\].
+    pub force_n: Option<ValueRange>,
+    /// Indentation plot \[mm\].
+    pub indentation_mm: Option<ValueRange>,
+    /// Accelerations plot \[m/s²\].
+    pub accel_mps2: Option<ValueRange>,
+}
+
+/// Fraction of a plot's height the floating legend takes per row of series (with its padding,
+/// at the panel heights of the layout's plots): the value axis is raised by that much so the
+/// curves stay below the legend.
+const LEGEND_ROW: f64 = 0.16;
+
+/// The axis of values from `lo` to `hi` with room above for a legend of `rows` rows, or `None`
+/// when there is nothing finite to show.
+fn with_legend_room(lo: f64, hi: f64, rows: usize) -> Option<ValueRange> {
+    let span = hi - lo;
+    if !(span.is_finite() && span > 0.0) {
+        return None;
+    }
+    let covered = (LEGEND_ROW * rows as f64 + 0.04).min(0.6);
+    let round = |x: f64| {
+        if x > 0.0 {
+            nice_ceil(x)
+        } else {
+            -nice_ceil(-x)
+        }
+    };
+    Some(ValueRange {
+        min: if lo < 0.0 {
+            round(lo - 0.04 * span)
+        } else {
+            lo
+        },
+        max: round(lo + span / (1.0 - covered)),
+    })
+}
+
+/// The smallest of 1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6, 8 × 10^k not below `x` > 0 (the viewer
+/// prints the axis ends: round numbers read well).
+fn nice_ceil(x: f64) -> f64 {
+    let decade = 10f64.powf(x.log10().floor());
+    [1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0]
+        .iter()
+        .map(|m| m * decade)
+        .find(|v| *v >= x * (1.0 - 1e-12))
+        .unwrap_or(10.0 * decade)
+}
+
+/// The value axes over `window` of the run `s`, from its sensor samples and its first contact:
+/// the force and the indentation from zero to their peaks, the accelerations over their range,
+/// each with room for its legend (the plots' floating legends then cover no curve).
+pub fn plot_axes(s: &RunSummary, window: TimeWindow) -> PlotAxes {
+    let inside = s
+        .samples
+        .iter()
+        .filter(|x| x.t >= window.start_s && x.t <= window.end_s);
+    let (mut force, mut a_lo, mut a_hi) = (0.0_f64, f64::INFINITY, f64::NEG_INFINITY);
+    for x in inside {
+        force = force.max(x.force_n);
+        for a in [x.operator_accel_mps2, x.load_accel_mps2] {
+            a_lo = a_lo.min(a);
+            a_hi = a_hi.max(a);
+        }
+    }
+    let first = s.contacts.first();
+    let force = force.max(first.map_or(0.0, |c| c.peak_force_n));
+    let indentation_mm = first.map_or(0.0, |c| c.max_indentation_m * 1e3);
+    PlotAxes {
+        force_n: with_legend_room(0.0, force, 2),
+        indentation_mm: with_legend_room(0.0, indentation_mm, 1),
+        accel_mps2: with_legend_room(a_lo.min(0.0), a_hi.max(0.0), 2),
+    }
+}
+
 /// Fraction of the contact's duration shown before its onset and after its end.
 const MARGIN: f64 = 0.15;
 
@@ -52,10 +139,16 @@ pub fn path_beside(log: &Path) -> PathBuf {
     log.with_file_name(format!("{stem}.layout.json"))
 }
 
-/// Writes [`for_log`]`(window)` beside `log` (see [`path_beside`]), atomically.
-pub fn write_beside(log: &Path, window: Option<TimeWindow>) -> Result<(), Error> {
-    let text = serde_json::to_string_pretty(&for_log(window))
-        .expect("a layout built from json! values serialises");
+/// Writes the layout of the run `summary` beside `log` (see [`path_beside`]), atomically: the
+/// plots over its first contact ([`contact_window`], [`plot_axes`]), or over the whole log for a
+/// run without a contact or that failed (`None`).
+pub fn write_beside(log: &Path, summary: Option<&RunSummary>) -> Result<(), Error> {
+    let layout = match summary.and_then(|s| contact_window(s).map(|w| (s, w))) {
+        Some((s, w)) => for_run(w, plot_axes(s, w)),
+        None => for_log(None),
+    };
+    let text =
+        serde_json::to_string_pretty(&layout).expect("a layout built from json! values serialises");
     crate::output::write_atomic(&path_beside(log), format!("{text}\n").as_bytes())
 }
 
@@ -65,9 +158,18 @@ pub fn bundled() -> Value {
     for_log(None)
 }
 
-/// The layout of one log whose first contact spans `window` (`None`: the whole log). The plots
-/// are synced: zooming one zooms all.
+/// The layout of one log whose first contact spans `window` (`None`: the whole log), the value
+/// axes autoscaled. The plots are synced: zooming one zooms all.
 pub fn for_log(window: Option<TimeWindow>) -> Value {
+    with_axes(window, PlotAxes::default())
+}
+
+/// The layout of one run's log: the plots over its first contact's `window`, on `axes`.
+pub fn for_run(window: TimeWindow, axes: PlotAxes) -> Value {
+    with_axes(Some(window), axes)
+}
+
+fn with_axes(window: Option<TimeWindow>, axes: PlotAxes) -> Value {
     layout([
         plot(
             "Force",
@@ -87,6 +189,7 @@ pub fn for_log(window: Option<TimeWindow>) -> Value {
                 ),
             ],
             window,
+            axes.force_n,
         ),
         plot(
             "Indentation",
@@ -97,6 +200,7 @@ pub fn for_log(window: Option<TimeWindow>) -> Value {
                 2.0,
             )],
             window,
+            axes.indentation_mm,
         ),
         plot(
             "Accelerations (along the strike)",
@@ -110,6 +214,7 @@ pub fn for_log(window: Option<TimeWindow>) -> Value {
                 series("/sensors/accel/load.accel_mps2", "load [m/s²]", LOAD, 1.0),
             ],
             window,
+            axes.accel_mps2,
         ),
     ])
 }
@@ -134,8 +239,14 @@ fn series(path: &str, label: &str, color: &str, width: f64) -> Value {
     })
 }
 
-/// A plot panel's configuration: log time on the x axis.
-fn plot(title: &str, paths: Vec<Value>, window: Option<TimeWindow>) -> Value {
+/// A plot panel's configuration: log time on the x axis over `window`, the values on `values`
+/// (`None`: autoscaled).
+fn plot(
+    title: &str,
+    paths: Vec<Value>,
+    window: Option<TimeWindow>,
+    values: Option<ValueRange>,
+) -> Value {
     let mut config = json!({
         "paths": paths,
         "showXAxisLabels": true,
@@ -152,6 +263,10 @@ fn plot(title: &str, paths: Vec<Value>, window: Option<TimeWindow>) -> Value {
     if let (Some(w), Some(c)) = (window, config.as_object_mut()) {
         c.insert("minXValue".into(), json!(w.start_s));
         c.insert("maxXValue".into(), json!(w.end_s));
+    }
+    if let (Some(v), Some(c)) = (values, config.as_object_mut()) {
+        c.insert("minYValue".into(), json!(v.min));
+        c.insert("maxYValue".into(), json!(v.max));
     }
     config
 }
@@ -253,6 +368,23 @@ mod tests {
             "assets/foxglove/layout.json differs from foxglove_layout::bundled(); regenerate \
              it with FLEXRIG_WRITE_LAYOUT=1 cargo test --release -p flexrig bundled_layout"
         );
+    }
+
+    #[test]
+    fn axis_ends_are_round_and_hold_the_values_below_the_legend() {
+        assert_eq!(nice_ceil(415.4), 500.0);
+        assert_eq!(nice_ceil(2.1), 2.5);
+        assert_eq!(nice_ceil(1028.6), 1200.0);
+        assert_eq!(nice_ceil(93.7), 100.0);
+        assert_eq!(nice_ceil(3.0), 3.0);
+        let r = with_legend_room(-60.0, 640.0, 2).unwrap();
+        assert_eq!((r.min, r.max), (-100.0, 1200.0));
+        // the curve's top stays below the two legend rows (36 % of the height)
+        assert!(640.0 <= r.min + (1.0 - 0.36) * (r.max - r.min));
+        let r = with_legend_room(0.0, 266.0, 2).unwrap();
+        assert_eq!((r.min, r.max), (0.0, 500.0));
+        assert!(with_legend_room(0.0, 0.0, 1).is_none());
+        assert!(with_legend_room(0.0, f64::NAN, 1).is_none());
     }
 
     #[test]

@@ -353,11 +353,7 @@ pub fn run_logged(
         .map_err(|e| Error::write(path, e.into_error()))?;
     drop(file);
     pending.commit(target.force)?;
-    let window = outcome
-        .as_ref()
-        .ok()
-        .and_then(crate::foxglove_layout::contact_window);
-    crate::foxglove_layout::write_beside(path, window)?;
+    crate::foxglove_layout::write_beside(path, outcome.as_ref().ok())?;
     Ok(outcome?)
 }
 
