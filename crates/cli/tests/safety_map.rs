@@ -24,7 +24,8 @@ fn ok(args: &[&str]) -> String {
 }
 
 fn tmp(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("flexrig_safety_map_{name}_{}", std::process::id()));
+    let dir =
+        std::env::temp_dir().join(format!("flexrig_safety_map_{name}_{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     dir
 }
@@ -32,7 +33,10 @@ fn tmp(name: &str) -> std::path::PathBuf {
 /// The CSV as rows of (column → text).
 fn table(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
     let text = std::fs::read_to_string(path).unwrap();
-    assert!(!text.contains("NaN") && !text.contains("null") && !text.contains("inf,"), "{text}");
+    assert!(
+        !text.contains("NaN") && !text.contains("null") && !text.contains("inf,"),
+        "{text}"
+    );
     let mut lines = text.lines();
     let head: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
     lines
@@ -56,19 +60,47 @@ fn a_lumped_cell_is_the_single_point_safety_answer_bit_for_bit() {
     let dir = tmp("cell");
     let d = dir.to_str().unwrap();
     ok(&[
-        "safety-map", "--region", "hands_and_fingers", "--material", "skinned_aluminium",
-        "--m-r", "0.051", "--x", "m-e=0.01:5:4:log", "--y", "k-delta=10:1e7:3:log",
-        "--method", "energy", "--out", d,
+        "safety-map",
+        "--region",
+        "hands_and_fingers",
+        "--material",
+        "skinned_aluminium",
+        "--m-r",
+        "0.051",
+        "--x",
+        "m-e=0.01:5:4:log",
+        "--y",
+        "k-delta=10:1e7:3:log",
+        "--method",
+        "energy",
+        "--out",
+        d,
     ]);
     let rows = table(&dir.join("safety_map.csv"));
     assert_eq!(rows.len(), 12);
     assert!(rows[0].contains_key("x_m_e_kg") && rows[0].contains_key("v_max_cl_mps"));
     for row in [&rows[1], &rows[6], &rows[11]] {
-        for (gamma, col) in [("1", "v_max_cj_mps"), ("0.6666666666666666", "v_max_cl_mps")] {
+        for (gamma, col) in [
+            ("1", "v_max_cj_mps"),
+            ("0.6666666666666666", "v_max_cl_mps"),
+        ] {
             let text = ok(&[
-                "safety", "--json", "--region", "hands_and_fingers", "--material",
-                "skinned_aluminium", "--m-r", "0.051", "--m-e", &row["m_e_kg"], "--gamma", gamma,
-                "--k-delta", &row["k_delta_n_per_m"], "--method", "energy",
+                "safety",
+                "--json",
+                "--region",
+                "hands_and_fingers",
+                "--material",
+                "skinned_aluminium",
+                "--m-r",
+                "0.051",
+                "--m-e",
+                &row["m_e_kg"],
+                "--gamma",
+                gamma,
+                "--k-delta",
+                &row["k_delta_n_per_m"],
+                "--method",
+                "energy",
             ]);
             let v: serde_json::Value = serde_json::from_str(&text).unwrap();
             let single = v["methods"][0]["v_max_mps"].as_f64().unwrap();
@@ -91,8 +123,17 @@ fn with_n_1_and_a_rigid_link_the_energy_map_is_the_standard_formula_to_1e_12() {
     for (method, sub) in [("standard", "a"), ("energy", "b")] {
         let out = dir.join(sub);
         ok(&[
-            "safety-map", "--region", "chest", "--x", "m-e=0.1:20:5:log", "--y",
-            "m-r=0.05:30:4:log", "--method", method, "--out", out.to_str().unwrap(),
+            "safety-map",
+            "--region",
+            "chest",
+            "--x",
+            "m-e=0.1:20:5:log",
+            "--y",
+            "m-r=0.05:30:4:log",
+            "--method",
+            method,
+            "--out",
+            out.to_str().unwrap(),
         ]);
     }
     for contact in ["transient", "quasi-static"] {
@@ -100,12 +141,25 @@ fn with_n_1_and_a_rigid_link_the_energy_map_is_the_standard_formula_to_1e_12() {
         let b = dir.join(format!("b_{contact}"));
         for (method, out) in [("standard", &a), ("energy", &b)] {
             ok(&[
-                "safety-map", "--region", "lower_legs", "--contact", contact, "--x",
-                "m-e=0.1:20:3:log", "--y", "m-r=0.05:30:3:log", "--method", method, "--out",
+                "safety-map",
+                "--region",
+                "lower_legs",
+                "--contact",
+                contact,
+                "--x",
+                "m-e=0.1:20:3:log",
+                "--y",
+                "m-r=0.05:30:3:log",
+                "--method",
+                method,
+                "--out",
                 out.to_str().unwrap(),
             ]);
         }
-        let (sa, sb) = (table(&a.join("safety_map.csv")), table(&b.join("safety_map.csv")));
+        let (sa, sb) = (
+            table(&a.join("safety_map.csv")),
+            table(&b.join("safety_map.csv")),
+        );
         for (ra, rb) in sa.iter().zip(&sb) {
             for col in ["v_max_cj_mps", "v_max_cl_mps", "by_force_cj_mps"] {
                 let (x, y) = (f(ra, col), f(rb, col));
@@ -133,9 +187,19 @@ fn with_n_1_and_a_rigid_link_the_energy_map_is_the_standard_formula_to_1e_12() {
 fn simulated_speeds_converge_to_1e_4() {
     let dir = tmp("converge");
     let base = [
-        "safety-map", "--region", "hands_and_fingers", "--material", "skinned_aluminium",
-        "--m-r", "0.051", "--x", "m-e=0.05:2:2:log", "--y", "k-delta=300:3e5:2:log",
-        "--method", "simulation",
+        "safety-map",
+        "--region",
+        "hands_and_fingers",
+        "--material",
+        "skinned_aluminium",
+        "--m-r",
+        "0.051",
+        "--x",
+        "m-e=0.05:2:2:log",
+        "--y",
+        "k-delta=300:3e5:2:log",
+        "--method",
+        "simulation",
     ];
     let coarse = dir.join("coarse");
     let fine = dir.join("fine");
@@ -143,7 +207,14 @@ fn simulated_speeds_converge_to_1e_4() {
     a.extend(["--out", coarse.to_str().unwrap()]);
     ok(&a);
     let mut b = base.to_vec();
-    b.extend(["--tol", "1e-8", "--root-rtol", "1e-10", "--out", fine.to_str().unwrap()]);
+    b.extend([
+        "--tol",
+        "1e-8",
+        "--root-rtol",
+        "1e-10",
+        "--out",
+        fine.to_str().unwrap(),
+    ]);
     ok(&b);
     let (ra, rb) = (
         table(&coarse.join("safety_map.csv")),
@@ -172,13 +243,29 @@ fn bad_input_exits_2_naming_the_flag() {
         (vec!["--y", "m-e=0.1:1:3:log", "--m-r", "0.05"], "--y"),
         (vec!["--x", "m-e=0:1:3", "--m-r", "0.05"], "--x"),
         (vec![], "--m-r"),
-        (vec!["--m-r", "0.05", "--method", "simulation"], "--k-delta"),
         (
-            vec!["--m-r", "0.05", "--method", "simulation", "--contact", "quasi-static"],
+            vec!["--y", "m-r=0.01:0.1:3:log", "--method", "simulation"],
+            "--k-delta",
+        ),
+        (
+            vec![
+                "--m-r",
+                "0.05",
+                "--method",
+                "simulation",
+                "--contact",
+                "quasi-static",
+            ],
             "--contact",
         ),
-        (vec!["--m-r", "0.05", "--joint", "free-hub"], "--rotor-inertia"),
-        (vec!["--m-r", "0.05", "--method", "simulation", "--tol", "1"], "--tol"),
+        (
+            vec!["--m-r", "0.05", "--joint", "free-hub"],
+            "--rotor-inertia",
+        ),
+        (
+            vec!["--m-r", "0.05", "--method", "simulation", "--tol", "1"],
+            "--tol",
+        ),
     ] {
         let mut all = vec!["safety-map", "--region", "chest", "--out", d];
         all.extend(args.iter());
@@ -195,10 +282,29 @@ fn the_report_is_written_as_markdown_and_html_with_trace_figure_and_caveat() {
     let dir = tmp("report");
     std::fs::create_dir_all(&dir).unwrap();
     let base = [
-        "safety", "--region", "hands_and_fingers", "--area", "Back of the hand ND", "--m-r",
-        "0.051", "--m-e", "0.412", "--gamma", "1", "--material", "skinned_aluminium",
-        "--k-delta", "1e4", "--moving-mass", "0.9", "--payload", "0.412", "--method",
-        "standard,energy,simulation", "--speed", "1.5",
+        "safety",
+        "--region",
+        "hands_and_fingers",
+        "--area",
+        "Back of the hand ND",
+        "--m-r",
+        "0.051",
+        "--m-e",
+        "0.412",
+        "--gamma",
+        "1",
+        "--material",
+        "skinned_aluminium",
+        "--k-delta",
+        "1e4",
+        "--moving-mass",
+        "0.9",
+        "--payload",
+        "0.412",
+        "--method",
+        "standard,energy,simulation",
+        "--speed",
+        "1.5",
     ];
     for name in ["r.md", "r.html"] {
         let path = dir.join(name);
@@ -227,8 +333,14 @@ fn the_report_is_written_as_markdown_and_html_with_trace_figure_and_caveat() {
         assert!(!report.contains("NaN") && !report.contains("null"));
         assert!(dir.join("r_peak_force.svg").exists());
     }
-    assert!(std::fs::read_to_string(dir.join("r.html")).unwrap().starts_with("<!DOCTYPE html>"));
-    let out = flexrig(&["safety", "--region", "chest", "--m-eff", "1", "--report", "r.txt"]);
+    assert!(
+        std::fs::read_to_string(dir.join("r.html"))
+            .unwrap()
+            .starts_with("<!DOCTYPE html>")
+    );
+    let out = flexrig(&[
+        "safety", "--region", "chest", "--m-eff", "1", "--report", "r.txt",
+    ]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--report"));
     let _ = std::fs::remove_dir_all(&dir);

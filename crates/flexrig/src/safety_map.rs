@@ -177,7 +177,9 @@ pub fn parse_axis(flag: &str, text: &str) -> Result<MapAxis, Error> {
         "PARAM=START:STOP:COUNT[:log] (both ends included, e.g. k-delta=10:1e7:30:log) or \
          PARAM=V1,V2,… with PARAM one of {names}"
     );
-    let (name, spec) = text.split_once('=').ok_or_else(|| bad(flag, text, &syntax))?;
+    let (name, spec) = text
+        .split_once('=')
+        .ok_or_else(|| bad(flag, text, &syntax))?;
     let parameter = MapParameter::parse(name).ok_or_else(|| {
         bad(
             flag,
@@ -605,9 +607,12 @@ pub fn safety_map(
     input.x.validate("--x")?;
     input.y.validate("--y")?;
     if input.x.parameter == input.y.parameter
-        || [input.x.parameter, input.y.parameter]
-            .iter()
-            .all(|p| matches!(p, MapParameter::LinkStiffness | MapParameter::BendingStiffness))
+        || [input.x.parameter, input.y.parameter].iter().all(|p| {
+            matches!(
+                p,
+                MapParameter::LinkStiffness | MapParameter::BendingStiffness
+            )
+        })
     {
         return Err(bad(
             "--y",
@@ -648,7 +653,8 @@ pub fn safety_map(
     let (base, material_radius) = match &input.law {
         ContactLaw::BodySpring => (Hertz::new(region.spring_constant(), 1.0)?, None),
         ContactLaw::Hertz { k_c, n } => {
-            let base = Hertz::new(*k_c, *n).map_err(|e| bad("--k-c", display(*k_c), &e.to_string()));
+            let base =
+                Hertz::new(*k_c, *n).map_err(|e| bad("--k-c", display(*k_c), &e.to_string()));
             (base?, None)
         }
         ContactLaw::Material(name) => {
@@ -910,7 +916,12 @@ fn simulated(
         .peak_force_n)
     };
     let force = limits.force;
-    let by_force = speed_at_ratio(guess, settings.root_rtol, &mut |v| Ok(peak(v)? / force), None)?;
+    let by_force = speed_at_ratio(
+        guess,
+        settings.root_rtol,
+        &mut |v| Ok(peak(v)? / force),
+        None,
+    )?;
     let by_pressure = match (limits.pressure, lumped.by_pressure_mps) {
         (Some(p), Some(vb)) => Some(match energy.force_at_pressure(p) {
             Some(PressureCrossing::AtForce(f)) => {
@@ -1051,7 +1062,8 @@ pub fn csv(map: &SafetyMap) -> String {
         );
         match (&c.cj, &c.cl, c.ratio_cl_cj) {
             (Some(cj), Some(cl), Some(r)) => {
-                let p = |d: &DesignSpeed| d.by_pressure_mps.map_or(String::new(), |v| num(v.value()));
+                let p =
+                    |d: &DesignSpeed| d.by_pressure_mps.map_or(String::new(), |v| num(v.value()));
                 let runs = |d: &DesignSpeed| d.runs.map_or(String::new(), |r| r.to_string());
                 let _ = writeln!(
                     s,
@@ -1117,7 +1129,9 @@ pub fn svg(map: &SafetyMap, width_pt: f64) -> Result<String, String> {
         .chain(&cl)
         .flatten()
         .filter(|v| **v > 0.0)
-        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
     let (lo, hi) = if lo.is_finite() && hi > lo * 1.0001 {
         (lo, hi)
     } else if lo.is_finite() {
@@ -1131,8 +1145,16 @@ pub fn svg(map: &SafetyMap, width_pt: f64) -> Result<String, String> {
         .fold(0.0_f64, |s, r| s.max((r - 1.0).abs()));
     let span = if span > 1e-3 { span } else { 1e-3 };
     let masks = map.input.speed.map(|s| {
-        let mask = |d: &[Option<f64>]| d.iter().map(|v| v.is_some_and(|v| v >= s)).collect::<Vec<_>>();
-        (mask(&cj), mask(&cl), format!("permits v = {} m/s", display(s)))
+        let mask = |d: &[Option<f64>]| {
+            d.iter()
+                .map(|v| v.is_some_and(|v| v >= s))
+                .collect::<Vec<_>>()
+        };
+        (
+            mask(&cj),
+            mask(&cl),
+            format!("permits v = {} m/s", display(s)),
+        )
     });
     let (x_label, y_label) = (map.input.x.parameter.label(), map.input.y.parameter.label());
     let maps = vec![
@@ -1180,7 +1202,10 @@ pub fn svg(map: &SafetyMap, width_pt: f64) -> Result<String, String> {
             display(map.force_limit_n),
             display(p / 1e4)
         ),
-        None => format!("F_max = {} N (pressure not assessed)", display(map.force_limit_n)),
+        None => format!(
+            "F_max = {} N (pressure not assessed)",
+            display(map.force_limit_n)
+        ),
     };
     let mut fixed = Vec::new();
     let axes = [map.input.x.parameter, map.input.y.parameter];
@@ -1194,7 +1219,9 @@ pub fn svg(map: &SafetyMap, width_pt: f64) -> Result<String, String> {
     {
         fixed.push(format!("m_e = {} kg", display(m)));
     }
-    if !axes.contains(&MapParameter::LinkStiffness) && !axes.contains(&MapParameter::BendingStiffness) {
+    if !axes.contains(&MapParameter::LinkStiffness)
+        && !axes.contains(&MapParameter::BendingStiffness)
+    {
         fixed.push(match map.input.k_delta {
             Some(k) => format!("k_δ = {} N/m", crate::plots::sci_label(k)),
             None => "rigid link".into(),
@@ -1353,7 +1380,10 @@ mod tests {
                 )
                 .unwrap();
                 let m = &single.methods[0];
-                assert_eq!(design.v_max_mps.value().to_bits(), m.v_max_mps.value().to_bits());
+                assert_eq!(
+                    design.v_max_mps.value().to_bits(),
+                    m.v_max_mps.value().to_bits()
+                );
                 assert_eq!(design.m_eff_kg.to_bits(), m.robot_mass_kg.to_bits());
             }
         }

@@ -89,7 +89,11 @@ impl Document {
                     let line = |cells: &[String]| {
                         format!(
                             "| {} |\n",
-                            cells.iter().map(|c| md_cell(c)).collect::<Vec<_>>().join(" | ")
+                            cells
+                                .iter()
+                                .map(|c| md_cell(c))
+                                .collect::<Vec<_>>()
+                                .join(" | ")
                         )
                     };
                     s.push_str(&line(head));
@@ -320,10 +324,7 @@ fn verdict(d: &mut Document, input: &SafetyInput, r: &SafetyReport) {
         .fold(f64::INFINITY, f64::min);
     d.push(Block::Paragraph(match input.speed {
         Some(v) => {
-            let all = r
-                .methods
-                .iter()
-                .all(|m| m.verdict.is_some_and(|x| x.pass));
+            let all = r.methods.iter().all(|m| m.verdict.is_some_and(|x| x.pass));
             format!(
                 "At {} m/s the design {} by every method evaluated; the lowest permissible speed \
                  is {} m/s.",
@@ -344,11 +345,19 @@ fn inputs(d: &mut Document, input: &SafetyInput, r: &SafetyReport) {
     d.push(Block::Heading(2, "Inputs".into()));
     let mut rows: Vec<Vec<String>> = Vec::new();
     let mut row = |q: &str, v: String, flag: &str| rows.push(vec![q.into(), v, flag.into()]);
-    row("body region", format!("{} ({})", r.region_name, r.region), "--region");
+    row(
+        "body region",
+        format!("{} ({})", r.region_name, r.region),
+        "--region",
+    );
     row("specific body area", r.area.clone(), "--area");
     row("contact", contact_words(r.contact).into(), "--contact");
     match input.m_eff {
-        Some(RobotEffectiveMass::Given(m)) => row("effective robot mass m_eff", format!("{} kg", n(m)), "--m-eff"),
+        Some(RobotEffectiveMass::Given(m)) => row(
+            "effective robot mass m_eff",
+            format!("{} kg", n(m)),
+            "--m-eff",
+        ),
         Some(RobotEffectiveMass::Prb { gamma, m_r, m_e }) => {
             row("link mass m_r", format!("{} kg", n(m_r)), "--m-r");
             row("payload (end mass) m_e", format!("{} kg", n(m_e)), "--m-e");
@@ -357,12 +366,21 @@ fn inputs(d: &mut Document, input: &SafetyInput, r: &SafetyReport) {
         None => {}
     }
     if let Some(m) = input.moving_mass {
-        row("robot's total moving mass M", format!("{} kg", n(m)), "--moving-mass");
-        row("payload m_L", format!("{} kg", n(input.payload)), "--payload");
+        row(
+            "robot's total moving mass M",
+            format!("{} kg", n(m)),
+            "--moving-mass",
+        );
+        row(
+            "payload m_L",
+            format!("{} kg", n(input.payload)),
+            "--payload",
+        );
     }
     row(
         "link stiffness k_δ",
-        r.k_delta_n_per_m.map_or("rigid link".into(), |k| format!("{} N/m", n(k))),
+        r.k_delta_n_per_m
+            .map_or("rigid link".into(), |k| format!("{} N/m", n(k))),
         "--k-delta",
     );
     row(
@@ -373,18 +391,22 @@ fn inputs(d: &mut Document, input: &SafetyInput, r: &SafetyReport) {
                 n(r.k_c)
             ),
             ContactLaw::Hertz { k_c, n: e } => format!("k_c = {} N/mⁿ, n = {}", n(*k_c), n(*e)),
-            ContactLaw::Material(name) => format!(
-                "material {name}: k_c = {} N/mⁿ, n = {}",
-                n(r.k_c),
-                n(r.n)
-            ),
+            ContactLaw::Material(name) => {
+                format!("material {name}: k_c = {} N/mⁿ, n = {}", n(r.k_c), n(r.n))
+            }
         },
         "--k-c --n / --material",
     );
-    row("contact-area model", area_words(r.area_model.as_ref()), "--area-model");
+    row(
+        "contact-area model",
+        area_words(r.area_model.as_ref()),
+        "--area-model",
+    );
     row(
         "speed judged",
-        input.speed.map_or("none".into(), |v| format!("{} m/s", n(v))),
+        input
+            .speed
+            .map_or("none".into(), |v| format!("{} m/s", n(v))),
         "--speed",
     );
     row(
@@ -452,7 +474,11 @@ fn limits(
             "Table A.2".into(),
         ],
         vec![
-            format!("maximum permissible pressure p_s, area {} {}", area.number(), area.name()),
+            format!(
+                "maximum permissible pressure p_s, area {} {}",
+                area.number(),
+                area.name()
+            ),
             format!("{} N/cm²", n(area.max_pressure_n_per_cm2())),
             "max_pressure_n_per_cm2".into(),
             "Table A.2".into(),
@@ -530,7 +556,10 @@ fn limits(
         },
         n(r.body_stiffness_n_per_m),
         r.human_mass_kg
-            .map_or("∞ (clamped: the body cannot recoil)".into(), |m| format!("{} kg", n(m)))
+            .map_or("∞ (clamped: the body cannot recoil)".into(), |m| format!(
+                "{} kg",
+                n(m)
+            ))
     )));
     Ok(())
 }
@@ -552,7 +581,10 @@ fn mu_line(r: &SafetyReport, m_robot: f64, mu: f64, eq: &str) -> String {
 }
 
 fn standard_trace(d: &mut Document, input: &SafetyInput, r: &SafetyReport, m: &MethodResult) {
-    d.push(Block::Heading(2, "Method a: the standard's formula (ISO/TS 15066:2016 Annex A)".into()));
+    d.push(Block::Heading(
+        2,
+        "Method a: the standard's formula (ISO/TS 15066:2016 Annex A)".into(),
+    ));
     let k = r.body_stiffness_n_per_m;
     let root = (m.reduced_mass_kg * k).sqrt();
     let mut eqs = Vec::new();
@@ -566,7 +598,12 @@ fn standard_trace(d: &mut Document, input: &SafetyInput, r: &SafetyReport, m: &M
     } else {
         eqs.push(format!("m_R = m_eff = {} kg", g(m.robot_mass_kg)));
     }
-    eqs.push(mu_line(r, m.robot_mass_kg, m.reduced_mass_kg, "   (Eq. A.3)"));
+    eqs.push(mu_line(
+        r,
+        m.robot_mass_kg,
+        m.reduced_mass_kg,
+        "   (Eq. A.3)",
+    ));
     eqs.push(format!("k = K = {} N/m", n(k)));
     eqs.push(format!(
         "v_F = F_max/√(μk) = {} / √({} × {}) = {} m/s   (Eq. A.5)",
@@ -680,12 +717,12 @@ fn energy_trace(
                 g(v.value())
             ));
         }
-        (Some(_), Some(PressureCrossing::Always)) => eqs.push(
-            "pressure: the mean pressure exceeds p_max at any force, v_p = 0".into(),
-        ),
-        (Some(_), Some(PressureCrossing::Never)) => eqs.push(
-            "pressure: the mean pressure never reaches p_max, v_p unlimited".into(),
-        ),
+        (Some(_), Some(PressureCrossing::Always)) => {
+            eqs.push("pressure: the mean pressure exceeds p_max at any force, v_p = 0".into())
+        }
+        (Some(_), Some(PressureCrossing::Never)) => {
+            eqs.push("pressure: the mean pressure never reaches p_max, v_p unlimited".into())
+        }
         _ => eqs.push("pressure: not assessed (no contact-area model)".into()),
     }
     eqs.push(format!(
@@ -740,7 +777,10 @@ fn simulation_trace(
          by the Illinois false position on ln v until the bracket is narrower than {ROOT_RTOL:e} \
          (relative). Both tolerances lie far below the 1e-4 the result is quoted to.",
         r.human_mass_kg.map_or(
-            format!("{} kg (clamped body)", g(CLAMPED_MASS_FACTOR * m.robot_mass_kg)),
+            format!(
+                "{} kg (clamped body)",
+                g(CLAMPED_MASS_FACTOR * m.robot_mass_kg)
+            ),
             |x| format!("{} kg", n(x))
         ),
         g(m.robot_mass_kg),
@@ -982,7 +1022,10 @@ mod tests {
                 let (_, doc, _) = report_document(&input, None, None).unwrap();
                 let md = doc.markdown();
                 let f = |k: &str| region[k].as_float().unwrap();
-                assert_eq!(cell(&md, "body spring constant K"), f("spring_constant_n_per_mm"));
+                assert_eq!(
+                    cell(&md, "body spring constant K"),
+                    f("spring_constant_n_per_mm")
+                );
                 assert_eq!(cell(&md, "effective body mass m_H"), f("effective_mass_kg"));
                 assert_eq!(
                     cell(&md, "maximum permissible force, quasi-static"),
@@ -1010,10 +1053,7 @@ mod tests {
                 assert!(md.contains("ISO/PAS 5672"));
                 // and the HTML carries the same numbers
                 let html = doc.html();
-                assert!(html.contains(&format!(
-                    "<td>{} N/mm</td>",
-                    f("spring_constant_n_per_mm")
-                )));
+                assert!(html.contains(&format!("<td>{} N/mm</td>", f("spring_constant_n_per_mm"))));
                 checked += 1;
             }
         }

@@ -224,7 +224,10 @@ pub fn run(args: &SafetyArgs, out: &mut dyn Write) -> Result<(), Error> {
         let mut value = serde_json::to_value(&report).expect("the report serialises");
         if !written.is_empty() {
             value["files"] = serde_json::json!(
-                written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>()
+                written
+                    .iter()
+                    .map(|p| p.display().to_string())
+                    .collect::<Vec<_>>()
             );
         }
         return print_json(out, &value);

@@ -38,7 +38,11 @@ pub struct SafetyMapArgs {
     #[arg(long, value_name = "PARAM=RANGE", default_value = "m-e=0.01:5:30:log")]
     pub x: String,
     /// The y axis, as --x.
-    #[arg(long, value_name = "PARAM=RANGE", default_value = "k-delta=10:1e7:30:log")]
+    #[arg(
+        long,
+        value_name = "PARAM=RANGE",
+        default_value = "k-delta=10:1e7:30:log"
+    )]
     pub y: String,
     /// Body region key of the body model, e.g. chest, hands_and_fingers.
     #[arg(long, value_name = "REGION")]
@@ -164,7 +168,10 @@ impl SafetyMapArgs {
                 });
             }
             (JointArg::FreeHub, None) => {
-                return Err(missing("--rotor-inertia", "--joint free-hub needs --rotor-inertia (kg·m², > 0)"));
+                return Err(missing(
+                    "--rotor-inertia",
+                    "--joint free-hub needs --rotor-inertia (kg·m², > 0)",
+                ));
             }
             (JointArg::FreeHub, Some(j)) => MapJoint::FreeHub { rotor_inertia: j },
         };
