@@ -62,6 +62,9 @@ pub enum Command {
     /// Permissible speed near a body region (ISO/TS 15066): the standard's formula, the energy
     /// method and the simulated impact side by side.
     Safety(commands::safety::SafetyArgs),
+    /// Safe-speed map: the permissible speed of the CJ and the CL design over two design
+    /// parameters and their ratio, by the standard's formula, the energy method or simulation.
+    SafetyMap(commands::safety_map::SafetyMapArgs),
     /// The spin-up beam benchmark (Kane, Ryan & Banerjee 1987): tip deflection by FE, an
     /// independent reference and the linear model.
     SpinUp(commands::spin_up::SpinUpArgs),
@@ -99,6 +102,7 @@ pub fn run_cancellable(cli: &Cli, out: &mut dyn Write, cancel: &CancelToken) -> 
         Some(Command::Validate(args)) => commands::validate::run(args, out),
         Some(Command::Bench(args)) => commands::bench::run(args, out),
         Some(Command::Safety(args)) => commands::safety::run(args, out),
+        Some(Command::SafetyMap(args)) => commands::safety_map::run(args, out, cancel),
         Some(Command::SpinUp(args)) => commands::spin_up::run(args, out, cancel),
         Some(Command::Strike(args)) => commands::strike::run(args, out, cancel),
         Some(Command::RoleSwitch(args)) => commands::role_switch::run(args, out, cancel),

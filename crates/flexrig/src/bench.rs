@@ -79,6 +79,7 @@ pub fn run(
     beam(&mut rows, quick)?;
     rig(&mut rows, quick)?;
     driven(&mut rows, quick)?;
+    safety_maps(&mut rows, quick)?;
     ensure_dir(out)?;
     let mut files = Vec::new();
     for (model, title, y_desc, share_y) in PLOTS {
@@ -626,5 +627,118 @@ fn driven(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
             evaluations: Some(outcome.work),
         });
     }
+    Ok(())
+}
+
+/// The 30 × 30 safe-speed maps of the hand (transient, skinned aluminium, m_r = 51 g, payload
+/// 0.01–5 kg × k_δ = 10–1e7 N/m), CJ and CL: by the lumped energy method (error: the largest
+/// relative difference of a cell from the single-point `safety` answer, which must be 0) and by
+/// simulation (FE CJ and modal CL; error: the largest relative difference of the four corner
+/// cells from a map at modal tol 1e-8 and root tolerance 1e-10). Model `safety`: in the table
+/// and JSON, not plotted.
+fn safety_maps(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
+    use crate::safety_map::{
+        GAMMA_CJ, MapMethod, SafetyMapInput, SimulationSettings, parse_axis, safety_map,
+    };
+    let cancel = crate::CancelToken::new();
+    let model = flexrig_safety::BodyModel::iso_ts_15066_2016()?;
+    let points = if quick { 10 } else { 30 };
+    let input = |method: MapMethod, points: usize| -> Result<SafetyMapInput, Error> {
+        Ok(SafetyMapInput {
+            region: "hands_and_fingers".into(),
+            area: None,
+            contact: flexrig_safety::ContactKind::Transient,
+            m_r: Some(0.051),
+            m_e: None,
+            k_delta: None,
+            law: crate::safety::ContactLaw::Material("skinned_aluminium".into()),
+            area_model: None,
+            x: parse_axis("--x", &format!("m-e=0.01:5:{points}:log"))?,
+            y: parse_axis("--y", &format!("k-delta=10:1e7:{points}:log"))?,
+            method,
+            simulation: SimulationSettings::DEFAULT,
+            speed: None,
+        })
+    };
+    let lumped = input(MapMethod::Energy, points)?;
+    let map = safety_map(&lumped, Some(&model), &cancel)?;
+    let mut error = 0.0_f64;
+    for c in map.cells.iter().step_by(7) {
+        let single = crate::safety::safety(
+            &crate::safety::SafetyInput {
+                region: lumped.region.clone(),
+                area: None,
+                contact: lumped.contact,
+                m_eff: Some(crate::safety::RobotEffectiveMass::Prb {
+                    gamma: GAMMA_CJ,
+                    m_r: c.m_r_kg,
+                    m_e: c.m_e_kg,
+                }),
+                k_delta: c.k_delta_n_per_m,
+                law: lumped.law.clone(),
+                area_model: None,
+                moving_mass: None,
+                payload: 0.0,
+                speed: None,
+                methods: vec![crate::safety::SafetyMethod::Energy],
+            },
+            Some(&model),
+        )?;
+        let (a, b) = (
+            c.cj.map_or(f64::NAN, |d| d.v_max_mps.value()),
+            single.methods[0].v_max_mps.value(),
+        );
+        error = error.max(((a - b) / b).abs());
+    }
+    rows.push(Row {
+        model: "safety".into(),
+        method: format!("safety map {points} × {points}, lumped energy method, CJ and CL"),
+        setting: "exact (closed form)".into(),
+        error,
+        seconds: median_seconds(if quick { 3 } else { 5 }, 1, || {
+            safety_map(&lumped, Some(&model), &cancel)
+        }),
+        evaluations: None,
+    });
+    let simulated = input(MapMethod::Simulation, points)?;
+    let start = Instant::now();
+    let map = safety_map(&simulated, Some(&model), &cancel)?;
+    let seconds = start.elapsed().as_secs_f64();
+    let mut corners = input(MapMethod::Simulation, 2)?;
+    corners.simulation = SimulationSettings {
+        tol: 1e-8,
+        root_rtol: 1e-10,
+        ..SimulationSettings::DEFAULT
+    };
+    let fine = safety_map(&corners, Some(&model), &cancel)?;
+    let n = points;
+    let mut error = 0.0_f64;
+    for (i, &at) in [0, n - 1, n * (n - 1), n * n - 1].iter().enumerate() {
+        let (c, f) = (&map.cells[at], &fine.cells[i]);
+        for (a, b) in [(c.cj, f.cj), (c.cl, f.cl)] {
+            let (a, b) = (
+                a.map_or(f64::NAN, |d| d.v_max_mps.value()),
+                b.map_or(f64::NAN, |d| d.v_max_mps.value()),
+            );
+            error = error.max(((a - b) / b).abs());
+        }
+    }
+    let runs: usize = map
+        .cells
+        .iter()
+        .flat_map(|c| [c.cj, c.cl])
+        .flatten()
+        .filter_map(|d| d.runs)
+        .sum();
+    rows.push(Row {
+        model: "safety".into(),
+        method: format!(
+            "safety map {points} × {points}, simulation (FE CJ, modal CL, joint held), rayon on the machine's cores"
+        ),
+        setting: "modal tol 1e-6, CJ rtol 1e-10, root 1e-6".into(),
+        error,
+        seconds,
+        evaluations: Some(runs),
+    });
     Ok(())
 }

@@ -43,6 +43,8 @@ pub mod prb;
 pub mod progress;
 pub mod run;
 pub mod safety;
+pub mod safety_map;
+pub mod safety_report;
 pub mod scenes;
 pub mod study;
 pub mod traces;

@@ -38,7 +38,7 @@ pub const SIMULATION_RTOL: f64 = 1e-11;
 pub const ROOT_RTOL: f64 = 1e-9;
 /// The human mass \[kg\] the simulation uses for a clamped (quasi-static) body, m_H = ∞ in the
 /// closed-form methods: 1e12 × m_eff, so the reduced mass differs from m_eff by 1e-12 relative.
-const CLAMPED_MASS_FACTOR: f64 = 1e12;
+pub const CLAMPED_MASS_FACTOR: f64 = 1e12;
 /// The link stiffness \[N/m\] the simulation uses for a rigid link (k_δ absent): its stored energy
 /// F²/(2k_δ) is ≤ 1e-9 of the contact's at forces ≤ 1 kN and indentations ≥ 0.1 mm.
 pub const RIGID_LINK_STIFFNESS: f64 = 1e16;
@@ -505,57 +505,10 @@ fn simulate(s: &Setup, v: f64) -> Result<Simulated, Error> {
 }
 
 /// The speed at which `ratio(v)` (peak / limit, increasing in v) equals 1: a bracket grown by
-/// factors of 2 around `guess`, then the Illinois false position on ln v to [`ROOT_RTOL`].
+/// factors of 2 around `guess`, then the Illinois false position on ln v to [`ROOT_RTOL`]
+/// ([`crate::safety_map::speed_at_ratio`], which the report's trace repeats).
 fn speed_at_limit(guess: f64, ratio: &dyn Fn(f64) -> Result<f64, Error>) -> Result<f64, Error> {
-    let g = |x: f64| ratio(x.exp()).map(f64::ln);
-    let mut a = (guess / 1.01).ln();
-    let mut b = (guess * 1.01).ln();
-    let mut ga = g(a)?;
-    let mut gb = g(b)?;
-    let mut grow = 0;
-    while ga * gb > 0.0 {
-        grow += 1;
-        if grow > 60 || !ga.is_finite() || !gb.is_finite() {
-            return Err(Error::NonFinite {
-                what: "simulated speed at the limit".into(),
-                value: "no bracket".into(),
-                advice: "use moderate masses and stiffnesses".into(),
-            });
-        }
-        if ga > 0.0 {
-            a -= std::f64::consts::LN_2;
-            ga = g(a)?;
-        } else {
-            b += std::f64::consts::LN_2;
-            gb = g(b)?;
-        }
-    }
-    let mut side = 0;
-    for _ in 0..200 {
-        let x = (a * gb - b * ga) / (gb - ga);
-        if (b - a).abs() < ROOT_RTOL {
-            return Ok(x.exp());
-        }
-        let gx = g(x)?;
-        if gx == 0.0 {
-            return Ok(x.exp());
-        }
-        if gx * gb < 0.0 {
-            a = b;
-            ga = gb;
-            side = 0;
-        } else if side == -1 {
-            ga /= 2.0;
-        } else {
-            side = -1;
-        }
-        b = x;
-        gb = gx;
-        if (b - a).abs() < ROOT_RTOL || gx.abs() < ROOT_RTOL * 1e-3 {
-            return Ok(b.exp());
-        }
-    }
-    Ok(((a + b) / 2.0).exp())
+    crate::safety_map::speed_at_ratio(guess, ROOT_RTOL, &mut |v| ratio(v), None)
 }
 
 fn simulation(s: &Setup, speed: Option<f64>) -> Result<MethodResult, Error> {

@@ -45,3 +45,29 @@ def test_bad_arguments_name_the_field():
     with pytest.raises(flexrig.InputError) as e:
         flexrig.safety("chest", m_eff=5.0, area_model="fixed")
     assert e.value.field == "contact_area"
+
+
+def test_safety_map_equals_the_cli_map(cli, tmp_path):
+    import json
+
+    import numpy as np
+
+    cli("safety-map", "--region", "hands_and_fingers", "--material", "skinned_aluminium",
+        "--m-r", "0.051", "--x", "m-e=0.01:5:4:log", "--y", "k-delta=10,1e4,1e7",
+        "--out", str(tmp_path))
+    expected = json.loads((tmp_path / "safety_map.json").read_text())
+    got = flexrig.safety_map("hands_and_fingers", material="skinned_aluminium", m_r=0.051,
+                             x="m-e=0.01:5:4:log", y=("k_delta", [10.0, 1e4, 1e7]))
+    assert got["map"]["cells"][0]["x"] == expected["cells"][0]["x"]
+    for a, b in zip(got["map"]["cells"], expected["cells"]):
+        assert a["cj"] == b["cj"] and a["cl"] == b["cl"]
+    assert got["v_max_cj_mps"].shape == (3, 4)
+    assert got["v_max_cl_mps"][2, 3] == expected["cells"][11]["cl"]["v_max_mps"]
+    np.testing.assert_array_equal(got["ratio_cl_cj"], got["v_max_cl_mps"] / got["v_max_cj_mps"])
+
+
+def test_safety_map_refuses_a_bad_axis_naming_it():
+    with pytest.raises(flexrig.InputError, match="x"):
+        flexrig.safety_map("chest", m_r=0.05, x="speed=1:2:3")
+    with pytest.raises(flexrig.InputError):
+        flexrig.safety_map("chest", m_r=0.05, x=("weight", [1, 2]))

@@ -120,6 +120,11 @@ pub struct SafetyArgs {
     /// Print JSON instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Also write a report for a risk assessment: FILE.md (Markdown) or FILE.html (HTML), with
+    /// the inputs, every limit and its source, each method's calculation trace, a figure
+    /// (FILE_peak_force.svg beside it), the verdict and the ISO/PAS 5672 caveat.
+    #[arg(long, value_name = "FILE")]
+    pub report: Option<PathBuf>,
 }
 
 fn missing(flag: &str, needed: &str) -> Error {
@@ -190,24 +195,48 @@ impl SafetyArgs {
     }
 }
 
-/// Runs `flexrig safety`.
-pub fn run(args: &SafetyArgs, out: &mut dyn Write) -> Result<(), Error> {
-    let model = match &args.body_model {
+/// The body model of `--body-model FILE`, or `None` for the bundled ISO/TS 15066:2016 table.
+pub fn load_body_model(path: Option<&std::path::Path>) -> Result<Option<BodyModel>, Error> {
+    match path {
         Some(path) => {
             let text = std::fs::read_to_string(path).map_err(|source| Error::Read {
-                path: path.clone(),
+                path: path.to_path_buf(),
                 source,
             })?;
-            Some(BodyModel::from_toml_str(&text)?)
+            Ok(Some(BodyModel::from_toml_str(&text)?))
         }
-        None => None,
+        None => Ok(None),
+    }
+}
+
+/// Runs `flexrig safety`.
+pub fn run(args: &SafetyArgs, out: &mut dyn Write) -> Result<(), Error> {
+    let model = load_body_model(args.body_model.as_deref())?;
+    let input = args.input()?;
+    let (report, written) = match &args.report {
+        Some(path) => {
+            let (r, files) = flexrig::safety_report::write_report(&input, model.as_ref(), path)?;
+            (r, files)
+        }
+        None => (safety(&input, model.as_ref())?, Vec::new()),
     };
-    let report = safety(&args.input()?, model.as_ref())?;
     if args.json {
-        let value = serde_json::to_value(&report).expect("the report serialises");
+        let mut value = serde_json::to_value(&report).expect("the report serialises");
+        if !written.is_empty() {
+            value["files"] = serde_json::json!(
+                written
+                    .iter()
+                    .map(|p| p.display().to_string())
+                    .collect::<Vec<_>>()
+            );
+        }
         return print_json(out, &value);
     }
-    print_text(out, &report)
+    print_text(out, &report)?;
+    for p in &written {
+        line(out, format!("wrote {}", p.display()))?;
+    }
+    Ok(())
 }
 
 fn speed(s: &Speed) -> String {

@@ -50,7 +50,7 @@ from typing import TYPE_CHECKING, Any, Dict, List, Mapping, NamedTuple, Optional
 import numpy as np
 
 from . import _flexrig
-from ._safety import safety
+from ._safety import safety, safety_map
 from ._flexrig import SUMMARY_COLUMNS, InputError, SimulationError, Sweep, bundled_scenes
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -75,6 +75,7 @@ __all__ = [
     "impact",
     "run",
     "safety",
+    "safety_map",
     "scene_text",
     "sweep",
 ]

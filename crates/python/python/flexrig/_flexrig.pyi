@@ -42,6 +42,11 @@ def safety_json(input_json: str, body_model_toml: Optional[str] = None) -> str:
     """The report of ``flexrig safety --json`` for a safety input given as JSON (see
     ``flexrig.safety``)."""
 
+def safety_map_json(input_json: str, body_model_toml: Optional[str] = None) -> str:
+    """The safe-speed map of ``flexrig safety-map`` (its safety_map.json) for a map input given
+    as JSON; an axis may be ``{"text": "PARAM=START:STOP:COUNT[:log]"}`` (see
+    ``flexrig.safety_map``)."""
+
 def impact_exact(
     m_h: npt.NDArray[np.float64],
     m_eff: npt.NDArray[np.float64],

@@ -102,3 +102,175 @@ def safety(
         with open(body_model, encoding="utf-8") as f:
             text = f.read()
     return json.loads(_flexrig.safety_json(json.dumps(data, allow_nan=True), text))
+
+
+#: Names of the map's design parameters: the flag's name (and its snake_case twin) to the
+#: library's.
+_MAP_PARAMETERS = {
+    "m-e": "payload",
+    "m-r": "link_mass",
+    "k-delta": "link_stiffness",
+    "ei": "bending_stiffness",
+    "k-c": "contact_stiffness",
+}
+
+
+def _axis(field: str, axis: Any) -> Dict[str, Any]:
+    """An axis as the library's JSON: from ``"PARAM=START:STOP:COUNT[:log]"`` (parsed by the
+    library, as the command line does) or from ``(PARAM, values)``."""
+    if isinstance(axis, str):
+        return {"text": axis}
+    try:
+        name, values = axis
+    except (TypeError, ValueError):
+        raise _input_error(field, f"{field}: give 'PARAM=START:STOP:COUNT[:log]' or (PARAM, values), not {axis!r}")
+    key = str(name).replace("_", "-")
+    if key not in _MAP_PARAMETERS:
+        raise _input_error(field, f"{field}: the parameter must be one of {', '.join(_MAP_PARAMETERS)}, not {name!r}")
+    return {"parameter": _MAP_PARAMETERS[key], "values": [float(v) for v in values]}
+
+
+def safety_map(
+    region: str,
+    *,
+    x: Any = "m-e=0.01:5:30:log",
+    y: Any = "k-delta=10:1e7:30:log",
+    area: Optional[str] = None,
+    contact: str = "transient",
+    m_r: Optional[float] = None,
+    m_e: Optional[float] = None,
+    k_delta: Optional[float] = None,
+    length: float = 1.0,
+    k_c: Optional[float] = None,
+    n: Optional[float] = None,
+    material: Optional[str] = None,
+    area_model: Optional[str] = None,
+    radius: Optional[float] = None,
+    contact_area: Optional[float] = None,
+    method: str = "energy",
+    joint: str = "held",
+    rotor_inertia: Optional[float] = None,
+    tol: float = 1e-6,
+    root_rtol: float = 1e-6,
+    speed: Optional[float] = None,
+    body_model: Optional[Union[str, "os.PathLike[str]"]] = None,
+) -> Dict[str, Any]:
+    """The safe-speed map of ``flexrig safety-map`` (the same numbers, no files): the permissible
+    speed of the compliant joint (CJ) and the compliant link (CL) over two design parameters.
+
+    ``x`` and ``y`` are ``"PARAM=START:STOP:COUNT[:log]"`` (or ``"PARAM=V1,V2"``) or
+    ``(PARAM, values)`` with PARAM one of ``m-e`` (payload, kg), ``m-r`` (link mass, kg),
+    ``k-delta`` (N/m), ``ei`` (N·m², with ``length`` in m), ``k-c`` (N/m^n). ``method`` is
+    ``"standard"``, ``"energy"`` or ``"simulation"`` (the FE CJ and modal CL; ``joint`` ``"held"``
+    or ``"free_hub"`` with ``rotor_inertia``). The other arguments are those of
+    :func:`flexrig.safety`.
+
+    Returns a dict: ``x``, ``y`` (1-D NumPy arrays), the names ``x_parameter``, ``y_parameter``,
+    and 2-D arrays indexed ``[iy, ix]``: ``v_max_cj_mps``, ``v_max_cl_mps``, ``ratio_cl_cj``,
+    ``by_force_cj_mps``, ``by_force_cl_mps``, ``m_eff_cj_kg``, ``m_eff_cl_kg`` (NaN where a cell
+    failed, ``inf`` where no limit bounds the speed), ``errors`` (a list of the failed cells'
+    messages), ``force_limit_n``, ``pressure_limit_pa`` (None: not assessed), ``region_name``,
+    ``area``, ``seconds``, and ``map`` (the library's full result as a dict). Ctrl-C stops it
+    (KeyboardInterrupt).
+    """
+    import numpy as np
+
+    if (k_c is None) != (n is None):
+        raise _input_error("k_c", "k_c and n go together (f = k_c δ^n)")
+    if k_c is not None:
+        if material is not None:
+            raise _input_error("material", "give either k_c and n or material")
+        law: Any = {"hertz": {"k_c": k_c, "n": n}}
+    elif material is not None:
+        law = {"material": material}
+    else:
+        law = "body_spring"
+    model: Optional[Dict[str, Any]] = None
+    if area_model is not None:
+        kind = area_model.replace("-", "_")
+        if kind in ("hertz_sphere", "thin_layer"):
+            if radius is None:
+                raise _input_error("radius", f"area_model {area_model} needs radius (m)")
+            model = {"model": kind, "radius_m": radius}
+        elif kind == "fixed":
+            if contact_area is None:
+                raise _input_error("contact_area", "area_model fixed needs contact_area (m²)")
+            model = {"model": "fixed", "area_m2": contact_area}
+        else:
+            raise _input_error("area_model", f"unknown area_model {area_model!r}: hertz_sphere, thin_layer or fixed")
+    kind_of_joint = joint.replace("-", "_")
+    if kind_of_joint == "held":
+        if rotor_inertia is not None:
+            raise _input_error("rotor_inertia", "rotor_inertia only with joint='free_hub'")
+        joint_data: Any = "held"
+    elif kind_of_joint == "free_hub":
+        if rotor_inertia is None:
+            raise _input_error("rotor_inertia", "joint='free_hub' needs rotor_inertia (kg·m², > 0)")
+        joint_data = {"free_hub": {"rotor_inertia": rotor_inertia}}
+    else:
+        raise _input_error("joint", f"unknown joint {joint!r}: held or free_hub")
+    data = {
+        "region": region,
+        "area": area,
+        "contact": contact.replace("-", "_"),
+        "m_r": m_r,
+        "m_e": m_e,
+        "k_delta": k_delta,
+        "law": law,
+        "area_model": model,
+        "x": _axis("x", x),
+        "y": _axis("y", y),
+        "method": method,
+        "simulation": {
+            "joint": joint_data,
+            "length": length,
+            "tol": tol,
+            "cj_rtol": 1e-10,
+            "root_rtol": root_rtol,
+        },
+        "speed": speed,
+    }
+    text = None
+    if body_model is not None:
+        with open(body_model, encoding="utf-8") as f:
+            text = f.read()
+    result = json.loads(_flexrig.safety_map_json(json.dumps(data, allow_nan=True), text))
+    xs = np.asarray(result["input"]["x"]["values"], dtype=float)
+    ys = np.asarray(result["input"]["y"]["values"], dtype=float)
+    shape = (len(ys), len(xs))
+
+    def speed_of(value: Any) -> float:
+        return float("inf") if value == "unlimited" else float(value)
+
+    def grid(design: str, key: str) -> Any:
+        out = np.full(shape, np.nan)
+        for i, cell in enumerate(result["cells"]):
+            if design in cell:
+                value = cell[design][key]
+                out.flat[i] = speed_of(value) if key.endswith("_mps") else float(value)
+        return out
+
+    ratio = np.full(shape, np.nan)
+    for i, cell in enumerate(result["cells"]):
+        if "ratio_cl_cj" in cell:
+            ratio.flat[i] = cell["ratio_cl_cj"]
+    return {
+        "x": xs,
+        "y": ys,
+        "x_parameter": result["input"]["x"]["parameter"],
+        "y_parameter": result["input"]["y"]["parameter"],
+        "v_max_cj_mps": grid("cj", "v_max_mps"),
+        "v_max_cl_mps": grid("cl", "v_max_mps"),
+        "ratio_cl_cj": ratio,
+        "by_force_cj_mps": grid("cj", "by_force_mps"),
+        "by_force_cl_mps": grid("cl", "by_force_mps"),
+        "m_eff_cj_kg": grid("cj", "m_eff_kg"),
+        "m_eff_cl_kg": grid("cl", "m_eff_kg"),
+        "errors": [cell["error"] for cell in result["cells"] if "error" in cell],
+        "force_limit_n": result["force_limit_n"],
+        "pressure_limit_pa": result.get("pressure_limit_pa"),
+        "region_name": result["region_name"],
+        "area": result["area"],
+        "seconds": result["seconds"],
+        "map": result,
+    }

@@ -1,0 +1,293 @@
+//! `flexrig safety-map`: the permissible speed of the CJ and the CL design over two design
+//! parameters, with their ratio, as CSV, JSON and a heat-map figure, see
+//! [`flexrig::safety_map`].
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use flexrig::safety::{ContactAreaModel, ContactKind, ContactLaw};
+use flexrig::safety_map::{
+    MapJoint, MapMethod, SafetyMapFiles, SafetyMapInput, SimulationSettings, parse_axis,
+};
+use flexrig::{CancelToken, Error};
+use serde_json::json;
+
+use super::impact_args::JointArg;
+use super::safety::{AreaModelArg, ContactArg, load_body_model};
+use crate::print::{line, print_json};
+
+/// The map's method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum MapMethodArg {
+    /// The standard's formula (ISO/TS 15066 Annex A), m_R = m_eff.
+    Standard,
+    /// The lumped energy method (CJ: γ = 1, CL: γ = 2/3).
+    Energy,
+    /// The finite-element impact (CJ rigid link on its spring, CL modal beam) and a root search.
+    Simulation,
+}
+
+/// Arguments of `flexrig safety-map`.
+#[derive(Debug, Args)]
+#[command(allow_negative_numbers = true)]
+pub struct SafetyMapArgs {
+    /// The x axis: PARAM=START:STOP:COUNT[:log] (both ends included) or PARAM=V1,V2,…, with
+    /// PARAM one of m-e (payload, kg), m-r (link mass, kg), k-delta (link stiffness, N/m), ei
+    /// (bending stiffness, N·m², with --length), k-c (contact stiffness, N/mⁿ).
+    #[arg(long, value_name = "PARAM=RANGE", default_value = "m-e=0.01:5:30:log")]
+    pub x: String,
+    /// The y axis, as --x.
+    #[arg(
+        long,
+        value_name = "PARAM=RANGE",
+        default_value = "k-delta=10:1e7:30:log"
+    )]
+    pub y: String,
+    /// Body region key of the body model, e.g. chest, hands_and_fingers.
+    #[arg(long, value_name = "REGION")]
+    pub region: String,
+    /// Specific area of the region for the pressure limit (default: its most sensitive area).
+    #[arg(long, value_name = "NAME")]
+    pub area: Option<String>,
+    /// Contact kind.
+    #[arg(long, value_enum, default_value = "transient")]
+    pub contact: ContactArg,
+    /// Link mass m_r (kg), unless an axis.
+    #[arg(long = "m-r", value_name = "KG")]
+    pub m_r: Option<f64>,
+    /// Payload m_e (kg), unless an axis.
+    #[arg(long = "m-e", value_name = "KG")]
+    pub m_e: Option<f64>,
+    /// Link lateral stiffness k_δ (N/m), unless an axis (default: a rigid link, lumped methods
+    /// only).
+    #[arg(long = "k-delta", value_name = "N_PER_M")]
+    pub k_delta: Option<f64>,
+    /// Link length L (m): converts an EI axis to k_δ = 3EI/L³ and sets the simulated beam.
+    #[arg(long, value_name = "M", default_value_t = 1.0)]
+    pub length: f64,
+    /// Contact stiffness k_c [N/m^n] (with --n; default: the region's body spring, n = 1).
+    #[arg(
+        long = "k-c",
+        value_name = "K",
+        requires = "n",
+        conflicts_with = "material"
+    )]
+    pub k_c: Option<f64>,
+    /// Hertz exponent n (with --k-c).
+    #[arg(long, value_name = "N", requires = "k_c")]
+    pub n: Option<f64>,
+    /// A bundled material for the Hertz law (abs, skinned_aluminium, skinned_iron); its dome
+    /// gives the default Hertz-sphere area.
+    #[arg(long, value_name = "NAME")]
+    pub material: Option<String>,
+    /// Contact-area model for pressure (default: hertz-sphere on the material's dome with
+    /// --material, else pressure is not assessed).
+    #[arg(long = "area-model", value_enum)]
+    pub area_model: Option<AreaModelArg>,
+    /// Sphere radius R (m) of the hertz-sphere and thin-layer area models.
+    #[arg(long, value_name = "M")]
+    pub radius: Option<f64>,
+    /// Contact area (m²) of the fixed area model.
+    #[arg(long = "contact-area", value_name = "M2")]
+    pub contact_area: Option<f64>,
+    /// The method.
+    #[arg(long, value_enum, default_value = "energy")]
+    pub method: MapMethodArg,
+    /// The joint during the simulated impact: held (driven at constant speed, the body region
+    /// arriving at v) or a free hub (with --rotor-inertia).
+    #[arg(long, value_enum, default_value = "held")]
+    pub joint: JointArg,
+    /// Rotor inertia J_R of the free hub, kg·m² (with --joint free-hub).
+    #[arg(long, value_name = "KG_M2")]
+    pub rotor_inertia: Option<f64>,
+    /// Tolerance of the CL's modal integrator (simulation; 1e-10 to 1e-3).
+    #[arg(long, value_name = "TOL", default_value_t = 1e-6)]
+    pub tol: f64,
+    /// Relative tolerance of the root search on the speed (simulation; 1e-13 to 1e-4).
+    #[arg(long = "root-rtol", value_name = "RTOL", default_value_t = 1e-6)]
+    pub root_rtol: f64,
+    /// A speed (m/s) to outline on the figure: the cells that permit it.
+    #[arg(long, value_name = "M_PER_S")]
+    pub speed: Option<f64>,
+    /// A body-model TOML file in the format of assets/safety/iso_ts_15066_2016.toml.
+    #[arg(long = "body-model", value_name = "FILE")]
+    pub body_model: Option<PathBuf>,
+    /// Directory for safety_map.csv, safety_map.json and the figure (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+    /// Print JSON (the summary and the files) instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Size and formats of the figure.
+    #[command(flatten)]
+    pub figure: super::figure_args::FigureArgs,
+}
+
+fn missing(flag: &str, needed: &str) -> Error {
+    Error::InvalidArgument {
+        arg: flag.into(),
+        value: "(missing)".into(),
+        allowed: needed.into(),
+    }
+}
+
+impl SafetyMapArgs {
+    /// The library's input.
+    pub fn input(&self) -> Result<SafetyMapInput, Error> {
+        let law = match (self.k_c, self.n, &self.material) {
+            (Some(k_c), Some(n), _) => ContactLaw::Hertz { k_c, n },
+            (_, _, Some(m)) => ContactLaw::Material(m.clone()),
+            _ => ContactLaw::BodySpring,
+        };
+        let area_model = match self.area_model {
+            None => None,
+            Some(AreaModelArg::HertzSphere) => Some(ContactAreaModel::HertzSphere {
+                radius_m: self.radius.ok_or_else(|| {
+                    missing("--radius", "--area-model hertz-sphere needs --radius")
+                })?,
+            }),
+            Some(AreaModelArg::ThinLayer) => Some(ContactAreaModel::ThinLayer {
+                radius_m: self
+                    .radius
+                    .ok_or_else(|| missing("--radius", "--area-model thin-layer needs --radius"))?,
+            }),
+            Some(AreaModelArg::Fixed) => Some(ContactAreaModel::Fixed {
+                area_m2: self.contact_area.ok_or_else(|| {
+                    missing("--contact-area", "--area-model fixed needs --contact-area")
+                })?,
+            }),
+        };
+        let joint = match (self.joint, self.rotor_inertia) {
+            (JointArg::Held, None) => MapJoint::Held,
+            (JointArg::Held, Some(j)) => {
+                return Err(Error::InvalidArgument {
+                    arg: "--rotor-inertia".into(),
+                    value: flexrig::output::display_number(j),
+                    allowed: "only with --joint free-hub".into(),
+                });
+            }
+            (JointArg::FreeHub, None) => {
+                return Err(missing(
+                    "--rotor-inertia",
+                    "--joint free-hub needs --rotor-inertia (kg·m², > 0)",
+                ));
+            }
+            (JointArg::FreeHub, Some(j)) => MapJoint::FreeHub { rotor_inertia: j },
+        };
+        Ok(SafetyMapInput {
+            region: self.region.clone(),
+            area: self.area.clone(),
+            contact: match self.contact {
+                ContactArg::Transient => ContactKind::Transient,
+                ContactArg::QuasiStatic => ContactKind::QuasiStatic,
+            },
+            m_r: self.m_r,
+            m_e: self.m_e,
+            k_delta: self.k_delta,
+            law,
+            area_model,
+            x: parse_axis("--x", &self.x)?,
+            y: parse_axis("--y", &self.y)?,
+            method: match self.method {
+                MapMethodArg::Standard => MapMethod::Standard,
+                MapMethodArg::Energy => MapMethod::Energy,
+                MapMethodArg::Simulation => MapMethod::Simulation,
+            },
+            simulation: SimulationSettings {
+                joint,
+                length: self.length,
+                tol: self.tol,
+                root_rtol: self.root_rtol,
+                ..SimulationSettings::DEFAULT
+            },
+            speed: self.speed,
+        })
+    }
+}
+
+/// Runs `flexrig safety-map`.
+pub fn run(args: &SafetyMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
+    let model = load_body_model(args.body_model.as_deref())?;
+    let input = args.input()?;
+    let files = SafetyMapFiles {
+        out: args.out.clone(),
+        figures: args.figure.options()?,
+    };
+    let (map, written) = flexrig::safety_map::run(&input, model.as_ref(), &files, cancel)?;
+    let ok: Vec<_> = map.cells.iter().filter(|c| c.error.is_none()).collect();
+    let range = |f: &dyn Fn(&&flexrig::safety_map::MapCell) -> f64| {
+        ok.iter()
+            .map(f)
+            .filter(|v| v.is_finite())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                (a.min(v), b.max(v))
+            })
+    };
+    let cj = range(&|c| c.cj.map_or(f64::NAN, |d| d.v_max_mps.value()));
+    let cl = range(&|c| c.cl.map_or(f64::NAN, |d| d.v_max_mps.value()));
+    let ratio = range(&|c| c.ratio_cl_cj.unwrap_or(f64::NAN));
+    let paths: Vec<_> = written.iter().map(|p| p.display().to_string()).collect();
+    let finite = |(a, b): (f64, f64)| {
+        if a.is_finite() && b.is_finite() {
+            json!([a, b])
+        } else {
+            json!([])
+        }
+    };
+    if args.json {
+        return print_json(
+            out,
+            &json!({
+                "region": map.input.region,
+                "area": map.area,
+                "method": map.input.method,
+                "cells": map.cells.len(),
+                "failed": map.cells.len() - ok.len(),
+                "v_max_cj_mps_range": finite(cj),
+                "v_max_cl_mps_range": finite(cl),
+                "ratio_cl_cj_range": finite(ratio),
+                "seconds": map.seconds,
+                "files": paths,
+            }),
+        );
+    }
+    let nx = map.input.x.values.len();
+    let ny = map.input.y.values.len();
+    line(
+        out,
+        format!(
+            "safe-speed map near the {} ({}): {} × {} cells over {} × {}, {}",
+            map.region_name.to_lowercase(),
+            map.area,
+            nx,
+            ny,
+            map.input.x.parameter.label(),
+            map.input.y.parameter.label(),
+            flexrig::safety_map::method_text(&map)
+        ),
+    )?;
+    let show = |(a, b): (f64, f64)| {
+        if a.is_finite() {
+            format!("{a:.4} to {b:.4}")
+        } else {
+            "—".into()
+        }
+    };
+    line(out, format!("v_max CJ   {} m/s", show(cj)))?;
+    line(out, format!("v_max CL   {} m/s", show(cl)))?;
+    line(out, format!("CL/CJ      {}", show(ratio)))?;
+    line(
+        out,
+        format!(
+            "{} cells in {:.2} s ({} failed)",
+            map.cells.len(),
+            map.seconds,
+            map.cells.len() - ok.len()
+        ),
+    )?;
+    for p in &paths {
+        line(out, format!("wrote {p}"))?;
+    }
+    Ok(())
+}

@@ -1,0 +1,1391 @@
+//! Safe-speed maps: the permissible speed of the compliant-joint (CJ) and the compliant-link
+//! (CL) design of one robot link near one body region (ISO/TS 15066:2016, power and force
+//! limiting) over two design parameters, with the ratio CL/CJ, as data, CSV and a heat-map
+//! figure.
+//!
+//! Every cell is one design: link mass m_r, payload m_e, lateral tip stiffness k_δ = 3EI/L³
+//! (Eq. 1–3) and the skin's contact law f = k_c δ^n (Eq. 4). Two of them vary along the axes
+//! ([`MapParameter`]); the others are fixed. The methods:
+//!
+//! - **standard** (method a): the standard's formula v = F_max/√(μK) (Annex A, Eq. A.1–A.6) with
+//!   m_R = m_eff; the CJ and CL differ only by m_eff.
+//! - **energy** (method b, lumped): the paper's energy balance ½μv² = U(f_max) (Eq. 13 with the
+//!   Hertz law and k_δ in series, Eq. 4–9), m_eff = m_e + γ m_r/3 (Eq. 5) with γ = 1 for the CJ
+//!   and γ = 2/3 for the CL. Every cell is [`crate::safety::safety`] at the cell's parameters,
+//!   so it equals the single-point answer bit for bit.
+//! - **simulation** (method c): the speed at which the finite-element impact's peak force
+//!   reaches the limit (and the force at which the mean pressure reaches its limit), by a
+//!   bracket and the Illinois root search on ln v ([`speed_at_ratio`]): the CJ as a rigid link on
+//!   its torsion spring k_θr = k_δL² (DOP853, [`flexrig_impact::cj`]), the CL as the
+//!   Euler–Bernoulli beam on a mesh graded towards the tip, by its modes and the exact modal
+//!   integrator ([`flexrig_impact::cl_modal`]). So CJ and CL differ by the link's real
+//!   compliance, not by a lumped γ. The joint is held (driven at constant speed, the body region
+//!   arriving at v: the test bed's operator striking the robot) or a free hub with the motor's
+//!   rotor inertia behind it. The CL's modes are solved once per cell at the lumped CL speed and
+//!   reused along the root search (the free hub's initial modal rates scale with v exactly).
+//!   The modal CL holds for the linear beam (small deflections, no end stop), elastic contact.
+//!
+//! Speeds are in m/s, masses in kg, stiffnesses in N/m (k_c in N/m^n), EI in N·m².
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+use flexrig_contact::{DampingSpec, Hertz, Materials};
+use flexrig_impact::cl_modal::run_on_modes;
+use flexrig_impact::graded::{GradedMesh, cl_tip_modes};
+use flexrig_impact::modal_run::ModalOptions;
+use flexrig_impact::{FreeMassImpact, ImpactError, Joint, LinkParams};
+use flexrig_safety::{BodyModel, ContactAreaModel, ContactKind, EnergyContact, GoverningLimit};
+use flexrig_safety::{LinkStiffness, PressureCrossing};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::safety::{
+    ContactLaw, MethodResult, RobotEffectiveMass, SafetyInput, SafetyMethod, Speed, Unbounded,
+    safety,
+};
+use crate::{CancelToken, Error};
+
+/// γ of the compliant joint (rigid link on a torsion spring): m_eff = m_e + m_r/3 (Eq. 5).
+pub const GAMMA_CJ: f64 = 1.0;
+/// γ of the compliant link in the lumped model: m_eff = m_e + 2m_r/9 (Eq. 5, γ = 2/3).
+pub const GAMMA_CL: f64 = 2.0 / 3.0;
+/// Most points along one axis.
+pub const MAX_AXIS_POINTS: usize = 200;
+/// The human mass \[kg\] of a clamped body (quasi-static contact) in the simulation method
+/// (the finite-element impact's largest m_h; a free hub only).
+pub const CLAMPED_HUMAN_MASS: f64 = 1e9;
+
+/// A design parameter along an axis of the map.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MapParameter {
+    /// Payload (end mass) m_e \[kg\] ≥ 0.
+    Payload,
+    /// Link mass m_r \[kg\] > 0.
+    LinkMass,
+    /// Lateral tip stiffness k_δ \[N/m\] > 0 (Eq. 1–3).
+    LinkStiffness,
+    /// Bending stiffness EI \[N·m²\] > 0: k_δ = 3EI/L³ with the link length L.
+    BendingStiffness,
+    /// Contact stiffness k_c \[N/m^n\] > 0 (Eq. 4), the exponent n kept.
+    ContactStiffness,
+}
+
+impl MapParameter {
+    /// Every parameter.
+    pub const ALL: [MapParameter; 5] = [
+        MapParameter::Payload,
+        MapParameter::LinkMass,
+        MapParameter::LinkStiffness,
+        MapParameter::BendingStiffness,
+        MapParameter::ContactStiffness,
+    ];
+
+    /// The name on the command line (`m-e`, `m-r`, `k-delta`, `ei`, `k-c`).
+    pub fn flag_name(self) -> &'static str {
+        match self {
+            MapParameter::Payload => "m-e",
+            MapParameter::LinkMass => "m-r",
+            MapParameter::LinkStiffness => "k-delta",
+            MapParameter::BendingStiffness => "ei",
+            MapParameter::ContactStiffness => "k-c",
+        }
+    }
+
+    /// Parses a command-line name (`m-e`/`m_e`/`payload`, `m-r`/`m_r`, `k-delta`/`k_delta`, `ei`,
+    /// `k-c`/`k_c`).
+    pub fn parse(text: &str) -> Option<MapParameter> {
+        Some(match text.trim().replace('_', "-").as_str() {
+            "m-e" | "payload" => MapParameter::Payload,
+            "m-r" | "link-mass" => MapParameter::LinkMass,
+            "k-delta" | "link-stiffness" => MapParameter::LinkStiffness,
+            "ei" | "EI" => MapParameter::BendingStiffness,
+            "k-c" | "contact-stiffness" => MapParameter::ContactStiffness,
+            _ => return None,
+        })
+    }
+
+    /// The axis label with the unit, as the figure prints it.
+    pub fn label(self) -> &'static str {
+        match self {
+            MapParameter::Payload => "payload m_e [kg]",
+            MapParameter::LinkMass => "link mass m_r [kg]",
+            MapParameter::LinkStiffness => "link stiffness k_δ [N/m]",
+            MapParameter::BendingStiffness => "bending stiffness EI [N·m²]",
+            MapParameter::ContactStiffness => "contact stiffness k_c [N/mⁿ]",
+        }
+    }
+
+    /// The CSV column of the axis (name and unit).
+    pub fn column(self) -> &'static str {
+        match self {
+            MapParameter::Payload => "m_e_kg",
+            MapParameter::LinkMass => "m_r_kg",
+            MapParameter::LinkStiffness => "k_delta_n_per_m",
+            MapParameter::BendingStiffness => "ei_n_m2",
+            MapParameter::ContactStiffness => "k_c_n_per_m_n",
+        }
+    }
+
+    /// Checks one value of the parameter; the error names `flag`.
+    fn check(self, flag: &str, v: f64) -> Result<(), Error> {
+        let ok = match self {
+            MapParameter::Payload => v.is_finite() && (0.0..=1e6).contains(&v),
+            MapParameter::LinkMass => v.is_finite() && v >= 1e-6 && v <= 1e6,
+            MapParameter::LinkStiffness => v.is_finite() && v >= 1e-3 && v <= 1e12,
+            MapParameter::BendingStiffness | MapParameter::ContactStiffness => {
+                v.is_finite() && v > 0.0 && v <= 1e20
+            }
+        };
+        if ok {
+            Ok(())
+        } else {
+            let allowed = match self {
+                MapParameter::Payload => "a payload in [0, 1e6] kg",
+                MapParameter::LinkMass => "a link mass in [1e-6, 1e6] kg",
+                MapParameter::LinkStiffness => "a link stiffness in [1e-3, 1e12] N/m",
+                MapParameter::BendingStiffness => "a bending stiffness in (0, 1e20] N·m²",
+                MapParameter::ContactStiffness => "a contact stiffness in (0, 1e20] N/mⁿ",
+            };
+            Err(bad(flag, display(v), allowed))
+        }
+    }
+}
+
+/// One axis: a parameter and its values (ascending, > 0 except a payload of 0 on a linear
+/// axis, which the figure cannot draw on its log axis).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MapAxis {
+    /// The parameter.
+    pub parameter: MapParameter,
+    /// Its values, strictly ascending.
+    pub values: Vec<f64>,
+}
+
+/// Parses `PARAM=START:STOP:COUNT[:log]` (both ends included, the sweep's range syntax) or
+/// `PARAM=V1,V2,…` for the flag `flag`.
+pub fn parse_axis(flag: &str, text: &str) -> Result<MapAxis, Error> {
+    let names = MapParameter::ALL
+        .iter()
+        .map(|p| p.flag_name())
+        .collect::<Vec<_>>()
+        .join(", ");
+    let syntax = format!(
+        "PARAM=START:STOP:COUNT[:log] (both ends included, e.g. k-delta=10:1e7:30:log) or \
+         PARAM=V1,V2,… with PARAM one of {names}"
+    );
+    let (name, spec) = text
+        .split_once('=')
+        .ok_or_else(|| bad(flag, text, &syntax))?;
+    let parameter = MapParameter::parse(name).ok_or_else(|| {
+        bad(
+            flag,
+            text,
+            &format!("the parameter must be one of {names} (then =RANGE)"),
+        )
+    })?;
+    let number = |s: &str| s.trim().parse::<f64>().ok().filter(|v| v.is_finite());
+    let values: Vec<f64> = if spec.contains(':') {
+        let parts: Vec<&str> = spec.split(':').collect();
+        if !(parts.len() == 3 || (parts.len() == 4 && parts[3].trim() == "log")) {
+            return Err(bad(flag, text, &syntax));
+        }
+        let (Some(start), Some(stop)) = (number(parts[0]), number(parts[1])) else {
+            return Err(bad(flag, text, &syntax));
+        };
+        let count: usize = parts[2].trim().parse().map_err(|_| {
+            bad(
+                flag,
+                text,
+                "START:STOP:COUNT needs a whole number of points, e.g. 10:1e7:30:log",
+            )
+        })?;
+        if !(2..=MAX_AXIS_POINTS).contains(&count) {
+            return Err(bad(
+                flag,
+                text,
+                &format!("the count must lie in [2, {MAX_AXIS_POINTS}]"),
+            ));
+        }
+        let log = parts.len() == 4;
+        if log && !(start > 0.0 && stop > 0.0) {
+            return Err(bad(flag, text, "a log range needs START > 0 and STOP > 0"));
+        }
+        (0..count)
+            .map(|i| {
+                // land exactly on both ends
+                if i + 1 == count {
+                    return stop;
+                }
+                if i == 0 {
+                    return start;
+                }
+                let s = i as f64 / (count - 1) as f64;
+                if log {
+                    (start.ln() + s * (stop.ln() - start.ln())).exp()
+                } else {
+                    start + s * (stop - start)
+                }
+            })
+            .collect()
+    } else {
+        spec.split(',')
+            .map(|s| number(s).ok_or_else(|| bad(flag, text, &syntax)))
+            .collect::<Result<_, _>>()?
+    };
+    let axis = MapAxis { parameter, values };
+    axis.validate(flag)?;
+    Ok(axis)
+}
+
+impl MapAxis {
+    /// Checks the values (count, order, each value's range); the error names `flag`.
+    pub fn validate(&self, flag: &str) -> Result<(), Error> {
+        if !(2..=MAX_AXIS_POINTS).contains(&self.values.len()) {
+            return Err(bad(
+                flag,
+                format!("{} values", self.values.len()),
+                &format!("an axis has 2 to {MAX_AXIS_POINTS} values"),
+            ));
+        }
+        for v in &self.values {
+            self.parameter.check(flag, *v)?;
+        }
+        if self.values.windows(2).any(|w| !(w[1] > w[0])) {
+            return Err(bad(
+                flag,
+                self.values
+                    .iter()
+                    .map(|v| display(*v))
+                    .collect::<Vec<_>>()
+                    .join(","),
+                "the values must increase strictly (START < STOP)",
+            ));
+        }
+        if self.values[0] <= 0.0 {
+            return Err(bad(
+                flag,
+                display(self.values[0]),
+                "values > 0: the map's axes are logarithmic (use e.g. m-e=0.01:5:30:log)",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The method of a map.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MapMethod {
+    /// The standard's formula (Annex A, Eq. A.1–A.6), m_R = m_eff.
+    Standard,
+    /// The lumped energy method (Eq. 13 generalised).
+    Energy,
+    /// The finite-element impact (CJ by DOP853, CL by its modes) and a root search on v.
+    Simulation,
+}
+
+/// The joint during the simulated impact.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MapJoint {
+    /// Driven at constant speed (the body region arrives at v; the test bed's operator).
+    Held,
+    /// A free hub with the motor's rotor inertia J_R \[kg·m²\] behind the link.
+    FreeHub {
+        /// J_R \[kg·m²\] > 0.
+        rotor_inertia: f64,
+    },
+}
+
+/// Tolerances of the simulation method.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SimulationSettings {
+    /// The joint during the impact.
+    pub joint: MapJoint,
+    /// Link length L \[m\] (the transverse impact of an Euler–Bernoulli beam depends on m_r and
+    /// k_δ only; L sets EI = k_δL³/3).
+    pub length: f64,
+    /// Tolerance of the CL's modal integrator (relative deviation of the force's linear hold).
+    pub tol: f64,
+    /// Relative tolerance of the CJ's DOP853 integration.
+    pub cj_rtol: f64,
+    /// Relative tolerance of the root search on the speed.
+    pub root_rtol: f64,
+}
+
+impl SimulationSettings {
+    /// Held joint, L = 1 m, modal tol 1e-6, CJ rtol 1e-10, root 1e-6: each speed converged well
+    /// below 1e-4 relative (tested against tol 1e-8, root 1e-10).
+    pub const DEFAULT: SimulationSettings = SimulationSettings {
+        joint: MapJoint::Held,
+        length: 1.0,
+        tol: 1e-6,
+        cj_rtol: 1e-10,
+        root_rtol: 1e-6,
+    };
+
+    fn validate(&self) -> Result<(), Error> {
+        if let MapJoint::FreeHub { rotor_inertia } = self.joint
+            && !(rotor_inertia.is_finite() && (1e-12..=1e12).contains(&rotor_inertia))
+        {
+            return Err(bad(
+                "--rotor-inertia",
+                display(rotor_inertia),
+                "must lie in [1e-12, 1e12] kg·m²",
+            ));
+        }
+        if !(self.length.is_finite() && (1e-3..=1e3).contains(&self.length)) {
+            return Err(bad(
+                "--length",
+                display(self.length),
+                "must lie in [1e-3, 1e3] m",
+            ));
+        }
+        if !(self.tol.is_finite() && (1e-10..=1e-3).contains(&self.tol)) {
+            return Err(bad("--tol", display(self.tol), "must lie in [1e-10, 1e-3]"));
+        }
+        if !(self.cj_rtol.is_finite() && (1e-13..=1e-4).contains(&self.cj_rtol)) {
+            return Err(bad(
+                "--cj-rtol",
+                display(self.cj_rtol),
+                "must lie in [1e-13, 1e-4]",
+            ));
+        }
+        if !(self.root_rtol.is_finite() && (1e-13..=1e-4).contains(&self.root_rtol)) {
+            return Err(bad(
+                "--root-rtol",
+                display(self.root_rtol),
+                "must lie in [1e-13, 1e-4]",
+            ));
+        }
+        Ok(())
+    }
+
+    fn joint(&self) -> Joint {
+        match self.joint {
+            MapJoint::Held => Joint::Held,
+            MapJoint::FreeHub { rotor_inertia } => Joint::FreeHub { rotor_inertia },
+        }
+    }
+}
+
+/// One safe-speed map question, SI units.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SafetyMapInput {
+    /// Body region key (`--region`).
+    pub region: String,
+    /// Specific area for the pressure limit (absent: the region's most sensitive area).
+    #[serde(default)]
+    pub area: Option<String>,
+    /// Transient or quasi-static contact.
+    pub contact: ContactKind,
+    /// Link mass m_r \[kg\] (unless an axis).
+    #[serde(default)]
+    pub m_r: Option<f64>,
+    /// Payload m_e \[kg\] (unless an axis).
+    #[serde(default)]
+    pub m_e: Option<f64>,
+    /// Link stiffness k_δ \[N/m\] (unless an axis; absent: a rigid link, lumped methods only).
+    #[serde(default)]
+    pub k_delta: Option<f64>,
+    /// The skin's contact law.
+    pub law: ContactLaw,
+    /// The contact-area model for pressure (absent: the material's dome with a material, else
+    /// force only).
+    #[serde(default)]
+    pub area_model: Option<ContactAreaModel>,
+    /// The x axis.
+    pub x: MapAxis,
+    /// The y axis.
+    pub y: MapAxis,
+    /// The method.
+    pub method: MapMethod,
+    /// The simulation method's joint, length and tolerances (L also converts an EI axis).
+    pub simulation: SimulationSettings,
+    /// A speed to outline on the figure: the cells that permit it \[m/s\].
+    #[serde(default)]
+    pub speed: Option<f64>,
+}
+
+/// The permissible speed of one design (CJ or CL) of a cell.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DesignSpeed {
+    /// m_eff = m_e + γ m_r/3 \[kg\] (Eq. 5).
+    pub m_eff_kg: f64,
+    /// v_max = min(by force, by pressure) [m/s].
+    pub v_max_mps: Speed,
+    /// The speed at which the peak force reaches the force limit [m/s].
+    pub by_force_mps: Speed,
+    /// The speed at which the mean pressure reaches its limit [m/s] (absent: not assessed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub by_pressure_mps: Option<Speed>,
+    /// The limit that sets v_max.
+    pub governing: GoverningLimit,
+    /// Impact runs of the root searches (simulation method only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub runs: Option<usize>,
+}
+
+/// One cell: its design and both speeds, or why it failed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MapCell {
+    /// The x value.
+    pub x: f64,
+    /// The y value.
+    pub y: f64,
+    /// Link mass m_r \[kg\].
+    pub m_r_kg: f64,
+    /// Payload m_e \[kg\].
+    pub m_e_kg: f64,
+    /// Link stiffness k_δ \[N/m\] (absent: rigid).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub k_delta_n_per_m: Option<f64>,
+    /// Contact stiffness k_c \[N/m^n\].
+    pub k_c: f64,
+    /// Contact exponent n.
+    pub n: f64,
+    /// The compliant joint (absent when the cell failed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cj: Option<DesignSpeed>,
+    /// The compliant link (absent when the cell failed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cl: Option<DesignSpeed>,
+    /// v_max(CL)/v_max(CJ) (absent when the cell failed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ratio_cl_cj: Option<f64>,
+    /// Why the cell failed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+/// A computed map.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SafetyMap {
+    /// The question.
+    pub input: SafetyMapInput,
+    /// Body region name.
+    pub region_name: String,
+    /// The area whose pressure limit applies.
+    pub area: String,
+    /// Force limit \[N\].
+    pub force_limit_n: f64,
+    /// Pressure limit \[Pa\] (absent: pressure not assessed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pressure_limit_pa: Option<f64>,
+    /// The contact-area model used (absent: pressure not assessed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub area_model: Option<ContactAreaModel>,
+    /// Human mass \[kg\] of the method (absent: a clamped body in the closed-form methods).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub human_mass_kg: Option<f64>,
+    /// Every cell, row-major: cell `iy * nx + ix`.
+    pub cells: Vec<MapCell>,
+    /// Wall-clock time of the computation \[s\].
+    pub seconds: f64,
+}
+
+fn bad(arg: &str, value: impl ToString, allowed: &str) -> Error {
+    Error::InvalidArgument {
+        arg: arg.into(),
+        value: value.to_string(),
+        allowed: allowed.into(),
+    }
+}
+
+fn display(v: f64) -> String {
+    flexrig_contact::validate::display(v)
+}
+
+fn speed(v: f64) -> Speed {
+    if v.is_finite() {
+        Speed::Finite(v)
+    } else {
+        Speed::Unlimited(Unbounded::Unlimited)
+    }
+}
+
+/// One cell's design.
+#[derive(Debug, Clone, PartialEq)]
+struct Design {
+    m_r: f64,
+    m_e: f64,
+    k_delta: Option<f64>,
+    law: ContactLaw,
+}
+
+/// What every cell shares, validated once.
+struct Shared<'a> {
+    input: &'a SafetyMapInput,
+    model: &'a BodyModel,
+    area_model: Option<ContactAreaModel>,
+    /// The base law's exponent n (for a k_c axis) and stiffness.
+    base: Hertz,
+}
+
+impl Shared<'_> {
+    fn design(&self, x: f64, y: f64) -> Design {
+        let i = self.input;
+        let mut d = Design {
+            m_r: i.m_r.unwrap_or(f64::NAN),
+            m_e: i.m_e.unwrap_or(f64::NAN),
+            k_delta: i.k_delta,
+            law: i.law.clone(),
+        };
+        for (axis, v) in [(&i.x, x), (&i.y, y)] {
+            match axis.parameter {
+                MapParameter::Payload => d.m_e = v,
+                MapParameter::LinkMass => d.m_r = v,
+                MapParameter::LinkStiffness => d.k_delta = Some(v),
+                MapParameter::BendingStiffness => {
+                    d.k_delta = Some(3.0 * v / i.simulation.length.powi(3));
+                }
+                MapParameter::ContactStiffness => {
+                    d.law = ContactLaw::Hertz {
+                        k_c: v,
+                        n: self.base.n(),
+                    };
+                }
+            }
+        }
+        d
+    }
+
+    /// The single-point question of design `d` with γ and one method.
+    fn point(&self, d: &Design, gamma: f64, method: SafetyMethod) -> SafetyInput {
+        let i = self.input;
+        SafetyInput {
+            region: i.region.clone(),
+            area: i.area.clone(),
+            contact: i.contact,
+            m_eff: Some(RobotEffectiveMass::Prb {
+                gamma,
+                m_r: d.m_r,
+                m_e: d.m_e,
+            }),
+            k_delta: d.k_delta,
+            law: d.law.clone(),
+            area_model: self.area_model,
+            moving_mass: None,
+            payload: 0.0,
+            speed: None,
+            methods: vec![method],
+        }
+    }
+}
+
+fn from_method(m: &MethodResult, runs: Option<usize>) -> DesignSpeed {
+    DesignSpeed {
+        m_eff_kg: m.robot_mass_kg,
+        v_max_mps: m.v_max_mps,
+        by_force_mps: m.by_force_mps,
+        by_pressure_mps: m.by_pressure_mps,
+        governing: m.governing,
+        runs,
+    }
+}
+
+/// The map of `input` with the ISO/TS 15066:2016 body model, or `model` when given; stops with
+/// [`ImpactError::Interrupted`] (exit code 130) once `cancel` is set.
+pub fn safety_map(
+    input: &SafetyMapInput,
+    model: Option<&BodyModel>,
+    cancel: &CancelToken,
+) -> Result<SafetyMap, Error> {
+    let start = Instant::now();
+    let bundled;
+    let model = match model {
+        Some(m) => m,
+        None => {
+            bundled = BodyModel::iso_ts_15066_2016()?;
+            &bundled
+        }
+    };
+    input.x.validate("--x")?;
+    input.y.validate("--y")?;
+    if input.x.parameter == input.y.parameter
+        || [input.x.parameter, input.y.parameter].iter().all(|p| {
+            matches!(
+                p,
+                MapParameter::LinkStiffness | MapParameter::BendingStiffness
+            )
+        })
+    {
+        return Err(bad(
+            "--y",
+            input.y.parameter.flag_name(),
+            &format!(
+                "a parameter other than the x axis's {} (k-delta and ei are the same stiffness)",
+                input.x.parameter.flag_name()
+            ),
+        ));
+    }
+    input.simulation.validate()?;
+    let axes = [input.x.parameter, input.y.parameter];
+    let on_axis = |p: MapParameter| axes.contains(&p);
+    if !on_axis(MapParameter::LinkMass) {
+        match input.m_r {
+            Some(v) => MapParameter::LinkMass.check("--m-r", v)?,
+            None => return Err(bad("--m-r", "(missing)", "give the link mass m_r in kg")),
+        }
+    }
+    if !on_axis(MapParameter::Payload) {
+        match input.m_e {
+            Some(v) => MapParameter::Payload.check("--m-e", v)?,
+            None => return Err(bad("--m-e", "(missing)", "give the payload m_e in kg")),
+        }
+    }
+    let stiffness_axis =
+        on_axis(MapParameter::LinkStiffness) || on_axis(MapParameter::BendingStiffness);
+    if !stiffness_axis && let Some(k) = input.k_delta {
+        MapParameter::LinkStiffness.check("--k-delta", k)?;
+    }
+    if let Some(v) = input.speed
+        && !(v.is_finite() && v > 0.0 && v <= 1e3)
+    {
+        return Err(bad("--speed", display(v), "must lie in (0, 1000] m/s"));
+    }
+    // the base law and the default area model, as `safety` resolves them
+    let region = model.region(&input.region)?;
+    let (base, material_radius) = match &input.law {
+        ContactLaw::BodySpring => (Hertz::new(region.spring_constant(), 1.0)?, None),
+        ContactLaw::Hertz { k_c, n } => {
+            let base =
+                Hertz::new(*k_c, *n).map_err(|e| bad("--k-c", display(*k_c), &e.to_string()));
+            (base?, None)
+        }
+        ContactLaw::Material(name) => {
+            let materials = Materials::bundled()?;
+            let m = materials
+                .get(name)
+                .map_err(|e| bad("--material", name, &e.to_string()))?;
+            (m.hertz, Some(materials.dome_radius_m()))
+        }
+    };
+    let area_model = input
+        .area_model
+        .or(material_radius.map(|r| ContactAreaModel::HertzSphere { radius_m: r }));
+    let shared = Shared {
+        input,
+        model,
+        area_model,
+        base,
+    };
+    let simulation = input.method == MapMethod::Simulation;
+    if simulation {
+        if input.contact == ContactKind::QuasiStatic && input.simulation.joint == MapJoint::Held {
+            return Err(bad(
+                "--contact",
+                "quasi-static",
+                "with --method simulation needs --joint free-hub: a held joint pressing a \
+                 clamped body has no bounded peak force",
+            ));
+        }
+        if !stiffness_axis && input.k_delta.is_none() {
+            return Err(bad(
+                "--k-delta",
+                "(missing)",
+                "the simulation method needs a link stiffness (--k-delta, or an axis k-delta or ei)",
+            ));
+        }
+        if matches!(input.law, ContactLaw::Hertz { n, .. } if n < 1.0) || base.n() < 1.0 {
+            return Err(bad(
+                "--n",
+                display(base.n()),
+                "the simulation method needs n ≥ 1",
+            ));
+        }
+    }
+    let xs = &input.x.values;
+    let ys = &input.y.values;
+    // the first cell answers every question the input can be refused for (region, contact,
+    // law, area model) before the map runs
+    let first = cell(&shared, xs[0], ys[0], &AtomicBool::new(false))?;
+    let grid: Vec<(f64, f64)> = ys
+        .iter()
+        .flat_map(|&y| xs.iter().map(move |&x| (x, y)))
+        .collect();
+    let flag = cancel.flag();
+    let cells: Vec<Option<MapCell>> = grid
+        .par_iter()
+        .enumerate()
+        .map(|(i, &(x, y))| {
+            if flag.load(Ordering::Relaxed) {
+                return None;
+            }
+            if i == 0 {
+                return Some(first.clone());
+            }
+            match cell(&shared, x, y, &flag) {
+                Ok(c) => Some(c),
+                Err(Error::Impact(ImpactError::Interrupted)) => None,
+                Err(e) => Some(failed_cell(&shared, x, y, e.to_string())),
+            }
+        })
+        .collect();
+    let cells = cells
+        .into_iter()
+        .collect::<Option<Vec<_>>>()
+        .ok_or(Error::Impact(ImpactError::Interrupted))?;
+    let area = match &input.area {
+        Some(name) => region.area(name)?,
+        None => region.most_sensitive_area(),
+    };
+    let mut limits = region.limits(Some(area), input.contact)?;
+    if area_model.is_none() {
+        limits.pressure = None;
+    }
+    let human_mass = region.human_mass(input.contact);
+    Ok(SafetyMap {
+        input: input.clone(),
+        region_name: region.name().to_string(),
+        area: area.name().to_string(),
+        force_limit_n: limits.force,
+        pressure_limit_pa: limits.pressure,
+        area_model,
+        human_mass_kg: if human_mass.is_finite() {
+            Some(human_mass)
+        } else if simulation {
+            Some(CLAMPED_HUMAN_MASS)
+        } else {
+            None
+        },
+        cells,
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+fn failed_cell(shared: &Shared, x: f64, y: f64, error: String) -> MapCell {
+    let d = shared.design(x, y);
+    let (k_c, n) = law_numbers(shared, &d.law);
+    MapCell {
+        x,
+        y,
+        m_r_kg: d.m_r,
+        m_e_kg: d.m_e,
+        k_delta_n_per_m: d.k_delta,
+        k_c,
+        n,
+        cj: None,
+        cl: None,
+        ratio_cl_cj: None,
+        error: Some(error),
+    }
+}
+
+fn law_numbers(shared: &Shared, law: &ContactLaw) -> (f64, f64) {
+    match law {
+        ContactLaw::Hertz { k_c, n } => (*k_c, *n),
+        _ => (shared.base.k(), shared.base.n()),
+    }
+}
+
+/// One cell by the method of the map.
+fn cell(shared: &Shared, x: f64, y: f64, stop: &AtomicBool) -> Result<MapCell, Error> {
+    let d = shared.design(x, y);
+    let method = match shared.input.method {
+        MapMethod::Standard => SafetyMethod::Standard,
+        MapMethod::Energy | MapMethod::Simulation => SafetyMethod::Energy,
+    };
+    let lumped = |gamma: f64| -> Result<MethodResult, Error> {
+        let r = safety(&shared.point(&d, gamma, method), Some(shared.model))?;
+        Ok(r.methods[0])
+    };
+    let (cj_lumped, cl_lumped) = (lumped(GAMMA_CJ)?, lumped(GAMMA_CL)?);
+    let (cj, cl) = if shared.input.method == MapMethod::Simulation {
+        (
+            simulated(shared, &d, FeLink::CompliantJoint, &cj_lumped, stop)?,
+            simulated(shared, &d, FeLink::CompliantLink, &cl_lumped, stop)?,
+        )
+    } else {
+        (from_method(&cj_lumped, None), from_method(&cl_lumped, None))
+    };
+    let (k_c, n) = law_numbers(shared, &d.law);
+    Ok(MapCell {
+        x,
+        y,
+        m_r_kg: d.m_r,
+        m_e_kg: d.m_e,
+        k_delta_n_per_m: d.k_delta,
+        k_c,
+        n,
+        ratio_cl_cj: Some(cl.v_max_mps.value() / cj.v_max_mps.value()),
+        cj: Some(cj),
+        cl: Some(cl),
+        error: None,
+    })
+}
+
+/// The finite-element link of the simulation method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum FeLink {
+    CompliantJoint,
+    CompliantLink,
+}
+
+/// The simulated permissible speed of one design: root searches on the finite-element impact's
+/// first-contact peak force, started at the lumped method's speeds.
+fn simulated(
+    shared: &Shared,
+    d: &Design,
+    link: FeLink,
+    lumped: &MethodResult,
+    stop: &AtomicBool,
+) -> Result<DesignSpeed, Error> {
+    let input = shared.input;
+    let settings = &input.simulation;
+    let region = shared.model.region(&input.region)?;
+    let area = match &input.area {
+        Some(name) => region.area(name)?,
+        None => region.most_sensitive_area(),
+    };
+    let mut limits = region.limits(Some(area), input.contact)?;
+    if shared.area_model.is_none() {
+        limits.pressure = None;
+    }
+    let (k_c, n) = law_numbers(shared, &d.law);
+    let hertz = Hertz::new(k_c, n)?;
+    let k_delta = d.k_delta.ok_or_else(|| {
+        bad(
+            "--k-delta",
+            "(missing)",
+            "the simulation method needs a link stiffness",
+        )
+    })?;
+    let m_h = match region.human_mass(input.contact) {
+        m if m.is_finite() => m,
+        _ => CLAMPED_HUMAN_MASS,
+    };
+    let gamma = match link {
+        FeLink::CompliantJoint => GAMMA_CJ,
+        FeLink::CompliantLink => GAMMA_CL,
+    };
+    let energy = EnergyContact::for_region(
+        region,
+        input.contact,
+        d.m_e + gamma * d.m_r / 3.0,
+        hertz,
+        LinkStiffness::Finite(k_delta),
+        shared.area_model,
+    )?;
+    let setup_at = |v: f64| FreeMassImpact {
+        m_h,
+        v0: v,
+        link: LinkParams {
+            m_r: d.m_r,
+            length: settings.length,
+            k_delta,
+            m_e: d.m_e,
+        },
+        joint: settings.joint(),
+        contact: hertz,
+        damping: DampingSpec::NONE,
+    };
+    let guess = lumped.by_force_mps.value().clamp(1e-5, 1e2);
+    let reference = setup_at(guess);
+    reference.validate()?;
+    let modes = match link {
+        FeLink::CompliantLink => Some(cl_tip_modes(&reference, &GradedMesh::DEFAULT)?),
+        FeLink::CompliantJoint => None,
+    };
+    let options = ModalOptions {
+        tol: settings.tol,
+        ..ModalOptions::DEFAULT
+    };
+    let mut runs = 0;
+    let mut peak = |v: f64| -> Result<f64, Error> {
+        if stop.load(Ordering::Relaxed) {
+            return Err(Error::Impact(ImpactError::Interrupted));
+        }
+        runs += 1;
+        let setup = setup_at(v);
+        Ok(match &modes {
+            None => flexrig_impact::cj::run_cj(&setup, settings.cj_rtol)?,
+            Some(m) => {
+                let mut m = m.clone();
+                // the free hub's initial modal rates are linear in v (a held joint's are 0)
+                let scale = v / guess;
+                m.rates.iter_mut().for_each(|r| *r *= scale);
+                run_on_modes(&setup, &m, &options)?
+            }
+        }
+        .first
+        .peak_force_n)
+    };
+    let force = limits.force;
+    let by_force = speed_at_ratio(
+        guess,
+        settings.root_rtol,
+        &mut |v| Ok(peak(v)? / force),
+        None,
+    )?;
+    let by_pressure = match (limits.pressure, lumped.by_pressure_mps) {
+        (Some(p), Some(vb)) => Some(match energy.force_at_pressure(p) {
+            Some(PressureCrossing::AtForce(f)) => {
+                let g = vb.value().clamp(1e-5, 1e2);
+                speed_at_ratio(g, settings.root_rtol, &mut |v| Ok(peak(v)? / f), None)?
+            }
+            Some(PressureCrossing::Always) => 0.0,
+            Some(PressureCrossing::Never) | None => f64::INFINITY,
+        }),
+        _ => None,
+    };
+    let (v_max, governing) = match by_pressure {
+        Some(vp) if vp < by_force => (vp, GoverningLimit::Pressure),
+        _ => (by_force, GoverningLimit::Force),
+    };
+    Ok(DesignSpeed {
+        m_eff_kg: d.m_e + gamma * d.m_r / 3.0,
+        v_max_mps: speed(v_max),
+        by_force_mps: speed(by_force),
+        by_pressure_mps: by_pressure.map(speed),
+        governing,
+        runs: Some(runs),
+    })
+}
+
+/// One evaluation of a root search on the speed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RootStep {
+    /// The speed tried [m/s].
+    pub speed_mps: f64,
+    /// Peak over limit at that speed.
+    pub ratio: f64,
+}
+
+/// The speed at which `ratio(v)` (peak over limit, increasing in v) equals 1: a bracket grown by
+/// factors of 2 around `guess`, then the Illinois false position on ln v until the bracket is
+/// narrower than `rtol` (relative in v). Each evaluation is pushed to `trace` when given.
+pub fn speed_at_ratio(
+    guess: f64,
+    rtol: f64,
+    ratio: &mut dyn FnMut(f64) -> Result<f64, Error>,
+    mut trace: Option<&mut Vec<RootStep>>,
+) -> Result<f64, Error> {
+    let mut g = |x: f64| -> Result<f64, Error> {
+        let r = ratio(x.exp())?;
+        if let Some(t) = trace.as_deref_mut() {
+            t.push(RootStep {
+                speed_mps: x.exp(),
+                ratio: r,
+            });
+        }
+        Ok(r.ln())
+    };
+    let mut a = (guess / 1.01).ln();
+    let mut b = (guess * 1.01).ln();
+    let mut ga = g(a)?;
+    let mut gb = g(b)?;
+    let mut grow = 0;
+    while ga * gb > 0.0 {
+        grow += 1;
+        if grow > 60 || !ga.is_finite() || !gb.is_finite() {
+            return Err(Error::NonFinite {
+                what: "simulated speed at the limit".into(),
+                value: "no bracket".into(),
+                advice: "use moderate masses and stiffnesses".into(),
+            });
+        }
+        if ga > 0.0 {
+            a -= std::f64::consts::LN_2;
+            ga = g(a)?;
+        } else {
+            b += std::f64::consts::LN_2;
+            gb = g(b)?;
+        }
+    }
+    let mut side = 0;
+    for _ in 0..200 {
+        let x = (a * gb - b * ga) / (gb - ga);
+        if (b - a).abs() < rtol {
+            return Ok(x.exp());
+        }
+        let gx = g(x)?;
+        if gx == 0.0 {
+            return Ok(x.exp());
+        }
+        if gx * gb < 0.0 {
+            a = b;
+            ga = gb;
+            side = 0;
+        } else if side == -1 {
+            ga /= 2.0;
+        } else {
+            side = -1;
+        }
+        b = x;
+        gb = gx;
+        if (b - a).abs() < rtol || gx.abs() < rtol * 1e-3 {
+            return Ok(b.exp());
+        }
+    }
+    Ok(((a + b) / 2.0).exp())
+}
+
+/// The number as CSV and JSON write it (shortest round-trip form), `unlimited` for +∞.
+fn num(v: f64) -> String {
+    if v.is_finite() {
+        format!("{v}")
+    } else {
+        "unlimited".into()
+    }
+}
+
+/// The map's CSV: one row per cell, units in the header; a speed no limit bounds is
+/// `unlimited`, a pressure not assessed an empty field, a failed cell carries its error.
+pub fn csv(map: &SafetyMap) -> String {
+    let x = map.input.x.parameter.column();
+    let y = map.input.y.parameter.column();
+    let mut s = format!(
+        "x_{x},y_{y},m_r_kg,m_e_kg,k_delta_n_per_m,k_c_n_per_m_n,n,m_eff_cj_kg,m_eff_cl_kg,\
+         v_max_cj_mps,v_max_cl_mps,ratio_cl_cj,by_force_cj_mps,by_pressure_cj_mps,governing_cj,\
+         by_force_cl_mps,by_pressure_cl_mps,governing_cl,runs_cj,runs_cl,error\n"
+    );
+    let gov = |g: GoverningLimit| match g {
+        GoverningLimit::Force => "force",
+        GoverningLimit::Pressure => "pressure",
+    };
+    for c in &map.cells {
+        let k_delta = c.k_delta_n_per_m.map_or("rigid".into(), num);
+        let _ = write!(
+            s,
+            "{},{},{},{},{k_delta},{},{},",
+            num(c.x),
+            num(c.y),
+            num(c.m_r_kg),
+            num(c.m_e_kg),
+            num(c.k_c),
+            num(c.n)
+        );
+        match (&c.cj, &c.cl, c.ratio_cl_cj) {
+            (Some(cj), Some(cl), Some(r)) => {
+                let p =
+                    |d: &DesignSpeed| d.by_pressure_mps.map_or(String::new(), |v| num(v.value()));
+                let runs = |d: &DesignSpeed| d.runs.map_or(String::new(), |r| r.to_string());
+                let _ = writeln!(
+                    s,
+                    "{},{},{},{},{},{},{},{},{},{},{},{},{},",
+                    num(cj.m_eff_kg),
+                    num(cl.m_eff_kg),
+                    num(cj.v_max_mps.value()),
+                    num(cl.v_max_mps.value()),
+                    num(r),
+                    num(cj.by_force_mps.value()),
+                    p(cj),
+                    gov(cj.governing),
+                    num(cl.by_force_mps.value()),
+                    p(cl),
+                    gov(cl.governing),
+                    runs(cj),
+                    runs(cl)
+                );
+            }
+            _ => {
+                let e = c.error.clone().unwrap_or_default().replace('"', "'");
+                let _ = writeln!(s, ",,,,,,,,,,,,,\"{e}\"");
+            }
+        }
+    }
+    s
+}
+
+/// The method in words, as the figure's title says it.
+pub fn method_text(map: &SafetyMap) -> String {
+    let s = &map.input.simulation;
+    match map.input.method {
+        MapMethod::Standard => "the standard's formula (ISO/TS 15066 Annex A), m_R = m_eff".into(),
+        MapMethod::Energy => {
+            "lumped energy method (CJ: m_eff = m_e + m_r/3, CL: m_e + 2m_r/9)".into()
+        }
+        MapMethod::Simulation => format!(
+            "finite-element impact ({}; CJ rigid link on k_θ = k_δL², CL modal beam), root search to {:e}",
+            match s.joint {
+                MapJoint::Held => "joint held".to_string(),
+                MapJoint::FreeHub { rotor_inertia } =>
+                    format!("free hub, J_R = {} kg·m²", display(rotor_inertia)),
+            },
+            s.root_rtol
+        ),
+    }
+}
+
+/// The figure: v_max of the CJ, of the CL (one logarithmic colour scale for both) and their
+/// ratio CL/CJ, at the printed width `width_pt` \[pt\].
+pub fn svg(map: &SafetyMap, width_pt: f64) -> Result<String, String> {
+    use crate::plots::{ColorScale, HeatMap, heatmaps_svg};
+    let xs = &map.input.x.values;
+    let ys = &map.input.y.values;
+    let v = |f: &dyn Fn(&MapCell) -> Option<f64>| -> Vec<Option<f64>> {
+        map.cells.iter().map(f).collect()
+    };
+    let cj = v(&|c| c.cj.map(|d| d.v_max_mps.value()).filter(|v| v.is_finite()));
+    let cl = v(&|c| c.cl.map(|d| d.v_max_mps.value()).filter(|v| v.is_finite()));
+    let ratio = v(&|c| c.ratio_cl_cj.filter(|r| r.is_finite()));
+    let (lo, hi) = cj
+        .iter()
+        .chain(&cl)
+        .flatten()
+        .filter(|v| **v > 0.0)
+        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
+    let (lo, hi) = if lo.is_finite() && hi > lo * 1.0001 {
+        (lo, hi)
+    } else if lo.is_finite() {
+        (lo / 1.1, lo * 1.1)
+    } else {
+        (0.1, 10.0)
+    };
+    let span = ratio
+        .iter()
+        .flatten()
+        .fold(0.0_f64, |s, r| s.max((r - 1.0).abs()));
+    let span = if span > 1e-3 { span } else { 1e-3 };
+    let masks = map.input.speed.map(|s| {
+        let mask = |d: &[Option<f64>]| {
+            d.iter()
+                .map(|v| v.is_some_and(|v| v >= s))
+                .collect::<Vec<_>>()
+        };
+        (
+            mask(&cj),
+            mask(&cl),
+            format!("permits v = {} m/s", display(s)),
+        )
+    });
+    let (x_label, y_label) = (map.input.x.parameter.label(), map.input.y.parameter.label());
+    let maps = vec![
+        HeatMap {
+            title: "compliant joint (CJ): v_max [m/s]",
+            x_label,
+            y_label,
+            xs,
+            ys,
+            values: &cj,
+            scale: ColorScale::Log { lo, hi },
+            value_label: "v_max [m/s]",
+            outline: masks.as_ref().map(|(m, _, t)| (m.as_slice(), t.as_str())),
+        },
+        HeatMap {
+            title: "compliant link (CL): v_max [m/s]",
+            x_label,
+            y_label,
+            xs,
+            ys,
+            values: &cl,
+            scale: ColorScale::Log { lo, hi },
+            value_label: "v_max [m/s]",
+            outline: masks.as_ref().map(|(_, m, t)| (m.as_slice(), t.as_str())),
+        },
+        HeatMap {
+            title: "ratio v_max(CL)/v_max(CJ)",
+            x_label,
+            y_label,
+            xs,
+            ys,
+            values: &ratio,
+            scale: ColorScale::Diverging { centre: 1.0, span },
+            value_label: "CL/CJ",
+            outline: None,
+        },
+    ];
+    let contact = match map.input.contact {
+        ContactKind::Transient => "transient contact",
+        ContactKind::QuasiStatic => "quasi-static (clamped) contact",
+    };
+    let limits = match map.pressure_limit_pa {
+        Some(p) => format!(
+            "F_max = {} N, p_max = {} N/cm²",
+            display(map.force_limit_n),
+            display(p / 1e4)
+        ),
+        None => format!(
+            "F_max = {} N (pressure not assessed)",
+            display(map.force_limit_n)
+        ),
+    };
+    let mut fixed = Vec::new();
+    let axes = [map.input.x.parameter, map.input.y.parameter];
+    if !axes.contains(&MapParameter::LinkMass)
+        && let Some(m) = map.input.m_r
+    {
+        fixed.push(format!("m_r = {} kg", display(m)));
+    }
+    if !axes.contains(&MapParameter::Payload)
+        && let Some(m) = map.input.m_e
+    {
+        fixed.push(format!("m_e = {} kg", display(m)));
+    }
+    if !axes.contains(&MapParameter::LinkStiffness)
+        && !axes.contains(&MapParameter::BendingStiffness)
+    {
+        fixed.push(match map.input.k_delta {
+            Some(k) => format!("k_δ = {} N/m", crate::plots::sci_label(k)),
+            None => "rigid link".into(),
+        });
+    }
+    if let Some(c) = map.cells.first() {
+        if !axes.contains(&MapParameter::ContactStiffness) {
+            fixed.push(format!(
+                "k_c = {} N/mⁿ, n = {}",
+                crate::plots::sci_label(c.k_c),
+                display(c.n)
+            ));
+        } else {
+            fixed.push(format!("n = {}", display(c.n)));
+        }
+    }
+    let title = vec![
+        format!(
+            "Permissible speed near the {} ({}), {contact}",
+            map.region_name.to_lowercase(),
+            map.area
+        ),
+        format!("{limits}; {}", fixed.join(", ")),
+        method_text(map),
+    ];
+    heatmaps_svg(&title, &maps, width_pt)
+}
+
+/// Where to write a map and how to draw it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SafetyMapFiles {
+    /// Directory for safety_map.csv, safety_map.json and the figure (created if missing).
+    pub out: PathBuf,
+    /// Printed size and formats of the figure.
+    pub figures: crate::plots::FigureOptions,
+}
+
+/// Computes the map, renders everything, then writes safety_map.csv, safety_map.json and the
+/// figure safety_map.{svg,pdf,png} (no partial output); returns the map and the files.
+pub fn run(
+    input: &SafetyMapInput,
+    model: Option<&BodyModel>,
+    files: &SafetyMapFiles,
+    cancel: &CancelToken,
+) -> Result<(SafetyMap, Vec<PathBuf>), Error> {
+    files.figures.validate()?;
+    let map = safety_map(input, model, cancel)?;
+    let out = &files.out;
+    let figure = svg(&map, files.figures.width_pt()).map_err(|message| Error::Plot {
+        path: out.join("safety_map.svg"),
+        message,
+    })?;
+    let json = serde_json::to_string_pretty(&map).map_err(|e| Error::NonFinite {
+        what: "safety map JSON".into(),
+        value: e.to_string(),
+        advice: "report this".into(),
+    })?;
+    crate::output::ensure_dir(out)?;
+    let csv_path = out.join("safety_map.csv");
+    crate::output::write_atomic(&csv_path, csv(&map).as_bytes())?;
+    let json_path = out.join("safety_map.json");
+    crate::output::write_atomic(&json_path, json.as_bytes())?;
+    let mut written = vec![csv_path, json_path];
+    written.extend(crate::plots::write_figure(
+        out,
+        "safety_map",
+        &figure,
+        &files.figures,
+    )?);
+    Ok((map, written))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn input(method: MapMethod) -> SafetyMapInput {
+        SafetyMapInput {
+            region: "hands_and_fingers".into(),
+            area: None,
+            contact: ContactKind::Transient,
+            m_r: Some(0.051),
+            m_e: None,
+            k_delta: None,
+            law: ContactLaw::Material("skinned_aluminium".into()),
+            area_model: None,
+            x: parse_axis("--x", "m-e=0.05:2:3:log").unwrap(),
+            y: parse_axis("--y", "k-delta=100:1e5:3:log").unwrap(),
+            method,
+            simulation: SimulationSettings::DEFAULT,
+            speed: Some(1.0),
+        }
+    }
+
+    #[test]
+    fn axes_parse_the_range_syntax_and_refuse_bad_text_naming_the_flag() {
+        let a = parse_axis("--x", "k-delta=10:1e7:7:log").unwrap();
+        assert_eq!(a.parameter, MapParameter::LinkStiffness);
+        assert_eq!(a.values.len(), 7);
+        assert_eq!(a.values[0], 10.0);
+        assert_eq!(a.values[6], 1e7);
+        assert!((a.values[1] / 10.0 - 10.0).abs() < 1e-12);
+        let l = parse_axis("--y", "m_e=0.1,0.2,0.5").unwrap();
+        assert_eq!(l.values, vec![0.1, 0.2, 0.5]);
+        for bad_text in [
+            "k-delta",
+            "speed=1:2:3",
+            "m-e=0:1:3",
+            "m-e=1:0.5:3:log",
+            "m-e=1:2:1",
+            "m-e=1:2:x",
+            "m-e=-1:2:3:log",
+        ] {
+            let e = parse_axis("--x", bad_text).unwrap_err();
+            assert!(e.to_string().contains("--x"), "{bad_text}: {e}");
+        }
+    }
+
+    #[test]
+    fn a_cancelled_map_stops_with_interrupted() {
+        let cancel = CancelToken::new();
+        cancel.cancel();
+        let mut i = input(MapMethod::Energy);
+        i.x = parse_axis("--x", "m-e=0.05:2:20:log").unwrap();
+        let e = safety_map(&i, None, &cancel).unwrap_err();
+        assert_eq!(e.kind(), crate::ErrorKind::Interrupted, "{e}");
+    }
+
+    #[test]
+    fn every_lumped_cell_is_the_single_point_answer_bit_for_bit() {
+        let input = input(MapMethod::Energy);
+        let model = BodyModel::iso_ts_15066_2016().unwrap();
+        let map = safety_map(&input, Some(&model), &CancelToken::new()).unwrap();
+        assert_eq!(map.cells.len(), 9);
+        for c in &map.cells {
+            for (gamma, design) in [(GAMMA_CJ, c.cj.unwrap()), (GAMMA_CL, c.cl.unwrap())] {
+                let single = safety(
+                    &SafetyInput {
+                        region: "hands_and_fingers".into(),
+                        area: None,
+                        contact: ContactKind::Transient,
+                        m_eff: Some(RobotEffectiveMass::Prb {
+                            gamma,
+                            m_r: 0.051,
+                            m_e: c.x,
+                        }),
+                        k_delta: Some(c.y),
+                        law: ContactLaw::Material("skinned_aluminium".into()),
+                        area_model: None,
+                        moving_mass: None,
+                        payload: 0.0,
+                        speed: None,
+                        methods: vec![SafetyMethod::Energy],
+                    },
+                    None,
+                )
+                .unwrap();
+                let m = &single.methods[0];
+                assert_eq!(
+                    design.v_max_mps.value().to_bits(),
+                    m.v_max_mps.value().to_bits()
+                );
+                assert_eq!(design.m_eff_kg.to_bits(), m.robot_mass_kg.to_bits());
+            }
+        }
+    }
+}
