@@ -44,6 +44,7 @@ pub mod progress;
 pub mod run;
 pub mod safety;
 pub mod scenes;
+pub mod severity;
 pub mod study;
 pub mod traces;
 pub mod validation;
