@@ -516,22 +516,44 @@ fn the_severity_message_matches_the_summary_and_the_logged_accelerometer() {
     assert_eq!(severity.len(), 1, "one /severity message");
     let mut message = severity.pop().unwrap();
     let map = message.as_object_mut().unwrap();
-    assert!(map.remove("hic_method").unwrap().as_str().unwrap().contains("interpolant"));
-    assert!(map.remove("struck_body").unwrap().as_str().unwrap().contains("operator"));
-    assert_eq!(&message, &v["severity"], "the log's severity is the summary's");
+    assert!(
+        map.remove("hic_method")
+            .unwrap()
+            .as_str()
+            .unwrap()
+            .contains("interpolant")
+    );
+    assert!(
+        map.remove("struck_body")
+            .unwrap()
+            .as_str()
+            .unwrap()
+            .contains("operator")
+    );
+    assert_eq!(
+        &message, &v["severity"],
+        "the log's severity is the summary's"
+    );
     // recomputed from the logged accelerometer and force sensor (every sample is logged)
     assert_eq!(times.len(), v["samples"].as_u64().unwrap() as usize);
     let peak_force = force.iter().fold(0.0f64, |a, &b| a.max(b));
     assert_eq!(peak_force, v["severity"]["peak_force_n"].as_f64().unwrap());
     let peak_accel = accel.iter().fold(0.0f64, |a, &b| a.max(b));
-    assert_eq!(peak_accel, v["severity"]["peak_acceleration_mps2"].as_f64().unwrap());
+    assert_eq!(
+        peak_accel,
+        v["severity"]["peak_acceleration_mps2"].as_f64().unwrap()
+    );
     for (window, key) in [
         (flexrig_safety::HicWindow::Hic15, "hic15"),
         (flexrig_safety::HicWindow::Hic36, "hic36"),
     ] {
         let h = flexrig_safety::hic(&times, &accel, window).unwrap();
         let logged = v["severity"][key]["hic"].as_f64().unwrap();
-        assert!((h.hic - logged).abs() <= 1e-9 * logged, "{key}: {} vs {logged}", h.hic);
+        assert!(
+            (h.hic - logged).abs() <= 1e-9 * logged,
+            "{key}: {} vs {logged}",
+            h.hic
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -35,8 +35,18 @@ fn lumped_linear_impact_severity_matches_the_closed_forms() {
     let k_o = k_delta * k_c / (k_delta + k_c);
     let (f_max, t_c) = (v0 * (k_o * mu).sqrt(), PI * (mu / k_o).sqrt());
     assert_close("peak force", s.peak_force_n, f_max, 1e-7);
-    assert_close("time of the peak force", s.time_of_peak_force_s, 0.5 * t_c, 1e-3);
-    assert_close("peak head acceleration", s.peak_acceleration_mps2.unwrap(), f_max / m_h, 1e-7);
+    assert_close(
+        "time of the peak force",
+        s.time_of_peak_force_s,
+        0.5 * t_c,
+        1e-3,
+    );
+    assert_close(
+        "peak head acceleration",
+        s.peak_acceleration_mps2.unwrap(),
+        f_max / m_h,
+        1e-7,
+    );
     for (window, hic) in [(HicWindow::Hic15, s.hic15), (HicWindow::Hic36, s.hic36)] {
         let reference = hic_half_sine(f_max / m_h, t_c, window).unwrap();
         assert_close("HIC of the half-sine", hic.unwrap().hic, reference, 1e-6);
@@ -47,15 +57,38 @@ fn lumped_linear_impact_severity_matches_the_closed_forms() {
     let stored = 0.5 * mu * v0 * v0 * k_delta / (k_delta + k_c);
     assert_close("energy transferred", s.energy_transferred_j, stored, 1e-6);
     // elastic: no net work over the closed loop (the head leaves with the energy it brought)
-    assert!(s.contact_work_j.abs() < 1e-6 * stored, "{}", s.contact_work_j);
+    assert!(
+        s.contact_work_j.abs() < 1e-6 * stored,
+        "{}",
+        s.contact_work_j
+    );
     // n = 1: Hertz-area mean pressure k_c δ/(πRδ) = k_c/(πR) whatever the force; thin layer
     // k_c/(π(2R − δ)) is largest at the largest indentation F/k_c
-    let hertz = s.pressure_of(&ContactAreaModel::HertzSphere { radius_m: radius }).unwrap();
-    assert_close("Hertz mean pressure", hertz.mean_pa, k_c / (PI * radius), 1e-9);
-    assert_close("Hertz peak pressure", hertz.peak_pa, 1.5 * hertz.mean_pa, 1e-15);
-    let thin = s.pressure_of(&ContactAreaModel::ThinLayer { radius_m: radius }).unwrap();
+    let hertz = s
+        .pressure_of(&ContactAreaModel::HertzSphere { radius_m: radius })
+        .unwrap();
+    assert_close(
+        "Hertz mean pressure",
+        hertz.mean_pa,
+        k_c / (PI * radius),
+        1e-9,
+    );
+    assert_close(
+        "Hertz peak pressure",
+        hertz.peak_pa,
+        1.5 * hertz.mean_pa,
+        1e-15,
+    );
+    let thin = s
+        .pressure_of(&ContactAreaModel::ThinLayer { radius_m: radius })
+        .unwrap();
     let d_max = f_max / k_c;
-    assert_close("thin-layer mean pressure", thin.mean_pa, k_c / (PI * (2.0 * radius - d_max)), 1e-7);
+    assert_close(
+        "thin-layer mean pressure",
+        thin.mean_pa,
+        k_c / (PI * (2.0 * radius - d_max)),
+        1e-7,
+    );
 }
 
 #[test]
@@ -97,9 +130,17 @@ fn damped_contact_work_equals_the_energy_the_run_lost_through_the_contact() {
     let (before, after) = summary.energy_through_contact_j.unwrap();
     let lost = before - after;
     assert!(lost > 0.0);
-    assert_close("net contact work = energy lost", s.contact_work_j, lost, 0.02);
+    assert_close(
+        "net contact work = energy lost",
+        s.contact_work_j,
+        lost,
+        0.02,
+    );
     // and the undamped run loses (almost) nothing through the contact
     let (undamped, _) = run_traced(CJ_ALUMINIUM, &[], &CancelToken::new()).unwrap();
     let u = undamped.severity.unwrap();
-    assert!(u.contact_work_j.abs() < 0.02 * u.energy_transferred_j, "{u:?}");
+    assert!(
+        u.contact_work_j.abs() < 0.02 * u.energy_transferred_j,
+        "{u:?}"
+    );
 }

@@ -114,7 +114,12 @@ fn severity_of_the_linear_impact_collects_every_measure() {
     );
     // elastic: the net work over the closed force–indentation loop is 0 up to rounding
     assert!(s.contact_work_j.abs() < 1e-12 * s.energy_transferred_j);
-    assert_close("peak acceleration", s.peak_acceleration_mps2.unwrap(), f_max / m_h, 1e-12);
+    assert_close(
+        "peak acceleration",
+        s.peak_acceleration_mps2.unwrap(),
+        f_max / m_h,
+        1e-12,
+    );
     let h15 = hic_half_sine(f_max / m_h, t_c, HicWindow::Hic15).unwrap();
     assert_close("HIC15", s.hic15.unwrap().hic, h15, 1e-6);
     let short = ContactTraces {

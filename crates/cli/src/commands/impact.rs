@@ -6,8 +6,8 @@ use std::io::Write;
 use clap::{Args, ValueEnum};
 use flexrig::Error;
 use flexrig::impact::{
-    DEFAULT_RTOL, Details, EffectiveMass, Formulation, ImpactInput, Method, severity as impact_severity,
-    solve,
+    DEFAULT_RTOL, Details, EffectiveMass, Formulation, ImpactInput, Method,
+    severity as impact_severity, solve,
 };
 use serde_json::json;
 
@@ -148,8 +148,7 @@ pub fn run(args: &ImpactArgs, out: &mut dyn Write) -> Result<(), Error> {
                 return Err(Error::InvalidArgument {
                     arg: "--dome-radius".into(),
                     value: radius.to_string(),
-                    allowed: "only with --method ode (the severity needs the time history)"
-                        .into(),
+                    allowed: "only with --method ode (the severity needs the time history)".into(),
                 });
             }
             None

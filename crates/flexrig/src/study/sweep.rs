@@ -70,7 +70,13 @@ pub fn summary_values(s: &RunSummary) -> [Option<f64>; 24] {
         Some(s.duration_s),
     ];
     let severity = crate::severity::severity_values(s.severity.as_ref());
-    std::array::from_fn(|i| if i < run.len() { run[i] } else { severity[i - run.len()] })
+    std::array::from_fn(|i| {
+        if i < run.len() {
+            run[i]
+        } else {
+            severity[i - run.len()]
+        }
+    })
 }
 
 /// A format error of a sweep value that looks like a list typed with spaces or semicolons gets
