@@ -3,13 +3,16 @@
 
 For each file: CRCs valid, summary present, per-topic message counts equal to the summary's
 statistics, log_time monotone per topic and equal to publish_time, every message decodes
-(protobuf, with the schemas stored in the file), the scene attachment and the metadata present
+(protobuf, with the schemas stored in the file; the `/severity` message as JSON with every
+severity key, finite numbers and HIC15 ≤ HIC36), the scene attachment and the metadata present
 (`flexrig`, and `view` with the 3D view's deformation scale).
 Prints one line per file and exits non-zero on the first problem.
 
 Usage: python3 scripts/check_mcap.py FILE.mcap [...]
 Needs: pip install mcap mcap-protobuf-support
 """
+import json
+import math
 import sys
 from collections import Counter
 
@@ -18,6 +21,24 @@ from mcap_protobuf.decoder import DecoderFactory
 
 REQUIRED_TOPICS = {"/tf", "/scene", "/sensors/force", "/sensors/accel/operator",
                    "/sensors/accel/load", "/sensors/encoders", "/contact", "/energy"}
+SEVERITY_KEYS = {"peak_force_n", "time_of_peak_force_s", "pressure", "energy_transferred_j",
+                 "contact_work_j", "peak_acceleration_mps2", "peak_acceleration_g", "hic15",
+                 "hic36", "hic_method", "struck_body"}
+
+
+def check_severity(path, s):
+    missing = SEVERITY_KEYS - set(s)
+    if missing:
+        raise SystemExit(f"{path}: /severity lacks {sorted(missing)}")
+    numbers = [s["peak_force_n"], s["energy_transferred_j"], s["contact_work_j"],
+               s["peak_acceleration_mps2"], s["hic15"]["hic"], s["hic36"]["hic"]]
+    numbers += [p["peak_pa"] for p in s["pressure"]]
+    if not all(isinstance(x, (int, float)) and math.isfinite(x) for x in numbers):
+        raise SystemExit(f"{path}: /severity has a value that is not a finite number")
+    if len(s["pressure"]) != 2 or s["hic15"]["hic"] > s["hic36"]["hic"] * (1 + 1e-12):
+        raise SystemExit(f"{path}: /severity: two pressure models and HIC15 <= HIC36 expected")
+    if abs(s["peak_acceleration_g"] * 9.80665 - s["peak_acceleration_mps2"]) > 1e-9 * s["peak_acceleration_mps2"]:
+        raise SystemExit(f"{path}: /severity: peak acceleration in g does not match m/s²")
 
 
 def check(path):
@@ -32,8 +53,17 @@ def check(path):
             raise SystemExit(f"{path}: missing topics {sorted(missing)}")
         counts = Counter()
         last = {}
-        for schema, channel, message, decoded in reader.iter_decoded_messages(log_time_order=False):
+        protobuf = DecoderFactory()
+        severities = []
+        for schema, channel, message in reader.iter_messages(log_time_order=False):
             topic = channel.topic
+            if channel.message_encoding == "json":
+                decoded = json.loads(message.data)
+                if topic == "/severity":
+                    check_severity(path, decoded)
+                    severities.append(decoded)
+            else:
+                decoded = protobuf.decoder_for(channel.message_encoding, schema)(message.data)
             counts[topic] += 1
             if message.log_time != message.publish_time:
                 raise SystemExit(f"{path}: {topic}: log_time != publish_time")
@@ -56,6 +86,8 @@ def check(path):
             if name not in metadata:
                 raise SystemExit(f"{path}: no {name} metadata")
         state = "error: " + metadata["error"]["message"] if "error" in metadata else "ok"
+        if state == "ok" and len(severities) != 1:
+            raise SystemExit(f"{path}: {len(severities)} /severity messages, one expected")
         total = sum(counts.values())
         print(f"{path}: {total} messages on {len(counts)} topics, {state}; "
               + ", ".join(f"{t} {n}" for t, n in sorted(counts.items())))

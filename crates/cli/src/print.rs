@@ -83,3 +83,61 @@ impl flexrig::Progress for Bar {
         }
     }
 }
+
+/// The severity block of a run or an impact, indented under its report: peak force, peak
+/// pressure under each contact-area model, energy, peak acceleration of `struck` (the struck
+/// body, in words) and HIC15/HIC36 with their windows.
+pub fn print_severity(
+    out: &mut dyn Write,
+    s: &flexrig::severity::Severity,
+    struck: &str,
+) -> Result<(), Error> {
+    use flexrig::severity::ContactAreaModel;
+    line(out, format!("  severity (struck body: {struck})"))?;
+    line(
+        out,
+        format!(
+            "    peak force          {:.6} N at t = {:.6} s",
+            s.peak_force_n, s.time_of_peak_force_s
+        ),
+    )?;
+    for p in &s.pressure {
+        let name = match p.area_model {
+            ContactAreaModel::HertzSphere { .. } => "Hertz sphere",
+            ContactAreaModel::ThinLayer { .. } => "thin layer",
+            ContactAreaModel::Fixed { .. } => "fixed area",
+        };
+        line(
+            out,
+            format!(
+                "    peak pressure       {:.4e} Pa (mean {:.4e} Pa), {name} area model",
+                p.peak_pa, p.mean_pa
+            ),
+        )?;
+    }
+    line(
+        out,
+        format!(
+            "    energy transferred  {:.6e} J (net contact work {:.3e} J)",
+            s.energy_transferred_j, s.contact_work_j
+        ),
+    )?;
+    if let (Some(a), Some(g)) = (s.peak_acceleration_mps2, s.peak_acceleration_g) {
+        line(
+            out,
+            format!("    peak acceleration   {a:.6e} m/s² ({g:.4} g)"),
+        )?;
+    }
+    for (name, h) in [("HIC15", s.hic15), ("HIC36", s.hic36)] {
+        if let Some(h) = h {
+            line(
+                out,
+                format!(
+                    "    {name}               {:.6e} (window {:.6} s to {:.6} s)",
+                    h.hic, h.t1_s, h.t2_s
+                ),
+            )?;
+        }
+    }
+    Ok(())
+}

@@ -82,6 +82,7 @@ fn run_log_reads_back_with_everything_written() {
             "/sensors/encoders",
             "/contact",
             "/energy",
+            "/severity",
         ] {
             assert!(
                 counts.get(topic).copied().unwrap_or(0) > 0,
@@ -488,5 +489,94 @@ fn independent_python_check_when_available() {
         String::from_utf8_lossy(&o.stderr)
     );
     assert!(String::from_utf8_lossy(&o.stdout).contains(", ok;"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A logged accelerometer or force sample: only the value (field 2; the timestamp, field 1, is
+/// the message's log time).
+#[derive(Clone, PartialEq, prost::Message)]
+struct LoggedScalar {
+    #[prost(double, tag = "2")]
+    value: f64,
+}
+
+#[test]
+fn the_severity_message_matches_the_summary_and_the_logged_accelerometer() {
+    use prost::Message;
+    let dir = scratch("severity");
+    let out = dir.join("sev.mcap");
+    let o = flexrig(&[
+        "run",
+        &scene_path("cj_iron"),
+        "--out",
+        out.to_str().unwrap(),
+        "--log-every-step",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let bytes = std::fs::read(&out).unwrap();
+    let mut severity = Vec::new();
+    let (mut times, mut accel, mut force) = (Vec::new(), Vec::new(), Vec::new());
+    for m in mcap::MessageStream::new(&bytes).unwrap() {
+        let m = m.unwrap();
+        match m.channel.topic.as_str() {
+            "/severity" => {
+                assert_eq!(m.channel.message_encoding, "json");
+                let schema = m.channel.schema.as_ref().unwrap();
+                assert_eq!(schema.encoding, "jsonschema");
+                let _: serde_json::Value = serde_json::from_slice(&schema.data).unwrap();
+                severity.push(serde_json::from_slice::<serde_json::Value>(&m.data).unwrap());
+            }
+            "/sensors/accel/operator" => {
+                times.push(m.log_time as f64 * 1e-9);
+                accel.push(LoggedScalar::decode(m.data.as_ref()).unwrap().value.abs());
+            }
+            "/sensors/force" => force.push(LoggedScalar::decode(m.data.as_ref()).unwrap().value),
+            _ => {}
+        }
+    }
+    assert_eq!(severity.len(), 1, "one /severity message");
+    let mut message = severity.pop().unwrap();
+    let map = message.as_object_mut().unwrap();
+    assert!(
+        map.remove("hic_method")
+            .unwrap()
+            .as_str()
+            .unwrap()
+            .contains("interpolant")
+    );
+    assert!(
+        map.remove("struck_body")
+            .unwrap()
+            .as_str()
+            .unwrap()
+            .contains("operator")
+    );
+    assert_eq!(
+        &message, &v["severity"],
+        "the log's severity is the summary's"
+    );
+    // recomputed from the logged accelerometer and force sensor (every sample is logged)
+    assert_eq!(times.len(), v["samples"].as_u64().unwrap() as usize);
+    let peak_force = force.iter().fold(0.0f64, |a, &b| a.max(b));
+    assert_eq!(peak_force, v["severity"]["peak_force_n"].as_f64().unwrap());
+    let peak_accel = accel.iter().fold(0.0f64, |a, &b| a.max(b));
+    assert_eq!(
+        peak_accel,
+        v["severity"]["peak_acceleration_mps2"].as_f64().unwrap()
+    );
+    for (window, key) in [
+        (flexrig_safety::HicWindow::Hic15, "hic15"),
+        (flexrig_safety::HicWindow::Hic36, "hic36"),
+    ] {
+        let h = flexrig_safety::hic(&times, &accel, window).unwrap();
+        let logged = v["severity"][key]["hic"].as_f64().unwrap();
+        assert!(
+            (h.hic - logged).abs() <= 1e-9 * logged,
+            "{key}: {} vs {logged}",
+            h.hic
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -147,6 +147,10 @@ pub struct RunRecord {
     pub max_indentation_m: f64,
     /// The MCAP log.
     pub mcap: PathBuf,
+    /// Severity of the run ([`crate::severity`]; absent when the run took fewer than two
+    /// samples).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub severity: Option<crate::severity::Severity>,
 }
 
 /// Mean and 95 % confidence interval of one configuration.
@@ -481,21 +485,28 @@ fn run_job(
         contact_duration_s: summary.contact_duration_s,
         max_indentation_m: summary.max_indentation_m,
         mcap: path,
+        severity: summary.severity,
     })
 }
 
 /// One row per run; the CL rows also carry the paired CL/CJ ratio of their repeat and their
-/// case's mean ratio with its 95 % CI half-width (empty with one pair).
+/// case's mean ratio with its 95 % CI half-width (empty with one pair), then the severity
+/// columns ([`crate::severity::SEVERITY_COLUMNS`]).
 pub fn csv(records: &[RunRecord], ratios: &[RatioStats]) -> String {
     let mut text = String::from(
-        "scene,design,block_material,block_mass_kg,payload_kg,repeat,release_angle_deg,peak_force_n,time_of_peak_s,impact_velocity_mps,contact_duration_s,max_indentation_m,mcap,cl_over_cj,cl_over_cj_mean,cl_over_cj_ci95\n",
+        "scene,design,block_material,block_mass_kg,payload_kg,repeat,release_angle_deg,peak_force_n,time_of_peak_s,impact_velocity_mps,contact_duration_s,max_indentation_m,mcap,cl_over_cj,cl_over_cj_mean,cl_over_cj_ci95",
     );
+    for column in crate::severity::SEVERITY_COLUMNS {
+        text.push(',');
+        text.push_str(column);
+    }
+    text.push('\n');
     let optional = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.9e}"));
     for r in records {
         let (pair, stats) = pair_columns(records, ratios, r);
         let _ = writeln!(
             text,
-            "{},{},{},{},{},{},{:.6},{:.9e},{:.9e},{:.9e},{},{:.9e},{},{},{},{}",
+            "{},{},{},{},{},{},{:.6},{:.9e},{:.9e},{:.9e},{},{:.9e},{},{},{},{},{}",
             r.scene,
             r.inputs.design,
             r.inputs.block_material,
@@ -512,6 +523,9 @@ pub fn csv(records: &[RunRecord], ratios: &[RatioStats]) -> String {
             optional(pair),
             optional(stats.map(|s| s.mean_cl_over_cj)),
             optional(stats.and_then(|s| s.ci95)),
+            crate::severity::severity_values(r.severity.as_ref())
+                .map(optional)
+                .join(","),
         );
     }
     text
@@ -569,6 +583,7 @@ mod tests {
             contact_duration_s: None,
             max_indentation_m: 1e-3,
             mcap: PathBuf::from("x.mcap"),
+            severity: None,
         }
     }
 

@@ -201,3 +201,24 @@ pub fn solve(input: &ImpactInput, method: Method) -> Result<ImpactResult, Error>
         details,
     })
 }
+
+/// The severity of the lumped impact `model` by the ode method ([`crate::severity::of_lumped`]:
+/// relative tolerance `rtol`, `formulation`), with the contact area of a dome of radius
+/// `dome_radius_m` \[m\] (`--dome-radius`, > 0; none: the paper's dome).
+pub fn severity(
+    model: &ImpactModel,
+    rtol: f64,
+    formulation: Formulation,
+    dome_radius_m: Option<f64>,
+) -> Result<crate::severity::Severity, Error> {
+    let radius = match dome_radius_m {
+        Some(r) => range_arg("--dome-radius", r, 1e-6, 10.0)?,
+        None => crate::severity::paper_dome_radius_m()?,
+    };
+    let options = OdeOptions::new(rtol).map_err(|_| Error::InvalidArgument {
+        arg: "--rtol".into(),
+        value: flexrig_contact::validate::display(rtol),
+        allowed: "must lie in [1e-14, 0.1]".into(),
+    })?;
+    crate::severity::of_lumped(model, options.rtol, formulation, radius)
+}

@@ -46,6 +46,7 @@ pub mod safety;
 pub mod safety_map;
 pub mod safety_report;
 pub mod scenes;
+pub mod severity;
 pub mod study;
 pub mod traces;
 pub mod validation;

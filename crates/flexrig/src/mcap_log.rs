@@ -74,6 +74,33 @@ pub struct EnergyState {
     pub total_j: f64,
 }
 
+/// Schema name of the `/severity` channel.
+pub const SEVERITY_SCHEMA_NAME: &str = "flexrig.Severity";
+
+/// JSON Schema of the `/severity` message: the run's severity (see `docs/safety.md`).
+pub const SEVERITY_JSON_SCHEMA: &str = r#"{
+  "title": "flexrig.Severity",
+  "description": "Severity of a run: peak force, peak pressure under each contact-area model, energy transferred, peak struck-body acceleration, HIC15 and HIC36 (SI units; HIC without unit)",
+  "type": "object",
+  "properties": {
+    "peak_force_n": {"type": "number"},
+    "time_of_peak_force_s": {"type": "number"},
+    "pressure": {"type": "array", "items": {"type": "object", "properties": {
+      "area_model": {"type": "object"},
+      "mean_pa": {"type": "number"},
+      "peak_pa": {"type": "number"},
+      "time_s": {"type": "number"}}}},
+    "energy_transferred_j": {"type": "number"},
+    "contact_work_j": {"type": "number"},
+    "peak_acceleration_mps2": {"type": "number"},
+    "peak_acceleration_g": {"type": "number"},
+    "hic15": {"type": "object", "properties": {"hic": {"type": "number"}, "t1_s": {"type": "number"}, "t2_s": {"type": "number"}, "mean_acceleration_g": {"type": "number"}}},
+    "hic36": {"type": "object", "properties": {"hic": {"type": "number"}, "t1_s": {"type": "number"}, "t2_s": {"type": "number"}, "mean_acceleration_g": {"type": "number"}}},
+    "hic_method": {"type": "string"},
+    "struck_body": {"type": "string"}
+  }
+}"#;
+
 /// Channel ids of the log.
 #[derive(Debug, Clone, Copy)]
 struct Channels {
@@ -85,6 +112,7 @@ struct Channels {
     encoders: u16,
     contact: u16,
     energy: u16,
+    severity: u16,
 }
 
 /// How often the channels are written. Inside the contact window `/contact` and the sensor
@@ -344,6 +372,7 @@ pub fn run_logged(
     let finished = match &outcome {
         Ok(summary) => log
             .write_summary(summary)
+            .and_then(|()| log.write_severity(summary))
             .and_then(|()| log.finish_into_inner()),
         Err(e) => log.finish_with_error(&e.to_string()),
     };
@@ -481,6 +510,14 @@ impl<W: Write + Seek> McapRecorder<W> {
                 EnergyState::get_schema(),
                 EnergyState::get_message_encoding(),
             )?,
+            severity: {
+                let id = writer.add_schema(
+                    SEVERITY_SCHEMA_NAME,
+                    "jsonschema",
+                    SEVERITY_JSON_SCHEMA.as_bytes(),
+                )?;
+                writer.add_channel(id, "/severity", "json", &BTreeMap::new())?
+            },
         };
         writer.attach(&mcap::Attachment {
             log_time: 0,
@@ -841,6 +878,36 @@ impl<W: Write + Seek> McapRecorder<W> {
                 .into_iter()
                 .collect(),
         })
+    }
+
+    /// Writes the run's severity ([`RunSummary::severity`]) as one JSON message on `/severity`
+    /// at the run's end (after a successful run; nothing when the run has none).
+    pub fn write_severity(&mut self, s: &RunSummary) -> Result<(), mcap::McapError> {
+        let Some(severity) = &s.severity else {
+            return Ok(());
+        };
+        let mut message = serde_json::to_value(severity).unwrap_or_default();
+        if let Some(map) = message.as_object_mut() {
+            map.insert("hic_method".into(), flexrig_safety::HIC_METHOD.into());
+            map.insert(
+                "struck_body".into(),
+                "operator block (virtual operator accelerometer)".into(),
+            );
+        }
+        let data = message.to_string();
+        self.sequence += 1;
+        let ns = nanos(s.duration_s);
+        self.writer.write_to_known_channel(
+            &mcap::records::MessageHeader {
+                channel_id: self.channels.severity,
+                sequence: self.sequence,
+                log_time: ns,
+                publish_time: ns,
+            },
+            data.as_bytes(),
+        )?;
+        self.messages += 1;
+        Ok(())
     }
 
     /// Writes the run summary as metadata (after a successful run).

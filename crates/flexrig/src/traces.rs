@@ -67,8 +67,6 @@ pub struct Traces {
 #[derive(Debug, Default)]
 pub struct TraceRecorder {
     traces: Traces,
-    /// (time, indentation) at the end of the previous step.
-    last: (f64, f64),
     cancel: CancelToken,
 }
 
@@ -93,17 +91,11 @@ impl Recorder for TraceRecorder {
             return Err(RigError::Interrupted { t: f.t });
         }
         let (force, indentation) = f.contact.map_or((0.0, 0.0), |c| (c.force, c.indentation));
-        let (t0, d0) = self.last;
         let s = &mut self.traces.samples;
         for sample in f.samples {
-            let w = if f.t > t0 {
-                (sample.t - t0) / (f.t - t0)
-            } else {
-                1.0
-            };
             s.time_s.push(sample.t);
             s.force_n.push(sample.force_n);
-            s.indentation_m.push(d0 + (indentation - d0) * w);
+            s.indentation_m.push(sample.indentation_m);
             s.operator_accel_mps2.push(sample.operator_accel_mps2);
             s.load_accel_mps2.push(sample.load_accel_mps2);
             s.operator_angle_rad.push(sample.operator_angle_rad);
@@ -116,7 +108,6 @@ impl Recorder for TraceRecorder {
         st.force_n.push(force);
         st.indentation_m.push(indentation);
         st.energy_j.push(f.energy);
-        self.last = (f.t, indentation);
         Ok(())
     }
 }

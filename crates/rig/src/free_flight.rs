@@ -227,6 +227,7 @@ impl FlightSensors {
             operator_accel_mps2: self.arm_length * (cos * phi_accel - sin * y[1] * y[1]),
             load_accel_mps2: load_accel,
             force_n: 0.0,
+            indentation_m: 0.0,
         }
     }
 }

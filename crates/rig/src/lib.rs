@@ -32,6 +32,7 @@ pub mod run;
 pub mod scene;
 mod scene_load;
 pub mod sensors;
+pub mod severity;
 pub mod world;
 
 pub use beam_link::{BeamLink, LinkVariant};

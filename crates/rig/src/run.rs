@@ -170,6 +170,12 @@ pub struct RunSummary {
     pub duration_s: f64,
     /// Plausibility warnings of the scene (empty: none; [`crate::plausibility`]).
     pub warnings: Vec<crate::plausibility::Warning>,
+    /// Severity of the run from its sensor samples ([`crate::severity::of_samples`]): peak force,
+    /// peak pressure (Hertz sphere and thin layer under the dome), energy transferred, the
+    /// operator block's acceleration and its HIC15/HIC36; absent when the run took fewer than
+    /// two samples.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub severity: Option<flexrig_safety::Severity>,
     /// Sensor samples.
     #[serde(skip)]
     pub samples: Vec<SensorSample>,
@@ -415,6 +421,7 @@ impl<'s> Simulation<'s> {
                 operator_velocity: 0.0,
                 load_velocity: 0.0,
                 force: 0.0,
+                indentation: 0.0,
             },
             sampler: Sampler::new(scene.file.record.sample_rate_hz),
             stats: Stats::default(),
@@ -591,6 +598,7 @@ impl<'s> Simulation<'s> {
             operator_velocity: l * op.angle.cos() * op.rate,
             load_velocity,
             force: self.now.contact.map_or(0.0, |c| c.force),
+            indentation: self.now.contact.map_or(0.0, |c| c.indentation),
         }
     }
 
@@ -1153,6 +1161,9 @@ impl<'s> Simulation<'s> {
                 ),
             });
         };
+        let samples = self.sampler.into_samples();
+        let severity =
+            crate::severity::of_samples(&samples, self.scene.file.robot.dome_radius_m).ok();
         Ok(RunSummary {
             scene: self.scene.file.name.clone(),
             design: self.scene.file.robot.design,
@@ -1173,7 +1184,8 @@ impl<'s> Simulation<'s> {
             contacts,
             duration_s: self.t,
             warnings: self.scene.warnings.clone(),
-            samples: self.sampler.into_samples(),
+            severity,
+            samples,
         })
     }
 }

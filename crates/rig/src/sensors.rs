@@ -23,6 +23,8 @@ pub struct SensorSample {
     pub load_accel_mps2: f64,
     /// Force sensor between load and dome \[N\].
     pub force_n: f64,
+    /// Contact indentation δ \[m\] (linear between step ends like the force; 0 outside contact).
+    pub indentation_m: f64,
 }
 
 /// The state of the measured quantities at a step end.
@@ -42,6 +44,8 @@ pub struct Reading {
     pub load_velocity: f64,
     /// Contact force \[N\].
     pub force: f64,
+    /// Contact indentation \[m\] (0 outside contact).
+    pub indentation: f64,
 }
 
 /// Samples the readings at `rate` Hz.
@@ -89,6 +93,7 @@ impl Sampler {
                 operator_accel_mps2: operator_accel,
                 load_accel_mps2: load_accel,
                 force_n: lerp(a.force, b.force),
+                indentation_m: lerp(a.indentation, b.indentation),
             });
         }
     }

@@ -43,6 +43,15 @@ pub enum ContactAreaModel {
 }
 
 impl ContactAreaModel {
+    /// The two models of a dome of radius `radius_m` \[m\] pressed into skin, in the order runs
+    /// report them: Hertz sphere (the default) and thin layer on a rigid backing.
+    pub fn dome_models(radius_m: f64) -> [ContactAreaModel; 2] {
+        [
+            ContactAreaModel::HertzSphere { radius_m },
+            ContactAreaModel::ThinLayer { radius_m },
+        ]
+    }
+
     /// Checks the parameter (names `radius_m` or `area_m2`).
     pub fn validate(&self) -> Result<(), SafetyError> {
         match *self {

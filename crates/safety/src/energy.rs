@@ -24,16 +24,21 @@ pub fn spring_energy_at_force(force: f64, spring_constant: f64) -> Result<f64, S
 }
 
 /// Work of the contact force over the indentation up to the largest indentation,
-/// W = ∫₀^{δ_max} f dδ \[J\], by the trapezoidal rule over the loading samples (those before the
-/// first sample of largest indentation). `force` \[N\] and `indentation` \[m\] are sampled together
-/// from first contact.
+/// W = ∫₀^{δ_max} f dδ \[J\], by the trapezoidal rule over the loading samples: from the start of
+/// the contact that reaches the largest indentation (the last sample before it without
+/// indentation, δ ≤ 0; the first sample if none) to the first sample of largest indentation.
+/// `force` \[N\] and `indentation` \[m\] are sampled together.
 pub fn loading_work(force: &[f64], indentation: &[f64]) -> Result<f64, SafetyError> {
     check_paired("force", force, "indentation", indentation)?;
     let peak = indentation.iter().enumerate().fold(
         0,
         |best, (i, &d)| if d > indentation[best] { i } else { best },
     );
-    let work = (1..=peak)
+    let start = indentation[..=peak]
+        .iter()
+        .rposition(|&d| d <= 0.0)
+        .unwrap_or(0);
+    let work = (start + 1..=peak)
         .map(|i| 0.5 * (force[i] + force[i - 1]) * (indentation[i] - indentation[i - 1]))
         .sum();
     Ok(work)

@@ -84,7 +84,14 @@ pub fn hic(
         t2: times[0],
     };
     let n_seg = times.len() - 1;
+    trace.seed(max_dt, &mut best);
+    let window_max = window_maxima(times, &trace.a, max_dt);
     for i in 0..n_seg {
+        // No window from segment i can beat the best: HIC² ≤ Δ_max² a_max⁵.
+        let a_win = window_max[i];
+        if !(a_win > 0.0 && max_dt * max_dt * a_win.powi(5) > best.value) {
+            continue;
+        }
         let mut a_max = trace.a[i];
         for j in i..n_seg {
             if times[j] - times[i + 1] > max_dt {
@@ -145,6 +152,34 @@ pub fn half_sine_optimal_phase() -> f64 {
     phi
 }
 
+/// For each segment start i, the largest sample in [t_i, t_i + Δ_max] and the next sample after
+/// it (every sample a window starting in segment i can reach), by a monotone deque: O(N).
+fn window_maxima(t: &[f64], a: &[f64], max_dt: f64) -> Vec<f64> {
+    let n = t.len();
+    let mut out = vec![0.0; n];
+    let mut deque = std::collections::VecDeque::new();
+    let mut end = 0; // next sample to push
+    for i in 0..n {
+        // push every sample up to the first one beyond t_{i+1} + Δ_max (inclusive)
+        let reach = t[(i + 1).min(n - 1)] + max_dt;
+        while end < n {
+            while deque.back().is_some_and(|&b: &usize| a[b] <= a[end]) {
+                deque.pop_back();
+            }
+            deque.push_back(end);
+            end += 1;
+            if t[end - 1] > reach {
+                break;
+            }
+        }
+        while deque.front().is_some_and(|&f| f < i) {
+            deque.pop_front();
+        }
+        out[i] = deque.front().map_or(a[i], |&f| a[f]);
+    }
+    out
+}
+
 struct Best {
     /// HIC² = I⁵/Δ³ of the best window so far.
     value: f64,
@@ -177,6 +212,28 @@ impl<'a> Interpolant<'a> {
             a,
             slope,
             integral,
+        }
+    }
+
+    /// A good first candidate, so that the bound prunes early: windows between samples centred
+    /// on the largest sample (any window is a valid lower bound of the maximum).
+    fn seed(&self, max_dt: f64, best: &mut Best) {
+        let n = self.t.len();
+        let peak = (0..n).fold(0, |b, k| if self.a[k] > self.a[b] { k } else { b });
+        let (mut lo, mut hi) = (peak, peak);
+        while lo > 0 || hi + 1 < n {
+            let widen_lo = lo > 0 && (hi + 1 >= n || self.a[lo - 1] >= self.a[hi + 1]);
+            if widen_lo {
+                lo -= 1;
+            } else {
+                hi += 1;
+            }
+            if self.t[hi] - self.t[lo] > max_dt {
+                break;
+            }
+            let (i, x) = (lo, 0.0);
+            let (j, y) = (hi - 1, self.h(hi - 1));
+            self.offer(i, x, j, y, max_dt, best);
         }
     }
 

@@ -9,7 +9,8 @@
 //! - Severity over sampled traces: [`hic`] (exact for the piecewise-linear interpolant; HIC15,
 //!   HIC36), [`hic_half_sine`] (closed form), [`peak_force`], [`peak_pressure`] with a
 //!   [`ContactAreaModel`] (Hertz sphere, thin layer, fixed area), [`loading_work`] and
-//!   [`relative_kinetic_energy`]; all of them at once for a run summary with [`severity`].
+//!   [`relative_kinetic_energy`]; all of them at once for a run summary with [`severity`] (the
+//!   one function the test bed, the lumped and FE impacts, sweeps and logs use).
 //! - Permissible speed: [`StandardContact`] (the standard's formula, Eq. A.1–A.6) and
 //!   [`EnergyContact`] (the paper's energy method with a Hertz skin law and the link's series
 //!   compliance, Eq. 4–13), each giving a [`PermissibleSpeed`] (which limit governs) and a
@@ -56,6 +57,8 @@ pub use error::SafetyError;
 pub use hic::{
     HicResult, HicWindow, STANDARD_GRAVITY, half_sine_optimal_phase, hic, hic_half_sine,
 };
-pub use severity::{ContactTraces, Severity, severity};
+pub use severity::{
+    ContactTraces, HIC_METHOD, HicSeverity, PressureSeverity, Severity, contact_work, severity,
+};
 pub use speed::{GoverningLimit, PermissibleSpeed, Verdict};
 pub use standard::{RobotMass, StandardContact, reduced_mass};

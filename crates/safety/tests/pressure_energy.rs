@@ -100,20 +100,25 @@ fn severity_of_the_linear_impact_collects_every_measure() {
         indentation: &d,
         head_acceleration: Some(&a),
     };
-    let s = severity(&traces, Some(&ContactAreaModel::Fixed { area_m2: 1e-4 })).unwrap();
-    assert_close("peak force", s.peak_force, f_max, 1e-12);
-    assert_close("t at peak", s.t_peak_force, 0.5 * t_c, 1e-12);
-    assert_close(
-        "peak pressure",
-        s.peak_pressure.unwrap(),
-        f_max / 1e-4,
-        1e-12,
-    );
+    let area = ContactAreaModel::Fixed { area_m2: 1e-4 };
+    let s = severity(&traces, &[area]).unwrap();
+    assert_close("peak force", s.peak_force_n, f_max, 1e-12);
+    assert_close("t at peak", s.time_of_peak_force_s, 0.5 * t_c, 1e-12);
+    assert_close("peak pressure", s.pressure[0].mean_pa, f_max / 1e-4, 1e-12);
+    assert_eq!(s.pressure_of(&area).unwrap().peak_pa, s.pressure[0].mean_pa);
     assert_close(
         "loading work = ½ μ v²",
-        s.loading_work,
+        s.energy_transferred_j,
         0.5 * mu * v * v,
         1e-6,
+    );
+    // elastic: the net work over the closed force–indentation loop is 0 up to rounding
+    assert!(s.contact_work_j.abs() < 1e-12 * s.energy_transferred_j);
+    assert_close(
+        "peak acceleration",
+        s.peak_acceleration_mps2.unwrap(),
+        f_max / m_h,
+        1e-12,
     );
     let h15 = hic_half_sine(f_max / m_h, t_c, HicWindow::Hic15).unwrap();
     assert_close("HIC15", s.hic15.unwrap().hic, h15, 1e-6);
@@ -122,7 +127,7 @@ fn severity_of_the_linear_impact_collects_every_measure() {
         ..traces
     };
     assert!(
-        severity(&short, None)
+        severity(&short, &[])
             .unwrap_err()
             .to_string()
             .contains("indentation")

@@ -6,11 +6,12 @@ use std::io::Write;
 use clap::{Args, ValueEnum};
 use flexrig::Error;
 use flexrig::impact::{
-    DEFAULT_RTOL, Details, EffectiveMass, Formulation, ImpactInput, Method, solve,
+    DEFAULT_RTOL, Details, EffectiveMass, Formulation, ImpactInput, Method,
+    severity as impact_severity, solve,
 };
 use serde_json::json;
 
-use crate::print::{line, print_json};
+use crate::print::{line, print_json, print_severity};
 
 /// How the peak is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -84,6 +85,10 @@ pub struct ImpactArgs {
     /// Relative tolerance of the ode method.
     #[arg(long, value_name = "R", default_value_t = DEFAULT_RTOL)]
     pub rtol: f64,
+    /// Dome radius for the contact pressure of the ode method's severity [m] (default: the
+    /// paper's dome, 71.5 mm).
+    #[arg(long = "dome-radius", value_name = "M")]
+    pub dome_radius: Option<f64>,
     /// Print JSON instead of text.
     #[arg(long)]
     pub json: bool,
@@ -129,7 +134,26 @@ impl ImpactArgs {
 /// Runs `flexrig impact`.
 pub fn run(args: &ImpactArgs, out: &mut dyn Write) -> Result<(), Error> {
     let method = args.method();
-    let r = solve(&args.input()?, method)?;
+    let input = args.input()?;
+    let r = solve(&input, method)?;
+    let severity = match r.details {
+        Details::Ode { formulation, .. } => Some(impact_severity(
+            &r.model,
+            args.rtol,
+            formulation,
+            args.dome_radius,
+        )?),
+        _ => {
+            if let Some(radius) = args.dome_radius {
+                return Err(Error::InvalidArgument {
+                    arg: "--dome-radius".into(),
+                    value: radius.to_string(),
+                    allowed: "only with --method ode (the severity needs the time history)".into(),
+                });
+            }
+            None
+        }
+    };
     let model = &r.model;
     let mut report = json!({
         "method": method.name(),
@@ -164,10 +188,17 @@ pub fn run(args: &ImpactArgs, out: &mut dyn Write) -> Result<(), Error> {
     report["delta_max_m"] = json!(peak.delta_max);
     report["indentation_max_m"] = json!(peak.indentation_max);
     report["link_deflection_max_m"] = json!(peak.link_deflection_max);
+    if let Some(s) = &severity {
+        report["severity"] = json!(s);
+    }
     if args.json {
         return print_json(out, &report);
     }
-    print_text(out, &report)
+    print_text(out, &report)?;
+    if let Some(s) = &severity {
+        print_severity(out, s, "the head, acceleration f/m_h")?;
+    }
+    Ok(())
 }
 
 fn print_text(out: &mut dyn Write, report: &serde_json::Value) -> Result<(), Error> {

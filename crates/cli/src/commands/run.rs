@@ -9,7 +9,7 @@ use flexrig::output::positive_arg;
 use flexrig::run::{LogRequest, run_scene_file, scene_warnings, summary_json};
 use flexrig::{CancelToken, Error};
 
-use crate::print::{line, parse_overrides, print_json};
+use crate::print::{line, parse_overrides, print_json, print_severity};
 
 /// Arguments of `flexrig run`.
 #[derive(Debug, Args)]
@@ -106,5 +106,9 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
             s.contact_step_s,
             s.samples.len()
         ),
-    )
+    )?;
+    if let Some(severity) = &s.severity {
+        print_severity(out, severity, "operator block, its accelerometer")?;
+    }
+    Ok(())
 }

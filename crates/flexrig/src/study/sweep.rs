@@ -21,8 +21,9 @@ use crate::Error;
 use crate::cancel::CancelToken;
 use crate::output::write_atomic;
 
-/// The summary quantities of a row, in column order.
-pub const SUMMARY_COLUMNS: [&str; 15] = [
+/// The summary quantities of a row, in column order: the run summary's, then the severity's
+/// ([`crate::severity::SEVERITY_COLUMNS`]).
+pub const SUMMARY_COLUMNS: [&str; 24] = [
     "peak_force_n",
     "time_of_peak_s",
     "impact_velocity_mps",
@@ -38,11 +39,20 @@ pub const SUMMARY_COLUMNS: [&str; 15] = [
     "energy_initial_j",
     "energy_final_j",
     "duration_s",
+    "severity_peak_force_n",
+    "peak_pressure_hertz_pa",
+    "peak_pressure_thin_layer_pa",
+    "energy_transferred_j",
+    "contact_work_j",
+    "peak_accel_mps2",
+    "peak_accel_g",
+    "hic15",
+    "hic36",
 ];
 
 /// The summary quantities of a run, as [`SUMMARY_COLUMNS`] (absent values: `None`).
-pub fn summary_values(s: &RunSummary) -> [Option<f64>; 15] {
-    [
+pub fn summary_values(s: &RunSummary) -> [Option<f64>; 24] {
+    let run = [
         Some(s.peak_force_n),
         Some(s.time_of_peak_s),
         Some(s.impact_velocity_mps),
@@ -58,7 +68,15 @@ pub fn summary_values(s: &RunSummary) -> [Option<f64>; 15] {
         Some(s.energy_initial_j),
         Some(s.energy_final_j),
         Some(s.duration_s),
-    ]
+    ];
+    let severity = crate::severity::severity_values(s.severity.as_ref());
+    std::array::from_fn(|i| {
+        if i < run.len() {
+            run[i]
+        } else {
+            severity[i - run.len()]
+        }
+    })
 }
 
 /// A format error of a sweep value that looks like a list typed with spaces or semicolons gets
@@ -704,4 +722,30 @@ pub fn merge(dir: &Path, json: bool) -> Result<(PathBuf, usize), Error> {
     let paths: Vec<&str> = manifest.paths.iter().map(String::as_str).collect();
     let path = write_tables(dir, None, &paths, &rows, json)?;
     Ok((path, rows.len()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_table_carries_the_severity_columns_with_their_units() {
+        let header = csv_header(&["robot.payload_kg"]);
+        for column in crate::severity::SEVERITY_COLUMNS {
+            assert!(header.split(',').any(|c| c == column), "{column}");
+        }
+        assert_eq!(
+            SUMMARY_COLUMNS[SUMMARY_COLUMNS.len() - crate::severity::SEVERITY_COLUMNS.len()..],
+            crate::severity::SEVERITY_COLUMNS
+        );
+        // every column but the counts and HIC (no unit) names its unit
+        for column in SUMMARY_COLUMNS {
+            let unitless = ["contacts", "steps", "contact_steps", "hic15", "hic36"];
+            let units = ["_n", "_s", "_mps", "_m", "_n_s", "_j", "_pa", "_mps2", "_g"];
+            assert!(
+                unitless.contains(&column) || units.iter().any(|u| column.ends_with(u)),
+                "{column}"
+            );
+        }
+    }
 }

@@ -83,6 +83,11 @@ pub struct OdeOptions {
     pub stop: StopAt,
     /// Record the state at every accepted step and at the events.
     pub record_trace: bool,
+    /// With `record_trace`, also record the state on the integrator's dense output (its
+    /// 7th-order interpolant) at every multiple of this interval \[s\] inside each step: a
+    /// uniformly sampled trace for measures over time (e.g. HIC). None: step ends only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub trace_interval: Option<f64>,
 }
 
 /// Default relative tolerance: peak errors of about 1e-11 (see the tests).
@@ -97,6 +102,7 @@ impl OdeOptions {
             formulation: Formulation::Auto,
             stop: StopAt::Separation,
             record_trace: false,
+            trace_interval: None,
         })
     }
 
@@ -116,6 +122,13 @@ impl OdeOptions {
     pub fn record_trace(mut self, record: bool) -> Self {
         self.record_trace = record;
         self
+    }
+
+    /// With a trace that also holds the dense output every `interval` \[s\] > 0 (finite).
+    pub fn trace_interval(mut self, interval: f64) -> Result<Self, LumpedError> {
+        self.record_trace = true;
+        self.trace_interval = Some(validate::positive("trace_interval", interval)?);
+        Ok(self)
     }
 }
 
@@ -289,10 +302,14 @@ impl OdeSystem<2> for DisplacementSystem<'_> {
 
 /// Integrates the impact from first contact (δ = 0, δ̇ = v0) to the peak or to separation.
 pub fn integrate(model: &ImpactModel, options: &OdeOptions) -> Result<OdeSolution, LumpedError> {
-    let options = OdeOptions::new(options.rtol)?
+    let options_in = options;
+    let mut options = OdeOptions::new(options.rtol)?
         .formulation(options.formulation)
         .stop(options.stop)
         .record_trace(options.record_trace);
+    if let Some(h) = options_interval(options_in) {
+        options = options.trace_interval(h)?;
+    }
     let spring = model.spring();
     let inv_mu = 1.0 / model.reduced_mass();
     // Scales for the absolute tolerances: the force at which either spring alone would store the
@@ -357,6 +374,38 @@ pub fn integrate(model: &ImpactModel, options: &OdeOptions) -> Result<OdeSolutio
     }
 }
 
+fn options_interval(options: &OdeOptions) -> Option<f64> {
+    options.trace_interval.filter(|_| options.record_trace)
+}
+
+/// The dense-output samples of the trace: every multiple of `interval` strictly inside
+/// (`from`, `to`), the next index to record in `next`.
+struct DenseGrid {
+    interval: f64,
+    next: u64,
+}
+
+impl DenseGrid {
+    fn fill<const N: usize>(
+        &mut self,
+        dense: &DenseOutput<N>,
+        (from, to): (f64, f64),
+        observe: &impl Fn(f64, &[f64; N]) -> TracePoint,
+        trace: &mut Vec<TracePoint>,
+    ) {
+        loop {
+            let t = self.next as f64 * self.interval;
+            if t >= to {
+                break;
+            }
+            self.next += 1;
+            if t > from {
+                trace.push(observe(t, &dense.eval(t)));
+            }
+        }
+    }
+}
+
 /// The integration loop shared by both formulations: step, look for the events on the dense
 /// output, record, stop.
 fn run(
@@ -384,19 +433,28 @@ fn run(
         trace.push(observe(0.0, solver.y()));
     }
     let mut peak: Option<TracePoint> = None;
+    let mut grid = options_interval(options).map(|interval| DenseGrid { interval, next: 1 });
     loop {
         solver
             .step(system)
             .map_err(|e| integration_error(e, rtol))?;
+        let dense = grid.as_ref().map(|_| solver.dense_output(system));
         let outcome = detect_event(&mut solver, system, peak.is_some(), &observe);
+        let span = (solver.t_old(), solver.t());
         match outcome {
             StepOutcome::Advanced => {
+                if let (Some(g), Some(d)) = (grid.as_mut(), dense.as_ref()) {
+                    g.fill(d, span, &observe, &mut trace);
+                }
                 if options.record_trace {
                     trace.push(observe(solver.t(), solver.y()));
                 }
             }
             StepOutcome::Peak(p) => {
                 peak = Some(p);
+                if let (Some(g), Some(d)) = (grid.as_mut(), dense.as_ref()) {
+                    g.fill(d, (span.0, p.t), &observe, &mut trace);
+                }
                 if options.record_trace {
                     trace.push(p);
                 }
@@ -407,20 +465,40 @@ fn run(
                 if let StepOutcome::Separation(located) =
                     detect_event(&mut solver, system, true, &observe)
                 {
-                    let s = land_on_separation(&mut solver, system, located.t, &observe)
-                        .map_err(|e| integration_error(e, rtol))?;
+                    if let Some(g) = grid.as_mut() {
+                        // the landing steps restart from the step's start, before the peak
+                        g.next = (p.t / g.interval).floor() as u64 + 1;
+                    }
+                    let s = land_on_separation(
+                        &mut solver,
+                        system,
+                        located.t,
+                        &observe,
+                        (p.t, grid.as_mut(), &mut trace),
+                    )
+                    .map_err(|e| integration_error(e, rtol))?;
                     if options.record_trace {
                         trace.push(s);
                     }
                     return Ok(finish(&solver, p, Some(s), trace));
+                }
+                if let (Some(g), Some(d)) = (grid.as_mut(), dense.as_ref()) {
+                    g.fill(d, (p.t, span.1), &observe, &mut trace);
                 }
                 if options.record_trace {
                     trace.push(observe(solver.t(), solver.y()));
                 }
             }
             StepOutcome::Separation(located) => {
-                let s = land_on_separation(&mut solver, system, located.t, &observe)
-                    .map_err(|e| integration_error(e, rtol))?;
+                let from = span.0;
+                let s = land_on_separation(
+                    &mut solver,
+                    system,
+                    located.t,
+                    &observe,
+                    (from, grid.as_mut(), &mut trace),
+                )
+                .map_err(|e| integration_error(e, rtol))?;
                 if options.record_trace {
                     trace.push(s);
                 }
@@ -461,15 +539,24 @@ fn detect_event<const N: usize>(
 /// continuation whose smoothness the error estimate cannot be trusted on. So go back to the start
 /// of that step and integrate, with error control, exactly up to the located separation time:
 /// every step then lies in contact.
+///
+/// With a dense grid, the landing steps' dense outputs fill it after time `after` (the last
+/// recorded point) up to separation.
 fn land_on_separation<const N: usize>(
     solver: &mut Dop853<N>,
     system: &impl OdeSystem<N>,
     t_separation: f64,
     observe: &impl Fn(f64, &[f64; N]) -> TracePoint,
+    (after, mut grid, trace): (f64, Option<&mut DenseGrid>, &mut Vec<TracePoint>),
 ) -> Result<TracePoint, StepFailure> {
     solver.rewind();
     while solver.t() < t_separation {
         solver.step_until(system, t_separation)?;
+        if let Some(g) = grid.as_deref_mut() {
+            let dense = solver.dense_output(system);
+            let span = (solver.t_old().max(after), solver.t().min(t_separation));
+            g.fill(&dense, span, observe, trace);
+        }
     }
     Ok(observe(solver.t(), solver.y()))
 }

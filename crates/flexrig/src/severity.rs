@@ -1,0 +1,110 @@
+//! Severity measures of every run, by one function: flexrig-safety's
+//! [`flexrig_safety::severity`] applied to the run's force, indentation and struck-body
+//! acceleration traces (see `docs/safety.md`).
+//!
+//! - **Test bed** (`flexrig run`, experiments, sweeps, Python runs): [`of_samples`] over the
+//!   sensor samples, filled into [`crate::run::RunSummary::severity`] by every run. The struck
+//!   body is the operator block; its acceleration is the virtual operator accelerometer.
+//! - **Lumped impact** (`flexrig impact --method ode`): [`of_lumped`] over the integrator's
+//!   dense output sampled uniformly ([`LUMPED_TRACE_SAMPLES`] intervals over the contact); the
+//!   struck body is the head of mass m_h, its acceleration f/m_h.
+//!
+//! Pressure is reported under both dome contact-area models
+//! ([`ContactAreaModel::dome_models`]: Hertz sphere A = πRδ, the default; thin layer on a rigid
+//! backing A = π(2Rδ − δ²)); HIC15/HIC36 are exact for the piecewise-linear interpolant of the
+//! samples ([`HIC_METHOD`]).
+
+use flexrig_contact::Materials;
+use flexrig_lumped::ImpactModel;
+use flexrig_lumped::ode::{Formulation, OdeOptions, integrate};
+use flexrig_safety::{ContactTraces, severity};
+
+pub use flexrig_rig::severity::of_samples;
+pub use flexrig_safety::{
+    ContactAreaModel, HIC_METHOD, HicSeverity, PressureSeverity, STANDARD_GRAVITY, Severity,
+};
+
+use crate::Error;
+
+/// Intervals of the uniform sampling of the lumped impact's dense output over the contact:
+/// the HIC of the linear interpolant of a half-sine then differs from the pulse's by about
+/// (π/N)²/12 ≈ 5e-8 relative.
+pub const LUMPED_TRACE_SAMPLES: usize = 4000;
+
+/// The dome radius \[m\] of the paper's fits (the bundled materials' `dome_radius_m`), the
+/// default contact geometry of the lumped impact.
+pub fn paper_dome_radius_m() -> Result<f64, Error> {
+    Ok(Materials::bundled()?.dome_radius_m())
+}
+
+/// Severity of the lumped impact `model` (from contact to separation): integrated at relative
+/// tolerance `rtol` with `formulation`, its dense output sampled every contact duration /
+/// [`LUMPED_TRACE_SAMPLES`]; head acceleration f/m_h; contact area of a dome of radius
+/// `dome_radius_m` \[m\] under both models.
+pub fn of_lumped(
+    model: &ImpactModel,
+    rtol: f64,
+    formulation: Formulation,
+    dome_radius_m: f64,
+) -> Result<Severity, Error> {
+    let options = OdeOptions::new(rtol)?.formulation(formulation);
+    let first = integrate(model, &options)?;
+    // stopped at separation: the duration is there
+    let duration = first.contact_duration.unwrap_or(2.0 * first.t_peak);
+    let traced = integrate(
+        model,
+        &options.trace_interval(duration / LUMPED_TRACE_SAMPLES as f64)?,
+    )?;
+    let column = |f: fn(&flexrig_lumped::ode::TracePoint) -> f64| {
+        traced.trace.iter().map(f).collect::<Vec<f64>>()
+    };
+    let times = column(|p| p.t);
+    let force = column(|p| p.force);
+    let indentation = column(|p| p.indentation);
+    let inv_m_h = 1.0 / model.m_h();
+    let acceleration: Vec<f64> = force.iter().map(|f| f * inv_m_h).collect();
+    Ok(severity(
+        &ContactTraces {
+            times: &times,
+            force: &force,
+            indentation: &indentation,
+            head_acceleration: Some(&acceleration),
+        },
+        &ContactAreaModel::dome_models(dome_radius_m),
+    )?)
+}
+
+/// The severity columns of tables (sweeps, experiments), units in the names: peak force \[N\],
+/// peak pressure under the Hertz sphere and the thin layer \[Pa\] (the peak of each model's
+/// distribution), energy transferred and net contact work \[J\], peak struck-body acceleration
+/// [m/s² and g], HIC15 and HIC36.
+pub const SEVERITY_COLUMNS: [&str; 9] = [
+    "severity_peak_force_n",
+    "peak_pressure_hertz_pa",
+    "peak_pressure_thin_layer_pa",
+    "energy_transferred_j",
+    "contact_work_j",
+    "peak_accel_mps2",
+    "peak_accel_g",
+    "hic15",
+    "hic36",
+];
+
+/// The values of [`SEVERITY_COLUMNS`] (absent: `None`, e.g. without a severity).
+pub fn severity_values(s: Option<&Severity>) -> [Option<f64>; 9] {
+    let Some(s) = s else {
+        return [None; 9];
+    };
+    let pressure = |model: ContactAreaModel| s.pressure_of(&model).map(|p| p.peak_pa);
+    [
+        Some(s.peak_force_n),
+        pressure(ContactAreaModel::HertzSphere { radius_m: 1.0 }),
+        pressure(ContactAreaModel::ThinLayer { radius_m: 1.0 }),
+        Some(s.energy_transferred_j),
+        Some(s.contact_work_j),
+        s.peak_acceleration_mps2,
+        s.peak_acceleration_g,
+        s.hic15.map(|h| h.hic),
+        s.hic36.map(|h| h.hic),
+    ]
+}
