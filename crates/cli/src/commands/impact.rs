@@ -5,10 +5,7 @@ use std::io::Write;
 
 use clap::{Args, ValueEnum};
 use flexrig::Error;
-use flexrig::impact::{
-    DEFAULT_RTOL, Details, EffectiveMass, Formulation, ImpactInput, Method, solve,
-};
-use serde_json::json;
+use flexrig::impact::{DEFAULT_RTOL, EffectiveMass, Formulation, ImpactInput, Method, solve};
 
 use crate::print::{line, print_json};
 
@@ -130,40 +127,7 @@ impl ImpactArgs {
 pub fn run(args: &ImpactArgs, out: &mut dyn Write) -> Result<(), Error> {
     let method = args.method();
     let r = solve(&args.input()?, method)?;
-    let model = &r.model;
-    let mut report = json!({
-        "method": method.name(),
-        "m_h_kg": model.m_h(),
-        "m_eff_kg": model.m_eff(),
-        "mu_kg": model.reduced_mass(),
-        "impact_energy_j": model.impact_energy(),
-    });
-    match &r.details {
-        Details::Exact => {}
-        Details::Analytic(a) => {
-            report["k_o_n_per_m"] = json!(a.k_o);
-            report["t_peak_s"] = json!(a.t_peak);
-            report["contact_duration_s"] = json!(a.contact_duration);
-        }
-        Details::Ode {
-            solution: sol,
-            formulation,
-        } => {
-            report["formulation"] = json!(format!("{formulation:?}").to_lowercase());
-            report["rtol"] = json!(args.rtol);
-            report["t_peak_s"] = json!(sol.t_peak);
-            report["contact_duration_s"] = json!(sol.contact_duration);
-            report["separation_speed_mps"] = json!(sol.separation_speed);
-            report["rhs_evals"] = json!(sol.rhs_evals);
-            report["steps"] = json!(sol.steps);
-            report["rejected_steps"] = json!(sol.rejected_steps);
-        }
-    }
-    let peak = r.peak;
-    report["f_max_n"] = json!(peak.f_max);
-    report["delta_max_m"] = json!(peak.delta_max);
-    report["indentation_max_m"] = json!(peak.indentation_max);
-    report["link_deflection_max_m"] = json!(peak.link_deflection_max);
+    let report = flexrig::fronts::impact_report(&r, method);
     if args.json {
         return print_json(out, &report);
     }
