@@ -221,7 +221,7 @@ def test_fit_equals_the_cli(cli, tmp_path):
     delta = np.linspace(1e-4, 2e-3, 40)
     force = 7.3e7 * delta**1.9 * (1 + 0.01 * np.sin(np.arange(40)))
     path = tmp_path / "compression.csv"
-    path.write_text("indentation_m,force_n\n" + "".join(f"{d!r},{f!r}\n" for d, f in zip(delta, force)))
+    path.write_text("indentation_m,force_n\n" + "".join(f"{float(d)!r},{float(f)!r}\n" for d, f in zip(delta, force)))
     r = flexrig.fit(path)
     same(r.data, cli.json("fit", path))
     assert abs(r.n - 1.9) < 0.02 and r.points == 40

@@ -41,7 +41,9 @@ def read_cli_table(path, like: pd.DataFrame) -> pd.DataFrame:
         if name == "index":
             columns[name] = np.array([int(c) for c in cells], dtype=np.int64)
         elif str(like[name].dtype) == "Int64":
-            columns[name] = pd.array([int(c) if c != "" else None for c in cells], dtype="Int64")
+            # the CSV writes counts in the float format (1e0): whole numbers read exactly
+            assert all(c == "" or float(c).is_integer() for c in cells), name
+            columns[name] = pd.array([int(float(c)) if c != "" else None for c in cells], dtype="Int64")
         elif like[name].dtype == np.float64:
             columns[name] = np.array([float(c) if c != "" else math.nan for c in cells])
         else:
