@@ -106,8 +106,8 @@ pub fn eta_map<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let joint = fronts::joint(JointKind::parse(joint).map_err(flag_error)?, rotor_inertia)
         .map_err(flag_error)?;
-    let specs = fronts::eta_map_specs(&m_h, n, mass_ratio, stiffness_ratio, points)
-        .map_err(flag_error)?;
+    let specs =
+        fronts::eta_map_specs(&m_h, n, mass_ratio, stiffness_ratio, points).map_err(flag_error)?;
     let settings = fronts::eta_map_settings(
         joint,
         tol,

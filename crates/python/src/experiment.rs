@@ -73,7 +73,7 @@ pub fn payload<'py>(
         figures: fronts::figure_options(size, &format, dpi).map_err(flag_error)?,
     };
     let cancel = CancelToken::new();
-    let r = detached(py, &cancel, || flexrig::payload::run(&options, &cancel))?
-        .map_err(flag_error)?;
+    let r =
+        detached(py, &cancel, || flexrig::payload::run(&options, &cancel))?.map_err(flag_error)?;
     json_to_py(py, &fronts::payload_report(&r))
 }

@@ -144,9 +144,8 @@ pub fn run<'py>(
     deformation_scale: f64,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>, Bound<'py, PyDict>)> {
     let overrides = self::overrides(&overrides)?;
-    let deformation_scale =
-        flexrig::output::positive_arg("--deformation-scale", deformation_scale)
-            .map_err(crate::flag_error)?;
+    let deformation_scale = flexrig::output::positive_arg("--deformation-scale", deformation_scale)
+        .map_err(crate::flag_error)?;
     let log = flexrig::run::LogRequest {
         out: out.as_ref(),
         force,

@@ -4,8 +4,8 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use clap::Args;
 use crate::print::{line, print_json};
+use clap::Args;
 use flexrig::Error;
 
 /// Arguments of `flexrig fit`.

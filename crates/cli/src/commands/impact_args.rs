@@ -4,8 +4,8 @@
 use clap::{Args, ValueEnum};
 use flexrig::Error;
 use flexrig::eta::{DampingSpec, Joint};
-pub use flexrig::fronts::{as_flag, impact_as_flag, parse_range};
 use flexrig::fronts::{DampingModel, JointKind, damping_spec};
+pub use flexrig::fronts::{as_flag, impact_as_flag, parse_range};
 
 /// The joint during the impact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

@@ -326,10 +326,16 @@ def payload(
     """
     size, formats, dpi = _figure_args(size, format, dpi)
     with _Out(out) as o:
-        data = _flexrig.payload(
-            o.path, _word("scene", scene), _number("from_", from_), _number("to", to), _count("points", points),
-            size, formats, dpi,
-        )
+        try:
+            data = _flexrig.payload(
+                o.path, _word("scene", scene), _number("from_", from_), _number("to", to), _count("points", points),
+                size, formats, dpi,
+            )
+        except InputError as e:
+            if getattr(e, "field", None) != "from":
+                raise
+            # the flag --from is the keyword from_ (from is a Python keyword)
+            raise _input_error("from_", str(e).replace("argument from =", "argument from_ =", 1)) from None
         return _report("payload", data, "rows", o)
 
 
