@@ -825,7 +825,7 @@ mod tests {
         let r = crate::impact::solve(&input, method).unwrap();
         let report = impact_report(&r, method);
         let m_eff = 0.1 + 10.0 * (2.0 / 3.0) / 3.0;
-        let mu = 4.0 * m_eff / (4.0 + m_eff);
+        let mu: f64 = 4.0 * m_eff / (4.0 + m_eff);
         let f = 2.0 * (0.5e8 * mu).sqrt();
         let got = report["f_max_n"].as_f64().unwrap();
         assert!((got - f).abs() <= 1e-12 * f, "{got} vs {f}");
