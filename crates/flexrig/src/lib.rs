@@ -34,6 +34,7 @@ pub mod experiment;
 pub mod fig6;
 pub mod fit;
 pub mod foxglove_layout;
+pub mod fronts;
 pub mod impact;
 pub mod mcap_log;
 pub mod output;

@@ -345,6 +345,27 @@ pub fn run_logged(
     scene: &Scene,
     target: &LogTarget<'_>,
 ) -> Result<RunSummary, Error> {
+    run_logged_also(simulation, scene, target, &mut flexrig_rig::NoRecorder)
+}
+
+/// Both recorders of a logged run: the log first, then `also`.
+struct Both<'a, A, B: ?Sized>(&'a mut A, &'a mut B);
+
+impl<A: Recorder, B: Recorder + ?Sized> Recorder for Both<'_, A, B> {
+    fn frame(&mut self, f: &flexrig_rig::Frame<'_>) -> Result<(), RigError> {
+        self.0.frame(f)?;
+        self.1.frame(f)
+    }
+}
+
+/// [`run_logged`], with every step also handed to `also` (e.g. a
+/// [`crate::traces::TraceRecorder`], for a front that returns the traces and writes the log).
+pub fn run_logged_also(
+    simulation: Simulation,
+    scene: &Scene,
+    target: &LogTarget<'_>,
+    also: &mut dyn Recorder,
+) -> Result<RunSummary, Error> {
     let path = target.path;
     let layout = crate::foxglove_layout::path_beside(path);
     crate::output::check_output_target(path)?;
@@ -368,7 +389,7 @@ pub fn run_logged(
         .with_cancel(target.cancel.clone())
         .with_rates(target.rates)
         .with_deformation_scale(target.deformation_scale);
-    let outcome = simulation.run(&mut log);
+    let outcome = simulation.run(&mut Both(&mut log, also));
     let finished = match &outcome {
         Ok(summary) => log
             .write_summary(summary)

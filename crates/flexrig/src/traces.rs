@@ -126,6 +126,39 @@ pub fn run_traced(
     Ok((summary, recorder.into_traces()))
 }
 
+/// [`run_traced`], also logging the run as `log` asks (the MCAP file and its Foxglove layout, as
+/// `flexrig run --out` writes them; [`crate::run::run_scene_file`]): the summary, the traces, and
+/// the log finished either way.
+pub fn run_traced_logged(
+    text: &str,
+    overrides: &[Override],
+    log: crate::run::LogRequest<'_>,
+    cancel: &CancelToken,
+) -> Result<(RunSummary, Traces), Error> {
+    let Some(out) = log.out else {
+        return run_traced(text, overrides, cancel);
+    };
+    let scene = scene_with_overrides(text, overrides, &Materials::bundled()?)?;
+    // the log records the scene as run
+    let logged_text = flexrig_rig::overrides::apply(text, overrides)?;
+    let simulation = Simulation::new(&scene, RunOptions::default())?;
+    let mut recorder = TraceRecorder::new(cancel.clone());
+    let summary = crate::mcap_log::run_logged_also(
+        simulation,
+        &scene,
+        &crate::mcap_log::LogTarget {
+            path: out,
+            force: log.force,
+            scene_text: &logged_text,
+            cancel: cancel.clone(),
+            rates: log.rates,
+            deformation_scale: log.deformation_scale,
+        },
+        &mut recorder,
+    )?;
+    Ok((summary, recorder.into_traces()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -166,6 +199,29 @@ mod tests {
                 assert_eq!(*d, 0.0, "t = {t}");
             }
         }
+    }
+
+    #[test]
+    fn a_logged_run_has_the_traces_of_an_unlogged_one_and_writes_its_log() {
+        let dir = std::env::temp_dir().join(format!("flexrig-traced-log-{}", std::process::id()));
+        let path = dir.join("run.mcap");
+        let _ = std::fs::remove_dir_all(&dir);
+        let log = crate::run::LogRequest {
+            out: Some(&path),
+            force: false,
+            rates: crate::mcap_log::LogRates::DECIMATED,
+            deformation_scale: 1.0,
+        };
+        let (summary, traces) = run_traced_logged(SCENE, &[], log, &CancelToken::new()).unwrap();
+        let (plain, plain_traces) = run_traced(SCENE, &[], &CancelToken::new()).unwrap();
+        assert_eq!(summary.peak_force_n.to_bits(), plain.peak_force_n.to_bits());
+        assert_eq!(traces, plain_traces);
+        assert!(std::fs::metadata(&path).unwrap().len() > 0);
+        assert!(crate::foxglove_layout::path_beside(&path).is_file());
+        // the log is not replaced without force
+        let again = run_traced_logged(SCENE, &[], log, &CancelToken::new()).unwrap_err();
+        assert!(again.to_string().contains("--force"), "{again}");
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

@@ -15,10 +15,13 @@ use pyo3::prelude::*;
 
 mod convert;
 mod driven;
+mod eta;
+mod experiment;
 mod lumped;
 mod run;
 mod safety;
 mod sweep;
+mod tools;
 
 create_exception!(
     flexrig,
@@ -88,6 +91,53 @@ pub(crate) fn to_py(e: Error) -> PyErr {
     }
 }
 
+/// A library error that names command-line flags (`--c-max`), as the Python exception with the
+/// keyword arguments in their place (`c_max`, also its `field`); other errors as [`to_py`].
+pub(crate) fn flag_error(e: Error) -> PyErr {
+    if e.kind() != ErrorKind::Input {
+        return to_py(e);
+    }
+    let field = field_of(&e).map(|f| keywords(&f));
+    let message = keywords(&e.to_string());
+    let field = field
+        .filter(|f| !f.is_empty())
+        .or_else(|| first_keyword(&e.to_string()))
+        .unwrap_or_default();
+    input_error(&field, message)
+}
+
+/// `text` with each flag `--some-flag` written as the keyword argument `some_flag`.
+fn keywords(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(i) = rest.find("--") {
+        out.push_str(&rest[..i]);
+        let after = &rest[i + 2..];
+        let len = after
+            .find(|c: char| !(c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-'))
+            .unwrap_or(after.len());
+        if len > 0 && after.starts_with(|c: char| c.is_ascii_lowercase()) {
+            out.push_str(&after[..len].replace('-', "_"));
+        } else {
+            out.push_str("--");
+            out.push_str(&after[..len]);
+        }
+        rest = &after[len..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// The keyword argument of the first flag `text` names.
+fn first_keyword(text: &str) -> Option<String> {
+    let i = text.find("--")?;
+    let after = &text[i + 2..];
+    let len = after
+        .find(|c: char| !(c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-'))
+        .unwrap_or(after.len());
+    (len > 0).then(|| after[..len].replace('-', "_"))
+}
+
 /// Runs `work` with the GIL released, watching for Ctrl-C: the calling (main) thread checks
 /// Python's signals every 50 ms while a scoped thread works; on a signal it cancels `cancel`
 /// (which the work watches and stops on) and returns the signal's exception once the work ended.
@@ -143,12 +193,24 @@ fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::apply_overrides, m)?)?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(lumped::impact_exact, m)?)?;
+    m.add_function(wrap_pyfunction!(lumped::impact_report, m)?)?;
     m.add_function(wrap_pyfunction!(lumped::fig6, m)?)?;
+    m.add_function(wrap_pyfunction!(eta::eta, m)?)?;
+    m.add_function(wrap_pyfunction!(eta::eta_map, m)?)?;
+    m.add_function(wrap_pyfunction!(eta::eta_rotor, m)?)?;
+    m.add_function(wrap_pyfunction!(experiment::experiment, m)?)?;
+    m.add_function(wrap_pyfunction!(experiment::payload, m)?)?;
+    m.add_function(wrap_pyfunction!(tools::fit, m)?)?;
+    m.add_function(wrap_pyfunction!(tools::beam_modal, m)?)?;
+    m.add_function(wrap_pyfunction!(tools::beam_static, m)?)?;
+    m.add_function(wrap_pyfunction!(tools::prb, m)?)?;
+    m.add_function(wrap_pyfunction!(tools::validate, m)?)?;
     m.add_function(wrap_pyfunction!(safety::safety_json, m)?)?;
     m.add_function(wrap_pyfunction!(driven::spin_up, m)?)?;
     m.add_function(wrap_pyfunction!(driven::strike, m)?)?;
     m.add_function(wrap_pyfunction!(driven::role_switch, m)?)?;
     m.add_class::<sweep::Sweep>()?;
+    m.add("DEFAULT_RTOL", flexrig::impact::DEFAULT_RTOL)?;
     m.add(
         "SUMMARY_COLUMNS",
         flexrig::study::sweep::SUMMARY_COLUMNS.to_vec(),

@@ -117,6 +117,58 @@ fn indexed(e: Error, i: usize) -> PyErr {
     to_py(e)
 }
 
+/// One lumped impact as `flexrig impact --json` reports it, for the same inputs: `m_eff` [kg],
+/// or `gamma`, `m_r` [kg] and `m_e` [kg] for m_eff = m_e + γ m_r/3; `method` exact, analytic or
+/// ode (with `formulation` auto, indentation or displacement, and `rtol`). Errors name the
+/// keyword argument.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (m_h, m_eff, gamma, m_r, m_e, k_delta, k_c, n, v0, method, formulation, rtol))]
+pub fn impact_report<'py>(
+    py: Python<'py>,
+    m_h: f64,
+    m_eff: Option<f64>,
+    gamma: Option<f64>,
+    m_r: Option<f64>,
+    m_e: Option<f64>,
+    k_delta: f64,
+    k_c: f64,
+    n: f64,
+    v0: f64,
+    method: &str,
+    formulation: &str,
+    rtol: f64,
+) -> PyResult<Bound<'py, PyAny>> {
+    use flexrig::impact::{EffectiveMass, ImpactInput, solve};
+    let m_eff = match (m_eff, gamma, m_r, m_e) {
+        (Some(m), None, None, None) => EffectiveMass::Given(m),
+        (None, Some(gamma), Some(m_r), Some(m_e)) => EffectiveMass::Prb { gamma, m_r, m_e },
+        _ => {
+            return Err(input_error(
+                "m_eff",
+                "m_eff: give m_eff, or all of gamma, m_r and m_e (m_eff = m_e + γ m_r/3), not \
+                 both"
+                    .into(),
+            ));
+        }
+    };
+    let formulation = flexrig::fronts::formulation(formulation).map_err(crate::flag_error)?;
+    let method =
+        flexrig::fronts::impact_method(method, formulation, rtol).map_err(crate::flag_error)?;
+    let input = ImpactInput {
+        m_h,
+        m_eff,
+        k_delta,
+        k_c,
+        n,
+        v0,
+    };
+    let r = py
+        .detach(|| solve(&input, method))
+        .map_err(crate::flag_error)?;
+    crate::convert::json_to_py(py, &flexrig::fronts::impact_report(&r, method))
+}
+
 /// The paper's Fig. 6 (§V, Eq. 15): η(γ) = f_max(γ)/f_max(1) for the eight design cases and
 /// n = 1, 2, with `points` samples of γ over [0.5, 1]. A list of dicts: m_h, k_delta, m_e, n,
 /// eta_at_2_3 and the arrays gamma and eta.

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use flexrig::CancelToken;
 use flexrig::run::summary_json;
 use flexrig::scenes::BUNDLED_SCENES;
-use flexrig::traces::run_traced;
+use flexrig::traces::run_traced_logged;
 use flexrig_rig::Override;
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -127,19 +127,40 @@ fn array<'py>(py: Python<'py>, v: Vec<f64>) -> Bound<'py, PyAny> {
     PyArray1::from_vec(py, v).into_any()
 }
 
-/// Runs the scene `text` with `overrides` (GIL released; Ctrl-C stops it). Returns
-/// (summary, sample traces, step traces): the summary as `flexrig run --json` prints it, the
-/// traces as dicts of NumPy arrays.
+/// Runs the scene `text` with `overrides` (GIL released; Ctrl-C stops it), logging it to the
+/// MCAP file `out` with its Foxglove layout beside it if given (as `flexrig run --out`, with
+/// `force`, `log_every_step` and `deformation_scale` as the flags). Returns (summary, sample
+/// traces, step traces): the summary as `flexrig run --json` prints it, the traces as dicts of
+/// NumPy arrays.
 #[pyfunction]
+#[pyo3(signature = (text, overrides, out=None, force=false, log_every_step=false, deformation_scale=flexrig::mcap_log::DEFAULT_DEFORMATION_SCALE))]
 pub fn run<'py>(
     py: Python<'py>,
     text: &str,
     overrides: Vec<(String, Bound<'py, PyAny>)>,
+    out: Option<PathBuf>,
+    force: bool,
+    log_every_step: bool,
+    deformation_scale: f64,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>, Bound<'py, PyDict>)> {
     let overrides = self::overrides(&overrides)?;
+    let deformation_scale = flexrig::output::positive_arg("--deformation-scale", deformation_scale)
+        .map_err(crate::flag_error)?;
+    let log = flexrig::run::LogRequest {
+        out: out.as_ref(),
+        force,
+        rates: if log_every_step {
+            flexrig::mcap_log::LogRates::EVERY_STEP
+        } else {
+            flexrig::mcap_log::LogRates::DECIMATED
+        },
+        deformation_scale,
+    };
     let cancel = CancelToken::new();
-    let (summary, traces) =
-        detached(py, &cancel, || run_traced(text, &overrides, &cancel))?.map_err(to_py)?;
+    let (summary, traces) = detached(py, &cancel, || {
+        run_traced_logged(text, &overrides, log, &cancel)
+    })?
+    .map_err(crate::flag_error)?;
     let s = traces.samples;
     let samples = PyDict::new(py);
     for (name, column) in [

@@ -4,8 +4,7 @@
 use std::io::Write;
 
 use clap::{Args, Subcommand};
-use flexrig::beam::{BeamInput, Kinematics, Root, TipLoad, check_modal_elements};
-use serde_json::json;
+use flexrig::beam::{BeamInput, check_modal_elements};
 
 use crate::print::{line, print_json};
 use flexrig::Error;
@@ -105,35 +104,19 @@ pub struct StaticArgs {
     pub load_steps: usize,
 }
 
-fn invalid(arg: &str, value: impl ToString, allowed: &str) -> Error {
-    Error::InvalidArgument {
-        arg: arg.into(),
-        value: value.to_string(),
-        allowed: allowed.into(),
-    }
-}
-
-/// The library's beam from the flags, its numbers checked before its root (the error names the
-/// flag).
+/// The library's beam from the flags ([`flexrig::fronts::beam_input`]; the error names the flag).
 pub fn beam_input(a: &BeamArgs) -> Result<BeamInput, Error> {
-    let mut beam = BeamInput {
-        length: a.length,
-        youngs: a.youngs,
-        density: a.density,
-        width: a.width,
-        thickness: a.thickness,
-        elements: a.elements,
-        tip_mass: a.tip_mass,
-        root: Root::Clamped,
-        k_theta: a.k_theta,
-    };
-    beam.check_ranges()?;
-    beam.root = match a.root.as_str() {
-        "clamped" => Root::Clamped,
-        "pinned" => Root::Pinned,
-        other => return Err(invalid("--root", other, "must be clamped or pinned")),
-    };
-    Ok(beam)
+    flexrig::fronts::beam_input(
+        a.length,
+        a.youngs,
+        a.density,
+        a.width,
+        a.thickness,
+        a.elements,
+        a.tip_mass,
+        &a.root,
+        a.k_theta,
+    )
 }
 
 /// Runs a beam sub-command.
@@ -146,9 +129,9 @@ pub fn run(cmd: &BeamCommand, out: &mut dyn Write) -> Result<(), Error> {
 
 fn modal(args: &ModalArgs, out: &mut dyn Write) -> Result<(), Error> {
     check_modal_elements(args.beam.elements)?;
-    let frequencies_hz = flexrig::beam::modal(&beam_input(&args.beam)?, args.modes)?;
+    let frequencies_hz = flexrig::fronts::beam_modal(&beam_input(&args.beam)?, args.modes)?;
     if args.beam.json {
-        print_json(out, &json!({ "frequencies_hz": frequencies_hz }))
+        print_json(out, &flexrig::fronts::beam_modal_report(&frequencies_hz))
     } else {
         line(
             out,
@@ -165,40 +148,16 @@ fn modal(args: &ModalArgs, out: &mut dyn Write) -> Result<(), Error> {
 }
 
 fn statics(args: &StaticArgs, out: &mut dyn Write) -> Result<(), Error> {
-    let kinematics = match args.model.as_str() {
-        "linear" => Kinematics::Linear,
-        "corotational" => Kinematics::Corotational,
-        "ancf" => Kinematics::Ancf,
-        other => {
-            return Err(invalid(
-                "--model",
-                other,
-                "must be linear, corotational or ancf",
-            ));
-        }
-    };
-    let load = TipLoad {
-        force: args.tip_load,
-        moment: args.tip_moment,
-        kinematics,
-        load_steps: args.load_steps,
-    };
-    load.validate()?;
+    let load = flexrig::fronts::beam_tip_load(
+        args.tip_load,
+        args.tip_moment,
+        &args.model,
+        args.load_steps,
+    )?;
     let sol = flexrig::beam::statics(&beam_input(&args.beam)?, &load)?;
     let (u, v, th) = (sol.u, sol.v, sol.angle);
     if args.beam.json {
-        print_json(
-            out,
-            &json!({
-                "tip_u_m": u,
-                "tip_v_m": v,
-                "tip_angle_rad": th,
-                "iterations": sol.iterations,
-                "residual_n": sol.residual,
-                "load_level": sol.load_level,
-                "model": args.model,
-            }),
-        )
+        print_json(out, &flexrig::fronts::beam_static_report(&sol, &args.model))
     } else {
         line(
             out,

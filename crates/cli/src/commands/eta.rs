@@ -5,14 +5,11 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use flexrig::eta::{
-    ClMethod, ClSolver, EffectiveGamma, EtaSettings, GradedMesh, WindowReport, check_length,
-    contact_text, joint_text,
-};
+use flexrig::eta::{ClMethod, EffectiveGamma, EtaSettings, WindowReport, contact_text, joint_text};
+use flexrig::fronts::{EtaInputs, JointKind};
 use flexrig::{CancelToken, Error};
-use serde_json::json;
 
-use super::impact_args::{DampingArgs, JointArg, as_flag, joint_from_args};
+use super::impact_args::{DampingArgs, JointArg};
 use crate::print::{line, print_json};
 
 /// How the CL link is solved.
@@ -78,60 +75,22 @@ pub struct EtaArgs {
 }
 
 fn settings(args: &EtaArgs) -> Result<EtaSettings, Error> {
-    let joint = joint_from_args(args.joint, args.rotor_inertia)?;
-    let only = |flag: &str, given: bool, method: &str| {
-        if given {
-            Err(Error::InvalidArgument {
-                arg: flag.into(),
-                value: "given".into(),
-                allowed: format!("only with --method {method}"),
-            })
-        } else {
-            Ok(())
-        }
-    };
-    let method = match args.method {
-        MethodArg::Alpha => {
-            only("--tol", args.tol.is_some(), "modal")?;
-            only("--zone-elements", args.zone_elements.is_some(), "modal")?;
-            ClMethod::Alpha(ClSolver {
-                elements: args.elements.unwrap_or(ClSolver::DEFAULT.elements),
-                steps_per_contact: args
-                    .steps_per_contact
-                    .unwrap_or(ClSolver::DEFAULT.steps_per_contact),
-                modes: args.modes,
-            })
-        }
-        MethodArg::Modal => {
-            only("--elements", args.elements.is_some(), "alpha")?;
-            only(
-                "--steps-per-contact",
-                args.steps_per_contact.is_some(),
-                "alpha",
-            )?;
-            only("--modes", args.modes.is_some(), "alpha")?;
-            ClMethod::Modal {
-                mesh: GradedMesh {
-                    zone_elements: args
-                        .zone_elements
-                        .unwrap_or(GradedMesh::DEFAULT.zone_elements),
-                    ..GradedMesh::DEFAULT
-                },
-                tol: args.tol.unwrap_or(1e-6),
-            }
-        }
-    };
-    check_length(args.length)?;
-    let settings = EtaSettings {
-        length: args.length,
-        joint,
-        method,
+    flexrig::fronts::eta_settings(&EtaInputs {
+        joint: match args.joint {
+            JointArg::Held => JointKind::Held,
+            JointArg::FreeHub => JointKind::FreeHub,
+        },
+        rotor_inertia: args.rotor_inertia,
+        alpha: args.method == MethodArg::Alpha,
+        tol: args.tol,
+        zone_elements: args.zone_elements,
         window_periods: args.window_periods,
+        elements: args.elements,
+        steps_per_contact: args.steps_per_contact,
+        modes: args.modes,
+        length: args.length,
         damping: args.contact.spec()?,
-        ..EtaSettings::DEFAULT
-    };
-    settings.validate().map_err(as_flag)?;
-    Ok(settings)
+    })
 }
 
 fn gamma_text(g: &EffectiveGamma) -> String {
@@ -163,10 +122,7 @@ pub fn run(args: &EtaArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
     let (rows, csv_path, svg_path, fig6_path) = (&r.rows, &r.csv, &r.svg, &r.fig6_svg);
     let joint = joint_text(&settings.joint);
     if args.json {
-        return print_json(
-            out,
-            &json!({ "settings": settings, "rows": rows, "csv": csv_path, "svg": svg_path, "fig6_svg": fig6_path }),
-        );
+        return print_json(out, &flexrig::fronts::eta_report(&settings, &r));
     }
     line(
         out,

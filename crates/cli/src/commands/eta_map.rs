@@ -5,14 +5,10 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::eta::{ClMethod, EtaSettings, GradedMesh};
-use flexrig::eta_map::{EtaMapOptions, MapSpec, settings_text};
+use flexrig::eta_map::{EtaMapOptions, settings_text};
 use flexrig::{CancelToken, Error};
-use serde_json::json;
 
-use super::impact_args::{
-    DampingArgs, JointArg, as_flag, impact_as_flag, joint_from_args, parse_range,
-};
+use super::impact_args::{DampingArgs, JointArg, impact_as_flag, joint_from_args};
 use crate::print::{line, print_json};
 
 /// Arguments of `flexrig eta-map`.
@@ -57,53 +53,17 @@ pub struct EtaMapArgs {
     pub figure: super::figure_args::FigureArgs,
 }
 
-/// The map's ranges and exponent, checked, with the error named by flag.
-fn spec_for(args: &EtaMapArgs, m_h: f64) -> Result<MapSpec, Error> {
-    if !(2..=200).contains(&args.points) {
-        return Err(Error::InvalidArgument {
-            arg: "--points".into(),
-            value: args.points.to_string(),
-            allowed: "must lie in [2, 200]".into(),
-        });
-    }
-    let spec = MapSpec {
-        m_h,
-        n: args.n,
-        mass_ratio: parse_range("--mass-ratio", &args.mass_ratio, args.points)?,
-        stiffness_ratio: parse_range("--stiffness-ratio", &args.stiffness_ratio, args.points)?,
-    };
-    spec.validate().map_err(as_flag)?;
-    Ok(spec)
-}
-
 /// Runs `flexrig eta-map`.
 pub fn run(args: &EtaMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     let joint = joint_from_args(args.joint, args.rotor_inertia)?;
-    if args.m_h.is_empty() || args.m_h.len() > flexrig::eta_map::MAX_MAPS {
-        return Err(Error::InvalidArgument {
-            arg: "--m-h".into(),
-            value: format!("{} values", args.m_h.len()),
-            allowed: format!(
-                "one to {} head masses, each in (0, 1e9] kg",
-                flexrig::eta_map::MAX_MAPS
-            ),
-        });
-    }
-    let specs = args
-        .m_h
-        .iter()
-        .map(|&m_h| spec_for(args, m_h))
-        .collect::<Result<Vec<_>, _>>()?;
-    let settings = EtaSettings {
-        joint,
-        method: ClMethod::Modal {
-            mesh: GradedMesh::DEFAULT,
-            tol: args.tol,
-        },
-        damping: args.contact.spec()?,
-        ..EtaSettings::DEFAULT
-    };
-    settings.method.validate().map_err(as_flag)?;
+    let specs = flexrig::fronts::eta_map_specs(
+        &args.m_h,
+        args.n,
+        &args.mass_ratio,
+        &args.stiffness_ratio,
+        args.points,
+    )?;
+    let settings = flexrig::fronts::eta_map_settings(joint, args.tol, args.contact.spec()?)?;
     let joint_text = settings_text(&settings);
     let r = flexrig::eta_map::run(
         &EtaMapOptions {
@@ -115,18 +75,12 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resu
         cancel,
     )
     .map_err(impact_as_flag)?;
-    let summaries: Vec<serde_json::Value> = r
-        .summaries
-        .iter()
-        .map(|s| serde_json::to_value(s).expect("a map summary serialises"))
-        .collect();
-    let paths: Vec<_> = r.files.iter().map(|p| p.display().to_string()).collect();
+    let report = flexrig::fronts::eta_map_report(&settings, &r);
     if args.json {
-        return print_json(
-            out,
-            &json!({ "settings": settings, "maps": summaries, "files": paths }),
-        );
+        return print_json(out, &report);
     }
+    let summaries = report["maps"].as_array().cloned().unwrap_or_default();
+    let paths: Vec<_> = r.files.iter().map(|p| p.display().to_string()).collect();
     line(
         out,
         format!(

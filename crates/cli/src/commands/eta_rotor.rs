@@ -5,12 +5,11 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::eta::{ClMethod, EtaSettings, GradedMesh, ImpactError, contact_text};
+use flexrig::eta::contact_text;
 use flexrig::eta_rotor::EtaRotorOptions;
 use flexrig::{CancelToken, Error};
-use serde_json::json;
 
-use super::impact_args::{DampingArgs, impact_as_flag, parse_range};
+use super::impact_args::DampingArgs;
 use crate::print::{line, print_json};
 
 /// Arguments of `flexrig eta-rotor`.
@@ -44,38 +43,8 @@ pub struct EtaRotorArgs {
 
 /// Runs `flexrig eta-rotor`.
 pub fn run(args: &EtaRotorArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
-    if !(2..=200).contains(&args.points) {
-        return Err(Error::InvalidArgument {
-            arg: "--points".into(),
-            value: args.points.to_string(),
-            allowed: "must lie in [2, 200]".into(),
-        });
-    }
-    let ratios = parse_range("--ratio", &args.ratio, args.points)?;
-    if args.n.is_empty()
-        || args.n.len() > flexrig::eta_rotor::MAX_EXPONENTS
-        || args
-            .n
-            .iter()
-            .any(|n| !(n.is_finite() && (1.0..=3.0).contains(n)))
-    {
-        return Err(Error::InvalidArgument {
-            arg: "--n".into(),
-            value: format!("{} values", args.n.len()),
-            allowed: format!(
-                "one to {} exponents, each in [1, 3]",
-                flexrig::eta_rotor::MAX_EXPONENTS
-            ),
-        });
-    }
-    let settings = EtaSettings {
-        method: ClMethod::Modal {
-            mesh: GradedMesh::DEFAULT,
-            tol: args.tol,
-        },
-        damping: args.contact.spec()?,
-        ..EtaSettings::DEFAULT
-    };
+    let ratios = flexrig::fronts::eta_rotor_inputs(&args.ratio, args.points, &args.n)?;
+    let settings = flexrig::fronts::eta_rotor_settings(args.tol, args.contact.spec()?);
     let r = flexrig::eta_rotor::run(
         &EtaRotorOptions {
             out: args.out.clone(),
@@ -86,22 +55,10 @@ pub fn run(args: &EtaRotorArgs, out: &mut dyn Write, cancel: &CancelToken) -> Re
         },
         cancel,
     )
-    .map_err(|e| match e {
-        Error::Impact(ImpactError::InvalidParameter { field, .. }) if field == "inertia_ratio" => {
-            Error::InvalidArgument {
-                arg: "--ratio".into(),
-                value: args.ratio.clone(),
-                allowed: "FROM:TO with 1e-9 ≤ FROM < TO ≤ 1e9".into(),
-            }
-        }
-        other => impact_as_flag(other),
-    })?;
+    .map_err(|e| flexrig::fronts::eta_rotor_error(e, &args.ratio))?;
     let (points, csv_path, svg_path) = (&r.points, &r.csv, &r.svg);
     if args.json {
-        return print_json(
-            out,
-            &json!({ "settings": settings, "points": points, "csv": csv_path, "svg": svg_path }),
-        );
+        return print_json(out, &flexrig::fronts::eta_rotor_report(&settings, &r));
     }
     line(
         out,

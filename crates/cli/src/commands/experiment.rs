@@ -7,7 +7,6 @@ use std::path::PathBuf;
 use clap::Args;
 use flexrig::experiment::{self, ExperimentOptions, GroupStats, RatioStats, mean_pm_ci};
 use flexrig::{CancelToken, Error};
-use serde_json::json;
 
 use super::figure_args::FigureArgs;
 use crate::print::{Bar, line, parse_overrides, print_json};
@@ -79,10 +78,7 @@ pub fn report(
         &Bar::new("{bar:30} {pos}/{len} runs {msg}"),
     )?;
     if json {
-        return print_json(
-            out,
-            &json!({"groups": result.groups, "ratios": result.ratios, "runs": result.runs, "csv": result.csv, "svg": result.svg, "figures": result.figures}),
-        );
+        return print_json(out, &flexrig::fronts::experiment_report(&result));
     }
     print_table(out, &result.groups, &result.ratios)?;
     let figures: Vec<String> = result

@@ -3,7 +3,7 @@
 
 use clap::Args;
 use flexrig::Error;
-use flexrig::plots::{FigureFormat, FigureOptions, FigureWidth};
+use flexrig::plots::FigureOptions;
 
 /// `--size`, `--format`, `--dpi`.
 #[derive(Debug, Clone, Args)]
@@ -27,21 +27,8 @@ pub struct FigureArgs {
 }
 
 impl FigureArgs {
-    /// The library's figure options; errors name the flag.
+    /// The library's figure options ([`flexrig::fronts::figure_options`]); errors name the flag.
     pub fn options(&self) -> Result<FigureOptions, Error> {
-        let mut formats = Vec::new();
-        for f in &self.format {
-            let format = FigureFormat::parse(f)?;
-            if !formats.contains(&format) {
-                formats.push(format);
-            }
-        }
-        let options = FigureOptions {
-            width: FigureWidth::parse(&self.size)?,
-            formats,
-            dpi: self.dpi,
-        };
-        options.validate()?;
-        Ok(options)
+        flexrig::fronts::figure_options(&self.size, &self.format, self.dpi)
     }
 }

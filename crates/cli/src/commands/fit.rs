@@ -4,10 +4,8 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use clap::Args;
-use serde_json::json;
-
 use crate::print::{line, print_json};
+use clap::Args;
 use flexrig::Error;
 
 /// Arguments of `flexrig fit`.
@@ -25,20 +23,7 @@ pub struct FitArgs {
 pub fn run(args: &FitArgs, out: &mut dyn Write) -> Result<(), Error> {
     let fit = flexrig::fit::fit_file(&args.file)?;
     if args.json {
-        return print_json(
-            out,
-            &json!({
-                "k": fit.k,
-                "n": fit.n,
-                "r2": fit.r2,
-                "k_stderr": fit.k_stderr,
-                "n_stderr": fit.n_stderr,
-                "rms_residual_n": fit.rms_residual_n,
-                "points": fit.points,
-                "skipped": fit.skipped,
-                "iterations": fit.iterations,
-            }),
-        );
+        return print_json(out, &flexrig::fronts::fit_report(&fit));
     }
     line(
         out,

@@ -5,10 +5,7 @@ use std::io::Write;
 
 use clap::{Args, ValueEnum};
 use flexrig::Error;
-use flexrig::impact::{
-    DEFAULT_RTOL, Details, EffectiveMass, Formulation, ImpactInput, Method,
-    severity as impact_severity, solve,
-};
+use flexrig::impact::{DEFAULT_RTOL, EffectiveMass, Formulation, ImpactInput, Method, solve};
 use serde_json::json;
 
 use crate::print::{line, print_json, print_severity};
@@ -134,60 +131,9 @@ impl ImpactArgs {
 /// Runs `flexrig impact`.
 pub fn run(args: &ImpactArgs, out: &mut dyn Write) -> Result<(), Error> {
     let method = args.method();
-    let input = args.input()?;
-    let r = solve(&input, method)?;
-    let severity = match r.details {
-        Details::Ode { formulation, .. } => Some(impact_severity(
-            &r.model,
-            args.rtol,
-            formulation,
-            args.dome_radius,
-        )?),
-        _ => {
-            if let Some(radius) = args.dome_radius {
-                return Err(Error::InvalidArgument {
-                    arg: "--dome-radius".into(),
-                    value: radius.to_string(),
-                    allowed: "only with --method ode (the severity needs the time history)".into(),
-                });
-            }
-            None
-        }
-    };
-    let model = &r.model;
-    let mut report = json!({
-        "method": method.name(),
-        "m_h_kg": model.m_h(),
-        "m_eff_kg": model.m_eff(),
-        "mu_kg": model.reduced_mass(),
-        "impact_energy_j": model.impact_energy(),
-    });
-    match &r.details {
-        Details::Exact => {}
-        Details::Analytic(a) => {
-            report["k_o_n_per_m"] = json!(a.k_o);
-            report["t_peak_s"] = json!(a.t_peak);
-            report["contact_duration_s"] = json!(a.contact_duration);
-        }
-        Details::Ode {
-            solution: sol,
-            formulation,
-        } => {
-            report["formulation"] = json!(format!("{formulation:?}").to_lowercase());
-            report["rtol"] = json!(args.rtol);
-            report["t_peak_s"] = json!(sol.t_peak);
-            report["contact_duration_s"] = json!(sol.contact_duration);
-            report["separation_speed_mps"] = json!(sol.separation_speed);
-            report["rhs_evals"] = json!(sol.rhs_evals);
-            report["steps"] = json!(sol.steps);
-            report["rejected_steps"] = json!(sol.rejected_steps);
-        }
-    }
-    let peak = r.peak;
-    report["f_max_n"] = json!(peak.f_max);
-    report["delta_max_m"] = json!(peak.delta_max);
-    report["indentation_max_m"] = json!(peak.indentation_max);
-    report["link_deflection_max_m"] = json!(peak.link_deflection_max);
+    let r = solve(&args.input()?, method)?;
+    let severity = flexrig::fronts::impact_severity(&r, method, args.dome_radius)?;
+    let mut report = flexrig::fronts::impact_report(&r, method);
     if let Some(s) = &severity {
         report["severity"] = json!(s);
     }

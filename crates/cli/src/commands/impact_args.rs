@@ -3,9 +3,9 @@
 
 use clap::{Args, ValueEnum};
 use flexrig::Error;
-use flexrig::eta::{DampingSpec, ImpactError, Joint};
-use flexrig::eta_map::LogRange;
-use flexrig::output::positive_arg;
+use flexrig::eta::{DampingSpec, Joint};
+use flexrig::fronts::{DampingModel, JointKind, damping_spec};
+pub use flexrig::fronts::{as_flag, impact_as_flag, parse_range};
 
 /// The joint during the impact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -52,131 +52,24 @@ pub struct DampingArgs {
 }
 
 impl DampingArgs {
-    /// The damping the flags ask for; a missing, stray or out-of-range flag is named.
+    /// The damping the flags ask for ([`flexrig::fronts::damping_spec`]); a missing, stray or
+    /// out-of-range flag is named.
     pub fn spec(&self) -> Result<DampingSpec, Error> {
-        let bad = |arg: &str, value: String, allowed: &str| Error::InvalidArgument {
-            arg: arg.into(),
-            value,
-            allowed: allowed.into(),
+        let model = match self.damping {
+            DampingArg::None => DampingModel::None,
+            DampingArg::HuntCrossley => DampingModel::HuntCrossley,
+            DampingArg::LankaraniNikravesh => DampingModel::LankaraniNikravesh,
+            DampingArg::AdamsImpact => DampingModel::AdamsImpact,
         };
-        let in_range = |arg: &str, value: Option<f64>, lo: f64, hi: f64, what: &str| {
-            let v = value.ok_or_else(|| {
-                bad(
-                    "--damping",
-                    self.damping
-                        .to_possible_value()
-                        .map_or(String::new(), |v| v.get_name().to_string()),
-                    &format!("needs {arg} ({what})"),
-                )
-            })?;
-            if v.is_finite() && (lo..=hi).contains(&v) {
-                Ok(v)
-            } else {
-                Err(bad(
-                    arg,
-                    v.to_string(),
-                    &format!("must lie in [{lo:e}, {hi:e}]"),
-                ))
-            }
-        };
-        let stray = |arg: &str, value: Option<f64>, with: &str| match value {
-            Some(v) => Err(bad(
-                arg,
-                flexrig::output::display_number(v),
-                &format!("only with --damping {with}"),
-            )),
-            None => Ok(()),
-        };
-        let restitution_models = "hunt-crossley or lankarani-nikravesh";
-        match self.damping {
-            DampingArg::None | DampingArg::AdamsImpact => {
-                stray("--restitution", self.restitution, restitution_models)?
-            }
-            _ => {}
-        }
-        if self.damping != DampingArg::AdamsImpact {
-            stray("--c-max", self.c_max, "adams-impact")?;
-            stray("--depth", self.depth, "adams-impact")?;
-        }
-        let restitution = || in_range("--restitution", self.restitution, 0.0, 1.0, "e in [0, 1]");
-        Ok(match self.damping {
-            DampingArg::None => DampingSpec::NONE,
-            DampingArg::HuntCrossley => DampingSpec::HuntCrossley {
-                restitution: restitution()?,
-            },
-            DampingArg::LankaraniNikravesh => DampingSpec::LankaraniNikravesh {
-                restitution: restitution()?,
-            },
-            DampingArg::AdamsImpact => DampingSpec::AdamsImpact {
-                c_max_n_s_per_m: in_range("--c-max", self.c_max, 0.0, 1e9, "N·s/m")?,
-                depth_m: in_range("--depth", self.depth, 1e-9, 1.0, "m")?,
-            },
-        })
+        damping_spec(model, self.restitution, self.c_max, self.depth)
     }
 }
 
-/// The joint from --joint and --rotor-inertia.
+/// The joint from --joint and --rotor-inertia ([`flexrig::fronts::joint`]).
 pub fn joint_from_args(joint: JointArg, rotor_inertia: Option<f64>) -> Result<Joint, Error> {
-    Ok(match (joint, rotor_inertia) {
-        (JointArg::Held, None) => Joint::Held,
-        (JointArg::Held, Some(j)) => {
-            return Err(Error::InvalidArgument {
-                arg: "--rotor-inertia".into(),
-                value: flexrig::output::display_number(j),
-                allowed: "only with --joint free-hub".into(),
-            });
-        }
-        (JointArg::FreeHub, None) => {
-            return Err(Error::InvalidArgument {
-                arg: "--joint".into(),
-                value: "free-hub".into(),
-                allowed: "needs --rotor-inertia (kg·m², > 0)".into(),
-            });
-        }
-        (JointArg::FreeHub, Some(j)) => Joint::FreeHub {
-            rotor_inertia: positive_arg("--rotor-inertia", j)?,
-        },
-    })
-}
-
-/// An impact parameter error as the flag the user typed (`zone_elements` → `--zone-elements`).
-pub fn as_flag(e: ImpactError) -> Error {
-    match e {
-        ImpactError::InvalidParameter {
-            field,
-            value,
-            allowed,
-        }
-        | ImpactError::Contact(flexrig::driven::ContactError::InvalidParameter {
-            field,
-            value,
-            allowed,
-        }) => Error::InvalidArgument {
-            arg: format!("--{}", field.replace('_', "-")),
-            value,
-            allowed,
-        },
-        other => Error::Impact(other),
-    }
-}
-
-/// [`as_flag`] for an impact error inside a library error.
-pub fn impact_as_flag(e: Error) -> Error {
-    match e {
-        Error::Impact(e) => as_flag(e),
-        other => other,
-    }
-}
-
-/// Parses FROM:TO for `flag`.
-pub fn parse_range(flag: &str, text: &str, points: usize) -> Result<LogRange, Error> {
-    let bad = || Error::InvalidArgument {
-        arg: flag.into(),
-        value: text.into(),
-        allowed: "FROM:TO, two numbers > 0 with FROM < TO (e.g. 1e-3:1e2)".into(),
+    let kind = match joint {
+        JointArg::Held => JointKind::Held,
+        JointArg::FreeHub => JointKind::FreeHub,
     };
-    let (a, b) = text.split_once(':').ok_or_else(bad)?;
-    let from: f64 = a.trim().parse().map_err(|_| bad())?;
-    let to: f64 = b.trim().parse().map_err(|_| bad())?;
-    Ok(LogRange { from, to, points })
+    flexrig::fronts::joint(kind, rotor_inertia)
 }

@@ -6,7 +6,6 @@ use std::path::PathBuf;
 use clap::Args;
 use flexrig::payload::PayloadOptions;
 use flexrig::{CancelToken, Error};
-use serde_json::json;
 
 use crate::print::{line, print_json};
 
@@ -52,10 +51,7 @@ pub fn run(args: &PayloadArgs, out: &mut dyn Write, cancel: &CancelToken) -> Res
     )?;
     let (rows, csv_path, logs) = (&result.rows, &result.csv, &result.logs);
     if args.json {
-        return print_json(
-            out,
-            &json!({ "rows": rows, "csv": csv_path, "logs": logs, "figures": result.figures }),
-        );
+        return print_json(out, &flexrig::fronts::payload_report(&result));
     }
     line(
         out,

@@ -6,11 +6,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexrig::Error;
-use flexrig::prb::{
-    CANTILEVER_BETA_L, ErrorMeasure, HOWELL_GAMMA, HOWELL_K_THETA, HOWELL_THETA_MAX_DEG,
-    Kinematics, PAPER_GAMMA_SMALL, PrbOptions, check_elements,
-};
-use serde_json::json;
+use flexrig::prb::{HOWELL_GAMMA, HOWELL_K_THETA, HOWELL_THETA_MAX_DEG, PAPER_GAMMA_SMALL};
 
 use crate::print::{line, print_json};
 
@@ -41,73 +37,21 @@ pub struct PrbArgs {
 
 /// Runs the PRB check.
 pub fn run(args: &PrbArgs, out: &mut dyn Write) -> Result<(), Error> {
-    check_elements(args.elements)?;
-    let measure = match args.criterion.as_str() {
-        "deflection" => ErrorMeasure::Deflection,
-        "length" => ErrorMeasure::Length,
-        other => {
-            return Err(Error::InvalidArgument {
-                arg: "--criterion".into(),
-                value: other.into(),
-                allowed: "must be deflection or length".into(),
-            });
-        }
-    };
-    let kinematics = match args.model.as_str() {
-        "ancf" => Kinematics::Ancf,
-        "corotational" => Kinematics::Corotational,
-        other => {
-            return Err(Error::InvalidArgument {
-                arg: "--model".into(),
-                value: other.into(),
-                allowed: "must be ancf or corotational".into(),
-            });
-        }
-    };
-    let r = flexrig::prb::run(&PrbOptions {
-        elements: args.elements,
-        kinematics,
-        criterion: measure,
-        out: args.out.clone(),
-        figures: args.figure.options()?,
-    })?;
+    let options = flexrig::fronts::prb_options(
+        args.elements,
+        &args.model,
+        &args.criterion,
+        args.out.clone(),
+        args.figure.options()?,
+    )?;
+    let r = flexrig::prb::run(&options)?;
+    let report = flexrig::fronts::prb_report(&options, &r);
     let (fit, other, svg_path) = (r.fit, r.other, &r.svg);
     let pi = std::f64::consts::PI;
-    let stiffness = |g: f64, k: f64| json!({"gamma": g, "howell_k_l_over_ei": g * k, "paper_k_l_over_ei": pi * g * g});
-    let m_eff_modal = 3.0 / CANTILEVER_BETA_L[0].powi(4);
-    let shares: Vec<serde_json::Value> = r
-        .shares
-        .iter()
-        .map(|s| json!({"payload_over_m_r": s.payload_over_m_r, "fe_beam_share": s.fe_beam_share}))
-        .collect();
-    let report = json!({
-        "elements": args.elements,
-        "model": args.model,
-        "criterion": args.criterion,
-        "gamma": fit.gamma,
-        "k_theta": fit.k_theta,
-        "theta_max_deg": fit.theta_max_deg,
-        "small_deflection": {"gamma": fit.gamma_small, "k_theta": fit.k_theta_small},
-        "published": {"gamma": HOWELL_GAMMA, "k_theta": HOWELL_K_THETA, "theta_max_deg": HOWELL_THETA_MAX_DEG,
-                      "theta_max_deg_on_fe_path": fit.theta_max_deg_howell_gamma},
-        "other_criterion": {"criterion": if measure == ErrorMeasure::Deflection {"length"} else {"deflection"},
-                            "gamma": other.gamma, "k_theta": other.k_theta, "theta_max_deg": other.theta_max_deg},
-        "spring_stiffness": {
-            "note": "k L/EI: Howell k = γ K_Θ EI/L vs the paper's k_θp = π EI γ²/L",
-            "fitted": stiffness(fit.gamma, fit.k_theta),
-            "published": stiffness(HOWELL_GAMMA, HOWELL_K_THETA),
-            "paper_small_deflection": stiffness(PAPER_GAMMA_SMALL, fit.k_theta_small),
-        },
-        "effective_mass": {
-            "note": "beam share of the tip effective mass / m_r: FE k_tip/ω₁² − m_e vs lumped γ/3 (Eq. 5)",
-            "fe_modal_no_payload": m_eff_modal,
-            "fe": shares,
-            "lumped_gamma_2_3": PAPER_GAMMA_SMALL / 3.0,
-            "lumped_gamma_fitted": fit.gamma / 3.0,
-            "lumped_gamma_1": 1.0 / 3.0,
-        },
-        "svg": svg_path.display().to_string(),
-    });
+    let shares = report["effective_mass"]["fe"]
+        .as_array()
+        .cloned()
+        .unwrap_or_default();
     if args.json {
         return print_json(out, &report);
     }

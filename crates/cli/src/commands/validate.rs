@@ -4,10 +4,8 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use clap::Args;
-use serde_json::json;
-
 use crate::print::{line, print_json};
+use clap::Args;
 use flexrig::Error;
 
 /// Arguments of `flexrig validate`.
@@ -29,7 +27,7 @@ pub fn run(args: &ValidateArgs, out: &mut dyn Write) -> Result<(), Error> {
     let result = flexrig::validation::run(args.quick, &args.out)?;
     let (cases, report) = (&result.cases, &result.report);
     if args.json {
-        print_json(out, &json!({ "cases": cases, "report": report }))?;
+        print_json(out, &flexrig::fronts::validation_report(&result))?;
     } else {
         for c in cases {
             line(

@@ -50,6 +50,23 @@ from typing import TYPE_CHECKING, Any, Dict, List, Mapping, NamedTuple, Optional
 import numpy as np
 
 from . import _flexrig
+from ._commands import (
+    DEFAULT_RTOL,
+    IMPACT_FIELDS,
+    ImpactReport,
+    Report,
+    beam_modal,
+    beam_static,
+    eta,
+    eta_map,
+    eta_rotor,
+    experiment,
+    fit,
+    payload,
+    prb,
+    validate,
+)
+from ._commands import impact_report as _impact_report
 from ._safety import safety, safety_map
 from ._flexrig import SUMMARY_COLUMNS, InputError, SimulationError, Sweep, bundled_scenes
 
@@ -59,7 +76,23 @@ if TYPE_CHECKING:  # pragma: no cover
 __version__: str = _flexrig.__version__
 
 __all__ = [
+    "DEFAULT_RTOL",
+    "IMPACT_FIELDS",
     "ImpactPeaks",
+    "ImpactReport",
+    "INTEGER_SUMMARY_COLUMNS",
+    "Report",
+    "STRIKE_TRACE_COLUMNS",
+    "beam_modal",
+    "beam_static",
+    "eta",
+    "eta_map",
+    "eta_rotor",
+    "experiment",
+    "fit",
+    "payload",
+    "prb",
+    "validate",
     "InputError",
     "PlausibilityWarning",
     "RunResult",
@@ -79,6 +112,10 @@ __all__ = [
     "scene_text",
     "sweep",
 ]
+
+#: The summary columns of a sweep that count (contacts, steps): pandas' nullable ``Int64``
+#: (``<NA>`` for a failed run); the others are float64.
+INTEGER_SUMMARY_COLUMNS: Tuple[str, ...] = ("contacts", "steps", "contact_steps")
 
 #: A scene: a path, the name of a bundled scene, TOML text, or a dict of the scene's tables.
 Scene = Union[str, "os.PathLike[str]", Mapping[str, Any]]
@@ -266,7 +303,17 @@ class RunResult:
         )
 
 
-def run(scene: Scene, /, overrides: Optional[Mapping[str, Any]] = None, **kwargs: Any) -> RunResult:
+def run(
+    scene: Scene,
+    /,
+    overrides: Optional[Mapping[str, Any]] = None,
+    *,
+    out: Optional[Union[str, "os.PathLike[str]"]] = None,
+    force: bool = False,
+    log_every_step: bool = False,
+    deformation_scale: float = 30.0,
+    **kwargs: Any,
+) -> RunResult:
     """Runs one scene of the test rig and returns its summary and traces.
 
     ``scene``: a path (str or os.PathLike), the name of a bundled scene
@@ -275,12 +322,28 @@ def run(scene: Scene, /, overrides: Optional[Mapping[str, Any]] = None, **kwargs
     Overrides by dotted path (see the module documentation): ``run(s, **{"robot.payload_kg":
     0.2})``, ``run(s, robot__payload_kg=0.2)`` or ``run(s, overrides={"robot.payload_kg": 0.2})``.
 
+    ``out``: also write the run's MCAP log there (FILE.mcap, with its Foxglove layout
+    FILE.layout.json beside it), as ``flexrig run --out``; ``force`` overwrites both,
+    ``log_every_step`` logs every step and sample on every channel, ``deformation_scale`` is the
+    factor on the CL beam's deflection in the log's 3D view (the flags of the same names). The
+    log is finished (with an error record) even when the run fails.
+
     Raises :class:`InputError` (a ValueError naming the field) for bad input, FileNotFoundError
     for a missing scene file, :class:`SimulationError` for a run that cannot finish. The GIL is
     released while the simulation runs.
     """
+    for name, flag in (("force", force), ("log_every_step", log_every_step)):
+        if not isinstance(flag, (bool, np.bool_)):
+            raise _input_error(name, f"invalid argument {name} = {flag!r}: must be True or False")
+    if log_every_step and out is None:
+        raise _input_error("log_every_step", "invalid argument log_every_step = True: only with out (the MCAP log)")
+    if isinstance(deformation_scale, bool) or not isinstance(deformation_scale, (int, float, np.integer, np.floating)):
+        raise _input_error("deformation_scale", f"invalid argument deformation_scale = {deformation_scale!r}: must be a number > 0")
     text, _ = _flexrig.scene_text(scene)
-    summary, traces, step_traces = _flexrig.run(text, _overrides(overrides, kwargs))
+    summary, traces, step_traces = _flexrig.run(
+        text, _overrides(overrides, kwargs), None if out is None else os.fspath(out), bool(force),
+        bool(log_every_step), float(deformation_scale),
+    )
     for w in summary["warnings"]:
         _warnings.warn(f"{w['field']}: {w['message']}", PlausibilityWarning, stacklevel=2)
     return RunResult._from_native(summary, traces, step_traces)
@@ -306,8 +369,32 @@ class ImpactPeaks(NamedTuple):
 _IMPACT_ARGS = ("m_h", "m_eff", "k_delta", "k_c", "n", "v0")
 
 
-def impact(m_h: Any, m_eff: Any, k_delta: Any, k_c: Any, n: Any, v0: Any) -> ImpactPeaks:
-    """The exact peak of the lumped two-mass impact for every parameter set.
+def impact(
+    m_h: Any,
+    m_eff: Any = None,
+    k_delta: Any = None,
+    k_c: Any = None,
+    n: Any = None,
+    v0: Any = None,
+    *,
+    gamma: Any = None,
+    m_r: Any = None,
+    m_e: Any = None,
+    method: str = "exact",
+    formulation: str = "auto",
+    rtol: float = DEFAULT_RTOL,
+) -> Union[ImpactPeaks, ImpactReport]:
+    """The peak of the lumped two-mass impact for every parameter set, as ``flexrig impact``.
+
+    With ``m_eff`` and the default ``method="exact"``: the vectorised exact peak below, as
+    :class:`ImpactPeaks`. Otherwise — the effective mass from ``gamma`` (PRB characteristic
+    radius, 1: compliant joint, 2/3: compliant link), ``m_r`` (link mass, kg) and ``m_e``
+    (payload, kg) as m_eff = m_e + γ m_r/3 (paper Eq. 5), or ``method="analytic"`` (the n = 1
+    closed form, Eq. 13: also ``k_o_n_per_m``, ``t_peak_s``, ``contact_duration_s``) or
+    ``method="ode"`` (time integration with ``formulation`` auto, indentation or displacement
+    and relative tolerance ``rtol``: also time to peak, duration, separation speed, right-hand-side
+    evaluations and steps) — an :class:`ImpactReport` with every key of ``flexrig impact --json``
+    (the same numbers), arrays over broadcast inputs.
 
     The exact (energy) method of ``flexrig impact``: ½ μ v0² = f²/(2 k_δ) + f δ_c/(n + 1) with
     δ_c = (f/k_c)^(1/n), for any Hertz exponent n; the same numbers as ``flexrig impact
@@ -320,6 +407,13 @@ def impact(m_h: Any, m_eff: Any, k_delta: Any, k_c: Any, n: Any, v0: Any) -> Imp
     the sets with the GIL released; the first set out of range raises :class:`InputError` naming
     the argument and its flat index, e.g. ``m_h[3]``.
     """
+    if m_eff is None or gamma is not None or m_r is not None or m_e is not None or not (
+        isinstance(method, str) and method == "exact"
+    ):
+        return _impact_report(
+            m_h, m_eff, k_delta, k_c, n, v0, gamma=gamma, m_r=m_r, m_e=m_e, method=method,
+            formulation=formulation, rtol=rtol,
+        )
     values = (m_h, m_eff, k_delta, k_c, n, v0)
     arrays = []
     for name, value in zip(_IMPACT_ARGS, values):
@@ -390,7 +484,8 @@ def sweep(
     The table is the one ``flexrig sweep`` writes to sweep.csv, one row per point in point
     order: ``index``, one column per path (tables and arrays as TOML text), ``status`` (``ok``
     or ``error``), ``error`` (the message of a failed run, else empty) and every summary
-    quantity of :data:`SUMMARY_COLUMNS` (float64, NaN where absent, e.g. for a failed run).
+    quantity of :data:`SUMMARY_COLUMNS` (float64, NaN where absent, e.g. for a failed run; the
+    counts of :data:`INTEGER_SUMMARY_COLUMNS` as nullable Int64, ``<NA>`` where absent).
     ``df.to_parquet(path)`` writes it (with pyarrow installed).
 
     ``client``: a ``dask.distributed.Client``; the points are then run on its workers in chunks
@@ -472,7 +567,11 @@ def _frame(paths: List[str], parts: List[Dict[str, Any]]) -> "pandas.DataFrame":
         columns[name] = [values[i] for i in order]
     summary = np.concatenate([p["summary"] for p in parts])[order]
     for j, name in enumerate(SUMMARY_COLUMNS):
-        columns[name] = summary[:, j]
+        if name in INTEGER_SUMMARY_COLUMNS:
+            # counts as integers; pandas' nullable Int64 keeps a failed run's row missing (<NA>)
+            columns[name] = pd.array([None if np.isnan(x) else int(x) for x in summary[:, j]], dtype="Int64")
+        else:
+            columns[name] = summary[:, j]
     return pd.DataFrame(columns)
 
 

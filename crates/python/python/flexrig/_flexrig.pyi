@@ -11,6 +11,9 @@ import numpy.typing as npt
 
 __version__: str
 
+#: The default relative tolerance of the lumped impact's ode method (``flexrig impact --rtol``).
+DEFAULT_RTOL: float
+
 #: The summary quantities of a sweep row, in column order (as in ``flexrig sweep``'s CSV).
 SUMMARY_COLUMNS: List[str]
 
@@ -33,10 +36,94 @@ def apply_overrides(text: str, overrides: Sequence[Tuple[str, Any]]) -> str:
     """The scene text with the (dotted path, value) overrides applied, validated like the file."""
 
 def run(
-    text: str, overrides: Sequence[Tuple[str, Any]]
+    text: str,
+    overrides: Sequence[Tuple[str, Any]],
+    out: Optional[Union[str, "os.PathLike[str]"]] = None,
+    force: bool = False,
+    log_every_step: bool = False,
+    deformation_scale: float = 30.0,
 ) -> Tuple[Dict[str, Any], Dict[str, npt.NDArray[np.float64]], Dict[str, npt.NDArray[np.float64]]]:
     """Runs the scene text with overrides: (summary as ``flexrig run --json``, sample traces,
-    step traces). GIL released; Ctrl-C raises KeyboardInterrupt."""
+    step traces); with ``out`` also the MCAP log and its layout as ``flexrig run --out``. GIL
+    released; Ctrl-C raises KeyboardInterrupt."""
+
+_Path = Union[str, "os.PathLike[str]"]
+
+def impact_report(
+    m_h: float,
+    m_eff: Optional[float],
+    gamma: Optional[float],
+    m_r: Optional[float],
+    m_e: Optional[float],
+    k_delta: float,
+    k_c: float,
+    n: float,
+    v0: float,
+    method: str,
+    formulation: str,
+    rtol: float,
+) -> Dict[str, Any]:
+    """``flexrig impact --json`` for one set (masses kg, k_delta N/m, k_c N/m^n, v0 m/s)."""
+
+def eta(
+    out: _Path, joint: str, rotor_inertia: Optional[float], method: str, tol: Optional[float],
+    zone_elements: Optional[float], window_periods: Optional[float], elements: Optional[int],
+    steps_per_contact: Optional[int], modes: Optional[int], length: float, damping_model: str,
+    restitution: Optional[float], c_max: Optional[float], depth: Optional[float], size: str,
+    format: Sequence[str], dpi: float,
+) -> Dict[str, Any]:
+    """``flexrig eta --json`` for the same inputs; writes into ``out``."""
+
+def eta_map(
+    out: _Path, m_h: Sequence[float], n: float, mass_ratio: str, stiffness_ratio: str, points: int,
+    joint: str, rotor_inertia: Optional[float], tol: float, damping_model: str,
+    restitution: Optional[float], c_max: Optional[float], depth: Optional[float], size: str,
+    format: Sequence[str], dpi: float,
+) -> Dict[str, Any]:
+    """``flexrig eta-map --json`` for the same inputs; writes into ``out``."""
+
+def eta_rotor(
+    out: _Path, ratio: str, points: int, n: Sequence[float], tol: float, damping_model: str,
+    restitution: Optional[float], c_max: Optional[float], depth: Optional[float], size: str,
+    format: Sequence[str], dpi: float,
+) -> Dict[str, Any]:
+    """``flexrig eta-rotor --json`` for the same inputs; writes into ``out``."""
+
+def experiment(
+    out: _Path, repeats: int, jitter_deg: float, seed: int, scenes: Optional[_Path],
+    overrides: Sequence[Tuple[str, Any]], size: str, format: Sequence[str], dpi: float,
+) -> Dict[str, Any]:
+    """``flexrig experiment --json`` for the same inputs; writes into ``out``."""
+
+def payload(
+    out: _Path, scene: str, from_: float, to: float, points: int, size: str, format: Sequence[str],
+    dpi: float,
+) -> Dict[str, Any]:
+    """``flexrig payload --json`` for the same inputs; writes into ``out``."""
+
+def fit(file: _Path) -> Dict[str, Any]:
+    """``flexrig fit FILE --json``."""
+
+def beam_modal(
+    length: float, youngs: float, density: float, width: float, thickness: float, elements: int,
+    tip_mass: float, root: str, k_theta: float, modes: int,
+) -> Dict[str, Any]:
+    """``flexrig beam modal --json`` (SI units)."""
+
+def beam_static(
+    length: float, youngs: float, density: float, width: float, thickness: float, elements: int,
+    tip_mass: float, root: str, k_theta: float, tip_load: float, tip_moment: float, model: str,
+    load_steps: int,
+) -> Dict[str, Any]:
+    """``flexrig beam static --json`` (SI units)."""
+
+def prb(
+    out: _Path, elements: int, model: str, criterion: str, size: str, format: Sequence[str], dpi: float
+) -> Dict[str, Any]:
+    """``flexrig prb --json`` for the same inputs; writes prb.svg into ``out``."""
+
+def validate(quick: bool, out: _Path) -> Dict[str, Any]:
+    """``flexrig validate --json``; writes validation.md into ``out``."""
 
 def safety_json(input_json: str, body_model_toml: Optional[str] = None) -> str:
     """The report of ``flexrig safety --json`` for a safety input given as JSON (see

@@ -1,0 +1,869 @@
+//! What the two fronts (the `flexrig` command line and the Python package) share beyond the
+//! typed API: the commands' inputs as the user gives them (flags or keyword arguments: words,
+//! `FROM:TO` ranges, options that only go with others), checked into the library's settings,
+//! and each command's report as the JSON that `flexrig COMMAND --json` prints and the Python
+//! twin returns. One function per concern, called by both, so that the two give the same
+//! numbers and the same errors.
+//!
+//! Errors name the command line's flag (`--c-max`); the Python package renames it to its keyword
+//! argument (`c_max`).
+
+use std::path::PathBuf;
+
+use serde_json::{Value, json};
+
+use crate::Error;
+use crate::eta::{ClMethod, ClSolver, DampingSpec, EtaSettings, GradedMesh, ImpactError, Joint};
+use crate::eta_map::{LogRange, MapSpec};
+use crate::output::positive_arg;
+use crate::plots::{FigureFormat, FigureOptions, FigureWidth};
+
+fn invalid(arg: &str, value: impl ToString, allowed: impl Into<String>) -> Error {
+    Error::InvalidArgument {
+        arg: arg.into(),
+        value: value.to_string(),
+        allowed: allowed.into(),
+    }
+}
+
+/// The figure options of `--size` (`1`, `2` or a width such as `5in`), `--format` (svg, pdf,
+/// png; repeats dropped) and `--dpi`; errors name the flag.
+pub fn figure_options(size: &str, formats: &[String], dpi: f64) -> Result<FigureOptions, Error> {
+    let mut parsed = Vec::new();
+    for f in formats {
+        let format = FigureFormat::parse(f)?;
+        if !parsed.contains(&format) {
+            parsed.push(format);
+        }
+    }
+    let options = FigureOptions {
+        width: FigureWidth::parse(size)?,
+        formats: parsed,
+        dpi,
+    };
+    options.validate()?;
+    Ok(options)
+}
+
+/// Damping added to the Hertz contact (`--damping`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DampingModel {
+    /// The paper's elastic contact f = k_c δⁿ.
+    None,
+    /// Hunt–Crossley, χ = 3(1 − e)/(2 v0).
+    HuntCrossley,
+    /// Lankarani–Nikravesh, χ = 3(1 − e²)/(4 v0).
+    LankaraniNikravesh,
+    /// ADAMS IMPACT: damping ramped from 0 at first touch to c_max at a depth.
+    AdamsImpact,
+}
+
+impl DampingModel {
+    /// Every model, in the order of the flag's help.
+    pub const ALL: [DampingModel; 4] = [
+        DampingModel::None,
+        DampingModel::HuntCrossley,
+        DampingModel::LankaraniNikravesh,
+        DampingModel::AdamsImpact,
+    ];
+
+    /// The name as typed (`none`, `hunt-crossley`, `lankarani-nikravesh`, `adams-impact`).
+    pub fn name(self) -> &'static str {
+        match self {
+            DampingModel::None => "none",
+            DampingModel::HuntCrossley => "hunt-crossley",
+            DampingModel::LankaraniNikravesh => "lankarani-nikravesh",
+            DampingModel::AdamsImpact => "adams-impact",
+        }
+    }
+
+    /// The model named `text` (`_` for `-` accepted); the error names `--damping`.
+    pub fn parse(text: &str) -> Result<Self, Error> {
+        let wanted = text.replace('_', "-");
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name() == wanted)
+            .ok_or_else(|| {
+                invalid(
+                    "--damping",
+                    text,
+                    "one of none, hunt-crossley, lankarani-nikravesh, adams-impact",
+                )
+            })
+    }
+}
+
+/// The damping of `--damping` with `--restitution` (e in [0, 1]; Hunt–Crossley and
+/// Lankarani–Nikravesh), `--c-max` (N·s/m in [0, 1e9]) and `--depth` (m in [1e-9, 1]; ADAMS
+/// IMPACT); a missing, stray or out-of-range value is named.
+pub fn damping_spec(
+    model: DampingModel,
+    restitution: Option<f64>,
+    c_max: Option<f64>,
+    depth: Option<f64>,
+) -> Result<DampingSpec, Error> {
+    let in_range = |arg: &str, value: Option<f64>, lo: f64, hi: f64, what: &str| {
+        let v = value
+            .ok_or_else(|| invalid("--damping", model.name(), format!("needs {arg} ({what})")))?;
+        if v.is_finite() && (lo..=hi).contains(&v) {
+            Ok(v)
+        } else {
+            Err(invalid(arg, v, format!("must lie in [{lo:e}, {hi:e}]")))
+        }
+    };
+    let stray = |arg: &str, value: Option<f64>, with: &str| match value {
+        Some(v) => Err(invalid(
+            arg,
+            crate::output::display_number(v),
+            format!("only with --damping {with}"),
+        )),
+        None => Ok(()),
+    };
+    if matches!(model, DampingModel::None | DampingModel::AdamsImpact) {
+        stray(
+            "--restitution",
+            restitution,
+            "hunt-crossley or lankarani-nikravesh",
+        )?;
+    }
+    if model != DampingModel::AdamsImpact {
+        stray("--c-max", c_max, "adams-impact")?;
+        stray("--depth", depth, "adams-impact")?;
+    }
+    let e = || in_range("--restitution", restitution, 0.0, 1.0, "e in [0, 1]");
+    Ok(match model {
+        DampingModel::None => DampingSpec::NONE,
+        DampingModel::HuntCrossley => DampingSpec::HuntCrossley { restitution: e()? },
+        DampingModel::LankaraniNikravesh => DampingSpec::LankaraniNikravesh { restitution: e()? },
+        DampingModel::AdamsImpact => DampingSpec::AdamsImpact {
+            c_max_n_s_per_m: in_range("--c-max", c_max, 0.0, 1e9, "N·s/m")?,
+            depth_m: in_range("--depth", depth, 1e-9, 1.0, "m")?,
+        },
+    })
+}
+
+/// The joint during an FE impact (`--joint`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JointKind {
+    /// Driven at constant speed: the robot at rest in the joint's frame, struck at v0.
+    Held,
+    /// A free hub with a rotor inertia; the robot moves at v0 into the head.
+    FreeHub,
+}
+
+impl JointKind {
+    /// The joint named `text` (`held`, `free-hub`; `_` for `-` accepted); the error names
+    /// `--joint`.
+    pub fn parse(text: &str) -> Result<Self, Error> {
+        match text.replace('_', "-").as_str() {
+            "held" => Ok(JointKind::Held),
+            "free-hub" => Ok(JointKind::FreeHub),
+            _ => Err(invalid("--joint", text, "one of held, free-hub")),
+        }
+    }
+}
+
+/// The joint of `--joint` and `--rotor-inertia` (kg·m², only and always with the free hub).
+pub fn joint(kind: JointKind, rotor_inertia: Option<f64>) -> Result<Joint, Error> {
+    Ok(match (kind, rotor_inertia) {
+        (JointKind::Held, None) => Joint::Held,
+        (JointKind::Held, Some(j)) => {
+            return Err(invalid(
+                "--rotor-inertia",
+                crate::output::display_number(j),
+                "only with --joint free-hub",
+            ));
+        }
+        (JointKind::FreeHub, None) => {
+            return Err(invalid(
+                "--joint",
+                "free-hub",
+                "needs --rotor-inertia (kg·m², > 0)",
+            ));
+        }
+        (JointKind::FreeHub, Some(j)) => Joint::FreeHub {
+            rotor_inertia: positive_arg("--rotor-inertia", j)?,
+        },
+    })
+}
+
+/// An impact parameter error as the flag the user typed (`zone_elements` → `--zone-elements`).
+pub fn as_flag(e: ImpactError) -> Error {
+    match e {
+        ImpactError::InvalidParameter {
+            field,
+            value,
+            allowed,
+        }
+        | ImpactError::Contact(crate::driven::ContactError::InvalidParameter {
+            field,
+            value,
+            allowed,
+        }) => Error::InvalidArgument {
+            arg: format!("--{}", field.replace('_', "-")),
+            value,
+            allowed,
+        },
+        other => Error::Impact(other),
+    }
+}
+
+/// [`as_flag`] for an impact error inside a library error.
+pub fn impact_as_flag(e: Error) -> Error {
+    match e {
+        Error::Impact(e) => as_flag(e),
+        other => other,
+    }
+}
+
+/// The log-spaced range `FROM:TO` of `flag` with `points` points.
+pub fn parse_range(flag: &str, text: &str, points: usize) -> Result<LogRange, Error> {
+    let bad = || {
+        invalid(
+            flag,
+            text,
+            "FROM:TO, two numbers > 0 with FROM < TO (e.g. 1e-3:1e2)",
+        )
+    };
+    let (a, b) = text.split_once(':').ok_or_else(bad)?;
+    let from: f64 = a.trim().parse().map_err(|_| bad())?;
+    let to: f64 = b.trim().parse().map_err(|_| bad())?;
+    Ok(LogRange { from, to, points })
+}
+
+/// The inputs of `flexrig eta` as given (flags or keyword arguments).
+#[derive(Debug, Clone, PartialEq)]
+pub struct EtaInputs {
+    /// `--joint`.
+    pub joint: JointKind,
+    /// `--rotor-inertia` [kg·m²].
+    pub rotor_inertia: Option<f64>,
+    /// `--method alpha` (otherwise modal).
+    pub alpha: bool,
+    /// `--tol` (modal).
+    pub tol: Option<f64>,
+    /// `--zone-elements` (modal).
+    pub zone_elements: Option<f64>,
+    /// `--window-periods` (modal).
+    pub window_periods: Option<f64>,
+    /// `--elements` (alpha).
+    pub elements: Option<usize>,
+    /// `--steps-per-contact` (alpha).
+    pub steps_per_contact: Option<usize>,
+    /// `--modes` (alpha).
+    pub modes: Option<usize>,
+    /// `--length` [m].
+    pub length: f64,
+    /// The contact's damping.
+    pub damping: DampingSpec,
+}
+
+/// The settings of `flexrig eta`; an option of the other method or a value out of range is
+/// named.
+pub fn eta_settings(i: &EtaInputs) -> Result<EtaSettings, Error> {
+    let joint = joint(i.joint, i.rotor_inertia)?;
+    let only = |flag: &str, given: bool, method: &str| {
+        if given {
+            Err(invalid(
+                flag,
+                "given",
+                format!("only with --method {method}"),
+            ))
+        } else {
+            Ok(())
+        }
+    };
+    let method = if i.alpha {
+        only("--tol", i.tol.is_some(), "modal")?;
+        only("--zone-elements", i.zone_elements.is_some(), "modal")?;
+        ClMethod::Alpha(ClSolver {
+            elements: i.elements.unwrap_or(ClSolver::DEFAULT.elements),
+            steps_per_contact: i
+                .steps_per_contact
+                .unwrap_or(ClSolver::DEFAULT.steps_per_contact),
+            modes: i.modes,
+        })
+    } else {
+        only("--elements", i.elements.is_some(), "alpha")?;
+        only(
+            "--steps-per-contact",
+            i.steps_per_contact.is_some(),
+            "alpha",
+        )?;
+        only("--modes", i.modes.is_some(), "alpha")?;
+        ClMethod::Modal {
+            mesh: GradedMesh {
+                zone_elements: i.zone_elements.unwrap_or(GradedMesh::DEFAULT.zone_elements),
+                ..GradedMesh::DEFAULT
+            },
+            tol: i.tol.unwrap_or(1e-6),
+        }
+    };
+    crate::eta::check_length(i.length)?;
+    let settings = EtaSettings {
+        length: i.length,
+        joint,
+        method,
+        window_periods: i.window_periods,
+        damping: i.damping,
+        ..EtaSettings::DEFAULT
+    };
+    settings.validate().map_err(as_flag)?;
+    Ok(settings)
+}
+
+/// `flexrig eta --json`.
+pub fn eta_report(settings: &EtaSettings, r: &crate::eta::EtaResult) -> Value {
+    json!({ "settings": settings, "rows": r.rows, "csv": r.csv, "svg": r.svg, "fig6_svg": r.fig6_svg })
+}
+
+/// The maps of `flexrig eta-map`: one per head mass of `m_h` (kg), Hertz exponent `n`, ranges
+/// `mass_ratio` and `stiffness_ratio` (`FROM:TO`), `points` along each axis (2 to 200).
+pub fn eta_map_specs(
+    m_h: &[f64],
+    n: f64,
+    mass_ratio: &str,
+    stiffness_ratio: &str,
+    points: usize,
+) -> Result<Vec<MapSpec>, Error> {
+    if m_h.is_empty() || m_h.len() > crate::eta_map::MAX_MAPS {
+        return Err(invalid(
+            "--m-h",
+            format!("{} values", m_h.len()),
+            format!(
+                "one to {} head masses, each in (0, 1e9] kg",
+                crate::eta_map::MAX_MAPS
+            ),
+        ));
+    }
+    m_h.iter()
+        .map(|&m_h| {
+            if !(2..=200).contains(&points) {
+                return Err(invalid("--points", points, "must lie in [2, 200]"));
+            }
+            let spec = MapSpec {
+                m_h,
+                n,
+                mass_ratio: parse_range("--mass-ratio", mass_ratio, points)?,
+                stiffness_ratio: parse_range("--stiffness-ratio", stiffness_ratio, points)?,
+            };
+            spec.validate().map_err(as_flag)?;
+            Ok(spec)
+        })
+        .collect()
+}
+
+/// The settings of `flexrig eta-map`: the modal method at `tol` on the default graded mesh.
+pub fn eta_map_settings(
+    joint: Joint,
+    tol: f64,
+    damping: DampingSpec,
+) -> Result<EtaSettings, Error> {
+    let settings = EtaSettings {
+        joint,
+        method: ClMethod::Modal {
+            mesh: GradedMesh::DEFAULT,
+            tol,
+        },
+        damping,
+        ..EtaSettings::DEFAULT
+    };
+    settings.method.validate().map_err(as_flag)?;
+    Ok(settings)
+}
+
+/// `flexrig eta-map --json`.
+pub fn eta_map_report(settings: &EtaSettings, r: &crate::eta_map::EtaMapResult) -> Value {
+    let paths: Vec<String> = r.files.iter().map(|p| p.display().to_string()).collect();
+    json!({ "settings": settings, "maps": r.summaries, "files": paths })
+}
+
+/// The ratios and exponents of `flexrig eta-rotor`: `ratio` `FROM:TO` with `points` (2 to 200),
+/// exponents `n` (one to [`crate::eta_rotor::MAX_EXPONENTS`], each in [1, 3]).
+pub fn eta_rotor_inputs(ratio: &str, points: usize, n: &[f64]) -> Result<LogRange, Error> {
+    if !(2..=200).contains(&points) {
+        return Err(invalid("--points", points, "must lie in [2, 200]"));
+    }
+    let ratios = parse_range("--ratio", ratio, points)?;
+    if n.is_empty()
+        || n.len() > crate::eta_rotor::MAX_EXPONENTS
+        || n.iter()
+            .any(|n| !(n.is_finite() && (1.0..=3.0).contains(n)))
+    {
+        return Err(invalid(
+            "--n",
+            format!("{} values", n.len()),
+            format!(
+                "one to {} exponents, each in [1, 3]",
+                crate::eta_rotor::MAX_EXPONENTS
+            ),
+        ));
+    }
+    Ok(ratios)
+}
+
+/// The settings of `flexrig eta-rotor`: the modal method at `tol` on the default graded mesh.
+pub fn eta_rotor_settings(tol: f64, damping: DampingSpec) -> EtaSettings {
+    EtaSettings {
+        method: ClMethod::Modal {
+            mesh: GradedMesh::DEFAULT,
+            tol,
+        },
+        damping,
+        ..EtaSettings::DEFAULT
+    }
+}
+
+/// An error of `flexrig eta-rotor` named by flag (the ratio range as typed, `ratio`).
+pub fn eta_rotor_error(e: Error, ratio: &str) -> Error {
+    match e {
+        Error::Impact(ImpactError::InvalidParameter { field, .. }) if field == "inertia_ratio" => {
+            invalid("--ratio", ratio, "FROM:TO with 1e-9 ≤ FROM < TO ≤ 1e9")
+        }
+        other => impact_as_flag(other),
+    }
+}
+
+/// `flexrig eta-rotor --json`.
+pub fn eta_rotor_report(settings: &EtaSettings, r: &crate::eta_rotor::EtaRotorResult) -> Value {
+    json!({ "settings": settings, "points": r.points, "csv": r.csv, "svg": r.svg })
+}
+
+/// `flexrig impact --json`: the method, the masses, the peak and what the method found beyond
+/// it (closed form: k_o, time to peak, duration; ode: the formulation used, rtol, time to peak,
+/// duration, separation speed, evaluations and steps).
+pub fn impact_report(r: &crate::impact::ImpactResult, method: crate::impact::Method) -> Value {
+    use crate::impact::{Details, Method};
+    let model = &r.model;
+    let mut report = json!({
+        "method": method.name(),
+        "m_h_kg": model.m_h(),
+        "m_eff_kg": model.m_eff(),
+        "mu_kg": model.reduced_mass(),
+        "impact_energy_j": model.impact_energy(),
+    });
+    match &r.details {
+        Details::Exact => {}
+        Details::Analytic(a) => {
+            report["k_o_n_per_m"] = json!(a.k_o);
+            report["t_peak_s"] = json!(a.t_peak);
+            report["contact_duration_s"] = json!(a.contact_duration);
+        }
+        Details::Ode {
+            solution: sol,
+            formulation,
+        } => {
+            report["formulation"] = json!(format!("{formulation:?}").to_lowercase());
+            if let Method::Ode { rtol, .. } = method {
+                report["rtol"] = json!(rtol);
+            }
+            report["t_peak_s"] = json!(sol.t_peak);
+            report["contact_duration_s"] = json!(sol.contact_duration);
+            report["separation_speed_mps"] = json!(sol.separation_speed);
+            report["rhs_evals"] = json!(sol.rhs_evals);
+            report["steps"] = json!(sol.steps);
+            report["rejected_steps"] = json!(sol.rejected_steps);
+        }
+    }
+    let peak = r.peak;
+    report["f_max_n"] = json!(peak.f_max);
+    report["delta_max_m"] = json!(peak.delta_max);
+    report["indentation_max_m"] = json!(peak.indentation_max);
+    report["link_deflection_max_m"] = json!(peak.link_deflection_max);
+    report
+}
+
+/// The severity of a `flexrig impact` result (peak force, pressure, energy, head acceleration,
+/// HIC; [`crate::impact::severity`]): with the ode method only, which integrates the time
+/// history again on a fine grid; `dome_radius_m` \[m\] (`--dome-radius`, default the paper's
+/// dome) is refused with another method.
+pub fn impact_severity(
+    r: &crate::impact::ImpactResult,
+    method: crate::impact::Method,
+    dome_radius_m: Option<f64>,
+) -> Result<Option<crate::severity::Severity>, Error> {
+    use crate::impact::{Details, Method};
+    match (&r.details, method) {
+        (Details::Ode { formulation, .. }, Method::Ode { rtol, .. }) => Ok(Some(
+            crate::impact::severity(&r.model, rtol, *formulation, dome_radius_m)?,
+        )),
+        _ => match dome_radius_m {
+            Some(radius) => Err(invalid(
+                "--dome-radius",
+                &flexrig_contact::validate::display(radius),
+                "only with --method ode (the severity needs the time history)",
+            )),
+            None => Ok(None),
+        },
+    }
+}
+
+/// The ode method's state variables named `text` (`auto`, `indentation`, `displacement`); the
+/// error names `--formulation`.
+pub fn formulation(text: &str) -> Result<crate::impact::Formulation, Error> {
+    use crate::impact::Formulation;
+    match text {
+        "auto" => Ok(Formulation::Auto),
+        "indentation" => Ok(Formulation::Indentation),
+        "displacement" => Ok(Formulation::Displacement),
+        _ => Err(invalid(
+            "--formulation",
+            text,
+            "one of auto, indentation, displacement",
+        )),
+    }
+}
+
+/// The method of `flexrig impact` named `text` (`exact`, `analytic`, `ode`; the ode method with
+/// `formulation` and `rtol`); the error names `--method`.
+pub fn impact_method(
+    text: &str,
+    formulation: crate::impact::Formulation,
+    rtol: f64,
+) -> Result<crate::impact::Method, Error> {
+    use crate::impact::Method;
+    match text {
+        "exact" => Ok(Method::Exact),
+        "analytic" => Ok(Method::Analytic),
+        "ode" => Ok(Method::Ode { formulation, rtol }),
+        _ => Err(invalid("--method", text, "one of exact, analytic, ode")),
+    }
+}
+
+/// `flexrig payload --json`.
+pub fn payload_report(r: &crate::payload::PayloadResult) -> Value {
+    json!({ "rows": r.rows, "csv": r.csv, "logs": r.logs, "figures": r.figures })
+}
+
+/// `flexrig experiment --json`.
+pub fn experiment_report(r: &crate::experiment::ExperimentResult) -> Value {
+    json!({"groups": r.groups, "ratios": r.ratios, "runs": r.runs, "csv": r.csv, "svg": r.svg, "figures": r.figures})
+}
+
+/// The options of `flexrig prb`: `elements` (4 to 256), `model` (`ancf`, `corotational`),
+/// `criterion` (`deflection`, `length`); errors name the flag.
+pub fn prb_options(
+    elements: usize,
+    model: &str,
+    criterion: &str,
+    out: PathBuf,
+    figures: FigureOptions,
+) -> Result<crate::prb::PrbOptions, Error> {
+    use crate::prb::{ErrorMeasure, Kinematics};
+    crate::prb::check_elements(elements)?;
+    let criterion = match criterion {
+        "deflection" => ErrorMeasure::Deflection,
+        "length" => ErrorMeasure::Length,
+        other => {
+            return Err(invalid(
+                "--criterion",
+                other,
+                "must be deflection or length",
+            ));
+        }
+    };
+    let kinematics = match model {
+        "ancf" => Kinematics::Ancf,
+        "corotational" => Kinematics::Corotational,
+        other => return Err(invalid("--model", other, "must be ancf or corotational")),
+    };
+    Ok(crate::prb::PrbOptions {
+        elements,
+        kinematics,
+        criterion,
+        out,
+        figures,
+    })
+}
+
+/// `flexrig prb --json`: the fit by both criteria, the published values, the spring stiffness
+/// k L/EI (Howell's γ K_Θ against the paper's π γ²) and the beam's share of the tip effective
+/// mass (FE k_tip/ω₁² − m_e against the lumped γ/3, paper Eq. 5).
+pub fn prb_report(options: &crate::prb::PrbOptions, r: &crate::prb::PrbResult) -> Value {
+    use crate::prb::{
+        CANTILEVER_BETA_L, ErrorMeasure, HOWELL_GAMMA, HOWELL_K_THETA, HOWELL_THETA_MAX_DEG,
+        Kinematics, PAPER_GAMMA_SMALL,
+    };
+    let (fit, other) = (r.fit, r.other);
+    let pi = std::f64::consts::PI;
+    let stiffness = |g: f64, k: f64| json!({"gamma": g, "howell_k_l_over_ei": g * k, "paper_k_l_over_ei": pi * g * g});
+    let m_eff_modal = 3.0 / CANTILEVER_BETA_L[0].powi(4);
+    let shares: Vec<Value> = r
+        .shares
+        .iter()
+        .map(|s| json!({"payload_over_m_r": s.payload_over_m_r, "fe_beam_share": s.fe_beam_share}))
+        .collect();
+    let name = |m: ErrorMeasure| match m {
+        ErrorMeasure::Deflection => "deflection",
+        ErrorMeasure::Length => "length",
+    };
+    let model = match options.kinematics {
+        Kinematics::Corotational => "corotational",
+        Kinematics::Linear => "linear",
+        Kinematics::Ancf => "ancf",
+    };
+    json!({
+        "elements": options.elements,
+        "model": model,
+        "criterion": name(options.criterion),
+        "gamma": fit.gamma,
+        "k_theta": fit.k_theta,
+        "theta_max_deg": fit.theta_max_deg,
+        "small_deflection": {"gamma": fit.gamma_small, "k_theta": fit.k_theta_small},
+        "published": {"gamma": HOWELL_GAMMA, "k_theta": HOWELL_K_THETA, "theta_max_deg": HOWELL_THETA_MAX_DEG,
+                      "theta_max_deg_on_fe_path": fit.theta_max_deg_howell_gamma},
+        "other_criterion": {"criterion": name(crate::prb::other_measure(options.criterion)),
+                            "gamma": other.gamma, "k_theta": other.k_theta, "theta_max_deg": other.theta_max_deg},
+        "spring_stiffness": {
+            "note": "k L/EI: Howell k = γ K_Θ EI/L vs the paper's k_θp = π EI γ²/L",
+            "fitted": stiffness(fit.gamma, fit.k_theta),
+            "published": stiffness(HOWELL_GAMMA, HOWELL_K_THETA),
+            "paper_small_deflection": stiffness(PAPER_GAMMA_SMALL, fit.k_theta_small),
+        },
+        "effective_mass": {
+            "note": "beam share of the tip effective mass / m_r: FE k_tip/ω₁² − m_e vs lumped γ/3 (Eq. 5)",
+            "fe_modal_no_payload": m_eff_modal,
+            "fe": shares,
+            "lumped_gamma_2_3": PAPER_GAMMA_SMALL / 3.0,
+            "lumped_gamma_fitted": fit.gamma / 3.0,
+            "lumped_gamma_1": 1.0 / 3.0,
+        },
+        "svg": r.svg.display().to_string(),
+    })
+}
+
+/// `flexrig fit --json`.
+pub fn fit_report(fit: &flexrig_contact::HertzFit) -> Value {
+    json!({
+        "k": fit.k,
+        "n": fit.n,
+        "r2": fit.r2,
+        "k_stderr": fit.k_stderr,
+        "n_stderr": fit.n_stderr,
+        "rms_residual_n": fit.rms_residual_n,
+        "points": fit.points,
+        "skipped": fit.skipped,
+        "iterations": fit.iterations,
+    })
+}
+
+/// The beam of `flexrig beam`: its numbers checked before its `root` (`clamped`, `pinned`);
+/// errors name the flag.
+#[allow(clippy::too_many_arguments)]
+pub fn beam_input(
+    length: f64,
+    youngs: f64,
+    density: f64,
+    width: f64,
+    thickness: f64,
+    elements: usize,
+    tip_mass: f64,
+    root: &str,
+    k_theta: f64,
+) -> Result<crate::beam::BeamInput, Error> {
+    use crate::beam::{BeamInput, Root};
+    let mut beam = BeamInput {
+        length,
+        youngs,
+        density,
+        width,
+        thickness,
+        elements,
+        tip_mass,
+        root: Root::Clamped,
+        k_theta,
+    };
+    beam.check_ranges()?;
+    beam.root = match root {
+        "clamped" => Root::Clamped,
+        "pinned" => Root::Pinned,
+        other => return Err(invalid("--root", other, "must be clamped or pinned")),
+    };
+    Ok(beam)
+}
+
+/// The natural frequencies of `flexrig beam modal` [Hz] (the element count checked first).
+pub fn beam_modal(beam: &crate::beam::BeamInput, modes: usize) -> Result<Vec<f64>, Error> {
+    crate::beam::check_modal_elements(beam.elements)?;
+    crate::beam::modal(beam, modes)
+}
+
+/// `flexrig beam modal --json`.
+pub fn beam_modal_report(frequencies_hz: &[f64]) -> Value {
+    json!({ "frequencies_hz": frequencies_hz })
+}
+
+/// The tip load of `flexrig beam static`: force [N], moment [N·m], `model` (`linear`,
+/// `corotational`, `ancf`), load steps; errors name the flag.
+pub fn beam_tip_load(
+    force: f64,
+    moment: f64,
+    model: &str,
+    load_steps: usize,
+) -> Result<crate::beam::TipLoad, Error> {
+    use crate::beam::Kinematics;
+    let kinematics = match model {
+        "linear" => Kinematics::Linear,
+        "corotational" => Kinematics::Corotational,
+        "ancf" => Kinematics::Ancf,
+        other => {
+            return Err(invalid(
+                "--model",
+                other,
+                "must be linear, corotational or ancf",
+            ));
+        }
+    };
+    let load = crate::beam::TipLoad {
+        force,
+        moment,
+        kinematics,
+        load_steps,
+    };
+    load.validate()?;
+    Ok(load)
+}
+
+/// `flexrig beam static --json` (`model` as typed).
+pub fn beam_static_report(sol: &crate::beam::TipDisplacement, model: &str) -> Value {
+    json!({
+        "tip_u_m": sol.u,
+        "tip_v_m": sol.v,
+        "tip_angle_rad": sol.angle,
+        "iterations": sol.iterations,
+        "residual_n": sol.residual,
+        "load_level": sol.load_level,
+        "model": model,
+    })
+}
+
+/// `flexrig validate --json`.
+pub fn validation_report(r: &crate::validation::ValidationReport) -> Value {
+    json!({ "cases": r.cases, "report": r.report })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn arg_of(e: Error) -> String {
+        match e {
+            Error::InvalidArgument { arg, .. } => arg,
+            other => panic!("not an argument error: {other}"),
+        }
+    }
+
+    #[test]
+    fn damping_options_go_with_their_model_and_are_named() {
+        let stray = damping_spec(DampingModel::None, Some(0.5), None, None).unwrap_err();
+        assert_eq!(arg_of(stray), "--restitution");
+        let missing = damping_spec(DampingModel::AdamsImpact, None, Some(1e3), None).unwrap_err();
+        assert!(missing.to_string().contains("needs --depth"), "{missing}");
+        let out_of_range =
+            damping_spec(DampingModel::HuntCrossley, Some(1.5), None, None).unwrap_err();
+        assert_eq!(arg_of(out_of_range), "--restitution");
+        assert_eq!(
+            damping_spec(DampingModel::LankaraniNikravesh, Some(0.8), None, None).unwrap(),
+            DampingSpec::LankaraniNikravesh { restitution: 0.8 }
+        );
+        for m in DampingModel::ALL {
+            assert_eq!(DampingModel::parse(m.name()).unwrap(), m);
+            assert_eq!(DampingModel::parse(&m.name().replace('-', "_")).unwrap(), m);
+        }
+        assert_eq!(
+            arg_of(DampingModel::parse("viscous").unwrap_err()),
+            "--damping"
+        );
+    }
+
+    #[test]
+    fn the_joint_and_ranges_are_checked_by_flag() {
+        assert_eq!(joint(JointKind::Held, None).unwrap(), Joint::Held);
+        assert_eq!(
+            arg_of(joint(JointKind::Held, Some(1.0)).unwrap_err()),
+            "--rotor-inertia"
+        );
+        assert_eq!(
+            arg_of(joint(JointKind::FreeHub, None).unwrap_err()),
+            "--joint"
+        );
+        let r = parse_range("--ratio", "1e-3:1e2", 5).unwrap();
+        assert_eq!((r.from, r.to, r.points), (1e-3, 1e2, 5));
+        assert_eq!(
+            arg_of(parse_range("--ratio", "1e-3", 5).unwrap_err()),
+            "--ratio"
+        );
+        assert_eq!(
+            arg_of(eta_rotor_inputs("1e-3:1", 1, &[2.0]).unwrap_err()),
+            "--points"
+        );
+        assert_eq!(
+            arg_of(eta_rotor_inputs("1e-3:1", 4, &[4.0]).unwrap_err()),
+            "--n"
+        );
+        assert_eq!(
+            arg_of(eta_map_specs(&[], 2.0, "1e-3:1", "1e-7:1", 4).unwrap_err()),
+            "--m-h"
+        );
+    }
+
+    #[test]
+    fn eta_options_of_the_other_method_are_refused() {
+        let base = EtaInputs {
+            joint: JointKind::Held,
+            rotor_inertia: None,
+            alpha: false,
+            tol: None,
+            zone_elements: None,
+            window_periods: None,
+            elements: Some(64),
+            steps_per_contact: None,
+            modes: None,
+            length: 1.0,
+            damping: DampingSpec::NONE,
+        };
+        assert_eq!(arg_of(eta_settings(&base).unwrap_err()), "--elements");
+        let alpha = eta_settings(&EtaInputs {
+            alpha: true,
+            ..base.clone()
+        })
+        .unwrap();
+        assert!(matches!(alpha.method, ClMethod::Alpha(s) if s.elements == 64));
+    }
+
+    #[test]
+    fn the_impact_report_holds_the_closed_form() {
+        // n = 1: f_max = v0 √(k_o μ) with k_o = k_δ k_c/(k_δ + k_c) (paper Eq. 13)
+        let input = crate::impact::ImpactInput {
+            m_h: 4.0,
+            m_eff: crate::impact::EffectiveMass::Prb {
+                gamma: 2.0 / 3.0,
+                m_r: 10.0,
+                m_e: 0.1,
+            },
+            k_delta: 1e8,
+            k_c: 1e8,
+            n: 1.0,
+            v0: 2.0,
+        };
+        let method = impact_method("analytic", crate::impact::Formulation::Auto, 1e-10).unwrap();
+        let r = crate::impact::solve(&input, method).unwrap();
+        let report = impact_report(&r, method);
+        let m_eff = 0.1 + 10.0 * (2.0 / 3.0) / 3.0;
+        let mu: f64 = 4.0 * m_eff / (4.0 + m_eff);
+        let f = 2.0 * (0.5e8 * mu).sqrt();
+        let got = report["f_max_n"].as_f64().unwrap();
+        assert!((got - f).abs() <= 1e-12 * f, "{got} vs {f}");
+        assert!((report["m_eff_kg"].as_f64().unwrap() - m_eff).abs() <= 1e-15 * m_eff);
+        assert_eq!(report["method"], "analytic");
+        assert!(report.get("rhs_evals").is_none() && report.get("k_o_n_per_m").is_some());
+        assert_eq!(
+            arg_of(impact_method("rk4", crate::impact::Formulation::Auto, 1e-10).unwrap_err()),
+            "--method"
+        );
+        assert_eq!(
+            arg_of(formulation("implicit").unwrap_err()),
+            "--formulation"
+        );
+    }
+}

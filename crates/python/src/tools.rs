@@ -1,0 +1,131 @@
+//! The model checks and tools (`flexrig fit`, `beam modal`, `beam static`, `prb`, `validate`):
+//! the inputs checked by the same library functions as the flags ([`flexrig::fronts`]), the
+//! computation with the GIL released, and the report the command prints with `--json`.
+
+use std::path::PathBuf;
+
+use flexrig::fronts;
+use pyo3::prelude::*;
+
+use crate::convert::json_to_py;
+use crate::flag_error;
+
+/// `flexrig fit FILE --json`: the Hertz fit f = k δⁿ of the compression data in `file`.
+#[pyfunction]
+pub fn fit(py: Python<'_>, file: PathBuf) -> PyResult<Bound<'_, PyAny>> {
+    let fit = py
+        .detach(|| flexrig::fit::fit_file(&file))
+        .map_err(flag_error)?;
+    json_to_py(py, &fronts::fit_report(&fit))
+}
+
+/// The beam of `flexrig beam`'s flags.
+#[allow(clippy::too_many_arguments)]
+fn beam(
+    length: f64,
+    youngs: f64,
+    density: f64,
+    width: f64,
+    thickness: f64,
+    elements: usize,
+    tip_mass: f64,
+    root: &str,
+    k_theta: f64,
+) -> PyResult<flexrig::beam::BeamInput> {
+    fronts::beam_input(
+        length, youngs, density, width, thickness, elements, tip_mass, root, k_theta,
+    )
+    .map_err(flag_error)
+}
+
+/// `flexrig beam modal --json`: the natural frequencies [Hz].
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (length, youngs, density, width, thickness, elements, tip_mass, root, k_theta, modes))]
+pub fn beam_modal<'py>(
+    py: Python<'py>,
+    length: f64,
+    youngs: f64,
+    density: f64,
+    width: f64,
+    thickness: f64,
+    elements: usize,
+    tip_mass: f64,
+    root: &str,
+    k_theta: f64,
+    modes: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    flexrig::beam::check_modal_elements(elements).map_err(flag_error)?;
+    let input = beam(
+        length, youngs, density, width, thickness, elements, tip_mass, root, k_theta,
+    )?;
+    let frequencies = py
+        .detach(|| fronts::beam_modal(&input, modes))
+        .map_err(flag_error)?;
+    json_to_py(py, &fronts::beam_modal_report(&frequencies))
+}
+
+/// `flexrig beam static --json`: the tip displacement under a dead tip load.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (length, youngs, density, width, thickness, elements, tip_mass, root, k_theta, tip_load, tip_moment, model, load_steps))]
+pub fn beam_static<'py>(
+    py: Python<'py>,
+    length: f64,
+    youngs: f64,
+    density: f64,
+    width: f64,
+    thickness: f64,
+    elements: usize,
+    tip_mass: f64,
+    root: &str,
+    k_theta: f64,
+    tip_load: f64,
+    tip_moment: f64,
+    model: &str,
+    load_steps: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let load =
+        fronts::beam_tip_load(tip_load, tip_moment, model, load_steps).map_err(flag_error)?;
+    let input = beam(
+        length, youngs, density, width, thickness, elements, tip_mass, root, k_theta,
+    )?;
+    let sol = py
+        .detach(|| flexrig::beam::statics(&input, &load))
+        .map_err(flag_error)?;
+    json_to_py(py, &fronts::beam_static_report(&sol, model))
+}
+
+/// `flexrig prb --json`: the PRB model against the large-deflection FE beam; writes prb.svg
+/// into `out`.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (out, elements, model, criterion, size, format, dpi))]
+pub fn prb<'py>(
+    py: Python<'py>,
+    out: PathBuf,
+    elements: usize,
+    model: &str,
+    criterion: &str,
+    size: &str,
+    format: Vec<String>,
+    dpi: f64,
+) -> PyResult<Bound<'py, PyAny>> {
+    let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
+    let options =
+        fronts::prb_options(elements, model, criterion, out, figures).map_err(flag_error)?;
+    let r = py
+        .detach(|| flexrig::prb::run(&options))
+        .map_err(flag_error)?;
+    json_to_py(py, &fronts::prb_report(&options, &r))
+}
+
+/// `flexrig validate --json`: every verification case (failures are reported, not raised);
+/// writes validation.md into `out`.
+#[pyfunction]
+pub fn validate(py: Python<'_>, quick: bool, out: PathBuf) -> PyResult<Bound<'_, PyAny>> {
+    let r = py
+        .detach(|| flexrig::validation::run(quick, &out))
+        .map_err(flag_error)?;
+    json_to_py(py, &fronts::validation_report(&r))
+}

@@ -1,0 +1,330 @@
+"""Every command of the `flexrig` CLI has a Python twin (or is CLI-only, with a reason), and each
+twin gives the numbers of `flexrig COMMAND --json` bit for bit on the same inputs.
+
+The commands are read from the CLI's own help (`flexrig --help`, then each command's help for
+its subcommands), so a command added to the CLI fails here until it has a twin: by default the
+twin of `flexrig some-command` is `flexrig.some_command` (of `flexrig group sub`,
+`flexrig.group_sub`); list a twin of another name in TWINS, or the command in CLI_ONLY with the
+reason.
+"""
+
+import json
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import flexrig
+
+from conftest import ROOT, scene_path
+
+#: Twins not named after their command.
+TWINS = {
+    # `flexrig run SCENE` ↔ flexrig.run; the others follow the naming rule
+}
+
+#: Commands deliberately without a Python twin, and why.
+CLI_ONLY = {
+    "sweep merge": "joins the shard tables that `flexrig sweep --shard` runs wrote on a cluster; "
+    "in Python a sweep is one call (here or on a Dask cluster) and has no shards to join",
+    "bench": "measures this machine's run times (work–precision against the scipy peer): its "
+    "numbers are timings, not results; from Python, time the twins with your own tools",
+}
+
+
+def _help(cli, *command):
+    return cli(*command, "--help").stdout
+
+
+def _subcommands(text):
+    """The subcommand names of a help text (its Commands: section, without `help`)."""
+    names = []
+    inside = False
+    for line in text.splitlines():
+        if line.strip() == "Commands:":
+            inside = True
+            continue
+        if inside:
+            m = re.match(r"^  ([a-z][a-z0-9-]*)\s", line + " ")
+            if not m:
+                break
+            if m.group(1) != "help":
+                names.append(m.group(1))
+    return names
+
+
+def _runnable(text):
+    """Whether a command runs by itself (a usage line without <COMMAND>)."""
+    usage = text[text.index("Usage:") :].split("\n\n")[0]
+    lines = [l.replace("Usage:", "").strip() for l in usage.splitlines()]
+    return any(l and not l.endswith("<COMMAND>") for l in lines)
+
+
+def cli_commands(cli):
+    """Every command path of the CLI, e.g. ["run", "beam modal", "sweep merge", ...]."""
+    found = []
+
+    def walk(path):
+        text = _help(cli, *path)
+        subs = _subcommands(text)
+        if path and (_runnable(text) or not subs):
+            found.append(" ".join(path))
+        for sub in subs:
+            walk(path + [sub])
+
+    walk([])
+    return found
+
+
+def twin_name(command):
+    return TWINS.get(command, command.replace("-", "_").replace(" ", "_"))
+
+
+def test_every_cli_command_has_a_python_twin_or_a_reason(cli):
+    commands = cli_commands(cli)
+    assert {"run", "impact", "beam modal", "beam static", "sweep merge"} <= set(commands), commands
+    missing = [
+        f"`flexrig {c}` (expected flexrig.{twin_name(c)})"
+        for c in commands
+        if c not in CLI_ONLY
+        and not (twin_name(c) in flexrig.__all__ and callable(getattr(flexrig, twin_name(c), None)))
+    ]
+    assert not missing, (
+        "commands without a Python twin: " + ", ".join(missing) + "; add the twin to flexrig "
+        "(and __all__), name it in TWINS, or list the command in CLI_ONLY with the reason"
+    )
+
+
+def test_the_cli_only_list_names_real_commands_with_reasons(cli):
+    commands = set(cli_commands(cli))
+    for command, reason in CLI_ONLY.items():
+        assert command in commands, f"CLI_ONLY lists `flexrig {command}`, which the CLI does not have"
+        assert len(reason) > 20
+
+
+# ---- the same numbers ----------------------------------------------------------------------
+
+
+def same(python, cli, where="data"):
+    """Exact equality of two JSON-like values (floats bit for bit; NaN never appears)."""
+    if isinstance(cli, dict):
+        assert isinstance(python, dict) and set(python) == set(cli), (where, sorted(python), sorted(cli))
+        for k in cli:
+            same(python[k], cli[k], f"{where}.{k}")
+    elif isinstance(cli, list):
+        assert isinstance(python, (list, tuple)) and len(python) == len(cli), where
+        for i, (p, c) in enumerate(zip(python, cli)):
+            same(p, c, f"{where}[{i}]")
+    elif isinstance(cli, float):
+        assert isinstance(python, float) and python == cli and math.copysign(1, python) == math.copysign(1, cli), (
+            where, python, cli,
+        )
+    elif isinstance(cli, bool) or cli is None or isinstance(cli, str):
+        assert python == cli and type(python) is type(cli), (where, python, cli)
+    else:  # int
+        assert isinstance(python, int) and not isinstance(python, bool) and python == cli, (where, python, cli)
+
+
+def without(data, *keys):
+    """`data` without the wall-clock `keys` at any depth."""
+    if isinstance(data, dict):
+        return {k: without(v, *keys) for k, v in data.items() if k not in keys}
+    if isinstance(data, list):
+        return [without(v, *keys) for v in data]
+    return data
+
+
+@pytest.mark.parametrize(
+    "kwargs, flags",
+    [
+        (dict(gamma=2 / 3, m_r=10.0, m_e=0.1), ["--gamma", repr(2 / 3), "--m-r", "10.0", "--m-e", "0.1"]),
+        (dict(m_eff=3.4333, method="analytic"), ["--m-eff", "3.4333", "--method", "analytic"]),
+        (dict(m_eff=3.4333, method="ode"), ["--m-eff", "3.4333", "--method", "ode"]),
+        (
+            dict(gamma=1.0, m_r=10.0, m_e=0.5, method="ode", formulation="displacement", rtol=1e-8),
+            ["--gamma", "1.0", "--m-r", "10.0", "--m-e", "0.5", "--method", "ode", "--formulation",
+             "displacement", "--rtol", "1e-08"],
+        ),
+        (dict(m_eff=2.0, method="ode", formulation="indentation"),
+         ["--m-eff", "2.0", "--method", "ode", "--formulation", "indentation"]),
+    ],
+)
+@pytest.mark.parametrize("n", [1.0, 2.0])
+def test_impact_every_input_and_method_equals_the_cli(cli, kwargs, flags, n):
+    if kwargs.get("method") == "analytic" and n != 1.0:
+        with pytest.raises(ValueError):
+            flexrig.impact(4.0, k_delta=1e8, k_c=1e8, n=n, v0=2.0, **kwargs)
+        return
+    r = flexrig.impact(4.0, k_delta=1e8, k_c=1e8, n=n, v0=2.0, **kwargs)
+    expected = cli.json("impact", "--m-h", "4.0", "--k-delta", "1e8", "--k-c", "1e8", "--n", repr(n), "--v0", "2.0", *flags)
+    assert isinstance(r, flexrig.ImpactReport)
+    for key, value in expected.items():
+        same(getattr(r, key), value, key)
+    for key in flexrig.IMPACT_FIELDS:
+        if key not in expected:
+            assert getattr(r, key) is None, key
+    if "rhs_evals" in expected:
+        assert isinstance(r.rhs_evals, int) and r.rhs_evals > 0
+
+
+def test_impact_arrays_hold_the_scalar_answers_and_name_the_bad_set():
+    v0 = np.array([[0.5, 1.0], [2.0, 3.0]])
+    r = flexrig.impact(4.0, gamma=2 / 3, m_r=10.0, m_e=0.1, k_delta=1e8, k_c=1e8, n=1.0, v0=v0, method="ode")
+    assert r.f_max_n.shape == (2, 2) and r.steps.dtype == np.int64 and r.formulation.shape == (2, 2)
+    for i in range(2):
+        for j in range(2):
+            one = flexrig.impact(4.0, gamma=2 / 3, m_r=10.0, m_e=0.1, k_delta=1e8, k_c=1e8, n=1.0, v0=v0[i, j], method="ode")
+            assert r.f_max_n[i, j] == one.f_max_n and r.steps[i, j] == one.steps
+    # the ode peak against the n = 1 closed form f = v0 sqrt(k_o mu) (Eq. 13)
+    mu = 4.0 * (0.1 + 10.0 * 2 / 9) / (4.0 + 0.1 + 10.0 * 2 / 9)
+    np.testing.assert_allclose(r.f_max_n, v0 * np.sqrt(0.5e8 * mu), rtol=1e-7)
+    with pytest.raises(ValueError, match=r"gamma\[1\]") as info:
+        flexrig.impact(4.0, gamma=[0.5, 1.5], m_r=10.0, m_e=0.1, k_delta=1e8, k_c=1e8, n=1.0, v0=2.0)
+    assert info.value.field == "gamma[1]"
+    with pytest.raises(ValueError, match="rtol") as info:
+        flexrig.impact(4.0, 3.0, 1e8, 1e8, 1.0, 2.0, method="ode", rtol=1.0)
+    assert info.value.field == "rtol"
+    with pytest.raises(ValueError, match="method"):
+        flexrig.impact(4.0, 3.0, 1e8, 1e8, 1.0, 2.0, method="rk4")
+    with pytest.raises(ValueError, match="m_eff"):
+        flexrig.impact(4.0, 3.0, 1e8, 1e8, 1.0, 2.0, gamma=0.5, m_r=1.0, m_e=0.1)
+
+
+def test_run_out_writes_the_log_and_layout_of_the_cli(cli, tmp_path):
+    scene = scene_path("cl_aluminium")
+    (tmp_path / "py").mkdir()
+    (tmp_path / "cli").mkdir()
+    r = flexrig.run(scene, out=tmp_path / "py" / "run.mcap", robot__payload_kg=0.3)
+    expected = cli.json("run", scene, "--out", tmp_path / "cli" / "run.mcap", "--set", "robot.payload_kg=0.3")
+    same(r.summary, expected, "summary")
+    for name in ("run.mcap", "run.layout.json"):
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    # traces as without the log
+    plain = flexrig.run(scene, robot__payload_kg=0.3)
+    assert np.array_equal(plain.force_n, r.force_n)
+    # not replaced without force, as the CLI
+    with pytest.raises(ValueError, match="force") as info:
+        flexrig.run(scene, out=tmp_path / "py" / "run.mcap")
+    assert info.value.field == "out"
+    flexrig.run(scene, out=tmp_path / "py" / "run.mcap", force=True, log_every_step=True, deformation_scale=1.0)
+    assert (tmp_path / "py" / "run.mcap").stat().st_size > (tmp_path / "cli" / "run.mcap").stat().st_size
+    with pytest.raises(ValueError, match="deformation_scale"):
+        flexrig.run(scene, out=tmp_path / "x.mcap", deformation_scale=-1.0)
+    with pytest.raises(ValueError, match="log_every_step"):
+        flexrig.run(scene, log_every_step=True)
+
+
+def test_fit_equals_the_cli(cli, tmp_path):
+    # f = k δ^n sampled with a deterministic ripple: the fit is not exact, its numbers are the CLI's
+    delta = np.linspace(1e-4, 2e-3, 40)
+    force = 7.3e7 * delta**1.9 * (1 + 0.01 * np.sin(np.arange(40)))
+    path = tmp_path / "compression.csv"
+    path.write_text("indentation_m,force_n\n" + "".join(f"{float(d)!r},{float(f)!r}\n" for d, f in zip(delta, force)))
+    r = flexrig.fit(path)
+    same(r.data, cli.json("fit", path))
+    assert abs(r.n - 1.9) < 0.02 and r.points == 40
+
+
+BEAM = dict(length=0.3, youngs=7e10, density=2700.0, width=0.02, thickness=0.002, elements=4)
+BEAM_FLAGS = ["--length", "0.3", "--youngs", "7e10", "--density", "2700", "--width", "0.02", "--thickness", "0.002",
+              "--elements", "4"]
+
+
+def test_beam_modal_and_static_equal_the_cli(cli):
+    r = flexrig.beam_modal(**BEAM, tip_mass=0.05, modes=3)
+    same(r.data, cli.json("beam", "modal", *BEAM_FLAGS, "--tip-mass", "0.05", "--modes", "3"))
+    assert list(r.table["mode"]) == [1, 2, 3] and r.table["mode"].dtype == np.int64
+    for model in ("linear", "corotational", "ancf"):
+        r = flexrig.beam_static(**BEAM, tip_load=5.0, model=model, root="pinned", k_theta=50.0)
+        expected = cli.json("beam", "static", *BEAM_FLAGS, "--tip-load", "5", "--model", model, "--root", "pinned",
+                            "--k-theta", "50")
+        same(r.data, expected)
+    with pytest.raises(ValueError, match="root") as info:
+        flexrig.beam_modal(**BEAM, root="hinged")
+    assert info.value.field == "root" and "--" not in str(info.value)
+    with pytest.raises(ValueError) as info:
+        flexrig.beam_static(**dict(BEAM, length=-1.0), tip_load=1.0)
+    assert info.value.field == "length"
+
+
+def test_prb_equals_the_cli_and_returns_its_figure(cli, tmp_path):
+    out = tmp_path / "prb"
+    r = flexrig.prb(out=out, elements=4, model="corotational", criterion="length")
+    same(r.data, cli.json("prb", "--elements", "4", "--model", "corotational", "--criterion", "length", "--out", out))
+    assert r.figures["prb.svg"].startswith("<svg") or "<svg" in r.figures["prb.svg"][:200]
+    # without out: the figure as text, nothing left behind
+    r2 = flexrig.prb(elements=4, model="corotational", criterion="length")
+    assert r2.gamma == r.gamma and r2.files == [] and "prb.svg" in r2.figures
+    with pytest.raises(ValueError, match="criterion"):
+        flexrig.prb(elements=4, criterion="angle")
+
+
+def test_eta_equals_the_cli(cli, tmp_path):
+    out = tmp_path / "eta"
+    r = flexrig.eta(out=out, zone_elements=0.5, tol=0.1)
+    same(r.data, cli.json("eta", "--zone-elements", "0.5", "--tol", "0.1", "--out", out))
+    assert len(r.table) == len(r.rows) == 16 and {"eta.svg", "eta_fig6.svg"} <= set(r.figures)
+    with pytest.raises(ValueError, match="c_max") as info:
+        flexrig.eta(damping="hunt-crossley", restitution=0.5, c_max=10.0)
+    assert info.value.field == "c_max"
+    with pytest.raises(ValueError, match="elements") as info:
+        flexrig.eta(elements=8)
+    assert info.value.field == "elements" and "only with method alpha" in str(info.value)
+
+
+def test_eta_map_and_eta_rotor_equal_the_cli(cli, tmp_path):
+    out = tmp_path / "map"
+    r = flexrig.eta_map(out=out, m_h=4.0, points=2, damping="hunt-crossley", restitution=0.8)
+    expected = cli.json("eta-map", "--m-h", "4", "--points", "2", "--damping", "hunt-crossley", "--restitution", "0.8",
+                        "--out", out)
+    same(without(r.data, "seconds"), without(expected, "seconds"))
+    assert r.table["points"].dtype == np.int64
+    r = flexrig.eta_map(out=out, m_h=[4.0], points=2, mass_ratio=(1e-2, 1.0), damping="hunt-crossley", restitution=0.8)
+    expected = cli.json("eta-map", "--m-h", "4", "--points", "2", "--mass-ratio", "0.01:1.0", "--damping",
+                        "hunt-crossley", "--restitution", "0.8", "--out", out)
+    same(without(r.data, "seconds"), without(expected, "seconds"))
+    out = tmp_path / "rotor"
+    r = flexrig.eta_rotor(out=out, points=2, n=2.0)
+    same(r.data, cli.json("eta-rotor", "--points", "2", "--n", "2", "--out", out))
+    assert "eta_rotor.svg" in r.figures
+    with pytest.raises(ValueError, match="points") as info:
+        flexrig.eta_rotor(points=1)
+    assert info.value.field == "points"
+
+
+def test_payload_and_experiment_equal_the_cli(cli, tmp_path):
+    out = tmp_path / "payload"
+    r = flexrig.payload(out=out, points=2)
+    same(r.data, cli.json("payload", "--points", "2", "--out", out))
+    assert {"payload_kg", "cj_peak_n", "cl_peak_n", "ratio"} <= set(r.table.columns)
+    with pytest.raises(ValueError, match=r"from_ = -1") as info:
+        flexrig.payload(from_=-1.0, points=2)
+    assert info.value.field == "from_"
+    out = tmp_path / "experiment"
+    r = flexrig.experiment(out=out, repeats=1, seed=3, **{"operator.start.release_angle_deg": 30.0})
+    expected = cli.json("experiment", "--repeats", "1", "--seed", "3", "--set", "operator.start.release_angle_deg=30.0",
+                        "--out", out)
+    same(r.data, expected)
+    assert len(r.table) == len(r.runs) and any(f.endswith(".mcap") for f in r.files)
+    with pytest.raises(ValueError, match="repeats") as info:
+        flexrig.experiment(repeats=0)
+    assert info.value.field == "repeats"
+
+
+def test_validate_equals_the_cli(cli, tmp_path):
+    out = tmp_path / "validate"
+    r = flexrig.validate(quick=True, out=out)
+    expected = json.loads(cli("validate", "--quick", "--out", out, "--json", check=False).stdout)
+    same(r.data, expected)
+    assert r.table["pass"].all() and (out / "validation.md").is_file()
+
+
+def test_every_public_name_is_documented_in_docs_python_md():
+    text = (ROOT / "docs" / "python.md").read_text(encoding="utf-8")
+    undocumented = [name for name in flexrig.__all__ if f"flexrig.{name}" not in text]
+    assert not undocumented, f"docs/python.md does not describe: {', '.join(undocumented)}"
+    # and every twin the table names exists
+    for name in re.findall(r"`flexrig\.([a-z_]+)\(", text):
+        assert name in flexrig.__all__, name
