@@ -134,8 +134,8 @@ impl MapParameter {
     fn check(self, flag: &str, v: f64) -> Result<(), Error> {
         let ok = match self {
             MapParameter::Payload => v.is_finite() && (0.0..=1e6).contains(&v),
-            MapParameter::LinkMass => v.is_finite() && v >= 1e-6 && v <= 1e6,
-            MapParameter::LinkStiffness => v.is_finite() && v >= 1e-3 && v <= 1e12,
+            MapParameter::LinkMass => v.is_finite() && (1e-6..=1e6).contains(&v),
+            MapParameter::LinkStiffness => v.is_finite() && (1e-3..=1e12).contains(&v),
             MapParameter::BendingStiffness | MapParameter::ContactStiffness => {
                 v.is_finite() && v > 0.0 && v <= 1e20
             }

@@ -691,7 +691,7 @@ fn energy_trace(
         "U(F_max) = F²/(2k_δ) + F δ_c/(n + 1):  {link};  F δ_c/(n + 1) = {} × {} / {} = {} J",
         n(f),
         g(delta),
-        n(r.n + 1.0),
+        g(r.n + 1.0),
         g(f * delta / (r.n + 1.0))
     ));
     let u = c.stored_energy(f);

@@ -206,6 +206,7 @@ fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tools::prb, m)?)?;
     m.add_function(wrap_pyfunction!(tools::validate, m)?)?;
     m.add_function(wrap_pyfunction!(safety::safety_json, m)?)?;
+    m.add_function(wrap_pyfunction!(safety::safety_map_json, m)?)?;
     m.add_function(wrap_pyfunction!(driven::spin_up, m)?)?;
     m.add_function(wrap_pyfunction!(driven::strike, m)?)?;
     m.add_function(wrap_pyfunction!(driven::role_switch, m)?)?;
