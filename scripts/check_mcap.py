@@ -16,8 +16,12 @@ from collections import Counter
 from mcap.reader import make_reader
 from mcap_protobuf.decoder import DecoderFactory
 
+max_force = {}
+
 REQUIRED_TOPICS = {"/tf", "/scene", "/sensors/force", "/sensors/accel/operator",
                    "/sensors/accel/load", "/sensors/encoders", "/contact", "/energy"}
+# a driven run's log (metadata flexrig.kind = "driven"); /drive/command only with a commanded motion
+DRIVEN_TOPICS = {"/drive/joint", "/drive/torque", "/link", "/contact"}
 
 
 def check(path):
@@ -27,7 +31,9 @@ def check(path):
         if summary is None or summary.statistics is None:
             raise SystemExit(f"{path}: no summary (unfinished file?)")
         topics = {c.id: c.topic for c in summary.channels.values()}
-        missing = REQUIRED_TOPICS - set(topics.values())
+        metadata = {m.name: m.metadata for m in reader.iter_metadata()}
+        driven = metadata.get("flexrig", {}).get("kind") == "driven"
+        missing = (DRIVEN_TOPICS if driven else REQUIRED_TOPICS) - set(topics.values())
         if missing:
             raise SystemExit(f"{path}: missing topics {sorted(missing)}")
         counts = Counter()
@@ -35,6 +41,8 @@ def check(path):
         for schema, channel, message, decoded in reader.iter_decoded_messages(log_time_order=False):
             topic = channel.topic
             counts[topic] += 1
+            if topic == "/contact" and hasattr(decoded, "force_n"):
+                max_force[path] = max(max_force.get(path, 0.0), decoded.force_n)
             if message.log_time != message.publish_time:
                 raise SystemExit(f"{path}: {topic}: log_time != publish_time")
             if topic in last and message.log_time < last[topic]:
@@ -51,11 +59,16 @@ def check(path):
         attachments = [a.name for a in reader.iter_attachments()]
         if "scene.toml" not in attachments:
             raise SystemExit(f"{path}: no scene.toml attachment")
-        metadata = {m.name: m.metadata for m in reader.iter_metadata()}
         for name in ("flexrig", "view"):
             if name not in metadata:
                 raise SystemExit(f"{path}: no {name} metadata")
         state = "error: " + metadata["error"]["message"] if "error" in metadata else "ok"
+        if driven and state == "ok":
+            # the logged force never exceeds the summary's located peak, and comes within 1e-3 of it
+            peak = float(metadata["summary"]["peak_force_n"])
+            logged = max_force.get(path, 0.0)
+            if not (logged <= peak and logged >= (1 - 1e-3) * peak):
+                raise SystemExit(f"{path}: logged peak force {logged} vs summary {peak}")
         total = sum(counts.values())
         print(f"{path}: {total} messages on {len(counts)} topics, {state}; "
               + ", ".join(f"{t} {n}" for t, n in sorted(counts.items())))

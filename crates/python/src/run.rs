@@ -138,6 +138,20 @@ pub fn run<'py>(
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>, Bound<'py, PyDict>)> {
     let overrides = self::overrides(&overrides)?;
     let cancel = CancelToken::new();
+    if flexrig::driven::scene::is_driven_text(text) {
+        // a driven scene: the strike's summary and its traces (no steps of a rig)
+        let run = detached(py, &cancel, || {
+            flexrig::driven::scene::DrivenScene::with_overrides(text, &overrides)
+                .and_then(|scene| flexrig::driven::scene::run(&scene, &cancel))
+        })?
+        .map_err(to_py)?;
+        let samples = PyDict::new(py);
+        for (name, column) in run.traces.columns() {
+            samples.set_item(name, array(py, column.clone()))?;
+        }
+        let summary = flexrig::driven::scene::summary_json(&run.summary);
+        return Ok((json_to_py(py, &summary)?, samples, PyDict::new(py)));
+    }
     let (summary, traces) =
         detached(py, &cancel, || run_traced(text, &overrides, &cancel))?.map_err(to_py)?;
     let s = traces.samples;
