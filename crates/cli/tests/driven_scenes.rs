@@ -300,7 +300,7 @@ fn a_sweep_over_the_drive_speed_runs_every_point() {
         "sweep",
         &scene_path("driven_cj_wall"),
         "--set",
-        "drive.motor.gear_ratio=10,0",
+        "drive.motor.gear_ratio=50,0",
         "--out",
         dir.join("bad").to_str().unwrap(),
     ]);
