@@ -19,6 +19,8 @@ from collections import Counter
 from mcap.reader import make_reader
 from mcap_protobuf.decoder import DecoderFactory
 
+max_force = {}
+
 REQUIRED_TOPICS = {"/tf", "/scene", "/sensors/force", "/sensors/accel/operator",
                    "/sensors/accel/load", "/sensors/encoders", "/contact", "/energy"}
 SEVERITY_KEYS = {"peak_force_n", "time_of_peak_force_s", "pressure", "energy_transferred_j",
@@ -39,6 +41,8 @@ def check_severity(path, s):
         raise SystemExit(f"{path}: /severity: two pressure models and HIC15 <= HIC36 expected")
     if abs(s["peak_acceleration_g"] * 9.80665 - s["peak_acceleration_mps2"]) > 1e-9 * s["peak_acceleration_mps2"]:
         raise SystemExit(f"{path}: /severity: peak acceleration in g does not match m/s²")
+# a driven run's log (metadata flexrig.kind = "driven"); /drive/command only with a commanded motion
+DRIVEN_TOPICS = {"/drive/joint", "/drive/torque", "/link", "/contact"}
 
 
 def check(path):
@@ -48,7 +52,9 @@ def check(path):
         if summary is None or summary.statistics is None:
             raise SystemExit(f"{path}: no summary (unfinished file?)")
         topics = {c.id: c.topic for c in summary.channels.values()}
-        missing = REQUIRED_TOPICS - set(topics.values())
+        metadata = {m.name: m.metadata for m in reader.iter_metadata()}
+        driven = metadata.get("flexrig", {}).get("kind") == "driven"
+        missing = (DRIVEN_TOPICS if driven else REQUIRED_TOPICS) - set(topics.values())
         if missing:
             raise SystemExit(f"{path}: missing topics {sorted(missing)}")
         counts = Counter()
@@ -65,6 +71,8 @@ def check(path):
             else:
                 decoded = protobuf.decoder_for(channel.message_encoding, schema)(message.data)
             counts[topic] += 1
+            if topic == "/contact" and hasattr(decoded, "force_n"):
+                max_force[path] = max(max_force.get(path, 0.0), decoded.force_n)
             if message.log_time != message.publish_time:
                 raise SystemExit(f"{path}: {topic}: log_time != publish_time")
             if topic in last and message.log_time < last[topic]:
@@ -81,13 +89,18 @@ def check(path):
         attachments = [a.name for a in reader.iter_attachments()]
         if "scene.toml" not in attachments:
             raise SystemExit(f"{path}: no scene.toml attachment")
-        metadata = {m.name: m.metadata for m in reader.iter_metadata()}
         for name in ("flexrig", "view"):
             if name not in metadata:
                 raise SystemExit(f"{path}: no {name} metadata")
         state = "error: " + metadata["error"]["message"] if "error" in metadata else "ok"
-        if state == "ok" and len(severities) != 1:
+        if not driven and state == "ok" and len(severities) != 1:
             raise SystemExit(f"{path}: {len(severities)} /severity messages, one expected")
+        if driven and state == "ok":
+            # the logged force never exceeds the summary's located peak, and comes within 1e-3 of it
+            peak = float(metadata["summary"]["peak_force_n"])
+            logged = max_force.get(path, 0.0)
+            if not (logged <= peak and logged >= (1 - 1e-3) * peak):
+                raise SystemExit(f"{path}: logged peak force {logged} vs summary {peak}")
         total = sum(counts.values())
         print(f"{path}: {total} messages on {len(counts)} topics, {state}; "
               + ", ".join(f"{t} {n}" for t, n in sorted(counts.items())))

@@ -219,6 +219,137 @@ fn with_axes(window: Option<TimeWindow>, axes: PlotAxes) -> Value {
     ])
 }
 
+/// The window from `start_s` to `end_s` \[s\] with a margin of [`MARGIN`] of its length on each
+/// side (not before 0).
+pub fn window_around(start_s: f64, end_s: f64) -> TimeWindow {
+    let margin = MARGIN * (end_s - start_s).max(0.0);
+    TimeWindow {
+        start_s: (start_s - margin).max(0.0),
+        end_s: end_s + margin,
+    }
+}
+
+/// Writes [`driven_for_log`]`(window, commanded)` beside the driven run's `log`, atomically.
+pub fn write_driven_beside(
+    log: &Path,
+    window: Option<TimeWindow>,
+    commanded: bool,
+) -> Result<(), Error> {
+    let text = serde_json::to_string_pretty(&driven_for_log(window, commanded))
+        .expect("a layout built from json! values serialises");
+    crate::output::write_atomic(&path_beside(log), format!("{text}\n").as_bytes())
+}
+
+/// The layout of a driven run's log (plots only: the driven strike has no 3D view). On the
+/// left, over the whole run: the joint's angle and speed (commanded and actual; the commanded
+/// series only when `commanded`) and the motor's torque at the joint with the link's moment; on
+/// the right, over the contact `window` (synced): the contact force, the indentation and the
+/// tip deflection.
+pub fn driven_for_log(window: Option<TimeWindow>, commanded: bool) -> Value {
+    let pair = |topic: &str, field: &str, what: &str, unit: &str| {
+        let mut paths = Vec::new();
+        if commanded {
+            paths.push(series(
+                &format!("/drive/command.{field}"),
+                &format!("commanded {what} [{unit}]"),
+                SENSOR,
+                1.0,
+            ));
+        }
+        paths.push(series(
+            &format!("{topic}.{field}"),
+            &format!("actual {what} [{unit}]"),
+            CONTACT,
+            2.0,
+        ));
+        paths
+    };
+    let whole = |title: &str, paths: Vec<Value>| {
+        let mut p = plot(title, paths, None);
+        p["isSynced"] = json!(false);
+        p
+    };
+    let angle = whole(
+        "Joint angle",
+        pair("/drive/joint", "angle_rad", "joint angle", "rad"),
+    );
+    let speed = whole(
+        "Joint speed",
+        pair("/drive/joint", "speed_rad_s", "joint speed", "rad/s"),
+    );
+    let torque = whole(
+        "Motor torque and link moment (at the joint)",
+        vec![
+            series(
+                "/drive/torque.joint_nm",
+                "motor torque at the joint [N·m]",
+                OPERATOR,
+                2.0,
+            ),
+            series(
+                "/link.moment_nm",
+                "spring or beam-root moment [N·m]",
+                LOAD,
+                1.0,
+            ),
+        ],
+    );
+    let force = plot(
+        "Contact force",
+        vec![series("/contact.force_n", "contact force [N]", SENSOR, 2.0)],
+        window,
+    );
+    let indentation = plot(
+        "Indentation",
+        vec![series(
+            "/contact.indentation_mm",
+            "indentation [mm] (negative: the gap)",
+            CONTACT,
+            2.0,
+        )],
+        window,
+    );
+    let deflection = plot(
+        "Tip deflection",
+        vec![series(
+            "/link.tip_deflection_mm",
+            "tip deflection from the hub's line [mm]",
+            LOAD,
+            2.0,
+        )],
+        window,
+    );
+    json!({
+        "configById": {
+            "Plot!angle": angle,
+            "Plot!speed": speed,
+            "Plot!torque": torque,
+            "Plot!force": force,
+            "Plot!indentation": indentation,
+            "Plot!deflection": deflection,
+        },
+        "globalVariables": {},
+        "userNodes": {},
+        "playbackConfig": { "speed": 0.05 },
+        "layout": {
+            "first": {
+                "first": "Plot!angle",
+                "second": { "first": "Plot!speed", "second": "Plot!torque", "direction": "column" },
+                "direction": "column",
+                "splitPercentage": 33
+            },
+            "second": {
+                "first": "Plot!force",
+                "second": { "first": "Plot!indentation", "second": "Plot!deflection", "direction": "column" },
+                "direction": "column",
+                "splitPercentage": 33
+            },
+            "direction": "row",
+            "splitPercentage": 50
+        }
+    })
+}
+
 /// Series colours: the contact force as a wide pale band under the force sensor's dark line.
 const BAND: &str = "#ffc48a";
 const SENSOR: &str = "#1d3557";

@@ -407,7 +407,7 @@ pub fn run_logged_also(
     Ok(outcome?)
 }
 
-fn refuse_overwrite(path: &Path) -> Error {
+pub(crate) fn refuse_overwrite(path: &Path) -> Error {
     Error::InvalidArgument {
         arg: "--out".into(),
         value: path.display().to_string(),
@@ -418,7 +418,7 @@ fn refuse_overwrite(path: &Path) -> Error {
 }
 
 /// The I/O error inside an MCAP error (kept, so a full disk still reads as one).
-fn io_of(e: mcap::McapError) -> std::io::Error {
+pub(crate) fn io_of(e: mcap::McapError) -> std::io::Error {
     match e {
         mcap::McapError::Io(e) => e,
         other => std::io::Error::other(other.to_string()),
@@ -426,14 +426,14 @@ fn io_of(e: mcap::McapError) -> std::io::Error {
 }
 
 /// A file written under a temporary sibling name, removed unless committed.
-struct PendingFile {
-    tmp: PathBuf,
+pub(crate) struct PendingFile {
+    pub(crate) tmp: PathBuf,
     path: PathBuf,
     committed: bool,
 }
 
 impl PendingFile {
-    fn new(path: &Path) -> Self {
+    pub(crate) fn new(path: &Path) -> Self {
         PendingFile {
             tmp: crate::output::temporary_sibling(path),
             path: path.to_path_buf(),
@@ -442,7 +442,7 @@ impl PendingFile {
     }
 
     /// Moves the finished file into place; without `force` an existing file is not replaced.
-    fn commit(mut self, force: bool) -> Result<(), Error> {
+    pub(crate) fn commit(mut self, force: bool) -> Result<(), Error> {
         let placed = if force {
             std::fs::rename(&self.tmp, &self.path)
         } else {

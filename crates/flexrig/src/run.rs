@@ -1,5 +1,9 @@
 //! One run of a scene file with its overrides, logged to MCAP (with its Foxglove layout) or not,
 //! and its summary as JSON. See also [`crate::traces`] (a run that keeps its traces in memory).
+//!
+//! A scene with a `[drive]` section is a driven scene ([`crate::driven::scene`]): it runs the
+//! driven strike of flexrig-impact instead of the test bed's pendulum rig, and its run is a
+//! [`SceneRun::Driven`].
 
 use std::path::{Path, PathBuf};
 
@@ -10,6 +14,7 @@ use serde_json::json;
 
 use crate::Error;
 use crate::cancel::CancelToken;
+use crate::driven::scene::{DrivenRun, DrivenScene, is_driven_text};
 use crate::mcap_log::{LogRates, LogTarget, run_logged};
 
 /// The scene-edit and summary types of a run (flexrig-rig's), for callers of this module.
@@ -28,6 +33,27 @@ pub struct LogRequest<'a> {
     pub deformation_scale: f64,
 }
 
+/// What a scene file's run returns: the test bed's summary, or a driven strike's run.
+#[derive(Debug, Clone)]
+// one value per run, returned once: the test bed's summary is kept inline as before
+#[allow(clippy::large_enum_variant)]
+pub enum SceneRun {
+    /// The drop-pendulum test bed (a scene without `[drive]`).
+    Rig(RunSummary),
+    /// A driven scene (with `[drive]`): summary, outcome and traces.
+    Driven(Box<DrivenRun>),
+}
+
+impl SceneRun {
+    /// The summary as `flexrig run --json` prints it.
+    pub fn summary_json(&self) -> serde_json::Value {
+        match self {
+            SceneRun::Rig(s) => summary_json(s),
+            SceneRun::Driven(d) => crate::driven::scene::summary_json(&d.summary),
+        }
+    }
+}
+
 /// Loads, validates and runs a scene file, logging as `log` asks (MCAP and its Foxglove
 /// layout). The log is always finished, with an `error` metadata record if the run failed.
 pub fn run_scene_file(
@@ -35,8 +61,47 @@ pub fn run_scene_file(
     overrides: &[Override],
     log: LogRequest<'_>,
     cancel: &CancelToken,
-) -> Result<RunSummary, Error> {
+) -> Result<SceneRun, Error> {
     let text = crate::output::read_text(path)?;
+    if is_driven_text(&text) {
+        return run_driven_text(&text, overrides, log, cancel)
+            .map(|r| SceneRun::Driven(Box::new(r)));
+    }
+    run_rig_text(&text, overrides, log, cancel).map(SceneRun::Rig)
+}
+
+/// Runs a driven scene's `text` with `overrides`, logged as `log` asks.
+pub fn run_driven_text(
+    text: &str,
+    overrides: &[Override],
+    log: LogRequest<'_>,
+    cancel: &CancelToken,
+) -> Result<DrivenRun, Error> {
+    let scene = DrivenScene::with_overrides(text, overrides)?;
+    let Some(out) = log.out else {
+        return crate::driven::scene::run(&scene, cancel);
+    };
+    let text = overrides::apply(text, overrides)?;
+    crate::driven::log::run_logged(
+        &scene,
+        &LogTarget {
+            path: out,
+            force: log.force,
+            scene_text: &text,
+            cancel: cancel.clone(),
+            rates: log.rates,
+            deformation_scale: log.deformation_scale,
+        },
+    )
+}
+
+fn run_rig_text(
+    text: &str,
+    overrides: &[Override],
+    log: LogRequest<'_>,
+    cancel: &CancelToken,
+) -> Result<RunSummary, Error> {
+    let text = text.to_string();
     let scene = scene_with_overrides(&text, overrides, &Materials::bundled()?)?;
     // the log records the scene as run
     let text = overrides::apply(&text, overrides)?;

@@ -254,12 +254,12 @@ impl Gains {
 
     /// Checks the fields.
     pub fn validate(&self) -> Result<(), ImpactError> {
-        non_negative("drive.gains.kp", self.kp, 1e15, "N·m/rad")?;
-        non_negative("drive.gains.kd", self.kd, 1e15, "N·m·s/rad")?;
-        non_negative("drive.gains.ki", self.ki, 1e18, "N·m/(rad·s)")?;
+        non_negative("drive.command.gains.kp", self.kp, 1e15, "N·m/rad")?;
+        non_negative("drive.command.gains.kd", self.kd, 1e15, "N·m·s/rad")?;
+        non_negative("drive.command.gains.ki", self.ki, 1e18, "N·m/(rad·s)")?;
         if self.kp == 0.0 && self.kd == 0.0 && self.ki == 0.0 {
             return Err(ImpactError::invalid(
-                "drive.gains",
+                "drive.command.gains",
                 "all zero",
                 "at least one gain > 0 (a torque-free drive is an open-loop torque of 0)",
             ));
@@ -308,15 +308,15 @@ impl TorqueProfile {
             }
         };
         match self {
-            TorqueProfile::Constant { torque } => finite("drive.torque.torque", *torque),
+            TorqueProfile::Constant { torque } => finite("drive.command.torque.torque", *torque),
             TorqueProfile::Pulse { torque, duration } => {
-                finite("drive.torque.torque", *torque)?;
-                positive("drive.torque.duration", *duration, 1e6, "s")
+                finite("drive.command.torque.torque", *torque)?;
+                positive("drive.command.torque.duration", *duration, 1e6, "s")
             }
             TorqueProfile::Table { times, torques } => {
                 if times.is_empty() || times.len() != torques.len() {
                     return Err(ImpactError::invalid(
-                        "drive.torque.times",
+                        "drive.command.torque.times",
                         format!("{} times, {} torques", times.len(), torques.len()),
                         "as many times as torques, at least one",
                     ));
@@ -324,7 +324,7 @@ impl TorqueProfile {
                 for (i, w) in times.windows(2).enumerate() {
                     if !(w[1] > w[0]) {
                         return Err(ImpactError::invalid(
-                            format!("drive.torque.times[{}]", i + 1),
+                            format!("drive.command.torque.times[{}]", i + 1),
                             w[1],
                             "strictly increasing times",
                         ));
@@ -333,14 +333,14 @@ impl TorqueProfile {
                 for (i, &t) in times.iter().enumerate() {
                     if !t.is_finite() {
                         return Err(ImpactError::invalid(
-                            format!("drive.torque.times[{i}]"),
+                            format!("drive.command.torque.times[{i}]"),
                             t,
                             "a finite time",
                         ));
                     }
                 }
                 for (i, &q) in torques.iter().enumerate() {
-                    finite(&format!("drive.torque.torques[{i}]"), q)?;
+                    finite(&format!("drive.command.torque.torques[{i}]"), q)?;
                 }
                 Ok(())
             }
@@ -444,16 +444,16 @@ impl Drive {
     pub fn new(motor: Motor, command: DriveCommand) -> Result<Drive, ImpactError> {
         motor.validate()?;
         match &command {
-            DriveCommand::Trajectory { profile } => profile.validate("drive.profile")?,
+            DriveCommand::Trajectory { profile } => profile.validate("drive.command.profile")?,
             DriveCommand::Controller {
                 profile,
                 gains,
                 torque_limit,
             } => {
-                profile.validate("drive.profile")?;
+                profile.validate("drive.command.profile")?;
                 gains.validate()?;
                 if let Some(limit) = torque_limit {
-                    positive("drive.torque_limit", *limit, 1e9, "N·m")?;
+                    positive("drive.command.torque_limit", *limit, 1e9, "N·m")?;
                 }
                 if motor.rotor_inertia == 0.0 {
                     return Err(ImpactError::invalid(
@@ -470,7 +470,7 @@ impl Drive {
                 torque.validate()?;
                 if !(initial_speed.is_finite() && initial_speed.abs() <= 1e4) {
                     return Err(ImpactError::invalid(
-                        "drive.initial_speed",
+                        "drive.command.initial_speed",
                         initial_speed,
                         "a finite joint speed within ±1e4 rad/s",
                     ));
@@ -598,7 +598,7 @@ impl Drive {
         let torque = c * speed;
         if torque.abs() > self.joint_torque_limit() {
             return Err(ImpactError::invalid(
-                "drive.torque_limit",
+                "drive.command.torque_limit",
                 self.joint_torque_limit() / self.spec.motor.gear_ratio,
                 format!(
                     "at least the friction torque at the steady speed, {:.6e} N·m at the motor",

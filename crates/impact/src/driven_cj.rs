@@ -191,6 +191,8 @@ impl DrivenCj<'_> {
             force_n: self.force(y),
             joint_torque_nm: self.drive_force(t, y).0 * self.l,
             head_position_m: y[XH] + self.shift,
+            // k_θr (φ_m − φ_l) = k_δ L² (r − w)/L
+            moment_nm: self.k * (r - y[W]) * self.l,
         }
     }
 

@@ -202,6 +202,10 @@ struct Integrator<'a> {
     folded: f64,
     /// (Σ gᵢ bᵢ, Σ gᵢ²) of a prescribed hub (gᵢ = −cᵢ).
     port_sums: (f64, f64),
+    /// (Σ cᵢ bᵢ, Σ cᵢ²) of a free hub (its acceleration θ̈₀ = −Σ cᵢ ωᵢ² qᵢ − f Σ cᵢ bᵢ + u Σ cᵢ²).
+    hub_sums: (f64, f64),
+    /// The rotor's inertia at the joint J_m N² [kg·m²].
+    rotor_inertia: f64,
 }
 
 /// The linear parts of one step: end values = constant + slope × (f₁, u₁).
@@ -581,7 +585,18 @@ impl Integrator<'_> {
             force_n: p.f,
             joint_torque_nm: self.torque(&ports),
             head_position_m: ports.xh,
+            moment_nm: self.root_moment(&ports),
         }
+    }
+
+    /// The beam's root moment [N·m]: what the hub passes on to the clamped beam, from the hub's
+    /// balance J_m N² θ̈ = τ_j − c_j θ̇ − M_root.
+    fn root_moment(&self, p: &Ports) -> f64 {
+        let acc = match self.port {
+            Port::Prescribed { .. } => p.hub_acc,
+            _ => -p.cwq - p.f * self.hub_sums.0 + p.u * self.hub_sums.1,
+        };
+        self.torque(p) - self.friction * p.hub_rate - self.rotor_inertia * acc
     }
 
     /// (motor power, friction power, damping power, impact power) \[W\].
@@ -899,6 +914,18 @@ pub fn run_driven_cl(
         ),
         _ => (0.0, 0.0),
     };
+    let hub_sums = match port {
+        Port::Prescribed { .. } => (0.0, 0.0),
+        _ => (
+            modes
+                .port
+                .iter()
+                .zip(&modes.tip)
+                .map(|(c, b)| c * b)
+                .sum::<f64>(),
+            modes.port.iter().map(|c| c * c).sum::<f64>(),
+        ),
+    };
     let (k_n, c_n) = match support {
         HeadSupport::Neck { stiffness, damping } => (stiffness, damping),
         _ => (0.0, 0.0),
@@ -911,6 +938,8 @@ pub fn run_driven_cl(
         friction: motor.reflected_friction(),
         folded,
         port_sums,
+        hub_sums,
+        rotor_inertia: motor.reflected_inertia(),
         l,
         m_h,
         wall: support == HeadSupport::Wall,

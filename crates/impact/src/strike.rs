@@ -154,6 +154,10 @@ pub struct TraceSample {
     pub joint_torque_nm: f64,
     /// The skin's position along the tip's path \[m\].
     pub head_position_m: f64,
+    /// The link's elastic moment at the joint [N·m]: CJ the torsion spring's k_θr (φ_m − φ_l);
+    /// CL the beam's root moment, what the hub passes on to the clamped beam (from the hub's
+    /// balance J_m N² θ̈ = τ_j − c_j θ̇ − M_root).
+    pub moment_nm: f64,
 }
 
 /// Keeps at most one sample per `every` seconds (the last one always replaceable by a

@@ -97,7 +97,7 @@ fn torque_tables_interpolate_and_specs_round_trip() {
         bad.validate()
             .unwrap_err()
             .to_string()
-            .contains("drive.torque.times[1]")
+            .contains("drive.command.torque.times[1]")
     );
     let drive = Drive::new(
         Motor::new(1e-4, 50.0, 1e-5).unwrap(),

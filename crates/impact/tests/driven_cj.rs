@@ -579,7 +579,7 @@ fn bad_drive_input_is_an_error_naming_the_field() {
                 ramp_time: 0.0,
             },
         ),
-        "drive.profile.ramp_time",
+        "drive.command.profile.ramp_time",
     );
     expect_field(
         Drive::controller(
@@ -588,7 +588,7 @@ fn bad_drive_input_is_an_error_naming_the_field() {
             Gains::position_pd(-1.0, 1.0),
             None,
         ),
-        "drive.gains.kp",
+        "drive.command.gains.kp",
     );
     expect_field(
         Drive::controller(
@@ -597,7 +597,7 @@ fn bad_drive_input_is_an_error_naming_the_field() {
             Gains::position_pd(1.0, 1.0),
             Some(0.0),
         ),
-        "drive.torque_limit",
+        "drive.command.torque_limit",
     );
     // the commanded trajectory never reaches a person behind the link
     let strike = DrivenStrike {

@@ -157,6 +157,20 @@ pub fn run<'py>(
         deformation_scale,
     };
     let cancel = CancelToken::new();
+    if flexrig::driven::scene::is_driven_text(text) {
+        // a driven scene: the strike's summary and its traces (no steps of a rig), its log
+        // written as `flexrig run --out` writes it
+        let run = detached(py, &cancel, || {
+            flexrig::run::run_driven_text(text, &overrides, log, &cancel)
+        })?
+        .map_err(crate::flag_error)?;
+        let samples = PyDict::new(py);
+        for (name, column) in run.traces.columns() {
+            samples.set_item(name, array(py, column.clone()))?;
+        }
+        let summary = flexrig::driven::scene::summary_json(&run.summary);
+        return Ok((json_to_py(py, &summary)?, samples, PyDict::new(py)));
+    }
     let (summary, traces) = detached(py, &cancel, || {
         run_traced_logged(text, &overrides, log, &cancel)
     })?

@@ -4,9 +4,10 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
+use flexrig::driven::scene::DrivenSummary;
 use flexrig::mcap_log::{DEFAULT_DEFORMATION_SCALE, LogRates};
 use flexrig::output::positive_arg;
-use flexrig::run::{LogRequest, run_scene_file, scene_warnings, summary_json};
+use flexrig::run::{LogRequest, SceneRun, run_scene_file, scene_warnings, summary_json};
 use flexrig::{CancelToken, Error};
 
 use crate::print::{line, parse_overrides, print_json, print_severity};
@@ -64,6 +65,13 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
         },
         cancel,
     )?;
+    let s = match s {
+        SceneRun::Rig(s) => s,
+        SceneRun::Driven(d) if args.json => {
+            return print_json(out, &flexrig::driven::scene::summary_json(&d.summary));
+        }
+        SceneRun::Driven(d) => return print_driven(out, args, &d.summary),
+    };
     if args.json {
         return print_json(out, &summary_json(&s));
     }
@@ -111,4 +119,90 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
         print_severity(out, severity, "operator block, its accelerometer")?;
     }
     Ok(())
+}
+
+/// The text summary of a driven scene's run.
+fn print_driven(out: &mut dyn Write, args: &RunArgs, s: &DrivenSummary) -> Result<(), Error> {
+    let design = match s.design {
+        flexrig::driven::strike::StrikeDesign::Cj => "CJ",
+        flexrig::driven::strike::StrikeDesign::Cl => "CL",
+    };
+    let head = match s.head {
+        "wall" => "a head against a wall",
+        "neck" => "a head on a neck",
+        _ => "a free head",
+    };
+    let command = match s.command {
+        "trajectory" => "prescribed trajectory",
+        "controller" => "feedback controller",
+        _ => "open-loop torque",
+    };
+    line(
+        out,
+        format!("scene {} (driven {design}, {command}, {head})", s.scene),
+    )?;
+    if let Some(path) = &args.out {
+        line(out, format!("  log                 {}", path.display()))?;
+    }
+    line(
+        out,
+        format!(
+            "  peak force          {:.6} N at t = {:.6} s",
+            s.peak_force_n, s.time_of_peak_s
+        ),
+    )?;
+    let commanded = s
+        .commanded_tip_speed_mps
+        .map(|c| format!(", commanded {c:.6} m/s"))
+        .unwrap_or_default();
+    line(
+        out,
+        format!(
+            "  impact velocity     {:.6} m/s (onset at {:.6} s{commanded})",
+            s.impact_velocity_mps, s.onset_time_s
+        ),
+    )?;
+    line(
+        out,
+        format!("  contact duration    {:.6e} s", s.contact_duration_s),
+    )?;
+    line(
+        out,
+        format!("  max indentation     {:.6e} m", s.max_indentation_m),
+    )?;
+    line(
+        out,
+        format!("  impulse             {:.6e} N·s", s.impulse_n_s),
+    )?;
+    line(
+        out,
+        format!(
+            "  pre-impact deflection {:.6e} m (tip from the hub's line)",
+            s.pre_impact_deflection_m
+        ),
+    )?;
+    line(
+        out,
+        format!(
+            "  motor torque peak   {:.6} N·m at the motor ({:.6} N·m at the joint; {:.6} N·m at the onset)",
+            s.peak_motor_torque_nm, s.peak_joint_torque_nm, s.joint_torque_at_onset_nm
+        ),
+    )?;
+    line(
+        out,
+        format!(
+            "  energy (contact)    motor work {:.6e} J, dissipated {:.6e} J, balance residual {:.3e} J",
+            s.motor_work_j, s.dissipated_j, s.energy_residual_j
+        ),
+    )?;
+    for note in &s.notes {
+        line(out, format!("  note: {note}"))?;
+    }
+    line(
+        out,
+        format!(
+            "  steps               {}, {} trace samples",
+            s.steps, s.samples
+        ),
+    )
 }

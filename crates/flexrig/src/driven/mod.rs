@@ -1,10 +1,14 @@
 //! The driven robot (docs/driven.md): typed entry points over flexrig-impact's drive models —
 //! the spin-up beam benchmark ([`spin_up`]), one driven CJ or CL strike from a drive description
-//! ([`strike`]) and the role-switch table ([`role_switch`]). Each takes a plain options struct of
+//! ([`strike`]), the role-switch table ([`role_switch`]), and driven scenes ([`scene`]: a scene
+//! file with a `[drive]` section, run by `flexrig run`, `sweep` and Python) with their MCAP logs
+//! ([`log`]). Each takes a plain options struct of
 //! SI fields, checks it (errors name the flag or the file's field), returns its numbers and the
 //! files it wrote (CSV, JSON, SVG; each written whole or not at all).
 
+pub mod log;
 pub mod role_switch;
+pub mod scene;
 pub mod spin_up;
 pub mod strike;
 

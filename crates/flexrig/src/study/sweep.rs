@@ -112,6 +112,8 @@ pub struct Sweep {
     dimensions: Vec<Dimension>,
     zip: bool,
     points: usize,
+    /// A driven scene (with `[drive]`): its points run the driven strike.
+    driven: bool,
 }
 
 /// Where and how a sweep runs.
@@ -146,6 +148,10 @@ impl Sweep {
     /// scene file (its errors name the field).
     pub fn new(base_text: &str, dimensions: Vec<Dimension>, zip: bool) -> Result<Self, Error> {
         let materials = Materials::bundled()?;
+        let driven = crate::driven::scene::is_driven_text(base_text);
+        if driven {
+            return Sweep::new_driven(base_text, dimensions, zip, materials);
+        }
         // the base alone is checked first, so that its own errors carry their line
         flexrig_rig::Scene::from_toml_str(base_text, &materials)?;
         let base: toml::Table = toml::from_str(base_text)
@@ -179,7 +185,75 @@ impl Sweep {
             dimensions,
             zip,
             points,
+            driven: false,
         })
+    }
+
+    /// A sweep of a driven scene: the base and every distinct value of each dimension on its
+    /// own are checked in full (format and range) before anything runs; a combination that
+    /// fails becomes a row with its error.
+    fn new_driven(
+        base_text: &str,
+        dimensions: Vec<Dimension>,
+        zip: bool,
+        materials: Materials,
+    ) -> Result<Self, Error> {
+        use crate::driven::scene::DrivenScene;
+        DrivenScene::parse(base_text)?;
+        let base: toml::Table = toml::from_str(base_text)
+            .map_err(|e| RigError::SceneSyntax(e.message().trim().to_string()))?;
+        let points = point_count(&dimensions, zip)?;
+        super::spec::check_distinct(&dimensions)?;
+        for d in &dimensions {
+            let mut seen = std::collections::HashSet::new();
+            for v in &d.values {
+                if seen.insert(v.to_string()) {
+                    DrivenScene::with_overrides(base_text, &[Override::new(&d.path, v.clone())])
+                        .map_err(|e| match e {
+                            Error::Rig(e) => with_list_hint(e, v),
+                            other => other,
+                        })?;
+                }
+            }
+        }
+        Ok(Sweep {
+            materials,
+            base_text: base_text.to_string(),
+            base,
+            dimensions,
+            zip,
+            points,
+            driven: true,
+        })
+    }
+
+    /// Runs the driven scene's point (with a log in `mcap_dir` if given).
+    fn run_driven(
+        &self,
+        index: usize,
+        overrides: &[Override],
+        options: &SweepOptions,
+    ) -> Result<[Option<f64>; 15], Error> {
+        let scene = crate::driven::scene::DrivenScene::with_overrides(&self.base_text, overrides)?;
+        let run = match &options.mcap_dir {
+            None => crate::driven::scene::run(&scene, &options.cancel)?,
+            Some(dir) => {
+                let text = flexrig_rig::overrides::apply(&self.base_text, overrides)?;
+                let path = dir.join(format!("run-{index}.mcap"));
+                crate::driven::log::run_logged(
+                    &scene,
+                    &crate::mcap_log::LogTarget {
+                        path: &path,
+                        force: true,
+                        scene_text: &text,
+                        cancel: options.cancel.clone(),
+                        rates: crate::mcap_log::LogRates::DECIMATED,
+                        deformation_scale: crate::mcap_log::DEFAULT_DEFORMATION_SCALE,
+                    },
+                )?
+            }
+        };
+        Ok(crate::driven::scene::sweep_values(&run.summary))
     }
 
     /// Number of points.
@@ -225,19 +299,28 @@ impl Sweep {
     pub fn run_point(&self, index: usize, options: &SweepOptions) -> SweepRow {
         let overrides = self.point(index);
         let values = overrides.iter().map(|o| o.value.to_string()).collect();
-        let result = self.run_overrides(index, &overrides, options);
+        let result = if self.driven {
+            self.run_driven(index, &overrides, options)
+        } else {
+            self.run_overrides(index, &overrides, options)
+                .map(|s| summary_values(&s))
+        };
         match result {
             Ok(s) => SweepRow {
                 index,
                 values,
                 status: "ok".into(),
                 error: String::new(),
-                summary: summary_values(&s).to_vec(),
+                summary: s.to_vec(),
             },
             Err(e) => SweepRow {
                 index,
                 values,
-                status: if matches!(e, Error::Rig(RigError::Interrupted { .. })) {
+                status: if matches!(
+                    e,
+                    Error::Rig(RigError::Interrupted { .. })
+                        | Error::Impact(flexrig_impact::ImpactError::Interrupted)
+                ) {
                     "interrupted".into()
                 } else {
                     "error".into()

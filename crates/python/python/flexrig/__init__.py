@@ -196,6 +196,15 @@ class RunResult:
       mechanical energy.
 
     ``pandas.DataFrame(r.traces)`` makes a table of the sensor traces.
+
+    A driven scene (one with a ``[drive]`` section, docs/scenes.md) has the driven strike's
+    summary (``summary["kind"] == "driven"``: also ``pre_impact_deflection_m``,
+    ``peak_motor_torque_nm``, ``motor_work_j``, ``notes``, …; the test bed's step counts and
+    energies are ``None``) and its traces in ``traces``: ``time_s``, ``commanded_angle_rad`` and
+    ``commanded_speed_rad_s`` (with a commanded motion), ``joint_angle_rad``,
+    ``joint_speed_rad_s``, ``joint_torque_nm``, ``motor_torque_nm``, ``link_moment_nm``,
+    ``tip_deflection_m``, ``force_n``, ``indentation_m`` (at the integrator's steps, at most one
+    per 1/``record.sample_rate_hz``); ``step_traces`` is empty.
     """
 
     scene: str
@@ -241,12 +250,12 @@ class RunResult:
             max_indentation_m=summary["max_indentation_m"],
             impulse_n_s=summary["impulse_n_s"],
             steps=summary["steps"],
-            contact_steps=summary["contact_steps"],
-            contact_step_s=summary["contact_step_s"],
-            energy_initial_j=summary["energy_initial_j"],
-            energy_final_j=summary["energy_final_j"],
+            contact_steps=summary.get("contact_steps"),
+            contact_step_s=summary.get("contact_step_s"),
+            energy_initial_j=summary.get("energy_initial_j"),
+            energy_final_j=summary.get("energy_final_j"),
             energy_through_contact_j=None if through is None else (through[0], through[1]),
-            contacts=summary["contacts"],
+            contacts=summary.get("contacts", []),
             duration_s=summary["duration_s"],
             samples=summary["samples"],
             warnings=summary["warnings"],
