@@ -265,7 +265,7 @@ pub fn driven_for_log(window: Option<TimeWindow>, commanded: bool) -> Value {
         paths
     };
     let whole = |title: &str, paths: Vec<Value>| {
-        let mut p = plot(title, paths, None);
+        let mut p = plot(title, paths, None, None);
         p["isSynced"] = json!(false);
         p
     };
@@ -298,6 +298,7 @@ pub fn driven_for_log(window: Option<TimeWindow>, commanded: bool) -> Value {
         "Contact force",
         vec![series("/contact.force_n", "contact force [N]", SENSOR, 2.0)],
         window,
+        None,
     );
     let indentation = plot(
         "Indentation",
@@ -308,6 +309,7 @@ pub fn driven_for_log(window: Option<TimeWindow>, commanded: bool) -> Value {
             2.0,
         )],
         window,
+        None,
     );
     let deflection = plot(
         "Tip deflection",
@@ -318,6 +320,7 @@ pub fn driven_for_log(window: Option<TimeWindow>, commanded: bool) -> Value {
             2.0,
         )],
         window,
+        None,
     );
     json!({
         "configById": {

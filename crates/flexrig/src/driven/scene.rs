@@ -541,8 +541,11 @@ pub fn summary_json(s: &DrivenSummary) -> serde_json::Value {
 
 /// The summary quantities of a sweep's row ([`crate::study::sweep::SUMMARY_COLUMNS`]): what a
 /// driven run has of them (the test bed's step counts and energies are absent).
-pub fn sweep_values(s: &DrivenSummary) -> [Option<f64>; 15] {
-    [
+pub fn sweep_values(
+    s: &DrivenSummary,
+) -> [Option<f64>; crate::study::sweep::SUMMARY_COLUMNS.len()] {
+    let mut values = [None; crate::study::sweep::SUMMARY_COLUMNS.len()];
+    let run = [
         Some(s.peak_force_n),
         Some(s.time_of_peak_s),
         Some(s.impact_velocity_mps),
@@ -558,7 +561,10 @@ pub fn sweep_values(s: &DrivenSummary) -> [Option<f64>; 15] {
         None,
         None,
         Some(s.duration_s),
-    ]
+    ];
+    // the severity columns stay empty: a driven run's severity is not computed yet
+    values[..run.len()].copy_from_slice(&run);
+    values
 }
 
 #[cfg(test)]

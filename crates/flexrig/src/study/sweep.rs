@@ -233,7 +233,7 @@ impl Sweep {
         index: usize,
         overrides: &[Override],
         options: &SweepOptions,
-    ) -> Result<[Option<f64>; 15], Error> {
+    ) -> Result<[Option<f64>; SUMMARY_COLUMNS.len()], Error> {
         let scene = crate::driven::scene::DrivenScene::with_overrides(&self.base_text, overrides)?;
         let run = match &options.mcap_dir {
             None => crate::driven::scene::run(&scene, &options.cancel)?,
