@@ -28,7 +28,8 @@ pub struct LogRequest<'a> {
     pub deformation_scale: f64,
 }
 
-/// Loads, validates and runs a scene file, logging as `log` asks (MCAP and its Foxglove
+/// Loads, validates and runs a scene (a bundled name or a scene file's path, see
+/// [`crate::scenes::resolve`]; errors name `SCENE`), logging as `log` asks (MCAP and its Foxglove
 /// layout). The log is always finished, with an `error` metadata record if the run failed.
 pub fn run_scene_file(
     path: &Path,
@@ -36,7 +37,7 @@ pub fn run_scene_file(
     log: LogRequest<'_>,
     cancel: &CancelToken,
 ) -> Result<RunSummary, Error> {
-    let text = crate::output::read_text(path)?;
+    let text = crate::scenes::resolve("SCENE", path)?.text;
     let scene = scene_with_overrides(&text, overrides, &Materials::bundled()?)?;
     // the log records the scene as run
     let text = overrides::apply(&text, overrides)?;
@@ -58,14 +59,14 @@ pub fn run_scene_file(
     )
 }
 
-/// The plausibility warnings of a scene file with its overrides (what is valid but looks like a
+/// The plausibility warnings of a scene (a bundled name or a file) with its overrides (what is valid but looks like a
 /// mistake, [`flexrig_rig::plausibility`]), for a front to show before the run starts; none if
 /// the scene cannot be loaded (the run itself then says why).
 pub fn scene_warnings(
     path: &Path,
     overrides: &[Override],
 ) -> Vec<flexrig_rig::plausibility::Warning> {
-    let Ok(text) = crate::output::read_text(path) else {
+    let Ok(crate::scenes::SceneSource { text, .. }) = crate::scenes::resolve("SCENE", path) else {
         return Vec::new();
     };
     let Ok(materials) = Materials::bundled() else {

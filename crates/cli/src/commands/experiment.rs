@@ -27,7 +27,9 @@ pub struct ExperimentArgs {
     /// Output directory (MCAP per run, fig9.svg, experiment.csv); its files are overwritten.
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
-    /// Directory with the scene files to use instead of the bundled ones (same names).
+    /// Directory with scene files to use instead of the bundled ones of the same names
+    /// (cj_aluminium.toml, …; any subset: the others stay bundled). `flexrig scenes --write
+    /// NAME --out DIR/NAME.toml` writes one to edit.
     #[arg(long, value_name = "DIR")]
     pub scenes: Option<PathBuf>,
     /// Override a scene field in every scene of the experiment, as in `flexrig run --set`

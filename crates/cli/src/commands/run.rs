@@ -14,7 +14,8 @@ use crate::print::{line, parse_overrides, print_json};
 /// Arguments of `flexrig run`.
 #[derive(Debug, Args)]
 pub struct RunArgs {
-    /// Scene file (TOML), e.g. assets/scenes/cj_aluminium.toml; see docs/scenes.md.
+    /// A bundled scene's name (e.g. cj_aluminium; `flexrig scenes` lists them) or a scene
+    /// file's path (TOML, see docs/scenes.md).
     #[arg(value_name = "SCENE")]
     pub scene: PathBuf,
     /// Write the run's traces to this MCAP file (opens in Foxglove; see docs/foxglove.md).

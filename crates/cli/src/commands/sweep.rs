@@ -18,7 +18,8 @@ pub struct SweepArgs {
     /// `merge DIR` joins the shard tables of a sweep.
     #[command(subcommand)]
     pub merge: Option<SweepCommand>,
-    /// The base scene (TOML), e.g. assets/scenes/cj_iron.toml.
+    /// The base scene: a bundled scene's name (e.g. cj_iron; `flexrig scenes` lists them) or a
+    /// scene file's path.
     #[arg(value_name = "BASE")]
     pub base: Option<PathBuf>,
     /// A varied field: PATH=SPEC with SPEC a list (0.1,0.2,0.5 or cj,cl), a range

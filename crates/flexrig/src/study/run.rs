@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use crate::Error;
 use crate::cancel::CancelToken;
-use crate::output::{ensure_dir, read_text, read_text_limited, write_atomic};
+use crate::output::{ensure_dir, read_text_limited, write_atomic};
 use crate::progress::Progress;
 use crate::study::spec::MAX_VALUE_FILE_BYTES;
 use crate::study::spec::{Dimension, parse_all};
@@ -15,7 +15,7 @@ use crate::study::sweep::{Journal, Sweep, SweepManifest, SweepOptions, rows_done
 /// What to sweep and where.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SweepRequest {
-    /// The base scene file (TOML).
+    /// The base scene: a bundled name or a scene file's path ([`crate::scenes::resolve`]).
     pub base: PathBuf,
     /// The varied fields.
     pub dimensions: Vec<Dimension>,
@@ -87,7 +87,7 @@ pub fn run_sweep(
 ) -> Result<SweepReport, Error> {
     let shard = request.shard;
     let sweep = Sweep::new(
-        &read_text(&request.base)?,
+        &crate::scenes::resolve("BASE", &request.base)?.text,
         request.dimensions.clone(),
         request.zip,
     )?;

@@ -51,7 +51,15 @@ import numpy as np
 
 from . import _flexrig
 from ._safety import safety
-from ._flexrig import SUMMARY_COLUMNS, InputError, SimulationError, Sweep, bundled_scenes
+from ._flexrig import (
+    SUMMARY_COLUMNS,
+    InputError,
+    SimulationError,
+    Sweep,
+    bundled_scenes,
+    scene_descriptions,
+    write_scene,
+)
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas
@@ -75,8 +83,10 @@ __all__ = [
     "impact",
     "run",
     "safety",
+    "scene_descriptions",
     "scene_text",
     "sweep",
+    "write_scene",
 ]
 
 #: A scene: a path, the name of a bundled scene, TOML text, or a dict of the scene's tables.
