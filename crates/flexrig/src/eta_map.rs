@@ -104,6 +104,8 @@ pub fn run(options: &EtaMapOptions, cancel: &CancelToken) -> Result<EtaMapResult
             allowed: format!("one to {MAX_MAPS} head masses (one map each)"),
         });
     }
+    crate::eta::check_length(options.settings.length)?;
+    crate::fig6::check_design(&options.settings.design)?;
     options.settings.validate()?;
     options.figures.validate()?;
     let joint_text = settings_text(&options.settings);
@@ -126,7 +128,7 @@ pub fn run(options: &EtaMapOptions, cancel: &CancelToken) -> Result<EtaMapResult
             flexrig_contact::validate::display(m.spec.m_h)
         );
         let text =
-            svg(m, &joint_text, options.figures.width_pt()).map_err(|message| Error::Plot {
+            svg(m, &joint_text, &options.settings.design, options.figures.width_pt()).map_err(|message| Error::Plot {
                 path: out.join(format!("{stem}.svg")),
                 message,
             })?;
@@ -198,7 +200,12 @@ pub fn csv(maps: &[ComputedMap]) -> String {
 /// The panels of one head mass at the printed width `width_pt` \[pt\]: η_FE, the lumped
 /// model's error, the effective γ (only when some point has one; otherwise a line under the
 /// title says why none fits) and the placed model's error.
-pub fn svg(m: &ComputedMap, joint: &str, width_pt: f64) -> Result<String, String> {
+pub fn svg(
+    m: &ComputedMap,
+    joint: &str,
+    design: &flexrig_lumped::fig6::Fig6Design,
+    width_pt: f64,
+) -> Result<String, String> {
     let xs = m.spec.mass_ratio.values();
     let ys = m.spec.stiffness_ratio.values();
     let value = |f: &dyn Fn(&EtaRow) -> Option<f64>| -> Vec<Option<f64>> {
@@ -276,9 +283,9 @@ pub fn svg(m: &ComputedMap, joint: &str, width_pt: f64) -> Result<String, String
         ),
         format!(
             "{joint}; m_r = {} kg, k_c = {} N/mⁿ, v_0 = {} m/s",
-            flexrig_lumped::fig6::M_R,
-            crate::plots::sci_label(flexrig_lumped::fig6::K_C),
-            flexrig_lumped::fig6::V0
+            design.m_r,
+            crate::plots::sci_label(design.k_c),
+            design.v0
         ),
     ];
     if gamma.iter().all(Option::is_none) {

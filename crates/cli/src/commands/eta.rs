@@ -75,6 +75,12 @@ pub struct EtaArgs {
     /// Size and formats of eta.svg and eta_fig6.svg.
     #[command(flatten)]
     pub figure: super::figure_args::FigureArgs,
+    /// The design held fixed.
+    #[command(flatten)]
+    pub design: super::impact_args::DesignArgs,
+    /// The cases.
+    #[command(flatten)]
+    pub cases: super::impact_args::CaseArgs,
 }
 
 fn settings(args: &EtaArgs) -> Result<EtaSettings, Error> {
@@ -128,8 +134,10 @@ fn settings(args: &EtaArgs) -> Result<EtaSettings, Error> {
         method,
         window_periods: args.window_periods,
         damping: args.contact.spec()?,
+        design: args.design.design(),
         ..EtaSettings::DEFAULT
     };
+    flexrig::fig6::check_design(&settings.design)?;
     settings.validate().map_err(as_flag)?;
     Ok(settings)
 }
@@ -158,8 +166,14 @@ fn method_text(method: &ClMethod) -> String {
 /// Runs `flexrig eta`.
 pub fn run(args: &EtaArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     let settings = settings(args)?;
-    let r = flexrig::eta::run(&settings, &args.out, &args.figure.options()?, cancel)
-        .map_err(super::impact_args::impact_as_flag)?;
+    let r = flexrig::eta::run(
+        &settings,
+        &args.cases.grid(),
+        &args.out,
+        &args.figure.options()?,
+        cancel,
+    )
+    .map_err(super::impact_args::impact_as_flag)?;
     let (rows, csv_path, svg_path, fig6_path) = (&r.rows, &r.csv, &r.svg, &r.fig6_svg);
     let joint = joint_text(&settings.joint);
     if args.json {
@@ -171,7 +185,11 @@ pub fn run(args: &EtaArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
     line(
         out,
         format!(
-            "Fig. 6 cases at FE fidelity (free head, {joint} joint; m_r = 10 kg, k_c = 1e8, v0 = 2 m/s, {}; {})",
+            "Fig. 6 cases at FE fidelity (free head, {joint} joint; m_r = {} kg, k_c = {:e} N/mⁿ, v0 = {} m/s, L = {} m, {}; {})",
+            settings.design.m_r,
+            settings.design.k_c,
+            settings.design.v0,
+            settings.length,
             contact_text(&settings.damping),
             method_text(&settings.method)
         ),

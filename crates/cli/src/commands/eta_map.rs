@@ -52,9 +52,15 @@ pub struct EtaMapArgs {
     /// Print JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
+    /// Link length L [m], in [1e-3, 1e3] (the transverse impact does not depend on it).
+    #[arg(long, value_name = "M", default_value_t = 1.0)]
+    pub length: f64,
     /// Size and formats of the figures.
     #[command(flatten)]
     pub figure: super::figure_args::FigureArgs,
+    /// The design held fixed (the map's axes are ratios to m_r and k_c).
+    #[command(flatten)]
+    pub design: super::impact_args::DesignArgs,
 }
 
 /// The map's ranges and exponent, checked, with the error named by flag.
@@ -101,6 +107,8 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resu
             tol: args.tol,
         },
         damping: args.contact.spec()?,
+        design: args.design.design(),
+        length: args.length,
         ..EtaSettings::DEFAULT
     };
     settings.method.validate().map_err(as_flag)?;
@@ -130,8 +138,17 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resu
     line(
         out,
         format!(
-            "η over m_e/m_r {} × k_δ/k_c {} ({} × {} points, n = {}, {joint_text}, tol {:e})",
-            args.mass_ratio, args.stiffness_ratio, args.points, args.points, args.n, args.tol
+            "η over m_e/m_r {} × k_δ/k_c {} ({} × {} points, n = {}, m_r = {} kg, k_c = {:e} N/mⁿ, v0 = {} m/s, L = {} m, {joint_text}, tol {:e})",
+            args.mass_ratio,
+            args.stiffness_ratio,
+            args.points,
+            args.points,
+            args.n,
+            settings.design.m_r,
+            settings.design.k_c,
+            settings.design.v0,
+            settings.length,
+            args.tol
         ),
     )?;
     for s in &summaries {

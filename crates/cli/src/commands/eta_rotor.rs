@@ -37,9 +37,18 @@ pub struct EtaRotorArgs {
     /// Print JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
+    /// Link length L [m], in [1e-3, 1e3] (with m_r it sets the link inertia m_r L²/3).
+    #[arg(long, value_name = "M", default_value_t = 1.0)]
+    pub length: f64,
     /// Size and formats of eta_rotor.svg.
     #[command(flatten)]
     pub figure: super::figure_args::FigureArgs,
+    /// The design held fixed.
+    #[command(flatten)]
+    pub design: super::impact_args::DesignArgs,
+    /// The cases.
+    #[command(flatten)]
+    pub cases: super::impact_args::CaseArgs,
 }
 
 /// Runs `flexrig eta-rotor`.
@@ -74,6 +83,8 @@ pub fn run(args: &EtaRotorArgs, out: &mut dyn Write, cancel: &CancelToken) -> Re
             tol: args.tol,
         },
         damping: args.contact.spec()?,
+        design: args.design.design(),
+        length: args.length,
         ..EtaSettings::DEFAULT
     };
     let r = flexrig::eta_rotor::run(
@@ -82,6 +93,7 @@ pub fn run(args: &EtaRotorArgs, out: &mut dyn Write, cancel: &CancelToken) -> Re
             ratios,
             n: args.n.clone(),
             settings,
+            grid: args.cases.grid(),
             figures: args.figure.options()?,
         },
         cancel,
@@ -106,10 +118,18 @@ pub fn run(args: &EtaRotorArgs, out: &mut dyn Write, cancel: &CancelToken) -> Re
     line(
         out,
         format!(
-            "η_FE along J_R/(m_r L²/3) = {} ({} points), n = {:?}, {}: free pivot → held",
+            "η_FE along J_R/(m_r L²/3) = {} ({} points), n = {}, m_r = {} kg, k_c = {:e} N/mⁿ, v0 = {} m/s, L = {} m, {}: free pivot → held",
             args.ratio,
             args.points,
-            args.n,
+            args.n
+                .iter()
+                .map(|n| n.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            settings.design.m_r,
+            settings.design.k_c,
+            settings.design.v0,
+            settings.length,
             contact_text(&settings.damping)
         ),
     )?;
