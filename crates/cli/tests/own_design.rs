@@ -82,8 +82,24 @@ fn fig6_of_another_robot_matches_the_closed_forms_and_says_what_ran() {
     let out = dir.to_str().unwrap();
     let (m_r, k_c, v0, m_h, k_delta, m_e) = (3.0, 5e7, 1.5, 70.0, 1e5, 0.5);
     let v = json(&[
-        "fig6", "--points", "3", "--out", out, "--json", "--m-r", "3", "--k-c", "5e7", "--v0",
-        "1.5", "--m-h", "70", "--k-delta", "1e5", "--m-e", "0.5",
+        "fig6",
+        "--points",
+        "3",
+        "--out",
+        out,
+        "--json",
+        "--m-r",
+        "3",
+        "--k-c",
+        "5e7",
+        "--v0",
+        "1.5",
+        "--m-h",
+        "70",
+        "--k-delta",
+        "1e5",
+        "--m-e",
+        "0.5",
     ]);
     let cases = v["cases"].as_array().unwrap();
     assert_eq!(cases.len(), 2);
@@ -101,16 +117,33 @@ fn fig6_of_another_robot_matches_the_closed_forms_and_says_what_ran() {
     assert!((got / eta2 - 1.0).abs() < 1e-9, "{got} vs {eta2}");
     // the figure and the table name the values that ran
     let svg = std::fs::read_to_string(dir.join("fig6.svg")).unwrap();
-    assert!(svg.contains("m_r = 3 kg") && svg.contains("v_0 = 1.5 m/s"), "title");
+    assert!(
+        svg.contains("m_r = 3 kg") && svg.contains("v_0 = 1.5 m/s"),
+        "title"
+    );
     let text = String::from_utf8(
         flexrig(&[
-            "fig6", "--points", "3", "--out", out, "--m-r", "3", "--m-h", "70", "--k-delta",
-            "1e5", "--m-e", "0.5",
+            "fig6",
+            "--points",
+            "3",
+            "--out",
+            out,
+            "--m-r",
+            "3",
+            "--m-h",
+            "70",
+            "--k-delta",
+            "1e5",
+            "--m-e",
+            "0.5",
         ])
         .stdout,
     )
     .unwrap();
-    assert!(text.contains("m_r = 3 kg") && !text.contains("0.89"), "{text}");
+    assert!(
+        text.contains("m_r = 3 kg") && !text.contains("0.89"),
+        "{text}"
+    );
     // out of range: exit 2 naming the flag
     for (flag, value) in [
         ("--m-r", "0"),
@@ -144,8 +177,22 @@ fn eta_and_its_maps_take_the_design_and_the_papers_values_change_nothing() {
     // another robot: the lumped columns are the closed forms (n = 1: Eq. 13)
     let (m_r, k_c, v0, m_h, k_delta, m_e) = (2.0, 3e7, 1.0, 4.0, 1e8, 0.1);
     let v = json(&[
-        "eta", "--out", out, "--json", "--m-h", "4", "--k-delta", "1e8", "--m-e", "0.1",
-        "--m-r", "2", "--k-c", "3e7", "--v0", "1",
+        "eta",
+        "--out",
+        out,
+        "--json",
+        "--m-h",
+        "4",
+        "--k-delta",
+        "1e8",
+        "--m-e",
+        "0.1",
+        "--m-r",
+        "2",
+        "--k-c",
+        "3e7",
+        "--v0",
+        "1",
     ]);
     let row = &v["rows"][0];
     assert_eq!(row["n"], 1.0);
@@ -163,8 +210,20 @@ fn eta_and_its_maps_take_the_design_and_the_papers_values_change_nothing() {
     // eta-rotor and eta-map: the paper's values spelt out change nothing
     let rotor = |extra: &[&str]| {
         let mut a = vec![
-            "eta-rotor", "--out", out, "--json", "--points", "2", "--n", "2", "--m-h", "4",
-            "--k-delta", "1e8", "--m-e", "0.1",
+            "eta-rotor",
+            "--out",
+            out,
+            "--json",
+            "--points",
+            "2",
+            "--n",
+            "2",
+            "--m-h",
+            "4",
+            "--k-delta",
+            "1e8",
+            "--m-e",
+            "0.1",
         ];
         a.extend(extra);
         json(&a)
@@ -176,7 +235,15 @@ fn eta_and_its_maps_take_the_design_and_the_papers_values_change_nothing() {
     // eta-map: the same table, byte for byte
     let map = |sub: &str, extra: &[&str]| {
         let d = dir.join(sub);
-        let mut a = vec!["eta-map", "--out", d.to_str().unwrap(), "--points", "2", "--m-h", "4"];
+        let mut a = vec![
+            "eta-map",
+            "--out",
+            d.to_str().unwrap(),
+            "--points",
+            "2",
+            "--m-h",
+            "4",
+        ];
         a.extend(extra);
         let o = flexrig(&a);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

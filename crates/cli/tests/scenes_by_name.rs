@@ -55,7 +55,10 @@ fn run_takes_a_bundled_name_like_its_file() {
     let o = flexrig(&["run", "banana"]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
-    assert!(!stderr.contains("did you mean") && stderr.contains("cl_iron"), "{stderr}");
+    assert!(
+        !stderr.contains("did you mean") && stderr.contains("cl_iron"),
+        "{stderr}"
+    );
 }
 
 #[test]
@@ -130,7 +133,10 @@ fn scenes_lists_every_bundled_scene_and_writes_one_to_edit() {
         assert!(!summary.is_empty() && !summary.contains('\n'), "{s}");
     }
     let text = String::from_utf8(flexrig(&["scenes"]).stdout).unwrap();
-    assert!(text.contains("cl_light_load") && text.contains("Fig. 9a"), "{text}");
+    assert!(
+        text.contains("cl_light_load") && text.contains("Fig. 9a"),
+        "{text}"
+    );
 
     let out_dir = scratch_dir("write");
     let file = out_dir.join("mine.toml");
@@ -146,7 +152,10 @@ fn scenes_lists_every_bundled_scene_and_writes_one_to_edit() {
     let o = flexrig(&["scenes", "--write", "cl_iron", "--out", file_arg]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("--out") && stderr.contains("--force"), "{stderr}");
+    assert!(
+        stderr.contains("--out") && stderr.contains("--force"),
+        "{stderr}"
+    );
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "edited");
     let o = flexrig(&["scenes", "--write", "cl_iron", "--out", file_arg, "--force"]);
     assert!(o.status.success());
@@ -191,7 +200,13 @@ fn experiment_scenes_takes_any_subset_of_the_scene_files() {
             .as_f64()
             .unwrap()
     };
-    let light = json(&["run", "cj_light_load", "--set", "robot.payload_kg=0.2", "--json"]);
+    let light = json(&[
+        "run",
+        "cj_light_load",
+        "--set",
+        "robot.payload_kg=0.2",
+        "--json",
+    ]);
     let close = |a: f64, b: f64| ((a - b) / b).abs() < 1e-12;
     let light = light["peak_force_n"].as_f64().unwrap();
     assert!(close(group("cj_light_load"), light), "{light}");
@@ -204,6 +219,9 @@ fn experiment_scenes_takes_any_subset_of_the_scene_files() {
     let o = flexrig(&["experiment", "--scenes", empty.to_str().unwrap()]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("--scenes") && stderr.contains("cj_aluminium.toml"), "{stderr}");
+    assert!(
+        stderr.contains("--scenes") && stderr.contains("cj_aluminium.toml"),
+        "{stderr}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -76,10 +76,11 @@ pub fn run(
     let svg_path = out.join("eta.svg");
     let fig6_path = out.join("eta_fig6.svg");
     let width = figures.width_pt();
-    let fig6_svg = fig6_with_fe_points(&rows, &settings.design, width).map_err(|message| Error::Plot {
-        path: fig6_path.clone(),
-        message,
-    })?;
+    let fig6_svg =
+        fig6_with_fe_points(&rows, &settings.design, width).map_err(|message| Error::Plot {
+            path: fig6_path.clone(),
+            message,
+        })?;
     let svg =
         crate::plots::eta_svg(&rows, &joint_text(&settings.joint), width).map_err(|message| {
             Error::Plot {

@@ -93,7 +93,10 @@ impl ExperimentOptions {
                     allowed: "must be a directory of scene files".into(),
                 });
             }
-            if !names.clone().any(|n| dir.join(format!("{n}.toml")).exists()) {
+            if !names
+                .clone()
+                .any(|n| dir.join(format!("{n}.toml")).exists())
+            {
                 return Err(Error::InvalidArgument {
                     arg: "--scenes".into(),
                     value: dir.display().to_string(),

@@ -132,10 +132,13 @@ pub fn run(options: &Fig6Options) -> Result<Fig6Result, Error> {
         dense = fig6::fig6_in(&options.design, &cases, PLOT_POINTS)?;
         &dense
     };
-    let svg = fig6_svg(plotted, &options.design, options.figures.width_pt()).map_err(|message| Error::Plot {
-        path: options.out.join("fig6.svg"),
-        message,
-    })?;
+    let svg =
+        fig6_svg(plotted, &options.design, options.figures.width_pt()).map_err(|message| {
+            Error::Plot {
+                path: options.out.join("fig6.svg"),
+                message,
+            }
+        })?;
     let figures = write_figure(&options.out, "fig6", &svg, &options.figures)?;
     Ok(Fig6Result {
         curves,

@@ -244,9 +244,17 @@ mod tests {
         let by_name = resolve("SCENE", Path::new("cj_iron")).unwrap();
         assert_eq!(by_name.text, bundled_text("cj_iron").unwrap());
         assert!(by_name.path.is_none());
-        let err = resolve("SCENE", Path::new("cj_aluminum")).unwrap_err().to_string();
-        assert!(err.contains("SCENE") && err.contains("did you mean cj_aluminium?"), "{err}");
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/scenes/cl_iron.toml");
+        let err = resolve("SCENE", Path::new("cj_aluminum"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("SCENE") && err.contains("did you mean cj_aluminium?"),
+            "{err}"
+        );
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../assets/scenes/cl_iron.toml"
+        );
         let by_path = resolve("SCENE", Path::new(path)).unwrap();
         assert_eq!(by_path.text, bundled_text("cl_iron").unwrap());
         assert!(matches!(

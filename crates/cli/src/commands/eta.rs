@@ -35,7 +35,7 @@ pub struct EtaArgs {
     /// The joint during the impact.
     #[arg(long, value_enum, default_value = "held")]
     pub joint: JointArg,
-    /// Rotor inertia J_R of the free hub, kg·m² (with --joint free-hub).
+    /// Rotor inertia J_R of the free hub [kg·m²] (with --joint free-hub).
     #[arg(long, value_name = "KG_M2")]
     pub rotor_inertia: Option<f64>,
     /// How the CL link is solved.
@@ -63,7 +63,7 @@ pub struct EtaArgs {
     /// shape (at most 1000 elements); without it, the full FE model.
     #[arg(long, value_name = "N")]
     pub modes: Option<usize>,
-    /// Link length L, m (the transverse impact does not depend on it).
+    /// Link length L [m] (the transverse impact does not depend on it).
     #[arg(long, value_name = "M", default_value_t = 1.0)]
     pub length: f64,
     /// The contact's damping.

@@ -21,25 +21,27 @@ pub struct EtaMapArgs {
     /// Directory for eta_map.csv and one eta_map_mh<M>.svg per head mass (created if missing).
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
-    /// Head masses m_h, kg, comma-separated (one map each).
+    /// Head masses m_h [kg], comma-separated (one map each).
     #[arg(long = "m-h", value_name = "KG,...", value_delimiter = ',', default_values_t = [4.0, 1000.0])]
     pub m_h: Vec<f64>,
     /// Hertz exponent n (1 to 3).
     #[arg(long, value_name = "N", default_value_t = 2.0)]
     pub n: f64,
-    /// Payload over link mass m_e/m_r along x, FROM:TO (log-spaced; within [1e-6, 1e5]).
-    #[arg(long, value_name = "FROM:TO", default_value = "1e-3:1e2")]
+    /// Payload over link mass m_e/m_r along x, log-spaced: FROM:TO:N:log, or FROM:TO with N
+    /// from --points (within [1e-6, 1e5]; see "Ranges" in docs/cli.md).
+    #[arg(long, value_name = "FROM:TO[:N:log]", default_value = "1e-3:1e2")]
     pub mass_ratio: String,
-    /// Link over contact stiffness k_δ/k_c along y, FROM:TO (log-spaced; within [1e-11, 1e4]).
-    #[arg(long, value_name = "FROM:TO", default_value = "1e-7:1")]
+    /// Link over contact stiffness k_δ/k_c along y, log-spaced: FROM:TO:N:log, or FROM:TO with
+    /// N from --points (within [1e-11, 1e4]).
+    #[arg(long, value_name = "FROM:TO[:N:log]", default_value = "1e-7:1")]
     pub stiffness_ratio: String,
-    /// Points along each axis (2 to 200).
+    /// Points along each axis given as FROM:TO (2 to 200).
     #[arg(long, value_name = "N", default_value_t = 30)]
     pub points: usize,
     /// The joint during the impact.
     #[arg(long, value_enum, default_value = "held")]
     pub joint: JointArg,
-    /// Rotor inertia J_R of the free hub, kg·m² (with --joint free-hub).
+    /// Rotor inertia J_R of the free hub [kg·m²] (with --joint free-hub).
     #[arg(long, value_name = "KG_M2")]
     pub rotor_inertia: Option<f64>,
     /// Tolerance of the force's linear hold per step (1e-10 to 0.1); 1e-5 keeps each peak
@@ -100,6 +102,7 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resu
         .iter()
         .map(|&m_h| spec_for(args, m_h))
         .collect::<Result<Vec<_>, _>>()?;
+    let (nx, ny) = (specs[0].mass_ratio.points, specs[0].stiffness_ratio.points);
     let settings = EtaSettings {
         joint,
         method: ClMethod::Modal {
@@ -141,8 +144,8 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resu
             "η over m_e/m_r {} × k_δ/k_c {} ({} × {} points, n = {}, m_r = {} kg, k_c = {:e} N/mⁿ, v0 = {} m/s, L = {} m, {joint_text}, tol {:e})",
             args.mass_ratio,
             args.stiffness_ratio,
-            args.points,
-            args.points,
+            nx,
+            ny,
             args.n,
             settings.design.m_r,
             settings.design.k_c,

@@ -19,10 +19,11 @@ pub struct EtaRotorArgs {
     /// Directory for eta_rotor.csv and eta_rotor.svg (created if missing).
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
-    /// Rotor over link inertia J_R/(m_r L²/3), FROM:TO (log-spaced; within [1e-9, 1e9]).
-    #[arg(long, value_name = "FROM:TO", default_value = "1e-4:1e6")]
+    /// Rotor over link inertia J_R/(m_r L²/3), log-spaced: FROM:TO:N:log, or FROM:TO with N
+    /// from --points (within [1e-9, 1e9]; see "Ranges" in docs/cli.md).
+    #[arg(long, value_name = "FROM:TO[:N:log]", default_value = "1e-4:1e6")]
     pub ratio: String,
-    /// Points along the ratio (2 to 200); the held joint is added as the limit.
+    /// Points along a ratio given as FROM:TO (2 to 200); the held joint is added as the limit.
     #[arg(long, value_name = "N", default_value_t = 21)]
     pub points: usize,
     /// Hertz exponents n, comma-separated (1 to 3 each).

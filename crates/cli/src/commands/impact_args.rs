@@ -4,8 +4,8 @@
 use clap::{Args, ValueEnum};
 use flexrig::Error;
 use flexrig::eta::{DampingSpec, ImpactError, Joint};
-use flexrig::fig6::{Fig6Design, Fig6Grid};
 use flexrig::eta_map::LogRange;
+use flexrig::fig6::{Fig6Design, Fig6Grid};
 use flexrig::output::positive_arg;
 
 /// The design held fixed across the cases (`fig6`, `eta`, `eta-map`, `eta-rotor`); the
@@ -99,7 +99,7 @@ pub struct DampingArgs {
     /// table); a contact damped further sticks, and is refused.
     #[arg(long, value_name = "N_S_PER_M")]
     pub c_max: Option<f64>,
-    /// Indentation at which the damping reaches --c-max, m in [1e-9, 1] (with --damping
+    /// Indentation [m] at which the damping reaches --c-max, in [1e-9, 1] (with --damping
     /// adams-impact).
     #[arg(long, value_name = "M")]
     pub depth: Option<f64>,
@@ -222,15 +222,8 @@ pub fn impact_as_flag(e: Error) -> Error {
     }
 }
 
-/// Parses FROM:TO for `flag`.
+/// Parses a log-spaced range for `flag`: FROM:TO:N:log, or FROM:TO with `points` values
+/// ([`flexrig::eta_map::parse_log_range`]).
 pub fn parse_range(flag: &str, text: &str, points: usize) -> Result<LogRange, Error> {
-    let bad = || Error::InvalidArgument {
-        arg: flag.into(),
-        value: text.into(),
-        allowed: "FROM:TO, two numbers > 0 with FROM < TO (e.g. 1e-3:1e2)".into(),
-    };
-    let (a, b) = text.split_once(':').ok_or_else(bad)?;
-    let from: f64 = a.trim().parse().map_err(|_| bad())?;
-    let to: f64 = b.trim().parse().map_err(|_| bad())?;
-    Ok(LogRange { from, to, points })
+    flexrig::eta_map::parse_log_range(flag, text, points)
 }

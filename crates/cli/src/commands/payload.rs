@@ -18,10 +18,10 @@ pub struct PayloadArgs {
     /// lists them) or a scene file's path.
     #[arg(long, default_value = "cl_light_load")]
     pub scene: String,
-    /// Smallest payload, kg.
+    /// Smallest payload [kg].
     #[arg(long, value_name = "KG", default_value_t = 0.01)]
     pub from: f64,
-    /// Largest payload, kg.
+    /// Largest payload [kg].
     #[arg(long, value_name = "KG", default_value_t = 1.0)]
     pub to: f64,
     /// Payloads, log-spaced (2 to 1000).

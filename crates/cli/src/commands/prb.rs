@@ -8,7 +8,7 @@ use clap::Args;
 use flexrig::Error;
 use flexrig::prb::{
     CANTILEVER_BETA_L, ErrorMeasure, HOWELL_GAMMA, HOWELL_K_THETA, HOWELL_THETA_MAX_DEG,
-    Kinematics, PAPER_GAMMA_SMALL, PrbOptions, check_elements,
+    Kinematics, LOAD_ANGLE_DEG, PAPER_GAMMA_SMALL, PrbOptions, check_elements, kinematics_name,
 };
 use serde_json::json;
 
@@ -84,6 +84,7 @@ pub fn run(args: &PrbArgs, out: &mut dyn Write) -> Result<(), Error> {
         "elements": args.elements,
         "model": args.model,
         "criterion": args.criterion,
+        "load_angle_deg": LOAD_ANGLE_DEG,
         "gamma": fit.gamma,
         "k_theta": fit.k_theta,
         "theta_max_deg": fit.theta_max_deg,
@@ -114,8 +115,11 @@ pub fn run(args: &PrbArgs, out: &mut dyn Write) -> Result<(), Error> {
     line(
         out,
         format!(
-            "PRB fit to the corotational FE tip path ({} elements, error relative to {}):",
-            args.elements, args.criterion
+            "PRB fit to the {} FE tip path ({} elements, dead tip load at {}° to the undeformed beam, error relative to {}):",
+            kinematics_name(kinematics),
+            args.elements,
+            LOAD_ANGLE_DEG,
+            args.criterion
         ),
     )?;
     line(
@@ -157,7 +161,7 @@ pub fn run(args: &PrbArgs, out: &mut dyn Write) -> Result<(), Error> {
         line(
             out,
             format!(
-                "  effective mass, payload {:.2} m_r: FE beam share {:.4} m_r vs γ/3 = {:.4} (γ = 2/3), {:.4} (fitted γ)",
+                "  effective mass, payload ratio m_e/m_r = {:.3}: FE beam share {:.4} m_r vs γ/3 = {:.4} (γ = 2/3), {:.4} (fitted γ)",
                 s["payload_over_m_r"].as_f64().unwrap_or(0.0),
                 s["fe_beam_share"].as_f64().unwrap_or(0.0),
                 PAPER_GAMMA_SMALL / 3.0,

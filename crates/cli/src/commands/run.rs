@@ -18,7 +18,7 @@ pub struct RunArgs {
     /// file's path (TOML, see docs/scenes.md).
     #[arg(value_name = "SCENE")]
     pub scene: PathBuf,
-    /// Write the run's traces to this MCAP file (opens in Foxglove; see docs/foxglove.md).
+    /// File (MCAP) to write the run's traces to; it opens in Foxglove (see docs/foxglove.md).
     #[arg(long, value_name = "FILE.mcap")]
     pub out: Option<PathBuf>,
     /// Overwrite the --out file if it exists.

@@ -30,7 +30,8 @@ pub struct SweepArgs {
     /// Zip the --set lists (same length) instead of the full grid.
     #[arg(long)]
     pub zip: bool,
-    /// Directory of the table (sweep.csv), its manifest and journal; a rerun resumes.
+    /// Directory for the table (sweep.csv), its manifest and journal (created if missing); a
+    /// rerun of the same command resumes.
     #[arg(long, value_name = "DIR", default_value = "out/sweep")]
     pub out: PathBuf,
     /// Also write JSON Lines (sweep.jsonl) and print the summary as JSON.
@@ -43,6 +44,9 @@ pub struct SweepArgs {
     /// `flexrig sweep merge DIR`.
     #[arg(long, value_name = "I/N")]
     pub shard: Option<String>,
+    /// Threads running points (1 to 4096; default: every core).
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
 }
 
 /// `flexrig sweep merge`.
@@ -102,6 +106,7 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resul
         jsonl: args.json,
         mcap: args.mcap,
         shard,
+        threads: args.threads,
     };
     let bar = Bar::on_terminal("{bar:30} {pos}/{len} runs, {eta} left {msg}");
     let r = run_sweep(&request, cancel, &bar)?;

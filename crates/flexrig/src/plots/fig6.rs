@@ -16,8 +16,8 @@ use plotters::series::DashedLineSeries;
 use plotters::style::text_anchor::{HPos, VPos};
 
 use super::{
-    GREY, GRID, LABEL_PT, Linear, TICK_PT, TITLE_PT, err, font, px, render,
-    sci_label, stroke, text, text_width_pt, ticks,
+    GREY, GRID, LABEL_PT, Linear, TICK_PT, TITLE_PT, err, font, px, render, sci_label, stroke,
+    text, text_width_pt, ticks,
 };
 
 /// Colour of the n = 2 curves (solid), as in the paper.
@@ -57,11 +57,7 @@ pub struct Fig6Point {
 
 /// The paper's Fig. 6 from the curves of `flexrig_lumped::fig6::fig6_in` in `design` (its
 /// m_r, k_c and v0 in the title), at the printed width `width_pt` \[pt\].
-pub fn fig6_svg(
-    curves: &[EtaCurve],
-    design: &Fig6Design,
-    width_pt: f64,
-) -> Result<String, String> {
+pub fn fig6_svg(curves: &[EtaCurve], design: &Fig6Design, width_pt: f64) -> Result<String, String> {
     draw_figure(curves, &[], design, width_pt)
 }
 
@@ -289,15 +285,13 @@ impl Header {
                     ));
                 }
             }
-            items.extend([
-                (
-                    Sample::Markers {
-                        filled: false,
-                        square: false,
-                    },
-                    "hollow: η_FE off its curve, drawn at γ = 1".to_string(),
-                ),
-            ]);
+            items.extend([(
+                Sample::Markers {
+                    filled: false,
+                    square: false,
+                },
+                "hollow: η_FE off its curve, drawn at γ = 1".to_string(),
+            )]);
         }
         // flow the items into rows
         let (mut x, mut row) = (4.0, 0);
@@ -1012,7 +1006,8 @@ mod tests {
     #[ignore = "writes a demo figure to /tmp"]
     fn fig6_points_demo() {
         let curves = fig6(201).unwrap();
-        let svg = fig6_with_points_svg(&curves, &points(&curves), &Fig6Design::PAPER, 504.0).unwrap();
+        let svg =
+            fig6_with_points_svg(&curves, &points(&curves), &Fig6Design::PAPER, 504.0).unwrap();
         std::fs::write("/tmp/fig6_points_demo.svg", svg).unwrap();
         std::fs::write(
             "/tmp/fig6_plain_demo.svg",
