@@ -228,7 +228,7 @@ fn impact_names_exactly_the_missing_flags() {
     ]);
     let f = json(&args)["f_max_n"].as_f64().unwrap();
     let m_eff = 0.1 + 10.0 / 3.0;
-    let mu = 4.0 * m_eff / (4.0 + m_eff);
+    let mu: f64 = 4.0 * m_eff / (4.0 + m_eff);
     let expected = 2.0 * (5e7 * mu).sqrt();
     assert!((f / expected - 1.0).abs() < 1e-12, "{f} vs {expected}");
 }
