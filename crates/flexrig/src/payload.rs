@@ -70,7 +70,26 @@ fn check(args: &PayloadOptions) -> Result<String, Error> {
         value,
         allowed: allowed.into(),
     };
-    let text = crate::scenes::resolve("--scene", Path::new(&args.scene))?.text;
+    // a file that cannot be read, or is no valid scene, is the flag's fault: named
+    let text = crate::scenes::resolve("--scene", Path::new(&args.scene))
+        .map_err(|e| match e {
+            Error::Read { source, .. } => bad(
+                "--scene",
+                args.scene.clone(),
+                &format!("cannot be read ({source}): give a bundled scene's name or a scene file"),
+            ),
+            other => other,
+        })?
+        .text;
+    flexrig_rig::Scene::from_toml_str(&text, &flexrig_contact::Materials::bundled()?).map_err(
+        |e| {
+            bad(
+                "--scene",
+                args.scene.clone(),
+                &format!("is not a valid scene: {e}"),
+            )
+        },
+    )?;
     for (flag, v) in [("--from", args.from), ("--to", args.to)] {
         if !(v.is_finite() && (1e-4..=10.0).contains(&v)) {
             return Err(bad(flag, v.to_string(), "must lie in [1e-4, 10] kg"));

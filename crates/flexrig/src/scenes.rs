@@ -173,6 +173,16 @@ pub fn resolve(arg: &str, path: &Path) -> Result<SceneSource, Error> {
             path: None,
         });
     }
+    if path.as_os_str().is_empty() {
+        return Err(Error::InvalidArgument {
+            arg: arg.into(),
+            value: String::new(),
+            allowed: format!(
+                "is empty: give the name of a bundled scene ({}) or the path of a scene file",
+                bundled_names().join(", ")
+            ),
+        });
+    }
     // a bare word that is no file: a misspelt bundled name, not a missing file
     let bare_word = name.filter(|n| {
         !n.is_empty() && !n.contains(['/', '\\', '.']) && std::fs::symlink_metadata(path).is_err()
