@@ -17,6 +17,8 @@ fn fig6_command_reproduces_the_quoted_etas() {
         out: dir.clone(),
         points: 3,
         figures: flexrig::plots::FigureOptions::two_column_svg(),
+        design: flexrig::fig6::Fig6Design::PAPER,
+        grid: flexrig::fig6::Fig6Grid::paper(),
     })
     .unwrap();
     let eta = |m_h: f64, k_delta: f64, m_e: f64, n: f64| {

@@ -27,6 +27,8 @@ pub enum Command {
     Experiment(commands::experiment::ExperimentArgs),
     /// Run a scene of the drop-pendulum test rig (CJ or CL) and print its impact summary.
     Run(commands::run::RunArgs),
+    /// The bundled scenes, one line each; `--write NAME` writes one to edit.
+    Scenes(commands::scenes::ScenesArgs),
     /// Run a base scene over a grid (or zip) of scene fields, in parallel, into one table;
     /// resumable, shardable for a cluster (`flexrig sweep merge` joins the shards).
     Sweep(commands::sweep::SweepArgs),
@@ -89,6 +91,7 @@ pub fn run_cancellable(cli: &Cli, out: &mut dyn Write, cancel: &CancelToken) -> 
         None => commands::default_job(&PathBuf::from(DEFAULT_OUT_DIR), out, cancel),
         Some(Command::Experiment(args)) => commands::experiment::run(args, out, cancel),
         Some(Command::Run(args)) => commands::run::run(args, out, cancel),
+        Some(Command::Scenes(args)) => commands::scenes::run(args, out),
         Some(Command::Sweep(args)) => commands::sweep::run(args, out, cancel),
         Some(Command::Impact(args)) => commands::impact::run(args, out),
         Some(Command::Fig6(args)) => commands::fig6::run(args, out),

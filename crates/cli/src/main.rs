@@ -11,6 +11,10 @@ fn main() {
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
     if let Err(err) = flexrig_cli::cli::run_cancellable(&cli, &mut out, &cancel) {
+        // the reader of the report went away (`flexrig … | head`): stop quietly
+        if err.is_broken_pipe() {
+            std::process::exit(0);
+        }
         eprintln!("error: {err}");
         std::process::exit(err.exit_code());
     }

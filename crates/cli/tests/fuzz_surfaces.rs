@@ -530,6 +530,11 @@ fn hostile_ranges() -> Vec<String> {
         "1:2:3",
         "1e-20:1e-19",
         "1e10:1e11",
+        "1e-3:1:3:log",
+        "1e-3:1:0:log",
+        "1e-3:1:4294967297:log",
+        "1e-3:1:3:lin",
+        "1:2:3:log:log",
         "a:b",
         "1::2",
     ]);
@@ -768,6 +773,56 @@ fn eta_family_hostile_flags() {
         &mut failures,
     );
     report("eta_family_hostile_flags", 120, &failures);
+}
+
+/// The design and case flags of the Fig. 6 studies (`fig6`: the lumped model, cheap at any
+/// value) and `flexrig scenes --write` with hostile names and files.
+#[test]
+fn fig6_design_and_scenes_hostile_flags() {
+    let mut failures = Vec::new();
+    let fig6 = vec![
+        ("--m-r", hostile_numbers()),
+        ("--k-c", hostile_numbers()),
+        ("--v0", hostile_numbers()),
+        ("--m-h", hostile_lists()),
+        ("--k-delta", hostile_lists()),
+        ("--m-e", hostile_lists()),
+        ("--points", hostile_counts(&["2", "3"])),
+    ];
+    fuzz_surface(
+        "fig6-design",
+        0xF166,
+        60,
+        &["fig6", "--points", "3", "--out", "out", "--json"],
+        &borrow(&fig6),
+        Some("--out"),
+        false,
+        &mut failures,
+    );
+    let mut names = strings(&[
+        "cj_aluminium",
+        "cj_aluminum",
+        "CJ_IRON",
+        "",
+        "../cj_iron",
+        "cj_iron.toml",
+        "\u{feff}cl_iron",
+    ]);
+    names.push("x".repeat(20_000));
+    let mut files = hostile_outs();
+    files.extend(strings(&["mine.toml", "file.txt", "new/dir/mine.toml"]));
+    let scenes = vec![("--write", names), ("--out", files)];
+    fuzz_surface(
+        "scenes",
+        0x5CE7E5,
+        30,
+        &["scenes", "--json"],
+        &borrow(&scenes),
+        None,
+        false,
+        &mut failures,
+    );
+    report("fig6_design_and_scenes_hostile_flags", 90, &failures);
 }
 
 #[test]

@@ -71,6 +71,20 @@ pub enum Error {
         /// The table.
         table: PathBuf,
     },
+    /// A sweep stopped (Ctrl-C) before every point ran; the rows done are kept.
+    #[error(
+        "the sweep was interrupted with {done} of {points} runs in {}; run the same command again \
+         to resume it (the runs done are kept)",
+        table.display()
+    )]
+    SweepInterrupted {
+        /// Rows in the table (done now or earlier).
+        done: usize,
+        /// Points of the sweep (or of its shard).
+        points: usize,
+        /// The table.
+        table: PathBuf,
+    },
     /// `flexrig validate` found failing cases.
     #[error("verification failed: {failed}")]
     ValidationFailed {
@@ -106,7 +120,8 @@ impl Error {
     pub fn kind(&self) -> ErrorKind {
         match self {
             Error::Rig(flexrig_rig::RigError::Interrupted { .. })
-            | Error::Impact(flexrig_impact::ImpactError::Interrupted) => ErrorKind::Interrupted,
+            | Error::Impact(flexrig_impact::ImpactError::Interrupted)
+            | Error::SweepInterrupted { .. } => ErrorKind::Interrupted,
             Error::Read { .. } | Error::Write { .. } => ErrorKind::Io,
             Error::InvalidArgument { .. } | Error::NonFinite { .. } => ErrorKind::Input,
             Error::Contact(e) if e.is_input_error() => ErrorKind::Input,
@@ -129,6 +144,12 @@ impl Error {
             ErrorKind::Io if matches!(self, Error::Read { .. }) => 2,
             _ => 1,
         }
+    }
+
+    /// True for a report that could not be written because its reader went away (`flexrig … |
+    /// head`): the front then stops quietly, as a pipeline expects.
+    pub fn is_broken_pipe(&self) -> bool {
+        matches!(self, Error::Write { source, .. } if source.kind() == std::io::ErrorKind::BrokenPipe)
     }
 
     /// Wraps an I/O error of writing `path`; a full disk says so in words.

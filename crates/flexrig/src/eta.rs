@@ -6,7 +6,8 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use flexrig_impact::eta::eta_table_until;
+use flexrig_impact::eta::eta_cases_until;
+use flexrig_lumped::fig6::Fig6Grid;
 
 use crate::CancelToken;
 use serde::Serialize;
@@ -53,28 +54,33 @@ pub struct EtaResult {
     pub figures: Vec<PathBuf>,
 }
 
-/// Computes the table for `settings` and writes eta.csv, eta.svg and eta_fig6.svg (in the sizes
+/// Computes the table of the cases of `grid` (the paper's: [`Fig6Grid::paper`]) for `settings`
+/// and writes eta.csv, eta.svg and eta_fig6.svg (in the sizes
 /// and formats of `figures`) into `out` (created if missing; nothing is written if a figure
 /// cannot be drawn, or if `cancel` stops the computation: then the error is an interruption).
 pub fn run(
     settings: &EtaSettings,
+    grid: &Fig6Grid,
     out: &Path,
     figures: &crate::plots::FigureOptions,
     cancel: &CancelToken,
 ) -> Result<EtaResult, Error> {
     check_length(settings.length)?;
+    crate::fig6::check_design(&settings.design)?;
+    crate::fig6::check_grid(grid)?;
     settings.validate()?;
     figures.validate()?;
-    let rows = eta_table_until(settings, &cancel.flag())?;
+    let rows = eta_cases_until(&grid.cases(), settings, &cancel.flag())?;
     ensure_dir(out)?;
     let csv_path = out.join("eta.csv");
     let svg_path = out.join("eta.svg");
     let fig6_path = out.join("eta_fig6.svg");
     let width = figures.width_pt();
-    let fig6_svg = fig6_with_fe_points(&rows, width).map_err(|message| Error::Plot {
-        path: fig6_path.clone(),
-        message,
-    })?;
+    let fig6_svg =
+        fig6_with_fe_points(&rows, &settings.design, width).map_err(|message| Error::Plot {
+            path: fig6_path.clone(),
+            message,
+        })?;
     let svg =
         crate::plots::eta_svg(&rows, &joint_text(&settings.joint), width).map_err(|message| {
             Error::Plot {
@@ -176,9 +182,20 @@ pub fn csv(rows: &[EtaRow]) -> String {
     s
 }
 
-/// The paper's Fig. 6 curves with each row's η_FE placed where its lumped curve takes that value.
-fn fig6_with_fe_points(rows: &[EtaRow], width_pt: f64) -> Result<String, String> {
-    let curves = flexrig_lumped::fig6::fig6(41).map_err(|e| e.to_string())?;
+/// The Fig. 6 curves of the rows' cases in `design` with each row's η_FE placed where its lumped
+/// curve takes that value.
+fn fig6_with_fe_points(
+    rows: &[EtaRow],
+    design: &flexrig_lumped::fig6::Fig6Design,
+    width_pt: f64,
+) -> Result<String, String> {
+    let mut cases: Vec<flexrig_lumped::fig6::Fig6Case> = Vec::new();
+    for r in rows {
+        if !cases.contains(&r.case) {
+            cases.push(r.case);
+        }
+    }
+    let curves = flexrig_lumped::fig6::fig6_in(design, &cases, 41).map_err(|e| e.to_string())?;
     let points = rows
         .iter()
         .map(|r| {
@@ -186,10 +203,10 @@ fn fig6_with_fe_points(rows: &[EtaRow], width_pt: f64) -> Result<String, String>
                 case: r.case,
                 n: r.n,
                 eta_fe: r.eta_fe,
-                gamma: flexrig_impact::eta::gamma_on_curve(&r.case, r.n, r.eta_fe)
+                gamma: flexrig_impact::eta::gamma_on_curve(design, &r.case, r.n, r.eta_fe)
                     .map_err(|e| e.to_string())?,
             })
         })
         .collect::<Result<Vec<_>, String>>()?;
-    crate::plots::fig6_with_points_svg(&curves, &points, width_pt)
+    crate::plots::fig6_with_points_svg(&curves, &points, design, width_pt)
 }

@@ -20,6 +20,37 @@ use crate::plots::{ColorScale, HeatMap, heatmaps_svg};
 /// A map's spec and points (flexrig-impact's), for callers of this module.
 pub use flexrig_impact::map::{LogRange, MapPoint, MapSpec};
 
+/// Parses a log-spaced axis written as every range of the command line is (docs/cli.md,
+/// "Ranges"): `FROM:TO:N:log`, or `FROM:TO` with `points` values. A linear `FROM:TO:N` is
+/// refused (these axes are log-spaced); errors name `flag`.
+pub fn parse_log_range(flag: &str, text: &str, points: usize) -> Result<LogRange, Error> {
+    let bad = |why: &str| Error::InvalidArgument {
+        arg: flag.into(),
+        value: text.into(),
+        allowed: format!(
+            "{why}: write FROM:TO:N:log, or FROM:TO with N from --points (FROM and TO > 0, \
+             FROM < TO; e.g. 1e-3:1e2:30:log)"
+        ),
+    };
+    let parts: Vec<&str> = text.split(':').map(str::trim).collect();
+    let number = |t: &str| {
+        t.parse::<f64>()
+            .map_err(|_| bad(&format!("{t} is not a number")))
+    };
+    let (from, to, points) = match parts.as_slice() {
+        [from, to] => (number(from)?, number(to)?, points),
+        [from, to, n, "log"] => (
+            number(from)?,
+            number(to)?,
+            n.parse::<usize>()
+                .map_err(|_| bad(&format!("{n} is not a whole number of points")))?,
+        ),
+        [_, _, _] => return Err(bad("this axis is log-spaced")),
+        _ => return Err(bad("not a range")),
+    };
+    Ok(LogRange { from, to, points })
+}
+
 /// η_FE below this: the CL beats the CJ by more than 5 %.
 pub const BEATS: f64 = 0.95;
 
@@ -104,6 +135,8 @@ pub fn run(options: &EtaMapOptions, cancel: &CancelToken) -> Result<EtaMapResult
             allowed: format!("one to {MAX_MAPS} head masses (one map each)"),
         });
     }
+    crate::eta::check_length(options.settings.length)?;
+    crate::fig6::check_design(&options.settings.design)?;
     options.settings.validate()?;
     options.figures.validate()?;
     let joint_text = settings_text(&options.settings);
@@ -125,11 +158,16 @@ pub fn run(options: &EtaMapOptions, cancel: &CancelToken) -> Result<EtaMapResult
             "eta_map_mh{}",
             flexrig_contact::validate::display(m.spec.m_h)
         );
-        let text =
-            svg(m, &joint_text, options.figures.width_pt()).map_err(|message| Error::Plot {
-                path: out.join(format!("{stem}.svg")),
-                message,
-            })?;
+        let text = svg(
+            m,
+            &joint_text,
+            &options.settings.design,
+            options.figures.width_pt(),
+        )
+        .map_err(|message| Error::Plot {
+            path: out.join(format!("{stem}.svg")),
+            message,
+        })?;
         figures.push((stem, text));
     }
     ensure_dir(out)?;
@@ -198,7 +236,12 @@ pub fn csv(maps: &[ComputedMap]) -> String {
 /// The panels of one head mass at the printed width `width_pt` \[pt\]: η_FE, the lumped
 /// model's error, the effective γ (only when some point has one; otherwise a line under the
 /// title says why none fits) and the placed model's error.
-pub fn svg(m: &ComputedMap, joint: &str, width_pt: f64) -> Result<String, String> {
+pub fn svg(
+    m: &ComputedMap,
+    joint: &str,
+    design: &flexrig_lumped::fig6::Fig6Design,
+    width_pt: f64,
+) -> Result<String, String> {
     let xs = m.spec.mass_ratio.values();
     let ys = m.spec.stiffness_ratio.values();
     let value = |f: &dyn Fn(&EtaRow) -> Option<f64>| -> Vec<Option<f64>> {
@@ -276,9 +319,9 @@ pub fn svg(m: &ComputedMap, joint: &str, width_pt: f64) -> Result<String, String
         ),
         format!(
             "{joint}; m_r = {} kg, k_c = {} N/mⁿ, v_0 = {} m/s",
-            flexrig_lumped::fig6::M_R,
-            crate::plots::sci_label(flexrig_lumped::fig6::K_C),
-            flexrig_lumped::fig6::V0
+            design.m_r,
+            crate::plots::sci_label(design.k_c),
+            design.v0
         ),
     ];
     if gamma.iter().all(Option::is_none) {

@@ -6,7 +6,8 @@ use std::path::PathBuf;
 
 use flexrig_impact::eta::EtaSettings;
 use flexrig_impact::map::LogRange;
-use flexrig_impact::rotor::rotor_sweep_until;
+use flexrig_impact::rotor::rotor_sweep_cases_until;
+use flexrig_lumped::fig6::Fig6Grid;
 
 use crate::CancelToken;
 use serde::Serialize;
@@ -29,8 +30,11 @@ pub struct EtaRotorOptions {
     pub ratios: LogRange,
     /// Hertz exponents n, each in [1, 3].
     pub n: Vec<f64>,
-    /// The impact's settings (CL method, damping; the joint is the swept free hub).
+    /// The impact's settings (CL method, damping, the design m_r, k_c, v0; the joint is the
+    /// swept free hub).
     pub settings: EtaSettings,
+    /// The cases: every combination of m_h, k_δ, m_e (the paper's eight by default).
+    pub grid: Fig6Grid,
     /// Printed size and formats of the figure (`--size`, `--format`, `--dpi`).
     pub figures: crate::plots::FigureOptions,
 }
@@ -62,13 +66,22 @@ pub fn run(options: &EtaRotorOptions, cancel: &CancelToken) -> Result<EtaRotorRe
     }
     let settings = &options.settings;
     options.figures.validate()?;
-    let points = rotor_sweep_until(&options.ratios, &options.n, settings, &cancel.flag())?;
+    crate::eta::check_length(settings.length)?;
+    crate::fig6::check_design(&settings.design)?;
+    crate::fig6::check_grid(&options.grid)?;
+    let points = rotor_sweep_cases_until(
+        &options.grid.cases(),
+        &options.ratios,
+        &options.n,
+        settings,
+        &cancel.flag(),
+    )?;
     let subtitle = format!(
         "{}; m_r = {} kg, k_c = {} N/mⁿ, v_0 = {} m/s",
         contact_text(&settings.damping),
-        flexrig_lumped::fig6::M_R,
-        crate::plots::sci_label(flexrig_lumped::fig6::K_C),
-        flexrig_lumped::fig6::V0
+        settings.design.m_r,
+        crate::plots::sci_label(settings.design.k_c),
+        settings.design.v0
     );
     let csv_path = options.out.join("eta_rotor.csv");
     let svg = eta_rotor_svg(&points, &subtitle, options.figures.width_pt()).map_err(|message| {

@@ -43,7 +43,8 @@ pub struct ExperimentOptions {
     /// Output directory: an MCAP log per run, fig9.svg, experiment.csv; its files are
     /// overwritten (`--out`).
     pub out: PathBuf,
-    /// Directory with scene files to use instead of the bundled ones, same names (`--scenes`).
+    /// Directory with scene files to use instead of the bundled ones, same names (`--scenes`);
+    /// it may hold any subset of them (the others are the bundled ones), at least one.
     pub scenes: Option<PathBuf>,
     /// Overrides of every scene of the experiment (`--set`); the jitter is added to the release
     /// angle that results.
@@ -82,6 +83,33 @@ impl ExperimentOptions {
                 value: flexrig_contact::validate::display(self.jitter_deg),
                 allowed: "must lie in [0, 10] degrees".into(),
             });
+        }
+        if let Some(dir) = &self.scenes {
+            let names = FIG9A_SCENES.iter().chain(&FIG9B_SCENES);
+            if !dir.is_dir() {
+                return Err(Error::InvalidArgument {
+                    arg: "--scenes".into(),
+                    value: dir.display().to_string(),
+                    allowed: "must be a directory of scene files".into(),
+                });
+            }
+            if !names
+                .clone()
+                .any(|n| dir.join(format!("{n}.toml")).exists())
+            {
+                return Err(Error::InvalidArgument {
+                    arg: "--scenes".into(),
+                    value: dir.display().to_string(),
+                    allowed: format!(
+                        "holds none of the experiment's scene files; give a directory with any \
+                         of {}",
+                        names
+                            .map(|n| format!("{n}.toml"))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                });
+            }
         }
         self.figures.validate()
     }

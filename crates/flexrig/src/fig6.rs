@@ -6,6 +6,10 @@ use std::path::PathBuf;
 
 use flexrig_lumped::fig6::{self, EtaCurve};
 
+/// The design held fixed and the varied values of a Fig. 6 study (flexrig-lumped's), for
+/// callers of this module.
+pub use flexrig_lumped::fig6::{Fig6Case, Fig6Design, Fig6Grid};
+
 use crate::Error;
 use crate::output::{ensure_dir, write_atomic};
 use crate::plots::{FigureOptions, fig6_svg, write_figure};
@@ -24,6 +28,65 @@ pub struct Fig6Options {
     pub points: usize,
     /// Printed size and formats of the figure (`--size`, `--format`, `--dpi`).
     pub figures: FigureOptions,
+    /// The design held fixed: m_r, k_c, v0 (`--m-r`, `--k-c`, `--v0`; the paper's by default).
+    pub design: Fig6Design,
+    /// The cases: every combination of m_h, k_δ, m_e (`--m-h`, `--k-delta`, `--m-e`; the
+    /// paper's eight by default).
+    pub grid: Fig6Grid,
+}
+
+/// Allowed link mass m_r \[kg\] (`--m-r`).
+pub const M_R_RANGE: (f64, f64) = (1e-3, 1e4);
+/// Allowed contact stiffness k_c [N/mⁿ] (`--k-c`).
+pub const K_C_RANGE: (f64, f64) = (1.0, 1e13);
+/// Allowed approach speed v0 [m/s] (`--v0`).
+pub const V0_RANGE: (f64, f64) = (1e-3, 100.0);
+/// Allowed human mass m_h \[kg\] (`--m-h`).
+pub const M_H_RANGE: (f64, f64) = (1e-3, 1e6);
+/// Allowed link lateral stiffness k_δ [N/m] (`--k-delta`).
+pub const K_DELTA_RANGE: (f64, f64) = (1e-3, 1e13);
+/// Allowed payload m_e \[kg\] (`--m-e`).
+pub const M_E_RANGE: (f64, f64) = (1e-6, 1e4);
+/// Most values of each varied parameter (`--m-h`, `--k-delta`, `--m-e`).
+pub const MAX_VALUES: usize = 4;
+
+/// Checks the design's ranges; the error names the flag (`--m-r`, `--k-c`, `--v0`), the value
+/// and the range.
+pub fn check_design(design: &Fig6Design) -> Result<(), Error> {
+    use crate::output::range_arg;
+    range_arg("--m-r", design.m_r, M_R_RANGE.0, M_R_RANGE.1)?;
+    range_arg("--k-c", design.k_c, K_C_RANGE.0, K_C_RANGE.1)?;
+    range_arg("--v0", design.v0, V0_RANGE.0, V0_RANGE.1)?;
+    Ok(())
+}
+
+/// Checks the varied values (one to [`MAX_VALUES`] of each, in range, none twice); the error
+/// names the flag (`--m-h`, `--k-delta`, `--m-e`).
+pub fn check_grid(grid: &Fig6Grid) -> Result<(), Error> {
+    for (flag, values, (lo, hi)) in [
+        ("--m-h", &grid.m_h, M_H_RANGE),
+        ("--k-delta", &grid.k_delta, K_DELTA_RANGE),
+        ("--m-e", &grid.m_e, M_E_RANGE),
+    ] {
+        if values.is_empty() || values.len() > MAX_VALUES {
+            return Err(Error::InvalidArgument {
+                arg: flag.into(),
+                value: format!("{} values", values.len()),
+                allowed: format!("give one to {MAX_VALUES} values, comma-separated"),
+            });
+        }
+        for (i, &v) in values.iter().enumerate() {
+            crate::output::range_arg(flag, v, lo, hi)?;
+            if values[..i].contains(&v) {
+                return Err(Error::InvalidArgument {
+                    arg: flag.into(),
+                    value: crate::output::display_number(v),
+                    allowed: "is given twice; give each value once".into(),
+                });
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The curves and the files written.
@@ -37,6 +100,8 @@ pub struct Fig6Result {
     pub svg: PathBuf,
     /// The figure in every format asked for.
     pub figures: Vec<PathBuf>,
+    /// The design the curves were computed in.
+    pub design: Fig6Design,
 }
 
 /// Most γ samples of a curve (16 curves of them are kept in memory and written).
@@ -53,7 +118,10 @@ pub fn run(options: &Fig6Options) -> Result<Fig6Result, Error> {
         });
     }
     options.figures.validate()?;
-    let curves = fig6::fig6(options.points)?;
+    check_design(&options.design)?;
+    check_grid(&options.grid)?;
+    let cases = options.grid.cases();
+    let curves = fig6::fig6_in(&options.design, &cases, options.points)?;
     ensure_dir(&options.out)?;
     let csv_path = options.out.join("fig6.csv");
     write_atomic(&csv_path, csv(&curves).as_bytes())?;
@@ -61,19 +129,23 @@ pub fn run(options: &Fig6Options) -> Result<Fig6Result, Error> {
     let plotted = if options.points >= PLOT_POINTS {
         &curves
     } else {
-        dense = fig6::fig6(PLOT_POINTS)?;
+        dense = fig6::fig6_in(&options.design, &cases, PLOT_POINTS)?;
         &dense
     };
-    let svg = fig6_svg(plotted, options.figures.width_pt()).map_err(|message| Error::Plot {
-        path: options.out.join("fig6.svg"),
-        message,
-    })?;
+    let svg =
+        fig6_svg(plotted, &options.design, options.figures.width_pt()).map_err(|message| {
+            Error::Plot {
+                path: options.out.join("fig6.svg"),
+                message,
+            }
+        })?;
     let figures = write_figure(&options.out, "fig6", &svg, &options.figures)?;
     Ok(Fig6Result {
         curves,
         csv: csv_path,
         svg: figures[0].clone(),
         figures,
+        design: options.design,
     })
 }
 

@@ -218,17 +218,7 @@ pub fn impact_as_flag(e: Error) -> Error {
 
 /// The log-spaced range `FROM:TO` of `flag` with `points` points.
 pub fn parse_range(flag: &str, text: &str, points: usize) -> Result<LogRange, Error> {
-    let bad = || {
-        invalid(
-            flag,
-            text,
-            "FROM:TO, two numbers > 0 with FROM < TO (e.g. 1e-3:1e2)",
-        )
-    };
-    let (a, b) = text.split_once(':').ok_or_else(bad)?;
-    let from: f64 = a.trim().parse().map_err(|_| bad())?;
-    let to: f64 = b.trim().parse().map_err(|_| bad())?;
-    Ok(LogRange { from, to, points })
+    crate::eta_map::parse_log_range(flag, text, points)
 }
 
 /// The inputs of `flexrig eta` as given (flags or keyword arguments).
@@ -256,6 +246,8 @@ pub struct EtaInputs {
     pub length: f64,
     /// The contact's damping.
     pub damping: DampingSpec,
+    /// The design held fixed (m_r, k_c, v0; `--m-r`, `--k-c`, `--v0`): the paper's by default.
+    pub design: flexrig_lumped::fig6::Fig6Design,
 }
 
 /// The settings of `flexrig eta`; an option of the other method or a value out of range is
@@ -300,12 +292,14 @@ pub fn eta_settings(i: &EtaInputs) -> Result<EtaSettings, Error> {
         }
     };
     crate::eta::check_length(i.length)?;
+    crate::fig6::check_design(&i.design)?;
     let settings = EtaSettings {
         length: i.length,
         joint,
         method,
         window_periods: i.window_periods,
         damping: i.damping,
+        design: i.design,
         ..EtaSettings::DEFAULT
     };
     settings.validate().map_err(as_flag)?;
@@ -353,12 +347,17 @@ pub fn eta_map_specs(
         .collect()
 }
 
-/// The settings of `flexrig eta-map`: the modal method at `tol` on the default graded mesh.
+/// The settings of `flexrig eta-map`: the modal method at `tol` on the default graded mesh,
+/// for the fixed `design` (m_r, k_c, v0) and link `length` \[m\].
 pub fn eta_map_settings(
     joint: Joint,
     tol: f64,
     damping: DampingSpec,
+    design: flexrig_lumped::fig6::Fig6Design,
+    length: f64,
 ) -> Result<EtaSettings, Error> {
+    crate::fig6::check_design(&design)?;
+    crate::eta::check_length(length)?;
     let settings = EtaSettings {
         joint,
         method: ClMethod::Modal {
@@ -366,6 +365,8 @@ pub fn eta_map_settings(
             tol,
         },
         damping,
+        design,
+        length,
         ..EtaSettings::DEFAULT
     };
     settings.method.validate().map_err(as_flag)?;
@@ -402,16 +403,26 @@ pub fn eta_rotor_inputs(ratio: &str, points: usize, n: &[f64]) -> Result<LogRang
     Ok(ratios)
 }
 
-/// The settings of `flexrig eta-rotor`: the modal method at `tol` on the default graded mesh.
-pub fn eta_rotor_settings(tol: f64, damping: DampingSpec) -> EtaSettings {
-    EtaSettings {
+/// The settings of `flexrig eta-rotor`: the modal method at `tol` on the default graded mesh,
+/// for the fixed `design` (m_r, k_c, v0) and link `length` \[m\].
+pub fn eta_rotor_settings(
+    tol: f64,
+    damping: DampingSpec,
+    design: flexrig_lumped::fig6::Fig6Design,
+    length: f64,
+) -> Result<EtaSettings, Error> {
+    crate::fig6::check_design(&design)?;
+    crate::eta::check_length(length)?;
+    Ok(EtaSettings {
         method: ClMethod::Modal {
             mesh: GradedMesh::DEFAULT,
             tol,
         },
         damping,
+        design,
+        length,
         ..EtaSettings::DEFAULT
-    }
+    })
 }
 
 /// An error of `flexrig eta-rotor` named by flag (the ratio range as typed, `ratio`).
@@ -606,6 +617,7 @@ pub fn prb_report(options: &crate::prb::PrbOptions, r: &crate::prb::PrbResult) -
         "elements": options.elements,
         "model": model,
         "criterion": name(options.criterion),
+        "load_angle_deg": crate::prb::LOAD_ANGLE_DEG,
         "gamma": fit.gamma,
         "k_theta": fit.k_theta,
         "theta_max_deg": fit.theta_max_deg,
@@ -633,7 +645,7 @@ pub fn prb_report(options: &crate::prb::PrbOptions, r: &crate::prb::PrbResult) -
 }
 
 /// `flexrig fit --json`.
-pub fn fit_report(fit: &flexrig_contact::HertzFit) -> Value {
+pub fn fit_report(fit: &flexrig_contact::HertzFit, warnings: &[crate::fit::Warning]) -> Value {
     json!({
         "k": fit.k,
         "n": fit.n,
@@ -644,6 +656,7 @@ pub fn fit_report(fit: &flexrig_contact::HertzFit) -> Value {
         "points": fit.points,
         "skipped": fit.skipped,
         "iterations": fit.iterations,
+        "warnings": warnings,
     })
 }
 
@@ -821,6 +834,7 @@ mod tests {
             modes: None,
             length: 1.0,
             damping: DampingSpec::NONE,
+            design: flexrig_lumped::fig6::Fig6Design::PAPER,
         };
         assert_eq!(arg_of(eta_settings(&base).unwrap_err()), "--elements");
         let alpha = eta_settings(&EtaInputs {

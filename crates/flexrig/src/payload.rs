@@ -15,15 +15,14 @@ use crate::Error;
 use crate::cancel::CancelToken;
 use crate::mcap_log::{LogRates, LogTarget, run_logged};
 use crate::output::{ensure_dir, write_atomic};
-use crate::scenes::BUNDLED_SCENES;
 use crate::study::spec::Dimension;
 use crate::study::sweep::{Sweep, SweepOptions};
 
 /// What the study varies and where it writes (the flags of `flexrig payload`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PayloadOptions {
-    /// Bundled scene to vary, e.g. `cl_light_load` (`--scene`); its `robot.design` is set to cj
-    /// and to cl.
+    /// Scene to vary: a bundled name, e.g. `cl_light_load`, or a scene file's path (`--scene`,
+    /// see [`crate::scenes::resolve`]); its `robot.design` is set to cj and to cl.
     pub scene: String,
     /// Smallest payload \[kg\], in [1e-4, 10] (`--from`).
     pub from: f64,
@@ -64,25 +63,33 @@ pub struct PayloadResult {
     pub figures: Vec<PathBuf>,
 }
 
-/// The bundled scene's text, and the ranges checked (errors name the flag).
+/// The scene's text, and the ranges checked (errors name the flag).
 fn check(args: &PayloadOptions) -> Result<String, Error> {
     let bad = |arg: &str, value: String, allowed: &str| Error::InvalidArgument {
         arg: arg.into(),
         value,
         allowed: allowed.into(),
     };
-    let text = BUNDLED_SCENES
-        .iter()
-        .find(|(n, _)| *n == args.scene)
-        .map(|(_, t)| t.to_string())
-        .ok_or_else(|| {
-            let names: Vec<&str> = BUNDLED_SCENES.iter().map(|(n, _)| *n).collect();
+    // a file that cannot be read, or is no valid scene, is the flag's fault: named
+    let text = crate::scenes::resolve("--scene", Path::new(&args.scene))
+        .map_err(|e| match e {
+            Error::Read { source, .. } => bad(
+                "--scene",
+                args.scene.clone(),
+                &format!("cannot be read ({source}): give a bundled scene's name or a scene file"),
+            ),
+            other => other,
+        })?
+        .text;
+    flexrig_rig::Scene::from_toml_str(&text, &flexrig_contact::Materials::bundled()?).map_err(
+        |e| {
             bad(
                 "--scene",
                 args.scene.clone(),
-                &format!("one of {}", names.join(", ")),
+                &format!("is not a valid scene: {e}"),
             )
-        })?;
+        },
+    )?;
     for (flag, v) in [("--from", args.from), ("--to", args.to)] {
         if !(v.is_finite() && (1e-4..=10.0).contains(&v)) {
             return Err(bad(flag, v.to_string(), "must lie in [1e-4, 10] kg"));

@@ -36,6 +36,19 @@ pub struct PrbOptions {
     pub figures: crate::plots::FigureOptions,
 }
 
+/// Angle of the traced dead tip load to the undeformed beam \[deg\]: perpendicular (Howell's
+/// n = 0 case, the one his γ = 0.8517 and K_Θ = 2.65 are for).
+pub const LOAD_ANGLE_DEG: f64 = 90.0;
+
+/// The element's name as reports say it: `ANCF` or `corotational`.
+pub fn kinematics_name(kinematics: Kinematics) -> &'static str {
+    match kinematics {
+        Kinematics::Ancf => "ANCF",
+        Kinematics::Corotational => "corotational",
+        Kinematics::Linear => "linear",
+    }
+}
+
 /// Payload-to-beam mass ratios μ = m_e/m_r for the effective-mass comparison: none, the paper's
 /// light load (0.1 kg on 51 g) and its test payload (412 g on 51 g).
 pub const PAYLOAD_RATIOS: [f64; 3] = [0.0, 0.1 / 0.051, 0.412 / 0.051];
@@ -117,7 +130,13 @@ pub fn run(options: &PrbOptions) -> Result<PrbResult, Error> {
         })
         .collect::<Result<Vec<_>, Error>>()?;
     ensure_dir(&options.out)?;
-    let svg = prb_svg(&path, &fit, options.figures.width_pt()).map_err(|message| Error::Plot {
+    let svg = prb_svg(
+        &path,
+        &fit,
+        kinematics_name(options.kinematics),
+        options.figures.width_pt(),
+    )
+    .map_err(|message| Error::Plot {
         path: options.out.join("prb.svg"),
         message,
     })?;

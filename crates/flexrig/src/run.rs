@@ -54,7 +54,8 @@ impl SceneRun {
     }
 }
 
-/// Loads, validates and runs a scene file, logging as `log` asks (MCAP and its Foxglove
+/// Loads, validates and runs a scene (a bundled name or a scene file's path, see
+/// [`crate::scenes::resolve`]; errors name `SCENE`), logging as `log` asks (MCAP and its Foxglove
 /// layout). The log is always finished, with an `error` metadata record if the run failed.
 pub fn run_scene_file(
     path: &Path,
@@ -62,7 +63,7 @@ pub fn run_scene_file(
     log: LogRequest<'_>,
     cancel: &CancelToken,
 ) -> Result<SceneRun, Error> {
-    let text = crate::output::read_text(path)?;
+    let text = crate::scenes::resolve("SCENE", path)?.text;
     if is_driven_text(&text) {
         return run_driven_text(&text, overrides, log, cancel)
             .map(|r| SceneRun::Driven(Box::new(r)));
@@ -123,14 +124,14 @@ fn run_rig_text(
     )
 }
 
-/// The plausibility warnings of a scene file with its overrides (what is valid but looks like a
+/// The plausibility warnings of a scene (a bundled name or a file) with its overrides (what is valid but looks like a
 /// mistake, [`flexrig_rig::plausibility`]), for a front to show before the run starts; none if
 /// the scene cannot be loaded (the run itself then says why).
 pub fn scene_warnings(
     path: &Path,
     overrides: &[Override],
 ) -> Vec<flexrig_rig::plausibility::Warning> {
-    let Ok(text) = crate::output::read_text(path) else {
+    let Ok(crate::scenes::SceneSource { text, .. }) = crate::scenes::resolve("SCENE", path) else {
         return Vec::new();
     };
     let Ok(materials) = Materials::bundled() else {

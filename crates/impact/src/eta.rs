@@ -13,7 +13,7 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use flexrig_contact::{DampingSpec, Hertz};
-use flexrig_lumped::fig6::{Fig6Case, K_C, M_R, V0};
+use flexrig_lumped::fig6::{Fig6Case, Fig6Design};
 use flexrig_lumped::peak_exact;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -91,6 +91,9 @@ pub struct EtaSettings {
     pub window_periods: Option<f64>,
     /// Damping added to the Hertz contact (the paper: none).
     pub damping: DampingSpec,
+    /// The design held fixed across the cases: link mass m_r, contact stiffness k_c, approach
+    /// speed v0 (the paper's §V by default).
+    pub design: Fig6Design,
 }
 
 impl EtaSettings {
@@ -102,6 +105,7 @@ impl EtaSettings {
         cj_rtol: 1e-10,
         window_periods: None,
         damping: DampingSpec::NONE,
+        design: Fig6Design::PAPER,
     };
 }
 
@@ -182,7 +186,8 @@ pub struct EtaWindow {
     pub cl: WindowReport,
 }
 
-/// The free-mass set-up of a Fig. 6 case (m_r = 10 kg, k_c = 1e8, v0 = 2 m/s).
+/// The free-mass set-up of a Fig. 6 case in the design of `settings` (the paper's: m_r = 10 kg,
+/// k_c = 1e8, v0 = 2 m/s).
 pub fn case_setup(
     case: &Fig6Case,
     n: f64,
@@ -190,15 +195,15 @@ pub fn case_setup(
 ) -> Result<FreeMassImpact, ImpactError> {
     Ok(FreeMassImpact {
         m_h: case.m_h,
-        v0: V0,
+        v0: settings.design.v0,
         link: LinkParams {
-            m_r: M_R,
+            m_r: settings.design.m_r,
             length: settings.length,
             k_delta: case.k_delta,
             m_e: case.m_e,
         },
         joint: settings.joint,
-        contact: Hertz::new(K_C, n)?,
+        contact: Hertz::new(settings.design.k_c, n)?,
         damping: settings.damping,
     })
 }
@@ -302,7 +307,7 @@ pub(crate) fn validate_most_restrictive_first(
     setups.iter().try_for_each(FreeMassImpact::validate)
 }
 
-/// The eight cases × n ∈ {1, 2}, in parallel (case-major, as `flexrig fig6`).
+/// The paper's eight cases × n ∈ {1, 2}, in parallel (case-major, as `flexrig fig6`).
 pub fn eta_table(settings: &EtaSettings) -> Result<Vec<EtaRow>, ImpactError> {
     eta_table_until(settings, &AtomicBool::new(false))
 }
@@ -313,7 +318,16 @@ pub fn eta_table_until(
     settings: &EtaSettings,
     stop: &AtomicBool,
 ) -> Result<Vec<EtaRow>, ImpactError> {
-    let jobs: Vec<(Fig6Case, f64)> = flexrig_lumped::fig6::cases()
+    eta_cases_until(&flexrig_lumped::fig6::cases(), settings, stop)
+}
+
+/// [`eta_table_until`] of any `cases` × n ∈ {1, 2} (case-major).
+pub fn eta_cases_until(
+    cases: &[Fig6Case],
+    settings: &EtaSettings,
+    stop: &AtomicBool,
+) -> Result<Vec<EtaRow>, ImpactError> {
+    let jobs: Vec<(Fig6Case, f64)> = cases
         .iter()
         .flat_map(|c| {
             flexrig_lumped::fig6::EXPONENTS
@@ -347,7 +361,7 @@ pub fn lumped_peak(
     gamma: f64,
     settings: &EtaSettings,
 ) -> Result<f64, ImpactError> {
-    let model = case.model(n, gamma)?;
+    let model = case.model_in(&settings.design, n, gamma)?;
     if settings.damping.is_none() {
         return Ok(peak_exact(&model).f_max);
     }
@@ -409,10 +423,15 @@ pub fn effective_gamma(
 
 /// The γ ∈ [`GAMMA_RANGE`](flexrig_lumped::fig6::GAMMA_RANGE) at which the lumped curve η(γ) of
 /// Fig. 6 takes the value `eta` (bisection to 1e-10; η(γ) rises with γ), or `None` when `eta`
-/// lies outside the curve's range: where an FE result sits on the paper's figure.
-pub fn gamma_on_curve(case: &Fig6Case, n: f64, eta: f64) -> Result<Option<f64>, ImpactError> {
+/// lies outside the curve's range: where an FE result sits on the figure of `design`.
+pub fn gamma_on_curve(
+    design: &Fig6Design,
+    case: &Fig6Case,
+    n: f64,
+    eta: f64,
+) -> Result<Option<f64>, ImpactError> {
     let (lo, hi) = flexrig_lumped::fig6::GAMMA_RANGE;
-    let (e_lo, e_hi) = (case.eta(n, lo)?, case.eta(n, hi)?);
+    let (e_lo, e_hi) = (case.eta_in(design, n, lo)?, case.eta_in(design, n, hi)?);
     if !(eta >= e_lo.min(e_hi) && eta <= e_lo.max(e_hi)) {
         return Ok(None);
     }
@@ -420,7 +439,7 @@ pub fn gamma_on_curve(case: &Fig6Case, n: f64, eta: f64) -> Result<Option<f64>, 
     let (mut a, mut b) = (lo, hi);
     while b - a > 1e-10 {
         let mid = 0.5 * (a + b);
-        if (case.eta(n, mid)? < eta) == rising {
+        if (case.eta_in(design, n, mid)? < eta) == rising {
             a = mid;
         } else {
             b = mid;

@@ -4,7 +4,7 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use flexrig_lumped::fig6::{Fig6Case, K_C, M_R};
+use flexrig_lumped::fig6::{Fig6Case, Fig6Design};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -103,12 +103,12 @@ pub fn eta_map(spec: &MapSpec, settings: &EtaSettings) -> Result<Vec<MapPoint>, 
     eta_map_until(spec, settings, &AtomicBool::new(false))
 }
 
-/// The Fig. 6 case at mass ratio m_e/m_r = `x` and stiffness ratio k_δ/k_c = `y`.
-fn map_case(spec: &MapSpec, x: f64, y: f64) -> Fig6Case {
+/// The Fig. 6 case at mass ratio m_e/m_r = `x` and stiffness ratio k_δ/k_c = `y` of `design`.
+fn map_case(spec: &MapSpec, design: &Fig6Design, x: f64, y: f64) -> Fig6Case {
     Fig6Case {
         m_h: spec.m_h,
-        k_delta: y * K_C,
-        m_e: x * M_R,
+        k_delta: y * design.k_c,
+        m_e: x * design.m_r,
     }
 }
 
@@ -131,7 +131,7 @@ pub fn eta_map_until(
     // payload) is refused before any point runs
     validate_most_restrictive_first(
         grid.iter()
-            .map(|&(x, y)| case_setup(&map_case(spec, x, y), spec.n, settings)),
+            .map(|&(x, y)| case_setup(&map_case(spec, &settings.design, x, y), spec.n, settings)),
     )?;
     let points: Vec<Option<MapPoint>> = grid
         .par_iter()
@@ -139,7 +139,7 @@ pub fn eta_map_until(
             if stop.load(Ordering::Relaxed) {
                 return None;
             }
-            let case = map_case(spec, x, y);
+            let case = map_case(spec, &settings.design, x, y);
             Some(MapPoint {
                 mass_ratio: x,
                 stiffness_ratio: y,

@@ -10,7 +10,7 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use flexrig_lumped::fig6::{Fig6Case, M_R};
+use flexrig_lumped::fig6::Fig6Case;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -68,7 +68,7 @@ pub fn rotor_point_until(
     let joint = match ratio {
         None => Joint::Held,
         Some(rho) => Joint::FreeHub {
-            rotor_inertia: rho * M_R * settings.length * settings.length / 3.0,
+            rotor_inertia: rho * settings.design.m_r * settings.length * settings.length / 3.0,
         },
     };
     let settings = EtaSettings { joint, ..*settings };
@@ -107,11 +107,28 @@ pub fn rotor_sweep_until(
     settings: &EtaSettings,
     stop: &AtomicBool,
 ) -> Result<Vec<RotorPoint>, ImpactError> {
+    rotor_sweep_cases_until(
+        &flexrig_lumped::fig6::cases(),
+        ratios,
+        exponents,
+        settings,
+        stop,
+    )
+}
+
+/// [`rotor_sweep_until`] of any `cases` (case-major, then exponent, then ρ).
+pub fn rotor_sweep_cases_until(
+    cases: &[Fig6Case],
+    ratios: &LogRange,
+    exponents: &[f64],
+    settings: &EtaSettings,
+    stop: &AtomicBool,
+) -> Result<Vec<RotorPoint>, ImpactError> {
     settings.validate()?;
     ratios.validate("inertia_ratio", RATIO_LIMITS.0, RATIO_LIMITS.1)?;
     let mut stops: Vec<Option<f64>> = ratios.values().into_iter().map(Some).collect();
     stops.push(None);
-    let jobs: Vec<(Fig6Case, f64, Option<f64>)> = flexrig_lumped::fig6::cases()
+    let jobs: Vec<(Fig6Case, f64, Option<f64>)> = cases
         .iter()
         .flat_map(|c| {
             let stops = &stops;

@@ -70,6 +70,7 @@ pub fn eta<'py>(
         modes,
         length,
         damping: damping(damping_model, restitution, c_max, depth)?,
+        design: flexrig_lumped::fig6::Fig6Design::PAPER,
     })
     .map_err(flag_error)?;
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
@@ -112,6 +113,8 @@ pub fn eta_map<'py>(
         joint,
         tol,
         damping(damping_model, restitution, c_max, depth)?,
+        flexrig_lumped::fig6::Fig6Design::PAPER,
+        1.0,
     )
     .map_err(flag_error)?;
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
@@ -149,7 +152,13 @@ pub fn eta_rotor<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let ratios = fronts::eta_rotor_inputs(ratio, points, &n).map_err(flag_error)?;
     let settings =
-        fronts::eta_rotor_settings(tol, damping(damping_model, restitution, c_max, depth)?);
+        fronts::eta_rotor_settings(
+            tol,
+            damping(damping_model, restitution, c_max, depth)?,
+            flexrig_lumped::fig6::Fig6Design::PAPER,
+            1.0,
+        )
+        .map_err(flag_error)?;
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
     let options = flexrig::eta_rotor::EtaRotorOptions {
         out,

@@ -190,6 +190,8 @@ fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(run::scene_text, m)?)?;
     m.add_function(wrap_pyfunction!(run::bundled_scenes, m)?)?;
+    m.add_function(wrap_pyfunction!(run::scene_descriptions, m)?)?;
+    m.add_function(wrap_pyfunction!(run::write_scene, m)?)?;
     m.add_function(wrap_pyfunction!(run::apply_overrides, m)?)?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(lumped::impact_exact, m)?)?;

@@ -18,7 +18,24 @@ use crate::{detached, input_error, to_py};
 /// The names of the bundled scenes (`flexrig.run("cj_aluminium")`).
 #[pyfunction]
 pub fn bundled_scenes() -> Vec<&'static str> {
-    BUNDLED_SCENES.iter().map(|(name, _)| *name).collect()
+    flexrig::scenes::bundled_names()
+}
+
+/// The bundled scenes as `flexrig scenes` lists them: (name, one-line description) pairs.
+#[pyfunction]
+pub fn scene_descriptions() -> Vec<(&'static str, String)> {
+    flexrig::scenes::list_bundled()
+        .into_iter()
+        .map(|s| (s.name, s.summary))
+        .collect()
+}
+
+/// Writes bundled scene `name` to `path` to edit it (`flexrig scenes --write NAME --out
+/// PATH`); an existing file is kept unless `force` (InputError naming it).
+#[pyfunction]
+#[pyo3(signature = (name, path, force=false))]
+pub fn write_scene(name: &str, path: PathBuf, force: bool) -> PyResult<()> {
+    flexrig::scenes::write_bundled(name, &path, force).map_err(to_py)
 }
 
 /// The TOML text of `scene`: a path (str or os.PathLike) to a scene file, the name of a bundled
@@ -42,18 +59,15 @@ pub fn scene_text(scene: &Bound<'_, PyAny>) -> PyResult<(String, Option<PathBuf>
     }
     if scene.is_instance_of::<PyString>() {
         let text: String = scene.extract()?;
-        if let Some((_, bundled)) = BUNDLED_SCENES.iter().find(|(name, _)| *name == text) {
-            return Ok((bundled.to_string(), None));
-        }
-        // TOML text has a key = value line; a path has none
+        // TOML text has a key = value line; a path or a name has none
         if text.contains('=') || text.contains('\n') {
             return Ok((text, None));
         }
-        return read(PathBuf::from(text));
+        return resolve(PathBuf::from(text));
     }
     // os.PathLike
     if let Ok(path) = scene.extract::<PathBuf>() {
-        return read(path);
+        return resolve(path);
     }
     Err(input_error(
         "scene",
@@ -66,8 +80,14 @@ pub fn scene_text(scene: &Bound<'_, PyAny>) -> PyResult<(String, Option<PathBuf>
     ))
 }
 
-fn read(path: PathBuf) -> PyResult<(String, Option<PathBuf>)> {
-    let text = flexrig::output::read_text(&path).map_err(to_py)?;
+/// A bundled name or a file, resolved as the command line does (a near miss of a bundled name
+/// is an InputError with "did you mean").
+fn resolve(path: PathBuf) -> PyResult<(String, Option<PathBuf>)> {
+    let source = flexrig::scenes::resolve("scene", &path).map_err(to_py)?;
+    let Some(path) = source.path else {
+        return Ok((source.text, None));
+    };
+    let text = source.text;
     let dir = path
         .canonicalize()
         .ok()

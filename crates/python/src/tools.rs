@@ -13,10 +13,10 @@ use crate::flag_error;
 /// `flexrig fit FILE --json`: the Hertz fit f = k δⁿ of the compression data in `file`.
 #[pyfunction]
 pub fn fit(py: Python<'_>, file: PathBuf) -> PyResult<Bound<'_, PyAny>> {
-    let fit = py
-        .detach(|| flexrig::fit::fit_file(&file))
+    let (fit, warnings) = py
+        .detach(|| flexrig::fit::fit_file_with_warnings(&file))
         .map_err(flag_error)?;
-    json_to_py(py, &fronts::fit_report(&fit))
+    json_to_py(py, &fronts::fit_report(&fit, &warnings))
 }
 
 /// The beam of `flexrig beam`'s flags.

@@ -23,6 +23,8 @@ from conftest import ROOT, scene_path
 #: Twins not named after their command.
 TWINS = {
     # `flexrig run SCENE` ↔ flexrig.run; the others follow the naming rule
+    # `flexrig scenes` lists the bundled scenes (`--write NAME` is flexrig.write_scene)
+    "scenes": "scene_descriptions",
 }
 
 #: Commands deliberately without a Python twin, and why.

@@ -1,6 +1,6 @@
 //! Plausibility warnings: a scene that is valid but looks like a mistake (a unit that looks
 //! wrong, a contact law taken outside its fit, an indentation deeper than the bodies, a joint
-//! spring left behind when the link was changed). A warning never stops a run; the fronts
+//! spring left behind when the link was changed, a swing step too large for the swing). A warning never stops a run; the fronts
 //! print it and list it in their JSON.
 
 use flexrig_contact::Materials;
@@ -44,7 +44,42 @@ pub fn warnings(scene: &Scene, materials: &Materials) -> Vec<Warning> {
     indentation_deeper_than_the_bodies(scene, &mut out);
     dome_radius_outside_the_fit(scene, materials, &mut out);
     spring_left_behind_by_the_link(scene, &mut out);
+    swing_step_too_large(scene, &mut out);
     out
+}
+
+/// Fewest steps of `solver.swing_step_s` over a quarter of the pendulum's small-swing period
+/// (the swing from a release to the bottom) below which the step looks too large.
+const SWING_STEPS_PER_QUARTER_PERIOD: f64 = 20.0;
+
+fn swing_step_too_large(scene: &Scene, out: &mut Vec<Warning>) {
+    let g = crate::geometry::RigGeometry::of(scene);
+    // the small-swing period: the shortest the pendulum has at any amplitude
+    let period =
+        crate::canonical::compound_pendulum_period(&g.operator, scene.file.gravity_mps2, 1e-6);
+    let step = scene.file.solver.swing_step_s;
+    let largest = 0.25 * period / SWING_STEPS_PER_QUARTER_PERIOD;
+    if period.is_finite() && step > largest {
+        out.push(warning(
+            "solver.swing_step_s",
+            format!(
+                "{} s is more than 1/{} of a quarter of the pendulum's period ({} s): the \
+                 swing takes fewer than {} steps from a release to the bottom, so the impact \
+                 speed and the onset may be off; take at most {} s",
+                display(step),
+                SWING_STEPS_PER_QUARTER_PERIOD,
+                display((0.25 * period * 1e4).round() / 1e4),
+                SWING_STEPS_PER_QUARTER_PERIOD,
+                display(float_2(largest))
+            ),
+        ));
+    }
+}
+
+/// `x` to two significant digits, rounded down (a bound to quote).
+fn float_2(x: f64) -> f64 {
+    let decade = 10f64.powf(x.log10().floor() - 1.0);
+    (x / decade).floor() * decade
 }
 
 fn release_angle_in_radians(scene: &Scene, out: &mut Vec<Warning>) {

@@ -133,3 +133,33 @@ fn a_joint_spring_left_behind_by_the_link_is_suspected() {
     // a CL scene ignores the CJ spring
     assert!(warned("cl_aluminium", &["robot.length_m=0.5"]).is_empty());
 }
+
+/// Regression: a swing step as long as a sizeable part of the swing ran without a word.
+#[test]
+fn a_swing_step_too_large_for_the_swing_is_suspected() {
+    use flexrig_rig::canonical::compound_pendulum_period;
+    use flexrig_rig::geometry::RigGeometry;
+    let materials = Materials::bundled().unwrap();
+    let scene = scene_with_overrides(&common::scene_text("cj_iron"), &[], &materials).unwrap();
+    // the bound recomputed from the pendulum: T/4 over 20 steps
+    let g = RigGeometry::of(&scene);
+    let period = compound_pendulum_period(&g.operator, scene.file.gravity_mps2, 1e-6);
+    let bound = period / 80.0;
+    // an independent check of the period: 2π √(J/(m g l)) of the pendulum's own numbers
+    let op = &g.operator;
+    let small = 2.0
+        * std::f64::consts::PI
+        * (op.inertia_pivot / (op.mass * scene.file.gravity_mps2 * op.com_distance)).sqrt();
+    assert!((period / small - 1.0).abs() < 1e-9, "{period} vs {small}");
+    let below = format!("solver.swing_step_s={:e}", 0.9 * bound);
+    assert!(warned("cj_iron", &[&below]).is_empty());
+    let above = format!("solver.swing_step_s={:e}", 1.1 * bound);
+    let w = warned("cj_iron", &[&above]);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!(w[0].field, "solver.swing_step_s");
+    assert!(
+        w[0].message.contains("fewer than 20 steps"),
+        "{}",
+        w[0].message
+    );
+}

@@ -23,19 +23,19 @@ pub enum BeamCommand {
 /// The beam shared by `beam modal` and `beam static`.
 #[derive(Debug, Clone, Args)]
 pub struct BeamArgs {
-    /// Beam length L (m).
+    /// Beam length L [m].
     #[arg(long, value_name = "M", allow_negative_numbers = true)]
     pub length: f64,
-    /// Young's modulus E (Pa).
+    /// Young's modulus E [Pa].
     #[arg(long, value_name = "PA", allow_negative_numbers = true)]
     pub youngs: f64,
     /// Mass density ρ [kg/m³].
     #[arg(long, value_name = "KG_M3", allow_negative_numbers = true)]
     pub density: f64,
-    /// Section width w (m) (the stiff direction).
+    /// Section width w [m] (the stiff direction).
     #[arg(long, value_name = "M", allow_negative_numbers = true)]
     pub width: f64,
-    /// Section thickness t (m) (bending direction), I = w t³/12.
+    /// Section thickness t [m] (bending direction), I = w t³/12.
     #[arg(long, value_name = "M", allow_negative_numbers = true)]
     pub thickness: f64,
     /// Number of Hermite-cubic elements N (1 to 100000; `beam modal` at most 1000: a dense
@@ -43,7 +43,7 @@ pub struct BeamArgs {
     /// thousand elements already cost digits (a clear "singular" error beyond).
     #[arg(long, value_name = "N", default_value_t = 16)]
     pub elements: usize,
-    /// Point mass at the tip (kg) (rotary inertia neglected).
+    /// Point mass at the tip [kg] (rotary inertia neglected).
     #[arg(
         long,
         value_name = "KG",
@@ -84,7 +84,7 @@ pub struct StaticArgs {
     /// The beam.
     #[command(flatten)]
     pub beam: BeamArgs,
-    /// Dead tip force perpendicular to the undeformed beam (N) (+ toward +v).
+    /// Dead tip force perpendicular to the undeformed beam [N] (+ toward +v).
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     pub tip_load: f64,
     /// Tip moment [N·m] (counter-clockwise, + bends toward +v).

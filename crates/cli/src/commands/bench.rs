@@ -16,7 +16,7 @@ pub struct BenchArgs {
     /// Fewer settings and repetitions (well under a minute).
     #[arg(long)]
     pub quick: bool,
-    /// Directory for the SVG plots.
+    /// Directory for the SVG plots (created if missing).
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
     /// Print JSON rows instead of the tables.

@@ -32,7 +32,7 @@ pub struct EtaArgs {
     /// The joint during the impact.
     #[arg(long, value_enum, default_value = "held")]
     pub joint: JointArg,
-    /// Rotor inertia J_R of the free hub, kg·m² (with --joint free-hub).
+    /// Rotor inertia J_R of the free hub [kg·m²] (with --joint free-hub).
     #[arg(long, value_name = "KG_M2")]
     pub rotor_inertia: Option<f64>,
     /// How the CL link is solved.
@@ -60,7 +60,7 @@ pub struct EtaArgs {
     /// shape (at most 1000 elements); without it, the full FE model.
     #[arg(long, value_name = "N")]
     pub modes: Option<usize>,
-    /// Link length L, m (the transverse impact does not depend on it).
+    /// Link length L [m] (the transverse impact does not depend on it).
     #[arg(long, value_name = "M", default_value_t = 1.0)]
     pub length: f64,
     /// The contact's damping.
@@ -72,6 +72,12 @@ pub struct EtaArgs {
     /// Size and formats of eta.svg and eta_fig6.svg.
     #[command(flatten)]
     pub figure: super::figure_args::FigureArgs,
+    /// The design held fixed.
+    #[command(flatten)]
+    pub design: super::impact_args::DesignArgs,
+    /// The cases.
+    #[command(flatten)]
+    pub cases: super::impact_args::CaseArgs,
 }
 
 fn settings(args: &EtaArgs) -> Result<EtaSettings, Error> {
@@ -90,6 +96,7 @@ fn settings(args: &EtaArgs) -> Result<EtaSettings, Error> {
         modes: args.modes,
         length: args.length,
         damping: args.contact.spec()?,
+        design: args.design.design(),
     })
 }
 
@@ -117,8 +124,14 @@ fn method_text(method: &ClMethod) -> String {
 /// Runs `flexrig eta`.
 pub fn run(args: &EtaArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     let settings = settings(args)?;
-    let r = flexrig::eta::run(&settings, &args.out, &args.figure.options()?, cancel)
-        .map_err(super::impact_args::impact_as_flag)?;
+    let r = flexrig::eta::run(
+        &settings,
+        &args.cases.grid(),
+        &args.out,
+        &args.figure.options()?,
+        cancel,
+    )
+    .map_err(super::impact_args::impact_as_flag)?;
     let (rows, csv_path, svg_path, fig6_path) = (&r.rows, &r.csv, &r.svg, &r.fig6_svg);
     let joint = joint_text(&settings.joint);
     if args.json {
@@ -127,7 +140,11 @@ pub fn run(args: &EtaArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
     line(
         out,
         format!(
-            "Fig. 6 cases at FE fidelity (free head, {joint} joint; m_r = 10 kg, k_c = 1e8, v0 = 2 m/s, {}; {})",
+            "Fig. 6 cases at FE fidelity (free head, {joint} joint; m_r = {} kg, k_c = {:e} N/mⁿ, v0 = {} m/s, L = {} m, {}; {})",
+            settings.design.m_r,
+            settings.design.k_c,
+            settings.design.v0,
+            settings.length,
             contact_text(&settings.damping),
             method_text(&settings.method)
         ),

@@ -17,25 +17,27 @@ pub struct EtaMapArgs {
     /// Directory for eta_map.csv and one eta_map_mh<M>.svg per head mass (created if missing).
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
-    /// Head masses m_h, kg, comma-separated (one map each).
+    /// Head masses m_h [kg], comma-separated (one map each).
     #[arg(long = "m-h", value_name = "KG,...", value_delimiter = ',', default_values_t = [4.0, 1000.0])]
     pub m_h: Vec<f64>,
     /// Hertz exponent n (1 to 3).
     #[arg(long, value_name = "N", default_value_t = 2.0)]
     pub n: f64,
-    /// Payload over link mass m_e/m_r along x, FROM:TO (log-spaced; within [1e-6, 1e5]).
-    #[arg(long, value_name = "FROM:TO", default_value = "1e-3:1e2")]
+    /// Payload over link mass m_e/m_r along x, log-spaced: FROM:TO:N:log, or FROM:TO with N
+    /// from --points (within [1e-6, 1e5]; see "Ranges" in docs/cli.md).
+    #[arg(long, value_name = "FROM:TO[:N:log]", default_value = "1e-3:1e2")]
     pub mass_ratio: String,
-    /// Link over contact stiffness k_δ/k_c along y, FROM:TO (log-spaced; within [1e-11, 1e4]).
-    #[arg(long, value_name = "FROM:TO", default_value = "1e-7:1")]
+    /// Link over contact stiffness k_δ/k_c along y, log-spaced: FROM:TO:N:log, or FROM:TO with
+    /// N from --points (within [1e-11, 1e4]).
+    #[arg(long, value_name = "FROM:TO[:N:log]", default_value = "1e-7:1")]
     pub stiffness_ratio: String,
-    /// Points along each axis (2 to 200).
+    /// Points along each axis given as FROM:TO (2 to 200).
     #[arg(long, value_name = "N", default_value_t = 30)]
     pub points: usize,
     /// The joint during the impact.
     #[arg(long, value_enum, default_value = "held")]
     pub joint: JointArg,
-    /// Rotor inertia J_R of the free hub, kg·m² (with --joint free-hub).
+    /// Rotor inertia J_R of the free hub [kg·m²] (with --joint free-hub).
     #[arg(long, value_name = "KG_M2")]
     pub rotor_inertia: Option<f64>,
     /// Tolerance of the force's linear hold per step (1e-10 to 0.1); 1e-5 keeps each peak
@@ -48,9 +50,15 @@ pub struct EtaMapArgs {
     /// Print JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
+    /// Link length L [m], in [1e-3, 1e3] (the transverse impact does not depend on it).
+    #[arg(long, value_name = "M", default_value_t = 1.0)]
+    pub length: f64,
     /// Size and formats of the figures.
     #[command(flatten)]
     pub figure: super::figure_args::FigureArgs,
+    /// The design held fixed (the map's axes are ratios to m_r and k_c).
+    #[command(flatten)]
+    pub design: super::impact_args::DesignArgs,
 }
 
 /// Runs `flexrig eta-map`.
@@ -63,7 +71,14 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resu
         &args.stiffness_ratio,
         args.points,
     )?;
-    let settings = flexrig::fronts::eta_map_settings(joint, args.tol, args.contact.spec()?)?;
+    let (nx, ny) = (specs[0].mass_ratio.points, specs[0].stiffness_ratio.points);
+    let settings = flexrig::fronts::eta_map_settings(
+        joint,
+        args.tol,
+        args.contact.spec()?,
+        args.design.design(),
+        args.length,
+    )?;
     let joint_text = settings_text(&settings);
     let r = flexrig::eta_map::run(
         &EtaMapOptions {
@@ -84,8 +99,17 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resu
     line(
         out,
         format!(
-            "η over m_e/m_r {} × k_δ/k_c {} ({} × {} points, n = {}, {joint_text}, tol {:e})",
-            args.mass_ratio, args.stiffness_ratio, args.points, args.points, args.n, args.tol
+            "η over m_e/m_r {} × k_δ/k_c {} ({} × {} points, n = {}, m_r = {} kg, k_c = {:e} N/mⁿ, v0 = {} m/s, L = {} m, {joint_text}, tol {:e})",
+            args.mass_ratio,
+            args.stiffness_ratio,
+            nx,
+            ny,
+            args.n,
+            settings.design.m_r,
+            settings.design.k_c,
+            settings.design.v0,
+            settings.length,
+            args.tol
         ),
     )?;
     for s in &summaries {

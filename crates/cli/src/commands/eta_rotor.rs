@@ -18,10 +18,11 @@ pub struct EtaRotorArgs {
     /// Directory for eta_rotor.csv and eta_rotor.svg (created if missing).
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
-    /// Rotor over link inertia J_R/(m_r L²/3), FROM:TO (log-spaced; within [1e-9, 1e9]).
-    #[arg(long, value_name = "FROM:TO", default_value = "1e-4:1e6")]
+    /// Rotor over link inertia J_R/(m_r L²/3), log-spaced: FROM:TO:N:log, or FROM:TO with N
+    /// from --points (within [1e-9, 1e9]; see "Ranges" in docs/cli.md).
+    #[arg(long, value_name = "FROM:TO[:N:log]", default_value = "1e-4:1e6")]
     pub ratio: String,
-    /// Points along the ratio (2 to 200); the held joint is added as the limit.
+    /// Points along a ratio given as FROM:TO (2 to 200); the held joint is added as the limit.
     #[arg(long, value_name = "N", default_value_t = 21)]
     pub points: usize,
     /// Hertz exponents n, comma-separated (1 to 3 each).
@@ -36,21 +37,36 @@ pub struct EtaRotorArgs {
     /// Print JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
+    /// Link length L [m], in [1e-3, 1e3] (with m_r it sets the link inertia m_r L²/3).
+    #[arg(long, value_name = "M", default_value_t = 1.0)]
+    pub length: f64,
     /// Size and formats of eta_rotor.svg.
     #[command(flatten)]
     pub figure: super::figure_args::FigureArgs,
+    /// The design held fixed.
+    #[command(flatten)]
+    pub design: super::impact_args::DesignArgs,
+    /// The cases.
+    #[command(flatten)]
+    pub cases: super::impact_args::CaseArgs,
 }
 
 /// Runs `flexrig eta-rotor`.
 pub fn run(args: &EtaRotorArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     let ratios = flexrig::fronts::eta_rotor_inputs(&args.ratio, args.points, &args.n)?;
-    let settings = flexrig::fronts::eta_rotor_settings(args.tol, args.contact.spec()?);
+    let settings = flexrig::fronts::eta_rotor_settings(
+        args.tol,
+        args.contact.spec()?,
+        args.design.design(),
+        args.length,
+    )?;
     let r = flexrig::eta_rotor::run(
         &EtaRotorOptions {
             out: args.out.clone(),
             ratios,
             n: args.n.clone(),
             settings,
+            grid: args.cases.grid(),
             figures: args.figure.options()?,
         },
         cancel,
@@ -63,10 +79,18 @@ pub fn run(args: &EtaRotorArgs, out: &mut dyn Write, cancel: &CancelToken) -> Re
     line(
         out,
         format!(
-            "η_FE along J_R/(m_r L²/3) = {} ({} points), n = {:?}, {}: free pivot → held",
+            "η_FE along J_R/(m_r L²/3) = {} ({} points), n = {}, m_r = {} kg, k_c = {:e} N/mⁿ, v0 = {} m/s, L = {} m, {}: free pivot → held",
             args.ratio,
             args.points,
-            args.n,
+            args.n
+                .iter()
+                .map(|n| n.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            settings.design.m_r,
+            settings.design.k_c,
+            settings.design.v0,
+            settings.length,
             contact_text(&settings.damping)
         ),
     )?;

@@ -17,16 +17,19 @@ pub struct ExperimentArgs {
     /// Repeats of each Fig. 9a configuration (the paper: 5).
     #[arg(long, default_value_t = 5)]
     pub repeats: usize,
-    /// Standard deviation of the release-angle jitter (degrees).
+    /// Standard deviation of the release-angle jitter [deg].
     #[arg(long, value_name = "DEG", default_value_t = 0.5)]
     pub jitter_deg: f64,
     /// Seed of the jitter RNG.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Output directory (MCAP per run, fig9.svg, experiment.csv); its files are overwritten.
+    /// Directory for an MCAP log per run, fig9.svg and experiment.csv (created if missing; its
+    /// files are overwritten).
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
-    /// Directory with the scene files to use instead of the bundled ones (same names).
+    /// Directory with scene files to use instead of the bundled ones of the same names
+    /// (cj_aluminium.toml, …; any subset: the others stay bundled). `flexrig scenes --write
+    /// NAME --out DIR/NAME.toml` writes one to edit.
     #[arg(long, value_name = "DIR")]
     pub scenes: Option<PathBuf>,
     /// Override a scene field in every scene of the experiment, as in `flexrig run --set`

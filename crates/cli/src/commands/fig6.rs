@@ -26,6 +26,12 @@ pub struct Fig6Args {
     /// Size and formats of fig6.svg.
     #[command(flatten)]
     pub figure: super::figure_args::FigureArgs,
+    /// The design held fixed.
+    #[command(flatten)]
+    pub design: super::impact_args::DesignArgs,
+    /// The cases.
+    #[command(flatten)]
+    pub cases: super::impact_args::CaseArgs,
 }
 
 /// Runs `flexrig fig6`.
@@ -34,6 +40,8 @@ pub fn run(args: &Fig6Args, out: &mut dyn Write) -> Result<(), Error> {
         out: args.out.clone(),
         points: args.points,
         figures: args.figure.options()?,
+        design: args.design.design(),
+        grid: args.cases.grid(),
     })?;
     if args.json {
         let cases: Vec<_> = result
@@ -53,12 +61,16 @@ pub fn run(args: &Fig6Args, out: &mut dyn Write) -> Result<(), Error> {
             .collect();
         return print_json(
             out,
-            &json!({"cases": cases, "csv": result.csv, "svg": result.svg}),
+            &json!({"design": result.design, "cases": cases, "csv": result.csv, "svg": result.svg}),
         );
     }
+    let d = &result.design;
     line(
         out,
-        "Fig. 6 (paper §V): η(2/3) = f_max(γ = 2/3)/f_max(γ = 1), m_r = 10 kg, k_c = 1e8, v0 = 2 m/s",
+        format!(
+            "Fig. 6 (paper §V): η(2/3) = f_max(γ = 2/3)/f_max(γ = 1), m_r = {} kg, k_c = {:e} N/mⁿ, v0 = {} m/s",
+            d.m_r, d.k_c, d.v0
+        ),
     )?;
     line(
         out,
@@ -77,10 +89,12 @@ pub fn run(args: &Fig6Args, out: &mut dyn Write) -> Result<(), Error> {
             ),
         )?;
     }
-    line(
-        out,
-        "The paper quotes η = 0.89 (m_h = 4 kg) and 0.82 (m_h = 1000 kg) for m_e = 0.1 kg: the n = 1 values.",
-    )?;
+    if *d == flexrig::fig6::Fig6Design::PAPER {
+        line(
+            out,
+            "The paper quotes η = 0.89 (m_h = 4 kg) and 0.82 (m_h = 1000 kg) for m_e = 0.1 kg: the n = 1 values.",
+        )?;
+    }
     line(
         out,
         format!(

@@ -11,7 +11,8 @@ use flexrig::Error;
 /// Arguments of `flexrig fit`.
 #[derive(Debug, Args)]
 pub struct FitArgs {
-    /// CSV file with a header `indentation_m,force_n` and one sample per line (m, N).
+    /// CSV file with a header `indentation_m,force_n` and one sample per line (indentation
+    /// [m], force [N]).
     #[arg(value_name = "FILE.csv")]
     pub file: PathBuf,
     /// Print JSON (keys k, n, r2, k_stderr, n_stderr, ...) instead of text.
@@ -21,9 +22,12 @@ pub struct FitArgs {
 
 /// Runs `flexrig fit`.
 pub fn run(args: &FitArgs, out: &mut dyn Write) -> Result<(), Error> {
-    let fit = flexrig::fit::fit_file(&args.file)?;
+    let (fit, warnings) = flexrig::fit::fit_file_with_warnings(&args.file)?;
+    for w in &warnings {
+        eprintln!("warning: {w}");
+    }
     if args.json {
-        return print_json(out, &flexrig::fronts::fit_report(&fit));
+        return print_json(out, &flexrig::fronts::fit_report(&fit, &warnings));
     }
     line(
         out,

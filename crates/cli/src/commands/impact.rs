@@ -46,20 +46,20 @@ impl From<FormulationArg> for Formulation {
 #[derive(Debug, Args)]
 #[command(allow_negative_numbers = true)]
 pub struct ImpactArgs {
-    /// Human (operator) mass m_h (kg).
+    /// Human (operator) mass m_h [kg].
     #[arg(long = "m-h", value_name = "KG")]
     pub m_h: f64,
-    /// Effective robot mass m_eff (kg); or give --gamma, --m-r and --m-e for m_eff = m_e + γ m_r/3.
-    #[arg(long = "m-eff", value_name = "KG", required_unless_present_all = ["gamma", "m_r", "m_e"], conflicts_with_all = ["gamma", "m_r", "m_e"])]
+    /// Effective robot mass m_eff [kg]; or give --gamma, --m-r and --m-e for m_eff = m_e + γ m_r/3.
+    #[arg(long = "m-eff", value_name = "KG", conflicts_with_all = ["gamma", "m_r", "m_e"])]
     pub m_eff: Option<f64>,
     /// PRB characteristic radius γ ∈ (0, 1] (1: compliant joint, 2/3: compliant link).
-    #[arg(long, value_name = "G", requires_all = ["m_r", "m_e"])]
+    #[arg(long, value_name = "G")]
     pub gamma: Option<f64>,
-    /// Robot link mass m_r (kg) (with --gamma).
-    #[arg(long = "m-r", value_name = "KG", requires_all = ["gamma", "m_e"])]
+    /// Robot link mass m_r [kg] (with --gamma).
+    #[arg(long = "m-r", value_name = "KG")]
     pub m_r: Option<f64>,
-    /// Payload (end mass) m_e (kg) (with --gamma).
-    #[arg(long = "m-e", value_name = "KG", requires_all = ["gamma", "m_r"])]
+    /// Payload (end mass) m_e [kg] (with --gamma).
+    #[arg(long = "m-e", value_name = "KG")]
     pub m_e: Option<f64>,
     /// Link lateral stiffness k_δ [N/m].
     #[arg(long = "k-delta", value_name = "N_PER_M")]
@@ -92,16 +92,40 @@ pub struct ImpactArgs {
 }
 
 impl ImpactArgs {
-    /// The library's input (clap guarantees --m-eff or all of --gamma, --m-r, --m-e).
+    /// The library's input: --m-eff, or all of --gamma, --m-r and --m-e (clap refuses a mix
+    /// with --m-eff); an incomplete set names exactly the flags missing.
     pub fn input(&self) -> Result<ImpactInput, Error> {
         let m_eff = match (self.m_eff, self.gamma, self.m_r, self.m_e) {
             (Some(m_eff), ..) => EffectiveMass::Given(m_eff),
             (None, Some(gamma), Some(m_r), Some(m_e)) => EffectiveMass::Prb { gamma, m_r, m_e },
-            _ => {
+            (None, None, None, None) => {
                 return Err(Error::InvalidArgument {
                     arg: "--m-eff".into(),
                     value: "(missing)".into(),
                     allowed: "give --m-eff, or all of --gamma, --m-r and --m-e".into(),
+                });
+            }
+            (None, gamma, m_r, m_e) => {
+                let given: Vec<&str> = [("--gamma", gamma), ("--m-r", m_r), ("--m-e", m_e)]
+                    .iter()
+                    .filter(|(_, v)| v.is_some())
+                    .map(|(f, _)| *f)
+                    .collect();
+                let missing: Vec<&str> = [("--gamma", gamma), ("--m-r", m_r), ("--m-e", m_e)]
+                    .iter()
+                    .filter(|(_, v)| v.is_none())
+                    .map(|(f, _)| *f)
+                    .collect();
+                return Err(Error::InvalidArgument {
+                    arg: missing.join(" and "),
+                    value: "(missing)".into(),
+                    allowed: format!(
+                        "{} {} m_eff = m_e + γ m_r/3 only with all of --gamma, --m-r and --m-e: \
+                         add {} (or give --m-eff alone)",
+                        given.join(" and "),
+                        if given.len() == 1 { "gives" } else { "give" },
+                        missing.join(" and ")
+                    ),
                 });
             }
         };

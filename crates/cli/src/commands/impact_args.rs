@@ -4,8 +4,62 @@
 use clap::{Args, ValueEnum};
 use flexrig::Error;
 use flexrig::eta::{DampingSpec, Joint};
+use flexrig::fig6::{Fig6Design, Fig6Grid};
 use flexrig::fronts::{DampingModel, JointKind, damping_spec};
 pub use flexrig::fronts::{as_flag, impact_as_flag, parse_range};
+
+/// The design held fixed across the cases (`fig6`, `eta`, `eta-map`, `eta-rotor`); the
+/// defaults are the paper's (§V).
+#[derive(Debug, Args)]
+pub struct DesignArgs {
+    /// Robot link mass m_r [kg], in [1e-3, 1e4].
+    #[arg(long = "m-r", value_name = "KG", default_value_t = Fig6Design::PAPER.m_r)]
+    pub m_r: f64,
+    /// Contact stiffness k_c [N/mⁿ] of the Hertz law f = k_c δⁿ, in [1, 1e13].
+    #[arg(long = "k-c", value_name = "N_PER_MN", default_value_t = Fig6Design::PAPER.k_c)]
+    pub k_c: f64,
+    /// Approach speed v0 [m/s], in [1e-3, 100].
+    #[arg(long, value_name = "M_PER_S", default_value_t = Fig6Design::PAPER.v0)]
+    pub v0: f64,
+}
+
+impl DesignArgs {
+    /// The library's design; its ranges are checked by the library (errors name the flag).
+    pub fn design(&self) -> Fig6Design {
+        Fig6Design {
+            m_r: self.m_r,
+            k_c: self.k_c,
+            v0: self.v0,
+        }
+    }
+}
+
+/// The cases of a Fig. 6 study: every combination of the values given (`fig6`, `eta`,
+/// `eta-rotor`); the defaults are the paper's eight cases.
+#[derive(Debug, Args)]
+pub struct CaseArgs {
+    /// Human masses m_h [kg], comma-separated (1 to 4 values, each in [1e-3, 1e6]).
+    #[arg(long = "m-h", value_name = "KG,...", value_delimiter = ',', default_values_t = [4.0, 1000.0])]
+    pub m_h: Vec<f64>,
+    /// Link lateral stiffnesses k_δ [N/m], comma-separated (1 to 4 values, each in
+    /// [1e-3, 1e13]).
+    #[arg(long = "k-delta", value_name = "N_PER_M,...", value_delimiter = ',', default_values_t = [1e8, 2e2])]
+    pub k_delta: Vec<f64>,
+    /// Payloads m_e [kg], comma-separated (1 to 4 values, each in [1e-6, 1e4]).
+    #[arg(long = "m-e", value_name = "KG,...", value_delimiter = ',', default_values_t = [0.1, 10.0])]
+    pub m_e: Vec<f64>,
+}
+
+impl CaseArgs {
+    /// The library's grid; its ranges are checked by the library (errors name the flag).
+    pub fn grid(&self) -> Fig6Grid {
+        Fig6Grid {
+            m_h: self.m_h.clone(),
+            k_delta: self.k_delta.clone(),
+            m_e: self.m_e.clone(),
+        }
+    }
+}
 
 /// The joint during the impact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -45,7 +99,7 @@ pub struct DampingArgs {
     /// table); a contact damped further sticks, and is refused.
     #[arg(long, value_name = "N_S_PER_M")]
     pub c_max: Option<f64>,
-    /// Indentation at which the damping reaches --c-max, m in [1e-9, 1] (with --damping
+    /// Indentation [m] at which the damping reaches --c-max, in [1e-9, 1] (with --damping
     /// adams-impact).
     #[arg(long, value_name = "M")]
     pub depth: Option<f64>,

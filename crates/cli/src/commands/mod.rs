@@ -18,6 +18,7 @@ pub mod role_switch;
 pub mod run;
 pub mod safety;
 pub mod safety_map;
+pub mod scenes;
 pub mod spin_up;
 pub mod strike;
 pub mod sweep;

@@ -12,14 +12,15 @@ use crate::print::{line, print_json};
 /// Arguments of `flexrig payload`.
 #[derive(Debug, Args)]
 pub struct PayloadArgs {
-    /// Bundled scene to vary (its `robot.design` is set to cj and to cl): cl_light_load (the
-    /// aluminium operator of the paper's light-load study) or any other bundled name.
+    /// Scene to vary (its `robot.design` is set to cj and to cl): a bundled scene's name
+    /// (cl_light_load: the aluminium operator of the paper's light-load study; `flexrig scenes`
+    /// lists them) or a scene file's path.
     #[arg(long, default_value = "cl_light_load")]
     pub scene: String,
-    /// Smallest payload, kg.
+    /// Smallest payload [kg].
     #[arg(long, value_name = "KG", default_value_t = 0.01)]
     pub from: f64,
-    /// Largest payload, kg.
+    /// Largest payload [kg].
     #[arg(long, value_name = "KG", default_value_t = 1.0)]
     pub to: f64,
     /// Payloads, log-spaced (2 to 1000).

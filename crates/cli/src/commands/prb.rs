@@ -6,7 +6,10 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexrig::Error;
-use flexrig::prb::{HOWELL_GAMMA, HOWELL_K_THETA, HOWELL_THETA_MAX_DEG, PAPER_GAMMA_SMALL};
+use flexrig::prb::{
+    HOWELL_GAMMA, HOWELL_K_THETA, HOWELL_THETA_MAX_DEG, LOAD_ANGLE_DEG, PAPER_GAMMA_SMALL,
+    kinematics_name,
+};
 
 use crate::print::{line, print_json};
 
@@ -58,8 +61,11 @@ pub fn run(args: &PrbArgs, out: &mut dyn Write) -> Result<(), Error> {
     line(
         out,
         format!(
-            "PRB fit to the corotational FE tip path ({} elements, error relative to {}):",
-            args.elements, args.criterion
+            "PRB fit to the {} FE tip path ({} elements, dead tip load at {}° to the undeformed beam, error relative to {}):",
+            kinematics_name(options.kinematics),
+            args.elements,
+            LOAD_ANGLE_DEG,
+            args.criterion
         ),
     )?;
     line(
@@ -101,7 +107,7 @@ pub fn run(args: &PrbArgs, out: &mut dyn Write) -> Result<(), Error> {
         line(
             out,
             format!(
-                "  effective mass, payload {:.2} m_r: FE beam share {:.4} m_r vs γ/3 = {:.4} (γ = 2/3), {:.4} (fitted γ)",
+                "  effective mass, payload ratio m_e/m_r = {:.3}: FE beam share {:.4} m_r vs γ/3 = {:.4} (γ = 2/3), {:.4} (fitted γ)",
                 s["payload_over_m_r"].as_f64().unwrap_or(0.0),
                 s["fe_beam_share"].as_f64().unwrap_or(0.0),
                 PAPER_GAMMA_SMALL / 3.0,

@@ -15,10 +15,11 @@ use crate::print::{line, parse_overrides, print_json, print_severity};
 /// Arguments of `flexrig run`.
 #[derive(Debug, Args)]
 pub struct RunArgs {
-    /// Scene file (TOML), e.g. assets/scenes/cj_aluminium.toml; see docs/scenes.md.
+    /// A bundled scene's name (e.g. cj_aluminium; `flexrig scenes` lists them) or a scene
+    /// file's path (TOML, see docs/scenes.md).
     #[arg(value_name = "SCENE")]
     pub scene: PathBuf,
-    /// Write the run's traces to this MCAP file (opens in Foxglove; see docs/foxglove.md).
+    /// File (MCAP) to write the run's traces to; it opens in Foxglove (see docs/foxglove.md).
     #[arg(long, value_name = "FILE.mcap")]
     pub out: Option<PathBuf>,
     /// Overwrite the --out file if it exists.

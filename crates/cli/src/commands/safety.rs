@@ -57,13 +57,13 @@ pub struct SafetyArgs {
     /// Contact kind.
     #[arg(long, value_enum, default_value = "transient")]
     pub contact: ContactArg,
-    /// Effective robot mass m_eff (kg) for the energy and simulation methods.
+    /// Effective robot mass m_eff [kg] for the energy and simulation methods.
     #[arg(long = "m-eff", value_name = "KG", conflicts_with_all = ["gamma", "m_r", "m_e"])]
     pub m_eff: Option<f64>,
-    /// Link mass m_r (kg), for m_eff = m_e + γ m_r/3 (with --m-e, --gamma).
+    /// Link mass m_r [kg], for m_eff = m_e + γ m_r/3 (with --m-e, --gamma).
     #[arg(long = "m-r", value_name = "KG", requires_all = ["gamma", "m_e"])]
     pub m_r: Option<f64>,
-    /// End mass m_e (kg) (with --m-r, --gamma).
+    /// End mass m_e [kg] (with --m-r, --gamma).
     #[arg(long = "m-e", value_name = "KG", requires_all = ["gamma", "m_r"])]
     pub m_e: Option<f64>,
     /// PRB characteristic radius γ ∈ (0, 1] (with --m-r, --m-e).
@@ -91,19 +91,19 @@ pub struct SafetyArgs {
     /// --material, else pressure is not assessed).
     #[arg(long = "area-model", value_enum)]
     pub area_model: Option<AreaModelArg>,
-    /// Sphere radius R (m) of the hertz-sphere and thin-layer area models.
+    /// Sphere radius R [m] of the hertz-sphere and thin-layer area models.
     #[arg(long, value_name = "M")]
     pub radius: Option<f64>,
-    /// Contact area (m²) of the fixed area model.
+    /// Contact area [m²] of the fixed area model.
     #[arg(long = "contact-area", value_name = "M2")]
     pub contact_area: Option<f64>,
-    /// The robot's total moving mass M (kg) for the standard's m_R = M/2 + m_L (default: m_R = m_eff).
+    /// The robot's total moving mass M [kg] for the standard's m_R = M/2 + m_L (default: m_R = m_eff).
     #[arg(long = "moving-mass", value_name = "KG")]
     pub moving_mass: Option<f64>,
-    /// Payload m_L (kg) for the standard's m_R.
+    /// Payload m_L [kg] for the standard's m_R.
     #[arg(long, value_name = "KG", default_value_t = 0.0)]
     pub payload: f64,
-    /// Relative speed (m/s) to judge.
+    /// Relative speed [m/s] to judge.
     #[arg(long, value_name = "M_PER_S")]
     pub speed: Option<f64>,
     /// A body-model TOML file in the format of assets/safety/iso_ts_15066_2016.toml.

@@ -18,7 +18,8 @@ pub struct SweepArgs {
     /// `merge DIR` joins the shard tables of a sweep.
     #[command(subcommand)]
     pub merge: Option<SweepCommand>,
-    /// The base scene (TOML), e.g. assets/scenes/cj_iron.toml.
+    /// The base scene: a bundled scene's name (e.g. cj_iron; `flexrig scenes` lists them) or a
+    /// scene file's path.
     #[arg(value_name = "BASE")]
     pub base: Option<PathBuf>,
     /// A varied field: PATH=SPEC with SPEC a list (0.1,0.2,0.5 or cj,cl), a range
@@ -29,7 +30,8 @@ pub struct SweepArgs {
     /// Zip the --set lists (same length) instead of the full grid.
     #[arg(long)]
     pub zip: bool,
-    /// Directory of the table (sweep.csv), its manifest and journal; a rerun resumes.
+    /// Directory for the table (sweep.csv), its manifest and journal (created if missing); a
+    /// rerun of the same command resumes.
     #[arg(long, value_name = "DIR", default_value = "out/sweep")]
     pub out: PathBuf,
     /// Also write JSON Lines (sweep.jsonl) and print the summary as JSON.
@@ -42,6 +44,9 @@ pub struct SweepArgs {
     /// `flexrig sweep merge DIR`.
     #[arg(long, value_name = "I/N")]
     pub shard: Option<String>,
+    /// Threads running points (1 to 4096; default: every core).
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
 }
 
 /// `flexrig sweep merge`.
@@ -101,6 +106,7 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resul
         jsonl: args.json,
         mcap: args.mcap,
         shard,
+        threads: args.threads,
     };
     let bar = Bar::on_terminal("{bar:30} {pos}/{len} runs, {eta} left {msg}");
     let r = run_sweep(&request, cancel, &bar)?;

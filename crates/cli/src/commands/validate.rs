@@ -14,7 +14,7 @@ pub struct ValidateArgs {
     /// Skip the slowest cases (the PRB fit path, the rig convergence study).
     #[arg(long)]
     pub quick: bool,
-    /// Directory for validation.md.
+    /// Directory for validation.md (created if missing).
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
     /// Print JSON instead of the table.

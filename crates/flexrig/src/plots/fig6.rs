@@ -9,15 +9,15 @@
 //! filled where η_FE lies on the curve, hollow at the edge of the γ range where it does not; the
 //! table then moves to a corner the markers leave free.
 
-use flexrig_lumped::fig6::{EtaCurve, Fig6Case, GAMMA_RANGE, K_C, M_R, V0};
+use flexrig_lumped::fig6::{EtaCurve, Fig6Case, Fig6Design, GAMMA_RANGE};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::series::DashedLineSeries;
 use plotters::style::text_anchor::{HPos, VPos};
 
 use super::{
-    GREY, GRID, LABEL_PT, Linear, TICK_PT, TITLE_PT, decade_label, err, font, px, render,
-    sci_label, stroke, text, text_width_pt, ticks,
+    GREY, GRID, LABEL_PT, Linear, TICK_PT, TITLE_PT, err, font, px, render, sci_label, stroke,
+    text, text_width_pt, ticks,
 };
 
 /// Colour of the n = 2 curves (solid), as in the paper.
@@ -55,10 +55,10 @@ pub struct Fig6Point {
     pub gamma: Option<f64>,
 }
 
-/// The paper's Fig. 6 from the sixteen curves of `flexrig_lumped::fig6::fig6`, at the printed
-/// width `width_pt` \[pt\].
-pub fn fig6_svg(curves: &[EtaCurve], width_pt: f64) -> Result<String, String> {
-    draw_figure(curves, &[], width_pt)
+/// The paper's Fig. 6 from the curves of `flexrig_lumped::fig6::fig6_in` in `design` (its
+/// m_r, k_c and v0 in the title), at the printed width `width_pt` \[pt\].
+pub fn fig6_svg(curves: &[EtaCurve], design: &Fig6Design, width_pt: f64) -> Result<String, String> {
+    draw_figure(curves, &[], design, width_pt)
 }
 
 /// Fig. 6 with finite-element results: each of `points` as a marker in the colour of its curve
@@ -66,12 +66,13 @@ pub fn fig6_svg(curves: &[EtaCurve], width_pt: f64) -> Result<String, String> {
 pub fn fig6_with_points_svg(
     curves: &[EtaCurve],
     points: &[Fig6Point],
+    design: &Fig6Design,
     width_pt: f64,
 ) -> Result<String, String> {
     for p in points {
         check_point(curves, p)?;
     }
-    draw_figure(curves, points, width_pt)
+    draw_figure(curves, points, design, width_pt)
 }
 
 /// Whether `p` is finite and has a curve among `curves`.
@@ -141,12 +142,17 @@ impl EtaAxis {
 }
 
 /// Fig. 6 from `curves`, with `points` if there are any (then with a second legend row).
-fn draw_figure(curves: &[EtaCurve], points: &[Fig6Point], width_pt: f64) -> Result<String, String> {
+fn draw_figure(
+    curves: &[EtaCurve],
+    points: &[Fig6Point],
+    design: &Fig6Design,
+    width_pt: f64,
+) -> Result<String, String> {
     let axis = EtaAxis::new(curves, points);
     let panels = panel_keys(curves);
     let cols = if width_pt < ONE_COLUMN_BELOW { 1 } else { 2 };
     let rows = panels.len().div_ceil(cols).max(1);
-    let header = Header::new(width_pt, !points.is_empty());
+    let header = Header::new(width_pt, design, points);
     let size = (
         width_pt.round() as u32,
         header.height() + PANEL_H * rows as u32,
@@ -227,7 +233,19 @@ struct Header {
 }
 
 impl Header {
-    fn new(width_pt: f64, with_points: bool) -> Self {
+    fn new(width_pt: f64, design: &Fig6Design, points: &[Fig6Point]) -> Self {
+        let with_points = !points.is_empty();
+        // the payloads of the diamonds (light) and the squares (heavy), as they ran
+        let payloads = |heavy: bool| {
+            let mut m: Vec<f64> = points
+                .iter()
+                .map(|p| p.case.m_e)
+                .filter(|&m| (m > HEAVY_PAYLOAD) == heavy)
+                .collect();
+            m.sort_by(f64::total_cmp);
+            m.dedup();
+            m.iter().map(|m| m.to_string()).collect::<Vec<_>>()
+        };
         let long = "Peak-force ratio η = f_max(γ)/f_max(1), compliant link (γ) over compliant joint (γ = 1)";
         let short = "η = f_max(γ)/f_max(1): compliant link (γ) over joint (γ = 1)";
         let shortest = "η = f_max(γ)/f_max(1), CL (γ) over CJ (γ = 1)";
@@ -238,8 +256,10 @@ impl Header {
         let title = vec![
             first.to_string(),
             format!(
-                "m_r = {M_R} kg, k_c = {} N/mⁿ, v_0 = {V0} m/s",
-                decade_label(K_C)
+                "m_r = {} kg, k_c = {} N/mⁿ, v_0 = {} m/s",
+                design.m_r,
+                super::sci_label(design.k_c),
+                design.v0
             ),
         ];
         let mut items = vec![
@@ -254,29 +274,24 @@ impl Header {
             (Sample::Dot, "η(2/3), uniform compliant link".to_string()),
         ];
         if with_points {
-            items.extend([
-                (
-                    Sample::Markers {
-                        filled: true,
-                        square: false,
-                    },
-                    "η_FE, m_e = 0.1 kg".to_string(),
-                ),
-                (
-                    Sample::Markers {
-                        filled: true,
-                        square: true,
-                    },
-                    "η_FE, m_e = 10 kg".to_string(),
-                ),
-                (
-                    Sample::Markers {
-                        filled: false,
-                        square: false,
-                    },
-                    "hollow: η_FE off its curve, drawn at γ = 1".to_string(),
-                ),
-            ]);
+            for (square, m) in [(false, payloads(false)), (true, payloads(true))] {
+                if !m.is_empty() {
+                    items.push((
+                        Sample::Markers {
+                            filled: true,
+                            square,
+                        },
+                        format!("η_FE, m_e = {} kg", m.join(", ")),
+                    ));
+                }
+            }
+            items.extend([(
+                Sample::Markers {
+                    filled: false,
+                    square: false,
+                },
+                "hollow: η_FE off its curve, drawn at γ = 1".to_string(),
+            )]);
         }
         // flow the items into rows
         let (mut x, mut row) = (4.0, 0);
@@ -673,8 +688,8 @@ fn curve_colour(n: f64) -> RGBColor {
     if n == 1.0 { ORANGE } else { BLUE }
 }
 
-/// Payloads above this are the heavy payload of their panel (square markers) \[kg\]: the
-/// cases' payloads are 0.1 and 10 kg.
+/// Payloads above this are drawn as squares, those at or below it as diamonds \[kg\] (the
+/// paper's cases: 0.1 and 10 kg).
 const HEAVY_PAYLOAD: f64 = 1.0;
 
 /// Where and how a finite-element point is drawn.
@@ -952,14 +967,14 @@ mod tests {
         assert_eq!(pts.len(), 16);
         let off = pts.iter().filter(|p| p.gamma.is_none()).count();
         assert!((4..16).contains(&off), "{off} points off the curves");
-        let svg = fig6_with_points_svg(&curves, &pts, 504.0).unwrap();
+        let svg = fig6_with_points_svg(&curves, &pts, &Fig6Design::PAPER, 504.0).unwrap();
         assert!(svg.starts_with("<svg width=\"7in\""), "{}", &svg[..80]);
         assert!(svg.contains("η<tspan"));
         assert!(svg.contains("off its curve"));
         // 16 markers plus 6 in the legend, each a polygon
         assert_eq!(svg.matches("<polygon").count(), 22);
         // the curves alone keep the original figure
-        let plain = fig6_svg(&curves, 504.0).unwrap();
+        let plain = fig6_svg(&curves, &Fig6Design::PAPER, 504.0).unwrap();
         assert!(!plain.contains("off its curve"));
         assert!(round_up_1(9.3e-5) > 9.99e-5 && round_up_1(8.2e-5) < 9.01e-5);
     }
@@ -969,11 +984,11 @@ mod tests {
         let curves = fig6(11).unwrap();
         let mut p = points(&curves)[0];
         p.n = 1.5;
-        let e = fig6_with_points_svg(&curves, &[p], 504.0).unwrap_err();
+        let e = fig6_with_points_svg(&curves, &[p], &Fig6Design::PAPER, 504.0).unwrap_err();
         assert!(e.contains("no curve of that case and n"), "{e}");
         p.n = 1.0;
         p.eta_fe = f64::NAN;
-        let e = fig6_with_points_svg(&curves, &[p], 504.0).unwrap_err();
+        let e = fig6_with_points_svg(&curves, &[p], &Fig6Design::PAPER, 504.0).unwrap_err();
         assert!(e.contains("not finite"), "{e}");
     }
 
@@ -991,11 +1006,12 @@ mod tests {
     #[ignore = "writes a demo figure to /tmp"]
     fn fig6_points_demo() {
         let curves = fig6(201).unwrap();
-        let svg = fig6_with_points_svg(&curves, &points(&curves), 504.0).unwrap();
+        let svg =
+            fig6_with_points_svg(&curves, &points(&curves), &Fig6Design::PAPER, 504.0).unwrap();
         std::fs::write("/tmp/fig6_points_demo.svg", svg).unwrap();
         std::fs::write(
             "/tmp/fig6_plain_demo.svg",
-            fig6_svg(&curves, 504.0).unwrap(),
+            fig6_svg(&curves, &Fig6Design::PAPER, 504.0).unwrap(),
         )
         .unwrap();
     }

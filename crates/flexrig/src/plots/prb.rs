@@ -24,7 +24,12 @@ const MAX_PLOT: f64 = 330.0;
 
 /// FE tip path against the PRB circle of the fitted γ (up to Θ_max, thin beyond) and γ = 2/3, at
 /// the printed width `width_pt` \[pt\].
-pub fn prb_svg(path: &[TipPoint], fit: &PrbFit, width_pt: f64) -> Result<String, String> {
+pub fn prb_svg(
+    path: &[TipPoint],
+    fit: &PrbFit,
+    model: &str,
+    width_pt: f64,
+) -> Result<String, String> {
     let b_max = path
         .iter()
         .map(|p| p.b)
@@ -119,7 +124,7 @@ pub fn prb_svg(path: &[TipPoint], fit: &PrbFit, width_pt: f64) -> Result<String,
                     .map(|p| Circle::new((p.a, p.b), px(1) + px(1) / 2, BLACK.filled())),
             )
             .map_err(err)?
-            .label("FE tip path (PL²/EI up to 30)")
+            .label(format!("{model} FE tip path (PL²/EI up to 30)"))
             .legend(|(x, y)| Circle::new((x + px(7), y), px(1) + px(1) / 2, BLACK.filled()));
         chart
             .configure_series_labels()

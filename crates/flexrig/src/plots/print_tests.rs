@@ -191,11 +191,21 @@ fn fig6_and_its_fe_points_at_print_size() {
         })
         .collect();
     for w in WIDTHS {
-        let text = check("fig6", &fig6_svg(&curves, w).unwrap(), w);
+        let text = check(
+            "fig6",
+            &fig6_svg(&curves, &flexrig_lumped::fig6::Fig6Design::PAPER, w).unwrap(),
+            w,
+        );
         assert!(text.contains("η(2/3)"));
         let text = check(
             "eta_fig6",
-            &fig6_with_points_svg(&curves, &points, w).unwrap(),
+            &fig6_with_points_svg(
+                &curves,
+                &points,
+                &flexrig_lumped::fig6::Fig6Design::PAPER,
+                w,
+            )
+            .unwrap(),
             w,
         );
         assert!(text.contains("η_FE, m_e = 10 kg"), "{text}");
@@ -273,11 +283,23 @@ fn map(n: usize, fits: bool) -> ComputedMap {
 #[test]
 fn eta_map_shows_gamma_eff_only_with_values() {
     for w in WIDTHS {
-        let none = crate::eta_map::svg(&map(4, false), "held joint", w).unwrap();
+        let none = crate::eta_map::svg(
+            &map(4, false),
+            "held joint",
+            &flexrig_lumped::fig6::Fig6Design::PAPER,
+            w,
+        )
+        .unwrap();
         let text = check("eta_map", &none, w);
         assert!(!text.contains("effective γ ("), "{text}");
         assert!(text.contains("no γ in (0, 1] fits at any point (16 need γ > 1"));
-        let some = crate::eta_map::svg(&map(4, true), "held joint", w).unwrap();
+        let some = crate::eta_map::svg(
+            &map(4, true),
+            "held joint",
+            &flexrig_lumped::fig6::Fig6Design::PAPER,
+            w,
+        )
+        .unwrap();
         let text = check("eta_map_gamma", &some, w);
         assert!(text.contains("effective γ"), "{text}");
     }
@@ -360,7 +382,7 @@ fn payload_and_prb_and_bench_at_print_size() {
             w,
         );
         assert!(text.contains("light load, 100 g") && text.contains("test bed, 412 g"));
-        let text = check("prb", &prb_svg(&path, &fit, w).unwrap(), w);
+        let text = check("prb", &prb_svg(&path, &fit, "corotational", w).unwrap(), w);
         assert!(text.contains("Θ_max"), "{text}");
         check(
             "bench",

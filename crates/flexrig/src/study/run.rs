@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use crate::Error;
 use crate::cancel::CancelToken;
-use crate::output::{ensure_dir, read_text, read_text_limited, write_atomic};
+use crate::output::{ensure_dir, read_text_limited, write_atomic};
 use crate::progress::Progress;
 use crate::study::spec::MAX_VALUE_FILE_BYTES;
 use crate::study::spec::{Dimension, parse_all};
@@ -15,7 +15,7 @@ use crate::study::sweep::{Journal, Sweep, SweepManifest, SweepOptions, rows_done
 /// What to sweep and where.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SweepRequest {
-    /// The base scene file (TOML).
+    /// The base scene: a bundled name or a scene file's path ([`crate::scenes::resolve`]).
     pub base: PathBuf,
     /// The varied fields.
     pub dimensions: Vec<Dimension>,
@@ -29,7 +29,12 @@ pub struct SweepRequest {
     pub mcap: bool,
     /// Run only shard I of N (points with index ≡ I mod N).
     pub shard: Option<(usize, usize)>,
+    /// Threads running points (`--threads`, 1 to [`MAX_THREADS`]); none: every core.
+    pub threads: Option<usize>,
 }
+
+/// Most threads of one sweep.
+pub const MAX_THREADS: usize = 4096;
 
 /// What a sweep did.
 #[derive(Debug, Clone, PartialEq)]
@@ -49,11 +54,15 @@ pub struct SweepReport {
 }
 
 impl SweepReport {
-    /// An error if the sweep was interrupted ([`Error::Rig`] `Interrupted`) or runs failed
-    /// ([`Error::SweepFailed`]).
+    /// An error if the sweep was interrupted ([`Error::SweepInterrupted`]: a rerun resumes) or
+    /// runs failed ([`Error::SweepFailed`]).
     pub fn check(&self) -> Result<(), Error> {
         if self.interrupted {
-            return Err(Error::Rig(flexrig_rig::RigError::Interrupted { t: 0.0 }));
+            return Err(Error::SweepInterrupted {
+                done: self.rows,
+                points: self.points,
+                table: self.table.clone(),
+            });
         }
         if self.failed > 0 {
             return Err(Error::SweepFailed {
@@ -86,8 +95,17 @@ pub fn run_sweep(
     progress: &dyn Progress,
 ) -> Result<SweepReport, Error> {
     let shard = request.shard;
+    if let Some(k) = request.threads
+        && !(1..=MAX_THREADS).contains(&k)
+    {
+        return Err(Error::InvalidArgument {
+            arg: "--threads".into(),
+            value: k.to_string(),
+            allowed: format!("must be a whole number from 1 to {MAX_THREADS} (none: every core)"),
+        });
+    }
     let sweep = Sweep::new(
-        &read_text(&request.base)?,
+        &crate::scenes::resolve("BASE", &request.base)?.text,
         request.dimensions.clone(),
         request.zip,
     )?;
@@ -126,10 +144,22 @@ pub fn run_sweep(
     progress.start(todo.len());
     let journal = Journal::open(&request.out, shard, &paths)?;
     let resumed = rows.len();
-    let new_rows = sweep.run(&todo, &options, &|row| {
+    let done = |row: &crate::study::sweep::SweepRow| {
         journal.append(row);
         progress.advance();
-    });
+    };
+    let new_rows = match request.threads {
+        Some(k) => rayon::ThreadPoolBuilder::new()
+            .num_threads(k)
+            .build()
+            .map_err(|e| Error::InvalidArgument {
+                arg: "--threads".into(),
+                value: k.to_string(),
+                allowed: format!("cannot start that many threads ({e})"),
+            })?
+            .install(|| sweep.run(&todo, &options, &done)),
+        None => sweep.run(&todo, &options, &done),
+    };
     progress.finish();
     let interrupted = cancel.is_cancelled() || new_rows.iter().any(|r| r.status == "interrupted");
     rows.extend(

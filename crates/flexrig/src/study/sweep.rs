@@ -501,9 +501,12 @@ fn parse_record(cells: &[String], paths: usize, whole: bool) -> Result<Option<Sw
     if cells.len() != expected {
         return Err(format!("{} cells, expected {expected}", cells.len()));
     }
-    let index: usize = cells[0]
-        .parse()
-        .map_err(|_| format!("index {:?}", cells[0]))?;
+    let index: usize = cells[0].parse().map_err(|_| {
+        format!(
+            "the index \u{201c}{}\u{201d} is not a whole number",
+            cells[0]
+        )
+    })?;
     let status = cells[1 + paths].clone();
     if status != "ok" && status != "error" {
         return Ok(None);
@@ -791,15 +794,26 @@ pub fn merge(dir: &Path, json: bool) -> Result<(PathBuf, usize), Error> {
         .filter(|i| !rows.contains_key(i))
         .collect();
     if shards == 0 || !missing.is_empty() {
+        let first = match missing.first() {
+            Some(i) => format!(", the first is point {i}"),
+            None => String::new(),
+        };
+        let shard_tables = if shards == 0 {
+            "it holds no shard table; run the shards with --shard I/N --out DIR \
+             first"
+                .to_string()
+        } else {
+            format!(
+                "{} of {} points are missing{first}; run the missing shards with the same \
+                 --out DIR (a rerun resumes)",
+                missing.len(),
+                manifest.points
+            )
+        };
         return Err(Error::InvalidArgument {
             arg: "DIR".into(),
             value: dir.display().to_string(),
-            allowed: format!(
-                "must hold every shard of the sweep: {} of {} points missing (first: {:?})",
-                missing.len(),
-                manifest.points,
-                missing.first()
-            ),
+            allowed: format!("must hold every shard of the sweep: {shard_tables}"),
         });
     }
     let paths: Vec<&str> = manifest.paths.iter().map(String::as_str).collect();

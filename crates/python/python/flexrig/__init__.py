@@ -68,7 +68,15 @@ from ._commands import (
 )
 from ._commands import impact_report as _impact_report
 from ._safety import safety, safety_map
-from ._flexrig import SUMMARY_COLUMNS, InputError, SimulationError, Sweep, bundled_scenes
+from ._flexrig import (
+    SUMMARY_COLUMNS,
+    InputError,
+    SimulationError,
+    Sweep,
+    bundled_scenes,
+    scene_descriptions,
+    write_scene,
+)
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas
@@ -109,8 +117,10 @@ __all__ = [
     "run",
     "safety",
     "safety_map",
+    "scene_descriptions",
     "scene_text",
     "sweep",
+    "write_scene",
 ]
 
 #: The summary columns of a sweep that count (contacts, steps): pandas' nullable ``Int64``

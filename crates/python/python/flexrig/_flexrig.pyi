@@ -29,6 +29,12 @@ class SimulationError(RuntimeError):
 def bundled_scenes() -> List[str]:
     """The names of the bundled scenes."""
 
+def scene_descriptions() -> List[Tuple[str, str]]:
+    """(name, one-line description) of every bundled scene, as `flexrig scenes` lists them."""
+
+def write_scene(name: str, path: Union[str, "os.PathLike[str]"], force: bool = False) -> None:
+    """Writes bundled scene `name` to `path` to edit it; an existing file is kept unless force."""
+
 def scene_text(scene: Union[str, "os.PathLike[str]", Dict[str, Any]]) -> Tuple[str, Optional[Path]]:
     """(TOML text, directory of the scene file or None) of a path, bundled name, TOML text or dict."""
 
