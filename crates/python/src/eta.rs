@@ -76,7 +76,13 @@ pub fn eta<'py>(
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
     let cancel = CancelToken::new();
     let r = detached(py, &cancel, || {
-        flexrig::eta::run(&settings, &out, &figures, &cancel)
+        flexrig::eta::run(
+            &settings,
+            &flexrig_lumped::fig6::Fig6Grid::paper(),
+            &out,
+            &figures,
+            &cancel,
+        )
     })?
     .map_err(|e| flag_error(fronts::impact_as_flag(e)))?;
     json_to_py(py, &fronts::eta_report(&settings, &r))
@@ -151,20 +157,20 @@ pub fn eta_rotor<'py>(
     dpi: f64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let ratios = fronts::eta_rotor_inputs(ratio, points, &n).map_err(flag_error)?;
-    let settings =
-        fronts::eta_rotor_settings(
-            tol,
-            damping(damping_model, restitution, c_max, depth)?,
-            flexrig_lumped::fig6::Fig6Design::PAPER,
-            1.0,
-        )
-        .map_err(flag_error)?;
+    let settings = fronts::eta_rotor_settings(
+        tol,
+        damping(damping_model, restitution, c_max, depth)?,
+        flexrig_lumped::fig6::Fig6Design::PAPER,
+        1.0,
+    )
+    .map_err(flag_error)?;
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
     let options = flexrig::eta_rotor::EtaRotorOptions {
         out,
         ratios,
         n,
         settings,
+        grid: flexrig_lumped::fig6::Fig6Grid::paper(),
         figures,
     };
     let cancel = CancelToken::new();

@@ -5,7 +5,6 @@ use std::path::PathBuf;
 
 use flexrig::CancelToken;
 use flexrig::run::summary_json;
-use flexrig::scenes::BUNDLED_SCENES;
 use flexrig::traces::run_traced_logged;
 use flexrig_rig::Override;
 use numpy::PyArray1;
