@@ -163,10 +163,18 @@ pub fn impact_report<'py>(
         n,
         v0,
     };
-    let r = py
-        .detach(|| solve(&input, method))
+    let (r, severity) = py
+        .detach(|| {
+            let r = solve(&input, method)?;
+            let severity = flexrig::fronts::impact_severity(&r, method, None)?;
+            Ok::<_, flexrig::Error>((r, severity))
+        })
         .map_err(crate::flag_error)?;
-    crate::convert::json_to_py(py, &flexrig::fronts::impact_report(&r, method))
+    let mut report = flexrig::fronts::impact_report(&r, method);
+    if let Some(s) = &severity {
+        report["severity"] = serde_json::json!(s);
+    }
+    crate::convert::json_to_py(py, &report)
 }
 
 /// The paper's Fig. 6 (§V, Eq. 15): η(γ) = f_max(γ)/f_max(1) for the eight design cases and

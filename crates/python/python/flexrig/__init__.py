@@ -237,6 +237,9 @@ class RunResult:
     duration_s: float
     samples: int
     warnings: List[Dict[str, str]]
+    #: Severity of the first contact (peak force, pressure under both dome models, energy
+    #: transferred, peak acceleration, HIC15/HIC36; docs/safety.md), ``None`` for a driven run.
+    severity: Optional[Dict[str, Any]]
     summary: Dict[str, Any]
     traces: Dict[str, np.ndarray]
     step_traces: Dict[str, np.ndarray]
@@ -269,6 +272,7 @@ class RunResult:
             duration_s=summary["duration_s"],
             samples=summary["samples"],
             warnings=summary["warnings"],
+            severity=summary.get("severity"),
             summary=summary,
             traces=traces,
             step_traces=step_traces,

@@ -496,6 +496,8 @@ class ImpactReport:
     rhs_evals: Any = None
     steps: Any = None
     rejected_steps: Any = None
+    #: ode only: the severity of the impact (dict, or an object array of dicts per set).
+    severity: Any = None
 
     def __repr__(self) -> str:
         return f"ImpactReport(method={self.method!r}, f_max_n={self.f_max_n!r})"
@@ -570,4 +572,12 @@ def impact_report(
             values[key] = int(column[0]) if dtype is np.int64 else float(column[0])
         else:
             values[key] = np.asarray(column, dtype=dtype).reshape(shape)
+    if "severity" in first:
+        severities = [r["severity"] for r in reports]
+        if shape == ():
+            values["severity"] = severities[0]
+        else:
+            column = np.empty(size, dtype=object)
+            column[:] = severities
+            values["severity"] = column.reshape(shape)
     return ImpactReport(**values)
