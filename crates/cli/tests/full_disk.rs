@@ -92,6 +92,19 @@ fn a_full_disk_is_named_and_leaves_no_unfinished_file() {
     // what the experiment finished before the disk filled may stay, whole: a log of a run that
     // completed (MCAP magic at both ends); nothing unfinished, no temporary file
     for name in files_in(&dir) {
+        if let Some(stem) = name.strip_suffix(".layout.json") {
+            // a finished log's layout, whole (written atomically after the log)
+            let text = std::fs::read_to_string(dir.join(&name)).unwrap();
+            assert!(
+                serde_json::from_str::<serde_json::Value>(&text).is_ok(),
+                "{name} is not a whole layout"
+            );
+            assert!(
+                dir.join(format!("{stem}.mcap")).exists(),
+                "{name} without its log"
+            );
+            continue;
+        }
         assert!(name.ends_with(".mcap"), "{name} left behind");
         let bytes = std::fs::read(dir.join(&name)).unwrap();
         let magic = b"\x89MCAP0\r\n";
