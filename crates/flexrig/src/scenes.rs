@@ -9,7 +9,7 @@ use flexrig_rig::Scene;
 use crate::Error;
 
 /// The bundled scene files, compiled in (the binary needs no assets directory).
-pub const BUNDLED_SCENES: [(&str, &str); 6] = [
+pub const BUNDLED_SCENES: [(&str, &str); 10] = [
     (
         "cj_aluminium",
         include_str!("../../../assets/scenes/cj_aluminium.toml"),
@@ -33,6 +33,22 @@ pub const BUNDLED_SCENES: [(&str, &str); 6] = [
     (
         "cl_light_load",
         include_str!("../../../assets/scenes/cl_light_load.toml"),
+    ),
+    (
+        "driven_cj_free_head",
+        include_str!("../../../assets/scenes/driven_cj_free_head.toml"),
+    ),
+    (
+        "driven_cl_free_head",
+        include_str!("../../../assets/scenes/driven_cl_free_head.toml"),
+    ),
+    (
+        "driven_cj_wall",
+        include_str!("../../../assets/scenes/driven_cj_wall.toml"),
+    ),
+    (
+        "driven_cl_wall",
+        include_str!("../../../assets/scenes/driven_cl_wall.toml"),
     ),
 ];
 

@@ -616,8 +616,8 @@ mod tests {
             assert!(is_driven_text(scene));
             assert_eq!(s.sample_rate_hz, 50_000.0);
         }
-        for (_, text) in crate::scenes::BUNDLED_SCENES {
-            assert!(!is_driven_text(text));
+        for (name, text) in crate::scenes::BUNDLED_SCENES {
+            assert_eq!(is_driven_text(text), name.starts_with("driven_"), "{name}");
         }
     }
 
