@@ -571,7 +571,10 @@ def _run_on_dask(native: Sweep, client: Any, chunk_size: Optional[int]) -> List[
     if size < 1:
         raise _input_error("chunk_size", f"chunk_size = {chunk_size}: must be at least 1")
     chunks = [list(range(i, min(i + size, points))) for i in range(0, points, size)]
-    [remote] = client.scatter([native], broadcast=True)
+    # a key of its own (hash=False): the same sweep scattered again right after an earlier call
+    # released it would otherwise share that call's content-hash key, and the scheduler could be
+    # deleting it while it replicates ("Key lost during replication", the chunks cancelled)
+    [remote] = client.scatter([native], broadcast=True, hash=False)
     futures = client.map(_run_chunk, chunks, sweep=remote, pure=False)
     return client.gather(futures)
 
