@@ -501,7 +501,7 @@ pub fn impact_severity(
         _ => match dome_radius_m {
             Some(radius) => Err(invalid(
                 "--dome-radius",
-                &flexrig_contact::validate::display(radius),
+                flexrig_contact::validate::display(radius),
                 "only with --method ode (the severity needs the time history)",
             )),
             None => Ok(None),

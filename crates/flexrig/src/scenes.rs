@@ -108,7 +108,7 @@ pub fn list_bundled() -> Vec<BundledScene> {
     BUNDLED_SCENES
         .iter()
         .map(|(name, text)| BundledScene {
-            name: *name,
+            name,
             summary: summary(text),
         })
         .collect()
