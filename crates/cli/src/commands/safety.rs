@@ -72,31 +72,9 @@ pub struct SafetyArgs {
     /// Link lateral stiffness k_δ [N/m] (default: a rigid link).
     #[arg(long = "k-delta", value_name = "N_PER_M")]
     pub k_delta: Option<f64>,
-    /// Contact stiffness k_c [N/m^n] (with --n; default: the region's body spring, n = 1).
-    #[arg(
-        long = "k-c",
-        value_name = "K",
-        requires = "n",
-        conflicts_with = "material"
-    )]
-    pub k_c: Option<f64>,
-    /// Hertz exponent n (with --k-c).
-    #[arg(long, value_name = "N", requires = "k_c")]
-    pub n: Option<f64>,
-    /// A bundled material for the Hertz law (abs, skinned_aluminium, skinned_iron); its dome
-    /// gives the default Hertz-sphere area.
-    #[arg(long, value_name = "NAME")]
-    pub material: Option<String>,
-    /// Contact-area model for pressure (default: hertz-sphere on the material's dome with
-    /// --material, else pressure is not assessed).
-    #[arg(long = "area-model", value_enum)]
-    pub area_model: Option<AreaModelArg>,
-    /// Sphere radius R [m] of the hertz-sphere and thin-layer area models.
-    #[arg(long, value_name = "M")]
-    pub radius: Option<f64>,
-    /// Contact area [m²] of the fixed area model.
-    #[arg(long = "contact-area", value_name = "M2")]
-    pub contact_area: Option<f64>,
+    /// The contact law and the contact-area model.
+    #[command(flatten)]
+    pub law: ContactLawArgs,
     /// The robot's total moving mass M [kg] for the standard's m_R = M/2 + m_L (default: m_R = m_eff).
     #[arg(long = "moving-mass", value_name = "KG")]
     pub moving_mass: Option<f64>,
@@ -127,7 +105,71 @@ pub struct SafetyArgs {
     pub report: Option<PathBuf>,
 }
 
-fn missing(flag: &str, needed: &str) -> Error {
+/// The contact flags of `flexrig safety` and `flexrig safety-map`: the Hertz law (or a bundled
+/// material, or the body region's spring) and the contact-area model for pressure.
+#[derive(Debug, Args)]
+pub struct ContactLawArgs {
+    /// Contact stiffness k_c [N/m^n] (with --n; default: the region's body spring, n = 1).
+    #[arg(
+        long = "k-c",
+        value_name = "K",
+        requires = "n",
+        conflicts_with = "material"
+    )]
+    pub k_c: Option<f64>,
+    /// Hertz exponent n (with --k-c).
+    #[arg(long, value_name = "N", requires = "k_c")]
+    pub n: Option<f64>,
+    /// A bundled material for the Hertz law (abs, skinned_aluminium, skinned_iron); its dome
+    /// gives the default Hertz-sphere area.
+    #[arg(long, value_name = "NAME")]
+    pub material: Option<String>,
+    /// Contact-area model for pressure (default: hertz-sphere on the material's dome with
+    /// --material, else pressure is not assessed).
+    #[arg(long = "area-model", value_enum)]
+    pub area_model: Option<AreaModelArg>,
+    /// Sphere radius R [m] of the hertz-sphere and thin-layer area models.
+    #[arg(long, value_name = "M")]
+    pub radius: Option<f64>,
+    /// Contact area [m²] of the fixed area model.
+    #[arg(long = "contact-area", value_name = "M2")]
+    pub contact_area: Option<f64>,
+}
+
+impl ContactLawArgs {
+    /// The contact law: `--k-c` with `--n`, else `--material`, else the region's body spring.
+    pub fn law(&self) -> ContactLaw {
+        match (self.k_c, self.n, &self.material) {
+            (Some(k_c), Some(n), _) => ContactLaw::Hertz { k_c, n },
+            (_, _, Some(m)) => ContactLaw::Material(m.clone()),
+            _ => ContactLaw::BodySpring,
+        }
+    }
+
+    /// The contact-area model of `--area-model` with the dimension it needs.
+    pub fn area_model(&self) -> Result<Option<ContactAreaModel>, Error> {
+        Ok(match self.area_model {
+            None => None,
+            Some(AreaModelArg::HertzSphere) => Some(ContactAreaModel::HertzSphere {
+                radius_m: self.radius.ok_or_else(|| {
+                    missing("--radius", "--area-model hertz-sphere needs --radius")
+                })?,
+            }),
+            Some(AreaModelArg::ThinLayer) => Some(ContactAreaModel::ThinLayer {
+                radius_m: self
+                    .radius
+                    .ok_or_else(|| missing("--radius", "--area-model thin-layer needs --radius"))?,
+            }),
+            Some(AreaModelArg::Fixed) => Some(ContactAreaModel::Fixed {
+                area_m2: self.contact_area.ok_or_else(|| {
+                    missing("--contact-area", "--area-model fixed needs --contact-area")
+                })?,
+            }),
+        })
+    }
+}
+
+pub(crate) fn missing(flag: &str, needed: &str) -> Error {
     Error::InvalidArgument {
         arg: flag.into(),
         value: "(missing)".into(),
@@ -145,29 +187,7 @@ impl SafetyArgs {
             }
             _ => None,
         };
-        let law = match (self.k_c, self.n, &self.material) {
-            (Some(k_c), Some(n), _) => ContactLaw::Hertz { k_c, n },
-            (_, _, Some(m)) => ContactLaw::Material(m.clone()),
-            _ => ContactLaw::BodySpring,
-        };
-        let area_model = match self.area_model {
-            None => None,
-            Some(AreaModelArg::HertzSphere) => Some(ContactAreaModel::HertzSphere {
-                radius_m: self.radius.ok_or_else(|| {
-                    missing("--radius", "--area-model hertz-sphere needs --radius")
-                })?,
-            }),
-            Some(AreaModelArg::ThinLayer) => Some(ContactAreaModel::ThinLayer {
-                radius_m: self
-                    .radius
-                    .ok_or_else(|| missing("--radius", "--area-model thin-layer needs --radius"))?,
-            }),
-            Some(AreaModelArg::Fixed) => Some(ContactAreaModel::Fixed {
-                area_m2: self.contact_area.ok_or_else(|| {
-                    missing("--contact-area", "--area-model fixed needs --contact-area")
-                })?,
-            }),
-        };
+        let (law, area_model) = (self.law.law(), self.law.area_model()?);
         Ok(SafetyInput {
             region: self.region.clone(),
             area: self.area.clone(),

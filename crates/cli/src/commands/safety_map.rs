@@ -6,7 +6,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use flexrig::safety::{ContactAreaModel, ContactKind, ContactLaw};
+use flexrig::safety::ContactKind;
 use flexrig::safety_map::{
     MapJoint, MapMethod, SafetyMapFiles, SafetyMapInput, SimulationSettings, parse_axis,
 };
@@ -14,7 +14,7 @@ use flexrig::{CancelToken, Error};
 use serde_json::json;
 
 use super::impact_args::JointArg;
-use super::safety::{AreaModelArg, ContactArg, load_body_model};
+use super::safety::{ContactArg, load_body_model, missing};
 use crate::print::{line, print_json};
 
 /// The map's method.
@@ -66,31 +66,9 @@ pub struct SafetyMapArgs {
     /// Link length L (m): converts an EI axis to k_δ = 3EI/L³ and sets the simulated beam.
     #[arg(long, value_name = "M", default_value_t = 1.0)]
     pub length: f64,
-    /// Contact stiffness k_c [N/m^n] (with --n; default: the region's body spring, n = 1).
-    #[arg(
-        long = "k-c",
-        value_name = "K",
-        requires = "n",
-        conflicts_with = "material"
-    )]
-    pub k_c: Option<f64>,
-    /// Hertz exponent n (with --k-c).
-    #[arg(long, value_name = "N", requires = "k_c")]
-    pub n: Option<f64>,
-    /// A bundled material for the Hertz law (abs, skinned_aluminium, skinned_iron); its dome
-    /// gives the default Hertz-sphere area.
-    #[arg(long, value_name = "NAME")]
-    pub material: Option<String>,
-    /// Contact-area model for pressure (default: hertz-sphere on the material's dome with
-    /// --material, else pressure is not assessed).
-    #[arg(long = "area-model", value_enum)]
-    pub area_model: Option<AreaModelArg>,
-    /// Sphere radius R (m) of the hertz-sphere and thin-layer area models.
-    #[arg(long, value_name = "M")]
-    pub radius: Option<f64>,
-    /// Contact area (m²) of the fixed area model.
-    #[arg(long = "contact-area", value_name = "M2")]
-    pub contact_area: Option<f64>,
+    /// The contact law and the contact-area model.
+    #[command(flatten)]
+    pub law: super::safety::ContactLawArgs,
     /// The method.
     #[arg(long, value_enum, default_value = "energy")]
     pub method: MapMethodArg,
@@ -124,40 +102,10 @@ pub struct SafetyMapArgs {
     pub figure: super::figure_args::FigureArgs,
 }
 
-fn missing(flag: &str, needed: &str) -> Error {
-    Error::InvalidArgument {
-        arg: flag.into(),
-        value: "(missing)".into(),
-        allowed: needed.into(),
-    }
-}
-
 impl SafetyMapArgs {
     /// The library's input.
     pub fn input(&self) -> Result<SafetyMapInput, Error> {
-        let law = match (self.k_c, self.n, &self.material) {
-            (Some(k_c), Some(n), _) => ContactLaw::Hertz { k_c, n },
-            (_, _, Some(m)) => ContactLaw::Material(m.clone()),
-            _ => ContactLaw::BodySpring,
-        };
-        let area_model = match self.area_model {
-            None => None,
-            Some(AreaModelArg::HertzSphere) => Some(ContactAreaModel::HertzSphere {
-                radius_m: self.radius.ok_or_else(|| {
-                    missing("--radius", "--area-model hertz-sphere needs --radius")
-                })?,
-            }),
-            Some(AreaModelArg::ThinLayer) => Some(ContactAreaModel::ThinLayer {
-                radius_m: self
-                    .radius
-                    .ok_or_else(|| missing("--radius", "--area-model thin-layer needs --radius"))?,
-            }),
-            Some(AreaModelArg::Fixed) => Some(ContactAreaModel::Fixed {
-                area_m2: self.contact_area.ok_or_else(|| {
-                    missing("--contact-area", "--area-model fixed needs --contact-area")
-                })?,
-            }),
-        };
+        let (law, area_model) = (self.law.law(), self.law.area_model()?);
         let joint = match (self.joint, self.rotor_inertia) {
             (JointArg::Held, None) => MapJoint::Held,
             (JointArg::Held, Some(j)) => {
