@@ -4,9 +4,11 @@
 //! (SIGINT) during the long commands; overwrites and symlinks; torn resume journals.
 //!
 //! Every process runs under a 2 GiB address-space cap (`ulimit -v`, so an allocation that cannot
-//! be served fails instead of swapping) and a generous kill-on-hang [`TIMEOUT`]: a process that
-//! is still running then is killed and the case fails, so only a hang fails; no test asserts a
-//! duration (speed lives in the benchmarks).
+//! be served fails instead of swapping) and a generous kill-on-hang: a process that has used
+//! [`CPU_LIMIT_S`] of CPU time, or is still running after [`WALL_BACKSTOP`] (a hang that sleeps),
+//! is killed and the case fails, so only a hang fails. The guard counts CPU time, not the wall
+//! clock, so a loaded machine (where a process gets a fraction of a core) does not trip it; no
+//! test asserts a duration (speed lives in the benchmarks).
 //!
 //! The floors, for every case (see [`verdict`]):
 //! - the process never dies by a signal (abort, segfault, out of memory);
@@ -30,9 +32,19 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-/// Longest a single process may run before it is killed and counted as hung. Generous: a loaded
-/// 2-core CI machine must never reach it for the cheap cases drawn here.
-const TIMEOUT: Duration = Duration::from_secs(60);
+/// CPU time (user + system, all threads) a single process may use before it is killed and
+/// counted as hung, s. Generous: the costliest case drawn here uses a few seconds of CPU.
+const CPU_LIMIT_S: u64 = 60;
+
+/// Clock ticks per second of `/proc/PID/stat` (`USER_HZ`, 100 on Linux).
+const TICKS_PER_S: u64 = 100;
+
+/// Wall-clock backstop for a hang that uses no CPU (a process blocked forever): long enough that
+/// a process making progress on a heavily loaded machine never meets it first.
+const WALL_BACKSTOP: Duration = Duration::from_secs(1200);
+
+/// What the kill-on-hang guard says when it fired.
+const HANG: &str = "still running after 60 s of CPU time (or 20 min without finishing)";
 
 /// The address-space cap, KiB (2 GiB).
 const AS_CAP_KIB: u64 = 2 * 1024 * 1024;
@@ -97,8 +109,9 @@ fn drain<R: Read + Send + 'static>(mut r: R) -> std::thread::JoinHandle<String> 
     })
 }
 
-/// Waits for `child` up to [`TIMEOUT`] (killing it then), calling `poke` once per poll with the
-/// process id and the time since the start (used to interrupt it).
+/// Waits for `child` until it has used [`CPU_LIMIT_S`] of CPU time or [`WALL_BACKSTOP`] has
+/// passed (killing it then), calling `poke` once per poll with the process id (used to
+/// interrupt it).
 fn finish(mut child: Child, line: String, mut poke: impl FnMut(u32) -> bool) -> Outcome {
     let out = drain(child.stdout.take().unwrap());
     let err = drain(child.stderr.take().unwrap());
@@ -112,7 +125,8 @@ fn finish(mut child: Child, line: String, mut poke: impl FnMut(u32) -> bool) -> 
         if !poked {
             poked = poke(child.id());
         }
-        if start.elapsed() > TIMEOUT {
+        let cpu_spent = cpu_ticks(child.id()).is_some_and(|t| t > CPU_LIMIT_S * TICKS_PER_S);
+        if cpu_spent || start.elapsed() > WALL_BACKSTOP {
             timed_out = true;
             let _ = child.kill();
             break child.wait().expect("wait");
@@ -214,9 +228,7 @@ fn longest_digit_run(s: &str) -> String {
 fn verdict(o: &Outcome, args: &[String], expect: &Expect) -> Result<(), String> {
     let err = shorten(&o.stderr, 400);
     if o.timed_out {
-        return Err(format!(
-            "still running after {TIMEOUT:?} (killed: a hang)\n  stderr: {err}"
-        ));
+        return Err(format!("{HANG} (killed: a hang)\n  stderr: {err}"));
     }
     if let Some(sig) = o.signal {
         return Err(format!("killed by signal {sig}\n  stderr: {err}"));
@@ -1892,9 +1904,7 @@ fn interrupt(args: &[&str], cwd: &Path, out: &Path, ticks: u64, failures: &mut V
             o.code
         ))
     } else if o.timed_out {
-        Some(format!(
-            "still running {TIMEOUT:?} after the start: Ctrl-C ignored"
-        ))
+        Some(format!("{HANG}: Ctrl-C ignored"))
     } else if o.signal.is_some() || o.code != Some(130) {
         Some(format!(
             "expected exit 130 after Ctrl-C; got exit {:?} signal {:?}",
