@@ -599,7 +599,10 @@ fn documented_run_keys() -> (Vec<String>, Vec<String>) {
         text.split('`')
             .skip(1)
             .step_by(2)
-            .filter(|k| k.chars().all(|c| c.is_ascii_lowercase() || c == '_'))
+            .filter(|k| {
+                k.chars()
+                    .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+            })
             .map(str::to_string)
             .collect()
     };

@@ -107,21 +107,28 @@ pub struct Fig6Result {
 /// Most γ samples of a curve (16 curves of them are kept in memory and written).
 pub const MAX_POINTS: usize = 1_000_000;
 
-/// Computes the curves and writes fig6.csv (`points` samples) and fig6.svg (drawn from at
-/// least [`PLOT_POINTS`] samples, so that its curves are smooth).
-pub fn run(options: &Fig6Options) -> Result<Fig6Result, Error> {
-    if !(2..=MAX_POINTS).contains(&options.points) {
+/// The curves of the cases of `grid` (n = 1, then n = 2, per case) in `design`, with `points`
+/// samples of γ over [0.5, 1]: the inputs checked first (errors name the flag: `--points`,
+/// `--m-r`, `--k-c`, `--v0`, `--m-h`, `--k-delta`, `--m-e`).
+pub fn curves(points: usize, design: &Fig6Design, grid: &Fig6Grid) -> Result<Vec<EtaCurve>, Error> {
+    if !(2..=MAX_POINTS).contains(&points) {
         return Err(Error::InvalidArgument {
             arg: "--points".into(),
-            value: options.points.to_string(),
+            value: points.to_string(),
             allowed: format!("must be from 2 to {MAX_POINTS}"),
         });
     }
+    check_design(design)?;
+    check_grid(grid)?;
+    Ok(fig6::fig6_in(design, &grid.cases(), points)?)
+}
+
+/// Computes the curves ([`curves`]) and writes fig6.csv (`points` samples) and fig6.svg (drawn
+/// from at least [`PLOT_POINTS`] samples, so that its curves are smooth).
+pub fn run(options: &Fig6Options) -> Result<Fig6Result, Error> {
     options.figures.validate()?;
-    check_design(&options.design)?;
-    check_grid(&options.grid)?;
+    let curves = curves(options.points, &options.design, &options.grid)?;
     let cases = options.grid.cases();
-    let curves = fig6::fig6_in(&options.design, &cases, options.points)?;
     ensure_dir(&options.out)?;
     let csv_path = options.out.join("fig6.csv");
     write_atomic(&csv_path, csv(&curves).as_bytes())?;

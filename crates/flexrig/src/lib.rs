@@ -36,6 +36,7 @@ pub mod fit;
 pub mod foxglove_layout;
 pub mod fronts;
 pub mod impact;
+pub mod link;
 pub mod mcap_log;
 pub mod output;
 pub mod payload;

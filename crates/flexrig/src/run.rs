@@ -15,6 +15,7 @@ use serde_json::json;
 use crate::Error;
 use crate::cancel::CancelToken;
 use crate::driven::scene::{DrivenRun, DrivenScene, is_driven_text};
+use crate::link::LinkQuantities;
 use crate::mcap_log::{LogRates, LogTarget, run_logged};
 
 /// The scene-edit and summary types of a run (flexrig-rig's), for callers of this module.
@@ -33,23 +34,31 @@ pub struct LogRequest<'a> {
     pub deformation_scale: f64,
 }
 
-/// What a scene file's run returns: the test bed's summary, or a driven strike's run.
+/// What a scene file's run returns: the test bed's summary, or a driven strike's run; each with
+/// the scene's link quantities ([`crate::link`]).
 #[derive(Debug, Clone)]
 // one value per run, returned once: the test bed's summary is kept inline as before
 #[allow(clippy::large_enum_variant)]
 pub enum SceneRun {
     /// The drop-pendulum test bed (a scene without `[drive]`).
-    Rig(RunSummary),
+    Rig(RunSummary, LinkQuantities),
     /// A driven scene (with `[drive]`): summary, outcome and traces.
-    Driven(Box<DrivenRun>),
+    Driven(Box<DrivenRun>, LinkQuantities),
 }
 
 impl SceneRun {
-    /// The summary as `flexrig run --json` prints it.
+    /// The summary as `flexrig run --json` prints it, the link quantities included.
     pub fn summary_json(&self) -> serde_json::Value {
         match self {
-            SceneRun::Rig(s) => summary_json(s),
-            SceneRun::Driven(d) => crate::driven::scene::summary_json(&d.summary),
+            SceneRun::Rig(s, link) => summary_json(s, link),
+            SceneRun::Driven(d, link) => driven_summary_json(&d.summary, link),
+        }
+    }
+
+    /// The scene's link quantities.
+    pub fn link(&self) -> &LinkQuantities {
+        match self {
+            SceneRun::Rig(_, link) | SceneRun::Driven(_, link) => link,
         }
     }
 }
@@ -65,10 +74,15 @@ pub fn run_scene_file(
 ) -> Result<SceneRun, Error> {
     let text = crate::scenes::resolve("SCENE", path)?.text;
     if is_driven_text(&text) {
-        return run_driven_text(&text, overrides, log, cancel)
-            .map(|r| SceneRun::Driven(Box::new(r)));
+        let run = run_driven_text(&text, overrides, log, cancel)?;
+        let link = crate::link::of_text(&text, overrides)?;
+        return Ok(SceneRun::Driven(Box::new(run), link));
     }
-    run_rig_text(&text, overrides, log, cancel).map(SceneRun::Rig)
+    let summary = run_rig_text(&text, overrides, log, cancel)?;
+    Ok(SceneRun::Rig(
+        summary,
+        crate::link::of_text(&text, overrides)?,
+    ))
 }
 
 /// Runs a driven scene's `text` with `overrides`, logged as `log` asks.
@@ -144,12 +158,25 @@ pub fn scene_warnings(
 
 /// The run summary as `flexrig run --json` prints it: every field of [`RunSummary`] (absent
 /// when it does not apply, e.g. `contact_duration_s` for a run stopped at the peak), the number
-/// of sensor `samples` and the plausibility `warnings` (a list, empty when there are none).
-pub fn summary_json(s: &RunSummary) -> serde_json::Value {
+/// of sensor `samples`, the plausibility `warnings` (a list, empty when there are none) and the
+/// scene's link quantities ([`crate::link::COLUMNS`]).
+pub fn summary_json(s: &RunSummary, link: &LinkQuantities) -> serde_json::Value {
     let mut value = serde_json::to_value(s).expect("a run summary serialises");
     if let Some(map) = value.as_object_mut() {
         map.retain(|_, v| !v.is_null());
         map.insert("samples".into(), json!(s.samples.len()));
     }
+    link.insert_into(&mut value);
+    value
+}
+
+/// A driven run's summary as `flexrig run --json` prints it: the strike's summary
+/// ([`crate::driven::scene::summary_json`]) and the link quantities ([`crate::link::COLUMNS`]).
+pub fn driven_summary_json(
+    s: &crate::driven::scene::DrivenSummary,
+    link: &LinkQuantities,
+) -> serde_json::Value {
+    let mut value = crate::driven::scene::summary_json(s);
+    link.insert_into(&mut value);
     value
 }

@@ -22,10 +22,20 @@ fn damping(
     fronts::damping_spec(model, restitution, c_max, depth).map_err(flag_error)
 }
 
+/// The design held fixed (`m_r` [kg], `k_c` [N/mⁿ], `v0` [m/s]), checked by the library.
+fn design_of((m_r, k_c, v0): (f64, f64, f64)) -> flexrig::fig6::Fig6Design {
+    flexrig::fig6::Fig6Design { m_r, k_c, v0 }
+}
+
+/// The cases (`m_h`, `k_delta`, `m_e`: every combination), checked by the library.
+fn grid_of((m_h, k_delta, m_e): (Vec<f64>, Vec<f64>, Vec<f64>)) -> flexrig::fig6::Fig6Grid {
+    flexrig::fig6::Fig6Grid { m_h, k_delta, m_e }
+}
+
 /// `flexrig eta --json` for the same inputs; writes eta.csv and the figures into `out`.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (out, joint, rotor_inertia, method, tol, zone_elements, window_periods, elements, steps_per_contact, modes, length, damping_model, restitution, c_max, depth, size, format, dpi))]
+#[pyo3(signature = (out, joint, rotor_inertia, method, tol, zone_elements, window_periods, elements, steps_per_contact, modes, length, damping_model, restitution, c_max, depth, size, format, dpi, design, grid))]
 pub fn eta<'py>(
     py: Python<'py>,
     out: PathBuf,
@@ -46,6 +56,8 @@ pub fn eta<'py>(
     size: &str,
     format: Vec<String>,
     dpi: f64,
+    design: (f64, f64, f64),
+    grid: (Vec<f64>, Vec<f64>, Vec<f64>),
 ) -> PyResult<Bound<'py, PyAny>> {
     let alpha = match method {
         "modal" => false,
@@ -70,19 +82,13 @@ pub fn eta<'py>(
         modes,
         length,
         damping: damping(damping_model, restitution, c_max, depth)?,
-        design: flexrig_lumped::fig6::Fig6Design::PAPER,
+        design: design_of(design),
     })
     .map_err(flag_error)?;
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
     let cancel = CancelToken::new();
     let r = detached(py, &cancel, || {
-        flexrig::eta::run(
-            &settings,
-            &flexrig_lumped::fig6::Fig6Grid::paper(),
-            &out,
-            &figures,
-            &cancel,
-        )
+        flexrig::eta::run(&settings, &grid_of(grid), &out, &figures, &cancel)
     })?
     .map_err(|e| flag_error(fronts::impact_as_flag(e)))?;
     json_to_py(py, &fronts::eta_report(&settings, &r))
@@ -91,7 +97,7 @@ pub fn eta<'py>(
 /// `flexrig eta-map --json` for the same inputs; writes eta_map.csv and the figures into `out`.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (out, m_h, n, mass_ratio, stiffness_ratio, points, joint, rotor_inertia, tol, damping_model, restitution, c_max, depth, size, format, dpi))]
+#[pyo3(signature = (out, m_h, n, mass_ratio, stiffness_ratio, points, joint, rotor_inertia, tol, damping_model, restitution, c_max, depth, size, format, dpi, design, length))]
 pub fn eta_map<'py>(
     py: Python<'py>,
     out: PathBuf,
@@ -110,6 +116,8 @@ pub fn eta_map<'py>(
     size: &str,
     format: Vec<String>,
     dpi: f64,
+    design: (f64, f64, f64),
+    length: f64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let joint = fronts::joint(JointKind::parse(joint).map_err(flag_error)?, rotor_inertia)
         .map_err(flag_error)?;
@@ -119,8 +127,8 @@ pub fn eta_map<'py>(
         joint,
         tol,
         damping(damping_model, restitution, c_max, depth)?,
-        flexrig_lumped::fig6::Fig6Design::PAPER,
-        1.0,
+        design_of(design),
+        length,
     )
     .map_err(flag_error)?;
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
@@ -140,7 +148,7 @@ pub fn eta_map<'py>(
 /// `out`.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (out, ratio, points, n, tol, damping_model, restitution, c_max, depth, size, format, dpi))]
+#[pyo3(signature = (out, ratio, points, n, tol, damping_model, restitution, c_max, depth, size, format, dpi, design, length, grid))]
 pub fn eta_rotor<'py>(
     py: Python<'py>,
     out: PathBuf,
@@ -155,13 +163,16 @@ pub fn eta_rotor<'py>(
     size: &str,
     format: Vec<String>,
     dpi: f64,
+    design: (f64, f64, f64),
+    length: f64,
+    grid: (Vec<f64>, Vec<f64>, Vec<f64>),
 ) -> PyResult<Bound<'py, PyAny>> {
     let ratios = fronts::eta_rotor_inputs(ratio, points, &n).map_err(flag_error)?;
     let settings = fronts::eta_rotor_settings(
         tol,
         damping(damping_model, restitution, c_max, depth)?,
-        flexrig_lumped::fig6::Fig6Design::PAPER,
-        1.0,
+        design_of(design),
+        length,
     )
     .map_err(flag_error)?;
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
@@ -170,7 +181,7 @@ pub fn eta_rotor<'py>(
         ratios,
         n,
         settings,
-        grid: flexrig_lumped::fig6::Fig6Grid::paper(),
+        grid: grid_of(grid),
         figures,
     };
     let cancel = CancelToken::new();

@@ -218,5 +218,10 @@ fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "SUMMARY_COLUMNS",
         flexrig::study::sweep::SUMMARY_COLUMNS.to_vec(),
     )?;
+    m.add(
+        "INTEGER_SUMMARY_COLUMNS",
+        flexrig::study::sweep::INTEGER_COLUMNS.to_vec(),
+    )?;
+    m.add("LINK_COLUMNS", flexrig::link::COLUMNS.to_vec())?;
     Ok(())
 }

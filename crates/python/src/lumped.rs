@@ -177,24 +177,46 @@ pub fn impact_report<'py>(
     crate::convert::json_to_py(py, &report)
 }
 
-/// The paper's Fig. 6 (§V, Eq. 15): η(γ) = f_max(γ)/f_max(1) for the eight design cases and
-/// n = 1, 2, with `points` samples of γ over [0.5, 1]. A list of dicts: m_h, k_delta, m_e, n,
-/// eta_at_2_3 and the arrays gamma and eta.
+/// The paper's Fig. 6 (§V, Eq. 15) for any design: η(γ) = f_max(γ)/f_max(1) for every case of
+/// the grid (`m_h`, `k_delta`, `m_e` [kg, N/m, kg]: every combination) and n = 1, 2, with
+/// `points` samples of γ over [0.5, 1], the design held fixed `m_r` [kg], `k_c` [N/mⁿ], `v0`
+/// [m/s]; checked by the library as `flexrig fig6` checks its flags (errors name the keyword).
+/// With `out`, fig6.csv and the figure are written there as `flexrig fig6 --out` writes them. A
+/// list of dicts: m_h, k_delta, m_e, n, eta_at_2_3 and the arrays gamma and eta.
 #[pyfunction]
-#[pyo3(signature = (points=flexrig::fig6::DEFAULT_POINTS))]
-pub fn fig6(py: Python<'_>, points: usize) -> PyResult<Vec<Bound<'_, PyDict>>> {
-    if !(2..=flexrig::fig6::MAX_POINTS).contains(&points) {
-        return Err(input_error(
-            "points",
-            format!(
-                "points = {points}: must be from 2 to {}",
-                flexrig::fig6::MAX_POINTS
-            ),
-        ));
-    }
+#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (points, m_r, k_c, v0, m_h, k_delta, m_e, out, size, format, dpi))]
+pub fn fig6<'py>(
+    py: Python<'py>,
+    points: usize,
+    m_r: f64,
+    k_c: f64,
+    v0: f64,
+    m_h: Vec<f64>,
+    k_delta: Vec<f64>,
+    m_e: Vec<f64>,
+    out: Option<std::path::PathBuf>,
+    size: &str,
+    format: Vec<String>,
+    dpi: f64,
+) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    use flexrig::fig6::{Fig6Design, Fig6Grid, Fig6Options};
+    let design = Fig6Design { m_r, k_c, v0 };
+    let grid = Fig6Grid { m_h, k_delta, m_e };
+    let figures = flexrig::fronts::figure_options(size, &format, dpi).map_err(crate::flag_error)?;
     let curves = py
-        .detach(|| flexrig_lumped::fig6::fig6(points))
-        .map_err(|e| to_py(e.into()))?;
+        .detach(|| match out {
+            Some(out) => flexrig::fig6::run(&Fig6Options {
+                out,
+                points,
+                figures,
+                design,
+                grid,
+            })
+            .map(|r| r.curves),
+            None => flexrig::fig6::curves(points, &design, &grid),
+        })
+        .map_err(crate::flag_error)?;
     curves
         .into_iter()
         .map(|c| {

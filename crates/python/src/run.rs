@@ -149,8 +149,8 @@ fn array<'py>(py: Python<'py>, v: Vec<f64>) -> Bound<'py, PyAny> {
 /// Runs the scene `text` with `overrides` (GIL released; Ctrl-C stops it), logging it to the
 /// MCAP file `out` with its Foxglove layout beside it if given (as `flexrig run --out`, with
 /// `force`, `log_every_step` and `deformation_scale` as the flags). Returns (summary, sample
-/// traces, step traces): the summary as `flexrig run --json` prints it, the traces as dicts of
-/// NumPy arrays.
+/// traces, step traces): the summary as `flexrig run --json` prints it (the link quantities
+/// included), the traces as dicts of NumPy arrays.
 #[pyfunction]
 #[pyo3(signature = (text, overrides, out=None, force=false, log_every_step=false, deformation_scale=flexrig::mcap_log::DEFAULT_DEFORMATION_SCALE))]
 pub fn run<'py>(
@@ -179,19 +179,21 @@ pub fn run<'py>(
     if flexrig::driven::scene::is_driven_text(text) {
         // a driven scene: the strike's summary and its traces (no steps of a rig), its log
         // written as `flexrig run --out` writes it
-        let run = detached(py, &cancel, || {
-            flexrig::run::run_driven_text(text, &overrides, log, &cancel)
+        let (run, link) = detached(py, &cancel, || {
+            let run = flexrig::run::run_driven_text(text, &overrides, log, &cancel)?;
+            Ok::<_, flexrig::Error>((run, flexrig::link::of_text(text, &overrides)?))
         })?
         .map_err(crate::flag_error)?;
         let samples = PyDict::new(py);
         for (name, column) in run.traces.columns() {
             samples.set_item(name, array(py, column.clone()))?;
         }
-        let summary = flexrig::driven::scene::summary_json(&run.summary);
+        let summary = flexrig::run::driven_summary_json(&run.summary, &link);
         return Ok((json_to_py(py, &summary)?, samples, PyDict::new(py)));
     }
-    let (summary, traces) = detached(py, &cancel, || {
-        run_traced_logged(text, &overrides, log, &cancel)
+    let (summary, traces, link) = detached(py, &cancel, || {
+        let (summary, traces) = run_traced_logged(text, &overrides, log, &cancel)?;
+        Ok::<_, flexrig::Error>((summary, traces, flexrig::link::of_text(text, &overrides)?))
     })?
     .map_err(crate::flag_error)?;
     let s = traces.samples;
@@ -219,5 +221,9 @@ pub fn run<'py>(
     ] {
         steps.set_item(name, array(py, column))?;
     }
-    Ok((json_to_py(py, &summary_json(&summary))?, samples, steps))
+    Ok((
+        json_to_py(py, &summary_json(&summary, &link))?,
+        samples,
+        steps,
+    ))
 }

@@ -296,6 +296,91 @@ def test_eta_map_and_eta_rotor_equal_the_cli(cli, tmp_path):
     assert info.value.field == "points"
 
 
+# ---- your own robot: the design and the cases of the Fig. 6 studies -------------------------
+
+#: A design and cases other than the paper's, as keyword arguments and as flags.
+DESIGN = dict(m_r=3.0, k_c=5e7, v0=1.5)
+DESIGN_FLAGS = ["--m-r", "3", "--k-c", "5e7", "--v0", "1.5"]
+CASES = dict(m_h=[4.0, 70.0], k_delta=1e5, m_e=[0.5])
+CASES_FLAGS = ["--m-h", "4,70", "--k-delta", "1e5", "--m-e", "0.5"]
+
+
+def test_fig6_for_another_design_equals_the_cli(cli, tmp_path):
+    df = flexrig.fig6(points=11, **DESIGN, **CASES, out=tmp_path / "py")
+    expected = cli.json("fig6", "--points", "11", *DESIGN_FLAGS, *CASES_FLAGS, "--out", tmp_path / "cli")
+    assert expected["design"] == {"m_r": 3.0, "k_c": 5e7, "v0": 1.5} == df.attrs["design"]
+    curves = list(df.groupby(["m_h_kg", "k_delta_n_per_m", "m_e_kg", "n"], sort=False))
+    assert len(curves) == len(expected["cases"]) == 2 * 1 * 1 * 2
+    for (key, curve), case in zip(curves, expected["cases"]):
+        assert key == (case["m_h"], case["k_delta"], case["m_e"], case["n"])
+        same(curve["gamma"].tolist(), case["gamma"])
+        same(curve["eta"].tolist(), case["eta"])
+        assert set(curve["eta_at_2_3"]) == {case["eta_at_2_3"]}
+    for name in ("fig6.csv", "fig6.svg"):
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    # not the paper's numbers: the design changed the curves
+    paper = flexrig.fig6(points=11, m_h=[4.0, 70.0], k_delta=1e5, m_e=0.5)
+    assert not np.array_equal(paper["eta"].to_numpy(), df["eta"].to_numpy())
+
+
+@pytest.mark.parametrize(
+    "call, field",
+    [
+        (lambda: flexrig.fig6(m_r=-1.0), "m_r"),
+        (lambda: flexrig.fig6(k_c=0.0), "k_c"),
+        (lambda: flexrig.fig6(v0=float("nan")), "v0"),
+        (lambda: flexrig.fig6(k_delta=[1e8, 1e8]), "k_delta"),
+        (lambda: flexrig.fig6(m_h=[1.0, 2.0, 3.0, 4.0, 5.0]), "m_h"),
+        (lambda: flexrig.fig6(m_e="heavy"), "m_e"),
+        (lambda: flexrig.eta(m_r=1e5), "m_r"),
+        (lambda: flexrig.eta(m_e=[0.0]), "m_e"),
+        (lambda: flexrig.eta_map(v0=1e3, points=2), "v0"),
+        (lambda: flexrig.eta_map(length=1e6, points=2), "length"),
+        (lambda: flexrig.eta_rotor(k_c=1e14, points=2), "k_c"),
+        (lambda: flexrig.eta_rotor(k_delta=[], points=2), "k_delta"),
+    ],
+)
+def test_a_bad_design_or_case_names_the_keyword(call, field):
+    with pytest.raises(flexrig.InputError) as info:
+        call()
+    assert info.value.field == field and field in str(info.value) and "--" not in str(info.value)
+
+
+def test_eta_for_another_design_equals_the_cli(cli, tmp_path):
+    out = tmp_path / "eta"
+    r = flexrig.eta(out=out, zone_elements=0.5, tol=0.1, length=0.8, **DESIGN, **CASES)
+    expected = cli.json("eta", "--zone-elements", "0.5", "--tol", "0.1", "--length", "0.8", *DESIGN_FLAGS,
+                        *CASES_FLAGS, "--out", out)
+    same(r.data, expected)
+    assert r.settings["design"] == {"m_r": 3.0, "k_c": 5e7, "v0": 1.5} and r.settings["length"] == 0.8
+    assert sorted({row["case"]["m_h"] for row in r.rows}) == [4.0, 70.0] and len(r.rows) == 4
+
+
+def test_eta_map_and_eta_rotor_for_another_design_equal_the_cli(cli, tmp_path):
+    out = tmp_path / "map"
+    r = flexrig.eta_map(out=out, m_h=70.0, points=2, length=0.8, **DESIGN)
+    expected = cli.json("eta-map", "--m-h", "70", "--points", "2", "--length", "0.8", *DESIGN_FLAGS, "--out", out)
+    same(without(r.data, "seconds"), without(expected, "seconds"))
+    assert r.settings["design"]["m_r"] == 3.0
+    out = tmp_path / "rotor"
+    r = flexrig.eta_rotor(out=out, points=2, n=2.0, length=0.8, **DESIGN, **CASES)
+    expected = cli.json("eta-rotor", "--points", "2", "--n", "2", "--length", "0.8", *DESIGN_FLAGS, *CASES_FLAGS,
+                        "--out", out)
+    same(r.data, expected)
+    assert {p["case"]["m_h"] for p in r.points} == {4.0, 70.0}
+
+
+def test_payload_takes_a_scene_file_as_the_cli(cli, tmp_path):
+    scene = tmp_path / "my_robot.toml"
+    flexrig.write_scene("cl_light_load", scene)
+    scene.write_text(scene.read_text().replace("arm_length_m = 0.30", "arm_length_m = 0.32"))
+    r = flexrig.payload(out=tmp_path / "py", scene=scene, points=2)
+    expected = cli.json("payload", "--scene", scene, "--points", "2", "--out", tmp_path / "cli")
+    same(without(r.data, "csv", "logs", "figures"), without(expected, "csv", "logs", "figures"))
+    bundled = flexrig.payload(points=2)
+    assert r.rows != bundled.rows  # the file's longer arm ran
+
+
 def test_payload_and_experiment_equal_the_cli(cli, tmp_path):
     out = tmp_path / "payload"
     r = flexrig.payload(out=out, points=2)
@@ -330,3 +415,54 @@ def test_every_public_name_is_documented_in_docs_python_md():
     # and every twin the table names exists
     for name in re.findall(r"`flexrig\.([a-z_]+)\(", text):
         assert name in flexrig.__all__, name
+
+
+def test_the_fig6_walk_through_runs_in_both_fronts(cli, tmp_path, monkeypatch):
+    """docs/cli.md, "Fig. 6 for your robot": each command and its Python twin run as written
+    (each in its own directory) and give the same numbers; the quoted link numbers are the
+    scene's."""
+    import subprocess
+
+    text = (ROOT / "docs" / "cli.md").read_text(encoding="utf-8")
+    section = text[text.index("## Fig. 6 for your robot") :]
+    section = section[: section.index("\n## ", 1)]
+    blocks = re.findall(r"```(sh|python)\n(.*?)```", section, re.S)
+    commands = [b for kind, b in blocks if kind == "sh"]
+    codes = [b for kind, b in blocks if kind == "python"]
+    assert len(commands) == len(codes) == 3, blocks
+    (tmp_path / "cli").mkdir()
+    (tmp_path / "py").mkdir()
+    monkeypatch.chdir(tmp_path / "py")
+    namespace: dict = {}
+    results = []
+    for command, code in zip(commands, codes):
+        words = command.split("#")[0].split()
+        assert words[0] == "flexrig"
+        args = words[1:] + ([] if "--json" in words else ["--json"])
+        done = subprocess.run([str(cli.path), *args], capture_output=True, text=True, cwd=tmp_path / "cli")
+        assert done.returncode == 0, done.stderr
+        exec(code, namespace)
+        results.append((json.loads(done.stdout), dict(namespace)))
+    # 1. the run and its link numbers as the text quotes them
+    expected, ns = results[0]
+    run = ns["r"]
+    same(run.summary, expected)
+    assert f"m_r = {run.m_r_kg:.3f} kg" in section
+    assert f"k_δ = 3EI/L³ = {run.k_delta_n_per_m:.1f} N/m" in section
+    assert f"m_e = {run.m_e_over_m_r * run.m_r_kg:.3f} kg" in section
+    assert f"v0 = {run.impact_velocity_mps:.2f} m/s" in section
+    # 2. Fig. 6: the same curves and files
+    expected, ns = results[1]
+    df = ns["df"]
+    curves = list(df.groupby(["m_h_kg", "k_delta_n_per_m", "m_e_kg", "n"], sort=False))
+    assert len(curves) == len(expected["cases"]) == 16
+    for (key, curve), case in zip(curves, expected["cases"]):
+        assert key == (case["m_h"], case["k_delta"], case["m_e"], case["n"])
+        same(curve["eta"].tolist(), case["eta"])
+    for name in ("fig6.csv", "fig6.svg"):
+        assert (tmp_path / "py" / "my_fig6" / name).read_bytes() == (tmp_path / "cli" / "my_fig6" / name).read_bytes()
+    # 3. η at FE fidelity: the same report (paths aside) and table
+    expected, ns = results[2]
+    report = ns["r"]
+    same(without(report.data, "csv", "svg", "fig6_svg"), without(expected, "csv", "svg", "fig6_svg"))
+    assert (tmp_path / "py" / "my_eta" / "eta.csv").read_bytes() == (tmp_path / "cli" / "my_eta" / "eta.csv").read_bytes()

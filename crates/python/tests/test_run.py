@@ -38,6 +38,23 @@ def test_summary_equals_the_cli_json(cli, cj):
     assert cj.summary == cli.json("run", scene_path("cj_aluminium"))
 
 
+def test_the_link_quantities_are_the_scenes_by_hand(cj):
+    # assets/scenes/cj_aluminium.toml: w = 0.064559 m, t = 0.0025824 m, L = 0.33802 m,
+    # E = 1.5 GPa, ρ = 905 kg/m³, m_e = 0.412 kg, k_θr = 1.2334 N·m/rad
+    w, t, length = 0.064559, 0.0025824, 0.33802
+    m_r = 905.0 * w * t * length
+    assert cj.m_r_kg == pytest.approx(m_r, rel=1e-14)
+    assert cj.ei_n_m2 == pytest.approx(1.5e9 * w * t**3 / 12, rel=1e-14)
+    assert cj.k_theta_r_nm_per_rad == 1.2334
+    assert cj.k_delta_n_per_m == pytest.approx(1.2334 / length**2, rel=1e-14)  # Eq. 1
+    assert cj.m_e_over_m_r == pytest.approx(0.412 / m_r, rel=1e-14)
+    # the CL of the same link: k_δ = 3EI/L³ (Eq. 2), k_θr its equivalent 3EI/L (Eq. 3)
+    cl = flexrig.run("cj_aluminium", robot__design="cl", stop={"at": "peak"})
+    assert cl.k_delta_n_per_m == pytest.approx(3 * cl.ei_n_m2 / length**3, rel=1e-14)
+    assert cl.k_theta_r_nm_per_rad == pytest.approx(3 * cl.ei_n_m2 / length, rel=1e-14)
+    assert cl.k_theta_r_nm_per_rad == pytest.approx(1.2334, rel=1e-4)
+
+
 def test_summary_attributes_are_the_summary(cj):
     for key, value in cj.summary.items():
         attribute = getattr(cj, key)

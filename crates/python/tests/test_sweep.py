@@ -63,6 +63,13 @@ def test_the_dataframe_equals_the_cli_csv(cli, table, tmp_path):
     result = cli(*args, check=False)
     assert result.returncode == 1, result.stderr  # some runs fail: exit 1, the table is written
     expected = read_cli_table(tmp_path / "sweep.csv", table)
+    # the counts are whole numbers in the CSV, not 1e0
+    with open(tmp_path / "sweep.csv", newline="") as f:
+        rows = list(csv.reader(f))
+    for name in flexrig.INTEGER_SUMMARY_COLUMNS:
+        j = rows[0].index(name)
+        cells = [r[j] for r in rows[1:] if r[j]]
+        assert cells and all(c.isdigit() for c in cells), (name, cells)
     assert list(table.columns) == list(expected.columns)
     pd.testing.assert_frame_equal(table, expected, check_dtype=False)
     assert table["index"].dtype == np.int64
@@ -98,6 +105,10 @@ def test_a_row_equals_its_single_run(table):
                                   "robot.payload_kg": 0.412, "operator.start.from": "contact",
                                   "stop": {"at": "peak"}})
     assert row["peak_force_n"] == r.peak_force_n and row["steps"] == r.steps
+    # the link quantities of the row's scene (a CL with the cj_iron link), as the run reports them
+    assert list(flexrig.LINK_COLUMNS) == [c for c in flexrig.SUMMARY_COLUMNS if c in flexrig.LINK_COLUMNS]
+    for name in flexrig.LINK_COLUMNS:
+        assert row[name] == getattr(r, name) == r.summary[name], name
 
 
 def test_value_forms_give_the_same_sweep():

@@ -5,9 +5,10 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexrig::driven::scene::DrivenSummary;
+use flexrig::link::LinkQuantities;
 use flexrig::mcap_log::{DEFAULT_DEFORMATION_SCALE, LogRates};
 use flexrig::output::positive_arg;
-use flexrig::run::{LogRequest, SceneRun, run_scene_file, scene_warnings, summary_json};
+use flexrig::run::{LogRequest, SceneRun, run_scene_file, scene_warnings};
 use flexrig::{CancelToken, Error};
 
 use crate::print::{line, parse_overrides, print_json, print_severity};
@@ -55,7 +56,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
     for w in scene_warnings(&args.scene, &overrides) {
         eprintln!("warning: {w}");
     }
-    let s = run_scene_file(
+    let run = run_scene_file(
         &args.scene,
         &overrides,
         LogRequest {
@@ -66,16 +67,13 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
         },
         cancel,
     )?;
-    let s = match s {
-        SceneRun::Rig(s) => s,
-        SceneRun::Driven(d) if args.json => {
-            return print_json(out, &flexrig::driven::scene::summary_json(&d.summary));
-        }
-        SceneRun::Driven(d) => return print_driven(out, args, &d.summary),
-    };
     if args.json {
-        return print_json(out, &summary_json(&s));
+        return print_json(out, &run.summary_json());
     }
+    let (s, link) = match &run {
+        SceneRun::Rig(s, link) => (s, link),
+        SceneRun::Driven(d, link) => return print_driven(out, args, &d.summary, link),
+    };
     line(out, format!("scene {} ({})", s.scene, s.design))?;
     if let Some(path) = &args.out {
         line(out, format!("  log                 {}", path.display()))?;
@@ -116,6 +114,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
             s.samples.len()
         ),
     )?;
+    print_link(out, link)?;
     if let Some(severity) = &s.severity {
         print_severity(out, severity, "operator block, its accelerometer")?;
     }
@@ -123,7 +122,12 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
 }
 
 /// The text summary of a driven scene's run.
-fn print_driven(out: &mut dyn Write, args: &RunArgs, s: &DrivenSummary) -> Result<(), Error> {
+fn print_driven(
+    out: &mut dyn Write,
+    args: &RunArgs,
+    s: &DrivenSummary,
+    link: &LinkQuantities,
+) -> Result<(), Error> {
     let design = match s.design {
         flexrig::driven::strike::StrikeDesign::Cj => "CJ",
         flexrig::driven::strike::StrikeDesign::Cl => "CL",
@@ -204,6 +208,25 @@ fn print_driven(out: &mut dyn Write, args: &RunArgs, s: &DrivenSummary) -> Resul
         format!(
             "  steps               {}, {} trace samples",
             s.steps, s.samples
+        ),
+    )?;
+    print_link(out, link)
+}
+
+/// The link quantities, with the paper's symbols (Eq. 1–3, 5).
+fn print_link(out: &mut dyn Write, q: &LinkQuantities) -> Result<(), Error> {
+    line(
+        out,
+        format!(
+            "  link                m_r = {:.6} kg, EI = {:.6e} N·m², m_e/m_r = {:.6}",
+            q.m_r_kg, q.ei_n_m2, q.m_e_over_m_r
+        ),
+    )?;
+    line(
+        out,
+        format!(
+            "  link stiffness      k_δ = {:.6e} N/m at the tip, k_θr = {:.6e} N·m/rad (the CJ's spring, the CL's equivalent 3EI/L)",
+            q.k_delta_n_per_m, q.k_theta_r_nm_per_rad
         ),
     )
 }

@@ -21,9 +21,9 @@ use crate::Error;
 use crate::cancel::CancelToken;
 use crate::output::write_atomic;
 
-/// The summary quantities of a row, in column order: the run summary's, then the severity's
-/// ([`crate::severity::SEVERITY_COLUMNS`]).
-pub const SUMMARY_COLUMNS: [&str; 24] = [
+/// The summary quantities of a row, in column order: the run summary's, the severity's
+/// ([`crate::severity::SEVERITY_COLUMNS`]), then the link's ([`crate::link::COLUMNS`]).
+pub const SUMMARY_COLUMNS: [&str; 29] = [
     "peak_force_n",
     "time_of_peak_s",
     "impact_velocity_mps",
@@ -48,10 +48,44 @@ pub const SUMMARY_COLUMNS: [&str; 24] = [
     "peak_accel_g",
     "hic15",
     "hic36",
+    // the link quantities (crate::link::COLUMNS)
+    "m_r_kg",
+    "ei_n_m2",
+    "k_delta_n_per_m",
+    "k_theta_r_nm_per_rad",
+    "m_e_over_m_r",
 ];
 
-/// The summary quantities of a run, as [`SUMMARY_COLUMNS`] (absent values: `None`).
-pub fn summary_values(s: &RunSummary) -> [Option<f64>; 24] {
+/// The columns of [`SUMMARY_COLUMNS`] that hold counts: written as whole numbers (`3`, not
+/// `3e0`) in the CSV and as integers in JSON Lines.
+pub const INTEGER_COLUMNS: [&str; 3] = ["contacts", "steps", "contact_steps"];
+
+/// Where the link quantities start in [`SUMMARY_COLUMNS`].
+fn link_offset() -> usize {
+    SUMMARY_COLUMNS
+        .iter()
+        .position(|c| *c == crate::link::COLUMNS[0])
+        .expect("the link columns are summary columns")
+}
+
+/// `values` with the link quantities `link` in their columns.
+pub fn with_link(
+    mut values: [Option<f64>; SUMMARY_COLUMNS.len()],
+    link: &crate::link::LinkQuantities,
+) -> [Option<f64>; SUMMARY_COLUMNS.len()] {
+    let at = link_offset();
+    for (i, v) in link.values().into_iter().enumerate() {
+        values[at + i] = Some(v);
+    }
+    values
+}
+
+/// The summary quantities of a run, as [`SUMMARY_COLUMNS`] (absent values: `None`), with the
+/// scene's link quantities.
+pub fn summary_values(
+    s: &RunSummary,
+    link: &crate::link::LinkQuantities,
+) -> [Option<f64>; SUMMARY_COLUMNS.len()] {
     let run = [
         Some(s.peak_force_n),
         Some(s.time_of_peak_s),
@@ -70,13 +104,20 @@ pub fn summary_values(s: &RunSummary) -> [Option<f64>; 24] {
         Some(s.duration_s),
     ];
     let severity = crate::severity::severity_values(s.severity.as_ref());
-    std::array::from_fn(|i| {
-        if i < run.len() {
-            run[i]
-        } else {
-            severity[i - run.len()]
-        }
-    })
+    let mut values = [None; SUMMARY_COLUMNS.len()];
+    values[..run.len()].copy_from_slice(&run);
+    values[run.len()..run.len() + severity.len()].copy_from_slice(&severity);
+    with_link(values, link)
+}
+
+/// A summary value as a CSV cell of `column`: a count as a whole number, anything else in
+/// Rust's shortest exponent form (`1.25e-3`), empty when absent.
+fn summary_cell(column: &str, v: Option<f64>) -> String {
+    match v {
+        None => String::new(),
+        Some(x) if INTEGER_COLUMNS.contains(&column) => format!("{}", x as i64),
+        Some(x) => format!("{x:e}"),
+    }
 }
 
 /// A format error of a sweep value that looks like a list typed with spaces or semicolons gets
@@ -253,7 +294,10 @@ impl Sweep {
                 )?
             }
         };
-        Ok(crate::driven::scene::sweep_values(&run.summary))
+        Ok(with_link(
+            crate::driven::scene::sweep_values(&run.summary),
+            &crate::link::of_driven(&scene.strike.link),
+        ))
     }
 
     /// Number of points.
@@ -303,7 +347,7 @@ impl Sweep {
             self.run_driven(index, &overrides, options)
         } else {
             self.run_overrides(index, &overrides, options)
-                .map(|s| summary_values(&s))
+                .map(|(s, link)| summary_values(&s, &link))
         };
         match result {
             Ok(s) => SweepRow {
@@ -336,11 +380,15 @@ impl Sweep {
         index: usize,
         overrides: &[Override],
         options: &SweepOptions,
-    ) -> Result<RunSummary, Error> {
+    ) -> Result<(RunSummary, crate::link::LinkQuantities), Error> {
         let scene = flexrig_rig::scene_from_table(&self.base, overrides, &self.materials)?;
+        let link = crate::link::of_scene(&scene);
         let simulation = Simulation::new(&scene, RunOptions::default())?;
         let Some(dir) = &options.mcap_dir else {
-            return Ok(simulation.run(&mut Interruptible(options.cancel.flag()))?);
+            return Ok((
+                simulation.run(&mut Interruptible(options.cancel.flag()))?,
+                link,
+            ));
         };
         let text = flexrig_rig::overrides::apply(&self.base_text, overrides)?;
         let path = dir.join(format!("run-{index}.mcap"));
@@ -352,7 +400,10 @@ impl Sweep {
             rates: crate::mcap_log::LogRates::DECIMATED,
             deformation_scale: crate::mcap_log::DEFAULT_DEFORMATION_SCALE,
         };
-        crate::mcap_log::run_logged(simulation, &scene, &target)
+        Ok((
+            crate::mcap_log::run_logged(simulation, &scene, &target)?,
+            link,
+        ))
     }
 
     /// Runs the points of `indices` in parallel, calling `done` after each (e.g. a progress bar
@@ -420,9 +471,10 @@ pub fn csv_line(row: &SweepRow) -> String {
     cells.push(row.status.clone());
     cells.push(csv_field(&row.error));
     cells.extend(
-        row.summary
+        SUMMARY_COLUMNS
             .iter()
-            .map(|v| v.map_or(String::new(), |x| format!("{x:e}"))),
+            .zip(&row.summary)
+            .map(|(column, v)| summary_cell(column, *v)),
     );
     cells.join(",")
 }
@@ -446,8 +498,14 @@ pub fn json_line(row: &SweepRow, paths: &[&str]) -> serde_json::Value {
         map.insert("error".into(), row.error.clone().into());
     }
     for (name, v) in SUMMARY_COLUMNS.iter().zip(&row.summary) {
-        if let Some(x) = v {
-            map.insert((*name).into(), serde_json::json!(x));
+        match v {
+            Some(x) if INTEGER_COLUMNS.contains(name) => {
+                map.insert((*name).into(), serde_json::json!(*x as i64));
+            }
+            Some(x) => {
+                map.insert((*name).into(), serde_json::json!(x));
+            }
+            None => {}
         }
     }
     serde_json::Value::Object(map)
@@ -831,14 +889,42 @@ mod tests {
         for column in crate::severity::SEVERITY_COLUMNS {
             assert!(header.split(',').any(|c| c == column), "{column}");
         }
+        let severity_at = SUMMARY_COLUMNS
+            .iter()
+            .position(|c| *c == crate::severity::SEVERITY_COLUMNS[0])
+            .unwrap();
         assert_eq!(
-            SUMMARY_COLUMNS[SUMMARY_COLUMNS.len() - crate::severity::SEVERITY_COLUMNS.len()..],
+            SUMMARY_COLUMNS[severity_at..severity_at + crate::severity::SEVERITY_COLUMNS.len()],
             crate::severity::SEVERITY_COLUMNS
         );
-        // every column but the counts and HIC (no unit) names its unit
+        // the link quantities, one block
+        let at = link_offset();
+        assert_eq!(SUMMARY_COLUMNS[at..at + 5], crate::link::COLUMNS);
+        // every column but the counts, HIC and the mass ratio (no unit) names its unit
         for column in SUMMARY_COLUMNS {
-            let unitless = ["contacts", "steps", "contact_steps", "hic15", "hic36"];
-            let units = ["_n", "_s", "_mps", "_m", "_n_s", "_j", "_pa", "_mps2", "_g"];
+            let unitless = [
+                "contacts",
+                "steps",
+                "contact_steps",
+                "hic15",
+                "hic36",
+                "m_e_over_m_r",
+            ];
+            let units = [
+                "_n",
+                "_s",
+                "_mps",
+                "_m",
+                "_n_s",
+                "_j",
+                "_pa",
+                "_mps2",
+                "_g",
+                "_kg",
+                "_n_m2",
+                "_n_per_m",
+                "_nm_per_rad",
+            ];
             assert!(
                 unitless.contains(&column) || units.iter().any(|u| column.ends_with(u)),
                 "{column}"

@@ -69,6 +69,8 @@ from ._commands import (
 from ._commands import impact_report as _impact_report
 from ._safety import safety, safety_map
 from ._flexrig import (
+    INTEGER_SUMMARY_COLUMNS as _INTEGER_SUMMARY_COLUMNS,
+    LINK_COLUMNS as _LINK_COLUMNS,
     SUMMARY_COLUMNS,
     InputError,
     SimulationError,
@@ -89,6 +91,7 @@ __all__ = [
     "ImpactPeaks",
     "ImpactReport",
     "INTEGER_SUMMARY_COLUMNS",
+    "LINK_COLUMNS",
     "Report",
     "STRIKE_TRACE_COLUMNS",
     "beam_modal",
@@ -125,7 +128,13 @@ __all__ = [
 
 #: The summary columns of a sweep that count (contacts, steps): pandas' nullable ``Int64``
 #: (``<NA>`` for a failed run); the others are float64.
-INTEGER_SUMMARY_COLUMNS: Tuple[str, ...] = ("contacts", "steps", "contact_steps")
+INTEGER_SUMMARY_COLUMNS: Tuple[str, ...] = tuple(_INTEGER_SUMMARY_COLUMNS)
+
+#: The link quantities of a run's summary and a sweep's table (paper Eq. 1–3, 5): link mass
+#: ``m_r_kg`` [kg], bending stiffness ``ei_n_m2`` [N·m²], lateral tip stiffness
+#: ``k_delta_n_per_m`` [N/m], joint stiffness ``k_theta_r_nm_per_rad`` [N·m/rad] (the CL's
+#: equivalent 3EI/L) and the mass ratio ``m_e_over_m_r``.
+LINK_COLUMNS: Tuple[str, ...] = tuple(_LINK_COLUMNS)
 
 #: A scene: a path, the name of a bundled scene, TOML text, or a dict of the scene's tables.
 Scene = Union[str, "os.PathLike[str]", Mapping[str, Any]]
@@ -240,6 +249,16 @@ class RunResult:
     #: Severity of the first contact (peak force, pressure under both dome models, energy
     #: transferred, peak acceleration, HIC15/HIC36; docs/safety.md), ``None`` for a driven run.
     severity: Optional[Dict[str, Any]]
+    #: Link mass m_r [kg].
+    m_r_kg: float
+    #: Bending stiffness EI of the link in its compliant direction [N·m²].
+    ei_n_m2: float
+    #: Lateral tip stiffness k_δ [N/m]: k_θr/L² for the CJ (Eq. 1), 3EI/L³ for the CL (Eq. 2).
+    k_delta_n_per_m: float
+    #: Joint stiffness k_θr [N·m/rad]: the CJ's torsion spring, the CL's equivalent 3EI/L (Eq. 3).
+    k_theta_r_nm_per_rad: float
+    #: Payload over link mass m_e/m_r (Eq. 5).
+    m_e_over_m_r: float
     summary: Dict[str, Any]
     traces: Dict[str, np.ndarray]
     step_traces: Dict[str, np.ndarray]
@@ -273,6 +292,7 @@ class RunResult:
             samples=summary["samples"],
             warnings=summary["warnings"],
             severity=summary.get("severity"),
+            **{name: summary[name] for name in LINK_COLUMNS},
             summary=summary,
             traces=traces,
             step_traces=step_traces,
@@ -457,20 +477,50 @@ def impact(
     return ImpactPeaks(*(o.reshape(shape) for o in out))
 
 
-def fig6(points: int = 101) -> "pandas.DataFrame":
-    """The paper's Fig. 6 (§V, Eq. 15): η(γ) = f_max(γ)/f_max(γ = 1) for the eight design cases.
+def fig6(
+    points: int = 101,
+    *,
+    m_r: float = 10.0,
+    k_c: float = 1e8,
+    v0: float = 2.0,
+    m_h: Union[float, List[float], Tuple[float, ...]] = (4.0, 1000.0),
+    k_delta: Union[float, List[float], Tuple[float, ...]] = (1e8, 2e2),
+    m_e: Union[float, List[float], Tuple[float, ...]] = (0.1, 10.0),
+    out: Optional[Union[str, "os.PathLike[str]"]] = None,
+    size: Union[str, int] = "2",
+    format: Union[str, List[str], Tuple[str, ...]] = ("svg",),
+    dpi: float = 300.0,
+) -> "pandas.DataFrame":
+    """The paper's Fig. 6 (§V, Eq. 15) for any design: η(γ) = f_max(γ)/f_max(γ = 1), as
+    ``flexrig fig6``.
+
+    The design held fixed: link mass ``m_r`` [kg], contact stiffness ``k_c`` [N/mⁿ], approach
+    speed ``v0`` [m/s]; the cases: every combination of head masses ``m_h`` [kg], link lateral
+    stiffnesses ``k_delta`` [N/m] and payloads ``m_e`` [kg] (one to four values each). The
+    defaults are the paper's: m_r = 10 kg, k_c = 1e8, v0 = 2 m/s and its eight cases. Bad values
+    raise :class:`InputError` naming the keyword. With ``out`` (a directory), fig6.csv and the
+    figure (``size``, ``format``, ``dpi`` as :func:`eta`) are written there as ``flexrig fig6
+    --out`` writes them.
 
     One row per (case, n, γ): columns ``m_h_kg``, ``k_delta_n_per_m``, ``m_e_kg``, ``n`` (1 and
     2), ``gamma`` (``points`` samples over [0.5, 1]), ``eta`` and ``eta_at_2_3`` (η at γ = 2/3,
     the uniform compliant link, the same on every row of a curve) — the columns of ``flexrig
-    fig6``'s fig6.csv plus the last. m_r = 10 kg, k_c = 1e8, v0 = 2 m/s (paper §V).
+    fig6``'s fig6.csv plus the last. ``attrs["design"]`` holds the design.
     """
     import pandas as pd
 
+    from ._commands import _cases, _design, _figure_args
+
     if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or not 2 <= points <= 1_000_000:
         raise _input_error("points", f"points = {points!r}: must be a whole number from 2 to 1000000")
+    design = _design(m_r, k_c, v0)
+    size, formats, dpi = _figure_args(size, format, dpi)
+    curves = _flexrig.fig6(
+        int(points), *design, *_cases(m_h, k_delta, m_e), None if out is None else os.path.abspath(os.fspath(out)),
+        size, formats, dpi,
+    )
     frames = []
-    for c in _flexrig.fig6(int(points)):
+    for c in curves:
         size = len(c["gamma"])
         frames.append(
             pd.DataFrame(
@@ -485,7 +535,9 @@ def fig6(points: int = 101) -> "pandas.DataFrame":
                 }
             )
         )
-    return pd.concat(frames, ignore_index=True)
+    frame = pd.concat(frames, ignore_index=True)
+    frame.attrs["design"] = dict(zip(("m_r", "k_c", "v0"), design))
+    return frame
 
 
 def sweep(

@@ -165,6 +165,14 @@ def _damping(damping: Any, restitution: Any, c_max: Any, depth: Any) -> Tuple[st
     )
 
 
+def _design(m_r: Any, k_c: Any, v0: Any) -> Tuple[float, float, float]:
+    return float(_number("m_r", m_r)), float(_number("k_c", k_c)), float(_number("v0", v0))  # type: ignore[arg-type]
+
+
+def _cases(m_h: Any, k_delta: Any, m_e: Any) -> Tuple[List[float], List[float], List[float]]:
+    return _numbers("m_h", m_h), _numbers("k_delta", k_delta), _numbers("m_e", m_e)
+
+
 def eta(
     *,
     out: Optional[PathLike] = None,
@@ -185,6 +193,12 @@ def eta(
     size: Union[str, int] = "2",
     format: Union[str, Sequence[str]] = ("svg",),
     dpi: float = 300.0,
+    m_r: float = 10.0,
+    k_c: float = 1e8,
+    v0: float = 2.0,
+    m_h: Union[float, Sequence[float]] = (4.0, 1000.0),
+    k_delta: Union[float, Sequence[float]] = (1e8, 2e2),
+    m_e: Union[float, Sequence[float]] = (0.1, 10.0),
 ) -> Report:
     """The Fig. 6 cases at finite-element fidelity, as ``flexrig eta``: the FE compliant link and
     the rigid compliant joint against a free head, η_FE beside the lumped η(2/3), the effective
@@ -192,8 +206,11 @@ def eta(
     ``zone_elements``, ``window_periods`` [first-mode periods]) or alpha (``elements``,
     ``steps_per_contact``, ``modes``); ``length`` [m]; ``damping`` none, hunt-crossley,
     lankarani-nikravesh (``restitution``) or adams-impact (``c_max`` [N·s/m], ``depth`` [m]).
-    ``table``: one row per (case, n) (``case_m_h``, ``f_cj_n``, ``f_cl_n``, ``eta_fe``, …);
-    ``figures``: eta.svg and eta_fig6.svg.
+    The design held fixed: link mass ``m_r`` [kg], contact stiffness ``k_c`` [N/mⁿ], approach
+    speed ``v0`` [m/s]; the cases: every combination of head masses ``m_h`` [kg], link lateral
+    stiffnesses ``k_delta`` [N/m] and payloads ``m_e`` [kg] (one to four values each); the
+    paper's (§V) by default. ``table``: one row per (case, n) (``case_m_h``, ``f_cj_n``,
+    ``f_cl_n``, ``eta_fe``, …); ``figures``: eta.svg and eta_fig6.svg.
     """
     model, e, c, d = _damping(damping, restitution, c_max, depth)
     size, formats, dpi = _figure_args(size, format, dpi)
@@ -204,6 +221,7 @@ def eta(
             _number("window_periods", window_periods, True), _count("elements", elements, True),
             _count("steps_per_contact", steps_per_contact, True), _count("modes", modes, True),
             _number("length", length), model, e, c, d, size, formats, dpi,
+            _design(m_r, k_c, v0), _cases(m_h, k_delta, m_e),
         )
         return _report("eta", data, "rows", o)
 
@@ -226,11 +244,17 @@ def eta_map(
     size: Union[str, int] = "2",
     format: Union[str, Sequence[str]] = ("svg",),
     dpi: float = 300.0,
+    m_r: float = 10.0,
+    k_c: float = 1e8,
+    v0: float = 2.0,
+    length: float = 1.0,
 ) -> Report:
     """Maps of η_FE, the lumped and placed models' errors and the effective γ over m_e/m_r ×
     k_δ/k_c, as ``flexrig eta-map``: one map per head mass ``m_h`` [kg], Hertz exponent ``n``,
     ranges ``mass_ratio`` and ``stiffness_ratio`` (``"FROM:TO"`` or a pair, log-spaced),
-    ``points`` along each axis, ``tol`` of the modal method; joint and damping as :func:`eta`.
+    ``points`` along each axis, ``tol`` of the modal method; joint and damping as :func:`eta`;
+    the design held fixed ``m_r`` [kg], ``k_c`` [N/mⁿ], ``v0`` [m/s] (the axes are m_e and k_δ
+    as ratios to m_r and k_c) and the link ``length`` [m], the paper's by default.
     ``table``: one summary row per map (``m_h_kg``, ``points``, ``failed``, ``seconds``, …);
     the grid itself is eta_map.csv in ``out``.
     """
@@ -241,6 +265,7 @@ def eta_map(
             o.path, _numbers("m_h", m_h), _number("n", n), _range("mass_ratio", mass_ratio),
             _range("stiffness_ratio", stiffness_ratio), _count("points", points), _word("joint", joint),
             _number("rotor_inertia", rotor_inertia, True), _number("tol", tol), model, e, c, d, size, formats, dpi,
+            _design(m_r, k_c, v0), _number("length", length),
         )
         return _report("eta-map", data, "maps", o)
 
@@ -259,10 +284,18 @@ def eta_rotor(
     size: Union[str, int] = "2",
     format: Union[str, Sequence[str]] = ("svg",),
     dpi: float = 300.0,
+    m_r: float = 10.0,
+    k_c: float = 1e8,
+    v0: float = 2.0,
+    length: float = 1.0,
+    m_h: Union[float, Sequence[float]] = (4.0, 1000.0),
+    k_delta: Union[float, Sequence[float]] = (1e8, 2e2),
+    m_e: Union[float, Sequence[float]] = (0.1, 10.0),
 ) -> Report:
     """η_FE of the Fig. 6 cases along the free hub's rotor inertia J_R/(m_r L²/3) (``ratio``,
     ``"FROM:TO"`` or a pair, ``points`` log-spaced, the held joint added as the limit), for the
-    Hertz exponents ``n``, as ``flexrig eta-rotor``. ``table``: one row per point (``case_m_h``,
+    Hertz exponents ``n``, as ``flexrig eta-rotor``; design (``m_r``, ``k_c``, ``v0``), link
+    ``length`` [m] and cases (``m_h``, ``k_delta``, ``m_e``) as :func:`eta`. ``table``: one row per point (``case_m_h``,
     ``n``, ``inertia_ratio`` (NaN: held), ``eta_fe``, …); ``figures``: eta_rotor.svg.
     """
     model, e, c, d = _damping(damping, restitution, c_max, depth)
@@ -270,7 +303,8 @@ def eta_rotor(
     with _Out(out) as o:
         data = _flexrig.eta_rotor(
             o.path, _range("ratio", ratio), _count("points", points), _numbers("n", n), _number("tol", tol),
-            model, e, c, d, size, formats, dpi,
+            model, e, c, d, size, formats, dpi, _design(m_r, k_c, v0), _number("length", length),
+            _cases(m_h, k_delta, m_e),
         )
         return _report("eta-rotor", data, "points", o)
 
@@ -311,7 +345,7 @@ def experiment(
 def payload(
     *,
     out: Optional[PathLike] = None,
-    scene: str = "cl_light_load",
+    scene: PathLike = "cl_light_load",
     from_: float = 0.01,
     to: float = 1.0,
     points: int = 25,
@@ -319,8 +353,8 @@ def payload(
     format: Union[str, Sequence[str]] = ("svg",),
     dpi: float = 300.0,
 ) -> Report:
-    """The test bed's CL/CJ peak ratio over the payload, as ``flexrig payload``: the bundled
-    ``scene`` run as CJ and as CL at ``points`` payloads log-spaced from ``from_`` (the flag
+    """The test bed's CL/CJ peak ratio over the payload, as ``flexrig payload``: ``scene`` (a
+    bundled scene's name or a scene file's path, as ``--scene``) run as CJ and as CL at ``points`` payloads log-spaced from ``from_`` (the flag
     ``--from``) to ``to`` [kg], with MCAP logs of three of them. ``table``: ``payload_kg``,
     ``cj_peak_n``, ``cl_peak_n``, ``ratio``; ``figures``: payload.svg.
     """
@@ -328,7 +362,8 @@ def payload(
     with _Out(out) as o:
         try:
             data = _flexrig.payload(
-                o.path, _word("scene", scene), _number("from_", from_), _number("to", to), _count("points", points),
+                o.path, _word("scene", os.fspath(scene) if isinstance(scene, os.PathLike) else scene),
+                _number("from_", from_), _number("to", to), _count("points", points),
                 size, formats, dpi,
             )
         except InputError as e:

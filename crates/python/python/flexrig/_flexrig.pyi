@@ -16,6 +16,8 @@ DEFAULT_RTOL: float
 
 #: The summary quantities of a sweep row, in column order (as in ``flexrig sweep``'s CSV).
 SUMMARY_COLUMNS: List[str]
+INTEGER_SUMMARY_COLUMNS: List[str]
+LINK_COLUMNS: List[str]
 
 class InputError(ValueError):
     """Bad input: the message names the field, the value and what is allowed."""
@@ -76,7 +78,8 @@ def eta(
     zone_elements: Optional[float], window_periods: Optional[float], elements: Optional[int],
     steps_per_contact: Optional[int], modes: Optional[int], length: float, damping_model: str,
     restitution: Optional[float], c_max: Optional[float], depth: Optional[float], size: str,
-    format: Sequence[str], dpi: float,
+    format: Sequence[str], dpi: float, design: Tuple[float, float, float],
+    grid: Tuple[Sequence[float], Sequence[float], Sequence[float]],
 ) -> Dict[str, Any]:
     """``flexrig eta --json`` for the same inputs; writes into ``out``."""
 
@@ -84,14 +87,15 @@ def eta_map(
     out: _Path, m_h: Sequence[float], n: float, mass_ratio: str, stiffness_ratio: str, points: int,
     joint: str, rotor_inertia: Optional[float], tol: float, damping_model: str,
     restitution: Optional[float], c_max: Optional[float], depth: Optional[float], size: str,
-    format: Sequence[str], dpi: float,
+    format: Sequence[str], dpi: float, design: Tuple[float, float, float], length: float,
 ) -> Dict[str, Any]:
     """``flexrig eta-map --json`` for the same inputs; writes into ``out``."""
 
 def eta_rotor(
     out: _Path, ratio: str, points: int, n: Sequence[float], tol: float, damping_model: str,
     restitution: Optional[float], c_max: Optional[float], depth: Optional[float], size: str,
-    format: Sequence[str], dpi: float,
+    format: Sequence[str], dpi: float, design: Tuple[float, float, float], length: float,
+    grid: Tuple[Sequence[float], Sequence[float], Sequence[float]],
 ) -> Dict[str, Any]:
     """``flexrig eta-rotor --json`` for the same inputs; writes into ``out``."""
 
@@ -158,7 +162,10 @@ def impact_exact(
     """Exact peak of every parameter set (1-D float64 arrays of one length): (f_max_n,
     delta_max_m, indentation_max_m, link_deflection_max_m, mu_kg, impact_energy_j)."""
 
-def fig6(points: int = 101) -> List[Dict[str, Any]]:
+def fig6(
+    points: int, m_r: float, k_c: float, v0: float, m_h: Sequence[float], k_delta: Sequence[float],
+    m_e: Sequence[float], out: Optional[_Path], size: str, format: Sequence[str], dpi: float,
+) -> List[Dict[str, Any]]:
     """Fig. 6 curves: dicts with m_h, k_delta, m_e, n, eta_at_2_3 and the arrays gamma, eta."""
 
 class Sweep:
