@@ -22,8 +22,8 @@ use crate::cancel::CancelToken;
 use crate::output::write_atomic;
 
 /// The summary quantities of a row, in column order: the run summary's, then the severity's
-/// ([`crate::severity::SEVERITY_COLUMNS`]).
-pub const SUMMARY_COLUMNS: [&str; 24] = [
+/// ([`crate::severity::SEVERITY_COLUMNS`]), then the driven robot's ([`DRIVEN_COLUMNS`]).
+pub const SUMMARY_COLUMNS: [&str; 28] = [
     "peak_force_n",
     "time_of_peak_s",
     "impact_velocity_mps",
@@ -48,10 +48,34 @@ pub const SUMMARY_COLUMNS: [&str; 24] = [
     "peak_accel_g",
     "hic15",
     "hic36",
+    // the driven robot's (scenes with [drive]; empty for the test bed): DRIVEN_COLUMNS
+    "pre_impact_deflection_m",
+    "peak_motor_torque_nm",
+    "joint_speed_at_contact_rad_s",
+    "commanded_tip_speed_mps",
 ];
 
+/// The driven robot's columns (a scene with `[drive]`; empty for the test bed), the last block
+/// of [`SUMMARY_COLUMNS`]: the tip's deflection from the hub's line at the onset \[m\] (the
+/// drive's acceleration pre-bends a CL link), the largest motor-shaft torque during the
+/// contact [N·m], the joint's speed at the onset [rad/s] and the commanded tip speed there
+/// [m/s] (absent under an open-loop torque).
+pub const DRIVEN_COLUMNS: [&str; 4] = [
+    "pre_impact_deflection_m",
+    "peak_motor_torque_nm",
+    "joint_speed_at_contact_rad_s",
+    "commanded_tip_speed_mps",
+];
+
+/// Index of the first driven column in [`SUMMARY_COLUMNS`].
+pub const DRIVEN_START: usize = SUMMARY_COLUMNS.len() - DRIVEN_COLUMNS.len();
+
+/// Index of the first severity column ([`crate::severity::SEVERITY_COLUMNS`]) in
+/// [`SUMMARY_COLUMNS`].
+pub const SEVERITY_START: usize = 15;
+
 /// The summary quantities of a run, as [`SUMMARY_COLUMNS`] (absent values: `None`).
-pub fn summary_values(s: &RunSummary) -> [Option<f64>; 24] {
+pub fn summary_values(s: &RunSummary) -> [Option<f64>; SUMMARY_COLUMNS.len()] {
     let run = [
         Some(s.peak_force_n),
         Some(s.time_of_peak_s),
@@ -70,13 +94,10 @@ pub fn summary_values(s: &RunSummary) -> [Option<f64>; 24] {
         Some(s.duration_s),
     ];
     let severity = crate::severity::severity_values(s.severity.as_ref());
-    std::array::from_fn(|i| {
-        if i < run.len() {
-            run[i]
-        } else {
-            severity[i - run.len()]
-        }
-    })
+    let mut values = [None; SUMMARY_COLUMNS.len()];
+    values[..run.len()].copy_from_slice(&run);
+    values[SEVERITY_START..SEVERITY_START + severity.len()].copy_from_slice(&severity);
+    values
 }
 
 /// A format error of a sweep value that looks like a list typed with spaces or semicolons gets
@@ -831,14 +852,18 @@ mod tests {
         for column in crate::severity::SEVERITY_COLUMNS {
             assert!(header.split(',').any(|c| c == column), "{column}");
         }
+        let n = crate::severity::SEVERITY_COLUMNS.len();
         assert_eq!(
-            SUMMARY_COLUMNS[SUMMARY_COLUMNS.len() - crate::severity::SEVERITY_COLUMNS.len()..],
+            SUMMARY_COLUMNS[SEVERITY_START..SEVERITY_START + n],
             crate::severity::SEVERITY_COLUMNS
         );
+        assert_eq!(SUMMARY_COLUMNS[DRIVEN_START..], DRIVEN_COLUMNS);
         // every column but the counts and HIC (no unit) names its unit
         for column in SUMMARY_COLUMNS {
             let unitless = ["contacts", "steps", "contact_steps", "hic15", "hic36"];
-            let units = ["_n", "_s", "_mps", "_m", "_n_s", "_j", "_pa", "_mps2", "_g"];
+            let units = [
+                "_n", "_s", "_mps", "_m", "_n_s", "_j", "_pa", "_mps2", "_g", "_nm", "_rad_s",
+            ];
             assert!(
                 unitless.contains(&column) || units.iter().any(|u| column.ends_with(u)),
                 "{column}"
