@@ -918,18 +918,30 @@ sample_rate_hz = 1e6
         }
         let window = 2.0 * t_c * x / std::f64::consts::PI;
         assert!(window < 0.015, "{window}");
-        let hic = 2.0 * t_c / std::f64::consts::PI * a_g.powf(2.5) * x.sin().powf(2.5)
-            / x.powf(1.5);
+        let hic =
+            2.0 * t_c / std::f64::consts::PI * a_g.powf(2.5) * x.sin().powf(2.5) / x.powf(1.5);
         let sev = s.severity.as_ref().expect("a severity");
         for (name, h) in [("HIC15", sev.hic15), ("HIC36", sev.hic36)] {
             let h = h.expect("a HIC for a free head");
-            eprintln!("{name} {} vs half-sine {hic} (window {} s, closed form {window} s)", h.hic, h.t2_s - h.t1_s);
-            assert!((h.hic - hic).abs() <= 1e-4 * hic, "{name} {} vs {hic}", h.hic);
+            eprintln!(
+                "{name} {} vs half-sine {hic} (window {} s, closed form {window} s)",
+                h.hic,
+                h.t2_s - h.t1_s
+            );
+            assert!(
+                (h.hic - hic).abs() <= 1e-4 * hic,
+                "{name} {} vs {hic}",
+                h.hic
+            );
             assert!(((h.t2_s - h.t1_s) - window).abs() <= 1e-3 * window);
         }
         // the pulse itself: peak m_h v ω, duration π/ω, peak acceleration v ω
         let peak = m_h * v * omega;
-        assert!((s.peak_force_n - peak).abs() <= 1e-4 * peak, "{}", s.peak_force_n);
+        assert!(
+            (s.peak_force_n - peak).abs() <= 1e-4 * peak,
+            "{}",
+            s.peak_force_n
+        );
         assert!((s.contact_duration_s - t_c).abs() <= 1e-4 * t_c);
         let a_peak = sev.peak_acceleration_mps2.unwrap();
         assert!((a_peak - v * omega).abs() <= 1e-4 * v * omega, "{a_peak}");
@@ -951,7 +963,10 @@ sample_rate_hz = 1e6
         assert_eq!(col("peak_motor_torque_nm"), Some(s.peak_motor_torque_nm));
         assert_eq!(col("joint_speed_at_contact_rad_s"), Some(2.0));
         assert_eq!(col("commanded_tip_speed_mps"), Some(2.0));
-        assert_eq!(col("pre_impact_deflection_m"), Some(s.pre_impact_deflection_m));
+        assert_eq!(
+            col("pre_impact_deflection_m"),
+            Some(s.pre_impact_deflection_m)
+        );
     }
 
     #[test]
@@ -965,7 +980,11 @@ sample_rate_hz = 1e6
         // the energy transferred is the contact's work while the indentation grows (the
         // integrator's impact energy), to the trace's trapezoid
         let e = run.summary.impact_energy_j;
-        assert!((sev.energy_transferred_j - e).abs() <= 1e-3 * e, "{} vs {e}", sev.energy_transferred_j);
+        assert!(
+            (sev.energy_transferred_j - e).abs() <= 1e-3 * e,
+            "{} vs {e}",
+            sev.energy_transferred_j
+        );
         let row = sweep_values(&run.summary);
         let hic = crate::study::sweep::SUMMARY_COLUMNS
             .iter()
