@@ -5,6 +5,11 @@
 //! - **Test bed** (`flexrig run`, experiments, sweeps, Python runs): [`of_samples`] over the
 //!   sensor samples, filled into [`crate::run::RunSummary::severity`] by every run. The struck
 //!   body is the operator block; its acceleration is the virtual operator accelerometer.
+//! - **Driven strike** (`flexrig run` on a scene with `[drive]`, its sweeps and Python runs):
+//!   [`of_driven`] over the driven run's trace inside the contact (the scene's
+//!   `record.sample_rate_hz`; the CJ's samples between its integrator's steps from the
+//!   method's interpolant); the struck body is the person's head, its acceleration
+//!   (f − neck force)/m_h; against a wall the head does not move and has no HIC.
 //! - **Lumped impact** (`flexrig impact --method ode`): [`of_lumped`] over the integrator's
 //!   dense output sampled uniformly ([`LUMPED_TRACE_SAMPLES`] intervals over the contact); the
 //!   struck body is the head of mass m_h, its acceleration f/m_h.
@@ -69,6 +74,39 @@ pub fn of_lumped(
             force: &force,
             indentation: &indentation,
             head_acceleration: Some(&acceleration),
+        },
+        &ContactAreaModel::dome_models(dome_radius_m),
+    )?)
+}
+
+/// Severity of a driven strike's contact from its trace: `times` \[s\], contact `force` \[N\],
+/// `indentation` \[m\] and the head's acceleration \[m/s²\] (`None`: a head against a wall,
+/// which does not move: no acceleration, no HIC), the samples with t in
+/// [`onset_s`, `end_s`] (the trace holds the onset and the separation); contact area of a dome
+/// of radius `dome_radius_m` \[m\] under both models. A negative indentation (round-off at
+/// the onset and the separation) counts as 0.
+pub fn of_driven(
+    times: &[f64],
+    force: &[f64],
+    indentation: &[f64],
+    head_acceleration: Option<&[f64]>,
+    (onset_s, end_s): (f64, f64),
+    dome_radius_m: f64,
+) -> Result<Severity, Error> {
+    let inside: Vec<usize> = (0..times.len())
+        .filter(|&i| times[i] >= onset_s && times[i] <= end_s)
+        .collect();
+    let pick = |v: &[f64], f: fn(f64) -> f64| inside.iter().map(|&i| f(v[i])).collect::<Vec<f64>>();
+    let t = pick(times, |x| x);
+    let f = pick(force, |x| x.max(0.0));
+    let d = pick(indentation, |x| x.max(0.0));
+    let a = head_acceleration.map(|a| pick(a, f64::abs));
+    Ok(severity(
+        &ContactTraces {
+            times: &t,
+            force: &f,
+            indentation: &d,
+            head_acceleration: a.as_deref(),
         },
         &ContactAreaModel::dome_models(dome_radius_m),
     )?)

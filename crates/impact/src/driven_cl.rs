@@ -586,6 +586,11 @@ impl Integrator<'_> {
             joint_torque_nm: self.torque(&ports),
             head_position_m: ports.xh,
             moment_nm: self.root_moment(&ports),
+            head_acceleration_mps2: if self.wall {
+                0.0
+            } else {
+                (p.f - self.k_n * (ports.xh - self.x_rest) - self.c_n * ports.vh) / self.m_h
+            },
         }
     }
 

@@ -158,6 +158,9 @@ pub struct TraceSample {
     /// CL the beam's root moment, what the hub passes on to the clamped beam (from the hub's
     /// balance J_m N² θ̈ = τ_j − c_j θ̇ − M_root).
     pub moment_nm: f64,
+    /// The head's acceleration along the tip's path [m/s²] (positive away from the link):
+    /// (f − k_n (x_h − x_rest) − c_n ẋ_h)/m_h; 0 against a wall (the skin does not move).
+    pub head_acceleration_mps2: f64,
 }
 
 /// Keeps at most one sample per `every` seconds (the last one always replaceable by a
@@ -174,6 +177,12 @@ impl Tracer {
             every,
             samples: Vec::new(),
         }
+    }
+
+    /// The next time a sample is due after the last one (`None`: no trace, or none yet).
+    pub(crate) fn next_due(&self) -> Option<f64> {
+        let every = self.every?;
+        self.samples.last().map(|last| last.t + every)
     }
 
     /// Records `sample()` if due (or `force`d).

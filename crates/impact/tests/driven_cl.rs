@@ -313,3 +313,133 @@ fn bad_input_is_an_error_naming_the_field() {
         "{text}"
     );
 }
+
+/// The bundled driven CL scenes (assets/scenes/driven_cl_{free_head,wall}.toml: the Fig. 6
+/// stiff link, PD ramp to 2 rad/s, n = 2) at the default settings against a finer step and a
+/// finer mesh.
+fn bundled_cl(support: HeadSupport) -> DrivenStrike {
+    let mut s = ramp_strike();
+    s.link = link(1e8, 0.1);
+    s.person = person(4.0, support, 2.0);
+    s
+}
+
+#[test]
+#[ignore = "open: at the default mesh the bundled free-head scene's peak is 3.0e-3 from the finer \
+            mesh's (the floor is 1e-5); the step converges (1.4e-6). Run with --ignored."]
+fn the_bundled_driven_cl_scenes_converge_in_mesh_and_step() {
+    let mut worst = 0.0f64;
+    for support in [HeadSupport::Free, HeadSupport::Wall] {
+        let strike = bundled_cl(support);
+        let coarse = run_driven_cl(&strike, &ClDriveSettings::DEFAULT).unwrap();
+        let fine_step = run_driven_cl(
+            &strike,
+            &ClDriveSettings {
+                tol: 1e-8,
+                approach_tol: 1e-7,
+                ..ClDriveSettings::DEFAULT
+            },
+        )
+        .unwrap();
+        let fine_mesh = run_driven_cl(
+            &strike,
+            &ClDriveSettings {
+                mesh: GradedMesh {
+                    zone_elements: 16.0,
+                    ratio: 1.08,
+                    min_elements: 96,
+                    ..ClDriveSettings::DEFAULT.mesh
+                },
+                ..ClDriveSettings::DEFAULT
+            },
+        )
+        .unwrap();
+        let pick = |o: &DrivenOutcome| {
+            [
+                o.contact.peak_force_n,
+                o.contact.time_of_peak_s - o.contact.onset_s,
+                o.contact.duration_s,
+                o.pre_impact_deflection_m,
+                o.approach_speed_mps,
+            ]
+        };
+        let (c, s, m) = (pick(&coarse), pick(&fine_step), pick(&fine_mesh));
+        eprintln!("{support:?}\ndefault {c:?}\nstep    {s:?}\nmesh    {m:?}");
+        for i in 0..5 {
+            // times against the duration; the pre-impact deflection against the contact's
+            // static deflection scale f_max/k_δ
+            let scale = match i {
+                1 => c[2],
+                3 => c[0] / 1e8,
+                _ => s[i].abs(),
+            };
+            let (es, em) = ((c[i] - s[i]).abs() / scale, (c[i] - m[i]).abs() / scale);
+            eprintln!("  quantity {i}: step {es:.2e}, mesh {em:.2e}");
+            worst = worst.max(es).max(em);
+        }
+    }
+    assert!(
+        worst <= 1e-5,
+        "largest difference {worst:.2e} of the floor's 1e-5"
+    );
+}
+
+#[test]
+fn the_root_moment_of_a_slow_ramp_is_the_rigid_links_inertia_torque() {
+    // Quasi-static: in a slow ramp the beam turns as a rigid body (its lag ∝ α̈ is negligible at
+    // the ramp's middle), so the moment the hub passes to the beam's root is the rate of the
+    // link's angular momentum, M = α (m_r/3 + m_e) L², independent of the FE model and of the
+    // hub's balance that the trace's moment comes from. Both drives: a prescribed trajectory
+    // and a stiff PD loop (its small lag does not change α to first order).
+    let (k_delta, m_e, speed, ramp) = (2e2, 0.1, 1.0, 30.0);
+    let l = link(k_delta, m_e);
+    let profile = Profile::SmoothRamp {
+        speed,
+        ramp_time: ramp,
+    };
+    let (angle, _, alpha) = profile.at(0.5 * ramp);
+    let motor = Motor::new(1e-3, 10.0, 0.0).unwrap();
+    let drives = [
+        Drive::trajectory(motor, profile.clone()).unwrap(),
+        Drive::controller(
+            motor,
+            profile.clone(),
+            Gains {
+                kp: 1e5,
+                kd: 2e3,
+                ki: 0.0,
+            },
+            None,
+        )
+        .unwrap(),
+    ];
+    let expected = alpha * (l.m_r / 3.0 + m_e) * l.length * l.length;
+    for drive in drives {
+        let strike = DrivenStrike {
+            link: l,
+            drive,
+            person: person(4.0, HeadSupport::Free, 2.0),
+            placement: Placement::Angle { angle },
+            horizon_s: 2.0 * ramp,
+        };
+        let out = run_driven_cl(
+            &strike,
+            &ClDriveSettings {
+                trace_every: Some(1e-3),
+                ..ClDriveSettings::DEFAULT
+            },
+        )
+        .unwrap();
+        let onset = out
+            .trace
+            .iter()
+            .find(|s| s.t >= out.contact.onset_s)
+            .unwrap();
+        eprintln!(
+            "root moment at the onset {:.9e} N·m, rigid-link inertia torque {expected:.9e} N·m: {:.2e}",
+            onset.moment_nm,
+            rel(onset.moment_nm, expected)
+        );
+        assert!(rel(onset.moment_nm, expected) < 1e-3);
+    }
+}

@@ -189,6 +189,13 @@ fn print_driven(
     line(
         out,
         format!(
+            "  joint speed         {:.6} rad/s at the onset",
+            s.joint_speed_at_contact_rad_s
+        ),
+    )?;
+    line(
+        out,
+        format!(
             "  motor torque peak   {:.6} N·m at the motor ({:.6} N·m at the joint; {:.6} N·m at the onset)",
             s.peak_motor_torque_nm, s.peak_joint_torque_nm, s.joint_torque_at_onset_nm
         ),
@@ -210,6 +217,14 @@ fn print_driven(
             s.steps, s.samples
         ),
     )?;
+    if let Some(severity) = &s.severity {
+        let struck = if s.head == "wall" {
+            "the head against a wall; it does not move, so no acceleration and no HIC"
+        } else {
+            "the head, its acceleration from the contact and neck forces"
+        };
+        print_severity(out, severity, struck)?;
+    }
     print_link(out, link)
 }
 

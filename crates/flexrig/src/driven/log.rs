@@ -5,7 +5,9 @@
 //! `/drive/joint` (actual joint angle and speed), `/drive/command` (commanded joint angle and
 //! speed; absent under an open-loop torque), `/drive/torque` (motor torque at the joint and at
 //! the motor shaft), `/link` (the spring's or the beam root's moment, the tip deflection) and
-//! `/contact` (force and indentation). Inside the contact every trace sample is logged; outside
+//! `/contact` (force, indentation and the head's acceleration), and at the run's end one JSON
+//! message on `/severity` (the summary's severity, [`crate::mcap_log::SEVERITY_JSON_SCHEMA`],
+//! struck body the head). Inside the contact every trace sample is logged; outside
 //! it the channels are decimated to [`LogRates::scalar_period_ns`]. The scene file is attached;
 //! `flexrig` (parameters), `view` and `summary` metadata records as in the test bed's logs. The
 //! run is computed first and the log written from its trace, under a temporary name moved into
@@ -69,15 +71,19 @@ pub struct DrivenContact {
     pub indentation_m: f64,
     /// The same in millimetres (for the plots) \[mm\].
     pub indentation_mm: f64,
+    /// The head's acceleration along the tip's path [m/s²] (positive away from the link; 0
+    /// against a wall).
+    pub head_acceleration_mps2: f64,
 }
 
 /// The topics of a driven log.
-pub const TOPICS: [&str; 5] = [
+pub const TOPICS: [&str; 6] = [
     "/drive/joint",
     "/drive/command",
     "/drive/torque",
     "/link",
     "/contact",
+    "/severity",
 ];
 
 fn stamp(t: f64) -> Timestamp {
@@ -119,6 +125,21 @@ impl<W: Write + Seek> Writer<W> {
                 publish_time: ns,
             },
             &self.buffer,
+        )
+    }
+
+    /// One JSON message (already serialised) at time `t` \[s\].
+    fn write_json(&mut self, channel: u16, t: f64, json: &str) -> Result<(), mcap::McapError> {
+        self.sequence += 1;
+        let ns = nanos(t);
+        self.mcap.write_to_known_channel(
+            &mcap::records::MessageHeader {
+                channel_id: channel,
+                sequence: self.sequence,
+                log_time: ns,
+                publish_time: ns,
+            },
+            json.as_bytes(),
         )
     }
 
@@ -170,6 +191,15 @@ pub fn write<W: Write + Seek>(
     let torque = w.channel::<MotorTorque>("/drive/torque")?;
     let link = w.channel::<LinkState>("/link")?;
     let contact = w.channel::<DrivenContact>("/contact")?;
+    let severity_channel = {
+        let id = w.mcap.add_schema(
+            crate::mcap_log::SEVERITY_SCHEMA_NAME,
+            "jsonschema",
+            crate::mcap_log::SEVERITY_JSON_SCHEMA.as_bytes(),
+        )?;
+        w.mcap
+            .add_channel(id, "/severity", "json", &BTreeMap::new())?
+    };
     w.mcap.attach(&mcap::Attachment {
         log_time: 0,
         create_time: 0,
@@ -273,8 +303,22 @@ pub fn write<W: Write + Seek>(
                         force_n: tr.force_n[i],
                         indentation_m: tr.indentation_m[i],
                         indentation_mm: 1e3 * tr.indentation_m[i],
+                        head_acceleration_mps2: tr.head_acceleration_mps2[i],
                     },
                 )?;
+            }
+            if let Some(severity) = &run.summary.severity {
+                let mut message = serde_json::to_value(severity).unwrap_or_default();
+                if let Some(map) = message.as_object_mut() {
+                    map.insert("hic_method".into(), flexrig_safety::HIC_METHOD.into());
+                    let struck = if run.summary.head == "wall" {
+                        "head against a wall (it does not move: no acceleration, no HIC)"
+                    } else {
+                        "head (its acceleration (f − neck force)/m_h along the tip's path)"
+                    };
+                    map.insert("struck_body".into(), struck.into());
+                }
+                w.write_json(severity_channel, off, &message.to_string())?;
             }
             let summary = summary_json(&run.summary);
             let items: BTreeMap<String, String> = summary

@@ -336,6 +336,8 @@ pub struct DrivenSummary {
     pub peak_joint_torque_nm: f64,
     /// Largest |τ_m| at the motor shaft during the contact, τ_j / N [N·m].
     pub peak_motor_torque_nm: f64,
+    /// The joint's speed at the onset [rad/s] (the motor's, after the gear).
+    pub joint_speed_at_contact_rad_s: f64,
     /// Largest indentation \[m\]: (f_max/k_c)^{1/n} for an undamped contact (Eq. 4, exact at
     /// the peak); with damping the largest among the trace's samples.
     pub max_indentation_m: f64,
@@ -360,6 +362,11 @@ pub struct DrivenSummary {
     pub samples: usize,
     /// Plausibility warnings (none are defined for driven scenes yet: always empty).
     pub warnings: Vec<String>,
+    /// Severity of the contact ([`crate::severity::of_driven`] over the trace: peak force,
+    /// pressure under both dome area models, energy transferred, and for a head that moves
+    /// its peak acceleration, HIC15 and HIC36; the struck body is the person's head).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub severity: Option<crate::severity::Severity>,
 }
 
 /// The motion of a driven run, one entry per trace sample (at the integrator's steps, at most
@@ -388,6 +395,9 @@ pub struct DrivenTraces {
     pub force_n: Vec<f64>,
     /// Indentation \[m\] (negative: the gap before the contact).
     pub indentation_m: Vec<f64>,
+    /// The head's acceleration along the tip's path [m/s²] (positive away from the link; 0
+    /// against a wall).
+    pub head_acceleration_mps2: Vec<f64>,
 }
 
 impl DrivenTraces {
@@ -408,6 +418,7 @@ impl DrivenTraces {
             ("tip_deflection_m", &self.tip_deflection_m),
             ("force_n", &self.force_n),
             ("indentation_m", &self.indentation_m),
+            ("head_acceleration_mps2", &self.head_acceleration_mps2),
         ]);
         out
     }
@@ -468,6 +479,9 @@ pub fn run(scene: &DrivenScene, cancel: &CancelToken) -> Result<DrivenRun, Error
         traces.tip_deflection_m.push(sample.tip_deflection_m);
         traces.force_n.push(sample.force_n);
         traces.indentation_m.push(sample.indentation_m);
+        traces
+            .head_acceleration_mps2
+            .push(sample.head_acceleration_mps2);
     }
     let c = outcome.contact;
     let end = c.onset_s + c.duration_s;
@@ -486,6 +500,24 @@ pub fn run(scene: &DrivenScene, cancel: &CancelToken) -> Result<DrivenRun, Error
             .map(|x| x.indentation_m)
             .fold(0.0f64, f64::max)
     };
+    let head_moves = s.person.support != HeadSupport::Wall;
+    let severity = if contact.len() >= 2 {
+        Some(crate::severity::of_driven(
+            &traces.time_s,
+            &traces.force_n,
+            &traces.indentation_m,
+            head_moves.then_some(traces.head_acceleration_mps2.as_slice()),
+            (c.onset_s, end),
+            crate::severity::paper_dome_radius_m()?,
+        )?)
+    } else {
+        None
+    };
+    let joint_speed_at_contact = outcome
+        .trace
+        .iter()
+        .find(|x| x.t >= c.onset_s)
+        .map_or(f64::NAN, |x| x.hub_speed_rad_s);
     let summary = DrivenSummary {
         scene: scene.name.clone(),
         kind: "driven",
@@ -511,6 +543,7 @@ pub fn run(scene: &DrivenScene, cancel: &CancelToken) -> Result<DrivenRun, Error
         joint_torque_at_onset_nm: outcome.joint_torque_at_onset_nm,
         peak_joint_torque_nm: outcome.peak_joint_torque_nm,
         peak_motor_torque_nm: outcome.peak_joint_torque_nm / n,
+        joint_speed_at_contact_rad_s: joint_speed_at_contact,
         max_indentation_m: max_indentation,
         impulse_n_s: impulse,
         motor_work_j: outcome.energy.motor_work_j,
@@ -522,6 +555,7 @@ pub fn run(scene: &DrivenScene, cancel: &CancelToken) -> Result<DrivenRun, Error
         duration_s: end,
         samples: outcome.trace.len(),
         warnings: Vec::new(),
+        severity,
     };
     Ok(DrivenRun {
         summary,
@@ -562,8 +596,18 @@ pub fn sweep_values(
         None,
         Some(s.duration_s),
     ];
-    // the severity columns stay empty: a driven run's severity is not computed yet
     values[..run.len()].copy_from_slice(&run);
+    let severity = crate::severity::severity_values(s.severity.as_ref());
+    let at = crate::study::sweep::SEVERITY_START;
+    values[at..at + severity.len()].copy_from_slice(&severity);
+    let driven = [
+        Some(s.pre_impact_deflection_m),
+        Some(s.peak_motor_torque_nm),
+        Some(s.joint_speed_at_contact_rad_s).filter(|v| v.is_finite()),
+        s.commanded_tip_speed_mps,
+    ];
+    let at = crate::study::sweep::DRIVEN_START;
+    values[at..at + driven.len()].copy_from_slice(&driven);
     values
 }
 
@@ -812,6 +856,141 @@ mod tests {
         assert!((v_ratio - 2.0).abs() < 0.1, "{v_ratio}");
         assert!(ratio > 1.5 && ratio < 3.0, "{ratio}");
         assert_eq!(slow.summary.commanded_tip_speed_mps, Some(1.0));
+    }
+
+    /// A driven CJ held at constant speed (an ideal position source in steady motion), a link
+    /// 1e5 times stiffer than the contact, n = 1, a free head of 4 kg.
+    const HELD_CJ_LINEAR: &str = r#"
+name = "held_cj_linear"
+design = "cj"
+horizon_s = 1.0
+[link]
+m_r = 1.0
+length = 1.0
+k_delta = 1e10
+m_e = 0.1
+[drive.motor]
+rotor_inertia = 1e-4
+gear_ratio = 50.0
+friction = 0.0
+[drive.command]
+command = "trajectory"
+[drive.command.profile]
+profile = "steady"
+speed = 2.0
+[person]
+m_h = 4.0
+speed = 0.0
+[person.support]
+support = "free"
+[person.contact]
+k = 1e5
+n = 1.0
+[placement]
+placement = "angle"
+angle = 0.01
+[record]
+sample_rate_hz = 1e6
+"#;
+
+    #[test]
+    fn the_hic_of_a_held_linear_strike_is_the_half_sine_s() {
+        // A link moved at a constant tip speed v that the contact cannot slow (held joint,
+        // link 1e5 × stiffer than the contact) into a free head m_h on a linear contact k_c:
+        // the head's acceleration is the half-sine a = v ω sin ωt, ω = √(k_c/m_h), for
+        // T = π/ω. Its HIC (window w centred on the pulse, x = π w/(2T)):
+        // HIC = (2T/π) (v ω/g₀)^2.5 sin^2.5 x / x^1.5, largest at tan x = 5x/3 (w < 15 ms here,
+        // so HIC15 = HIC36). Departures: the link's compliance k_c/k_δ = 1e-5 (HIC ∝ ω^1.5:
+        // 7.5e-6), its vibration ((ω/ω_link)² ≈ 1e-6), and the trace's linear interpolant at
+        // 1 µs ((π Δt/T)²/12 ≈ 2e-9): tolerance 1e-4.
+        let run = run_driven_text(HELD_CJ_LINEAR, &[], no_log(), &CancelToken::new()).unwrap();
+        let s = &run.summary;
+        let (v, k_c, m_h) = (2.0, 1e5, 4.0);
+        let omega = (k_c / m_h as f64).sqrt();
+        let t_c = std::f64::consts::PI / omega;
+        let a_g = v * omega / crate::severity::STANDARD_GRAVITY;
+        // tan x = 5x/3 by Newton from 1
+        let mut x: f64 = 1.0;
+        for _ in 0..50 {
+            let g = x.tan() - 5.0 * x / 3.0;
+            let dg = 1.0 / x.cos().powi(2) - 5.0 / 3.0;
+            x -= g / dg;
+        }
+        let window = 2.0 * t_c * x / std::f64::consts::PI;
+        assert!(window < 0.015, "{window}");
+        let hic =
+            2.0 * t_c / std::f64::consts::PI * a_g.powf(2.5) * x.sin().powf(2.5) / x.powf(1.5);
+        let sev = s.severity.as_ref().expect("a severity");
+        for (name, h) in [("HIC15", sev.hic15), ("HIC36", sev.hic36)] {
+            let h = h.expect("a HIC for a free head");
+            eprintln!(
+                "{name} {} vs half-sine {hic} (window {} s, closed form {window} s)",
+                h.hic,
+                h.t2_s - h.t1_s
+            );
+            assert!(
+                (h.hic - hic).abs() <= 1e-4 * hic,
+                "{name} {} vs {hic}",
+                h.hic
+            );
+            assert!(((h.t2_s - h.t1_s) - window).abs() <= 1e-3 * window);
+        }
+        // the pulse itself: peak m_h v ω, duration π/ω, peak acceleration v ω
+        let peak = m_h * v * omega;
+        assert!(
+            (s.peak_force_n - peak).abs() <= 1e-4 * peak,
+            "{}",
+            s.peak_force_n
+        );
+        assert!((s.contact_duration_s - t_c).abs() <= 1e-4 * t_c);
+        let a_peak = sev.peak_acceleration_mps2.unwrap();
+        assert!((a_peak - v * omega).abs() <= 1e-4 * v * omega, "{a_peak}");
+        // energy transferred: the contact's energy at the peak, ½ m_h v² (the striker does
+        // not slow)
+        let e = 0.5 * m_h * v * v;
+        assert!((sev.energy_transferred_j - e).abs() <= 1e-4 * e);
+        // the sweep row carries the severity and the driven columns
+        let row = sweep_values(s);
+        let col = |name: &str| {
+            let i = crate::study::sweep::SUMMARY_COLUMNS
+                .iter()
+                .position(|c| *c == name)
+                .unwrap();
+            row[i]
+        };
+        assert_eq!(col("hic15"), Some(sev.hic15.unwrap().hic));
+        assert_eq!(col("severity_peak_force_n"), Some(sev.peak_force_n));
+        assert_eq!(col("peak_motor_torque_nm"), Some(s.peak_motor_torque_nm));
+        assert_eq!(col("joint_speed_at_contact_rad_s"), Some(2.0));
+        assert_eq!(col("commanded_tip_speed_mps"), Some(2.0));
+        assert_eq!(
+            col("pre_impact_deflection_m"),
+            Some(s.pre_impact_deflection_m)
+        );
+    }
+
+    #[test]
+    fn a_head_against_a_wall_has_a_severity_without_acceleration() {
+        let run = run_driven_text(CJ_WALL, &[], no_log(), &CancelToken::new()).unwrap();
+        let sev = run.summary.severity.as_ref().expect("a severity");
+        assert!(sev.hic15.is_none() && sev.peak_acceleration_mps2.is_none());
+        // the logged force peaks just below the located peak: so does the severity's
+        let p = run.summary.peak_force_n;
+        assert!(sev.peak_force_n <= p && sev.peak_force_n >= (1.0 - 1e-3) * p);
+        // the energy transferred is the contact's work while the indentation grows (the
+        // integrator's impact energy), to the trace's trapezoid
+        let e = run.summary.impact_energy_j;
+        assert!(
+            (sev.energy_transferred_j - e).abs() <= 1e-3 * e,
+            "{} vs {e}",
+            sev.energy_transferred_j
+        );
+        let row = sweep_values(&run.summary);
+        let hic = crate::study::sweep::SUMMARY_COLUMNS
+            .iter()
+            .position(|c| *c == "hic15")
+            .unwrap();
+        assert_eq!(row[hic], None);
     }
 
     #[test]

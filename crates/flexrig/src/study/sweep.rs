@@ -22,8 +22,9 @@ use crate::cancel::CancelToken;
 use crate::output::write_atomic;
 
 /// The summary quantities of a row, in column order: the run summary's, the severity's
-/// ([`crate::severity::SEVERITY_COLUMNS`]), then the link's ([`crate::link::COLUMNS`]).
-pub const SUMMARY_COLUMNS: [&str; 29] = [
+/// ([`crate::severity::SEVERITY_COLUMNS`]), the link's ([`crate::link::COLUMNS`]), then the
+/// driven robot's ([`DRIVEN_COLUMNS`]).
+pub const SUMMARY_COLUMNS: [&str; 33] = [
     "peak_force_n",
     "time_of_peak_s",
     "impact_velocity_mps",
@@ -54,7 +55,32 @@ pub const SUMMARY_COLUMNS: [&str; 29] = [
     "k_delta_n_per_m",
     "k_theta_r_nm_per_rad",
     "m_e_over_m_r",
+    // the driven robot's (scenes with [drive]; empty for the test bed): DRIVEN_COLUMNS
+    "pre_impact_deflection_m",
+    "peak_motor_torque_nm",
+    "joint_speed_at_contact_rad_s",
+    "commanded_tip_speed_mps",
 ];
+
+/// The driven robot's columns (a scene with `[drive]`; empty for the test bed), the last block
+/// of [`SUMMARY_COLUMNS`]: the tip's deflection from the hub's line at the onset \[m\] (the
+/// drive's acceleration pre-bends a CL link), the largest motor-shaft torque during the
+/// contact [N·m], the joint's speed at the onset [rad/s] and the commanded tip speed there
+/// [m/s] (absent under an open-loop torque).
+pub const DRIVEN_COLUMNS: [&str; 4] = [
+    "pre_impact_deflection_m",
+    "peak_motor_torque_nm",
+    "joint_speed_at_contact_rad_s",
+    "commanded_tip_speed_mps",
+];
+
+/// Index of the first driven column in [`SUMMARY_COLUMNS`].
+pub const DRIVEN_START: usize = SUMMARY_COLUMNS.len() - DRIVEN_COLUMNS.len();
+
+/// Index of the first severity column ([`crate::severity::SEVERITY_COLUMNS`]) in
+/// [`SUMMARY_COLUMNS`].
+pub const SEVERITY_START: usize = 15;
+
 
 /// The columns of [`SUMMARY_COLUMNS`] that hold counts: written as whole numbers (`3`, not
 /// `3e0`) in the CSV and as integers in JSON Lines.
@@ -106,7 +132,7 @@ pub fn summary_values(
     let severity = crate::severity::severity_values(s.severity.as_ref());
     let mut values = [None; SUMMARY_COLUMNS.len()];
     values[..run.len()].copy_from_slice(&run);
-    values[run.len()..run.len() + severity.len()].copy_from_slice(&severity);
+    values[SEVERITY_START..SEVERITY_START + severity.len()].copy_from_slice(&severity);
     with_link(values, link)
 }
 
@@ -889,17 +915,15 @@ mod tests {
         for column in crate::severity::SEVERITY_COLUMNS {
             assert!(header.split(',').any(|c| c == column), "{column}");
         }
-        let severity_at = SUMMARY_COLUMNS
-            .iter()
-            .position(|c| *c == crate::severity::SEVERITY_COLUMNS[0])
-            .unwrap();
+        let n = crate::severity::SEVERITY_COLUMNS.len();
         assert_eq!(
-            SUMMARY_COLUMNS[severity_at..severity_at + crate::severity::SEVERITY_COLUMNS.len()],
+            SUMMARY_COLUMNS[SEVERITY_START..SEVERITY_START + n],
             crate::severity::SEVERITY_COLUMNS
         );
         // the link quantities, one block
         let at = link_offset();
         assert_eq!(SUMMARY_COLUMNS[at..at + 5], crate::link::COLUMNS);
+        assert_eq!(SUMMARY_COLUMNS[DRIVEN_START..], DRIVEN_COLUMNS);
         // every column but the counts, HIC and the mass ratio (no unit) names its unit
         for column in SUMMARY_COLUMNS {
             let unitless = [
@@ -924,6 +948,8 @@ mod tests {
                 "_n_m2",
                 "_n_per_m",
                 "_nm_per_rad",
+                "_nm",
+                "_rad_s",
             ];
             assert!(
                 unitless.contains(&column) || units.iter().any(|u| column.ends_with(u)),
