@@ -227,7 +227,18 @@ pub fn assemble_ancf(
                     f[k] += m_lump[k] * acc[k];
                 }
             } else {
-                f += mass * acc;
+                // M = (ρA l sₐ s_b H_ab) ⊗ I₂: two 4 × 4 products (the same sums, in the same
+                // order, as the 8 × 8 one without its zero terms)
+                for a in 0..4 {
+                    let (mut fx, mut fy) = (0.0, 0.0);
+                    for bb in 0..4 {
+                        let m = mass[(2 * a, 2 * bb)];
+                        fx += m * acc[2 * bb];
+                        fy += m * acc[2 * bb + 1];
+                    }
+                    f[2 * a] += fx;
+                    f[2 * a + 1] += fy;
+                }
             }
         }
         for k in 0..8 {
