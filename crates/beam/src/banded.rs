@@ -55,9 +55,15 @@ impl BandMatrix {
     pub fn n(&self) -> usize {
         self.n
     }
-    /// Zeroes every entry (keeps the allocation).
+    /// Zeroes every entry (keeps the allocation). The pivoting LU's fill-in rows are zeroed
+    /// by the LU itself, so the beam's band shapes clear only the rows of the band (fixed-size
+    /// column stores instead of a memset of the whole storage).
     pub fn clear(&mut self) {
-        self.data.iter_mut().for_each(|x| *x = 0.0);
+        match (self.kl, self.ku) {
+            (5, 5) => self.clear_band::<5, 16>(),
+            (7, 7) => self.clear_band::<7, 22>(),
+            _ => self.data.iter_mut().for_each(|x| *x = 0.0),
+        }
         self.factored = false;
         self.symmetric = false;
     }
@@ -65,6 +71,24 @@ impl BandMatrix {
     fn idx(&self, i: usize, j: usize) -> usize {
         j * self.ld + self.kl + self.ku + i - j
     }
+    /// Zeroes the band rows (storage offsets K … 3K) of every column, kl = ku = K, LD = 3K + 1.
+    fn clear_band<const K: usize, const LD: usize>(&mut self) {
+        let (cols, _) = self.data.as_chunks_mut::<LD>();
+        for col in cols {
+            for x in &mut col[K..] {
+                *x = 0.0;
+            }
+        }
+    }
+
+    /// Zeroes the LU's fill-in rows (storage offsets 0 … kl − 1) of every column.
+    fn clear_fill(&mut self) {
+        let (kl, ld) = (self.kl, self.ld);
+        for col in self.data.chunks_exact_mut(ld) {
+            col[..kl].iter_mut().for_each(|x| *x = 0.0);
+        }
+    }
+
     /// Entry (i, j); zero outside the band.
     pub fn get(&self, i: usize, j: usize) -> f64 {
         if i + self.ku >= j && i <= j + self.kl {
@@ -154,6 +178,9 @@ impl BandMatrix {
     }
 
     fn lu(&mut self, what: &str, tiny: f64) -> Result<(), BeamError> {
+        if matches!((self.kl, self.ku), (5, 5) | (7, 7)) {
+            self.clear_fill();
+        }
         let done = match (self.kl, self.ku) {
             (5, 5) => self.factorize_fixed::<5, 10>(tiny),
             (7, 7) => self.factorize_fixed::<7, 14>(tiny),
