@@ -242,9 +242,7 @@ pub fn assemble_ancf(
                 }
             }
         }
-        let re: &mut [f64; 8] = (&mut r[4 * e..4 * e + 8])
-            .try_into()
-            .expect("element DOFs");
+        let re: &mut [f64; 8] = (&mut r[4 * e..4 * e + 8]).try_into().expect("element DOFs");
         for k in 0..8 {
             re[ELEMENT_DOFS[k]] += f[k];
         }
