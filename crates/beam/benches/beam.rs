@@ -253,10 +253,27 @@ fn stages(c: &mut Criterion) {
         });
         let rhs: Vec<f64> = r[model.n_fixed()..].to_vec();
         let mut x = rhs.clone();
+        // (ANCF: the symmetric positive definite matrix takes the LDLᵀ path; the pivoting LU
+        // of the same matrix alongside, for the comparison)
         g.bench_function(format!("{name}_32/solve"), |bch| {
             bch.iter(|| {
                 x.copy_from_slice(&rhs);
                 lu.solve_in_place(&mut x);
+                black_box(x[0])
+            })
+        });
+        let mut pivoting = band.clone();
+        g.bench_function(format!("{name}_32/factorize_lu"), |bch| {
+            bch.iter(|| {
+                pivoting.clone_from(&band);
+                pivoting.factorize_lu("bench").unwrap();
+                black_box(pivoting.n())
+            })
+        });
+        g.bench_function(format!("{name}_32/solve_lu"), |bch| {
+            bch.iter(|| {
+                x.copy_from_slice(&rhs);
+                pivoting.solve_in_place(&mut x);
                 black_box(x[0])
             })
         });

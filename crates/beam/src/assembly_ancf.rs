@@ -48,7 +48,8 @@ pub fn element_of(model: &BeamModel) -> AncfElement {
 }
 
 fn gather(x: &[f64], e: usize) -> Vector8 {
-    Vector8::from_fn(|k, _| x[4 * e + ELEMENT_DOFS[k]])
+    let x: &[f64; 8] = x[4 * e..4 * e + 8].try_into().expect("element DOFs");
+    Vector8::from_fn(|k, _| x[ELEMENT_DOFS[k]])
 }
 
 /// Absolute slope (r′ₓ, r′ᵧ) of node `i` from the displacements `q`.
@@ -227,11 +228,23 @@ pub fn assemble_ancf(
                     f[k] += m_lump[k] * acc[k];
                 }
             } else {
-                f += mass * acc;
+                // M = (ρA l sₐ s_b H_ab) ⊗ I₂: two 4 × 4 products (the same sums, in the same
+                // order, as the 8 × 8 one without its zero terms)
+                for a in 0..4 {
+                    let (mut fx, mut fy) = (0.0, 0.0);
+                    for bb in 0..4 {
+                        let m = mass[(2 * a, 2 * bb)];
+                        fx += m * acc[2 * bb];
+                        fy += m * acc[2 * bb + 1];
+                    }
+                    f[2 * a] += fx;
+                    f[2 * a + 1] += fy;
+                }
             }
         }
+        let re: &mut [f64; 8] = (&mut r[4 * e..4 * e + 8]).try_into().expect("element DOFs");
         for k in 0..8 {
-            r[4 * e + ELEMENT_DOFS[k]] += f[k];
+            re[ELEMENT_DOFS[k]] += f[k];
         }
         if let Some((band, w)) = jac.as_mut() {
             // w_k K_t + (w_a + w_v a₀) M + w_v a₁ K_m

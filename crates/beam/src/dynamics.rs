@@ -728,12 +728,19 @@ impl GeneralizedAlpha {
         loop {
             // Newmark relations: â, q̇, q̈ from the increment Δq = q_{n+1} − q_n (not from
             // q_{n+1} − q_n, which cancels to ε|q| and leaves ε|q|/(βh²) of noise in â at tiny h).
+            // (every slice cut to n, so that the loop runs without bounds checks)
+            let (dq, aux) = (&ws.dq_step[..n], &ws.a_aux[..n]);
+            let (v0, a0) = (&state.v[..n], &state.a[..n]);
+            let (ahat_new, v_new, a_new) = (
+                &mut ws.ahat_new[..n],
+                &mut ws.v_new[..n],
+                &mut ws.a_new[..n],
+            );
             for i in 0..n {
-                let ahat = (ws.dq_step[i] - h * state.v[i] - h * h * (0.5 - b) * ws.a_aux[i])
-                    / (b * h * h);
-                ws.ahat_new[i] = ahat;
-                ws.v_new[i] = state.v[i] + h * ((1.0 - g) * ws.a_aux[i] + g * ahat);
-                ws.a_new[i] = ((1.0 - am) * ahat + am * ws.a_aux[i] - af * state.a[i]) / (1.0 - af);
+                let ahat = (dq[i] - h * v0[i] - h * h * (0.5 - b) * aux[i]) / (b * h * h);
+                ahat_new[i] = ahat;
+                v_new[i] = v0[i] + h * ((1.0 - g) * aux[i] + g * ahat);
+                a_new[i] = ((1.0 - am) * ahat + am * aux[i] - af * a0[i]) / (1.0 - af);
             }
             if iterations > 0 && (converged || (single_solve && iterations == 1)) {
                 break;
@@ -818,9 +825,14 @@ impl GeneralizedAlpha {
                 1.0
             };
             last = 0.0;
-            for (i, d) in (nfix..n).zip(&ws.dq) {
-                ws.dq_step[i] += s * d;
-                ws.q_new[i] = state.q[i] + ws.dq_step[i];
+            for (((step, qn), q0), d) in ws.dq_step[nfix..n]
+                .iter_mut()
+                .zip(&mut ws.q_new[nfix..n])
+                .zip(&state.q[nfix..n])
+                .zip(&ws.dq)
+            {
+                *step += s * d;
+                *qn = q0 + *step;
                 last = last.max((s * d).abs());
             }
             if !last.is_finite() {

@@ -441,12 +441,23 @@ fn non_finite_loads_are_input_errors_naming_the_load() {
 #[test]
 fn overflowing_loads_give_a_non_finite_error_instead_of_a_nan_solution() {
     // Regression: the linear static solve returned Ok with NaN/inf displacements for loads near
-    // f64::MAX (finite loads, so no input error; the solution overflows).
+    // f64::MAX (finite loads, so no input error; the pivoting LU's intermediates overflowed).
+    // Never Ok with a non-finite value: either a non-input error or the representable answer
+    // (the symmetric LDLᵀ factorisation, which the linear stiffness now takes, does not
+    // overflow and returns the exact linear tip PL³/3EI = f64::MAX/3).
     let (m, l) = elastica_problem(1.0, 8).unwrap();
     let huge = l.scaled(f64::MAX);
     for kin in [Kinematics::Linear, Kinematics::Corotational] {
         let mk = m.with_kinematics(kin);
         match solve_static(&mk, &huge, &StaticOptions::with_load_steps(3).unwrap()) {
+            Ok(s) if kin == Kinematics::Linear => {
+                assert_rel("PL³/3EI at P = f64::MAX", s.node(8).1, f64::MAX / 3.0, 1e-9);
+                assert!(
+                    s.q.iter().all(|x| x.is_finite()),
+                    "{kin:?}: {:?}",
+                    s.node(8)
+                );
+            }
             Ok(s) => panic!("{kin:?}: Ok with tip {:?}", s.node(8)),
             Err(e) => assert!(!e.is_input_error(), "{kin:?}: {e}"),
         }
