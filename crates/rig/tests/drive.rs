@@ -321,8 +321,8 @@ fn a_drive_held_at_rest_is_the_test_bed() {
     // a finer swing step for the explicit loop, the held drive at the same step
     let fine = |t: String| t.replace("swing_step_s = 5e-4", "swing_step_s = 5e-5");
     let held_fine = run(&parse(&fine(held(hold))).unwrap());
-    let j_r = 1.9424e-5 * 100.0;
-    for kp in [1e2, 1e3, 1e4] {
+    let j_r: f64 = 1.9424e-5 * 100.0;
+    for kp in [1e2_f64, 1e3, 1e4] {
         let kd = 2.0 * (kp * j_r).sqrt();
         let pd = format!(
             "[robot.drive.command]\ncommand = \"controller\"\n[robot.drive.command.profile]\nprofile = \"steady\"\nspeed = 0.0\n[robot.drive.command.gains]\nkp = {kp:.1}\nkd = {kd}\n"
