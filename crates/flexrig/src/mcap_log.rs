@@ -674,7 +674,11 @@ impl<W: Write + Seek> McapRecorder<W> {
             angle_rad,
             speed_rad_s,
         };
-        self.write(ch.joint, f.t, &motion(d.motor_angle_rad, d.motor_speed_rad_s))?;
+        self.write(
+            ch.joint,
+            f.t,
+            &motion(d.motor_angle_rad, d.motor_speed_rad_s),
+        )?;
         self.write(
             ch.command,
             f.t,

@@ -178,7 +178,10 @@ impl JointDrive {
                  when it starts away from the block",
             ));
         }
-        if start_angle > 0.0 && speed <= 0.0 && !matches!(drive.command(), DriveCommand::OpenLoop { .. }) {
+        if start_angle > 0.0
+            && speed <= 0.0
+            && !matches!(drive.command(), DriveCommand::OpenLoop { .. })
+        {
             return Err(crate::error::invalid(
                 "robot.drive.command.profile.speed",
                 flexrig_contact::validate::display(speed),

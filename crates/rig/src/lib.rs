@@ -38,10 +38,10 @@ pub mod world;
 
 pub use beam_link::{BeamLink, LinkVariant};
 pub use error::RigError;
+pub use joint_drive::{DriveFrame, DriveSummary, JointDrive};
 pub use overrides::{Override, scene_from_table, scene_with_overrides};
 pub use run::{
     ContactEvent, Frame, Interruptible, NoRecorder, Recorder, RunOptions, RunSummary, Simulation,
     StepOutcome, run_scene_text,
 };
-pub use joint_drive::{DriveFrame, DriveSummary, JointDrive};
 pub use scene::{BeamSolverSpec, Design, RobotDriveSpec, Scene, SceneFile, SwingPolicy};

@@ -623,14 +623,7 @@ impl<'s> Simulation<'s> {
             Some(r) => r.integral,
             None => drive.initial().2,
         };
-        Some(drive.synchronise(
-            self.t,
-            angle,
-            lagging_rate,
-            integral,
-            spring,
-            h,
-        ))
+        Some(drive.synchronise(self.t, angle, lagging_rate, integral, spring, h))
     }
 
     /// Total mechanical energy \[J\] at the synchronised state.
@@ -803,7 +796,12 @@ impl<'s> Simulation<'s> {
             && let (Some(d), None) = (&self.scene.drive, self.stats.drive_onset)
         {
             let onset = self.stats.open.map_or(self.t, |o| o.onset_time);
-            let link = start.0.robot.map_or(-start.0.rotor.map_or(0.0, |r| r.state.rate), |(r, _)| -r.rate);
+            let link = start
+                .0
+                .robot
+                .map_or(-start.0.rotor.map_or(0.0, |r| r.state.rate), |(r, _)| {
+                    -r.rate
+                });
             self.stats.drive_onset = Some((link, d.commanded(onset).map(|(_, w, _)| -w)));
         }
         if outcome == StepOutcome::Separation {

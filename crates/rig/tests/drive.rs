@@ -128,7 +128,8 @@ fn driven_text(drive: &str, edits: &[(&str, &str)]) -> String {
     text
 }
 
-const MOTOR: &str = "[robot.drive.motor]\nrotor_inertia = 1.9424e-5\ngear_ratio = 10.0\nfriction = 1e-5\n";
+const MOTOR: &str =
+    "[robot.drive.motor]\nrotor_inertia = 1.9424e-5\ngear_ratio = 10.0\nfriction = 1e-5\n";
 
 /// Steps `scene` to `t_end` \[s\] (no contact needed), keeping the drive's channels.
 fn frames_to(scene: &Scene, t_end: f64) -> (Vec<(f64, f64, DriveFrame)>, f64) {
@@ -156,7 +157,12 @@ fn the_bundled_test_bed_scenes_run_bit_identically() {
             s.energy_final_j,
         ];
         for (i, (g, b)) in got.iter().zip(bits).enumerate() {
-            assert_eq!(g.to_bits(), b, "{name}: quantity {i}: {g} vs {}", f64::from_bits(b));
+            assert_eq!(
+                g.to_bits(),
+                b,
+                "{name}: quantity {i}: {g} vs {}",
+                f64::from_bits(b)
+            );
         }
         assert_eq!(s.steps, steps, "{name}");
         assert!(s.drive.is_none());
@@ -245,7 +251,9 @@ fn a_constant_acceleration_loads_the_spring_as_the_analytic_solution() {
         assert!((d.motor_angle_rad - 0.5 * alpha * t * t).abs() <= 1e-12);
     }
     assert!(n > 1000);
-    eprintln!("constant acceleration: J_l α/k = {static_lag:.6e} rad, worst error {worst:.3e} of it over {n} steps");
+    eprintln!(
+        "constant acceleration: J_l α/k = {static_lag:.6e} rad, worst error {worst:.3e} of it over {n} steps"
+    );
     assert!(worst <= 1e-5, "worst {worst:e}");
 }
 
@@ -302,8 +310,10 @@ fn held(extra: &str) -> String {
 /// step.
 #[test]
 fn a_drive_held_at_rest_is_the_test_bed() {
-    let fixed_bed = common::scene_text("cj_light_load")
-        .replace("contact_steps = 800", "contact_steps = 800\nswing = \"fixed\"");
+    let fixed_bed = common::scene_text("cj_light_load").replace(
+        "contact_steps = 800",
+        "contact_steps = 800\nswing = \"fixed\"",
+    );
     let bed_fixed = run(&parse(&fixed_bed).unwrap());
     let bed = run(&common::scene("cj_light_load", &[]));
     let hold = "[robot.drive.command]\ncommand = \"trajectory\"\n[robot.drive.command.profile]\nprofile = \"steady\"\nspeed = 0.0\n";
@@ -315,7 +325,10 @@ fn a_drive_held_at_rest_is_the_test_bed() {
     );
     let rel = |a: f64, b: f64| (a / b - 1.0).abs();
     let peak = rel(s.peak_force_n, bed.peak_force_n);
-    let duration = rel(s.contact_duration_s.unwrap(), bed.contact_duration_s.unwrap());
+    let duration = rel(
+        s.contact_duration_s.unwrap(),
+        bed.contact_duration_s.unwrap(),
+    );
     eprintln!("held drive vs adaptive test bed: peak {peak:.3e}, duration {duration:.3e}");
     assert!(peak <= 1e-5 && duration <= 1e-5);
     // a finer swing step for the explicit loop, the held drive at the same step
@@ -329,8 +342,14 @@ fn a_drive_held_at_rest_is_the_test_bed() {
         );
         let s = run(&parse(&fine(held(&pd))).unwrap());
         let dev = rel(s.peak_force_n, held_fine.peak_force_n);
-        let dur = rel(s.contact_duration_s.unwrap(), held_fine.contact_duration_s.unwrap());
-        eprintln!("PD K_p = {kp:e}: peak {:.6} N, {dev:.3e} (duration {dur:.3e}) from the held drive", s.peak_force_n);
+        let dur = rel(
+            s.contact_duration_s.unwrap(),
+            held_fine.contact_duration_s.unwrap(),
+        );
+        eprintln!(
+            "PD K_p = {kp:e}: peak {:.6} N, {dev:.3e} (duration {dur:.3e}) from the held drive",
+            s.peak_force_n
+        );
         assert!(dev <= 1e-6 && dur <= 1e-6, "K_p = {kp}: {dev}, {dur}");
     }
 }
@@ -347,13 +366,37 @@ fn field_of(text: &str) -> String {
 fn bad_drive_input_names_the_scene_field() {
     let bundled = common::scene_text("rig_driven_cj");
     let cases = [
-        ("gear_ratio = 10.0", "gear_ratio = 0.0", "robot.drive.motor.gear_ratio"),
-        ("rotor_inertia = 1.9424e-5", "rotor_inertia = -1.0", "robot.drive.motor.rotor_inertia"),
+        (
+            "gear_ratio = 10.0",
+            "gear_ratio = 0.0",
+            "robot.drive.motor.gear_ratio",
+        ),
+        (
+            "rotor_inertia = 1.9424e-5",
+            "rotor_inertia = -1.0",
+            "robot.drive.motor.rotor_inertia",
+        ),
         ("kp = 50.0", "kp = -1.0", "robot.drive.command.gains.kp"),
-        ("torque_limit = 0.2", "torque_limit = 0.0", "robot.drive.command.torque_limit"),
-        ("ramp_time = 0.5", "ramp_time = 0.0", "robot.drive.command.profile.ramp_time"),
-        ("settle = 0.2", "settle = -1.0", "robot.drive.placement.settle"),
-        ("speed = 2.6365", "speed = -2.6365", "robot.drive.placement.settle"),
+        (
+            "torque_limit = 0.2",
+            "torque_limit = 0.0",
+            "robot.drive.command.torque_limit",
+        ),
+        (
+            "ramp_time = 1.5",
+            "ramp_time = 0.0",
+            "robot.drive.command.profile.ramp_time",
+        ),
+        (
+            "settle = 0.2",
+            "settle = -1.0",
+            "robot.drive.placement.settle",
+        ),
+        (
+            "speed = 2.6365",
+            "speed = -2.6365",
+            "robot.drive.placement.settle",
+        ),
         ("design = \"cj\"", "design = \"cl\"", "robot.drive"),
     ];
     for (from, to, field) in cases {
