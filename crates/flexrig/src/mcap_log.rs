@@ -113,6 +113,19 @@ struct Channels {
     contact: u16,
     energy: u16,
     severity: u16,
+    /// The drive on the robot joint (`robot.drive`): `/drive/joint` (the motor side),
+    /// `/drive/command`, `/drive/torque`, `/drive/link` (the link after the spring) — the
+    /// driven scenes' messages.
+    drive: Option<DriveChannels>,
+}
+
+/// Channel ids of a test-bed drive's topics.
+#[derive(Debug, Clone, Copy)]
+struct DriveChannels {
+    joint: u16,
+    command: u16,
+    torque: u16,
+    link: u16,
 }
 
 /// How often the channels are written. Inside the contact window `/contact` and the sensor
@@ -539,7 +552,39 @@ impl<W: Write + Seek> McapRecorder<W> {
                 )?;
                 writer.add_channel(id, "/severity", "json", &BTreeMap::new())?
             },
+            drive: None,
         };
+        let mut channels = channels;
+        if scene.drive.is_some() {
+            use crate::driven::log::{JointMotion, MotorTorque};
+            let mut channel = |topic: &str, schema: Option<foxglove::Schema>, encoding: String| {
+                let schema = schema.expect("derived messages have schemas");
+                let id = writer.add_schema(&schema.name, &schema.encoding, &schema.data)?;
+                writer.add_channel(id, topic, &encoding, &BTreeMap::new())
+            };
+            channels.drive = Some(DriveChannels {
+                joint: channel(
+                    "/drive/joint",
+                    JointMotion::get_schema(),
+                    JointMotion::get_message_encoding(),
+                )?,
+                command: channel(
+                    "/drive/command",
+                    JointMotion::get_schema(),
+                    JointMotion::get_message_encoding(),
+                )?,
+                torque: channel(
+                    "/drive/torque",
+                    MotorTorque::get_schema(),
+                    MotorTorque::get_message_encoding(),
+                )?,
+                link: channel(
+                    "/drive/link",
+                    JointMotion::get_schema(),
+                    JointMotion::get_message_encoding(),
+                )?,
+            });
+        }
         writer.attach(&mcap::Attachment {
             log_time: 0,
             create_time: 0,
@@ -615,6 +660,40 @@ impl<W: Write + Seek> McapRecorder<W> {
     pub fn with_deformation_scale(mut self, scale: f64) -> Self {
         self.deformation_scale = scale;
         self
+    }
+
+    /// The drive's channels of frame `f` (a scene with `robot.drive`): the motor side's joint
+    /// angle and speed, the command, the joint and motor torques, the link's angle and speed.
+    fn write_drive(&mut self, f: &Frame<'_>) -> Result<(), RigError> {
+        use crate::driven::log::{JointMotion, MotorTorque};
+        let (Some(ch), Some(d)) = (self.channels.drive, f.drive) else {
+            return Ok(());
+        };
+        let motion = |angle_rad: f64, speed_rad_s: f64| JointMotion {
+            timestamp: stamp(f.t),
+            angle_rad,
+            speed_rad_s,
+        };
+        self.write(
+            ch.joint,
+            f.t,
+            &motion(d.motor_angle_rad, d.motor_speed_rad_s),
+        )?;
+        self.write(
+            ch.command,
+            f.t,
+            &motion(d.commanded_angle_rad, d.commanded_speed_rad_s),
+        )?;
+        self.write(
+            ch.torque,
+            f.t,
+            &MotorTorque {
+                timestamp: stamp(f.t),
+                joint_nm: d.joint_torque_nm,
+                motor_nm: d.motor_torque_nm,
+            },
+        )?;
+        self.write(ch.link, f.t, &motion(d.link_angle_rad, d.link_speed_rad_s))
     }
 
     /// Messages written so far.
@@ -1047,6 +1126,7 @@ impl<W: Write + Seek> Recorder for McapRecorder<W> {
                     total_j: f.energy,
                 },
             )?;
+            self.write_drive(f)?;
             self.write_3d(f)?;
             self.last_scene_ns = Some(ns);
         }

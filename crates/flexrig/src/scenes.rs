@@ -9,7 +9,7 @@ use flexrig_rig::Scene;
 use crate::Error;
 
 /// The bundled scene files, compiled in (the binary needs no assets directory).
-pub const BUNDLED_SCENES: [(&str, &str); 10] = [
+pub const BUNDLED_SCENES: [(&str, &str); 11] = [
     (
         "cj_aluminium",
         include_str!("../../../assets/scenes/cj_aluminium.toml"),
@@ -49,6 +49,10 @@ pub const BUNDLED_SCENES: [(&str, &str); 10] = [
     (
         "driven_cl_wall",
         include_str!("../../../assets/scenes/driven_cl_wall.toml"),
+    ),
+    (
+        "rig_driven_cj",
+        include_str!("../../../assets/scenes/rig_driven_cj.toml"),
     ),
 ];
 

@@ -586,7 +586,7 @@ impl Drive {
     /// friction: the joint torque c_j ω from the integral if K_i > 0, else from a lag of the
     /// angle if K_p > 0, else from a lag of the speed (then the robot moves at the speed the loop
     /// settles at: returned as the third value, the joint speed at t = 0).
-    pub(crate) fn steady_preload(&self) -> Result<(f64, f64, f64), ImpactError> {
+    pub fn steady_preload(&self) -> Result<(f64, f64, f64), ImpactError> {
         let c = self.spec.motor.reflected_friction();
         let speed = self.initial_speed();
         let DriveCommand::Controller { profile, gains, .. } = &self.spec.command else {

@@ -25,6 +25,7 @@ mod error;
 pub mod format_message;
 pub mod free_flight;
 pub mod geometry;
+pub mod joint_drive;
 pub mod limits;
 pub mod overrides;
 pub mod plausibility;
@@ -37,9 +38,10 @@ pub mod world;
 
 pub use beam_link::{BeamLink, LinkVariant};
 pub use error::RigError;
+pub use joint_drive::{DriveFrame, DriveSummary, JointDrive};
 pub use overrides::{Override, scene_from_table, scene_with_overrides};
 pub use run::{
     ContactEvent, Frame, Interruptible, NoRecorder, Recorder, RunOptions, RunSummary, Simulation,
     StepOutcome, run_scene_text,
 };
-pub use scene::{BeamSolverSpec, Design, Scene, SceneFile, SwingPolicy};
+pub use scene::{BeamSolverSpec, Design, RobotDriveSpec, Scene, SceneFile, SwingPolicy};

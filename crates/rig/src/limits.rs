@@ -144,7 +144,10 @@ pub fn check_budget(scene: &Scene) -> Result<Budget, RigError> {
     // Contacts: one per half period at most (the block returns each swing).
     let simulated_s = match file.stop {
         StopSpec::Duration { duration_s } => duration_s,
-        StopSpec::Peak | StopSpec::Separation => period,
+        StopSpec::Peak | StopSpec::Separation => match &scene.drive {
+            Some(d) => period.max(d.approach_time_estimate()),
+            None => period,
+        },
     };
     let contacts = (2.0 * simulated_s / period).ceil().max(1.0);
     let swing_steps = simulated_s / file.solver.swing_step_s;
@@ -257,7 +260,12 @@ pub fn first_impact_estimate(scene: &Scene) -> ImpactEstimate {
         op.inertia_pivot,
         scene.file.gravity_mps2,
     );
-    let speed_mps = swing.rate_at_contact * op.arm_length;
+    // with a drive the link comes too (the speeds add along the strike)
+    let speed_mps = swing.rate_at_contact * op.arm_length
+        + scene
+            .drive
+            .as_ref()
+            .map_or(0.0, |d| d.tip_speed_estimate(g.robot.length));
     let m_op = op.effective_mass();
     let m_rob = g.robot.effective_mass();
     let reduced_mass_kg = m_op * m_rob / (m_op + m_rob);

@@ -16,6 +16,7 @@ use crate::beam_link::{BeamLink, LinkVariant};
 use crate::coupling::{HingeMotion, TipContact};
 use crate::free_flight::{DIM, FlightSensors, FlightStep, FreeFlight, FreeHinges, SwingPolicy};
 use crate::geometry::RigGeometry;
+use crate::joint_drive::{DriveFrame, DriveSummary, RotorSync};
 use crate::scene::{Design, Scene, StopSpec};
 use crate::sensors::{Reading, Sampler, SensorSample};
 use crate::world::{HingeState, RapierRig};
@@ -60,6 +61,9 @@ pub struct Frame<'a> {
     pub energy: f64,
     /// Sensor samples taken during this step.
     pub samples: &'a [SensorSample],
+    /// The drive on the robot joint (`robot.drive`): commanded and actual joint angle and
+    /// speed, motor torque, the link's elastic moment.
+    pub drive: Option<DriveFrame>,
 }
 
 /// Receives every step (e.g. an MCAP logger). Implementations must not panic; an error stops
@@ -179,6 +183,10 @@ pub struct RunSummary {
     /// Sensor samples.
     #[serde(skip)]
     pub samples: Vec<SensorSample>,
+    /// What the drive on the robot joint did (`robot.drive`): the motor's work, the friction,
+    /// the largest joint torque, the link's speed at the onset.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub drive: Option<DriveSummary>,
 }
 
 /// Settings of the simulation that are not in the scene file (defaults are the documented
@@ -233,6 +241,8 @@ struct Synced {
     /// Robot hinge and its angular acceleration (CJ).
     robot: Option<(HingeState, f64)>,
     contact: Option<ContactSample>,
+    /// The drive's hub (`robot.drive`).
+    rotor: Option<RotorSync>,
 }
 
 /// A running simulation of one scene.
@@ -270,6 +280,7 @@ struct Snapshot {
     now: Synced,
     operator: HingeState,
     robot: Option<HingeState>,
+    rotor: Option<HingeState>,
     beam: Option<Box<BeamLink>>,
 }
 
@@ -321,6 +332,14 @@ struct Stats {
     energy: f64,
     open: Option<OpenContact>,
     contacts: Vec<ContactEvent>,
+    /// The drive: motor work, friction loss \[J\], largest |τ_j| [N·m], the largest energy or
+    /// work seen \[J\] (the scale of the energy check), the link's and the commanded speed at
+    /// the first onset [rad/s].
+    drive_work: f64,
+    drive_friction: f64,
+    drive_peak_torque: f64,
+    drive_scale: f64,
+    drive_onset: Option<(f64, Option<f64>)>,
 }
 
 /// Factor of the Hertz contact duration t_c ≈ C δ_max/v0 used to size the contact step
@@ -334,14 +353,22 @@ impl<'s> Simulation<'s> {
         let op = &geometry.operator;
         let g = scene.file.gravity_mps2;
         let design = scene.file.robot.design;
-        let rapier = RapierRig::new(g, op, (design == Design::Cj).then_some(&geometry.robot));
+        let mut rapier = RapierRig::new(g, op, (design == Design::Cj).then_some(&geometry.robot));
+        let drive = scene.drive.as_ref();
+        if let Some(d) = drive
+            && design == Design::Cj
+            && !d.is_prescribed()
+        {
+            rapier.add_rotor(d.inertia());
+        }
         let swing =
             scene
                 .file
                 .operator
                 .start
                 .initial_swing(op.mass, op.com_distance, op.inertia_pivot, g);
-        let v_impact = swing.rate_at_contact * op.arm_length;
+        let v_impact = swing.rate_at_contact * op.arm_length
+            + drive.map_or(0.0, |d| d.tip_speed_estimate(geometry.robot.length));
         if !(v_impact > 0.0) {
             return Err(crate::error::invalid(
                 "operator.start",
@@ -388,10 +415,20 @@ impl<'s> Simulation<'s> {
             angle: swing.angle,
             rate: swing.rate,
         };
-        let robot_initial = (design == Design::Cj).then_some(HingeState {
-            angle: 0.0,
-            rate: 0.0,
-        });
+        let (hub_initial, link_initial) = match drive {
+            Some(d) => {
+                let (hub, link, _) = d.initial();
+                (Some(hub), link)
+            }
+            None => (
+                None,
+                HingeState {
+                    angle: 0.0,
+                    rate: 0.0,
+                },
+            ),
+        };
+        let robot_initial = (design == Design::Cj).then_some(link_initial);
         let mut sim = Simulation {
             scene,
             options,
@@ -406,6 +443,7 @@ impl<'s> Simulation<'s> {
                 operator_accel: 0.0,
                 robot: None,
                 contact: None,
+                rotor: None,
             },
             phase: Phase::Swing,
             contact_step,
@@ -434,6 +472,9 @@ impl<'s> Simulation<'s> {
         }
         // Rapier holds the synchronised start state; the first kick is a half step (h_prev = 0).
         sim.rapier.set_state(operator, robot_initial);
+        if let Some(hub) = hub_initial {
+            sim.rapier.set_rotor_state(hub);
+        }
         sim.now = sim.synchronize(0.0);
         sim.stats.energy_initial = sim.energy();
         sim.stats.energy = sim.stats.energy_initial;
@@ -486,6 +527,7 @@ impl<'s> Simulation<'s> {
         &self,
         operator: HingeState,
         robot: Option<HingeState>,
+        hub: f64,
         contact: Option<&ContactSample>,
     ) -> (f64, Option<f64>) {
         let op = &self.geometry.operator;
@@ -496,7 +538,8 @@ impl<'s> Simulation<'s> {
         }
         let robot_accel = match (&self.robot, robot) {
             (RobotSide::Rigid { spring }, Some(r)) => {
-                let mut t = -spring * r.angle;
+                // the spring's other end: the drive's hub (0: the fixed axis of the test bed)
+                let mut t = -spring * (r.angle - hub);
                 if let Some(c) = contact {
                     t += c.point.cross(c.force_on_dome()).z;
                 }
@@ -512,8 +555,10 @@ impl<'s> Simulation<'s> {
     /// those rates — a predictor–corrector pass for a damped law (δ̇ needs ω, ω needs f).
     fn synchronize(&self, h: f64) -> Synced {
         let lagging = (self.rapier.operator_state(), self.rapier.robot_state());
+        let rotor = self.sync_rotor(h, lagging.1);
+        let hub = rotor.map_or(0.0, |r| r.state.angle);
         let at = |contact: Option<&ContactSample>| {
-            let (a_op, a_rob) = self.accelerations(lagging.0, lagging.1, contact);
+            let (a_op, a_rob) = self.accelerations(lagging.0, lagging.1, hub, contact);
             let operator = HingeState {
                 angle: lagging.0.angle,
                 rate: lagging.0.rate + 0.5 * h * a_op,
@@ -552,7 +597,33 @@ impl<'s> Simulation<'s> {
             operator_accel,
             robot,
             contact,
+            rotor,
         }
+    }
+
+    /// The drive's hub at the end of a step of `h` (0: at the start) with the link at `link`
+    /// (CJ: its elastic moment on the hub −k_θr (φ_m − φ_l)); the controller's integral
+    /// advanced by the trapezoidal rule.
+    fn sync_rotor(&self, h: f64, link: Option<HingeState>) -> Option<RotorSync> {
+        let drive = self.scene.drive.as_ref()?;
+        let link = link?;
+        let (angle, lagging_rate) = match self.rapier.rotor_state() {
+            Some(s) => (s.angle, s.rate),
+            None => (drive.prescribed(self.t)?.0.angle, 0.0),
+        };
+        let spring = -self.scene.torsion_spring * (angle - link.angle);
+        let integral = match self.now.rotor {
+            Some(r) if h > 0.0 => {
+                r.integral
+                    + 0.5
+                        * h
+                        * (drive.angle_error(self.t - h, r.state.angle)
+                            + drive.angle_error(self.t, angle))
+            }
+            Some(r) => r.integral,
+            None => drive.initial().2,
+        };
+        Some(drive.synchronise(self.t, angle, lagging_rate, integral, spring, h))
     }
 
     /// Total mechanical energy \[J\] at the synchronised state.
@@ -563,13 +634,23 @@ impl<'s> Simulation<'s> {
         let mut e = 0.5 * op.inertia_pivot * s.rate * s.rate
             + op.mass * g * op.com_distance * (1.0 - s.angle.cos());
         e += match (&self.robot, self.now.robot) {
-            (RobotSide::Rigid { spring }, Some((r, _))) => {
-                0.5 * self.geometry.robot.inertia_axis * r.rate * r.rate
-                    + 0.5 * spring * r.angle * r.angle
-            }
+            (RobotSide::Rigid { spring }, Some((r, _))) => match self.now.rotor {
+                None => {
+                    0.5 * self.geometry.robot.inertia_axis * r.rate * r.rate
+                        + 0.5 * spring * r.angle * r.angle
+                }
+                Some(hub) => {
+                    let twist = r.angle - hub.state.angle;
+                    0.5 * self.geometry.robot.inertia_axis * r.rate * r.rate
+                        + 0.5 * spring * twist * twist
+                }
+            },
             (RobotSide::Beam(b), _) => b.energy(),
             (RobotSide::Rigid { .. }, None) => unreachable!("a rigid robot has a hinge state"),
         };
+        if let (Some(hub), Some(d)) = (&self.now.rotor, &self.scene.drive) {
+            e += 0.5 * d.inertia() * hub.state.rate * hub.state.rate;
+        }
         if let Some(c) = &self.now.contact {
             e += self.contact.law().elastic_energy(c.indentation);
         }
@@ -662,7 +743,7 @@ impl<'s> Simulation<'s> {
 
     /// The torques that turn Rapier's next step of `h` into a velocity-Verlet step from the
     /// synchronised state: J a_n (h_prev + h)/(2h), less the gravity Rapier adds itself.
-    fn kick_torques(&self, h: f64) -> (f64, f64) {
+    fn kick_torques(&self, h: f64) -> (f64, f64, f64) {
         let op = &self.geometry.operator;
         let scale = (self.h_prev + h) / (2.0 * h);
         let gravity = -op.mass
@@ -674,7 +755,11 @@ impl<'s> Simulation<'s> {
             .now
             .robot
             .map_or(0.0, |(_, a)| self.geometry.robot.inertia_axis * a * scale);
-        (operator, robot)
+        let rotor = match (&self.now.rotor, &self.scene.drive) {
+            (Some(r), Some(d)) => d.inertia() * r.accel * scale,
+            _ => 0.0,
+        };
+        (operator, robot, rotor)
     }
 
     /// One step of the pipeline: loads → integrate → synchronise → events → check → sensors.
@@ -704,8 +789,21 @@ impl<'s> Simulation<'s> {
             break;
         }
         self.stats.steps += 1;
+        self.account_drive(&start.0, dt);
         // Events.
         let outcome = self.classify(&start, dt);
+        if outcome == StepOutcome::ContactOnset
+            && let (Some(d), None) = (&self.scene.drive, self.stats.drive_onset)
+        {
+            let onset = self.stats.open.map_or(self.t, |o| o.onset_time);
+            let link = start
+                .0
+                .robot
+                .map_or(-start.0.rotor.map_or(0.0, |r| r.state.rate), |(r, _)| {
+                    -r.rate
+                });
+            self.stats.drive_onset = Some((link, d.commanded(onset).map(|(_, w, _)| -w)));
+        }
         if outcome == StepOutcome::Separation {
             self.start_free_flight();
         }
@@ -749,7 +847,43 @@ impl<'s> Simulation<'s> {
             contact: self.now.contact,
             energy,
             samples: &self.sampler.samples()[sampled_before..],
+            drive: self.drive_frame(),
         })
+    }
+
+    /// The drive's channels at the synchronised state.
+    fn drive_frame(&self) -> Option<DriveFrame> {
+        let (d, hub) = (self.scene.drive.as_ref()?, self.now.rotor?);
+        let (link, spring) = match self.now.robot {
+            Some((r, _)) => (r, -self.scene.torsion_spring * (hub.state.angle - r.angle)),
+            None => (hub.state, 0.0),
+        };
+        Some(d.frame(
+            self.t,
+            hub.state,
+            link,
+            hub.torque,
+            spring,
+            (self.stats.drive_work, self.stats.drive_friction),
+        ))
+    }
+
+    /// Adds the step of `dt` from `start` to the drive's work, friction loss and peak torque
+    /// (trapezoidal rule on the synchronised ends).
+    fn account_drive(&mut self, start: &Synced, dt: f64) {
+        let (Some(d), Some(a), Some(b)) = (&self.scene.drive, start.rotor, self.now.rotor) else {
+            return;
+        };
+        let c = d.friction();
+        let (wa, wb) = (a.state.rate, b.state.rate);
+        self.stats.drive_work += 0.5 * dt * (a.torque * wa + b.torque * wb);
+        self.stats.drive_friction += 0.5 * dt * c * (wa * wa + wb * wb);
+        self.stats.drive_peak_torque = self.stats.drive_peak_torque.max(b.torque.abs());
+        self.stats.drive_scale = self
+            .stats
+            .drive_scale
+            .max(self.stats.drive_work.abs())
+            .max(self.stats.energy.abs());
     }
 
     /// Starts the adaptive free flight from the synchronised state, when the scene asks for it
@@ -757,7 +891,8 @@ impl<'s> Simulation<'s> {
     /// before its first contact (the beam at rest; afterwards it vibrates and is stepped with
     /// the fixed policy).
     fn start_free_flight(&mut self) {
-        if self.scene.file.solver.swing != SwingPolicy::Adaptive {
+        // With a drive the motion out of contact is not the hinges' alone: the fixed policy.
+        if self.scene.file.solver.swing != SwingPolicy::Adaptive || self.scene.drive.is_some() {
             return;
         }
         let robot = match &self.robot {
@@ -823,12 +958,13 @@ impl<'s> Simulation<'s> {
             angle: y[2],
             rate: y[3],
         });
-        let (operator_accel, robot_accel) = self.accelerations(operator, robot, None);
+        let (operator_accel, robot_accel) = self.accelerations(operator, robot, 0.0, None);
         Synced {
             operator,
             operator_accel,
             robot: robot.zip(robot_accel),
             contact: None,
+            rotor: None,
         }
     }
 
@@ -905,8 +1041,9 @@ impl<'s> Simulation<'s> {
     /// Loads → integrate → synchronise for a step of `dt` from the synchronised state `start`.
     fn advance(&mut self, dt: f64, start: &Synced) -> Result<(), RigError> {
         // Loads: the forces at t_n (the contact of the synchronised state) as kicks.
-        let (operator_torque, robot_torque) = self.kick_torques(dt);
+        let (operator_torque, robot_torque, rotor_torque) = self.kick_torques(dt);
         self.rapier.apply_torques(operator_torque, robot_torque);
+        self.rapier.apply_rotor_torque(rotor_torque);
         // Integrate: Rapier (explicit), then the beam with the contact implicit at t_n + dt.
         self.rapier.step(dt);
         if let RobotSide::Beam(b) = &mut self.robot {
@@ -948,6 +1085,7 @@ impl<'s> Simulation<'s> {
             now: self.now,
             operator: self.rapier.operator_state(),
             robot: self.rapier.robot_state(),
+            rotor: self.rapier.rotor_state(),
             beam: match &self.robot {
                 RobotSide::Beam(b) => Some(b.clone()),
                 RobotSide::Rigid { .. } => None,
@@ -960,6 +1098,9 @@ impl<'s> Simulation<'s> {
         self.h_prev = s.h_prev;
         self.now = s.now;
         self.rapier.set_state(s.operator, s.robot);
+        if let Some(r) = s.rotor {
+            self.rapier.set_rotor_state(r);
+        }
         if let (RobotSide::Beam(b), Some(saved)) = (&mut self.robot, &s.beam) {
             b.clone_from(saved);
         }
@@ -1099,7 +1240,19 @@ impl<'s> Simulation<'s> {
             });
         }
         let e0 = self.stats.energy_initial;
-        if energy > e0 * (1.0 + self.options.energy_growth_limit) + 1e-12 {
+        let grown = if self.scene.drive.is_some() {
+            // with a drive the conserved quantity is the energy less the drive's net work,
+            // measured against the largest energy or work of the run
+            let net = self.stats.drive_work - self.stats.drive_friction;
+            let scale = e0
+                .max(self.stats.drive_scale)
+                .max(energy.abs())
+                .max(net.abs());
+            energy - net > e0 + scale * self.options.energy_growth_limit + 1e-12
+        } else {
+            energy > e0 * (1.0 + self.options.energy_growth_limit) + 1e-12
+        };
+        if grown {
             return Err(RigError::Unstable {
                 t: self.t,
                 quantity: "the mechanical energy".into(),
@@ -1186,6 +1339,13 @@ impl<'s> Simulation<'s> {
             warnings: self.scene.warnings.clone(),
             severity,
             samples,
+            drive: self.scene.drive.as_ref().map(|_| DriveSummary {
+                motor_work_j: self.stats.drive_work,
+                friction_dissipated_j: self.stats.drive_friction,
+                peak_joint_torque_nm: self.stats.drive_peak_torque,
+                link_speed_at_onset_rad_s: self.stats.drive_onset.map(|o| o.0),
+                commanded_speed_at_onset_rad_s: self.stats.drive_onset.and_then(|o| o.1),
+            }),
         })
     }
 }

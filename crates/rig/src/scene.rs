@@ -179,6 +179,32 @@ pub struct RobotSpec {
     /// CL: number of beam elements.
     #[serde(default = "default_beam_elements")]
     pub beam_elements: usize,
+    /// A motor on the robot joint (`[robot.drive]`); absent: the link at rest on a fixed axis
+    /// (the paper's test bed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub drive: Option<RobotDriveSpec>,
+}
+
+/// A motor on the robot joint, in the vocabulary of the driven scenes' `[drive]` and
+/// `[placement]` sections (`docs/driven.md`): the motor and gear, what moves it, and where the
+/// link starts. The joint angle and speed of the drive are positive towards the operator.
+///
+/// CJ: the torsion spring k_θr sits between the motor's output and the rigid link (a series
+/// elastic actuator). CL: the beam is clamped to the motor's hub.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RobotDriveSpec {
+    /// Rotor inertia J_m \[kg·m²\], gear ratio N and viscous friction c_m \[N·m·s/rad\] at the
+    /// motor shaft.
+    pub motor: flexrig_impact::drive::Motor,
+    /// A prescribed trajectory, a controller with its profile, gains and torque limit, or an
+    /// open-loop torque.
+    pub command: flexrig_impact::drive::DriveCommand,
+    /// Where the link starts: `angle` \[rad\] of joint travel before its undeformed tip touches
+    /// the operator's block hanging at the bottom of its swing (0: touching, the test bed), or
+    /// `after_ramp` with `settle` \[s\]: the commanded motion reaches the block `settle` seconds
+    /// after its ramp.
+    pub placement: flexrig_impact::drive::Placement,
 }
 
 /// The CJ torsion spring as a scene gives it: a stiffness, or the link's own 3EI/L.
@@ -414,6 +440,8 @@ pub struct Scene {
     /// Plausibility warnings: what is valid but looks like a mistake
     /// ([`crate::plausibility`]).
     pub warnings: Vec<crate::plausibility::Warning>,
+    /// The validated motor on the robot joint (`robot.drive`), if any.
+    pub drive: Option<crate::joint_drive::JointDrive>,
 }
 
 impl Scene {

@@ -46,11 +46,20 @@ impl Scene {
                 angle_deg,
                 angular_velocity_rad_s,
             } => {
-                if !(angle_deg.is_finite() && (-170.0..0.0).contains(&angle_deg)) {
+                // With a drive the robot may come to the block: it may hang at the bottom.
+                let driven = file.robot.drive.is_some();
+                if !(angle_deg.is_finite()
+                    && ((-170.0..0.0).contains(&angle_deg) || (driven && angle_deg == 0.0)))
+                {
                     return Err(invalid(
                         "operator.start.angle_deg",
                         angle_deg,
-                        "must lie in [-170, 0) degrees (the block before the dome)",
+                        if driven {
+                            "must lie in [-170, 0] degrees (the block before the dome or hanging \
+                             at the bottom)"
+                        } else {
+                            "must lie in [-170, 0) degrees (the block before the dome)"
+                        },
                     ));
                 }
                 limits::ANGULAR_VELOCITY.check(
@@ -101,6 +110,19 @@ impl Scene {
         let torsion_spring = match r.torsion_spring_nm_per_rad.and_then(|k| k.value()) {
             Some(k) => limits::TORSION_SPRING.check("robot.torsion_spring_nm_per_rad", k)?,
             None => 3.0 * link_ei / r.length_m,
+        };
+
+        let drive = match &r.drive {
+            Some(_) if r.design == crate::scene::Design::Cl => {
+                return Err(invalid(
+                    "robot.drive",
+                    "a drive",
+                    "the compliant link (robot.design = \"cl\") has no drive in the test bed \
+                     yet; use robot.design = \"cj\" or a driven scene with [drive]",
+                ));
+            }
+            Some(spec) => Some(crate::joint_drive::JointDrive::new(spec)?),
+            None => None,
         };
 
         let c = &file.contact;
@@ -162,6 +184,7 @@ impl Scene {
             torsion_spring,
             file,
             warnings: Vec::new(),
+            drive,
         };
         limits::check_budget(&scene)?;
         scene.warnings = crate::plausibility::warnings(&scene, materials);

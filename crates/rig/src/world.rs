@@ -29,6 +29,8 @@ pub struct RapierRig {
     world: PhysicsWorld,
     operator: Hinge,
     robot: Option<Hinge>,
+    /// The drive's rotor on the robot axis (CJ with a motor that is not a prescribed trajectory).
+    rotor: Option<Hinge>,
 }
 
 impl std::fmt::Debug for RapierRig {
@@ -105,9 +107,82 @@ impl RapierRig {
             world,
             operator: operator_hinge,
             robot: robot_hinge,
+            rotor: None,
         };
         rig.settle_multibody();
         rig
+    }
+
+    /// Adds the drive's rotor: a body turning about the robot axis (z through the origin) with
+    /// moment of inertia `inertia` [kg·m²] about it (J_m N², the rotor as the joint sees it; its
+    /// mass sits on the axis and does not enter the rotation).
+    pub fn add_rotor(&mut self, inertia: f64) {
+        let ground = self.world.insert_body(RigidBodyBuilder::fixed());
+        let body = self.world.insert_body(
+            RigidBodyBuilder::dynamic()
+                .additional_mass_properties(MassProperties::new(
+                    Vector::ZERO,
+                    1.0,
+                    Vector::new(inertia, inertia, inertia),
+                ))
+                .can_sleep(false),
+        );
+        let joint = self
+            .world
+            .insert_multibody_joint(ground, body, RevoluteJointBuilder::new(Vector::Z))
+            .expect("a joint between the ground and a new body forms no cycle");
+        let (mb, _) = self
+            .world
+            .multibody_joints
+            .get_mut(joint)
+            .expect("the rotor joint exists");
+        mb.forward_kinematics(&self.world.bodies, true);
+        mb.damping_mut().fill(0.0);
+        self.rotor = Some(Hinge {
+            body,
+            joint,
+            axis: Vector::Z,
+            pivot: Vector::ZERO,
+        });
+    }
+
+    /// Sets the rotor's hinge (if there is one) to `s`.
+    pub fn set_rotor_state(&mut self, s: HingeState) {
+        if let Some(h) = self.rotor {
+            self.set_hinge(h.joint, s);
+        }
+    }
+
+    /// The rotor's angle and rate (Rapier's: the rate half a step behind).
+    pub fn rotor_state(&self) -> Option<HingeState> {
+        self.rotor.as_ref().map(|h| self.hinge_state(h))
+    }
+
+    /// Applies `torque` [N·m] about the robot axis to the rotor over the next step (last step's
+    /// cleared).
+    pub fn apply_rotor_torque(&mut self, torque: f64) {
+        if let Some(h) = self.rotor {
+            let body = &mut self.world.bodies[h.body];
+            body.reset_forces(false);
+            body.reset_torques(false);
+            body.add_torque(h.axis * torque, false);
+        }
+    }
+
+    fn set_hinge(&mut self, joint: MultibodyJointHandle, s: HingeState) {
+        let (mb, link) = self
+            .world
+            .multibody_joints
+            .get_mut(joint)
+            .expect("the joint exists");
+        let a = mb.link(link).expect("the link exists").assembly_id();
+        let current = mb.link(link).expect("the link exists").joint().coords()[3];
+        let mut disp = vec![0.0; mb.ndofs()];
+        disp[a] = s.angle - current;
+        mb.apply_displacements(&disp);
+        mb.generalized_velocity_mut()[a] = s.rate;
+        mb.forward_kinematics(&self.world.bodies, true);
+        mb.update_rigid_bodies(&mut self.world.bodies, true);
     }
 
     /// Brings the multibody to its final number of degrees of freedom and zeroes Rapier's hidden
@@ -129,19 +204,7 @@ impl RapierRig {
             targets.push((h.joint, s));
         }
         for (joint, s) in targets {
-            let (mb, link) = self
-                .world
-                .multibody_joints
-                .get_mut(joint)
-                .expect("the joint exists");
-            let a = mb.link(link).expect("the link exists").assembly_id();
-            let current = mb.link(link).expect("the link exists").joint().coords()[3];
-            let mut disp = vec![0.0; mb.ndofs()];
-            disp[a] = s.angle - current;
-            mb.apply_displacements(&disp);
-            mb.generalized_velocity_mut()[a] = s.rate;
-            mb.forward_kinematics(&self.world.bodies, true);
-            mb.update_rigid_bodies(&mut self.world.bodies, true);
+            self.set_hinge(joint, s);
         }
     }
 
