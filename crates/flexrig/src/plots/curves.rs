@@ -202,7 +202,7 @@ impl XLinear {
         let step = nice_step(hi - lo, 6);
         Self {
             lo: (lo / step - 1e-9).floor() * step + 0.0,
-            hi: (hi / step + 1e-9).ceil() * step,
+            hi: (hi / step - 1e-9).ceil() * step,
             step,
         }
     }
