@@ -287,10 +287,16 @@ fn spin_up_and_role_switch_figures_say_the_inputs_that_ran() {
         "3 modes",
         "time t [s]",
     ] {
-        assert!(text.contains(label), "'{label}' not in the spin-up figure:\n{text}");
+        assert!(
+            text.contains(label),
+            "'{label}' not in the spin-up figure:\n{text}"
+        );
     }
     for stale in ["10 m", "6 rad/s", "15 s", "16 ", "7 modes", "e-"] {
-        assert!(!text.contains(stale), "'{stale}' in the spin-up figure:\n{text}");
+        assert!(
+            !text.contains(stale),
+            "'{stale}' in the spin-up figure:\n{text}"
+        );
     }
     ok(&[
         "role-switch",
@@ -308,8 +314,14 @@ fn spin_up_and_role_switch_figures_say_the_inputs_that_ran() {
     ]);
     let text = check_svg(&dir.join("role_switch.svg"), 3.5).replace('\n', " ");
     for label in ["J_R = 2 m_r L²/3", "damping ratio 0.5", "k_θr/K_p"] {
-        assert!(text.contains(label), "'{label}' not in the role-switch figure:\n{text}");
+        assert!(
+            text.contains(label),
+            "'{label}' not in the role-switch figure:\n{text}"
+        );
     }
-    assert!(!text.contains("1e-3") && !text.contains("f_driven"), "{text}");
+    assert!(
+        !text.contains("1e-3") && !text.contains("f_driven"),
+        "{text}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -526,7 +526,9 @@ mod tests {
             // a tip force puts the largest moment at the root; a pure moment is uniform (the
             // root is the first node of equal stress)
             assert_eq!(s.at_m, 0.0);
-            assert!((s.moment_nm - (p * beam.length + m)).abs() < 1e-12 * (1.0 + s.moment_nm.abs()));
+            assert!(
+                (s.moment_nm - (p * beam.length + m)).abs() < 1e-12 * (1.0 + s.moment_nm.abs())
+            );
         }
     }
 
@@ -553,12 +555,9 @@ mod tests {
                 let model = beam.model(kinematics).unwrap();
                 let mut loads = NodalLoads::zeros(&model);
                 loads.set_force(model.tip_node(), 0.0, p).unwrap();
-                let sol = solve_static(
-                    &model,
-                    &loads,
-                    &StaticOptions::with_load_steps(20).unwrap(),
-                )
-                .unwrap();
+                let sol =
+                    solve_static(&model, &loads, &StaticOptions::with_load_steps(20).unwrap())
+                        .unwrap();
                 let fe = sol.reactions[2].abs();
                 assert!(
                     (s.moment_nm.abs() / fe - 1.0).abs() < 1e-6,
@@ -584,7 +583,9 @@ mod tests {
         let s = statics(&beam, &load(0.0, m, Kinematics::Ancf))
             .unwrap()
             .stress;
-        assert!((s.bending_pa / (m * 0.5 * beam.thickness / beam.second_moment()) - 1.0).abs() < 1e-12);
+        assert!(
+            (s.bending_pa / (m * 0.5 * beam.thickness / beam.second_moment()) - 1.0).abs() < 1e-12
+        );
         assert_eq!(s.axial_pa, 0.0);
     }
 
@@ -616,7 +617,11 @@ mod tests {
         // the linear model at 12 % of L (PL³/3EI = 0.12 L) and at 8 %
         let ei = beam.youngs * beam.second_moment();
         for (ratio, warned) in [(0.12, true), (0.08, false)] {
-            let l = load(ratio * 3.0 * ei / beam.length.powi(2), 0.0, Kinematics::Linear);
+            let l = load(
+                ratio * 3.0 * ei / beam.length.powi(2),
+                0.0,
+                Kinematics::Linear,
+            );
             let sol = statics(&beam, &l).unwrap();
             let w = static_warnings(&beam, &l, &sol, None);
             assert_eq!(w.iter().any(|w| w.field == "--model"), warned, "{w:?}");
@@ -625,12 +630,16 @@ mod tests {
             assert!(static_warnings(&beam, &a, &statics(&beam, &a).unwrap(), None).is_empty());
             // yield: just below and just above the largest stress
             let s = sol.stress.max_pa;
-            assert!(static_warnings(&beam, &l, &sol, Some(s * 1.001))
-                .iter()
-                .all(|w| w.field != "--yield-strength"));
-            assert!(static_warnings(&beam, &l, &sol, Some(s * 0.999))
-                .iter()
-                .any(|w| w.field == "--yield-strength"));
+            assert!(
+                static_warnings(&beam, &l, &sol, Some(s * 1.001))
+                    .iter()
+                    .all(|w| w.field != "--yield-strength")
+            );
+            assert!(
+                static_warnings(&beam, &l, &sol, Some(s * 0.999))
+                    .iter()
+                    .any(|w| w.field == "--yield-strength")
+            );
         }
         assert!(check_yield_strength(Some(-1.0)).is_err());
     }

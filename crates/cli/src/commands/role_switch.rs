@@ -68,7 +68,10 @@ pub fn run(args: &RoleSwitchArgs, out: &mut dyn Write, cancel: &CancelToken) -> 
                 })
             })
             .collect();
-        return print_json(out, &json!({"rows": rows, "csv": r.csv, "svg": r.svg, "figures": r.figures}));
+        return print_json(
+            out,
+            &json!({"rows": rows, "csv": r.csv, "svg": r.svg, "figures": r.figures}),
+        );
     }
     line(
         out,

@@ -84,7 +84,12 @@ pub fn curves_svg(
     let panel_w = width_pt / cols as f64;
     let legend_rows = panels
         .iter()
-        .map(|p| legend_lines(p, panel_w, axes.x_log).iter().map(Vec::len).sum::<usize>())
+        .map(|p| {
+            legend_lines(p, panel_w, axes.x_log)
+                .iter()
+                .map(Vec::len)
+                .sum::<usize>()
+        })
         .max()
         .unwrap_or(0) as u32;
     let legend_height = 6 + LEGEND_LINE * legend_rows;
@@ -108,9 +113,15 @@ pub fn curves_svg(
             if axes.x_log {
                 let decades = x_decades(panels);
                 let bounds = (10f64.powi(decades.0), 10f64.powi(decades.1));
-                draw_panel(&plot, panel, axes, log_axis(decades), bounds, &y_axis, &|v| {
-                    sci_label(*v)
-                })?;
+                draw_panel(
+                    &plot,
+                    panel,
+                    axes,
+                    log_axis(decades),
+                    bounds,
+                    &y_axis,
+                    &|v| sci_label(*v),
+                )?;
             } else {
                 let x = XLinear::of(panels);
                 let axis = Linear::new(x.lo, x.hi, ticks(x.lo, x.hi, x.step));
@@ -300,10 +311,7 @@ where
         .margin_right(px(14))
         .x_label_area_size(px(28))
         .y_label_area_size(px(40))
-        .build_cartesian_2d(
-            x_axis,
-            Linear::new(y_axis.lo, y_axis.hi, y_axis.ticks()),
-        )
+        .build_cartesian_2d(x_axis, Linear::new(y_axis.lo, y_axis.hi, y_axis.ticks()))
         .map_err(err)?;
     chart
         .configure_mesh()
