@@ -26,6 +26,8 @@ RUNS=(
   "eta_rotor|eta-rotor|η_FE from a freely pivoting link to the held joint over the rotor inertia."
   "payload|payload --points 13|The test bed's CJ and CL peaks and their ratio over the payload."
   "prb|prb|The PRB model's circle against the FE tip path, on equal axes."
+  "spin_up|spin-up|The spin-up beam (Kane, Ryan & Banerjee 1987): the FE tip deflection in the hub frame against the elastica reference."
+  "role_switch|role-switch|The role switch: the driven robot's peak over the test bed's against the drive's compliance, CJ and CL, for the test bed's link and the Fig. 6 cases."
   "bench|bench --quick|Work–precision: run time against error of the lumped impact, the beam and the rig."
 )
 

@@ -1,7 +1,8 @@
 //! The figures as a reader gets them: every figure command at one column (3.5 in) and two
 //! columns (7 in) writes SVGs whose text is at least 8 pt at that width (font-size × width
 //! [in] / viewBox width ≥ 8/72 in), PNG and PDF of the printed size; and fig9's text, read back,
-//! is the inputs that ran (`--set` of the payload, the block mass and the design).
+//! is the inputs that ran (`--set` of the payload, the block mass and the design), as are the
+//! spin-up's and the role switch's.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -58,7 +59,19 @@ fn check_svg(path: &Path, inches: f64) -> String {
 
 #[test]
 fn every_figure_command_writes_text_of_at_least_8_pt_at_its_width() {
-    let commands: [&[&str]; 7] = [
+    let commands: [&[&str]; 9] = [
+        &[
+            "spin-up",
+            "--elements",
+            "4",
+            "--modes",
+            "3",
+            "--t-s",
+            "2",
+            "--duration",
+            "3",
+        ],
+        &["role-switch", "--no-fig6", "--kappa", "1"],
         &["fig6"],
         &["prb", "--elements", "16"],
         &["payload", "--points", "3"],
@@ -239,5 +252,76 @@ fn fig9_says_the_inputs_that_ran() {
     ] {
         assert!(text.contains(label), "{label} missing:\n{text}");
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn spin_up_and_role_switch_figures_say_the_inputs_that_ran() {
+    let dir = scratch("driven-labels");
+    ok(&[
+        "spin-up",
+        "--length",
+        "8",
+        "--omega-s",
+        "4",
+        "--t-s",
+        "2",
+        "--duration",
+        "3",
+        "--elements",
+        "5",
+        "--modes",
+        "3",
+        "--out",
+        dir.to_str().unwrap(),
+        "--format",
+        "svg,png",
+    ]);
+    assert!(dir.join("spin_up.png").exists());
+    let text = check_svg(&dir.join("spin_up.svg"), 7.0).replace('\n', " ");
+    for label in [
+        "L = 8 m",
+        "ω_s = 4 rad/s",
+        "T_s = 2 s",
+        "5 corotational elements",
+        "3 modes",
+        "time t [s]",
+    ] {
+        assert!(
+            text.contains(label),
+            "'{label}' not in the spin-up figure:\n{text}"
+        );
+    }
+    for stale in ["10 m", "6 rad/s", "15 s", "16 ", "7 modes", "e-"] {
+        assert!(
+            !text.contains(stale),
+            "'{stale}' in the spin-up figure:\n{text}"
+        );
+    }
+    ok(&[
+        "role-switch",
+        "--no-fig6",
+        "--kappa",
+        "100,1",
+        "--rotor-ratio",
+        "2",
+        "--damping-ratio",
+        "0.5",
+        "--out",
+        dir.to_str().unwrap(),
+        "--size",
+        "1",
+    ]);
+    let text = check_svg(&dir.join("role_switch.svg"), 3.5).replace('\n', " ");
+    for label in ["J_R = 2 m_r L²/3", "damping ratio 0.5", "k_θr/K_p"] {
+        assert!(
+            text.contains(label),
+            "'{label}' not in the role-switch figure:\n{text}"
+        );
+    }
+    assert!(
+        !text.contains("1e-3") && !text.contains("f_driven"),
+        "{text}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -660,39 +660,90 @@ pub fn fit_report(fit: &flexrig_contact::HertzFit, warnings: &[crate::fit::Warni
     })
 }
 
-/// The beam of `flexrig beam`: its numbers checked before its `root` (`clamped`, `pinned`);
-/// errors name the flag.
-#[allow(clippy::too_many_arguments)]
-pub fn beam_input(
-    length: f64,
-    youngs: f64,
-    density: f64,
-    width: f64,
-    thickness: f64,
-    elements: usize,
-    tip_mass: f64,
-    root: &str,
-    k_theta: f64,
-) -> Result<crate::beam::BeamInput, Error> {
+/// The beam of `flexrig beam` as the user gives it: each number a flag (or keyword), or taken
+/// from the link of `scene` (a bundled name or a scene file) when not given; a flag given
+/// overrides the scene.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BeamFlags {
+    /// `--scene`: the scene whose robot link gives L, E, ρ, w, t, the tip mass (its payload)
+    /// and the elements.
+    pub scene: Option<PathBuf>,
+    /// `--length` \[m\].
+    pub length: Option<f64>,
+    /// `--youngs` \[Pa\].
+    pub youngs: Option<f64>,
+    /// `--density` [kg/m³] (the modal analysis needs it).
+    pub density: Option<f64>,
+    /// `--width` \[m\].
+    pub width: Option<f64>,
+    /// `--thickness` \[m\].
+    pub thickness: Option<f64>,
+    /// `--elements` (default 16, or the scene's).
+    pub elements: Option<usize>,
+    /// `--tip-mass` \[kg\] (default 0, or the scene's payload).
+    pub tip_mass: Option<f64>,
+    /// `--root`: `clamped` or `pinned`.
+    pub root: String,
+    /// `--k-theta` [N·m/rad].
+    pub k_theta: f64,
+}
+
+/// Elements of `flexrig beam` when neither `--elements` nor a scene gives them.
+pub const BEAM_ELEMENTS: usize = 16;
+
+/// The beam of `flexrig beam`'s flags (the scene's link filling what is not given), its
+/// numbers checked before its `root` (`clamped`, `pinned`); errors name the flag, a missing
+/// number says to give it or `--scene`. With the beam: the scene's origin, if one was taken.
+pub fn beam_input(flags: &BeamFlags) -> Result<(crate::beam::BeamInput, Option<String>), Error> {
     use crate::beam::{BeamInput, Root};
+    let link = match &flags.scene {
+        Some(path) => Some(crate::beam::scene_link("--scene", path)?),
+        None => None,
+    };
+    let need = |flag: &str, given: Option<f64>, from_scene: Option<f64>| {
+        given.or(from_scene).ok_or_else(|| {
+            invalid(
+                flag,
+                "(missing)",
+                "give it, or take the link of a scene with --scene NAME|PATH",
+            )
+        })
+    };
+    let l = link.as_ref();
     let mut beam = BeamInput {
-        length,
-        youngs,
-        density,
-        width,
-        thickness,
-        elements,
-        tip_mass,
+        length: need("--length", flags.length, l.map(|l| l.length))?,
+        youngs: need("--youngs", flags.youngs, l.map(|l| l.youngs))?,
+        density: flags.density.or(l.map(|l| l.density)),
+        width: need("--width", flags.width, l.map(|l| l.width))?,
+        thickness: need("--thickness", flags.thickness, l.map(|l| l.thickness))?,
+        elements: flags
+            .elements
+            .or(l.map(|l| l.elements))
+            .unwrap_or(BEAM_ELEMENTS),
+        tip_mass: flags.tip_mass.or(l.map(|l| l.tip_mass)).unwrap_or(0.0),
         root: Root::Clamped,
-        k_theta,
+        k_theta: flags.k_theta,
     };
     beam.check_ranges()?;
-    beam.root = match root {
+    beam.root = match flags.root.as_str() {
         "clamped" => Root::Clamped,
         "pinned" => Root::Pinned,
         other => return Err(invalid("--root", other, "must be clamped or pinned")),
     };
-    Ok(beam)
+    Ok((beam, link.map(|l| l.origin)))
+}
+
+/// `flexrig beam static`: the solve of `beam` under `load` with its plausibility warnings
+/// (`yield_strength` \[Pa\], `--yield-strength`, checked first).
+pub fn beam_static(
+    beam: &crate::beam::BeamInput,
+    load: &crate::beam::TipLoad,
+    yield_strength: Option<f64>,
+) -> Result<(crate::beam::TipDisplacement, Vec<crate::beam::Warning>), Error> {
+    crate::beam::check_yield_strength(yield_strength)?;
+    let sol = crate::beam::statics(beam, load)?;
+    let warnings = crate::beam::static_warnings(beam, load, &sol, yield_strength);
+    Ok((sol, warnings))
 }
 
 /// The natural frequencies of `flexrig beam modal` [Hz] (the element count checked first).
@@ -701,9 +752,13 @@ pub fn beam_modal(beam: &crate::beam::BeamInput, modes: usize) -> Result<Vec<f64
     crate::beam::modal(beam, modes)
 }
 
-/// `flexrig beam modal --json`.
-pub fn beam_modal_report(frequencies_hz: &[f64]) -> Value {
-    json!({ "frequencies_hz": frequencies_hz })
+/// `flexrig beam modal --json` (`scene`: where the link came from, if from a scene).
+pub fn beam_modal_report(
+    frequencies_hz: &[f64],
+    warnings: &[crate::beam::Warning],
+    scene: Option<&str>,
+) -> Value {
+    json!({ "frequencies_hz": frequencies_hz, "warnings": warnings, "scene": scene })
 }
 
 /// The tip load of `flexrig beam static`: force [N], moment [N·m], `model` (`linear`,
@@ -737,9 +792,29 @@ pub fn beam_tip_load(
     Ok(load)
 }
 
-/// `flexrig beam static --json` (`model` as typed).
-pub fn beam_static_report(sol: &crate::beam::TipDisplacement, model: &str) -> Value {
+/// `flexrig beam static --json` (`model` as typed; `scene`: where the link came from, if from
+/// a scene; `yield_strength` \[Pa\] if given).
+pub fn beam_static_report(
+    sol: &crate::beam::TipDisplacement,
+    model: &str,
+    warnings: &[crate::beam::Warning],
+    scene: Option<&str>,
+    yield_strength: Option<f64>,
+) -> Value {
+    let s = &sol.stress;
     json!({
+        "max_stress_pa": s.max_pa,
+        "max_stress": {
+            "stress_pa": s.max_pa,
+            "bending_pa": s.bending_pa,
+            "axial_pa": s.axial_pa,
+            "moment_nm": s.moment_nm,
+            "axial_force_n": s.axial_n,
+            "at_m": s.at_m,
+        },
+        "yield_strength_pa": yield_strength,
+        "warnings": warnings,
+        "scene": scene,
         "tip_u_m": sol.u,
         "tip_v_m": sol.v,
         "tip_angle_rad": sol.angle,

@@ -369,6 +369,19 @@ impl<A: Recorder, B: Recorder + ?Sized> Recorder for Both<'_, A, B> {
         self.0.frame(f)?;
         self.1.frame(f)
     }
+
+    /// The log's period (the poses between free-swing steps are for its 3D view).
+    fn pose_period(&self) -> Option<f64> {
+        self.0.pose_period()
+    }
+
+    fn between(&mut self, f: &flexrig_rig::Frame<'_>) -> Result<(), RigError> {
+        self.0.between(f)?;
+        if self.1.pose_period().is_some() {
+            self.1.between(f)?;
+        }
+        Ok(())
+    }
 }
 
 /// [`run_logged`], with every step also handed to `also` (e.g. a
@@ -1095,7 +1108,6 @@ impl<W: Write + Seek> Recorder for McapRecorder<W> {
         if self.cancel.as_ref().is_some_and(CancelToken::is_cancelled) {
             return Err(RigError::Interrupted { t: f.t });
         }
-        let ns = nanos(f.t);
         let in_contact = f.contact.is_some();
         self.write_samples(f.samples, in_contact)?;
         if let Some(c) = f.contact {
@@ -1116,8 +1128,29 @@ impl<W: Write + Seek> Recorder for McapRecorder<W> {
         } else {
             self.rates.scene_period_ns
         };
-        let energy_due = self.last_scene_ns.is_none_or(|last| ns >= last + period);
-        if energy_due {
+        self.write_scene_if_due(f, period)
+    }
+
+    /// The 3D view's rate outside contact: the free swing, whose integrator steps are long, is
+    /// drawn at that rate from its dense output (none when every step is logged).
+    fn pose_period(&self) -> Option<f64> {
+        (self.rates.scene_period_ns > 0).then(|| self.rates.scene_period_ns as f64 * 1e-9)
+    }
+
+    fn between(&mut self, f: &Frame<'_>) -> Result<(), RigError> {
+        if self.cancel.as_ref().is_some_and(CancelToken::is_cancelled) {
+            return Err(RigError::Interrupted { t: f.t });
+        }
+        self.write_scene_if_due(f, self.rates.scene_period_ns)
+    }
+}
+
+impl<W: Write + Seek> McapRecorder<W> {
+    /// `/energy` and the 3D channels of `f`, if `period` \[ns\] has passed since the last.
+    fn write_scene_if_due(&mut self, f: &Frame<'_>, period: u64) -> Result<(), RigError> {
+        let ns = nanos(f.t);
+        let due = self.last_scene_ns.is_none_or(|last| ns >= last + period);
+        if due {
             self.write(
                 self.channels.energy,
                 f.t,
@@ -1131,5 +1164,69 @@ impl<W: Write + Seek> Recorder for McapRecorder<W> {
             self.last_scene_ns = Some(ns);
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::io::Cursor;
+
+    use flexrig_rig::{NoRecorder, RunOptions, Simulation};
+
+    use super::*;
+
+    /// The `/scene` message times \[s\] of an MCAP file in memory.
+    fn scene_times(bytes: &[u8]) -> Vec<f64> {
+        mcap::MessageStream::new(bytes)
+            .unwrap()
+            .map(|m| m.unwrap())
+            .filter(|m| m.channel.topic == "/scene")
+            .map(|m| m.log_time as f64 * 1e-9)
+            .collect()
+    }
+
+    #[test]
+    fn the_free_swing_is_drawn_at_the_scene_rate_without_changing_the_run() {
+        for name in ["cj_iron", "cl_aluminium"] {
+            let scene = crate::scenes::bundled_scene(name, &[]).unwrap();
+            let plain = Simulation::new(&scene, RunOptions::default())
+                .unwrap()
+                .run(&mut NoRecorder)
+                .unwrap();
+            let mut log = McapRecorder::new(Cursor::new(Vec::new()), &scene, "").unwrap();
+            let logged = Simulation::new(&scene, RunOptions::default())
+                .unwrap()
+                .run(&mut log)
+                .unwrap();
+            // the same run, bit for bit (the poses come from the dense output)
+            assert_eq!(
+                serde_json::to_string(&plain).unwrap(),
+                serde_json::to_string(&logged).unwrap(),
+                "{name}"
+            );
+            let bytes = log.finish_into_inner().unwrap().into_inner();
+            let onset = plain.contacts[0].onset_time_s;
+            let swing: Vec<f64> = scene_times(&bytes)
+                .into_iter()
+                .filter(|t| *t < onset)
+                .collect();
+            // 60 frames a second over the swing: the end of the first integrator step, then
+            // every multiple of the period (without them, one frame per step: about a dozen)
+            let period = 1.0 / 60.0;
+            let expected = (onset / period).floor();
+            assert!(
+                (swing.len() as f64 - expected).abs() <= 2.0,
+                "{name}: {} frames over a {onset} s swing",
+                swing.len()
+            );
+            assert!(swing[1] - swing[0] < 2.0 * period, "{name}: {swing:?}");
+            for pair in swing[1..].windows(2) {
+                let gap = pair[1] - pair[0];
+                assert!(
+                    (gap - period).abs() < 1e-6,
+                    "{name}: frames {pair:?} {gap} s apart"
+                );
+            }
+        }
     }
 }

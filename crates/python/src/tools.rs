@@ -19,81 +19,104 @@ pub fn fit(py: Python<'_>, file: PathBuf) -> PyResult<Bound<'_, PyAny>> {
     json_to_py(py, &fronts::fit_report(&fit, &warnings))
 }
 
-/// The beam of `flexrig beam`'s flags.
+/// The beam of `flexrig beam`'s flags (each number optional when `scene` gives the link).
 #[allow(clippy::too_many_arguments)]
 fn beam(
-    length: f64,
-    youngs: f64,
-    density: f64,
-    width: f64,
-    thickness: f64,
-    elements: usize,
-    tip_mass: f64,
+    scene: Option<PathBuf>,
+    length: Option<f64>,
+    youngs: Option<f64>,
+    density: Option<f64>,
+    width: Option<f64>,
+    thickness: Option<f64>,
+    elements: Option<usize>,
+    tip_mass: Option<f64>,
     root: &str,
     k_theta: f64,
-) -> PyResult<flexrig::beam::BeamInput> {
-    fronts::beam_input(
-        length, youngs, density, width, thickness, elements, tip_mass, root, k_theta,
-    )
+) -> PyResult<(flexrig::beam::BeamInput, Option<String>)> {
+    fronts::beam_input(&fronts::BeamFlags {
+        scene,
+        length,
+        youngs,
+        density,
+        width,
+        thickness,
+        elements,
+        tip_mass,
+        root: root.to_string(),
+        k_theta,
+    })
     .map_err(flag_error)
 }
 
 /// `flexrig beam modal --json`: the natural frequencies [Hz].
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (length, youngs, density, width, thickness, elements, tip_mass, root, k_theta, modes))]
+#[pyo3(signature = (scene, length, youngs, density, width, thickness, elements, tip_mass, root, k_theta, modes))]
 pub fn beam_modal<'py>(
     py: Python<'py>,
-    length: f64,
-    youngs: f64,
-    density: f64,
-    width: f64,
-    thickness: f64,
-    elements: usize,
-    tip_mass: f64,
+    scene: Option<PathBuf>,
+    length: Option<f64>,
+    youngs: Option<f64>,
+    density: Option<f64>,
+    width: Option<f64>,
+    thickness: Option<f64>,
+    elements: Option<usize>,
+    tip_mass: Option<f64>,
     root: &str,
     k_theta: f64,
     modes: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
-    flexrig::beam::check_modal_elements(elements).map_err(flag_error)?;
-    let input = beam(
-        length, youngs, density, width, thickness, elements, tip_mass, root, k_theta,
+    if let Some(elements) = elements {
+        flexrig::beam::check_modal_elements(elements).map_err(flag_error)?;
+    }
+    let (input, origin) = beam(
+        scene, length, youngs, density, width, thickness, elements, tip_mass, root, k_theta,
     )?;
     let frequencies = py
         .detach(|| fronts::beam_modal(&input, modes))
         .map_err(flag_error)?;
-    json_to_py(py, &fronts::beam_modal_report(&frequencies))
+    let warnings = flexrig::beam::beam_warnings(&input);
+    json_to_py(
+        py,
+        &fronts::beam_modal_report(&frequencies, &warnings, origin.as_deref()),
+    )
 }
 
-/// `flexrig beam static --json`: the tip displacement under a dead tip load.
+/// `flexrig beam static --json`: the tip displacement and the largest stress under a dead tip
+/// load.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (length, youngs, density, width, thickness, elements, tip_mass, root, k_theta, tip_load, tip_moment, model, load_steps))]
+#[pyo3(signature = (scene, length, youngs, density, width, thickness, elements, tip_mass, root, k_theta, tip_load, tip_moment, model, load_steps, yield_strength))]
 pub fn beam_static<'py>(
     py: Python<'py>,
-    length: f64,
-    youngs: f64,
-    density: f64,
-    width: f64,
-    thickness: f64,
-    elements: usize,
-    tip_mass: f64,
+    scene: Option<PathBuf>,
+    length: Option<f64>,
+    youngs: Option<f64>,
+    density: Option<f64>,
+    width: Option<f64>,
+    thickness: Option<f64>,
+    elements: Option<usize>,
+    tip_mass: Option<f64>,
     root: &str,
     k_theta: f64,
     tip_load: f64,
     tip_moment: f64,
     model: &str,
     load_steps: usize,
+    yield_strength: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let load =
         fronts::beam_tip_load(tip_load, tip_moment, model, load_steps).map_err(flag_error)?;
-    let input = beam(
-        length, youngs, density, width, thickness, elements, tip_mass, root, k_theta,
+    let (input, origin) = beam(
+        scene, length, youngs, density, width, thickness, elements, tip_mass, root, k_theta,
     )?;
-    let sol = py
-        .detach(|| flexrig::beam::statics(&input, &load))
+    let (sol, warnings) = py
+        .detach(|| fronts::beam_static(&input, &load, yield_strength))
         .map_err(flag_error)?;
-    json_to_py(py, &fronts::beam_static_report(&sol, model))
+    json_to_py(
+        py,
+        &fronts::beam_static_report(&sol, model, &warnings, origin.as_deref(), yield_strength),
+    )
 }
 
 /// `flexrig prb --json`: the PRB model against the large-deflection FE beam; writes prb.svg

@@ -243,6 +243,21 @@ def test_beam_modal_and_static_equal_the_cli(cli):
         expected = cli.json("beam", "static", *BEAM_FLAGS, "--tip-load", "5", "--model", model, "--root", "pinned",
                             "--k-theta", "50")
         same(r.data, expected)
+    # the scene's link, a flag overriding it, the yield strength and the warnings
+    r = flexrig.beam_static(scene="cl_aluminium", tip_load=2.0, elements=8, yield_strength=1e6)
+    same(r.data, cli.json("beam", "static", "--scene", "cl_aluminium", "--tip-load", "2", "--elements", "8",
+                          "--yield-strength", "1e6"))
+    assert r.data["scene"] == "bundled cl_aluminium"
+    assert [w["field"] for w in r.data["warnings"]] == ["--model", "--yield-strength"]
+    r = flexrig.beam_modal(scene="cl_aluminium", thickness=0.003, modes=2)
+    same(r.data, cli.json("beam", "modal", "--scene", "cl_aluminium", "--thickness", "0.003", "--modes", "2"))
+    # a static solve needs no density; a modal one does
+    nodensity = {k: v for k, v in BEAM.items() if k != "density"}
+    r = flexrig.beam_static(**nodensity, tip_load=5.0)
+    same(r.data, cli.json("beam", "static", *BEAM_FLAGS[:4], *BEAM_FLAGS[6:], "--tip-load", "5"))
+    with pytest.raises(ValueError) as info:
+        flexrig.beam_modal(**nodensity)
+    assert info.value.field == "density"
     with pytest.raises(ValueError, match="root") as info:
         flexrig.beam_modal(**BEAM, root="hinged")
     assert info.value.field == "root" and "--" not in str(info.value)

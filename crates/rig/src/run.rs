@@ -73,6 +73,22 @@ pub trait Recorder {
     fn frame(&mut self, _frame: &Frame<'_>) -> Result<(), RigError> {
         Ok(())
     }
+
+    /// The period \[s\] at which the recorder wants the bodies' poses between the steps of the
+    /// adaptive free swing (whose steps are long: a dozen over a swing), or `None` (the
+    /// default) for the steps alone. The poses come from the integrator's dense output: the
+    /// run's numbers are the same with or without them.
+    fn pose_period(&self) -> Option<f64> {
+        None
+    }
+
+    /// Called, when [`Recorder::pose_period`] asks for it, at each multiple of the period inside
+    /// a step of the adaptive free swing (before that step's [`Recorder::frame`]), with the
+    /// state interpolated on the dense output: `dt` is the time since the step's start, there
+    /// is no contact and no sensor sample (the samples come with the step's frame).
+    fn between(&mut self, _frame: &Frame<'_>) -> Result<(), RigError> {
+        Ok(())
+    }
 }
 
 /// A recorder that keeps nothing.
@@ -1005,6 +1021,9 @@ impl<'s> Simulation<'s> {
             },
         };
         let system = *flight.system();
+        if let Some(period) = recorder.pose_period().filter(|p| p.is_finite() && *p > 0.0) {
+            self.emit_between(recorder, &dense, (step.t_start, step.t_end), period)?;
+        }
         self.sampler.record_exact(step.t_start, step.t_end, |t| {
             let y = if t == step.t_end {
                 step.y
@@ -1036,6 +1055,51 @@ impl<'s> Simulation<'s> {
         let dt = step.t_end - step.t_start;
         self.emit(recorder, dt, StepOutcome::Advanced, energy, sampled_before)?;
         Ok(StepOutcome::Advanced)
+    }
+
+    /// Hands the recorder the poses at the multiples of `period` strictly inside the free-flight
+    /// step `(t_start, t_end)`, interpolated on its `dense` output; the run's state is restored
+    /// bit for bit afterwards.
+    fn emit_between(
+        &mut self,
+        recorder: &mut dyn Recorder,
+        dense: &flexrig_lumped::ode::dop853::DenseOutput<DIM>,
+        (t_start, t_end): (f64, f64),
+        period: f64,
+    ) -> Result<(), RigError> {
+        let saved = self.now;
+        let mut k = (t_start / period).floor() + 1.0;
+        let mut result = Ok(());
+        while result.is_ok() {
+            let t = k * period;
+            if t >= t_end {
+                break;
+            }
+            k += 1.0;
+            if t <= t_start {
+                continue;
+            }
+            self.now = self.flight_synced(&dense.eval(t));
+            let beam = match &self.robot {
+                RobotSide::Rigid { .. } => None,
+                RobotSide::Beam(b) => Some(b.as_ref()),
+            };
+            result = recorder.between(&Frame {
+                t,
+                dt: t - t_start,
+                outcome: StepOutcome::Advanced,
+                operator: self.now.operator,
+                robot: self.now.robot.map(|(r, _)| r),
+                operator_pose: self.block_kinematics().pose,
+                dome_body_pose: self.dome_kinematics().pose,
+                beam,
+                contact: None,
+                energy: self.energy(),
+                samples: &[],
+            });
+        }
+        self.now = saved;
+        result
     }
 
     /// Loads → integrate → synchronise for a step of `dt` from the synchronised state `start`.

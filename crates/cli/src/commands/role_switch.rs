@@ -5,7 +5,9 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::driven::role_switch::{RoleSwitchOptions, design_name, level_name, run as run_table};
+use flexrig::driven::role_switch::{
+    RoleSwitchOptions, design_name, level_name, run_with_figures as run_table,
+};
 use flexrig::{CancelToken, Error};
 use serde_json::json;
 
@@ -14,7 +16,8 @@ use crate::print::{line, print_json};
 /// Arguments of `flexrig role-switch`.
 #[derive(Debug, Args)]
 pub struct RoleSwitchArgs {
-    /// Directory for role_switch.csv and role_switch.svg (created if missing).
+    /// Directory for role_switch.csv and the figure role_switch.svg (or .pdf, .png; created if
+    /// missing).
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
     /// PD loop stiffnesses κ = K_p/k_θr, comma-separated, each > 0 (the ideal position source
@@ -33,6 +36,9 @@ pub struct RoleSwitchArgs {
     /// Print JSON instead of the table.
     #[arg(long)]
     pub json: bool,
+    /// The figure's printed width and formats.
+    #[command(flatten)]
+    pub figure: super::figure_args::FigureArgs,
 }
 
 /// Runs `flexrig role-switch`.
@@ -43,7 +49,7 @@ pub fn run(args: &RoleSwitchArgs, out: &mut dyn Write, cancel: &CancelToken) -> 
         damping_ratio: args.damping_ratio,
         fig6: !args.no_fig6,
     };
-    let r = run_table(&options, &args.out, cancel)?;
+    let r = run_table(&options, &args.out, &args.figure.options()?, cancel)?;
     if args.json {
         let rows: Vec<_> = r
             .rows
@@ -62,7 +68,10 @@ pub fn run(args: &RoleSwitchArgs, out: &mut dyn Write, cancel: &CancelToken) -> 
                 })
             })
             .collect();
-        return print_json(out, &json!({"rows": rows, "csv": r.csv, "svg": r.svg}));
+        return print_json(
+            out,
+            &json!({"rows": rows, "csv": r.csv, "svg": r.svg, "figures": r.figures}),
+        );
     }
     line(
         out,
@@ -90,6 +99,14 @@ pub fn run(args: &RoleSwitchArgs, out: &mut dyn Write, cancel: &CancelToken) -> 
     }
     line(
         out,
-        format!("Wrote {} and {}", r.csv.display(), r.svg.display()),
+        format!(
+            "Wrote {} and {}",
+            r.csv.display(),
+            r.figures
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
     )
 }

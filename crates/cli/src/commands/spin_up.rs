@@ -5,7 +5,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::driven::spin_up::{SpinUpOptions, run as run_spin_up};
+use flexrig::driven::spin_up::{SpinUpOptions, run_with_figures as run_spin_up};
 use flexrig::{CancelToken, Error};
 
 use crate::print::{line, print_json};
@@ -13,7 +13,8 @@ use crate::print::{line, print_json};
 /// Arguments of `flexrig spin-up` (defaults: the literature case).
 #[derive(Debug, Args)]
 pub struct SpinUpArgs {
-    /// Directory for spin_up.csv, spin_up.json and spin_up.svg (created if missing).
+    /// Directory for spin_up.csv, spin_up.json and the figure spin_up.svg (or .pdf, .png; created
+    /// if missing).
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
     /// Beam length L [m].
@@ -55,6 +56,9 @@ pub struct SpinUpArgs {
     /// Print JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
+    /// The figure's printed width and formats.
+    #[command(flatten)]
+    pub figure: super::figure_args::FigureArgs,
 }
 
 impl SpinUpArgs {
@@ -78,7 +82,7 @@ impl SpinUpArgs {
 
 /// Runs `flexrig spin-up`.
 pub fn run(args: &SpinUpArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
-    let r = run_spin_up(&args.options(), &args.out, cancel)?;
+    let r = run_spin_up(&args.options(), &args.out, &args.figure.options()?, cancel)?;
     if args.json {
         let v = serde_json::to_value(&r).map_err(|e| Error::NonFinite {
             what: "spin-up result".into(),
@@ -130,7 +134,11 @@ pub fn run(args: &SpinUpArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resu
             "Wrote {}, {} and {}",
             r.csv.display(),
             r.json.display(),
-            r.svg.display()
+            r.figures
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
         ),
     )
 }

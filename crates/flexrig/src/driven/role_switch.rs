@@ -14,7 +14,7 @@ use flexrig_impact::role_switch::{
 
 use super::{check, num};
 use crate::output::{ensure_dir, non_negative_arg, positive_arg, write_atomic};
-use crate::plots::{Curve, CurvePanel, log_x_curves_svg};
+use crate::plots::{Curve, CurveAxes, CurvePanel, FigureOptions, curves_svg, write_figure};
 use crate::{CancelToken, Error};
 
 /// The drive levels and the cases.
@@ -49,17 +49,30 @@ pub struct RoleSwitchResult {
     pub rows: Vec<RoleRow>,
     /// role_switch.csv.
     pub csv: PathBuf,
-    /// role_switch.svg.
+    /// role_switch.svg (written when SVG is among the figure formats, as by default).
     pub svg: PathBuf,
+    /// The figure's files, one per format (role_switch.svg, .pdf, .png).
+    pub figures: Vec<PathBuf>,
 }
 
 /// Runs the table case by case (each case's runs in parallel; stops between cases if `cancel`
-/// is set) and writes role_switch.csv and role_switch.svg into `out`.
+/// is set) and writes role_switch.csv and role_switch.svg (two columns wide) into `out`.
 pub fn run(
     options: &RoleSwitchOptions,
     out: &Path,
     cancel: &CancelToken,
 ) -> Result<RoleSwitchResult, Error> {
+    run_with_figures(options, out, &FigureOptions::two_column_svg(), cancel)
+}
+
+/// [`run`] with the figure at the printed width and in the formats of `figures`.
+pub fn run_with_figures(
+    options: &RoleSwitchOptions,
+    out: &Path,
+    figures: &FigureOptions,
+    cancel: &CancelToken,
+) -> Result<RoleSwitchResult, Error> {
+    figures.validate()?;
     let settings = settings(options)?;
     let mut cases: Vec<RoleCase> = test_bed_cases()?;
     if options.fig6 {
@@ -76,15 +89,16 @@ pub fn run(
     let csv_path = out.join("role_switch.csv");
     let svg_path = out.join("role_switch.svg");
     write_atomic(&csv_path, csv(&rows).as_bytes())?;
-    let svg = figure(&rows, &options.kappas).map_err(|message| Error::Plot {
+    let svg = figure(&rows, options, figures.width_pt()).map_err(|message| Error::Plot {
         path: svg_path.clone(),
         message,
     })?;
-    write_atomic(&svg_path, svg.as_bytes())?;
+    let figures = write_figure(out, "role_switch", &svg, figures)?;
     Ok(RoleSwitchResult {
         rows,
         csv: csv_path,
         svg: svg_path,
+        figures,
     })
 }
 
@@ -144,8 +158,11 @@ pub fn csv(rows: &[RoleRow]) -> String {
 
 /// The ratio f_driven/f_test bed against the drive's compliance 1/κ, a panel per design; the
 /// torque-free ratio as each curve's dashed limit; the cases whose ratio stays within 1e-3 of 1
-/// at every level are left out (named in the title count).
-fn figure(rows: &[RoleRow], kappas: &[f64]) -> Result<String, String> {
+/// at every level are left out (named in the title count). At the printed width `width_pt`
+/// \[pt\]; the drive's rotor and damping from `options`.
+fn figure(rows: &[RoleRow], options: &RoleSwitchOptions, width_pt: f64) -> Result<String, String> {
+    use crate::output::display_number as n;
+    let kappas = &options.kappas;
     let mut panels = Vec::new();
     let mut flat = 0;
     for design in [Design::Cj, Design::Cl] {
@@ -189,12 +206,25 @@ fn figure(rows: &[RoleRow], kappas: &[f64]) -> Result<String, String> {
             curves,
         });
     }
-    log_x_curves_svg(
+    let left_out = if flat == 0 {
+        String::new()
+    } else {
+        format!("; {flat} case–design pairs within 0.1 % of 1 at every drive not drawn")
+    };
+    curves_svg(
         &format!(
-            "Role switch: driven robot's peak over the test bed's ({flat} case–design pairs within 1e-3 of 1 left out; dashed: torque-free)"
+            "Role switch: the driven robot's peak over the test bed's, PD drives of rotor J_R = {} \
+             m_r L²/3 and damping ratio {} (dashed: torque-free rotor{left_out})",
+            n(options.rotor_ratio),
+            n(options.damping_ratio)
         ),
-        "drive compliance 1/κ = k_θr/K_p",
-        "f_driven / f_test bed",
+        &CurveAxes {
+            x_desc: "drive compliance 1/κ = k_θr/K_p",
+            y_desc: "peak-force ratio, driven / test bed",
+            x_log: true,
+            markers: true,
+        },
         &panels,
+        width_pt,
     )
 }

@@ -15,7 +15,7 @@ use serde::Serialize;
 
 use super::{check, num};
 use crate::output::{ensure_dir, positive_arg, write_atomic};
-use crate::plots::{Curve, CurvePanel, log_x_curves_svg};
+use crate::plots::{Curve, CurveAxes, CurvePanel, FigureOptions, curves_svg, write_figure};
 use crate::{CancelToken, Error};
 
 /// The benchmark's beam, spin-up and discretisation (SI units; defaults: the literature case).
@@ -87,8 +87,10 @@ pub struct SpinUpResult {
     pub csv: PathBuf,
     /// spin_up.json.
     pub json: PathBuf,
-    /// spin_up.svg.
+    /// spin_up.svg (written when SVG is among the figure formats, as by default).
     pub svg: PathBuf,
+    /// The figure's files, one per format (spin_up.svg, .pdf, .png).
+    pub figures: Vec<PathBuf>,
 }
 
 impl SpinUpOptions {
@@ -154,12 +156,23 @@ fn invalid(arg: &str, value: impl std::fmt::Display, allowed: &str) -> Error {
 const RTOL: f64 = 1e-11;
 
 /// Runs the three models (stopping between them if `cancel` is set) and writes spin_up.csv,
-/// spin_up.json and spin_up.svg into `out` (created if missing).
+/// spin_up.json and spin_up.svg (two columns wide) into `out` (created if missing).
 pub fn run(
     options: &SpinUpOptions,
     out: &std::path::Path,
     cancel: &CancelToken,
 ) -> Result<SpinUpResult, Error> {
+    run_with_figures(options, out, &FigureOptions::two_column_svg(), cancel)
+}
+
+/// [`run`] with the figure at the printed width and in the formats of `figures`.
+pub fn run_with_figures(
+    options: &SpinUpOptions,
+    out: &std::path::Path,
+    figures: &FigureOptions,
+    cancel: &CancelToken,
+) -> Result<SpinUpResult, Error> {
+    figures.validate()?;
     let spec = options.spec()?;
     check(cancel)?;
     let reference = spin_up_reference(&spec, options.modes, RTOL)?;
@@ -188,20 +201,21 @@ pub fn run(
         csv: out.join("spin_up.csv"),
         json: out.join("spin_up.json"),
         svg: out.join("spin_up.svg"),
+        figures: Vec::new(),
     };
     result.options.duration = Some(spec.t_end);
     write_atomic(&result.csv, csv(&result).as_bytes())?;
+    let svg = figure(&result, figures.width_pt()).map_err(|message| Error::Plot {
+        path: result.svg.clone(),
+        message,
+    })?;
+    result.figures = write_figure(out, "spin_up", &svg, figures)?;
     let json = serde_json::to_string_pretty(&result).map_err(|e| Error::NonFinite {
         what: "spin-up result".into(),
         value: e.to_string(),
         advice: "a non-finite value cannot be written as JSON".into(),
     })?;
     write_atomic(&result.json, json.as_bytes())?;
-    let svg = figure(&result).map_err(|message| Error::Plot {
-        path: result.svg.clone(),
-        message,
-    })?;
-    write_atomic(&result.svg, svg.as_bytes())?;
     Ok(result)
 }
 
@@ -221,36 +235,55 @@ pub fn csv(r: &SpinUpResult) -> String {
     text
 }
 
-/// The FE and reference tip deflections over time (log time axis of the curve helper, t > 0; the
-/// linear model is in the CSV only: it diverges).
-fn figure(r: &SpinUpResult) -> Result<String, String> {
-    let series = |label: &str, y: &[f64]| Curve {
-        label: label.into(),
+/// The FE and reference tip deflections over time at the printed width `width_pt` \[pt\]
+/// (the linear model is in the CSV only: it diverges). Every label from the inputs that ran.
+fn figure(r: &SpinUpResult, width_pt: f64) -> Result<String, String> {
+    use crate::output::display_number as n;
+    let series = |label: String, y: &[f64]| Curve {
+        label,
         points: r.t.iter().copied().zip(y.iter().copied()).collect(),
         limit: None,
     };
-    log_x_curves_svg(
+    let o = &r.options;
+    curves_svg(
         &format!(
-            "Spin-up beam (ω_s = {} rad/s, T_s = {} s): tip deflection in the hub frame",
-            r.options.omega_s, r.options.t_s
+            "Spin-up beam (L = {} m, hub to ω_s = {} rad/s in T_s = {} s): tip deflection in the \
+             hub frame",
+            n(o.length),
+            n(o.omega_s),
+            n(o.t_s)
         ),
-        "time t [s]",
-        "tip deflection [m]",
+        &CurveAxes {
+            x_desc: "time t [s]",
+            y_desc: "tip deflection [m]",
+            x_log: false,
+            markers: false,
+        },
         &[CurvePanel {
             title: format!(
-                "FE {} elements vs the elastica reference ({:.1e} of the max)",
-                r.options.elements, r.fe_error_of_max
+                "FE against the reference: largest difference {} % of the largest deflection",
+                n(significant(100.0 * r.fe_error_of_max, 2))
             ),
             curves: vec![
                 series(
-                    &format!("FE, {} corotational elements", r.options.elements),
+                    format!("finite elements, {} corotational elements", o.elements),
                     &r.fe,
                 ),
                 series(
-                    &format!("reference, {} modes", r.options.modes),
+                    format!("reference (elastica, {} modes)", o.modes),
                     &r.reference,
                 ),
             ],
         }],
+        width_pt,
     )
+}
+
+/// `x` rounded to `digits` significant digits.
+fn significant(x: f64, digits: i32) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let scale = 10f64.powi(digits - 1 - x.abs().log10().floor() as i32);
+    (x * scale).round() / scale
 }

@@ -1,15 +1,21 @@
-//! Curves against a log x axis: panels side by side on one x range (whole decades) and one
-//! linear y scale from 0, each curve a line with markers in its own colour and marker (as in the
-//! work–precision figures), its large-x limit, if given, a dashed line in the same colour, the
-//! legend below each panel.
+//! Curves at the printed width: panels (in as many columns as the width holds) on one x range
+//! and one linear y scale, x linear or logarithmic (whole decades), each curve a line with
+//! markers in its own colour and marker (as in the work–precision figures), its large-x limit,
+//! if given, a dashed line in the same colour, the legend (wrapped to the panel) below each
+//! panel. Laid out in points with the figures' text sizes (at least 8 pt).
 
 use plotters::coord::Shift;
+use plotters::coord::ranged1d::{DefaultFormatting, Ranged};
 use plotters::prelude::*;
 use plotters::series::DashedLineSeries;
 use plotters::style::text_anchor::{HPos, VPos};
 
-use super::work_precision::{Axis, draw_marker, log_axis, style};
-use super::{GREY, GRID, Linear, err, font, nice_step, px, render, sci_label, stroke, text, ticks};
+use super::page::FigureWidth;
+use super::work_precision::{draw_marker, log_axis, style};
+use super::{
+    GREY, GRID, LABEL_PT, Linear, TICK_PT, TITLE_PT, err, font, nice_step, px, render, sci_label,
+    stroke, text, ticks, wrap,
+};
 
 /// One curve: legend label, (x, y) points in order, and optionally the limit the curve tends to
 /// at large x, drawn as a dashed horizontal line in the curve's colour.
@@ -32,70 +38,130 @@ pub struct CurvePanel {
     pub curves: Vec<Curve>,
 }
 
-/// Height of the plotting part of a panel [px].
-const PLOT_HEIGHT: u32 = 400;
-/// Height of the figure title [px].
-const HEADER: u32 = 34;
-/// Height of one legend entry [px].
-const LEGEND_LINE: u32 = 17;
-/// Left edge of a legend column, from the column's left edge [px].
-const LEGEND_INSET: i32 = 24;
-/// Room of a legend entry's line-and-marker sample, up to its label [px].
-const LEGEND_SAMPLE: i32 = 36;
-/// Estimated mean glyph width of the 12-pixel legend text [px] (DejaVu Sans: about 0.6 of the
-/// font size, which plotters writes as size / 1.24).
-const LEGEND_GLYPH: f64 = 0.6 * 12.0 / 1.24;
+/// The axes of a curve figure: their labels and whether x is logarithmic.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurveAxes<'a> {
+    /// Label of the x axis (with its unit).
+    pub x_desc: &'a str,
+    /// Label of the y axis (with its unit).
+    pub y_desc: &'a str,
+    /// A logarithmic x axis over whole decades (points at x ≤ 0 are left out), else linear.
+    pub x_log: bool,
+    /// Markers at every point (for a few computed points; off for a dense time series).
+    pub markers: bool,
+}
 
-/// Panels side by side: x on a log axis (whole decades enclosing every positive finite x), y on
-/// a linear axis from 0 to a rounded-up maximum of all y and limits of all panels (shared y
-/// range; at least [0, 1]); each curve a line with markers in its colour/marker style, its limit
-/// dashed; legend under each panel; `title` on top.
+/// Height of the plotting part of a panel \[pt\].
+const PLOT_HEIGHT: u32 = 170;
+/// Height of a line of the figure title \[pt\].
+const TITLE_LINE: u32 = 12;
+/// Height of one legend line \[pt\].
+const LEGEND_LINE: u32 = 10;
+/// Narrowest panel \[pt\].
+const MIN_PANEL_W: f64 = 240.0;
+/// Left edge of the legend and the room of its samples \[pt\].
+const LEGEND_X: i32 = 8;
+const LEGEND_SAMPLE: i32 = 20;
+/// The note under a legend with dashed limits.
+const LIMIT_NOTE: &str = "dashed: the limit at large x, in the curve's colour";
+
+/// A curve figure titled `title` with `axes`, one panel per entry, at the printed width
+/// `width_pt` \[pt\].
 ///
-/// Points with a non-finite coordinate or x ≤ 0 are skipped, as are non-finite limits. Should
-/// any y or limit be negative, the y axis reaches down to a rounded-down minimum instead of 0.
+/// Points with a non-finite coordinate (or, on a log axis, x ≤ 0) are skipped, as are
+/// non-finite limits. The y axis runs from 0 (or a rounded-down negative minimum) to a
+/// rounded-up maximum of all points and limits of all panels.
+pub fn curves_svg(
+    title: &str,
+    axes: &CurveAxes,
+    panels: &[CurvePanel],
+    width_pt: f64,
+) -> Result<String, String> {
+    let y_axis = YAxis::of(panels, axes.x_log);
+    let count = panels.len().max(1);
+    let cols = ((width_pt / MIN_PANEL_W).floor() as usize).clamp(1, count);
+    let rows = count.div_ceil(cols);
+    let panel_w = width_pt / cols as f64;
+    let legend_rows = panels
+        .iter()
+        .map(|p| {
+            legend_lines(p, panel_w, axes.x_log)
+                .iter()
+                .map(Vec::len)
+                .sum::<usize>()
+        })
+        .max()
+        .unwrap_or(0) as u32;
+    let legend_height = 6 + LEGEND_LINE * legend_rows;
+    let title_lines = wrap(title, width_pt - 8.0, TITLE_PT);
+    let header = TITLE_LINE * title_lines.len() as u32 + 4;
+    let panel_h = PLOT_HEIGHT + legend_height;
+    let size = (width_pt.round() as u32, header + panel_h * rows as u32);
+    render(size, |root| {
+        let (head, body) = root.split_vertically(px(header as i32));
+        let (w, _) = head.dim_in_pixel();
+        for (i, line) in title_lines.iter().enumerate() {
+            head.draw(&Text::new(
+                line.clone(),
+                (w as i32 / 2, px(2 + (TITLE_LINE * i as u32) as i32)),
+                text(TITLE_PT, BLACK, HPos::Center, VPos::Top),
+            ))
+            .map_err(err)?;
+        }
+        for (area, panel) in body.split_evenly((rows, cols)).iter().zip(panels) {
+            let (plot, legend) = area.split_vertically(px(PLOT_HEIGHT as i32));
+            if axes.x_log {
+                let decades = x_decades(panels);
+                let bounds = (10f64.powi(decades.0), 10f64.powi(decades.1));
+                draw_panel(
+                    &plot,
+                    panel,
+                    axes,
+                    log_axis(decades),
+                    bounds,
+                    &y_axis,
+                    &|v| sci_label(*v),
+                )?;
+            } else {
+                let x = XLinear::of(panels);
+                let axis = Linear::new(x.lo, x.hi, ticks(x.lo, x.hi, x.step));
+                draw_panel(&plot, panel, axes, axis, (x.lo, x.hi), &y_axis, &|v| {
+                    x.label(*v)
+                })?;
+            }
+            draw_legend(&legend, panel, panel_w, axes)?;
+        }
+        Ok(())
+    })
+}
+
+/// [`curves_svg`] with a log x axis at the two-column width (7 in).
 pub fn log_x_curves_svg(
     title: &str,
     x_desc: &str,
     y_desc: &str,
     panels: &[CurvePanel],
 ) -> Result<String, String> {
-    let x_range = x_decades(panels);
-    let y_axis = YAxis::of(panels);
-    let count = panels.len().max(1) as u32;
-    let panel_width = if count >= 3 { 440 } else { 560 };
-    let legend_rows = panels
-        .iter()
-        .map(|p| legend_layout(p, panel_width).1 + usize::from(has_limit(p)))
-        .max()
-        .unwrap_or(0) as u32;
-    let legend_height = 16 + LEGEND_LINE * legend_rows;
-    let size = (panel_width * count, HEADER + PLOT_HEIGHT + legend_height);
-    render(size, |root| {
-        let (header, body) = root.split_vertically(px(HEADER as i32));
-        let (w, _) = header.dim_in_pixel();
-        header
-            .draw(&Text::new(
-                title.to_string(),
-                (w as i32 / 2, px(8)),
-                text(16.0, BLACK, HPos::Center, VPos::Top),
-            ))
-            .map_err(err)?;
-        for (area, panel) in body.split_evenly((1, count as usize)).iter().zip(panels) {
-            let (plot, legend) = area.split_vertically(px(PLOT_HEIGHT as i32));
-            draw_panel(&plot, panel, (x_desc, y_desc), x_range, &y_axis)?;
-            draw_legend(&legend, panel, panel_width)?;
-        }
-        Ok(())
-    })
+    curves_svg(
+        title,
+        &CurveAxes {
+            x_desc,
+            y_desc,
+            x_log: true,
+            markers: true,
+        },
+        panels,
+        FigureWidth::TwoColumn.points(),
+    )
 }
 
-/// The points of `curve` that can be drawn (finite, x > 0).
-fn plottable(curve: &Curve) -> impl Iterator<Item = (f64, f64)> + '_ {
+/// The points of `curve` that can be drawn (finite; x > 0 on a log axis).
+fn plottable(curve: &Curve, x_log: bool) -> impl Iterator<Item = (f64, f64)> + '_ {
     curve
         .points
         .iter()
         .copied()
-        .filter(|(x, y)| x.is_finite() && y.is_finite() && *x > 0.0)
+        .filter(move |(x, y)| x.is_finite() && y.is_finite() && (!x_log || *x > 0.0))
 }
 
 /// The limit of `curve`, if it is given and finite.
@@ -111,13 +177,7 @@ fn has_limit(panel: &CurvePanel) -> bool {
 /// Exponents of the whole decades enclosing every plottable x of every panel (10⁰ to 10¹ when
 /// there is none).
 fn x_decades(panels: &[CurvePanel]) -> (i32, i32) {
-    let (lo, hi) = panels
-        .iter()
-        .flat_map(|p| &p.curves)
-        .flat_map(plottable)
-        .fold((f64::MAX, f64::MIN), |(lo, hi), (x, _)| {
-            (lo.min(x), hi.max(x))
-        });
+    let (lo, hi) = x_extent(panels, true);
     if lo > hi {
         return (0, 1);
     }
@@ -125,6 +185,60 @@ fn x_decades(panels: &[CurvePanel]) -> (i32, i32) {
     let a = (lo.log10() + 1e-9).floor() as i32;
     let b = (hi.log10() - 1e-9).ceil() as i32;
     (a, b.max(a + 1))
+}
+
+/// Smallest and largest plottable x (`(MAX, MIN)` when there is none).
+fn x_extent(panels: &[CurvePanel], x_log: bool) -> (f64, f64) {
+    panels
+        .iter()
+        .flat_map(|p| &p.curves)
+        .flat_map(|c| plottable(c, x_log))
+        .fold((f64::MAX, f64::MIN), |(lo, hi), (x, _)| {
+            (lo.min(x), hi.max(x))
+        })
+}
+
+/// The linear x axis: the data's range, its ends rounded out to a tick.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct XLinear {
+    lo: f64,
+    hi: f64,
+    step: f64,
+}
+
+impl XLinear {
+    fn of(panels: &[CurvePanel]) -> Self {
+        let (lo, hi) = x_extent(panels, false);
+        let (lo, hi) = if lo < hi { (lo, hi) } else { (0.0, 1.0) };
+        let step = nice_step(hi - lo, 6);
+        Self {
+            lo: (lo / step - 1e-9).floor() * step + 0.0,
+            hi: (hi / step - 1e-9).ceil() * step,
+            step,
+        }
+    }
+
+    fn label(&self, x: f64) -> String {
+        decimal_label(x, self.step)
+    }
+}
+
+/// `v` with as many decimals as `step` needs (`0` for zero, `m·10ᵏ` for steps of 10⁴ or more).
+fn decimal_label(v: f64, step: f64) -> String {
+    if v.abs() < 1e-9 * step {
+        return "0".into();
+    }
+    let sign = if v < 0.0 { "−" } else { "" };
+    if step >= 1e4 {
+        return format!("{sign}{}", sci_label(v.abs()));
+    }
+    let decimals = (0..=6)
+        .find(|d| {
+            let scaled = step * 10f64.powi(*d);
+            (scaled - scaled.round()).abs() < 1e-6 * scaled
+        })
+        .unwrap_or(6) as usize;
+    format!("{sign}{:.decimals$}", v.abs())
 }
 
 /// The shared linear y axis: `lo` to `hi` with ticks every `step`.
@@ -137,16 +251,20 @@ struct YAxis {
 
 impl YAxis {
     /// From 0 (or a rounded-down negative minimum) to the maximum of every plottable y and limit,
-    /// plus 2 % so that nothing lies on the frame, rounded up to a tick; at least [0, 1].
-    fn of(panels: &[CurvePanel]) -> Self {
+    /// plus 2 % so that nothing lies on the frame, rounded up to a tick; at least [0, 1] when
+    /// every value is 0.
+    fn of(panels: &[CurvePanel], x_log: bool) -> Self {
         let values = panels.iter().flat_map(|p| &p.curves).flat_map(|c| {
-            plottable(c)
+            plottable(c, x_log)
                 .map(|(_, y)| y)
                 .chain(limit(c))
                 .collect::<Vec<_>>()
         });
         let (min, max) = values.fold((0.0f64, 0.0f64), |(lo, hi), y| (lo.min(y), hi.max(y)));
-        let (top, bottom) = ((1.02 * max).max(1.0), 1.02 * min);
+        let (mut top, bottom) = (1.02 * max, 1.02 * min);
+        if top - bottom <= 0.0 {
+            top = 1.0;
+        }
         let step = nice_step(top - bottom, 6);
         let axis = Self {
             // `+ 0.0` turns −0 into 0 (no "-0" tick label).
@@ -169,158 +287,146 @@ impl YAxis {
         ticks(self.lo, self.hi, self.step)
     }
 
-    /// Tick label of `y`: as many decimals as the step needs, or `m·10ᵏ` for large steps.
     fn label(&self, y: f64) -> String {
-        if y.abs() < 1e-9 * self.step {
-            return "0".into();
-        }
-        if self.step >= 1e4 {
-            let sign = if y < 0.0 { "−" } else { "" };
-            return format!("{sign}{}", sci_label(y.abs()));
-        }
-        let decimals = (0..=6)
-            .find(|d| {
-                let scaled = self.step * 10f64.powi(*d);
-                (scaled - scaled.round()).abs() < 1e-6 * scaled
-            })
-            .unwrap_or(6) as usize;
-        format!("{y:.decimals$}")
+        decimal_label(y, self.step)
     }
 }
 
-type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<Axis, Linear>>;
-
-fn draw_panel(
+#[allow(clippy::too_many_arguments)]
+fn draw_panel<X>(
     area: &DrawingArea<SVGBackend, Shift>,
     panel: &CurvePanel,
-    (x_desc, y_desc): (&str, &str),
-    x_range: (i32, i32),
+    axes: &CurveAxes,
+    x_axis: X,
+    (x0, x1): (f64, f64),
     y_axis: &YAxis,
-) -> Result<(), String> {
-    let mut chart: Chart = ChartBuilder::on(area)
-        .caption(&panel.title, font(14.0))
-        .margin(px(8))
-        .margin_right(px(18))
-        .x_label_area_size(px(44))
-        .y_label_area_size(px(62))
-        .build_cartesian_2d(
-            log_axis(x_range),
-            Linear::new(y_axis.lo, y_axis.hi, y_axis.ticks()),
-        )
+    x_label: &dyn Fn(&f64) -> String,
+) -> Result<(), String>
+where
+    X: Ranged<ValueType = f64, FormatOption = DefaultFormatting>,
+{
+    let mut chart = ChartBuilder::on(area)
+        .caption(&panel.title, font(LABEL_PT))
+        .margin(px(3))
+        .margin_right(px(14))
+        .x_label_area_size(px(28))
+        .y_label_area_size(px(40))
+        .build_cartesian_2d(x_axis, Linear::new(y_axis.lo, y_axis.hi, y_axis.ticks()))
         .map_err(err)?;
     chart
         .configure_mesh()
-        .bold_line_style(stroke(GRID, 1.0))
-        .axis_style(stroke(BLACK, 1.0))
-        .set_all_tick_mark_size(px(4))
-        .label_style(font(13.0))
-        .axis_desc_style(font(14.0))
-        .x_desc(x_desc)
-        .y_desc(y_desc)
-        .x_label_formatter(&|v| sci_label(*v))
+        .light_line_style(WHITE)
+        .bold_line_style(stroke(GRID, 0.75))
+        .axis_style(stroke(BLACK, 0.75))
+        .set_all_tick_mark_size(px(2))
+        .label_style(font(TICK_PT))
+        .axis_desc_style(font(LABEL_PT))
+        .x_desc(axes.x_desc)
+        .y_desc(axes.y_desc)
+        .x_label_formatter(x_label)
         .y_label_formatter(&|v| y_axis.label(*v))
         .draw()
         .map_err(err)?;
-    let (x0, x1) = (10f64.powi(x_range.0), 10f64.powi(x_range.1));
     for (i, curve) in panel.curves.iter().enumerate() {
         let (colour, _, _) = style(i);
         if let Some(l) = limit(curve) {
             chart
                 .draw_series(DashedLineSeries::new(
                     [(x0, l), (x1, l)],
-                    px(6),
-                    px(4),
-                    stroke(colour, 1.5),
+                    px(3),
+                    px(2),
+                    stroke(colour, 1.0),
                 ))
                 .map_err(err)?;
         }
-        let points: Vec<(f64, f64)> = plottable(curve).collect();
+        let points: Vec<(f64, f64)> = plottable(curve, axes.x_log).collect();
         if points.len() > 1 {
             chart
-                .draw_series(LineSeries::new(points, stroke(colour, 1.5)))
+                .draw_series(LineSeries::new(points, stroke(colour, 1.0)))
                 .map_err(err)?;
         }
     }
-    // Markers over every line, so that no curve hides another's points.
-    let plotting = chart.plotting_area().strip_coord_spec();
-    let origin = plotting.get_base_pixel();
-    for (i, curve) in panel.curves.iter().enumerate() {
-        let (colour, marker, filled) = style(i);
-        for p in plottable(curve) {
-            let (x, y) = chart.backend_coord(&p);
-            draw_marker(
-                &plotting,
-                (x - origin.0, y - origin.1),
-                marker,
-                (colour, filled),
-            )?;
+    if axes.markers {
+        // Markers over every line, so that no curve hides another's points.
+        let plotting = chart.plotting_area().strip_coord_spec();
+        let origin = plotting.get_base_pixel();
+        for (i, curve) in panel.curves.iter().enumerate() {
+            let (colour, marker, filled) = style(i);
+            for p in plottable(curve, axes.x_log) {
+                let (x, y) = chart.backend_coord(&p);
+                draw_marker(
+                    &plotting,
+                    (x - origin.0, y - origin.1),
+                    marker,
+                    (colour, filled),
+                )?;
+            }
         }
     }
     Ok(())
 }
 
-/// Columns and rows of the legend of `panel` in a panel `panel_width` wide: two columns for
-/// more than four curves if every label fits in half the width.
-fn legend_layout(panel: &CurvePanel, panel_width: u32) -> (usize, usize) {
-    let n = panel.curves.len();
-    let longest = panel
+/// The legend of `panel` in a panel `width_pt` wide: per curve its label's lines, then the
+/// note on dashed limits (if any), as the last entry.
+fn legend_lines(panel: &CurvePanel, width_pt: f64, _x_log: bool) -> Vec<Vec<String>> {
+    let room = width_pt - f64::from(LEGEND_X + LEGEND_SAMPLE) - 4.0;
+    let mut lines: Vec<Vec<String>> = panel
         .curves
         .iter()
-        .map(|c| c.label.chars().count())
-        .max()
-        .unwrap_or(0);
-    let room = f64::from(panel_width as i32 / 2 - LEGEND_INSET - LEGEND_SAMPLE - 12);
-    let columns = if n > 4 && longest as f64 * LEGEND_GLYPH <= room {
-        2
-    } else {
-        1
-    };
-    (columns, n.div_ceil(columns))
+        .map(|c| wrap(&c.label, room, TICK_PT))
+        .collect();
+    if has_limit(panel) {
+        lines.push(wrap(LIMIT_NOTE, room, TICK_PT));
+    }
+    lines
 }
 
-/// The legend under a panel: one entry per curve with its line and marker (down the first
-/// column, then the second), then a note on the dashed limits if there are any.
+/// The legend under a panel `width_pt` wide: per curve its line (and marker) and its label
+/// (wrapped), then the note on the dashed limits if there are any.
 fn draw_legend(
     area: &DrawingArea<SVGBackend, Shift>,
     panel: &CurvePanel,
-    panel_width: u32,
+    width_pt: f64,
+    axes: &CurveAxes,
 ) -> Result<(), String> {
-    let (_, rows) = legend_layout(panel, panel_width);
-    let column_x = |c: usize| px(LEGEND_INSET + (panel_width as i32 / 2) * c as i32);
-    let line_y = |r: usize| px(10 + (LEGEND_LINE * r as u32) as i32 + LEGEND_LINE as i32 / 2);
-    for (i, curve) in panel.curves.iter().enumerate() {
-        let (colour, marker, filled) = style(i);
-        let (x, y) = (column_x(i / rows.max(1)), line_y(i % rows.max(1)));
-        if plottable(curve).count() > 1 {
-            area.draw(&PathElement::new(
-                vec![(x, y), (x + px(26), y)],
-                stroke(colour, 1.5),
+    let entries = legend_lines(panel, width_pt, axes.x_log);
+    let x = px(LEGEND_X);
+    let line_y = |i: usize| px(4 + (LEGEND_LINE * i as u32) as i32 + LEGEND_LINE as i32 / 2);
+    let mut row = 0;
+    for (i, lines) in entries.iter().enumerate() {
+        let y = line_y(row);
+        let colour = if i < panel.curves.len() {
+            let (colour, marker, filled) = style(i);
+            if plottable(&panel.curves[i], axes.x_log).count() > 1 {
+                area.draw(&PathElement::new(
+                    vec![(x, y), (x + px(14), y)],
+                    stroke(colour, 1.0),
+                ))
+                .map_err(err)?;
+            }
+            if axes.markers {
+                draw_marker(area, (x + px(7), y), marker, (colour, filled))?;
+            }
+            BLACK
+        } else {
+            for (a, b) in [(0, 3), (5, 8), (10, 13)] {
+                area.draw(&PathElement::new(
+                    vec![(x + px(a), y), (x + px(b), y)],
+                    stroke(GREY, 1.0),
+                ))
+                .map_err(err)?;
+            }
+            GREY
+        };
+        for line in lines {
+            area.draw(&Text::new(
+                line.clone(),
+                (x + px(LEGEND_SAMPLE), line_y(row)),
+                text(TICK_PT, colour, HPos::Left, VPos::Center),
             ))
             .map_err(err)?;
+            row += 1;
         }
-        draw_marker(area, (x + px(13), y), marker, (colour, filled))?;
-        area.draw(&Text::new(
-            curve.label.clone(),
-            (x + px(LEGEND_SAMPLE), y),
-            text(12.0, BLACK, HPos::Left, VPos::Center),
-        ))
-        .map_err(err)?;
-    }
-    if has_limit(panel) {
-        let (x, y) = (column_x(0), line_y(rows));
-        for (a, b) in [(0, 6), (10, 16), (20, 26)] {
-            area.draw(&PathElement::new(
-                vec![(x + px(a), y), (x + px(b), y)],
-                stroke(GREY, 1.5),
-            ))
-            .map_err(err)?;
-        }
-        area.draw(&Text::new(
-            "dashed: the limit at large x, in the curve's colour",
-            (x + px(LEGEND_SAMPLE), y),
-            text(12.0, GREY, HPos::Left, VPos::Center),
-        ))
-        .map_err(err)?;
     }
     Ok(())
 }
@@ -328,6 +434,7 @@ fn draw_legend(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::plots::inspect::{min_text_pt, printed_width, texts};
 
     /// Two panels of eight curves, x from 10⁻⁶ to 10⁶, y in [0.1, 1.05], with limits.
     fn sample() -> Vec<CurvePanel> {
@@ -354,18 +461,28 @@ mod tests {
     }
 
     #[test]
-    fn two_panels_of_eight_curves_render_with_every_label() {
+    fn two_panels_of_eight_curves_render_at_every_width_with_every_label() {
         let panels = sample();
-        let svg = log_x_curves_svg("Saturation curves", "x", "fraction", &panels).unwrap();
-        assert!(!svg.is_empty());
-        assert!(svg.contains("Saturation curves"));
-        for c in panels.iter().flat_map(|p| &p.curves) {
-            assert!(svg.contains(&c.label), "{} missing", c.label);
+        for inches in [3.5, 7.0] {
+            let axes = CurveAxes {
+                x_desc: "x",
+                y_desc: "fraction",
+                x_log: true,
+                markers: true,
+            };
+            let svg = curves_svg("Saturation curves", &axes, &panels, inches * 72.0).unwrap();
+            assert!(svg.contains("Saturation curves"));
+            let all = texts(&svg).join("\n");
+            for c in panels.iter().flat_map(|p| &p.curves) {
+                assert!(all.contains(&c.label), "{} missing", c.label);
+            }
+            assert!(!svg.contains("NaN"));
+            assert!((printed_width(&svg).unwrap().0 - inches).abs() < 1e-9);
+            assert!(min_text_pt(&svg).unwrap() >= 8.0 - 1e-3);
         }
-        assert!(!svg.contains("NaN"));
-        if std::env::var_os("CURVES_SAMPLE").is_some() {
-            std::fs::write("/tmp/curves_sample.svg", &svg).unwrap();
-        }
+        // the default width: two columns
+        let svg = log_x_curves_svg("t", "x", "y", &panels).unwrap();
+        assert!((printed_width(&svg).unwrap().0 - 7.0).abs() < 1e-9);
     }
 
     #[test]
@@ -404,12 +521,13 @@ mod tests {
     fn axes_enclose_the_data() {
         let panels = sample();
         assert_eq!(x_decades(&panels), (-6, 6));
-        let y = YAxis::of(&panels);
+        let y = YAxis::of(&panels, true);
         assert_eq!((y.lo, y.step), (0.0, 0.2));
         assert!((y.hi - 1.2).abs() < 1e-12);
         assert_eq!(y.ticks().len(), 7);
         assert_eq!(y.label(0.4), "0.4");
         assert_eq!(y.label(0.0), "0");
+        assert_eq!(y.label(-0.4), "−0.4");
         let small = [CurvePanel {
             title: String::new(),
             curves: vec![Curve {
@@ -419,7 +537,11 @@ mod tests {
             }],
         }];
         assert_eq!(x_decades(&small), (-3, 0));
-        assert_eq!(YAxis::of(&small).hi, 1.0);
+        assert!((YAxis::of(&small, true).hi - 0.6).abs() < 1e-12);
         assert_eq!(x_decades(&[]), (0, 1));
+        // a linear x axis from the data's ends, rounded out to a tick
+        let x = XLinear::of(&small);
+        assert_eq!((x.lo, x.hi), (0.0, 0.4));
+        assert_eq!(x.label(0.1), "0.1");
     }
 }

@@ -22,7 +22,7 @@ mod print_tests;
 mod rotor;
 mod work_precision;
 
-pub use curves::{Curve, CurvePanel, log_x_curves_svg};
+pub use curves::{Curve, CurveAxes, CurvePanel, curves_svg, log_x_curves_svg};
 pub use eta::eta_svg;
 pub use fig6::{Fig6Point, fig6_svg, fig6_with_points_svg};
 pub use fig9::{Jitter, fig9_svg, grams};
@@ -156,7 +156,11 @@ pub(crate) fn render(
 }
 
 /// Symbols written `m_h` in the figures' text and set with a real subscript in the SVG.
-const SUBSCRIPTED: [(&str, &str); 14] = [
+const SUBSCRIPTED: [(&str, &str); 18] = [
+    ("k_θr", "θr"),
+    ("K_p", "p"),
+    ("ω_s", "s"),
+    ("T_s", "s"),
     ("J_R", "R"),
     ("f_placed", "placed"),
     ("Θ_max", "max"),

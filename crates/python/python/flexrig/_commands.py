@@ -409,38 +409,43 @@ def fit(file: PathLike) -> Report:
     return Report(command="fit", data=data)
 
 
-def _beam_args(length: Any, youngs: Any, density: Any, width: Any, thickness: Any, elements: Any,
-               tip_mass: Any, root: Any, k_theta: Any) -> Tuple[Any, ...]:
+def _beam_args(scene: Any, length: Any, youngs: Any, density: Any, width: Any, thickness: Any,
+               elements: Any, tip_mass: Any, root: Any, k_theta: Any) -> Tuple[Any, ...]:
     return (
-        _number("length", length), _number("youngs", youngs), _number("density", density),
-        _number("width", width), _number("thickness", thickness), _count("elements", elements),
-        _number("tip_mass", tip_mass), _word("root", root), _number("k_theta", k_theta),
+        None if scene is None else os.fspath(scene),
+        _number("length", length, True), _number("youngs", youngs, True),
+        _number("density", density, True), _number("width", width, True),
+        _number("thickness", thickness, True), _count("elements", elements, True),
+        _number("tip_mass", tip_mass, True), _word("root", root), _number("k_theta", k_theta),
     )
 
 
 def beam_modal(
     *,
-    length: float,
-    youngs: float,
-    density: float,
-    width: float,
-    thickness: float,
-    elements: int = 16,
-    tip_mass: float = 0.0,
+    scene: Optional[PathLike] = None,
+    length: Optional[float] = None,
+    youngs: Optional[float] = None,
+    density: Optional[float] = None,
+    width: Optional[float] = None,
+    thickness: Optional[float] = None,
+    elements: Optional[int] = None,
+    tip_mass: Optional[float] = None,
     root: str = "clamped",
     k_theta: float = 0.0,
     modes: int = 4,
 ) -> Report:
     """The natural frequencies of the FE Euler–Bernoulli cantilever, as ``flexrig beam modal``:
     ``length`` [m], ``youngs`` [Pa], ``density`` [kg/m³], ``width`` and ``thickness`` [m]
-    (I = w t³/12), ``elements``, ``tip_mass`` [kg], ``root`` clamped or pinned (with ``k_theta``
-    [N·m/rad]), ``modes``. ``data["frequencies_hz"]`` (ascending); ``table``: ``mode``,
-    ``frequency_hz``.
+    (I = w t³/12), ``elements`` (default 16), ``tip_mass`` [kg] (default 0), ``root`` clamped or
+    pinned (with ``k_theta`` [N·m/rad]), ``modes``. ``scene`` (a bundled scene's name or a scene
+    file) takes the beam from the scene's robot link (length, E, ρ, section, its payload as the
+    tip mass, its elements); the numbers given override it. ``data["frequencies_hz"]``
+    (ascending), ``warnings``, ``scene``; ``table``: ``mode``, ``frequency_hz``.
     """
     import pandas as pd
 
     data = _flexrig.beam_modal(
-        *_beam_args(length, youngs, density, width, thickness, elements, tip_mass, root, k_theta),
+        *_beam_args(scene, length, youngs, density, width, thickness, elements, tip_mass, root, k_theta),
         _count("modes", modes),
     )
     f = data["frequencies_hz"]
@@ -450,29 +455,35 @@ def beam_modal(
 
 def beam_static(
     *,
-    length: float,
-    youngs: float,
-    density: float,
-    width: float,
-    thickness: float,
     tip_load: float,
-    elements: int = 16,
-    tip_mass: float = 0.0,
+    scene: Optional[PathLike] = None,
+    length: Optional[float] = None,
+    youngs: Optional[float] = None,
+    density: Optional[float] = None,
+    width: Optional[float] = None,
+    thickness: Optional[float] = None,
+    elements: Optional[int] = None,
+    tip_mass: Optional[float] = None,
     root: str = "clamped",
     k_theta: float = 0.0,
     tip_moment: float = 0.0,
     model: str = "linear",
     load_steps: int = 10,
+    yield_strength: Optional[float] = None,
 ) -> Report:
-    """The tip displacement of the FE cantilever under a dead tip load, as ``flexrig beam
-    static``: the beam as :func:`beam_modal`, ``tip_load`` [N] perpendicular to the undeformed
-    beam, ``tip_moment`` [N·m], ``model`` linear, corotational or ancf, ``load_steps``. ``data``:
-    ``tip_u_m``, ``tip_v_m``, ``tip_angle_rad``, ``iterations``, ``residual_n``, ``load_level``.
+    """The tip displacement and largest stress of the FE cantilever under a dead tip load, as
+    ``flexrig beam static``: the beam as :func:`beam_modal` (``density`` is not needed),
+    ``tip_load`` [N] perpendicular to the undeformed beam, ``tip_moment`` [N·m], ``model``
+    linear, corotational or ancf, ``load_steps``, ``yield_strength`` [Pa] (a warning when the
+    largest stress exceeds it). ``data``: ``tip_u_m``, ``tip_v_m``, ``tip_angle_rad``,
+    ``iterations``, ``residual_n``, ``load_level``, ``max_stress_pa`` and ``max_stress``
+    (``stress_pa``, ``bending_pa``, ``axial_pa``, ``moment_nm``, ``axial_force_n``, ``at_m``:
+    where, from the root), ``warnings``, ``scene``.
     """
     data = _flexrig.beam_static(
-        *_beam_args(length, youngs, density, width, thickness, elements, tip_mass, root, k_theta),
+        *_beam_args(scene, length, youngs, density, width, thickness, elements, tip_mass, root, k_theta),
         _number("tip_load", tip_load), _number("tip_moment", tip_moment), _word("model", model),
-        _count("load_steps", load_steps),
+        _count("load_steps", load_steps), _number("yield_strength", yield_strength, True),
     )
     return Report(command="beam static", data=data)
 

@@ -115,15 +115,18 @@ def fit(file: _Path) -> Dict[str, Any]:
     """``flexrig fit FILE --json``."""
 
 def beam_modal(
-    length: float, youngs: float, density: float, width: float, thickness: float, elements: int,
-    tip_mass: float, root: str, k_theta: float, modes: int,
+    scene: Optional[_Path], length: Optional[float], youngs: Optional[float],
+    density: Optional[float], width: Optional[float], thickness: Optional[float],
+    elements: Optional[int], tip_mass: Optional[float], root: str, k_theta: float, modes: int,
 ) -> Dict[str, Any]:
     """``flexrig beam modal --json`` (SI units)."""
 
 def beam_static(
-    length: float, youngs: float, density: float, width: float, thickness: float, elements: int,
-    tip_mass: float, root: str, k_theta: float, tip_load: float, tip_moment: float, model: str,
-    load_steps: int,
+    scene: Optional[_Path], length: Optional[float], youngs: Optional[float],
+    density: Optional[float], width: Optional[float], thickness: Optional[float],
+    elements: Optional[int], tip_mass: Optional[float], root: str, k_theta: float,
+    tip_load: float, tip_moment: float, model: str, load_steps: int,
+    yield_strength: Optional[float],
 ) -> Dict[str, Any]:
     """``flexrig beam static --json`` (SI units)."""
 
