@@ -198,7 +198,10 @@ fn the_simulated_speed_is_converged_to_1e_4() {
         let fine = run(&["--root-rtol", "1e-10", "--tol", "1e-8"]);
         let (c, f) = (method(&coarse, "simulation"), method(&fine, "simulation"));
         for key in ["by_force_mps", "by_pressure_mps", "v_max_mps"] {
-            assert!(rel(num(&c[key]), num(&f[key])) < 1e-4, "{link} {key}: {coarse}");
+            assert!(
+                rel(num(&c[key]), num(&f[key])) < 1e-4,
+                "{link} {key}: {coarse}"
+            );
         }
     }
 }

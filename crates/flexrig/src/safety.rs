@@ -508,11 +508,7 @@ fn fe_impact(s: &Setup, input: &SafetyInput) -> Result<crate::safety_map::FeImpa
         }
     };
     if s.hertz.n() < 1.0 {
-        return Err(bad(
-            "--n",
-            s.hertz.n(),
-            "the simulation method needs n ≥ 1",
-        ));
+        return Err(bad("--n", s.hertz.n(), "the simulation method needs n ≥ 1"));
     }
     if s.kind == ContactKind::QuasiStatic && settings.joint == MapJoint::Held {
         return Err(bad(

@@ -118,7 +118,11 @@ pub use flexrig_impact::severity::PairSeverity;
 pub fn pair_header() -> String {
     ["cj", "cl"]
         .iter()
-        .flat_map(|design| SEVERITY_COLUMNS.iter().map(move |c| format!(",{design}_{c}")))
+        .flat_map(|design| {
+            SEVERITY_COLUMNS
+                .iter()
+                .map(move |c| format!(",{design}_{c}"))
+        })
         .collect()
 }
 

@@ -13,8 +13,8 @@ use flexrig_contact::ContactLaw;
 use flexrig_lumped::ode::dop853::{Dop853, Dop853Options, OdeSystem, find_root};
 
 use crate::ImpactError;
-use crate::severity::{CJ_TRACE_SAMPLES, ContactTrace};
 use crate::setup::{ContactEvent, FreeMassImpact, ImpactOutcome, Joint};
+use crate::severity::{CJ_TRACE_SAMPLES, ContactTrace};
 
 /// State: head position and speed, tip deflection and rate, rotor (tip units) and rate.
 type Y = [f64; 6];

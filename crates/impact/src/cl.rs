@@ -20,8 +20,8 @@ use flexrig_beam::{
 use flexrig_contact::ContactLaw;
 
 use crate::ImpactError;
-use crate::severity::ContactTrace;
 use crate::setup::{ClSolver, ContactEvent, FreeMassImpact, ImpactOutcome, Joint};
+use crate::severity::ContactTrace;
 
 /// The head over one step from its state at `t0`: position x \[m\], speed v \[m/s\] and
 /// acceleration a [m/s²] (velocity Verlet's drift).

@@ -7,8 +7,8 @@ use crate::ImpactError;
 use crate::chain::Chain;
 use crate::graded::{GradedMesh, cl_tip_modes};
 use crate::modal_run::{Head, ModalOptions, run_modes, run_modes_traced};
-use crate::severity::ContactTrace;
 use crate::setup::{FreeMassImpact, ImpactOutcome, Joint};
+use crate::severity::ContactTrace;
 use crate::tip_modes::TipModes;
 
 /// The head at the onset: at v0 towards a robot at rest (held joint), or at rest with the robot

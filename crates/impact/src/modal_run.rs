@@ -31,8 +31,8 @@
 use flexrig_contact::ContactLaw;
 
 use crate::ImpactError;
-use crate::severity::ContactTrace;
 use crate::setup::{ContactEvent, ImpactOutcome, RunEnd};
+use crate::severity::ContactTrace;
 use crate::tip_modes::TipModes;
 
 /// How long to follow the impact and how accurately.

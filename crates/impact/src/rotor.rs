@@ -21,10 +21,10 @@ use crate::eta::{
     EtaSettings, case_setup, cl_first_peak_until, cl_first_traced_until,
     validate_most_restrictive_first,
 };
-use crate::severity::PairSeverity;
 use crate::map::LogRange;
 use crate::modal_run::ModalOptions;
 use crate::setup::Joint;
+use crate::severity::PairSeverity;
 
 /// One point of a sweep.
 #[derive(Debug, Clone, PartialEq, Serialize)]

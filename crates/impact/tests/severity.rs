@@ -37,7 +37,11 @@ fn setup() -> FreeMassImpact {
 fn half_sine() -> (f64, f64, f64) {
     let k_s = K_C * K_DELTA / (K_C + K_DELTA);
     let force = V0 * (k_s * M_H).sqrt();
-    (force / M_H, std::f64::consts::PI * (M_H / k_s).sqrt(), force)
+    (
+        force / M_H,
+        std::f64::consts::PI * (M_H / k_s).sqrt(),
+        force,
+    )
 }
 
 fn rel(a: f64, b: f64) -> f64 {
@@ -55,14 +59,26 @@ fn fe_cj_hic_of_a_linear_contact_on_a_rigid_link_is_the_half_sine_closed_form() 
     assert!(15e-3 < 0.670 * t && 36e-3 > 0.671 * t);
     let (outcome, trace) = run_cj_traced(&setup(), 1e-12).unwrap();
     let s = trace.severity(M_H, DOME).unwrap();
-    assert!(rel(outcome.first.duration_s, t) < 1e-7, "{}", outcome.first.duration_s);
+    assert!(
+        rel(outcome.first.duration_s, t) < 1e-7,
+        "{}",
+        outcome.first.duration_s
+    );
     assert!(rel(s.peak_force_n, f) < 1e-7, "{} vs {f}", s.peak_force_n);
     assert!(rel(s.peak_acceleration_mps2.unwrap(), a) < 1e-7);
     let h15 = hic_half_sine(a, t, HicWindow::Hic15).unwrap();
     let h36 = hic_half_sine(a, t, HicWindow::Hic36).unwrap();
     let (s15, s36) = (s.hic15.unwrap().hic, s.hic36.unwrap().hic);
-    assert!(rel(s15, h15) < 1e-6, "HIC15 {s15} vs {h15}: {:e}", rel(s15, h15));
-    assert!(rel(s36, h36) < 1e-6, "HIC36 {s36} vs {h36}: {:e}", rel(s36, h36));
+    assert!(
+        rel(s15, h15) < 1e-6,
+        "HIC15 {s15} vs {h15}: {:e}",
+        rel(s15, h15)
+    );
+    assert!(
+        rel(s36, h36) < 1e-6,
+        "HIC36 {s36} vs {h36}: {:e}",
+        rel(s36, h36)
+    );
     assert!(rel(s15, s36) > 1e-3, "the window binds for HIC15 only");
     let stored = 0.5 * M_H * V0 * V0 * K_DELTA / (K_C + K_DELTA);
     assert!(rel(s.energy_transferred_j, stored) < 1e-6);
@@ -92,6 +108,10 @@ fn modal_cl_hic_of_a_linear_contact_on_a_rigid_link_is_the_half_sine_closed_form
             HicWindow::Hic15 => s.hic15.unwrap().hic,
             _ => s.hic36.unwrap().hic,
         };
-        assert!(rel(got, h) < 1e-5, "{window:?} {got} vs {h}: {:e}", rel(got, h));
+        assert!(
+            rel(got, h) < 1e-5,
+            "{window:?} {got} vs {h}: {:e}",
+            rel(got, h)
+        );
     }
 }

@@ -8,8 +8,8 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use flexrig::Error;
 use flexrig::safety::{
-    BodyModel, ContactAreaModel, ContactKind, ContactLaw, FeLink, MethodResult,
-    RobotEffectiveMass, SafetyInput, SafetyMethod, SafetyReport, SimulationSettings, Speed, safety,
+    BodyModel, ContactAreaModel, ContactKind, ContactLaw, FeLink, MethodResult, RobotEffectiveMass,
+    SafetyInput, SafetyMethod, SafetyReport, SimulationSettings, Speed, safety,
 };
 
 use crate::print::{line, print_json};
