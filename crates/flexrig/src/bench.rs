@@ -681,6 +681,8 @@ fn safety_maps(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
                 payload: 0.0,
                 speed: None,
                 methods: vec![crate::safety::SafetyMethod::Energy],
+                link: None,
+                simulation: None,
             },
             Some(&model),
         )?;

@@ -130,8 +130,10 @@ pub fn contact_text(damping: &DampingSpec) -> String {
 /// eta.csv: one row per case and exponent, with the window's columns when it was followed.
 pub fn csv(rows: &[EtaRow]) -> String {
     let mut s = String::from(
-        "m_h_kg,k_delta_n_per_m,m_e_kg,n,f_cj_n,f_cl_n,eta_fe,eta_lumped_2_3,f_cj_lumped_n,gamma_eff,gamma_eff_note,f_placed_n,placed_error,window_s,cj_contacts,cl_contacts,cj_horizon_s,cl_horizon_s,cj_overall_n,cl_overall_n,eta_overall\n",
+        "m_h_kg,k_delta_n_per_m,m_e_kg,n,f_cj_n,f_cl_n,eta_fe,eta_lumped_2_3,f_cj_lumped_n,gamma_eff,gamma_eff_note,f_placed_n,placed_error,window_s,cj_contacts,cl_contacts,cj_horizon_s,cl_horizon_s,cj_overall_n,cl_overall_n,eta_overall",
     );
+    s += &crate::severity::pair_header();
+    s.push('\n');
     for r in rows {
         let (gamma, note) = match r.gamma_eff {
             EffectiveGamma::Fits(g) => (format!("{g}"), ""),
@@ -162,7 +164,7 @@ pub fn csv(rows: &[EtaRow]) -> String {
         };
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{}{}",
             r.case.m_h,
             r.case.k_delta,
             r.case.m_e,
@@ -176,7 +178,8 @@ pub fn csv(rows: &[EtaRow]) -> String {
             note,
             r.f_placed_n,
             r.f_placed_n / r.f_cl_n - 1.0,
-            window
+            window,
+            crate::severity::pair_cells(r.severity.as_ref())
         );
     }
     s

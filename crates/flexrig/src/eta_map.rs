@@ -193,8 +193,10 @@ pub fn run(options: &EtaMapOptions, cancel: &CancelToken) -> Result<EtaMapResult
 /// eta_map.csv: every point of every map (a failed point carries its error).
 pub fn csv(maps: &[ComputedMap]) -> String {
     let mut s = String::from(
-        "m_h_kg,n,mass_ratio,stiffness_ratio,m_e_kg,k_delta_n_per_m,f_cj_n,f_cl_n,eta_fe,eta_lumped_2_3,lumped_error,gamma_eff,gamma_eff_note,f_placed_n,placed_error,error\n",
+        "m_h_kg,n,mass_ratio,stiffness_ratio,m_e_kg,k_delta_n_per_m,f_cj_n,f_cl_n,eta_fe,eta_lumped_2_3,lumped_error,gamma_eff,gamma_eff_note,f_placed_n,placed_error,error",
     );
+    s += &crate::severity::pair_header();
+    s.push('\n');
     for m in maps {
         for p in &m.points {
             let head = format!(
@@ -212,7 +214,7 @@ pub fn csv(maps: &[ComputedMap]) -> String {
                     };
                     let _ = writeln!(
                         s,
-                        "{head},{},{},{},{},{},{},{},{gamma},{note},{},{},",
+                        "{head},{},{},{},{},{},{},{},{gamma},{note},{},{},{}",
                         r.case.m_e,
                         r.case.k_delta,
                         r.f_cj_n,
@@ -221,11 +223,17 @@ pub fn csv(maps: &[ComputedMap]) -> String {
                         r.eta_lumped_2_3,
                         r.eta_lumped_2_3 / r.eta_fe - 1.0,
                         r.f_placed_n,
-                        r.f_placed_n / r.f_cl_n - 1.0
+                        r.f_placed_n / r.f_cl_n - 1.0,
+                        crate::severity::pair_cells(r.severity.as_ref())
                     );
                 }
                 Err(e) => {
-                    let _ = writeln!(s, "{head},,,,,,,,,,,,\"{}\"", e.replace('"', "'"));
+                    let _ = writeln!(
+                        s,
+                        "{head},,,,,,,,,,,,\"{}\"{}",
+                        e.replace('"', "'"),
+                        crate::severity::pair_cells(None)
+                    );
                 }
             }
         }

@@ -103,16 +103,25 @@ pub fn run(options: &EtaRotorOptions, cancel: &CancelToken) -> Result<EtaRotorRe
 
 /// eta_rotor.csv: one row per point (`held` for the limit).
 pub fn csv(points: &[RotorPoint]) -> String {
-    let mut s =
-        String::from("m_h_kg,k_delta_n_per_m,m_e_kg,n,inertia_ratio,f_cj_n,f_cl_n,eta_fe\n");
+    let mut s = String::from("m_h_kg,k_delta_n_per_m,m_e_kg,n,inertia_ratio,f_cj_n,f_cl_n,eta_fe");
+    s += &crate::severity::pair_header();
+    s.push('\n');
     for p in points {
         let ratio = p
             .inertia_ratio
             .map_or("held".to_string(), |r| r.to_string());
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{},{}",
-            p.case.m_h, p.case.k_delta, p.case.m_e, p.n, ratio, p.f_cj_n, p.f_cl_n, p.eta_fe
+            "{},{},{},{},{},{},{},{}{}",
+            p.case.m_h,
+            p.case.k_delta,
+            p.case.m_e,
+            p.n,
+            ratio,
+            p.f_cj_n,
+            p.f_cl_n,
+            p.eta_fe,
+            crate::severity::pair_cells(p.severity.as_ref())
         );
     }
     s

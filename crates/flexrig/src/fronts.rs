@@ -300,6 +300,7 @@ pub fn eta_settings(i: &EtaInputs) -> Result<EtaSettings, Error> {
         window_periods: i.window_periods,
         damping: i.damping,
         design: i.design,
+        severity_dome_radius_m: Some(crate::severity::paper_dome_radius_m()?),
         ..EtaSettings::DEFAULT
     };
     settings.validate().map_err(as_flag)?;
@@ -367,6 +368,7 @@ pub fn eta_map_settings(
         damping,
         design,
         length,
+        severity_dome_radius_m: Some(crate::severity::paper_dome_radius_m()?),
         ..EtaSettings::DEFAULT
     };
     settings.method.validate().map_err(as_flag)?;
@@ -421,6 +423,7 @@ pub fn eta_rotor_settings(
         damping,
         design,
         length,
+        severity_dome_radius_m: Some(crate::severity::paper_dome_radius_m()?),
         ..EtaSettings::DEFAULT
     })
 }

@@ -7,10 +7,13 @@
 //! - **energy**: the paper's lumped energy balance ½μv² = U(f_max) (Eq. 13 generalised to the
 //!   fitted Hertz law f = k_c δ_c^n, Eq. 4, in series with the link stiffness k_δ, Eq. 6–9;
 //!   [`flexrig_safety::EnergyContact`]);
-//! - **simulation**: the speed at which the time-integrated lumped impact (Eq. 10–12, DOP853 at
-//!   relative tolerance [`SIMULATION_RTOL`]) reaches the limit, by a bracket and an Illinois
-//!   root search on ln v converged to [`ROOT_RTOL`]. It checks the energy method by an
-//!   independent route (integration instead of the energy balance).
+//! - **simulation**: the speed at which the finite-element impact the safe-speed maps use
+//!   reaches the limit ([`crate::safety_map::FeImpact`]: the CJ as a rigid link on its torsion
+//!   spring by DOP853, the CL as the Euler–Bernoulli beam by its modes and the exact modal
+//!   integrator; held joint or free hub), by a bracket around the energy method's speed and the
+//!   Illinois root search on ln v to the settings' `root_rtol` (default 1e-6, below the 1e-4
+//!   the result is quoted to). The design is the link of mass m_r with payload m_e (`--m-r`,
+//!   `--m-e`) and stiffness k_δ (absent: rigid, [`FE_RIGID_LINK_STIFFNESS`]).
 //!
 //! Transient contact with the skull, forehead or face is refused with
 //! [`flexrig_safety::SafetyError::ContactNotPermitted`] quoting the clause of the body model
@@ -20,28 +23,19 @@
 //! and a speed that no limit bounds (e.g. the pressure of a linear contact whose Hertz-area
 //! pressure never reaches the limit) is the word `"unlimited"` ([`Speed::Unlimited`]).
 
-use flexrig_contact::{Hertz, Materials, SeriesCompliance};
-use flexrig_lumped::ImpactModel;
-use flexrig_lumped::ode::{OdeOptions, StopAt, integrate};
+use flexrig_contact::{Hertz, Materials};
 use flexrig_safety::{
-    BodyArea, BodyRegion, EnergyContact, Limits, LinkStiffness, PermissibleSpeed, PressureCrossing,
-    RobotMass, StandardContact, Verdict,
+    BodyArea, BodyRegion, EnergyContact, Limits, LinkStiffness, PermissibleSpeed, RobotMass,
+    StandardContact, Verdict,
 };
 pub use flexrig_safety::{BodyModel, ContactAreaModel, ContactKind, GoverningLimit};
 use serde::{Deserialize, Serialize};
 
 use crate::Error;
 
-/// Relative tolerance of the simulated impacts of the simulation method (below [`ROOT_RTOL`]).
-pub const SIMULATION_RTOL: f64 = 1e-11;
-/// Relative tolerance of the root search on the speed (the brief asks for 1e-4; met with margin).
-pub const ROOT_RTOL: f64 = 1e-9;
-/// The human mass \[kg\] the simulation uses for a clamped (quasi-static) body, m_H = ∞ in the
-/// closed-form methods: 1e12 × m_eff, so the reduced mass differs from m_eff by 1e-12 relative.
-pub const CLAMPED_MASS_FACTOR: f64 = 1e12;
-/// The link stiffness \[N/m\] the simulation uses for a rigid link (k_δ absent): its stored energy
-/// F²/(2k_δ) is ≤ 1e-9 of the contact's at forces ≤ 1 kN and indentations ≥ 0.1 mm.
-pub const RIGID_LINK_STIFFNESS: f64 = 1e16;
+pub use crate::safety_map::{
+    CLAMPED_HUMAN_MASS, FE_RIGID_LINK_STIFFNESS, FeLink, MapJoint, RootStep, SimulationSettings,
+};
 
 /// Which permissible-speed method to evaluate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -118,6 +112,15 @@ pub struct SafetyInput {
     pub speed: Option<f64>,
     /// Methods to evaluate (`--method`).
     pub methods: Vec<SafetyMethod>,
+    /// The simulation method's finite-element link (`--link cj|cl`); absent: the CJ for γ = 1,
+    /// the CL for γ = 2/3.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub link: Option<FeLink>,
+    /// The simulation method's joint, link length and tolerances (`--joint`,
+    /// `--rotor-inertia`, `--length`, `--tol`, `--cj-rtol`, `--root-rtol`); absent:
+    /// [`SimulationSettings::DEFAULT`] (held joint).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub simulation: Option<SimulationSettings>,
 }
 
 /// A speed that may be unbounded (serialises as a number or the word `"unlimited"`).
@@ -386,7 +389,7 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
         .map(|&m| match m {
             SafetyMethod::Standard => standard(&s, input.speed),
             SafetyMethod::Energy => energy(&s, input.speed),
-            SafetyMethod::Simulation => simulation(&s, input.speed),
+            SafetyMethod::Simulation => simulation(&s, input),
         })
         .collect::<Result<Vec<_>, Error>>()?;
     Ok(SafetyReport {
@@ -477,67 +480,108 @@ fn energy(s: &Setup, speed: Option<f64>) -> Result<MethodResult, Error> {
     Ok(from_permissible(SafetyMethod::Energy, s.m_eff, &p, verdict))
 }
 
-/// The simulated peak force \[N\] and the mean pressure at it \[Pa\] at relative speed `v`.
-struct Simulated {
-    force: f64,
-    pressure: Option<f64>,
-}
-
-fn simulate(s: &Setup, v: f64) -> Result<Simulated, Error> {
-    let m_h = match s.region.human_mass(s.kind) {
-        m if m.is_finite() => m,
-        _ => CLAMPED_MASS_FACTOR * s.m_eff,
+/// The finite-element impact of the simulation method for `s` and `input`.
+fn fe_impact(s: &Setup, input: &SafetyInput) -> Result<crate::safety_map::FeImpact, Error> {
+    let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
+    settings.validate()?;
+    let (gamma, m_r, m_e) = match input.m_eff {
+        Some(RobotEffectiveMass::Prb { gamma, m_r, m_e }) => (gamma, m_r, m_e),
+        _ => {
+            return Err(bad(
+                "--m-r",
+                "(missing)",
+                "the simulation method simulates a link: give its mass and payload with --m-r \
+                 --m-e (and --gamma or --link)",
+            ));
+        }
     };
+    let link = match input.link {
+        Some(link) => link,
+        None if gamma == crate::safety_map::GAMMA_CJ => FeLink::CompliantJoint,
+        None if (gamma - crate::safety_map::GAMMA_CL).abs() < 1e-12 => FeLink::CompliantLink,
+        None => {
+            return Err(bad(
+                "--link",
+                "(missing)",
+                "the simulation method needs the link: cj or cl (implied by --gamma 1 or 2/3)",
+            ));
+        }
+    };
+    if s.hertz.n() < 1.0 {
+        return Err(bad("--n", s.hertz.n(), "the simulation method needs n ≥ 1"));
+    }
+    if s.kind == ContactKind::QuasiStatic && settings.joint == MapJoint::Held {
+        return Err(bad(
+            "--contact",
+            "quasi-static",
+            "with --method simulation needs --joint free-hub: a held joint pressing a clamped \
+             body has no bounded peak force",
+        ));
+    }
     let k_delta = match s.link {
         LinkStiffness::Finite(k) => k,
-        LinkStiffness::Rigid => RIGID_LINK_STIFFNESS,
+        LinkStiffness::Rigid => FE_RIGID_LINK_STIFFNESS,
     };
-    let model = ImpactModel::new(m_h, s.m_eff, SeriesCompliance::new(k_delta, s.hertz)?, v)?;
-    let options = OdeOptions::new(SIMULATION_RTOL)?.stop(StopAt::Peak);
-    let peak = integrate(&model, &options)?.peak;
-    let pressure = s
-        .area_model
-        .map(|a| a.mean_pressure(peak.f_max, peak.indentation_max));
-    Ok(Simulated {
-        force: peak.f_max,
-        pressure,
+    if k_delta > FE_RIGID_LINK_STIFFNESS {
+        return Err(bad(
+            "--k-delta",
+            k_delta,
+            "the simulation method's link takes k_δ ≤ 1e12 N/m (leave --k-delta out for a \
+             rigid link)",
+        ));
+    }
+    Ok(crate::safety_map::FeImpact {
+        m_h: match s.region.human_mass(s.kind) {
+            m if m.is_finite() => m,
+            _ => CLAMPED_HUMAN_MASS,
+        },
+        hertz: s.hertz,
+        m_r,
+        m_e,
+        k_delta,
+        link,
+        settings,
     })
 }
 
-/// The speed at which `ratio(v)` (peak / limit, increasing in v) equals 1: a bracket grown by
-/// factors of 2 around `guess`, then the Illinois false position on ln v to [`ROOT_RTOL`]
-/// ([`crate::safety_map::speed_at_ratio`], which the report's trace repeats).
-fn speed_at_limit(guess: f64, ratio: &dyn Fn(f64) -> Result<f64, Error>) -> Result<f64, Error> {
-    crate::safety_map::speed_at_ratio(guess, ROOT_RTOL, &mut |v| ratio(v), None)
+/// The mean pressure \[Pa\] of the area model at a peak force `f` \[N\] (the indentation of the
+/// contact law at that force, δ_c = (f/k_c)^{1/n}).
+fn pressure_at_force(s: &Setup, f: f64) -> Option<f64> {
+    s.area_model
+        .map(|a| a.mean_pressure(f, (f / s.hertz.k()).powf(1.0 / s.hertz.n())))
 }
 
-fn simulation(s: &Setup, speed: Option<f64>) -> Result<MethodResult, Error> {
+fn simulation(s: &Setup, input: &SafetyInput) -> Result<MethodResult, Error> {
+    simulation_traced(s, input, None)
+}
+
+fn simulation_traced(
+    s: &Setup,
+    input: &SafetyInput,
+    trace: Option<&mut Vec<RootStep>>,
+) -> Result<MethodResult, Error> {
+    let impact = fe_impact(s, input)?;
     let contact = energy_contact(s)?;
     let guess = contact.permissible_speed(s.limits)?;
-    let force = s.limits.force;
-    let by_force = speed_at_limit(guess.by_force, &|v| Ok(simulate(s, v)?.force / force))?;
-    let by_pressure = match (s.limits.pressure, guess.by_pressure) {
-        (Some(p), Some(vb)) => Some(match contact.force_at_pressure(p) {
-            Some(PressureCrossing::AtForce(_)) => {
-                speed_at_limit(
-                    vb,
-                    &|v| Ok(simulate(s, v)?.pressure.unwrap_or(f64::NAN) / p),
-                )?
-            }
-            Some(PressureCrossing::Always) => 0.0,
-            Some(PressureCrossing::Never) | None => f64::INFINITY,
-        }),
-        _ => None,
-    };
+    let stop = std::sync::atomic::AtomicBool::new(false);
+    let (by_force, by_pressure, _) = crate::safety_map::fe_speeds(
+        &impact,
+        &s.limits,
+        &contact,
+        guess.by_force,
+        guess.by_pressure,
+        &stop,
+        trace,
+    )?;
     let p = PermissibleSpeed::from_parts(by_force, by_pressure, contact.reduced_mass(), s.limits);
-    let verdict = match speed {
+    let verdict = match input.speed {
         Some(v) if v > 0.0 => {
-            let sim = simulate(s, v)?;
+            let force = impact.prepare(guess.by_force)?.peak(v, &stop)?;
             Some(Verdict::new(
                 v,
                 p,
-                sim.force,
-                s.limits.pressure.and(sim.pressure),
+                force,
+                s.limits.pressure.and(pressure_at_force(s, force)),
             ))
         }
         Some(v) => Some(Verdict::new(v, p, 0.0, s.limits.pressure.map(|_| 0.0))),
@@ -549,4 +593,50 @@ fn simulation(s: &Setup, speed: Option<f64>) -> Result<MethodResult, Error> {
         &p,
         verdict,
     ))
+}
+
+/// The simulation method of `input` with its force search traced: the method's result (the
+/// same as [`safety`]'s, bit for bit), every evaluation of the search on the force limit, and
+/// the finite-element impact it ran.
+pub fn simulation_trace(
+    input: &SafetyInput,
+    model: Option<&BodyModel>,
+) -> Result<(MethodResult, Vec<RootStep>, crate::safety_map::FeImpact), Error> {
+    let bundled;
+    let model = match model {
+        Some(m) => m,
+        None => {
+            bundled = BodyModel::iso_ts_15066_2016()?;
+            &bundled
+        }
+    };
+    let s = setup(input, model)?;
+    let mut trace = Vec::new();
+    let m = simulation_traced(&s, input, Some(&mut trace))?;
+    Ok((m, trace, fe_impact(&s, input)?))
+}
+
+/// The simulation method's first-contact peak force \[N\] of `input` at each speed of `speeds`
+/// [m/s] (the CL's modes solved at the first speed).
+pub fn simulated_peak_forces(
+    input: &SafetyInput,
+    model: Option<&BodyModel>,
+    speeds: &[f64],
+) -> Result<Vec<f64>, Error> {
+    let bundled;
+    let model = match model {
+        Some(m) => m,
+        None => {
+            bundled = BodyModel::iso_ts_15066_2016()?;
+            &bundled
+        }
+    };
+    let s = setup(input, model)?;
+    let impact = fe_impact(&s, input)?;
+    let stop = std::sync::atomic::AtomicBool::new(false);
+    let Some(&first) = speeds.first() else {
+        return Ok(Vec::new());
+    };
+    let mut runs = impact.prepare(first)?;
+    speeds.iter().map(|&v| runs.peak(v, &stop)).collect()
 }

@@ -328,7 +328,8 @@ impl SimulationSettings {
         root_rtol: 1e-6,
     };
 
-    fn validate(&self) -> Result<(), Error> {
+    /// Checks every setting; the error names its flag.
+    pub fn validate(&self) -> Result<(), Error> {
         if let MapJoint::FreeHub { rotor_inertia } = self.joint
             && !(rotor_inertia.is_finite() && (1e-12..=1e12).contains(&rotor_inertia))
         {
@@ -365,7 +366,8 @@ impl SimulationSettings {
         Ok(())
     }
 
-    fn joint(&self) -> Joint {
+    /// The joint of the finite-element impact.
+    pub fn joint(&self) -> Joint {
         match self.joint {
             MapJoint::Held => Joint::Held,
             MapJoint::FreeHub { rotor_inertia } => Joint::FreeHub { rotor_inertia },
@@ -573,6 +575,8 @@ impl Shared<'_> {
             payload: 0.0,
             speed: None,
             methods: vec![method],
+            link: None,
+            simulation: None,
         }
     }
 }
@@ -820,10 +824,157 @@ fn cell(shared: &Shared, x: f64, y: f64, stop: &AtomicBool) -> Result<MapCell, E
 }
 
 /// The finite-element link of the simulation method.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum FeLink {
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FeLink {
+    /// The compliant joint: a rigid link on the torsion spring k_θr = k_δL² (DOP853).
+    #[serde(rename = "cj")]
     CompliantJoint,
+    /// The compliant link: the Euler–Bernoulli beam by its modes (exact modal integrator).
+    #[serde(rename = "cl")]
     CompliantLink,
+}
+
+/// The link stiffness \[N/m\] the finite-element simulation uses for a rigid link (k_δ
+/// absent in `flexrig safety`): the largest the FE link accepts; its stored energy F²/(2k_δ) is
+/// K/k_δ ≤ 1.5e-7 of the contact's for the body springs of Table A.3 (n = 1).
+pub const FE_RIGID_LINK_STIFFNESS: f64 = 1e12;
+
+/// One design's finite-element impact, for the root searches of the simulation method (the
+/// map's cells and the single-point `flexrig safety --method simulation` share it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FeImpact {
+    /// Human mass m_h \[kg\] (a clamped body: [`CLAMPED_HUMAN_MASS`]).
+    pub m_h: f64,
+    /// The skin's contact law.
+    pub hertz: Hertz,
+    /// Link mass m_r \[kg\].
+    pub m_r: f64,
+    /// Payload m_e \[kg\].
+    pub m_e: f64,
+    /// Lateral tip stiffness k_δ \[N/m\].
+    pub k_delta: f64,
+    /// CJ or CL.
+    pub link: FeLink,
+    /// Joint, length and tolerances.
+    pub settings: SimulationSettings,
+}
+
+impl FeImpact {
+    fn setup_at(&self, v: f64) -> FreeMassImpact {
+        FreeMassImpact {
+            m_h: self.m_h,
+            v0: v,
+            link: LinkParams {
+                m_r: self.m_r,
+                length: self.settings.length,
+                k_delta: self.k_delta,
+                m_e: self.m_e,
+            },
+            joint: self.settings.joint(),
+            contact: self.hertz,
+            damping: DampingSpec::NONE,
+        }
+    }
+
+    /// The impact ready for runs at speeds near `guess` [m/s]: the CL's modes solved once (at
+    /// `guess`; the free hub's initial modal rates scale with v exactly).
+    pub fn prepare(&self, guess: f64) -> Result<FeRuns, Error> {
+        let guess = guess.clamp(1e-5, 1e2);
+        let reference = self.setup_at(guess);
+        reference.validate()?;
+        let modes = match self.link {
+            FeLink::CompliantLink => Some(cl_tip_modes(&reference, &GradedMesh::DEFAULT)?),
+            FeLink::CompliantJoint => None,
+        };
+        Ok(FeRuns {
+            impact: *self,
+            modes,
+            guess,
+            runs: 0,
+        })
+    }
+}
+
+/// A prepared [`FeImpact`]: the first-contact peak force at any speed.
+#[derive(Debug, Clone)]
+pub struct FeRuns {
+    impact: FeImpact,
+    modes: Option<flexrig_impact::tip_modes::TipModes>,
+    guess: f64,
+    /// Impacts run so far.
+    pub runs: usize,
+}
+
+impl FeRuns {
+    /// The speed the search starts from [m/s] (the guess, within [1e-5, 100]).
+    pub fn guess(&self) -> f64 {
+        self.guess
+    }
+
+    /// The first-contact peak force \[N\] at speed `v` [m/s].
+    pub fn peak(&mut self, v: f64, stop: &AtomicBool) -> Result<f64, Error> {
+        if stop.load(Ordering::Relaxed) {
+            return Err(Error::Impact(ImpactError::Interrupted));
+        }
+        self.runs += 1;
+        let settings = &self.impact.settings;
+        let setup = self.impact.setup_at(v);
+        Ok(match &self.modes {
+            None => flexrig_impact::cj::run_cj(&setup, settings.cj_rtol)?,
+            Some(m) => {
+                let mut m = m.clone();
+                // the free hub's initial modal rates are linear in v (a held joint's are 0)
+                let scale = v / self.guess;
+                m.rates.iter_mut().for_each(|r| *r *= scale);
+                let options = ModalOptions {
+                    tol: settings.tol,
+                    ..ModalOptions::DEFAULT
+                };
+                run_on_modes(&setup, &m, &options)?
+            }
+        }
+        .first
+        .peak_force_n)
+    }
+}
+
+/// The simulated speeds of one design: by force (the peak reaches `limits.force`) and by
+/// pressure (the peak reaches the force f_p at which the mean pressure of `energy`'s area model
+/// reaches the pressure limit), root searches started at the lumped speeds `guess_force` and
+/// `guess_pressure`; the force search's evaluations go to `trace`. Returns (by force, by
+/// pressure, impacts run).
+pub fn fe_speeds(
+    impact: &FeImpact,
+    limits: &flexrig_safety::Limits,
+    energy: &EnergyContact,
+    guess_force: f64,
+    guess_pressure: Option<f64>,
+    stop: &AtomicBool,
+    trace: Option<&mut Vec<RootStep>>,
+) -> Result<(f64, Option<f64>, usize), Error> {
+    let mut runs = impact.prepare(guess_force)?;
+    let guess = runs.guess();
+    let force = limits.force;
+    let root_rtol = impact.settings.root_rtol;
+    let by_force = speed_at_ratio(
+        guess,
+        root_rtol,
+        &mut |v| Ok(runs.peak(v, stop)? / force),
+        trace,
+    )?;
+    let by_pressure = match (limits.pressure, guess_pressure) {
+        (Some(p), Some(vb)) => Some(match energy.force_at_pressure(p) {
+            Some(PressureCrossing::AtForce(f)) => {
+                let g = vb.clamp(1e-5, 1e2);
+                speed_at_ratio(g, root_rtol, &mut |v| Ok(runs.peak(v, stop)? / f), None)?
+            }
+            Some(PressureCrossing::Always) => 0.0,
+            Some(PressureCrossing::Never) | None => f64::INFINITY,
+        }),
+        _ => None,
+    };
+    Ok((by_force, by_pressure, runs.runs))
 }
 
 /// The simulated permissible speed of one design: root searches on the finite-element impact's
@@ -836,7 +987,6 @@ fn simulated(
     stop: &AtomicBool,
 ) -> Result<DesignSpeed, Error> {
     let input = shared.input;
-    let settings = &input.simulation;
     let region = shared.model.region(&input.region)?;
     let area = match &input.area {
         Some(name) => region.area(name)?,
@@ -871,68 +1021,24 @@ fn simulated(
         LinkStiffness::Finite(k_delta),
         shared.area_model,
     )?;
-    let setup_at = |v: f64| FreeMassImpact {
+    let impact = FeImpact {
         m_h,
-        v0: v,
-        link: LinkParams {
-            m_r: d.m_r,
-            length: settings.length,
-            k_delta,
-            m_e: d.m_e,
-        },
-        joint: settings.joint(),
-        contact: hertz,
-        damping: DampingSpec::NONE,
+        hertz,
+        m_r: d.m_r,
+        m_e: d.m_e,
+        k_delta,
+        link,
+        settings: input.simulation,
     };
-    let guess = lumped.by_force_mps.value().clamp(1e-5, 1e2);
-    let reference = setup_at(guess);
-    reference.validate()?;
-    let modes = match link {
-        FeLink::CompliantLink => Some(cl_tip_modes(&reference, &GradedMesh::DEFAULT)?),
-        FeLink::CompliantJoint => None,
-    };
-    let options = ModalOptions {
-        tol: settings.tol,
-        ..ModalOptions::DEFAULT
-    };
-    let mut runs = 0;
-    let mut peak = |v: f64| -> Result<f64, Error> {
-        if stop.load(Ordering::Relaxed) {
-            return Err(Error::Impact(ImpactError::Interrupted));
-        }
-        runs += 1;
-        let setup = setup_at(v);
-        Ok(match &modes {
-            None => flexrig_impact::cj::run_cj(&setup, settings.cj_rtol)?,
-            Some(m) => {
-                let mut m = m.clone();
-                // the free hub's initial modal rates are linear in v (a held joint's are 0)
-                let scale = v / guess;
-                m.rates.iter_mut().for_each(|r| *r *= scale);
-                run_on_modes(&setup, &m, &options)?
-            }
-        }
-        .first
-        .peak_force_n)
-    };
-    let force = limits.force;
-    let by_force = speed_at_ratio(
-        guess,
-        settings.root_rtol,
-        &mut |v| Ok(peak(v)? / force),
+    let (by_force, by_pressure, runs) = fe_speeds(
+        &impact,
+        &limits,
+        &energy,
+        lumped.by_force_mps.value(),
+        lumped.by_pressure_mps.map(|s| s.value()),
+        stop,
         None,
     )?;
-    let by_pressure = match (limits.pressure, lumped.by_pressure_mps) {
-        (Some(p), Some(vb)) => Some(match energy.force_at_pressure(p) {
-            Some(PressureCrossing::AtForce(f)) => {
-                let g = vb.value().clamp(1e-5, 1e2);
-                speed_at_ratio(g, settings.root_rtol, &mut |v| Ok(peak(v)? / f), None)?
-            }
-            Some(PressureCrossing::Always) => 0.0,
-            Some(PressureCrossing::Never) | None => f64::INFINITY,
-        }),
-        _ => None,
-    };
     let (v_max, governing) = match by_pressure {
         Some(vp) if vp < by_force => (vp, GoverningLimit::Pressure),
         _ => (by_force, GoverningLimit::Force),
@@ -1373,6 +1479,8 @@ mod tests {
                         area_model: None,
                         moving_mass: None,
                         payload: 0.0,
+                        link: None,
+                        simulation: None,
                         speed: None,
                         methods: vec![SafetyMethod::Energy],
                     },

@@ -12,9 +12,7 @@
 
 use std::path::{Path, PathBuf};
 
-use flexrig_contact::{Hertz, SeriesCompliance};
-use flexrig_lumped::ImpactModel;
-use flexrig_lumped::ode::{OdeOptions, StopAt, integrate};
+use flexrig_contact::Hertz;
 use flexrig_safety::{
     BodyModel, BodyRegion, ContactAreaModel, ContactKind, EnergyContact, GoverningLimit,
     LinkStiffness, PressureCrossing, TransientRule,
@@ -22,10 +20,10 @@ use flexrig_safety::{
 
 use crate::Error;
 use crate::safety::{
-    CLAMPED_MASS_FACTOR, ContactLaw, MethodResult, RIGID_LINK_STIFFNESS, ROOT_RTOL,
-    RobotEffectiveMass, SIMULATION_RTOL, SafetyInput, SafetyMethod, SafetyReport, safety,
+    ContactLaw, FeLink, MapJoint, MethodResult, RobotEffectiveMass, SafetyInput, SafetyMethod,
+    SafetyReport, safety, simulated_peak_forces, simulation_trace as traced_simulation,
 };
-use crate::safety_map::{RootStep, speed_at_ratio};
+use crate::safety_map::RootStep;
 
 /// The caveat every report carries (ISO/PAS 5672:2023 and the standard itself).
 pub const CAVEAT: &str = "These permissible speeds are a design-phase estimate, not a \
@@ -264,7 +262,9 @@ pub fn report_document(
         match m.method {
             SafetyMethod::Standard => standard_trace(&mut d, input, &r, m),
             SafetyMethod::Energy => energy_trace(&mut d, input, &r, m)?,
-            SafetyMethod::Simulation => trace = simulation_trace(&mut d, &r, m)?,
+            SafetyMethod::Simulation => {
+                trace = simulation_trace(&mut d, input, Some(model), &r, m)?;
+            }
         }
     }
     if let Some(file) = figure {
@@ -734,58 +734,62 @@ fn energy_trace(
     Ok(())
 }
 
-/// The simulated peak force \[N\] of the lumped impact at `v`, as [`crate::safety`] computes it.
-fn lumped_peak(r: &SafetyReport, m: &MethodResult, v: f64) -> Result<f64, Error> {
-    let m_h = r
-        .human_mass_kg
-        .unwrap_or(CLAMPED_MASS_FACTOR * m.robot_mass_kg);
-    let k_delta = r.k_delta_n_per_m.unwrap_or(RIGID_LINK_STIFFNESS);
-    let model = ImpactModel::new(
-        m_h,
-        m.robot_mass_kg,
-        SeriesCompliance::new(k_delta, Hertz::new(r.k_c, r.n)?)?,
-        v,
-    )?;
-    let options = OdeOptions::new(SIMULATION_RTOL)?.stop(StopAt::Peak);
-    Ok(integrate(&model, &options)?.peak.f_max)
-}
-
 fn simulation_trace(
     d: &mut Document,
+    input: &SafetyInput,
+    model: Option<&BodyModel>,
     r: &SafetyReport,
     m: &MethodResult,
 ) -> Result<Vec<RootStep>, Error> {
     d.push(Block::Heading(
         2,
-        "Method c: simulation (the time-integrated lumped impact and a root search)".into(),
+        "Method c: simulation (the finite-element impact and a root search)".into(),
     ));
-    let c = energy_contact(r, m)?;
-    let guess = c.speed_at_force(r.force_limit_n);
+    let (traced, trace, fe) = traced_simulation(input, model)?;
+    let v = traced.by_force_mps.value();
     let f = r.force_limit_n;
-    let mut trace = Vec::new();
-    let v = speed_at_ratio(
-        guess,
-        ROOT_RTOL,
-        &mut |v| Ok(lumped_peak(r, m, v)? / f),
-        Some(&mut trace),
-    )?;
-    d.push(Block::Paragraph(format!(
-        "The relative motion μ δ̈ = −f(δ) with the Hertz skin in series with the link (Eq. 10–12) \
-         is integrated by DOP853 at relative tolerance {SIMULATION_RTOL:e} up to the maximum \
-         compression (m_h = {}, m_eff = {} kg). The speed at which the peak force reaches \
-         F_max = {} N is bracketed by factors of 2 around the energy method's {} m/s and found \
-         by the Illinois false position on ln v until the bracket is narrower than {ROOT_RTOL:e} \
-         (relative). Both tolerances lie far below the 1e-4 the result is quoted to.",
-        r.human_mass_kg.map_or(
-            format!(
-                "{} kg (clamped body)",
-                g(CLAMPED_MASS_FACTOR * m.robot_mass_kg)
-            ),
-            |x| format!("{} kg", n(x))
+    let guess = trace.first().map_or(v, |s| s.speed_mps * 1.01);
+    let settings = fe.settings;
+    let link = match fe.link {
+        FeLink::CompliantJoint => format!(
+            "the compliant joint: a rigid link on the torsion spring k_θr = k_δL² \
+             (k_δ = {} N/m), integrated by DOP853 at relative tolerance {:e}",
+            g(fe.k_delta),
+            settings.cj_rtol
         ),
-        g(m.robot_mass_kg),
+        FeLink::CompliantLink => format!(
+            "the compliant link: the Euler–Bernoulli beam of lateral tip stiffness k_δ = {} N/m \
+             on a mesh graded towards the tip, by its modes and the exact modal integrator \
+             (force-hold tolerance {:e})",
+            g(fe.k_delta),
+            settings.tol
+        ),
+    };
+    let joint = match settings.joint {
+        MapJoint::Held => "held (driven at constant speed; the body region arrives at v)".into(),
+        MapJoint::FreeHub { rotor_inertia } => format!(
+            "a free hub with rotor inertia J_R = {} kg·m² (the robot moves at v into the body)",
+            g(rotor_inertia)
+        ),
+    };
+    d.push(Block::Paragraph(format!(
+        "The first contact of a body of mass m_h = {} with the tip payload m_e = {} kg of a link \
+         of mass m_r = {} kg and length {} m is simulated: {link}; joint {joint}. The speed at \
+         which the peak force reaches F_max = {} N is bracketed by factors of 2 around the \
+         energy method's {} m/s and found by the Illinois false position on ln v until the \
+         bracket is narrower than {:e} (relative). Both tolerances lie below the 1e-4 the \
+         result is quoted to.",
+        if fe.m_h >= crate::safety::CLAMPED_HUMAN_MASS {
+            format!("{} kg (clamped body)", g(fe.m_h))
+        } else {
+            format!("{} kg", n(fe.m_h))
+        },
+        g(fe.m_e),
+        g(fe.m_r),
+        g(settings.length),
         n(f),
-        g(guess)
+        g(guess),
+        settings.root_rtol
     )));
     let rows = trace
         .iter()
@@ -830,7 +834,11 @@ fn simulation_trace(
 }
 
 /// The figure: peak force against speed by each method, and the force limit.
-pub fn figure_svg(input: &SafetyInput, r: &SafetyReport) -> Result<String, Error> {
+pub fn figure_svg(
+    input: &SafetyInput,
+    model: Option<&BodyModel>,
+    r: &SafetyReport,
+) -> Result<String, Error> {
     use crate::plots::{Curve, CurvePanel, log_x_curves_svg};
     let top = r
         .methods
@@ -866,11 +874,11 @@ pub fn figure_svg(input: &SafetyInput, r: &SafetyReport) -> Result<String, Error
                     .map(|&v| c.peak_force(v).map(|f| (v, f)))
                     .collect::<Result<Vec<_>, _>>()?
             }
-            SafetyMethod::Simulation => speeds
-                .iter()
-                .step_by(4)
-                .map(|&v| lumped_peak(r, m, v).map(|f| (v, f)))
-                .collect::<Result<Vec<_>, _>>()?,
+            SafetyMethod::Simulation => {
+                let sampled: Vec<f64> = speeds.iter().step_by(4).copied().collect();
+                let forces = simulated_peak_forces(input, model, &sampled)?;
+                sampled.into_iter().zip(forces).collect()
+            }
         };
         curves.push(Curve {
             label: format!(
@@ -887,7 +895,6 @@ pub fn figure_svg(input: &SafetyInput, r: &SafetyReport) -> Result<String, Error
         points: vec![(a, r.force_limit_n), (b, r.force_limit_n)],
         limit: None,
     });
-    let _ = input;
     log_x_curves_svg(
         &format!(
             "Peak force against speed: {} ({}), {}",
@@ -955,7 +962,7 @@ pub fn write_report(
         .to_string();
     let figure_name = format!("{stem}_peak_force.svg");
     let (r, doc, _) = report_document(input, model, Some(&figure_name))?;
-    let figure = figure_svg(input, &r)?;
+    let figure = figure_svg(input, model, &r)?;
     let text = match format {
         ReportFormat::Markdown => doc.markdown(),
         ReportFormat::Html => doc.html(),
@@ -1018,6 +1025,8 @@ mod tests {
                     payload: 0.0,
                     speed: Some(0.2),
                     methods: vec![SafetyMethod::Standard, SafetyMethod::Energy],
+                    link: None,
+                    simulation: None,
                 };
                 let (_, doc, _) = report_document(&input, None, None).unwrap();
                 let md = doc.markdown();
@@ -1082,6 +1091,8 @@ mod tests {
                 SafetyMethod::Energy,
                 SafetyMethod::Simulation,
             ],
+            link: None,
+            simulation: None,
         };
         let (r, doc, trace) = report_document(&input, None, None).unwrap();
         let sim = r
@@ -1090,23 +1101,19 @@ mod tests {
             .find(|m| m.method == SafetyMethod::Simulation)
             .unwrap();
         assert!(trace.len() >= 3);
-        // the traced search is the method's own: the same speed to the last bit
-        let f = r.force_limit_n;
-        let mut again = Vec::new();
-        let v = speed_at_ratio(
-            energy_contact(&r, sim).unwrap().speed_at_force(f),
-            ROOT_RTOL,
-            &mut |v| Ok(lumped_peak(&r, sim, v)? / f),
-            Some(&mut again),
-        )
-        .unwrap();
-        assert_eq!(v.to_bits(), sim.by_force_mps.value().to_bits());
-        assert_eq!(again, trace);
+        // the traced search is the method's own: it ends on the method's speed, and it ran the
+        // finite-element CJ (γ = 1 implies the compliant joint)
+        let (again, steps, fe) = traced_simulation(&input, None).unwrap();
+        assert_eq!(again, *sim);
+        assert_eq!(steps, trace);
+        assert_eq!(fe.link, FeLink::CompliantJoint);
+        let last = trace.last().unwrap();
+        assert!((last.speed_mps / sim.by_force_mps.value() - 1.0).abs() < 1e-6);
         let md = doc.markdown();
         assert!(md.contains("Method c: simulation"));
         assert!(md.contains("| iteration |"));
         assert!(md.contains("U(F_max) ="));
         assert!(md.contains("(Eq. A.5)"));
-        assert!(figure_svg(&input, &r).unwrap().starts_with("<svg"));
+        assert!(figure_svg(&input, None, &r).unwrap().starts_with("<svg"));
     }
 }

@@ -146,3 +146,31 @@ pub fn severity_values(s: Option<&Severity>) -> [Option<f64>; 9] {
         s.hic36.map(|h| h.hic),
     ]
 }
+
+/// The severity of the FE CJ and CL impacts (flexrig-impact's), for the tables of `flexrig eta`,
+/// `eta-map` and `eta-rotor`.
+pub use flexrig_impact::severity::PairSeverity;
+
+/// The severity columns of the FE impact tables, each leading comma included: the
+/// [`SEVERITY_COLUMNS`] of the CJ (`cj_…`), then of the CL (`cl_…`).
+pub fn pair_header() -> String {
+    ["cj", "cl"]
+        .iter()
+        .flat_map(|design| {
+            SEVERITY_COLUMNS
+                .iter()
+                .map(move |c| format!(",{design}_{c}"))
+        })
+        .collect()
+}
+
+/// The cells of [`pair_header`] (empty without a severity), each leading comma included.
+pub fn pair_cells(pair: Option<&PairSeverity>) -> String {
+    let cells = |s: Option<&Severity>| -> String {
+        severity_values(s)
+            .iter()
+            .map(|v| v.map_or(",".to_string(), |v| format!(",{v}")))
+            .collect()
+    };
+    cells(pair.map(|p| &p.cj)) + &cells(pair.map(|p| &p.cl))
+}

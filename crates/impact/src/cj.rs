@@ -14,6 +14,7 @@ use flexrig_lumped::ode::dop853::{Dop853, Dop853Options, OdeSystem, find_root};
 
 use crate::ImpactError;
 use crate::setup::{ContactEvent, FreeMassImpact, ImpactOutcome, Joint};
+use crate::severity::{CJ_TRACE_SAMPLES, ContactTrace};
 
 /// State: head position and speed, tip deflection and rate, rotor (tip units) and rate.
 type Y = [f64; 6];
@@ -90,12 +91,39 @@ pub fn run_cj(setup: &FreeMassImpact, rtol: f64) -> Result<ImpactOutcome, Impact
     run_tip_oscillator(setup, tip, rtol)
 }
 
+/// [`run_cj`] with its contact's traces: the dense output sampled every T/[`CJ_TRACE_SAMPLES`]
+/// (T the contact duration of a first run), onset and separation included.
+pub fn run_cj_traced(
+    setup: &FreeMassImpact,
+    rtol: f64,
+) -> Result<(ImpactOutcome, ContactTrace), ImpactError> {
+    let tip = TipOscillator {
+        m_tip: setup.link.cj_tip_mass(),
+        k: setup.link.k_delta,
+    };
+    let first = run_tip_oscillator(setup, tip, rtol)?;
+    let dt = first.first.duration_s / CJ_TRACE_SAMPLES as f64;
+    let mut trace = ContactTrace::default();
+    let outcome = run_tip_oscillator_inner(setup, tip, rtol, Some((dt, &mut trace)))?;
+    Ok((outcome, trace))
+}
+
 /// Runs the impact of the head on a [`TipOscillator`] (the CJ, or a one-mode model of the CL)
 /// with the joint of `setup`, from the onset to the separation.
 pub fn run_tip_oscillator(
     setup: &FreeMassImpact,
     tip: TipOscillator,
     rtol: f64,
+) -> Result<ImpactOutcome, ImpactError> {
+    run_tip_oscillator_inner(setup, tip, rtol, None)
+}
+
+/// [`run_tip_oscillator`], with `record` = (Δt \[s\], trace): the dense output sampled every Δt.
+fn run_tip_oscillator_inner(
+    setup: &FreeMassImpact,
+    tip: TipOscillator,
+    rtol: f64,
+    mut record: Option<(f64, &mut ContactTrace)>,
 ) -> Result<ImpactOutcome, ImpactError> {
     setup.validate()?;
     if !(rtol.is_finite() && (1e-14..=1e-3).contains(&rtol)) {
@@ -149,6 +177,11 @@ pub fn run_tip_oscillator(
     let force_rate = |y: &Y| system.force_rate(y);
     let gap = |y: &Y| y[0] - y[2];
     let mut peak = (0.0_f64, 0.0_f64);
+    // the index of the next sample of the recorded trace (at k Δt)
+    let mut next_sample = 1usize;
+    if let Some((_, trace)) = record.as_mut() {
+        trace.push(0.0, 0.0, 0.0);
+    }
     // the contact ends when the indentation returns to 0 with the bodies parting
     loop {
         ode.step(&system).map_err(|e| ImpactError::NotFinished {
@@ -157,6 +190,20 @@ pub fn run_tip_oscillator(
         })?;
         let (t0, t1) = (ode.t_old(), ode.t());
         let (y_old, y_new) = (*ode.y_old(), *ode.y());
+        if let Some((dt, trace)) = record.as_mut()
+            && next_sample as f64 * *dt <= t1
+        {
+            let dense = ode.dense_output(&system);
+            while next_sample as f64 * *dt <= t1 {
+                let t = next_sample as f64 * *dt;
+                let y = dense.eval(t);
+                if gap(&y) <= 0.0 {
+                    break;
+                }
+                trace.push(t, system.force(&y), gap(&y));
+                next_sample += 1;
+            }
+        }
         if force_rate(&y_old) > 0.0 && force_rate(&y_new) <= 0.0 {
             let dense = ode.dense_output(&system);
             let t = find_root(
@@ -183,6 +230,9 @@ pub fn run_tip_oscillator(
                 1e-15 * t1.max(t_scale),
             );
             let y_sep = dense.eval(t_sep);
+            if let Some((_, trace)) = record.as_mut() {
+                trace.push(t_sep, 0.0, 0.0);
+            }
             return Ok(ImpactOutcome::first_only(
                 ContactEvent {
                     onset_s: 0.0,

@@ -21,6 +21,7 @@ use flexrig_contact::ContactLaw;
 
 use crate::ImpactError;
 use crate::setup::{ClSolver, ContactEvent, FreeMassImpact, ImpactOutcome, Joint};
+use crate::severity::ContactTrace;
 
 /// The head over one step from its state at `t0`: position x \[m\], speed v \[m/s\] and
 /// acceleration a [m/s²] (velocity Verlet's drift).
@@ -267,6 +268,27 @@ pub fn run_cl_until(
     solver: &ClSolver,
     stop: &AtomicBool,
 ) -> Result<ImpactOutcome, ImpactError> {
+    run_cl_inner(setup, solver, stop, None)
+}
+
+/// [`run_cl_until`] with the contact's force and indentation at every step (the separation
+/// interpolated linearly, as the run locates it).
+pub fn run_cl_traced_until(
+    setup: &FreeMassImpact,
+    solver: &ClSolver,
+    stop: &AtomicBool,
+) -> Result<(ImpactOutcome, ContactTrace), ImpactError> {
+    let mut trace = ContactTrace::default();
+    let outcome = run_cl_inner(setup, solver, stop, Some(&mut trace))?;
+    Ok((outcome, trace))
+}
+
+fn run_cl_inner(
+    setup: &FreeMassImpact,
+    solver: &ClSolver,
+    stop: &AtomicBool,
+    mut trace: Option<&mut ContactTrace>,
+) -> Result<ImpactOutcome, ImpactError> {
     setup.validate()?;
     solver.validate()?;
     let (head_speed, tip_speed) = match setup.joint {
@@ -296,6 +318,9 @@ pub fn run_cl_until(
     let mut peak = (0.0_f64, 0.0_f64);
     let max_steps = 400 * solver.steps_per_contact;
     let mut gap_prev = 0.0;
+    if let Some(trace) = trace.as_mut() {
+        trace.push(0.0, 0.0, 0.0);
+    }
     for step in 1..=max_steps {
         if step % STOP_CHECK_STEPS == 0 && stop.load(Ordering::Relaxed) {
             return Err(ImpactError::Interrupted);
@@ -329,6 +354,9 @@ pub fn run_cl_until(
         if delta <= 0.0 {
             // the gap crossed 0 within this step: linear interpolation of the separation
             let t_sep = t - h * delta / (delta - gap_prev);
+            if let Some(trace) = trace.as_mut() {
+                trace.push(t_sep, 0.0, 0.0);
+            }
             return Ok(ImpactOutcome::first_only(
                 ContactEvent {
                     onset_s: 0.0,
@@ -342,6 +370,9 @@ pub fn run_cl_until(
             ));
         }
         gap_prev = delta;
+        if let Some(trace) = trace.as_mut() {
+            trace.push(t, f, delta);
+        }
     }
     Err(ImpactError::NotFinished {
         design: "CL",

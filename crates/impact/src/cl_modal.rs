@@ -6,8 +6,9 @@
 use crate::ImpactError;
 use crate::chain::Chain;
 use crate::graded::{GradedMesh, cl_tip_modes};
-use crate::modal_run::{Head, ModalOptions, run_modes};
+use crate::modal_run::{Head, ModalOptions, run_modes, run_modes_traced};
 use crate::setup::{FreeMassImpact, ImpactOutcome, Joint};
+use crate::severity::ContactTrace;
 use crate::tip_modes::TipModes;
 
 /// The head at the onset: at v0 towards a robot at rest (held joint), or at rest with the robot
@@ -31,6 +32,22 @@ pub fn run_on_modes(
 ) -> Result<ImpactOutcome, ImpactError> {
     setup.validate()?;
     run_modes(
+        modes,
+        head_at_onset(setup),
+        &*setup.law()?,
+        setup.payload_contact_time(),
+        options,
+    )
+}
+
+/// [`run_on_modes`] with the contact's traces ([`run_modes_traced`]).
+pub fn run_on_modes_traced(
+    setup: &FreeMassImpact,
+    modes: &TipModes,
+    options: &ModalOptions,
+) -> Result<(ImpactOutcome, ContactTrace), ImpactError> {
+    setup.validate()?;
+    run_modes_traced(
         modes,
         head_at_onset(setup),
         &*setup.law()?,

@@ -30,6 +30,9 @@ pub enum ImpactError {
         /// What happened, and what to change.
         reason: String,
     },
+    /// The severity measures of a run's traces could not be computed.
+    #[error(transparent)]
+    Severity(#[from] flexrig_safety::SafetyError),
     /// Stopped on request (Ctrl-C) before every case was computed.
     #[error("stopped on request before every case was computed")]
     Interrupted,
@@ -43,6 +46,7 @@ impl ImpactError {
             ImpactError::Contact(e) => e.is_input_error(),
             ImpactError::Lumped(e) => e.is_input_error(),
             ImpactError::Beam(e) => e.is_input_error(),
+            ImpactError::Severity(e) => e.is_input_error(),
             ImpactError::NotFinished { .. } | ImpactError::Interrupted => false,
         }
     }

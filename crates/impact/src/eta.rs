@@ -18,11 +18,12 @@ use flexrig_lumped::peak_exact;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::cl_modal::{run_on_modes, run_placed};
+use crate::cl_modal::{run_on_modes, run_on_modes_traced, run_placed};
 use crate::graded::{GradedMesh, cl_tip_modes};
 use crate::horizon::{WindowReport, run_window};
 use crate::modal_run::{Head, ModalOptions, run_modes};
-use crate::setup::{ClSolver, FreeMassImpact, Joint, LinkParams};
+use crate::setup::{ClSolver, FreeMassImpact, ImpactOutcome, Joint, LinkParams};
+use crate::severity::{ContactTrace, PairSeverity};
 use crate::{ImpactError, chain, cj, cl};
 
 /// How the CL link is solved.
@@ -94,6 +95,11 @@ pub struct EtaSettings {
     /// The design held fixed across the cases: link mass m_r, contact stiffness k_c, approach
     /// speed v0 (the paper's §V by default).
     pub design: Fig6Design,
+    /// `Some(R)`: every row also carries the severity of its CJ and CL impacts
+    /// ([`crate::severity`]), pressure under the contact-area models of a dome of radius R \[m\];
+    /// `None`: peaks only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub severity_dome_radius_m: Option<f64>,
 }
 
 impl EtaSettings {
@@ -106,6 +112,7 @@ impl EtaSettings {
         window_periods: None,
         damping: DampingSpec::NONE,
         design: Fig6Design::PAPER,
+        severity_dome_radius_m: None,
     };
 }
 
@@ -115,6 +122,15 @@ impl EtaSettings {
         self.method.validate()?;
         // a bad joint would fail every case of a table or a map: refused before any runs
         self.joint.validate()?;
+        if let Some(r) = self.severity_dome_radius_m
+            && !(r.is_finite() && r > 0.0 && r <= 1e3)
+        {
+            return Err(ImpactError::invalid(
+                "dome_radius",
+                r,
+                "must lie in (0, 1e3] m",
+            ));
+        }
         if let Some(periods) = self.window_periods {
             if !matches!(self.method, ClMethod::Modal { .. }) {
                 return Err(ImpactError::invalid(
@@ -172,6 +188,10 @@ pub struct EtaRow {
     /// without a window.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub window: Option<EtaWindow>,
+    /// The severity of the CJ and CL first contacts (with
+    /// [`EtaSettings::severity_dome_radius_m`]); absent from JSON without it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub severity: Option<PairSeverity>,
 }
 
 /// The window of a row: every contact, the horizon to which they are converged, the overall
@@ -234,6 +254,52 @@ pub fn cl_first_peak_until(
     })
 }
 
+/// The FE CL's first contact of `setup` by the method of `settings`, with its traces.
+pub fn cl_first_traced_until(
+    setup: &FreeMassImpact,
+    settings: &EtaSettings,
+    stop: &AtomicBool,
+) -> Result<(ImpactOutcome, ContactTrace), ImpactError> {
+    match settings.method {
+        ClMethod::Alpha(solver) => cl::run_cl_traced_until(setup, &solver, stop),
+        ClMethod::Modal { mesh, tol } => {
+            let options = ModalOptions {
+                tol,
+                ..ModalOptions::DEFAULT
+            };
+            run_on_modes_traced(setup, &cl_tip_modes(setup, &mesh)?, &options)
+        }
+    }
+}
+
+/// The CJ (DOP853 at `settings.cj_rtol`) and CL (the settings' method) first-contact peaks
+/// \[N\] of `setup`, and their severity when `settings` asks for it.
+pub fn peaks_and_severity(
+    setup: &FreeMassImpact,
+    settings: &EtaSettings,
+    stop: &AtomicBool,
+) -> Result<(f64, f64, Option<PairSeverity>), ImpactError> {
+    match settings.severity_dome_radius_m {
+        None => Ok((
+            cj::run_cj(setup, settings.cj_rtol)?.first.peak_force_n,
+            cl_first_peak_until(setup, settings, stop)?,
+            None,
+        )),
+        Some(radius) => {
+            let (cj, cj_trace) = cj::run_cj_traced(setup, settings.cj_rtol)?;
+            let (cl, cl_trace) = cl_first_traced_until(setup, settings, stop)?;
+            Ok((
+                cj.first.peak_force_n,
+                cl.first.peak_force_n,
+                Some(PairSeverity {
+                    cj: cj_trace.severity(setup.m_h, radius)?,
+                    cl: cl_trace.severity(setup.m_h, radius)?,
+                }),
+            ))
+        }
+    }
+}
+
 /// One case and exponent.
 pub fn eta_case(case: &Fig6Case, n: f64, settings: &EtaSettings) -> Result<EtaRow, ImpactError> {
     eta_case_until(case, n, settings, &AtomicBool::new(false))
@@ -249,7 +315,7 @@ pub fn eta_case_until(
 ) -> Result<EtaRow, ImpactError> {
     settings.validate()?;
     let setup = case_setup(case, n, settings)?;
-    let f_cj = cj::run_cj(&setup, settings.cj_rtol)?.first.peak_force_n;
+    let (f_cj, f_cl, severity) = peaks_and_severity(&setup, settings, stop)?;
     let mut window = None;
     if let (ClMethod::Modal { mesh, tol }, Some(periods)) =
         (settings.method, settings.window_periods)
@@ -269,7 +335,6 @@ pub fn eta_case_until(
             cl: run_window(&setup, &cl_tip_modes(&setup, &mesh)?, &options)?,
         });
     }
-    let f_cl = cl_first_peak_until(&setup, settings, stop)?;
     let f_cj_lumped = lumped_peak(case, n, 1.0, settings)?;
     let f_placed = run_placed(
         &setup,
@@ -291,6 +356,7 @@ pub fn eta_case_until(
         gamma_eff: effective_gamma(case, n, f_cl, settings)?,
         f_placed_n: f_placed,
         window,
+        severity,
     })
 }
 

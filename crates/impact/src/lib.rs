@@ -32,6 +32,7 @@ pub mod modal_run;
 pub mod role_switch;
 pub mod rotor;
 pub mod setup;
+pub mod severity;
 pub mod spin_up;
 pub mod strike;
 pub mod tip_modes;

@@ -32,6 +32,7 @@ use flexrig_contact::ContactLaw;
 
 use crate::ImpactError;
 use crate::setup::{ContactEvent, ImpactOutcome, RunEnd};
+use crate::severity::ContactTrace;
 use crate::tip_modes::TipModes;
 
 /// How long to follow the impact and how accurately.
@@ -352,6 +353,32 @@ pub fn run_modes(
     t_scale: f64,
     options: &ModalOptions,
 ) -> Result<ImpactOutcome, ImpactError> {
+    run_modes_inner(modes, head, law, t_scale, options, None)
+}
+
+/// [`run_modes`] recording the force and indentation at every step of every contact (the
+/// scheme holds the force linear between steps: these samples are the force the run used),
+/// onsets and separations included.
+pub fn run_modes_traced(
+    modes: &TipModes,
+    head: Head,
+    law: &dyn ContactLaw,
+    t_scale: f64,
+    options: &ModalOptions,
+) -> Result<(ImpactOutcome, ContactTrace), ImpactError> {
+    let mut trace = ContactTrace::default();
+    let outcome = run_modes_inner(modes, head, law, t_scale, options, Some(&mut trace))?;
+    Ok((outcome, trace))
+}
+
+fn run_modes_inner(
+    modes: &TipModes,
+    head: Head,
+    law: &dyn ContactLaw,
+    t_scale: f64,
+    options: &ModalOptions,
+    mut trace: Option<&mut ContactTrace>,
+) -> Result<ImpactOutcome, ImpactError> {
     options.validate()?;
     if !(t_scale.is_finite() && t_scale > 0.0) {
         return Err(ImpactError::invalid("contact time scale", t_scale, "> 0 s"));
@@ -404,6 +431,9 @@ pub fn run_modes(
         // ---- a contact, from its onset at s.t ----
         let onset = s.t;
         let mut samples: Vec<(f64, f64)> = vec![(s.t, s.f)];
+        if let Some(trace) = trace.as_mut() {
+            trace.push(s.t, s.f, s.delta);
+        }
         let mut peak = (0.0_f64, s.t);
         let mut level = 0;
         loop {
@@ -460,6 +490,9 @@ pub fn run_modes(
                 s = int.step_unloaded(&s, h_sep);
                 s.delta = 0.0;
                 samples.push((s.t, 0.0));
+                if let Some(trace) = trace.as_mut() {
+                    trace.push(s.t, 0.0, 0.0);
+                }
                 peak = max_peak(&samples, peak);
                 if peak.0 > 0.0 {
                     contacts.push(event(onset, peak, s.t - onset));
@@ -468,6 +501,9 @@ pub fn run_modes(
             }
             s = next;
             samples.push((s.t, s.f));
+            if let Some(trace) = trace.as_mut() {
+                trace.push(s.t, s.f, s.delta);
+            }
             f_ref = f_ref.max(s.f);
             peak = max_peak(&samples, peak);
             // the next step from the force's curvature

@@ -15,14 +15,19 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::ImpactError;
-use crate::cl_modal::run_cj_modal;
-use crate::eta::{EtaSettings, case_setup, cl_first_peak_until, validate_most_restrictive_first};
+use crate::chain::Chain;
+use crate::cl_modal::{run_cj_modal, run_on_modes_traced};
+use crate::eta::{
+    EtaSettings, case_setup, cl_first_peak_until, cl_first_traced_until,
+    validate_most_restrictive_first,
+};
 use crate::map::LogRange;
 use crate::modal_run::ModalOptions;
 use crate::setup::Joint;
+use crate::severity::PairSeverity;
 
 /// One point of a sweep.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RotorPoint {
     /// The design case.
     pub case: Fig6Case,
@@ -37,6 +42,10 @@ pub struct RotorPoint {
     pub f_cl_n: f64,
     /// η_FE = f_CL/f_CJ.
     pub eta_fe: f64,
+    /// The severity of the CJ and CL first contacts (with
+    /// [`EtaSettings::severity_dome_radius_m`]); absent from JSON without it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub severity: Option<PairSeverity>,
 }
 
 /// The ratios ρ allowed: J_R from 1e-12 to 1e12 kg·m² for m_r = 10 kg, L = 1 m is ρ from 3e-13
@@ -77,8 +86,26 @@ pub fn rotor_point_until(
         tol: settings.method.modal_tol(),
         ..ModalOptions::DEFAULT
     };
-    let f_cj = run_cj_modal(&setup, &options)?.first.peak_force_n;
-    let f_cl = cl_first_peak_until(&setup, &settings, stop)?;
+    let (f_cj, f_cl, severity) = match settings.severity_dome_radius_m {
+        None => (
+            run_cj_modal(&setup, &options)?.first.peak_force_n,
+            cl_first_peak_until(&setup, &settings, stop)?,
+            None,
+        ),
+        Some(radius) => {
+            let cj_modes = Chain::cj(&setup).tip_modes(&setup, 0.0)?;
+            let (cj, cj_trace) = run_on_modes_traced(&setup, &cj_modes, &options)?;
+            let (cl, cl_trace) = cl_first_traced_until(&setup, &settings, stop)?;
+            (
+                cj.first.peak_force_n,
+                cl.first.peak_force_n,
+                Some(PairSeverity {
+                    cj: cj_trace.severity(setup.m_h, radius)?,
+                    cl: cl_trace.severity(setup.m_h, radius)?,
+                }),
+            )
+        }
+    };
     Ok(RotorPoint {
         case: *case,
         n,
@@ -86,6 +113,7 @@ pub fn rotor_point_until(
         f_cj_n: f_cj,
         f_cl_n: f_cl,
         eta_fe: f_cl / f_cj,
+        severity,
     })
 }
 

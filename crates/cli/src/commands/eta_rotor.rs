@@ -95,7 +95,7 @@ pub fn run(args: &EtaRotorArgs, out: &mut dyn Write, cancel: &CancelToken) -> Re
         ),
     )?;
     for curve in points.chunk_by(|a, b| a.case == b.case && a.n == b.n) {
-        let (first, last) = (curve[0], curve[curve.len() - 1]);
+        let (first, last) = (&curve[0], &curve[curve.len() - 1]);
         let lowest = curve
             .iter()
             .min_by(|a, b| a.eta_fe.total_cmp(&b.eta_fe))

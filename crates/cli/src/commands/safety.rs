@@ -1,5 +1,6 @@
 //! `flexrig safety`: the permissible speed of a design near a body region by the standard's
-//! formula, the paper's energy method and the simulated lumped impact, see [`flexrig::safety`].
+//! formula, the paper's energy method and the simulated finite-element impact, see
+//! [`flexrig::safety`].
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -7,8 +8,8 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use flexrig::Error;
 use flexrig::safety::{
-    BodyModel, ContactAreaModel, ContactKind, ContactLaw, MethodResult, RobotEffectiveMass,
-    SafetyInput, SafetyMethod, SafetyReport, Speed, safety,
+    BodyModel, ContactAreaModel, ContactKind, ContactLaw, FeLink, MethodResult, RobotEffectiveMass,
+    SafetyInput, SafetyMethod, SafetyReport, SimulationSettings, Speed, safety,
 };
 
 use crate::print::{line, print_json};
@@ -29,8 +30,17 @@ pub enum MethodArg {
     Standard,
     /// The paper's lumped energy balance (Eq. 13 with the Hertz law and k_δ).
     Energy,
-    /// The time-integrated lumped impact and a root search on the speed.
+    /// The finite-element impact (the safe-speed map's) and a root search on the speed.
     Simulation,
+}
+
+/// The finite-element link of the simulation method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum LinkArg {
+    /// The compliant joint: a rigid link on a torsion spring.
+    Cj,
+    /// The compliant link: the Euler–Bernoulli beam.
+    Cl,
 }
 
 /// Contact-area model for pressure.
@@ -60,15 +70,36 @@ pub struct SafetyArgs {
     /// Effective robot mass m_eff [kg] for the energy and simulation methods.
     #[arg(long = "m-eff", value_name = "KG", conflicts_with_all = ["gamma", "m_r", "m_e"])]
     pub m_eff: Option<f64>,
-    /// Link mass m_r [kg], for m_eff = m_e + γ m_r/3 (with --m-e, --gamma).
-    #[arg(long = "m-r", value_name = "KG", requires_all = ["gamma", "m_e"])]
+    /// Link mass m_r [kg], for m_eff = m_e + γ m_r/3 (with --m-e, and --gamma or --link).
+    #[arg(long = "m-r", value_name = "KG", requires = "m_e")]
     pub m_r: Option<f64>,
-    /// End mass m_e [kg] (with --m-r, --gamma).
-    #[arg(long = "m-e", value_name = "KG", requires_all = ["gamma", "m_r"])]
+    /// End mass m_e [kg] (with --m-r).
+    #[arg(long = "m-e", value_name = "KG", requires = "m_r")]
     pub m_e: Option<f64>,
-    /// PRB characteristic radius γ ∈ (0, 1] (with --m-r, --m-e).
+    /// PRB characteristic radius γ ∈ (0, 1] (with --m-r, --m-e; default with --link: 1 for cj,
+    /// 2/3 for cl).
     #[arg(long, value_name = "G", requires_all = ["m_r", "m_e"])]
     pub gamma: Option<f64>,
+    /// The simulation method's finite-element link: cj (rigid link on a torsion spring) or cl
+    /// (Euler–Bernoulli beam); default: cj for γ = 1, cl for γ = 2/3.
+    #[arg(long, value_enum, requires_all = ["m_r", "m_e"])]
+    pub link: Option<LinkArg>,
+    /// The joint during the simulated impact: held (driven at constant speed, the body region
+    /// arriving at v) or a free hub (with --rotor-inertia; needed for quasi-static contact).
+    #[arg(long, value_enum, default_value = "held")]
+    pub joint: super::impact_args::JointArg,
+    /// Rotor inertia J_R of the free hub [kg·m²] (with --joint free-hub).
+    #[arg(long = "rotor-inertia", value_name = "KG_M2")]
+    pub rotor_inertia: Option<f64>,
+    /// Link length L [m] of the simulated link (the impact depends on m_r and k_δ only).
+    #[arg(long, value_name = "M", default_value_t = 1.0)]
+    pub length: f64,
+    /// Tolerance of the simulated CL's modal integrator (1e-10 to 1e-3).
+    #[arg(long, value_name = "TOL", default_value_t = 1e-6)]
+    pub tol: f64,
+    /// Relative tolerance of the simulation's root search on the speed (1e-13 to 1e-4).
+    #[arg(long = "root-rtol", value_name = "RTOL", default_value_t = 1e-6)]
+    pub root_rtol: f64,
     /// Link lateral stiffness k_δ [N/m] (default: a rigid link).
     #[arg(long = "k-delta", value_name = "N_PER_M")]
     pub k_delta: Option<f64>,
@@ -180,12 +211,30 @@ pub(crate) fn missing(flag: &str, needed: &str) -> Error {
 impl SafetyArgs {
     /// The library's input.
     pub fn input(&self) -> Result<SafetyInput, Error> {
-        let m_eff = match (self.m_eff, self.gamma, self.m_r, self.m_e) {
+        let link = self.link.map(|l| match l {
+            LinkArg::Cj => FeLink::CompliantJoint,
+            LinkArg::Cl => FeLink::CompliantLink,
+        });
+        let implied = link.map(|l| match l {
+            FeLink::CompliantJoint => flexrig::safety_map::GAMMA_CJ,
+            FeLink::CompliantLink => flexrig::safety_map::GAMMA_CL,
+        });
+        let m_eff = match (self.m_eff, self.gamma.or(implied), self.m_r, self.m_e) {
             (Some(m), ..) => Some(RobotEffectiveMass::Given(m)),
             (None, Some(gamma), Some(m_r), Some(m_e)) => {
                 Some(RobotEffectiveMass::Prb { gamma, m_r, m_e })
             }
+            (None, None, Some(_), _) => {
+                return Err(missing("--gamma", "--m-r and --m-e need --gamma or --link"));
+            }
             _ => None,
+        };
+        let simulation = SimulationSettings {
+            joint: super::safety_map::map_joint(self.joint, self.rotor_inertia)?,
+            length: self.length,
+            tol: self.tol,
+            root_rtol: self.root_rtol,
+            ..SimulationSettings::DEFAULT
         };
         let (law, area_model) = (self.law.law(), self.law.area_model()?);
         Ok(SafetyInput {
@@ -211,6 +260,8 @@ impl SafetyArgs {
                     MethodArg::Simulation => SafetyMethod::Simulation,
                 })
                 .collect(),
+            link,
+            simulation: Some(simulation),
         })
     }
 }

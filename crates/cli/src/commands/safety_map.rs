@@ -106,23 +106,7 @@ impl SafetyMapArgs {
     /// The library's input.
     pub fn input(&self) -> Result<SafetyMapInput, Error> {
         let (law, area_model) = (self.law.law(), self.law.area_model()?);
-        let joint = match (self.joint, self.rotor_inertia) {
-            (JointArg::Held, None) => MapJoint::Held,
-            (JointArg::Held, Some(j)) => {
-                return Err(Error::InvalidArgument {
-                    arg: "--rotor-inertia".into(),
-                    value: flexrig::output::display_number(j),
-                    allowed: "only with --joint free-hub".into(),
-                });
-            }
-            (JointArg::FreeHub, None) => {
-                return Err(missing(
-                    "--rotor-inertia",
-                    "--joint free-hub needs --rotor-inertia (kg·m², > 0)",
-                ));
-            }
-            (JointArg::FreeHub, Some(j)) => MapJoint::FreeHub { rotor_inertia: j },
-        };
+        let joint = map_joint(self.joint, self.rotor_inertia)?;
         Ok(SafetyMapInput {
             region: self.region.clone(),
             area: self.area.clone(),
@@ -151,6 +135,23 @@ impl SafetyMapArgs {
             },
             speed: self.speed,
         })
+    }
+}
+
+/// The joint of `--joint` with `--rotor-inertia` (only, and always, with free-hub).
+pub(crate) fn map_joint(joint: JointArg, rotor_inertia: Option<f64>) -> Result<MapJoint, Error> {
+    match (joint, rotor_inertia) {
+        (JointArg::Held, None) => Ok(MapJoint::Held),
+        (JointArg::Held, Some(j)) => Err(Error::InvalidArgument {
+            arg: "--rotor-inertia".into(),
+            value: flexrig::output::display_number(j),
+            allowed: "only with --joint free-hub".into(),
+        }),
+        (JointArg::FreeHub, None) => Err(missing(
+            "--rotor-inertia",
+            "--joint free-hub needs --rotor-inertia (kg·m², > 0)",
+        )),
+        (JointArg::FreeHub, Some(j)) => Ok(MapJoint::FreeHub { rotor_inertia: j }),
     }
 }
 

@@ -224,6 +224,7 @@ fn eta_row(case: Fig6Case, n: f64, eta: f64, gamma: EffectiveGamma) -> EtaRow {
         gamma_eff: gamma,
         f_placed_n: 100.0 * eta * 1.01,
         window: None,
+        severity: None,
     }
 }
 
@@ -318,6 +319,7 @@ fn eta_rotor_at_print_size() {
                     f_cj_n: 100.0,
                     f_cl_n: 90.0,
                     eta_fe: 0.8 + 0.01 * f64::from(e) + 0.01 * n,
+                    severity: None,
                 });
             }
             points.push(RotorPoint {
@@ -327,6 +329,7 @@ fn eta_rotor_at_print_size() {
                 f_cj_n: 100.0,
                 f_cl_n: 90.0,
                 eta_fe: 0.9,
+                severity: None,
             });
         }
     }

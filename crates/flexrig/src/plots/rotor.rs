@@ -397,6 +397,7 @@ mod tests {
                         f_cj_n: 1.0,
                         f_cl_n: base,
                         eta_fe: base + 0.01 * f64::from(e),
+                        severity: None,
                     });
                 }
                 points.push(RotorPoint {
@@ -410,6 +411,7 @@ mod tests {
                     f_cj_n: 1.0,
                     f_cl_n: base,
                     eta_fe: base + 0.05,
+                    severity: None,
                 });
             }
         }

@@ -38,10 +38,19 @@ def safety(
     speed: Optional[float] = None,
     body_model: Optional[Union[str, "os.PathLike[str]"]] = None,
     method: Union[str, Sequence[str]] = ("standard", "energy"),
+    link: Optional[str] = None,
+    joint: str = "held",
+    rotor_inertia: Optional[float] = None,
+    length: float = 1.0,
+    tol: float = 1e-6,
+    root_rtol: float = 1e-6,
 ) -> Dict[str, Any]:
     """The permissible speed of a design near ``region`` by the standard's formula
-    (``"standard"``), the paper's energy method (``"energy"``) and the simulated lumped impact
-    (``"simulation"``): the dict of ``flexrig safety --json`` with the same numbers.
+    (``"standard"``), the paper's energy method (``"energy"``) and the simulated finite-element
+    impact of the safe-speed maps (``"simulation"``: ``link`` ``"cj"`` or ``"cl"``, default from
+    ``gamma`` 1 or 2/3; ``joint`` ``"held"`` or ``"free_hub"`` with ``rotor_inertia`` in kg·m²;
+    ``length`` in m; ``tol`` of the CL's modal integrator; ``root_rtol`` of the root search on
+    the speed): the dict of ``flexrig safety --json`` with the same numbers.
 
     Masses in kg (``m_eff``, or ``m_r``, ``m_e`` and ``gamma`` for m_eff = m_e + γ m_r/3;
     ``moving_mass`` and ``payload`` for the standard's m_R = M/2 + m_L), ``k_delta`` in N/m
@@ -51,11 +60,15 @@ def safety(
     ``quasi_static``. Unbounded speeds are the word ``"unlimited"``; absent values are absent
     keys. Transient contact with skull/forehead or face raises ``InputError`` quoting the clause.
     """
+    if link is not None and link not in ("cj", "cl"):
+        raise _input_error("link", f"unknown link {link!r}: cj or cl")
+    if gamma is None and link is not None:
+        gamma = 1.0 if link == "cj" else 2.0 / 3.0
     if m_eff is not None:
         mass: Optional[Dict[str, Any]] = {"given": m_eff}
     elif m_r is not None or m_e is not None or gamma is not None:
         if m_r is None or m_e is None or gamma is None:
-            raise _input_error("gamma", "m_r, m_e and gamma go together (m_eff = m_e + gamma m_r/3)")
+            raise _input_error("gamma", "m_r, m_e and gamma (or link) go together (m_eff = m_e + gamma m_r/3)")
         mass = {"prb": {"gamma": gamma, "m_r": m_r, "m_e": m_e}}
     else:
         mass = None
@@ -96,12 +109,34 @@ def safety(
         "payload": payload,
         "speed": speed,
         "methods": methods,
+        "link": link,
+        "simulation": {
+            "joint": _joint(joint, rotor_inertia),
+            "length": length,
+            "tol": tol,
+            "cj_rtol": 1e-10,
+            "root_rtol": root_rtol,
+        },
     }
     text = None
     if body_model is not None:
         with open(body_model, encoding="utf-8") as f:
             text = f.read()
     return json.loads(_flexrig.safety_json(json.dumps(data, allow_nan=True), text))
+
+
+def _joint(joint: str, rotor_inertia: Optional[float]) -> Any:
+    """The simulation's joint as the library's JSON."""
+    kind_of_joint = joint.replace("-", "_")
+    if kind_of_joint == "held":
+        if rotor_inertia is not None:
+            raise _input_error("rotor_inertia", "rotor_inertia only with joint='free_hub'")
+        return "held"
+    if kind_of_joint == "free_hub":
+        if rotor_inertia is None:
+            raise _input_error("rotor_inertia", "joint='free_hub' needs rotor_inertia (kg·m², > 0)")
+        return {"free_hub": {"rotor_inertia": rotor_inertia}}
+    raise _input_error("joint", f"unknown joint {joint!r}: held or free_hub")
 
 
 #: Names of the map's design parameters: the flag's name (and its snake_case twin) to the
@@ -198,17 +233,7 @@ def safety_map(
             model = {"model": "fixed", "area_m2": contact_area}
         else:
             raise _input_error("area_model", f"unknown area_model {area_model!r}: hertz_sphere, thin_layer or fixed")
-    kind_of_joint = joint.replace("-", "_")
-    if kind_of_joint == "held":
-        if rotor_inertia is not None:
-            raise _input_error("rotor_inertia", "rotor_inertia only with joint='free_hub'")
-        joint_data: Any = "held"
-    elif kind_of_joint == "free_hub":
-        if rotor_inertia is None:
-            raise _input_error("rotor_inertia", "joint='free_hub' needs rotor_inertia (kg·m², > 0)")
-        joint_data = {"free_hub": {"rotor_inertia": rotor_inertia}}
-    else:
-        raise _input_error("joint", f"unknown joint {joint!r}: held or free_hub")
+    joint_data = _joint(joint, rotor_inertia)
     data = {
         "region": region,
         "area": area,

@@ -1,0 +1,165 @@
+//! The simulation method of `flexrig safety` runs the finite-element impact of the safe-speed
+//! maps: with a linear contact (n = 1, the body region's own spring) and a rigid link on a
+//! free hub it converges to the standard's formula (the robot is then one rigid body of tip
+//! mass m_e + m_r/3 + J_R/L²), transient and clamped, CJ and CL; and at a map's design it is
+//! the map's cell.
+
+use flexrig::CancelToken;
+use flexrig::safety::{
+    ContactKind, ContactLaw, FeLink, MapJoint, RobotEffectiveMass, SafetyInput, SafetyMethod,
+    SimulationSettings, safety,
+};
+use flexrig::safety_map::{MapAxis, MapMethod, MapParameter, SafetyMapInput, safety_map};
+use flexrig_safety::BodyModel;
+
+const M_R: f64 = 2.0;
+const M_E: f64 = 1.0;
+const J_R: f64 = 0.05;
+
+fn input(region: &str, contact: ContactKind, link: FeLink, joint: MapJoint) -> SafetyInput {
+    SafetyInput {
+        region: region.into(),
+        area: None,
+        contact,
+        m_eff: Some(RobotEffectiveMass::Prb {
+            gamma: 1.0,
+            m_r: M_R,
+            m_e: M_E,
+        }),
+        k_delta: None,
+        law: ContactLaw::BodySpring,
+        area_model: None,
+        moving_mass: None,
+        payload: 0.0,
+        speed: None,
+        methods: vec![SafetyMethod::Simulation],
+        link: Some(link),
+        simulation: Some(SimulationSettings {
+            joint,
+            ..SimulationSettings::DEFAULT
+        }),
+    }
+}
+
+/// The standard's v = F_max/√(μK) (Eq. A.5) with m_R = m_e + m_r/3 + J_R/L² (L = 1 m) by hand.
+fn standard_by_hand(region: &str, contact: ContactKind) -> f64 {
+    let model = BodyModel::iso_ts_15066_2016().unwrap();
+    let r = model.region(region).unwrap();
+    let limits = r.limits(None, contact).unwrap();
+    let m_robot = M_E + M_R / 3.0 + J_R;
+    let m_h = r.human_mass(contact);
+    let mu = if m_h.is_finite() {
+        1.0 / (1.0 / m_h + 1.0 / m_robot)
+    } else {
+        m_robot
+    };
+    limits.force / (mu * r.spring_constant()).sqrt()
+}
+
+/// Transient (chest, hand) and clamped (chest, quasi-static, m_h = 1e9 kg) contact, CJ and CL,
+/// free hub, n = 1, rigid link (k_δ = 1e12 N/m): the simulated speed is the standard's within
+/// 1e-6. What separates them: the root search (1e-6 on the bracket, the last iterate far
+/// closer), the CJ's DOP853 (1e-10) and the CL's force hold (1e-6 per step), the link's
+/// energy share K/k_δ ≤ 7.5e-8 and the clamped body's m_R/m_h ≤ 2e-9.
+#[test]
+fn with_n_1_and_a_rigid_link_the_simulation_converges_to_the_standard_formula() {
+    let joint = MapJoint::FreeHub { rotor_inertia: J_R };
+    for (region, contact) in [
+        ("chest", ContactKind::Transient),
+        ("hands_and_fingers", ContactKind::Transient),
+        ("chest", ContactKind::QuasiStatic),
+    ] {
+        let expected = standard_by_hand(region, contact);
+        for link in [FeLink::CompliantJoint, FeLink::CompliantLink] {
+            let r = safety(&input(region, contact, link, joint), None).unwrap();
+            let v = r.methods[0].by_force_mps.value();
+            let err = (v / expected - 1.0).abs();
+            assert!(
+                err < 1e-6,
+                "{region} {contact:?} {link:?}: {v} against {expected} ({err:e})"
+            );
+        }
+    }
+}
+
+/// A held joint cannot clamp (no bounded peak): refused naming --contact; a γ that implies no
+/// link needs --link.
+#[test]
+fn clamping_needs_the_free_hub_and_the_link_must_be_known() {
+    let mut i = input(
+        "chest",
+        ContactKind::QuasiStatic,
+        FeLink::CompliantJoint,
+        MapJoint::Held,
+    );
+    let e = safety(&i, None).unwrap_err().to_string();
+    assert!(e.contains("--contact") && e.contains("free-hub"), "{e}");
+    i.contact = ContactKind::Transient;
+    i.link = None;
+    i.m_eff = Some(RobotEffectiveMass::Prb {
+        gamma: 0.5,
+        m_r: M_R,
+        m_e: M_E,
+    });
+    let e = safety(&i, None).unwrap_err().to_string();
+    assert!(e.contains("--link"), "{e}");
+}
+
+/// The single-point simulation at a design of a simulated map equals the map's cell bit for
+/// bit (CJ and CL, by force and by pressure): the same finite-element impact, the same lumped
+/// start, the same search.
+#[test]
+fn the_single_point_simulation_is_the_maps_cell() {
+    let map_input = SafetyMapInput {
+        region: "hands_and_fingers".into(),
+        area: None,
+        contact: ContactKind::Transient,
+        m_r: Some(0.051),
+        m_e: None,
+        k_delta: None,
+        law: ContactLaw::Material("skinned_aluminium".into()),
+        area_model: None,
+        x: MapAxis {
+            parameter: MapParameter::Payload,
+            values: vec![0.412, 0.6],
+        },
+        y: MapAxis {
+            parameter: MapParameter::LinkStiffness,
+            values: vec![1e4, 3e4],
+        },
+        method: MapMethod::Simulation,
+        simulation: SimulationSettings::DEFAULT,
+        speed: None,
+    };
+    let map = safety_map(&map_input, None, &CancelToken::new()).unwrap();
+    for cell in &map.cells {
+        for (link, gamma, design) in [
+            (FeLink::CompliantJoint, 1.0, cell.cj.unwrap()),
+            (FeLink::CompliantLink, 2.0 / 3.0, cell.cl.unwrap()),
+        ] {
+            let single = SafetyInput {
+                region: "hands_and_fingers".into(),
+                area: None,
+                contact: ContactKind::Transient,
+                m_eff: Some(RobotEffectiveMass::Prb {
+                    gamma,
+                    m_r: cell.m_r_kg,
+                    m_e: cell.m_e_kg,
+                }),
+                k_delta: cell.k_delta_n_per_m,
+                law: ContactLaw::Material("skinned_aluminium".into()),
+                area_model: None,
+                moving_mass: None,
+                payload: 0.0,
+                speed: None,
+                methods: vec![SafetyMethod::Simulation],
+                link: Some(link),
+                simulation: None,
+            };
+            let m = safety(&single, None).unwrap().methods[0];
+            assert_eq!(m.by_force_mps, design.by_force_mps, "{link:?} {cell:?}");
+            assert_eq!(m.by_pressure_mps, design.by_pressure_mps, "{link:?}");
+            assert_eq!(m.v_max_mps, design.v_max_mps, "{link:?}");
+        }
+    }
+}
