@@ -1096,6 +1096,8 @@ impl<'s> Simulation<'s> {
                 contact: None,
                 energy: self.energy(),
                 samples: &[],
+                // the free flight is the unforced rig's: a driven robot is stepped by Rapier
+                drive: None,
             });
         }
         self.now = saved;
