@@ -1134,7 +1134,7 @@ impl<W: Write + Seek> Recorder for McapRecorder<W> {
     /// The 3D view's rate outside contact: the free swing, whose integrator steps are long, is
     /// drawn at that rate from its dense output (none when every step is logged).
     fn pose_period(&self) -> Option<f64> {
-        (self.rates.scene_period_ns > 0).then(|| self.rates.scene_period_ns as f64 * 1e-9)
+        (self.rates.scene_period_ns > 0).then_some(self.rates.scene_period_ns as f64 * 1e-9)
     }
 
     fn between(&mut self, f: &Frame<'_>) -> Result<(), RigError> {

@@ -212,7 +212,7 @@ impl XLinear {
         let (lo, hi) = if lo < hi { (lo, hi) } else { (0.0, 1.0) };
         let step = nice_step(hi - lo, 6);
         Self {
-            lo: (lo / step - 1e-9).floor() * step + 0.0,
+            lo: (lo / step + 1e-9).floor() * step + 0.0,
             hi: (hi / step - 1e-9).ceil() * step,
             step,
         }
