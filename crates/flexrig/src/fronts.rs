@@ -761,7 +761,15 @@ pub fn beam_modal_report(
     warnings: &[crate::beam::Warning],
     scene: Option<&str>,
 ) -> Value {
-    json!({ "frequencies_hz": frequencies_hz, "warnings": warnings, "scene": scene })
+    without_nulls(json!({ "frequencies_hz": frequencies_hz, "warnings": warnings, "scene": scene }))
+}
+
+/// `report` without its absent (null) entries: a report holds no `null`.
+fn without_nulls(mut report: Value) -> Value {
+    if let Some(map) = report.as_object_mut() {
+        map.retain(|_, v| !v.is_null());
+    }
+    report
 }
 
 /// The tip load of `flexrig beam static`: force [N], moment [N·m], `model` (`linear`,
@@ -805,7 +813,7 @@ pub fn beam_static_report(
     yield_strength: Option<f64>,
 ) -> Value {
     let s = &sol.stress;
-    json!({
+    without_nulls(json!({
         "max_stress_pa": s.max_pa,
         "max_stress": {
             "stress_pa": s.max_pa,
@@ -825,7 +833,7 @@ pub fn beam_static_report(
         "residual_n": sol.residual,
         "load_level": sol.load_level,
         "model": model,
-    })
+    }))
 }
 
 /// `flexrig validate --json`.

@@ -3,7 +3,8 @@
 //! acceleration loads it as (J_l α/k)(1 − cos ω_l t)), the conservation of energy (the motor's
 //! work less the friction equals the change of the mechanical energy), the test bed itself (a
 //! drive held at rest is the fixed axis, bit for bit), and the bundled test-bed scenes, which
-//! must run bit-identically with the drive code in place.
+//! must run bit-identically with the drive code in place (the CL scenes to round-off, see the
+//! test).
 
 mod common;
 
@@ -157,12 +158,22 @@ fn the_bundled_test_bed_scenes_run_bit_identically() {
             s.energy_final_j,
         ];
         for (i, (g, b)) in got.iter().zip(bits).enumerate() {
-            assert_eq!(
-                g.to_bits(),
-                b,
-                "{name}: quantity {i}: {g} vs {}",
-                f64::from_bits(b)
-            );
+            if name.starts_with("cl_") {
+                // The CL's beam solve moved from a pivoting LU to an LDLᵀ factorisation after
+                // these values were recorded: the same equations, round-off apart.
+                let want = f64::from_bits(b);
+                assert!(
+                    (g - want).abs() <= 1e-12 * want.abs(),
+                    "{name}: quantity {i}: {g} vs {want}"
+                );
+            } else {
+                assert_eq!(
+                    g.to_bits(),
+                    b,
+                    "{name}: quantity {i}: {g} vs {}",
+                    f64::from_bits(b)
+                );
+            }
         }
         assert_eq!(s.steps, steps, "{name}");
         assert!(s.drive.is_none());

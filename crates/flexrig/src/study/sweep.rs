@@ -81,7 +81,6 @@ pub const DRIVEN_START: usize = SUMMARY_COLUMNS.len() - DRIVEN_COLUMNS.len();
 /// [`SUMMARY_COLUMNS`].
 pub const SEVERITY_START: usize = 15;
 
-
 /// The columns of [`SUMMARY_COLUMNS`] that hold counts: written as whole numbers (`3`, not
 /// `3e0`) in the CSV and as integers in JSON Lines.
 pub const INTEGER_COLUMNS: [&str; 3] = ["contacts", "steps", "contact_steps"];
