@@ -402,7 +402,7 @@ impl BandMatrix {
             let (head, tail) = cols.split_at_mut(j + 1);
             let cj = &mut head[j];
             let d = cj[K];
-            if !(d > tiny) {
+            if d.is_nan() || d <= tiny {
                 return Err(());
             }
             let dinv = 1.0 / d;

@@ -400,10 +400,10 @@ fn the_root_moment_of_a_slow_ramp_is_the_rigid_links_inertia_torque() {
     let (angle, _, alpha) = profile.at(0.5 * ramp);
     let motor = Motor::new(1e-3, 10.0, 0.0).unwrap();
     let drives = [
-        Drive::trajectory(motor, profile.clone()).unwrap(),
+        Drive::trajectory(motor, profile).unwrap(),
         Drive::controller(
             motor,
-            profile.clone(),
+            profile,
             Gains {
                 kp: 1e5,
                 kd: 2e3,

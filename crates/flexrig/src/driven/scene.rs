@@ -905,8 +905,8 @@ sample_rate_hz = 1e6
         // 1 µs ((π Δt/T)²/12 ≈ 2e-9): tolerance 1e-4.
         let run = run_driven_text(HELD_CJ_LINEAR, &[], no_log(), &CancelToken::new()).unwrap();
         let s = &run.summary;
-        let (v, k_c, m_h) = (2.0, 1e5, 4.0);
-        let omega = (k_c / m_h as f64).sqrt();
+        let (v, k_c, m_h) = (2.0, 1e5, 4.0_f64);
+        let omega = (k_c / m_h).sqrt();
         let t_c = std::f64::consts::PI / omega;
         let a_g = v * omega / crate::severity::STANDARD_GRAVITY;
         // tan x = 5x/3 by Newton from 1
