@@ -523,21 +523,34 @@ impl AncfElement {
 /// matrices, each a sum of fixed products times scalars, in 16-long loops that vectorise.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TangentTables {
-    /// P¹¹ of each axial point.
+    /// P¹¹ of each axial point, full and packed (upper triangle, [`PACKED`]).
     axial: [[f64; 16]; MAX_POINTS],
-    /// Per bending point: P¹¹, P¹² + P²¹, P²², P¹², P²¹.
-    bending: [[[f64; 16]; 5]; MAX_POINTS],
+    axial_packed: [[f64; 10]; MAX_POINTS],
+    /// Per bending point: P¹¹, P¹² + P²¹, P²² packed (the symmetric ones).
+    bending_sym: [[[f64; 10]; 3]; MAX_POINTS],
+    /// Per bending point: P¹¹, P²², P¹², P²¹ (full).
+    bending_cross: [[[f64; 16]; 4]; MAX_POINTS],
 }
 
-/// The element tangent (or material matrix) as its three distinct 4 × 4 slot matrices
-/// (row-major, entry 4a + b): K₍₂ₐ,₂_b₎ = `xx`, K₍₂ₐ₊₁,₂_b₊₁₎ = `yy`, K₍₂ₐ,₂_b₊₁₎ = `xy`,
-/// K₍₂ₐ₊₁,₂_b₎ = `xy`ᵀ (element coordinates 2a + i, slot a, component i).
+/// Index of the slot pair (a, b) in a packed symmetric 4 × 4 matrix (upper triangle by rows:
+/// 00 01 02 03 11 12 13 22 23 33).
+pub const PACKED: [[usize; 4]; 4] = [[0, 1, 2, 3], [1, 4, 5, 6], [2, 5, 7, 8], [3, 6, 8, 9]];
+
+/// The upper triangle of a symmetric 4 × 4 matrix (row-major, entry 4a + b), packed.
+fn pack(m: &[f64; 16]) -> [f64; 10] {
+    [m[0], m[1], m[2], m[3], m[5], m[6], m[7], m[10], m[11], m[15]]
+}
+
+/// The element tangent (or material matrix) as its three distinct 4 × 4 slot matrices:
+/// K₍₂ₐ,₂_b₎ = `xx`, K₍₂ₐ₊₁,₂_b₊₁₎ = `yy` (symmetric, packed: entry [`PACKED`]\[a\]\[b\]),
+/// K₍₂ₐ,₂_b₊₁₎ = `xy` (row-major, entry 4a + b), K₍₂ₐ₊₁,₂_b₎ = `xy`ᵀ (element coordinates
+/// 2a + i, slot a, component i).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SlotBlocks {
-    /// x–x entries.
-    pub xx: [f64; 16],
-    /// y–y entries.
-    pub yy: [f64; 16],
+    /// x–x entries (packed upper triangle).
+    pub xx: [f64; 10],
+    /// y–y entries (packed upper triangle).
+    pub yy: [f64; 10],
     /// x–y entries (y–x: the transpose).
     pub xy: [f64; 16],
 }
@@ -545,8 +558,8 @@ pub struct SlotBlocks {
 impl SlotBlocks {
     /// All zero.
     pub const ZERO: SlotBlocks = SlotBlocks {
-        xx: [0.0; 16],
-        yy: [0.0; 16],
+        xx: [0.0; 10],
+        yy: [0.0; 10],
         xy: [0.0; 16],
     };
 
@@ -555,8 +568,8 @@ impl SlotBlocks {
     pub fn entry(&self, k: usize, m: usize) -> f64 {
         let (a, i, b, j) = (k / 2, k % 2, m / 2, m % 2);
         match (i, j) {
-            (0, 0) => self.xx[4 * a + b],
-            (1, 1) => self.yy[4 * a + b],
+            (0, 0) => self.xx[PACKED[a][b]],
+            (1, 1) => self.yy[PACKED[a][b]],
             (0, 1) => self.xy[4 * a + b],
             _ => self.xy[4 * b + a],
         }
@@ -573,12 +586,12 @@ impl SlotBlocks {
     }
 }
 
-/// Σₜ c[t] rows[t], added to `acc` (R fixed: unrolled, `acc` kept in registers).
+/// Σₜ c[t] rows[t], added to `acc` (R, N fixed: unrolled, `acc` kept in registers).
 #[inline(always)]
-fn combine<const R: usize>(acc: &mut [f64; 16], rows: [&[f64; 16]; R], c: [f64; R]) {
+fn combine<const R: usize, const N: usize>(acc: &mut [f64; N], rows: [&[f64; N]; R], c: [f64; R]) {
     let mut s = *acc;
     for (row, ct) in rows.iter().zip(c) {
-        for l in 0..16 {
+        for l in 0..N {
             s[l] += ct * row[l];
         }
     }
@@ -612,19 +625,39 @@ fn axial_point(ea: f64, wl: f64, dp: [f64; 2]) -> (f64, [f64; 2], [f64; 3], [f64
 }
 
 /// One bending point: energy, the force factors α wl M, β wl M (to be multiplied by c¹ₐ,
-/// c²ₐ) and the coefficients of the rows (P¹¹, P¹² + P²¹, P²², P¹², P²¹) of the tangent
-/// (EI times: K₁₁, K₁₂, K₂₂ of the module docs) and of the material matrix (EI ααᵀ, αβᵀ,
-/// ββᵀ), each for x–x, y–y, x–y.
+/// c²ₐ), and the coefficients (`ei` times K₁₁, K₁₂, K₂₂ of the module docs) of the symmetric
+/// rows (P¹¹, P¹² + P²¹, P²²) for x–x and y–y and of the rows (P¹¹, P²², P¹², P²¹) for x–y.
 struct BendingPoint {
     energy: f64,
     fa: [f64; 2],
     fb: [f64; 2],
-    k: [[f64; 5]; 3],
-    m: [[f64; 5]; 3],
+    al: [f64; 2],
+    be: [f64; 2],
+    xx: [f64; 3],
+    yy: [f64; 3],
+    xy: [f64; 4],
 }
 
+/// The coefficients of a bending point's material matrix `ei` (ααᵀ, αβᵀ, ββᵀ) for the rows of
+/// [`BendingPoint`]: (x–x, y–y, x–y).
 #[inline(always)]
-fn bending_point(ei: f64, wl: f64, dp: [f64; 2], rpp: [f64; 2], material: bool) -> BendingPoint {
+fn bending_material(ei: f64, al: [f64; 2], be: [f64; 2]) -> ([f64; 3], [f64; 3], [f64; 4]) {
+    (
+        [ei * al[0] * al[0], ei * al[0] * be[0], ei * be[0] * be[0]],
+        [ei * al[1] * al[1], ei * al[1] * be[1], ei * be[1] * be[1]],
+        [
+            ei * al[0] * al[1],
+            ei * be[0] * be[1],
+            ei * al[0] * be[1],
+            ei * al[1] * be[0],
+        ],
+    )
+}
+
+/// A bending point (see [`BendingPoint`]): the force with `ei`, the tangent coefficients with
+/// `ei_k` (`ei` times the tangent's scale).
+#[inline(always)]
+fn bending_point(ei: f64, ei_k: f64, wl: f64, dp: [f64; 2], rpp: [f64; 2]) -> BendingPoint {
     let rp = [1.0 + dp[0], dp[1]];
     let g = rp[0] * rp[0] + rp[1] * rp[1];
     let gi = 1.0 / g;
@@ -648,51 +681,29 @@ fn bending_point(ei: f64, wl: f64, dp: [f64; 2], rpp: [f64; 2], material: bool) 
         [-2.0 * rp[0] * qv[0] * gi2, gi - 2.0 * rp[0] * qv[1] * gi2],
         [-gi - 2.0 * rp[1] * qv[0] * gi2, -2.0 * rp[1] * qv[1] * gi2],
     ];
-    let k12 = |i: usize, j: usize| ei * (al[i] * be[j] + kappa * b12[i][j]);
-    let k = [
-        [
-            ei * (al[0] * al[0] + kappa * b11[0]),
-            k12(0, 0),
-            ei * (be[0] * be[0]),
-            0.0,
-            0.0,
-        ],
-        [
-            ei * (al[1] * al[1] + kappa * b11[1]),
-            k12(1, 1),
-            ei * (be[1] * be[1]),
-            0.0,
-            0.0,
-        ],
-        [
-            ei * (al[0] * al[1] + kappa * b11[2]),
-            0.0,
-            ei * (be[0] * be[1]),
-            k12(0, 1),
-            k12(1, 0),
-        ],
-    ];
-    let m = if material {
-        [
-            [ei * al[0] * al[0], ei * al[0] * be[0], ei * be[0] * be[0], 0.0, 0.0],
-            [ei * al[1] * al[1], ei * al[1] * be[1], ei * be[1] * be[1], 0.0, 0.0],
-            [
-                ei * al[0] * al[1],
-                0.0,
-                ei * be[0] * be[1],
-                ei * al[0] * be[1],
-                ei * al[1] * be[0],
-            ],
-        ]
-    } else {
-        [[0.0; 5]; 3]
-    };
+    let k12 = |i: usize, j: usize| ei_k * (al[i] * be[j] + kappa * b12[i][j]);
     BendingPoint {
         energy: 0.5 * wl * m_b * kappa,
         fa: [fm * al[0], fm * al[1]],
         fb: [fm * be[0], fm * be[1]],
-        k,
-        m,
+        al,
+        be,
+        xx: [
+            ei_k * (al[0] * al[0] + kappa * b11[0]),
+            k12(0, 0),
+            ei_k * (be[0] * be[0]),
+        ],
+        yy: [
+            ei_k * (al[1] * al[1] + kappa * b11[1]),
+            k12(1, 1),
+            ei_k * (be[1] * be[1]),
+        ],
+        xy: [
+            ei_k * (al[0] * al[1] + kappa * b11[2]),
+            ei_k * (be[0] * be[1]),
+            k12(0, 1),
+            k12(1, 0),
+        ],
     }
 }
 
@@ -739,7 +750,7 @@ impl AncfElement {
                 rpp[0] += ds[a][0] * p.c2[a];
                 rpp[1] += ds[a][1] * p.c2[a];
             }
-            let b = bending_point(self.ei, p.wl, dp, rpp, false);
+            let b = bending_point(self.ei, 0.0, p.wl, dp, rpp);
             energy += b.energy;
             for a in 0..4 {
                 f[2 * a] += b.fa[0] * p.c1[a] + b.fb[0] * p.c2[a];
@@ -754,21 +765,30 @@ impl AncfElement {
         let outer = |wl: f64, u: &[f64; 4], v: &[f64; 4]| -> [f64; 16] {
             std::array::from_fn(|k| wl * (u[k / 4] * v[k % 4]))
         };
+        let axial: [[f64; 16]; MAX_POINTS] = std::array::from_fn(|t| {
+            let p = &self.axial[t];
+            outer(p.wl, &p.c1, &p.c1)
+        });
         TangentTables {
-            axial: std::array::from_fn(|t| {
-                let p = &self.axial[t];
-                outer(p.wl, &p.c1, &p.c1)
-            }),
-            bending: std::array::from_fn(|t| {
+            axial_packed: std::array::from_fn(|t| pack(&axial[t])),
+            axial,
+            bending_sym: std::array::from_fn(|t| {
                 let p = &self.bending[t];
                 let p12 = outer(p.wl, &p.c1, &p.c2);
                 let p21 = outer(p.wl, &p.c2, &p.c1);
                 [
+                    pack(&outer(p.wl, &p.c1, &p.c1)),
+                    pack(&std::array::from_fn(|k| p12[k] + p21[k])),
+                    pack(&outer(p.wl, &p.c2, &p.c2)),
+                ]
+            }),
+            bending_cross: std::array::from_fn(|t| {
+                let p = &self.bending[t];
+                [
                     outer(p.wl, &p.c1, &p.c1),
-                    std::array::from_fn(|k| p12[k] + p21[k]),
                     outer(p.wl, &p.c2, &p.c2),
-                    p12,
-                    p21,
+                    outer(p.wl, &p.c1, &p.c2),
+                    outer(p.wl, &p.c2, &p.c1),
                 ]
             }),
         }
@@ -798,7 +818,8 @@ impl AncfElement {
 
     /// [`AncfElement::force_and_tangent`] for the default rules: the nodal axial points add
     /// their 2 × 2 blocks to the slope slots' diagonal blocks alone, the middle axial point
-    /// and the 3 bending points go through the tables (10 rows for x–x and y–y, 13 for x–y).
+    /// and the 3 bending points go through the tables (10 packed rows for x–x and y–y, 13
+    /// rows for x–y).
     fn force_and_tangent_default(
         &self,
         tables: &TangentTables,
@@ -808,7 +829,6 @@ impl AncfElement {
         material: Option<&mut SlotBlocks>,
     ) -> (f64, Vector8) {
         let ds: [[f64; 2]; 4] = std::array::from_fn(|a| [d[2 * a], d[2 * a + 1]]);
-        let want_material = material.is_some();
         let mut f = [0.0f64; 8];
         let mut energy = 0.0;
         let mut nodal_k = [[0.0f64; 3]; 2];
@@ -834,8 +854,15 @@ impl AncfElement {
             f[2 * a] += pm.c1[a] * ft[0];
             f[2 * a + 1] += pm.c1[a] * ft[1];
         }
-        let bend: [BendingPoint; 3] = std::array::from_fn(|t| {
-            let p = &self.bending[t];
+        // row coefficients: x–x and y–y over `sym_rows`, x–y over `cross_rows`
+        let mut cxx = [0.0f64; 10];
+        let mut cyy = [0.0f64; 10];
+        let mut cxy = [0.0f64; 13];
+        cxx[0] = km[0] * scale;
+        cyy[0] = km[1] * scale;
+        cxy[0] = km[2] * scale;
+        let mut albe = [([0.0f64; 2], [0.0f64; 2]); 3];
+        for (t, p) in self.bending[..3].iter().enumerate() {
             let mut dp = [0.0f64; 2];
             let mut rpp = [0.0f64; 2];
             for a in 0..4 {
@@ -844,77 +871,68 @@ impl AncfElement {
                 rpp[0] += ds[a][0] * p.c2[a];
                 rpp[1] += ds[a][1] * p.c2[a];
             }
-            bending_point(self.ei, p.wl, dp, rpp, want_material)
-        });
-        for (b, p) in bend.iter().zip(&self.bending) {
+            let b = bending_point(self.ei, self.ei * scale, p.wl, dp, rpp);
             energy += b.energy;
             for a in 0..4 {
                 f[2 * a] += b.fa[0] * p.c1[a] + b.fb[0] * p.c2[a];
                 f[2 * a + 1] += b.fa[1] * p.c1[a] + b.fb[1] * p.c2[a];
             }
+            cxx[1 + 3 * t..4 + 3 * t].copy_from_slice(&b.xx);
+            cyy[1 + 3 * t..4 + 3 * t].copy_from_slice(&b.yy);
+            cxy[1 + 4 * t..5 + 4 * t].copy_from_slice(&b.xy);
+            albe[t] = (b.al, b.be);
         }
-        let tb = &tables.bending;
+        let (ts, tc) = (&tables.bending_sym, &tables.bending_cross);
         let sym_rows = [
-            &tables.axial[1],
-            &tb[0][0],
-            &tb[0][1],
-            &tb[0][2],
-            &tb[1][0],
-            &tb[1][1],
-            &tb[1][2],
-            &tb[2][0],
-            &tb[2][1],
-            &tb[2][2],
+            &tables.axial_packed[1],
+            &ts[0][0],
+            &ts[0][1],
+            &ts[0][2],
+            &ts[1][0],
+            &ts[1][1],
+            &ts[1][2],
+            &ts[2][0],
+            &ts[2][1],
+            &ts[2][2],
         ];
         let cross_rows = [
             &tables.axial[1],
-            &tb[0][0],
-            &tb[0][2],
-            &tb[0][3],
-            &tb[0][4],
-            &tb[1][0],
-            &tb[1][2],
-            &tb[1][3],
-            &tb[1][4],
-            &tb[2][0],
-            &tb[2][2],
-            &tb[2][3],
-            &tb[2][4],
+            &tc[0][0],
+            &tc[0][1],
+            &tc[0][2],
+            &tc[0][3],
+            &tc[1][0],
+            &tc[1][1],
+            &tc[1][2],
+            &tc[1][3],
+            &tc[2][0],
+            &tc[2][1],
+            &tc[2][2],
+            &tc[2][3],
         ];
-        // row coefficients: x–x and y–y over `sym_rows`, x–y over `cross_rows`
-        let sym = |c: f64, k: [[f64; 5]; 3]| -> [f64; 10] {
-            [
-                c, k[0][0], k[0][1], k[0][2], k[1][0], k[1][1], k[1][2], k[2][0], k[2][1], k[2][2],
-            ]
-        };
-        let cross = |c: f64, k: [[f64; 5]; 3]| -> [f64; 13] {
-            [
-                c, k[0][0], k[0][2], k[0][3], k[0][4], k[1][0], k[1][2], k[1][3], k[1][4], k[2][0],
-                k[2][2], k[2][3], k[2][4],
-            ]
-        };
-        let kb = |r: usize| -> [[f64; 5]; 3] { std::array::from_fn(|t| bend[t].k[r]) };
-        let (xx, yy, xy) = (
-            sym(km[0], kb(0)).map(|x| x * scale),
-            sym(km[1], kb(1)).map(|x| x * scale),
-            cross(km[2], kb(2)).map(|x| x * scale),
-        );
-        combine(&mut tangent.xx, sym_rows, xx);
-        combine(&mut tangent.yy, sym_rows, yy);
-        combine(&mut tangent.xy, cross_rows, xy);
+        combine(&mut tangent.xx, sym_rows, cxx);
+        combine(&mut tangent.yy, sym_rows, cyy);
+        combine(&mut tangent.xy, cross_rows, cxy);
         for (n, slot) in [1usize, 3].into_iter().enumerate() {
-            tangent.xx[5 * slot] += nodal_k[n][0];
-            tangent.yy[5 * slot] += nodal_k[n][1];
+            tangent.xx[PACKED[slot][slot]] += nodal_k[n][0];
+            tangent.yy[PACKED[slot][slot]] += nodal_k[n][1];
             tangent.xy[5 * slot] += nodal_k[n][2];
         }
         if let Some(m) = material {
-            let mb = |r: usize| -> [[f64; 5]; 3] { std::array::from_fn(|t| bend[t].m[r]) };
-            combine(&mut m.xx, sym_rows, sym(mm[0], mb(0)));
-            combine(&mut m.yy, sym_rows, sym(mm[1], mb(1)));
-            combine(&mut m.xy, cross_rows, cross(mm[2], mb(2)));
+            let (mut mxx, mut myy, mut mxy) = ([0.0f64; 10], [0.0f64; 10], [0.0f64; 13]);
+            (mxx[0], myy[0], mxy[0]) = (mm[0], mm[1], mm[2]);
+            for (t, (al, be)) in albe.into_iter().enumerate() {
+                let (xx, yy, xy) = bending_material(self.ei, al, be);
+                mxx[1 + 3 * t..4 + 3 * t].copy_from_slice(&xx);
+                myy[1 + 3 * t..4 + 3 * t].copy_from_slice(&yy);
+                mxy[1 + 4 * t..5 + 4 * t].copy_from_slice(&xy);
+            }
+            combine(&mut m.xx, sym_rows, mxx);
+            combine(&mut m.yy, sym_rows, myy);
+            combine(&mut m.xy, cross_rows, mxy);
             for (n, slot) in [1usize, 3].into_iter().enumerate() {
-                m.xx[5 * slot] += nodal_m[n][0];
-                m.yy[5 * slot] += nodal_m[n][1];
+                m.xx[PACKED[slot][slot]] += nodal_m[n][0];
+                m.yy[PACKED[slot][slot]] += nodal_m[n][1];
                 m.xy[5 * slot] += nodal_m[n][2];
             }
         }
@@ -931,7 +949,6 @@ impl AncfElement {
         mut material: Option<&mut SlotBlocks>,
     ) -> (f64, Vector8) {
         let ds: [[f64; 2]; 4] = std::array::from_fn(|a| [d[2 * a], d[2 * a + 1]]);
-        let want_material = material.is_some();
         let mut f = [0.0f64; 8];
         let mut energy = 0.0;
         for (t, p) in self.axial[..self.n_axial].iter().enumerate() {
@@ -946,14 +963,14 @@ impl AncfElement {
                 f[2 * a] += p.c1[a] * ft[0];
                 f[2 * a + 1] += p.c1[a] * ft[1];
             }
-            let row = [&tables.axial[t]];
-            combine(&mut tangent.xx, row, [k[0] * scale]);
-            combine(&mut tangent.yy, row, [k[1] * scale]);
-            combine(&mut tangent.xy, row, [k[2] * scale]);
+            let (sym, cross) = ([&tables.axial_packed[t]], [&tables.axial[t]]);
+            combine(&mut tangent.xx, sym, [k[0] * scale]);
+            combine(&mut tangent.yy, sym, [k[1] * scale]);
+            combine(&mut tangent.xy, cross, [k[2] * scale]);
             if let Some(mt) = material.as_deref_mut() {
-                combine(&mut mt.xx, row, [m[0]]);
-                combine(&mut mt.yy, row, [m[1]]);
-                combine(&mut mt.xy, row, [m[2]]);
+                combine(&mut mt.xx, sym, [m[0]]);
+                combine(&mut mt.yy, sym, [m[1]]);
+                combine(&mut mt.xy, cross, [m[2]]);
             }
         }
         for (t, p) in self.bending[..self.n_bending].iter().enumerate() {
@@ -965,24 +982,23 @@ impl AncfElement {
                 rpp[0] += ds[a][0] * p.c2[a];
                 rpp[1] += ds[a][1] * p.c2[a];
             }
-            let b = bending_point(self.ei, p.wl, dp, rpp, want_material);
+            let b = bending_point(self.ei, self.ei * scale, p.wl, dp, rpp);
             energy += b.energy;
             for a in 0..4 {
                 f[2 * a] += b.fa[0] * p.c1[a] + b.fb[0] * p.c2[a];
                 f[2 * a + 1] += b.fa[1] * p.c1[a] + b.fb[1] * p.c2[a];
             }
-            let r = &tables.bending[t];
-            let sym = [&r[0], &r[1], &r[2]];
-            let cross = [&r[0], &r[2], &r[3], &r[4]];
-            let s3 = |c: [f64; 5], x: f64| [c[0] * x, c[1] * x, c[2] * x];
-            let s4 = |c: [f64; 5], x: f64| [c[0] * x, c[2] * x, c[3] * x, c[4] * x];
-            combine(&mut tangent.xx, sym, s3(b.k[0], scale));
-            combine(&mut tangent.yy, sym, s3(b.k[1], scale));
-            combine(&mut tangent.xy, cross, s4(b.k[2], scale));
+            let (rs, rc) = (&tables.bending_sym[t], &tables.bending_cross[t]);
+            let sym = [&rs[0], &rs[1], &rs[2]];
+            let cross = [&rc[0], &rc[1], &rc[2], &rc[3]];
+            combine(&mut tangent.xx, sym, b.xx);
+            combine(&mut tangent.yy, sym, b.yy);
+            combine(&mut tangent.xy, cross, b.xy);
             if let Some(mt) = material.as_deref_mut() {
-                combine(&mut mt.xx, sym, s3(b.m[0], 1.0));
-                combine(&mut mt.yy, sym, s3(b.m[1], 1.0));
-                combine(&mut mt.xy, cross, s4(b.m[2], 1.0));
+                let (xx, yy, xy) = bending_material(self.ei, b.al, b.be);
+                combine(&mut mt.xx, sym, xx);
+                combine(&mut mt.yy, sym, yy);
+                combine(&mut mt.xy, cross, xy);
             }
         }
         (energy, Vector8::from(f))

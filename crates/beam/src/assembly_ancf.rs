@@ -23,7 +23,9 @@
 
 use nalgebra::Vector2;
 
-use crate::ancf::{AncfElement, AncfEvaluation, Matrix8, SlotBlocks, Vector8, Want, slope_angle};
+use crate::ancf::{
+    AncfElement, AncfEvaluation, Matrix8, PACKED, SlotBlocks, Vector8, Want, slope_angle,
+};
 use crate::banded::BandMatrix;
 use crate::element::lumped_mass;
 use crate::evaluation::{JacobianWeights, Kinematic};
@@ -173,10 +175,9 @@ pub fn assemble_ancf(
     let inertia_blocks = if dynamic && tables.is_some() {
         let mut b = SlotBlocks::ZERO;
         for a in 0..4 {
-            for bb in 0..4 {
-                let (x, y) = (inertia_weighted[(2 * a, 2 * bb)], inertia_weighted[(2 * a + 1, 2 * bb + 1)]);
-                b.xx[4 * a + bb] = x;
-                b.yy[4 * a + bb] = y;
+            for bb in a..4 {
+                b.xx[PACKED[a][bb]] = inertia_weighted[(2 * a, 2 * bb)];
+                b.yy[PACKED[a][bb]] = inertia_weighted[(2 * a + 1, 2 * bb + 1)];
             }
         }
         b
@@ -204,9 +205,11 @@ pub fn assemble_ancf(
                 if need_material {
                     f += mb.mul(&pv) * damping.beta_stiffness;
                     let c = w.velocity * damping.beta_stiffness;
-                    for l in 0..16 {
+                    for l in 0..10 {
                         kb.xx[l] += c * mb.xx[l];
                         kb.yy[l] += c * mb.yy[l];
+                    }
+                    for l in 0..16 {
                         kb.xy[l] += c * mb.xy[l];
                     }
                 }
@@ -217,8 +220,7 @@ pub fn assemble_ancf(
                 re[ELEMENT_DOFS[k]] += f[k];
             }
             // the block in the global DOF order 4e … 4e+7, by columns
-            let block: [[f64; 8]; 8] =
-                std::array::from_fn(|j| std::array::from_fn(|i| kb.entry(PERMUTE[i], PERMUTE[j])));
+            let block = global_block(&kb);
             if 4 * e >= nfix {
                 band.add_block(4 * e - nfix, &block);
             } else {
@@ -460,6 +462,24 @@ pub fn assemble_ancf(
         }
     }
     energy
+}
+
+/// The element matrix `k` as a dense block over the element's global DOFs 4e … 4e+7 in their
+/// order (by columns: `block[j][i]` is entry (4e + i, 4e + j)).
+#[inline(always)]
+fn global_block(k: &SlotBlocks) -> [[f64; 8]; 8] {
+    let g = ELEMENT_DOFS;
+    let mut block = [[0.0; 8]; 8];
+    for a in 0..4 {
+        for b in 0..4 {
+            // element coordinates (2a + i, 2b + j)
+            block[g[2 * b]][g[2 * a]] = k.xx[PACKED[a][b]];
+            block[g[2 * b + 1]][g[2 * a + 1]] = k.yy[PACKED[a][b]];
+            block[g[2 * b + 1]][g[2 * a]] = k.xy[4 * a + b];
+            block[g[2 * b]][g[2 * a + 1]] = k.xy[4 * b + a];
+        }
+    }
+    block
 }
 
 /// Adds M `acc` to `f` (element coordinates): the consistent `mass`, or the diagonal `lumped`
