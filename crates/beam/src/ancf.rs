@@ -222,6 +222,38 @@ pub struct AncfElement {
     bending: [Point; MAX_POINTS],
     /// The default rules (see `AncfElement::default_rules`).
     default_rules: bool,
+    /// Default rules: the coefficients per slot of the 7 interior lanes (c¹ of the middle
+    /// axial point, c¹ of the 3 bending points, c² of the 3 bending points).
+    lanes: [[f64; 4]; LANES],
+}
+
+/// Interior lanes of the default rules (see `AncfElement::lanes`).
+const LANES: usize = 7;
+
+/// The lanes' values Σₐ cₐ (d₂ₐ, d₂ₐ₊₁) (r′ or r″ at each point, as displacements): the
+/// sums in the order of the per-point loops.
+#[inline(always)]
+fn gather_lanes(lanes: &[[f64; 4]; LANES], d: &Vector8) -> [[f64; 2]; LANES] {
+    let d: [f64; 8] = std::array::from_fn(|k| d[k]);
+    std::array::from_fn(|k| {
+        let mut s = [0.0f64; 2];
+        for a in 0..4 {
+            s[0] += d[2 * a] * lanes[k][a];
+            s[1] += d[2 * a + 1] * lanes[k][a];
+        }
+        s
+    })
+}
+
+/// Adds Σₖ cₐ,ₖ `fl`ₖ to the slot forces `f` (element coordinates).
+#[inline(always)]
+fn scatter_lanes(lanes: &[[f64; 4]; LANES], fl: &[[f64; 2]; LANES], f: &mut [f64; 8]) {
+    for k in 0..LANES {
+        for a in 0..4 {
+            f[2 * a] += lanes[k][a] * fl[k][0];
+            f[2 * a + 1] += lanes[k][a] * fl[k][1];
+        }
+    }
 }
 
 impl AncfElement {
@@ -245,8 +277,18 @@ impl AncfElement {
             && n_bending == 3
             && axial[0].c1 == [0.0, 1.0, 0.0, 0.0]
             && axial[2].c1 == [0.0, 0.0, 0.0, 1.0];
+        let lanes = [
+            axial[1].c1,
+            bending[0].c1,
+            bending[1].c1,
+            bending[2].c1,
+            bending[0].c2,
+            bending[1].c2,
+            bending[2].c2,
+        ];
         AncfElement {
             default_rules,
+            lanes,
             l,
             ea,
             ei,
@@ -720,43 +762,26 @@ impl AncfElement {
     /// points read and write the slope slots alone).
     #[inline]
     fn force_default(&self, d: &Vector8) -> (f64, Vector8) {
-        let ds: [[f64; 2]; 4] = std::array::from_fn(|a| [d[2 * a], d[2 * a + 1]]);
         let mut f = [0.0f64; 8];
         let mut energy = 0.0;
         for (slot, t) in [(1usize, 0usize), (3, 2)] {
-            let (u, ft, _, _) = axial_point(self.ea, self.axial[t].wl, ds[slot]);
+            let (u, ft, _, _) = axial_point(self.ea, self.axial[t].wl, [d[2 * slot], d[2 * slot + 1]]);
             energy += u;
             f[2 * slot] += ft[0];
             f[2 * slot + 1] += ft[1];
         }
-        let pm = &self.axial[1];
-        let mut dp = [0.0f64; 2];
-        for a in 0..4 {
-            dp[0] += ds[a][0] * pm.c1[a];
-            dp[1] += ds[a][1] * pm.c1[a];
-        }
-        let (u, ft, _, _) = axial_point(self.ea, pm.wl, dp);
+        let g = gather_lanes(&self.lanes, d);
+        let mut fl = [[0.0f64; 2]; LANES];
+        let (u, ft, _, _) = axial_point(self.ea, self.axial[1].wl, g[0]);
         energy += u;
-        for a in 0..4 {
-            f[2 * a] += pm.c1[a] * ft[0];
-            f[2 * a + 1] += pm.c1[a] * ft[1];
-        }
-        for p in &self.bending[..3] {
-            let mut dp = [0.0f64; 2];
-            let mut rpp = [0.0f64; 2];
-            for a in 0..4 {
-                dp[0] += ds[a][0] * p.c1[a];
-                dp[1] += ds[a][1] * p.c1[a];
-                rpp[0] += ds[a][0] * p.c2[a];
-                rpp[1] += ds[a][1] * p.c2[a];
-            }
-            let b = bending_point(self.ei, 0.0, p.wl, dp, rpp);
+        fl[0] = ft;
+        for t in 0..3 {
+            let b = bending_point(self.ei, 0.0, self.bending[t].wl, g[1 + t], g[4 + t]);
             energy += b.energy;
-            for a in 0..4 {
-                f[2 * a] += b.fa[0] * p.c1[a] + b.fb[0] * p.c2[a];
-                f[2 * a + 1] += b.fa[1] * p.c1[a] + b.fb[1] * p.c2[a];
-            }
+            fl[1 + t] = b.fa;
+            fl[4 + t] = b.fb;
         }
+        scatter_lanes(&self.lanes, &fl, &mut f);
         (energy, Vector8::from(f))
     }
 
@@ -828,32 +853,24 @@ impl AncfElement {
         tangent: &mut SlotBlocks,
         material: Option<&mut SlotBlocks>,
     ) -> (f64, Vector8) {
-        let ds: [[f64; 2]; 4] = std::array::from_fn(|a| [d[2 * a], d[2 * a + 1]]);
         let mut f = [0.0f64; 8];
         let mut energy = 0.0;
         let mut nodal_k = [[0.0f64; 3]; 2];
         let mut nodal_m = [[0.0f64; 3]; 2];
         for (n, (slot, t)) in [(1usize, 0usize), (3, 2)].into_iter().enumerate() {
             let p = &self.axial[t];
-            let (u, ft, k, m) = axial_point(self.ea, p.wl, ds[slot]);
+            let (u, ft, k, m) = axial_point(self.ea, p.wl, [d[2 * slot], d[2 * slot + 1]]);
             energy += u;
             f[2 * slot] += ft[0];
             f[2 * slot + 1] += ft[1];
             nodal_k[n] = k.map(|x| x * (p.wl * scale));
             nodal_m[n] = m.map(|x| x * p.wl);
         }
-        let pm = &self.axial[1];
-        let mut dp = [0.0f64; 2];
-        for a in 0..4 {
-            dp[0] += ds[a][0] * pm.c1[a];
-            dp[1] += ds[a][1] * pm.c1[a];
-        }
-        let (u, ft, km, mm) = axial_point(self.ea, pm.wl, dp);
+        let g = gather_lanes(&self.lanes, d);
+        let mut fl = [[0.0f64; 2]; LANES];
+        let (u, ft, km, mm) = axial_point(self.ea, self.axial[1].wl, g[0]);
         energy += u;
-        for a in 0..4 {
-            f[2 * a] += pm.c1[a] * ft[0];
-            f[2 * a + 1] += pm.c1[a] * ft[1];
-        }
+        fl[0] = ft;
         // row coefficients: x–x and y–y over `sym_rows`, x–y over `cross_rows`
         let mut cxx = [0.0f64; 10];
         let mut cyy = [0.0f64; 10];
@@ -862,26 +879,23 @@ impl AncfElement {
         cyy[0] = km[1] * scale;
         cxy[0] = km[2] * scale;
         let mut albe = [([0.0f64; 2], [0.0f64; 2]); 3];
-        for (t, p) in self.bending[..3].iter().enumerate() {
-            let mut dp = [0.0f64; 2];
-            let mut rpp = [0.0f64; 2];
-            for a in 0..4 {
-                dp[0] += ds[a][0] * p.c1[a];
-                dp[1] += ds[a][1] * p.c1[a];
-                rpp[0] += ds[a][0] * p.c2[a];
-                rpp[1] += ds[a][1] * p.c2[a];
-            }
-            let b = bending_point(self.ei, self.ei * scale, p.wl, dp, rpp);
+        for t in 0..3 {
+            let b = bending_point(
+                self.ei,
+                self.ei * scale,
+                self.bending[t].wl,
+                g[1 + t],
+                g[4 + t],
+            );
             energy += b.energy;
-            for a in 0..4 {
-                f[2 * a] += b.fa[0] * p.c1[a] + b.fb[0] * p.c2[a];
-                f[2 * a + 1] += b.fa[1] * p.c1[a] + b.fb[1] * p.c2[a];
-            }
+            fl[1 + t] = b.fa;
+            fl[4 + t] = b.fb;
             cxx[1 + 3 * t..4 + 3 * t].copy_from_slice(&b.xx);
             cyy[1 + 3 * t..4 + 3 * t].copy_from_slice(&b.yy);
             cxy[1 + 4 * t..5 + 4 * t].copy_from_slice(&b.xy);
             albe[t] = (b.al, b.be);
         }
+        scatter_lanes(&self.lanes, &fl, &mut f);
         let (ts, tc) = (&tables.bending_sym, &tables.bending_cross);
         let sym_rows = [
             &tables.axial_packed[1],
