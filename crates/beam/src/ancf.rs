@@ -580,7 +580,9 @@ pub const PACKED: [[usize; 4]; 4] = [[0, 1, 2, 3], [1, 4, 5, 6], [2, 5, 7, 8], [
 
 /// The upper triangle of a symmetric 4 × 4 matrix (row-major, entry 4a + b), packed.
 fn pack(m: &[f64; 16]) -> [f64; 10] {
-    [m[0], m[1], m[2], m[3], m[5], m[6], m[7], m[10], m[11], m[15]]
+    [
+        m[0], m[1], m[2], m[3], m[5], m[6], m[7], m[10], m[11], m[15],
+    ]
 }
 
 /// The element tangent (or material matrix) as its three distinct 4 × 4 slot matrices:
@@ -765,7 +767,8 @@ impl AncfElement {
         let mut f = [0.0f64; 8];
         let mut energy = 0.0;
         for (slot, t) in [(1usize, 0usize), (3, 2)] {
-            let (u, ft, _, _) = axial_point(self.ea, self.axial[t].wl, [d[2 * slot], d[2 * slot + 1]]);
+            let (u, ft, _, _) =
+                axial_point(self.ea, self.axial[t].wl, [d[2 * slot], d[2 * slot + 1]]);
             energy += u;
             f[2 * slot] += ft[0];
             f[2 * slot + 1] += ft[1];
@@ -1108,7 +1111,13 @@ mod tests {
         // to round-off, for several rules and states; the tangent exactly symmetric
         for el in [
             AncfElement::new(0.25, 5.0e4, 3.0),
-            AncfElement::with_rules(0.1, 3.7e4, 3.1e-3, Quadrature::Gauss(5), Quadrature::Gauss(2)),
+            AncfElement::with_rules(
+                0.1,
+                3.7e4,
+                3.1e-3,
+                Quadrature::Gauss(5),
+                Quadrature::Gauss(2),
+            ),
             AncfElement::with_rules(0.3, 1.0e6, 0.4, Quadrature::Gauss(3), Quadrature::Gauss(4)),
         ] {
             let tables = el.tangent_tables();

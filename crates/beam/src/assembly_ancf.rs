@@ -213,7 +213,12 @@ pub fn assemble_ancf(
                         kb.xy[l] += c * mb.xy[l];
                     }
                 }
-                add_inertia_force(&mut f, &(pa + pv * damping.alpha_mass), &mass, lumped.then_some(&m_lump));
+                add_inertia_force(
+                    &mut f,
+                    &(pa + pv * damping.alpha_mass),
+                    &mass,
+                    lumped.then_some(&m_lump),
+                );
             }
             let re: &mut [f64; 8] = (&mut r[4 * e..4 * e + 8]).try_into().expect("element DOFs");
             for k in 0..8 {
