@@ -23,7 +23,9 @@
 
 use nalgebra::Vector2;
 
-use crate::ancf::{AncfElement, AncfEvaluation, Matrix8, Vector8, Want, slope_angle};
+use crate::ancf::{
+    AncfElement, AncfEvaluation, Matrix8, PACKED, SlotBlocks, Vector8, Want, slope_angle,
+};
 use crate::banded::BandMatrix;
 use crate::element::lumped_mass;
 use crate::evaluation::{JacobianWeights, Kinematic};
@@ -167,10 +169,93 @@ pub fn assemble_ancf(
     if let Some((band, _)) = jac.as_mut() {
         band.clear();
     }
+    // the iteration matrix without a discrete gradient: the table-based tangent kernel
+    // (AncfElement::force_and_tangent), the inertia part as its slot blocks
+    let tables = (jac.is_some() && discrete.is_none()).then(|| el.tangent_tables());
+    let inertia_blocks = if dynamic && tables.is_some() {
+        let mut b = SlotBlocks::ZERO;
+        for a in 0..4 {
+            for bb in a..4 {
+                b.xx[PACKED[a][bb]] = inertia_weighted[(2 * a, 2 * bb)];
+                b.yy[PACKED[a][bb]] = inertia_weighted[(2 * a + 1, 2 * bb + 1)];
+            }
+        }
+        b
+    } else {
+        SlotBlocks::ZERO
+    };
     let mut energy = 0.0;
     for e in 0..model.n_elements() {
         let d = gather(kin.q, e);
+        if let (Some(tables), Some((band, w))) = (tables.as_ref(), jac.as_mut()) {
+            // w_k K_t + (w_a + w_v a₀) M + w_v a₁ K_m
+            let mut kb = inertia_blocks;
+            let mut mb = SlotBlocks::ZERO;
+            let (u, mut f) = el.force_and_tangent(
+                tables,
+                &d,
+                w.stiffness,
+                &mut kb,
+                need_material.then_some(&mut mb),
+            );
+            energy += u;
+            if dynamic {
+                let pv = gather(kin.v.unwrap(), e);
+                let pa = gather(kin.a.unwrap(), e);
+                if need_material {
+                    f += mb.mul(&pv) * damping.beta_stiffness;
+                    let c = w.velocity * damping.beta_stiffness;
+                    for l in 0..10 {
+                        kb.xx[l] += c * mb.xx[l];
+                        kb.yy[l] += c * mb.yy[l];
+                    }
+                    for l in 0..16 {
+                        kb.xy[l] += c * mb.xy[l];
+                    }
+                }
+                add_inertia_force(
+                    &mut f,
+                    &(pa + pv * damping.alpha_mass),
+                    &mass,
+                    lumped.then_some(&m_lump),
+                );
+            }
+            let re: &mut [f64; 8] = (&mut r[4 * e..4 * e + 8]).try_into().expect("element DOFs");
+            for k in 0..8 {
+                re[ELEMENT_DOFS[k]] += f[k];
+            }
+            // the block in the global DOF order 4e … 4e+7, by columns
+            let block = global_block(&kb);
+            if 4 * e >= nfix {
+                band.add_block(4 * e - nfix, &block);
+            } else {
+                for (j, col) in block.iter().enumerate() {
+                    for (i, v) in col.iter().enumerate() {
+                        if 4 * e + i >= nfix && 4 * e + j >= nfix {
+                            band.add(4 * e + i - nfix, 4 * e + j - nfix, *v);
+                        }
+                    }
+                }
+            }
+            continue;
+        }
         // the residual alone (the most frequent call) forms no 8 × 8 matrix
+        if want == Want::Force && discrete.is_none() {
+            // the residual alone (the most frequent call): no 8 × 8 matrix formed or zeroed
+            let (element_energy, mut f) = el.force(&d);
+            energy += element_energy;
+            if dynamic {
+                let pv = gather(kin.v.unwrap(), e);
+                let pa = gather(kin.a.unwrap(), e);
+                let acc = pa + pv * damping.alpha_mass;
+                add_inertia_force(&mut f, &acc, &mass, lumped.then_some(&m_lump));
+            }
+            let re: &mut [f64; 8] = (&mut r[4 * e..4 * e + 8]).try_into().expect("element DOFs");
+            for k in 0..8 {
+                re[ELEMENT_DOFS[k]] += f[k];
+            }
+            continue;
+        }
         let full = (want != Want::Force).then(|| el.evaluate(&d, want));
         let (element_energy, mut f) = match &full {
             Some(ev) => (ev.energy, ev.force),
@@ -222,25 +307,12 @@ pub fn assemble_ancf(
             if need_material {
                 f += material(&full) * pv * damping.beta_stiffness;
             }
-            let acc = pa + pv * damping.alpha_mass;
-            if lumped {
-                for k in 0..8 {
-                    f[k] += m_lump[k] * acc[k];
-                }
-            } else {
-                // M = (ρA l sₐ s_b H_ab) ⊗ I₂: two 4 × 4 products (the same sums, in the same
-                // order, as the 8 × 8 one without its zero terms)
-                for a in 0..4 {
-                    let (mut fx, mut fy) = (0.0, 0.0);
-                    for bb in 0..4 {
-                        let m = mass[(2 * a, 2 * bb)];
-                        fx += m * acc[2 * bb];
-                        fy += m * acc[2 * bb + 1];
-                    }
-                    f[2 * a] += fx;
-                    f[2 * a + 1] += fy;
-                }
-            }
+            add_inertia_force(
+                &mut f,
+                &(pa + pv * damping.alpha_mass),
+                &mass,
+                lumped.then_some(&m_lump),
+            );
         }
         let re: &mut [f64; 8] = (&mut r[4 * e..4 * e + 8]).try_into().expect("element DOFs");
         for k in 0..8 {
@@ -395,6 +467,48 @@ pub fn assemble_ancf(
         }
     }
     energy
+}
+
+/// The element matrix `k` as a dense block over the element's global DOFs 4e … 4e+7 in their
+/// order (by columns: `block[j][i]` is entry (4e + i, 4e + j)).
+#[inline(always)]
+fn global_block(k: &SlotBlocks) -> [[f64; 8]; 8] {
+    let g = ELEMENT_DOFS;
+    let mut block = [[0.0; 8]; 8];
+    for a in 0..4 {
+        for b in 0..4 {
+            // element coordinates (2a + i, 2b + j)
+            block[g[2 * b]][g[2 * a]] = k.xx[PACKED[a][b]];
+            block[g[2 * b + 1]][g[2 * a + 1]] = k.yy[PACKED[a][b]];
+            block[g[2 * b + 1]][g[2 * a]] = k.xy[4 * a + b];
+            block[g[2 * b]][g[2 * a + 1]] = k.xy[4 * b + a];
+        }
+    }
+    block
+}
+
+/// Adds M `acc` to `f` (element coordinates): the consistent `mass`, or the diagonal `lumped`
+/// one if given.
+#[inline(always)]
+fn add_inertia_force(f: &mut Vector8, acc: &Vector8, mass: &Matrix8, lumped: Option<&Vector8>) {
+    if let Some(m_lump) = lumped {
+        for k in 0..8 {
+            f[k] += m_lump[k] * acc[k];
+        }
+    } else {
+        // M = (ρA l sₐ s_b H_ab) ⊗ I₂: two 4 × 4 products (the same sums, in the same order, as
+        // the 8 × 8 one without its zero terms)
+        for a in 0..4 {
+            let (mut fx, mut fy) = (0.0, 0.0);
+            for bb in 0..4 {
+                let m = mass[(2 * a, 2 * bb)];
+                fx += m * acc[2 * bb];
+                fy += m * acc[2 * bb + 1];
+            }
+            f[2 * a] += fx;
+            f[2 * a + 1] += fy;
+        }
+    }
 }
 
 /// Kinetic energy ½ q̇ᵀ M q̇ of the ANCF beam, its point masses and the hub \[J\].

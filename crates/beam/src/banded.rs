@@ -433,33 +433,35 @@ impl BandMatrix {
         let cols = &cols[..n];
         let b = &mut b[..n];
         let full = n.saturating_sub(K);
-        // L y = b
-        for j in 0..n {
-            let (bj, l) = (b[j], &cols[j]);
-            if j < full {
-                let seg: &mut [f64; K] = (&mut b[j + 1..j + 1 + K]).try_into().expect("rhs");
-                for i in 0..K {
-                    seg[i] -= l[K + 1 + i] * bj;
-                }
-            } else {
-                for i in j + 1..n {
-                    b[i] -= l[K + i - j] * bj;
-                }
+        // L y = b (columns with K rows below the diagonal, then the last K)
+        for (j, l) in cols[..full].iter().enumerate() {
+            let bj = b[j];
+            let seg: &mut [f64; K] = (&mut b[j + 1..j + 1 + K]).try_into().expect("rhs");
+            for i in 0..K {
+                seg[i] -= l[K + 1 + i] * bj;
             }
         }
-        // D z = y, Lᵀ x = z
-        for j in (0..n).rev() {
+        for j in full..n {
+            let (bj, l) = (b[j], &cols[j]);
+            for i in j + 1..n {
+                b[i] -= l[K + i - j] * bj;
+            }
+        }
+        // D z = y, Lᵀ x = z (the last K columns first)
+        for j in (full..n).rev() {
             let l = &cols[j];
             let mut sum = 0.0;
-            if j < full {
-                let seg: &[f64; K] = b[j + 1..j + 1 + K].try_into().expect("rhs");
-                for i in 0..K {
-                    sum += l[K + 1 + i] * seg[i];
-                }
-            } else {
-                for i in j + 1..n {
-                    sum += l[K + i - j] * b[i];
-                }
+            for i in j + 1..n {
+                sum += l[K + i - j] * b[i];
+            }
+            b[j] = b[j] * l[K] - sum;
+        }
+        for j in (0..full).rev() {
+            let l = &cols[j];
+            let seg: &[f64; K] = b[j + 1..j + 1 + K].try_into().expect("rhs");
+            let mut sum = 0.0;
+            for i in 0..K {
+                sum += l[K + 1 + i] * seg[i];
             }
             b[j] = b[j] * l[K] - sum;
         }
