@@ -4,7 +4,9 @@
 //! drive.
 //!
 //! * **Controller or open-loop torque**: the hub is a free DOF θ₀ with the rotor's inertia
-//!   J_m N² (the free hub's matrices); every mode obeys q̈ᵢ + ωᵢ² qᵢ = −bᵢ f + cᵢ u with
+//!   J_m N² (the free hub's matrices; its modes from the rigid rotation and the clamped beam's
+//!   modes by the secular equation, [`crate::hub_modes`], so the rigid or the loop's mode is
+//!   exact on any mesh); every mode obeys q̈ᵢ + ωᵢ² qᵢ = −bᵢ f + cᵢ u with
 //!   bᵢ = φᵢ(tip), cᵢ = φᵢ(θ₀), u = τ_j − c_j θ̇₀ the net hub torque (τ_j from the controller
 //!   of [`crate::drive`] at the hub's θ₀ = Σ cᵢ qᵢ, θ̇₀, or N τ_m(t); c_j = c_m N²), tip
 //!   w = Σ bᵢ qᵢ.

@@ -232,6 +232,9 @@ fn the_motor_work_balances_the_energy_through_the_contact() {
         placement: Placement::Angle { angle: 0.3 },
         horizon_s: 5.0,
     });
+    // the bundled scenes: a PD loop at its torque limit, stiff link, free head and wall
+    strikes.push(bundled_cl(HeadSupport::Free));
+    strikes.push(bundled_cl(HeadSupport::Wall));
     for strike in &strikes {
         let out = run_driven_cl(strike, &ClDriveSettings::DEFAULT).unwrap();
         let e = out.energy;
