@@ -36,7 +36,7 @@ pub struct HubModes {
     /// The tip's transverse displacement of mode r [m].
     pub tip: Vec<f64>,
     /// The modal coordinate of a rigid rotation by 1 rad, φᵣᵀ M ι = a (J_r + Σ gᵢ² ωᵢ²/(ωᵢ² − s))
-    /// [√(kg)·m].
+    /// [√(kg·m²)] per rad.
     pub rigid: Vec<f64>,
 }
 
