@@ -4,7 +4,9 @@
 //! drive.
 //!
 //! * **Controller or open-loop torque**: the hub is a free DOF θ₀ with the rotor's inertia
-//!   J_m N² (the free hub's matrices); every mode obeys q̈ᵢ + ωᵢ² qᵢ = −bᵢ f + cᵢ u with
+//!   J_m N² (the free hub's matrices; its modes from the rigid rotation and the clamped beam's
+//!   modes by the secular equation, [`crate::hub_modes`], so the rigid or the loop's mode is
+//!   exact on any mesh); every mode obeys q̈ᵢ + ωᵢ² qᵢ = −bᵢ f + cᵢ u with
 //!   bᵢ = φᵢ(tip), cᵢ = φᵢ(θ₀), u = τ_j − c_j θ̇₀ the net hub torque (τ_j from the controller
 //!   of [`crate::drive`] at the hub's θ₀ = Σ cᵢ qᵢ, θ̇₀, or N τ_m(t); c_j = c_m N²), tip
 //!   w = Σ bᵢ qᵢ.
@@ -22,6 +24,7 @@
 //! on the exact motion. Motor work, friction, damping and impact work by Simpson's rule on each
 //! step (mid-step state exact). The controller's integral ∫e_φ dt by the trapezoidal rule.
 
+use faer::Mat;
 use flexrig_beam::modal::ShiftedPencil;
 use flexrig_contact::ContactLaw;
 use nalgebra::{Matrix4, Vector4};
@@ -29,6 +32,7 @@ use nalgebra::{Matrix4, Vector4};
 use crate::ImpactError;
 use crate::drive::{DriveCommand, HeadSupport, Profile, TorqueProfile};
 use crate::graded::{GradedMesh, LinkMatrices, cl_matrices};
+use crate::hub_modes::{ClampedModes, hub_modes};
 use crate::setup::{ContactEvent, FreeMassImpact, Joint};
 use crate::strike::{DriveNote, DrivenOutcome, DrivenStrike, EnergyBalance, TraceSample, Tracer};
 
@@ -883,14 +887,38 @@ pub fn run_driven_cl(
         };
         (modes, q0, qd0, port)
     } else {
-        let mut mats = mats;
-        mats.k[(0, 0)] += folded;
-        let mut unit = vec![0.0; n];
-        unit[0] = 1.0;
+        // the rigid rotation by the hub's angle and the clamped beam's modes, coupled by the
+        // secular equation (crate::hub_modes: the hub's mode keeps its digits on a fine mesh)
+        let clamped_mats = LinkMatrices {
+            k: Mat::from_fn(n - 1, n - 1, |i, j| mats.k[(i + 1, j + 1)]),
+            m: Mat::from_fn(n - 1, n - 1, |i, j| mats.m[(i + 1, j + 1)]),
+            tip: mats.tip - 1,
+            v0: Vec::new(),
+        };
+        let m_iota: Vec<f64> = (0..n)
+            .map(|i| (0..n).map(|j| mats.m[(i, j)] * shape[j]).sum::<f64>())
+            .collect();
+        let j_total: f64 = shape.iter().zip(&m_iota).map(|(a, b)| a * b).sum();
+        let zeros = vec![0.0; n - 1];
+        let (clamped, _, _) = port_modes(&clamped_mats, &m_iota[1..], &zeros, &zeros, shift)?;
+        let coupled = hub_modes(
+            &ClampedModes {
+                omegas: &clamped.omegas,
+                coupling: &clamped.port,
+                tip: &clamped.tip,
+            },
+            j_total,
+            folded,
+            l,
+        );
         // the steady start: rigid rotation at speed0, the hub lagging by lag0
-        let x0: Vec<f64> = shape.iter().map(|s| -s * lag0).collect();
-        let v0: Vec<f64> = shape.iter().map(|s| s * speed0).collect();
-        let (modes, q0, qd0) = port_modes(&mats, &unit, &x0, &v0, shift)?;
+        let q0: Vec<f64> = coupled.rigid.iter().map(|r| -r * lag0).collect();
+        let qd0: Vec<f64> = coupled.rigid.iter().map(|r| r * speed0).collect();
+        let modes = Modes {
+            omegas: coupled.omegas,
+            tip: coupled.tip,
+            port: coupled.hub,
+        };
         let port = match strike.drive.command() {
             DriveCommand::Controller { profile, gains, .. } => Port::Feedback {
                 profile,

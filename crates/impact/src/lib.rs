@@ -27,6 +27,7 @@ mod error;
 pub mod eta;
 pub mod graded;
 pub mod horizon;
+pub mod hub_modes;
 pub mod map;
 pub mod modal_run;
 pub mod role_switch;
