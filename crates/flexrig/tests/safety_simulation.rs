@@ -38,6 +38,7 @@ fn input(region: &str, contact: ContactKind, link: FeLink, joint: MapJoint) -> S
             joint,
             ..SimulationSettings::DEFAULT
         }),
+        scene: None,
     }
 }
 
@@ -155,6 +156,7 @@ fn the_single_point_simulation_is_the_maps_cell() {
                 methods: vec![SafetyMethod::Simulation],
                 link: Some(link),
                 simulation: None,
+                scene: None,
             };
             let m = safety(&single, None).unwrap().methods[0];
             assert_eq!(m.by_force_mps, design.by_force_mps, "{link:?} {cell:?}");
