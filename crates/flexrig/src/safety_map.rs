@@ -1255,7 +1255,7 @@ pub fn svg(map: &SafetyMap, width_pt: f64) -> Result<String, String> {
         if axes.contains(&MapParameter::BodyRegion)
             && matches!(map.input.law, ContactLaw::BodySpring)
         {
-            fixed.push("each region's body spring K (n = 1)".into());
+            fixed.push("body spring K per region".into());
         } else if !axes.contains(&MapParameter::ContactStiffness) {
             fixed.push(format!(
                 "k_c = {} N/mⁿ, n = {}",
@@ -1276,7 +1276,7 @@ pub fn svg(map: &SafetyMap, width_pt: f64) -> Result<String, String> {
                 "Permissible speed near each body region (its most sensitive area), {contact}"
             ),
             format!(
-                "limits of ISO/TS 15066:2016 Table A.2 per region (hatched: not permitted); {}",
+                "limits per region (Table A.2; hatched: not permitted); {}",
                 fixed.join(", ")
             ),
             method_text(map),

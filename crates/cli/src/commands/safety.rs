@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use flexrig::Error;
 use flexrig::safety::{
-    BodyModel, ContactAreaModel, ContactKind, ContactLaw, FeLink, MethodResult, RobotEffectiveMass,
+    ContactAreaModel, ContactKind, ContactLaw, FeLink, MethodResult, RobotEffectiveMass,
     SafetyInput, SafetyMethod, SafetyReport, SimulationSettings, Speed, safety,
 };
 

@@ -73,6 +73,8 @@ pub enum ColorScale {
 const MIN_PANEL_W: f64 = 240.0;
 /// Height of a panel over its width (without its legend rows).
 const PANEL_ASPECT: f64 = 0.85;
+/// Height of one row of a named category axis along y \[pt\].
+const CATEGORY_ROW: f64 = 14.0;
 /// Room under a panel's legend, before the next row of panels \[pt\].
 const ROW_GAP: i32 = 6;
 /// Height of a line of the figure title \[pt\].
@@ -170,11 +172,21 @@ pub fn heatmaps_svg_named(
             Grid::new(m, names).map_err(|e| format!("heat map {} ({}): {e}", i + 1, m.title))
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let cols = ((width_pt / MIN_PANEL_W).floor() as usize).clamp(1, maps.len());
+    // named y categories: the panel is wider by the names and as tall as the rows need
+    let names_w = names.y.map_or(0.0, |n| {
+        n.iter()
+            .map(|s| super::text_width_pt(s, TICK_PT))
+            .fold(0.0, f64::max)
+    });
+    let cols = ((width_pt / (MIN_PANEL_W + names_w)).floor() as usize).clamp(1, maps.len());
     let rows = maps.len().div_ceil(cols);
     let legend = maps.iter().map(legend_rows).max().unwrap_or(0);
     let panel_w = width_pt / cols as f64;
-    let panel_h = (panel_w * PANEL_ASPECT).round() as u32 + (LEGEND * legend + ROW_GAP) as u32;
+    let chart_h = match names.y {
+        Some(n) => CATEGORY_ROW * n.len() as f64 + 60.0,
+        None => panel_w * PANEL_ASPECT,
+    };
+    let panel_h = chart_h.round() as u32 + (LEGEND * legend + ROW_GAP) as u32;
     let header = HEADER_LINE * figure_title.len() as u32 + 4;
     let size = (width_pt.round() as u32, header + panel_h * rows as u32);
     render(size, |root| {
