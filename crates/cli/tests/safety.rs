@@ -280,14 +280,26 @@ fn a_driven_scene_is_the_design_and_its_commanded_speed_is_searched() {
     let scene = &v["scene"];
     assert_eq!(scene["name"], "driven_cl_wall");
     assert_eq!(num(&sim["by_force_mps"]), num(&scene["by_force_mps"]));
-    assert!(rel(num(&scene["peak_force_at_root_n"]), 140.0) < 1e-5, "{scene}");
+    assert!(
+        rel(num(&scene["peak_force_at_root_n"]), 140.0) < 1e-5,
+        "{scene}"
+    );
     // the design flags of another design are refused beside a scene
     let out = flexrig(&[
-        "safety", "--region", "chest", "--scene", "driven_cl_wall", "--k-delta", "1e4",
+        "safety",
+        "--region",
+        "chest",
+        "--scene",
+        "driven_cl_wall",
+        "--k-delta",
+        "1e4",
     ]);
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("--k-delta") && err.contains("--scene"), "{err}");
+    assert!(
+        err.contains("--k-delta") && err.contains("--scene"),
+        "{err}"
+    );
     // a test-bed scene has no drive to search
     let out = flexrig(&["safety", "--region", "chest", "--scene", "cj_aluminium"]);
     assert_eq!(out.status.code(), Some(2));

@@ -495,8 +495,14 @@ fn scene_input(
     };
     // a design value given beside the scene must be the scene's own (a derived input passes)
     let given = [
-        ("--m-eff", input.m_eff.is_some() && input.m_eff != derived.m_eff),
-        ("--k-delta", input.k_delta.is_some() && input.k_delta != derived.k_delta),
+        (
+            "--m-eff",
+            input.m_eff.is_some() && input.m_eff != derived.m_eff,
+        ),
+        (
+            "--k-delta",
+            input.k_delta.is_some() && input.k_delta != derived.k_delta,
+        ),
         (
             "--k-c",
             input.law != ContactLaw::BodySpring && input.law != derived.law,
@@ -755,7 +761,14 @@ fn simulation_traced(
 pub fn simulation_trace(
     input: &SafetyInput,
     model: Option<&BodyModel>,
-) -> Result<(MethodResult, Vec<RootStep>, crate::safety_simulation::FeImpact), Error> {
+) -> Result<
+    (
+        MethodResult,
+        Vec<RootStep>,
+        crate::safety_simulation::FeImpact,
+    ),
+    Error,
+> {
     let bundled;
     let model = match model {
         Some(m) => m,

@@ -34,8 +34,8 @@ use std::time::Instant;
 
 use flexrig_contact::{Hertz, Materials};
 use flexrig_impact::ImpactError;
-use flexrig_safety::{BodyModel, ContactAreaModel, ContactKind, EnergyContact, GoverningLimit};
 use flexrig_safety::LinkStiffness;
+use flexrig_safety::{BodyModel, ContactAreaModel, ContactKind, EnergyContact, GoverningLimit};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -186,7 +186,11 @@ impl MapAxis {
     /// The region key at position `v` of a region axis.
     fn region_at(&self, v: f64) -> Option<&str> {
         (self.parameter == MapParameter::BodyRegion)
-            .then(|| self.names.get((v as usize).wrapping_sub(1)).map(String::as_str))
+            .then(|| {
+                self.names
+                    .get((v as usize).wrapping_sub(1))
+                    .map(String::as_str)
+            })
             .flatten()
     }
 
@@ -1080,12 +1084,10 @@ pub fn csv(map: &SafetyMap) -> String {
 
 /// The smallest and largest of the finite `values` (`None` when there is none).
 fn finite_range(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
-    values
-        .filter(|v| v.is_finite())
-        .fold(None, |r, v| match r {
-            None => Some((v, v)),
-            Some((a, b)) => Some((f64::min(a, v), f64::max(b, v))),
-        })
+    values.filter(|v| v.is_finite()).fold(None, |r, v| match r {
+        None => Some((v, v)),
+        Some((a, b)) => Some((f64::min(a, v), f64::max(b, v))),
+    })
 }
 
 /// What a map found, in brief (`flexrig safety-map` prints it).
@@ -1272,9 +1274,7 @@ pub fn svg(map: &SafetyMap, width_pt: f64) -> Result<String, String> {
     let region_axis = names(&map.input.x).is_some() || names(&map.input.y).is_some();
     let title = if region_axis {
         vec![
-            format!(
-                "Permissible speed near each body region (its most sensitive area), {contact}"
-            ),
+            format!("Permissible speed near each body region (its most sensitive area), {contact}"),
             format!(
                 "limits per region (Table A.2; hatched: not permitted); {}",
                 fixed.join(", ")
@@ -1459,7 +1459,10 @@ mod tests {
         let mut j = i.clone();
         j.y = parse_axis("--y", "region=chest,elbow").unwrap();
         let e = safety_map(&j, Some(&model), &CancelToken::new()).unwrap_err();
-        assert!(e.to_string().contains("--y") && e.to_string().contains("elbow"), "{e}");
+        assert!(
+            e.to_string().contains("--y") && e.to_string().contains("elbow"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -903,16 +903,14 @@ fn scene_trace(
         ],
         rows,
     ));
-    let mut eqs = vec![
-        format!(
-            "v_F = {} m/s commanded (the link arrives at {} m/s; peak force {} N) after {} \
+    let mut eqs = vec![format!(
+        "v_F = {} m/s commanded (the link arrives at {} m/s; peak force {} N) after {} \
              driven runs",
-            g(sc.by_force_mps),
-            g(sc.approach_speed_at_root_mps),
-            g(sc.peak_force_at_root_n),
-            sc.runs
-        ),
-    ];
+        g(sc.by_force_mps),
+        g(sc.approach_speed_at_root_mps),
+        g(sc.peak_force_at_root_n),
+        sc.runs
+    )];
     if let Some(vp) = m.by_pressure_mps {
         eqs.push(format!(
             "v_p = {} m/s (the same search on the force at which the mean pressure reaches p_max)",
@@ -926,7 +924,9 @@ fn scene_trace(
     ));
     d.push(Block::Equations(eqs));
     for note in &sc.notes {
-        d.push(Block::Paragraph(format!("At the limit the drive reports: {note}.")));
+        d.push(Block::Paragraph(format!(
+            "At the limit the drive reports: {note}."
+        )));
     }
 }
 

@@ -86,7 +86,12 @@ impl SafetyScene {
 
     /// The commanded tip speed L ω_c of the scene as written [m/s].
     pub fn commanded_tip_speed(&self) -> f64 {
-        let omega = self.scene.strike.drive.profile().map_or(0.0, |p| p.final_speed());
+        let omega = self
+            .scene
+            .strike
+            .drive
+            .profile()
+            .map_or(0.0, |p| p.final_speed());
         self.length() * omega.abs()
     }
 
@@ -197,7 +202,11 @@ pub struct SceneSimulation {
 }
 
 /// The first contact's peak force \[N\] of `scene` at commanded tip speed `v` [m/s].
-pub fn peak_force(scene: &SafetyScene, v: f64, settings: &SimulationSettings) -> Result<f64, Error> {
+pub fn peak_force(
+    scene: &SafetyScene,
+    v: f64,
+    settings: &SimulationSettings,
+) -> Result<f64, Error> {
     Ok(scene.run_at(v, settings)?.contact.peak_force_n)
 }
 
@@ -269,5 +278,9 @@ pub fn simulate(
 
 /// A search's starting speed within [1e-4, 50] m/s.
 fn clamp_guess(v: f64) -> f64 {
-    if v.is_finite() { v.clamp(1e-4, 50.0) } else { 1.0 }
+    if v.is_finite() {
+        v.clamp(1e-4, 50.0)
+    } else {
+        1.0
+    }
 }

@@ -358,4 +358,3 @@ pub fn speed_at_ratio(
     }
     Ok(((a + b) / 2.0).exp())
 }
-

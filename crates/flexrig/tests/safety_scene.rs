@@ -74,7 +74,11 @@ fn a_held_link_on_a_linear_contact_gives_the_standards_speed_with_an_infinite_ro
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("held_cj_chest.toml");
     std::fs::write(&path, HELD_CJ_CHEST).unwrap();
-    let mut i = input(path.to_str().unwrap(), "chest", vec![SafetyMethod::Simulation]);
+    let mut i = input(
+        path.to_str().unwrap(),
+        "chest",
+        vec![SafetyMethod::Simulation],
+    );
     i.simulation = Some(SimulationSettings {
         root_rtol: 1e-8,
         ..SimulationSettings::DEFAULT

@@ -266,8 +266,13 @@ impl<'a> Interpolant<'a> {
         if j_lo > j_hi {
             return;
         }
-        if !(self.block_bound(row, f_max.node(node), a_max.range(row.i, j_hi + 1), j_lo, j_hi)
-            > best.value)
+        if !(self.block_bound(
+            row,
+            f_max.node(node),
+            a_max.range(row.i, j_hi + 1),
+            j_lo,
+            j_hi,
+        ) > best.value)
         {
             return;
         }
@@ -572,7 +577,11 @@ mod tests {
             let uniform = case % 3 == 0;
             let mut t = vec![0.0];
             for _ in 1..n {
-                let h = if uniform { 1e-4 } else { 1e-5 + 2e-4 * rng.next() };
+                let h = if uniform {
+                    1e-4
+                } else {
+                    1e-5 + 2e-4 * rng.next()
+                };
                 t.push(t.last().unwrap() + h);
             }
             let span = t[n - 1];
@@ -582,9 +591,7 @@ mod tests {
                     // noise of both signs
                     0 => 2000.0 * (rng.next() - 0.3),
                     // a half-sine with noise
-                    1 => {
-                        4000.0 * (std::f64::consts::PI * x / span).sin() + 300.0 * rng.next()
-                    }
+                    1 => 4000.0 * (std::f64::consts::PI * x / span).sin() + 300.0 * rng.next(),
                     // sparse spikes on a negative floor
                     2 => {
                         if rng.next() < 0.05 {
@@ -609,7 +616,11 @@ mod tests {
             };
             let fast = hic(&t, &a, HicWindow::Custom(max_dt)).unwrap().hic;
             let every = hic_every_cell(&t, &a, max_dt);
-            assert_eq!(fast.to_bits(), every.to_bits(), "case {case}: {fast} vs {every}");
+            assert_eq!(
+                fast.to_bits(),
+                every.to_bits(),
+                "case {case}: {fast} vs {every}"
+            );
         }
     }
 

@@ -276,7 +276,11 @@ impl SafetyArgs {
         match (self.method.is_empty(), &self.scene) {
             (false, _) => self.method.clone(),
             (true, None) => vec![MethodArg::Standard, MethodArg::Energy],
-            (true, Some(_)) => vec![MethodArg::Standard, MethodArg::Energy, MethodArg::Simulation],
+            (true, Some(_)) => vec![
+                MethodArg::Standard,
+                MethodArg::Energy,
+                MethodArg::Simulation,
+            ],
         }
     }
 }

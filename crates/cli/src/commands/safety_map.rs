@@ -202,8 +202,14 @@ pub fn run(args: &SafetyMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> R
         ),
     )?;
     let show = |r: Option<(f64, f64)>| r.map_or("—".into(), |(a, b)| format!("{a:.4} to {b:.4}"));
-    line(out, format!("v_max CJ   {} m/s", show(sum.v_max_cj_mps_range)))?;
-    line(out, format!("v_max CL   {} m/s", show(sum.v_max_cl_mps_range)))?;
+    line(
+        out,
+        format!("v_max CJ   {} m/s", show(sum.v_max_cj_mps_range)),
+    )?;
+    line(
+        out,
+        format!("v_max CL   {} m/s", show(sum.v_max_cl_mps_range)),
+    )?;
     line(out, format!("CL/CJ      {}", show(sum.ratio_cl_cj_range)))?;
     line(
         out,

@@ -576,7 +576,9 @@ fn build_chart<'a, 'b>(
         None => log_label(*v),
     };
     let x_style = match names.x {
-        Some(_) => font(TICK_PT).transform(FontTransform::Rotate90).into_text_style(area),
+        Some(_) => font(TICK_PT)
+            .transform(FontTransform::Rotate90)
+            .into_text_style(area),
         None => font(TICK_PT).into_text_style(area),
     };
     chart
