@@ -954,7 +954,7 @@ fn simulated(
     if shared.area_model.is_none() {
         limits.pressure = None;
     }
-    let (k_c, n) = law_numbers(shared, &d);
+    let (k_c, n) = law_numbers(shared, d);
     let hertz = Hertz::new(k_c, n)?;
     let k_delta = d.k_delta.ok_or_else(|| {
         bad(

@@ -123,10 +123,12 @@ fn the_single_point_simulation_is_the_maps_cell() {
         x: MapAxis {
             parameter: MapParameter::Payload,
             values: vec![0.412, 0.6],
+            names: Vec::new(),
         },
         y: MapAxis {
             parameter: MapParameter::LinkStiffness,
             values: vec![1e4, 3e4],
+            names: Vec::new(),
         },
         method: MapMethod::Simulation,
         simulation: SimulationSettings::DEFAULT,
