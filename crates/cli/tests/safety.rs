@@ -266,3 +266,42 @@ fn bad_input_exits_2_naming_the_flag() {
         assert!(err.contains(flag), "{all:?}: {err}");
     }
 }
+
+#[test]
+fn a_driven_scene_is_the_design_and_its_commanded_speed_is_searched() {
+    // The bundled driven CL against a wall: the chest clamped (quasi-static limit 140 N), the
+    // three methods by default, the simulation's speed is where the scene's peak force is the
+    // limit (the run at the root, to the search's 1e-6).
+    let v = json(&["--region", "chest", "--scene", "driven_cl_wall"]);
+    assert_eq!(v["contact"], "quasi_static");
+    assert_eq!(num(&v["force_limit_n"]), 140.0);
+    assert_eq!(v["methods"].as_array().unwrap().len(), 3);
+    let sim = method(&v, "simulation");
+    let scene = &v["scene"];
+    assert_eq!(scene["name"], "driven_cl_wall");
+    assert_eq!(num(&sim["by_force_mps"]), num(&scene["by_force_mps"]));
+    assert!(
+        rel(num(&scene["peak_force_at_root_n"]), 140.0) < 1e-5,
+        "{scene}"
+    );
+    // the design flags of another design are refused beside a scene
+    let out = flexrig(&[
+        "safety",
+        "--region",
+        "chest",
+        "--scene",
+        "driven_cl_wall",
+        "--k-delta",
+        "1e4",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--k-delta") && err.contains("--scene"),
+        "{err}"
+    );
+    // a test-bed scene has no drive to search
+    let out = flexrig(&["safety", "--region", "chest", "--scene", "cj_aluminium"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("[drive]"));
+}

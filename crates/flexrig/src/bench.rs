@@ -683,6 +683,7 @@ fn safety_maps(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
                 methods: vec![crate::safety::SafetyMethod::Energy],
                 link: None,
                 simulation: None,
+                scene: None,
             },
             Some(&model),
         )?;

@@ -47,6 +47,8 @@ pub mod run;
 pub mod safety;
 pub mod safety_map;
 pub mod safety_report;
+pub mod safety_scene;
+pub mod safety_simulation;
 pub mod scenes;
 pub mod severity;
 pub mod study;

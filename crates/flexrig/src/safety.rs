@@ -8,7 +8,7 @@
 //!   fitted Hertz law f = k_c δ_c^n, Eq. 4, in series with the link stiffness k_δ, Eq. 6–9;
 //!   [`flexrig_safety::EnergyContact`]);
 //! - **simulation**: the speed at which the finite-element impact the safe-speed maps use
-//!   reaches the limit ([`crate::safety_map::FeImpact`]: the CJ as a rigid link on its torsion
+//!   reaches the limit ([`crate::safety_simulation::FeImpact`]: the CJ as a rigid link on its torsion
 //!   spring by DOP853, the CL as the Euler–Bernoulli beam by its modes and the exact modal
 //!   integrator; held joint or free hub), by a bracket around the energy method's speed and the
 //!   Illinois root search on ln v to the settings' `root_rtol` (default 1e-6, below the 1e-4
@@ -33,8 +33,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::Error;
 
-pub use crate::safety_map::{
-    CLAMPED_HUMAN_MASS, FE_RIGID_LINK_STIFFNESS, FeLink, MapJoint, RootStep, SimulationSettings,
+pub use crate::safety_simulation::{
+    CLAMPED_HUMAN_MASS, FE_RIGID_LINK_STIFFNESS, FeImpact, FeLink, MapJoint, RootStep,
+    SimulationSettings,
 };
 
 /// Which permissible-speed method to evaluate.
@@ -121,6 +122,12 @@ pub struct SafetyInput {
     /// [`SimulationSettings::DEFAULT`] (held joint).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub simulation: Option<SimulationSettings>,
+    /// A driven scene as the design (`--scene`: a bundled scene's name or a scene file's path;
+    /// [`crate::safety_scene`]): the link, the skin's law and the contact kind come from the
+    /// scene (a wall: quasi-static; a free head or a neck: transient), and the simulation
+    /// method searches the scene's commanded speed. Absent: the design of the other fields.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scene: Option<String>,
 }
 
 /// A speed that may be unbounded (serialises as a number or the word `"unlimited"`).
@@ -234,6 +241,9 @@ pub struct SafetyReport {
     pub k_delta_n_per_m: Option<f64>,
     /// One result per requested method, in the order asked.
     pub methods: Vec<MethodResult>,
+    /// The driven scene's simulation (absent without `--scene` or the simulation method).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scene: Option<crate::safety_scene::SceneSimulation>,
 }
 
 fn bad(arg: &str, value: impl ToString, allowed: &str) -> Error {
@@ -371,6 +381,14 @@ fn setup<'a>(input: &SafetyInput, model: &'a BodyModel) -> Result<Setup<'a>, Err
     })
 }
 
+/// The body model of `--body-model FILE` (the bundled format, see
+/// assets/safety/iso_ts_15066_2016.toml), or `None` for the bundled ISO/TS 15066:2016 table; an
+/// unreadable file is a read error naming it, a bad table names the region and field.
+pub fn load_body_model(path: Option<&std::path::Path>) -> Result<Option<BodyModel>, Error> {
+    path.map(|p| Ok(BodyModel::from_toml_str(&crate::output::read_text(p)?)?))
+        .transpose()
+}
+
 /// The permissible speed of `input` by each requested method, with the ISO/TS 15066:2016 body
 /// model, or `model` when given (a user's table).
 pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyReport, Error> {
@@ -382,16 +400,34 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
             &bundled
         }
     };
+    let scene = input
+        .scene
+        .as_deref()
+        .map(crate::safety_scene::load)
+        .transpose()?;
+    let derived;
+    let input = match &scene {
+        Some(sc) => {
+            derived = scene_input(input, sc)?;
+            &derived
+        }
+        None => input,
+    };
     let s = setup(input, model)?;
-    let methods = input
-        .methods
-        .iter()
-        .map(|&m| match m {
-            SafetyMethod::Standard => standard(&s, input.speed),
-            SafetyMethod::Energy => energy(&s, input.speed),
-            SafetyMethod::Simulation => simulation(&s, input),
-        })
-        .collect::<Result<Vec<_>, Error>>()?;
+    let mut methods = Vec::with_capacity(input.methods.len());
+    let mut scene_simulation = None;
+    for &m in &input.methods {
+        methods.push(match (m, &scene) {
+            (SafetyMethod::Standard, _) => standard(&s, input.speed)?,
+            (SafetyMethod::Energy, _) => energy(&s, input.speed)?,
+            (SafetyMethod::Simulation, None) => simulation(&s, input)?,
+            (SafetyMethod::Simulation, Some(sc)) => {
+                let (m, sim) = scene_method(&s, input, sc)?;
+                scene_simulation = Some(sim);
+                m
+            }
+        });
+    }
     Ok(SafetyReport {
         region: s.region.key().to_string(),
         region_name: s.region.name().to_string(),
@@ -409,7 +445,131 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
             LinkStiffness::Rigid => None,
         },
         methods,
+        scene: scene_simulation,
     })
+}
+
+/// The input with the design of the driven scene `sc`: its link (m_eff = m_e + γ m_r/3 with
+/// γ = 1 for the CJ and 2/3 for the CL, paper Eq. 5; k_δ; length), its skin's Hertz law, the
+/// contact kind of its support, and the Hertz-sphere area of the paper's dome unless an area
+/// model is given. The design flags are refused beside a scene (the scene is the design).
+fn scene_input(
+    input: &SafetyInput,
+    sc: &crate::safety_scene::SafetyScene,
+) -> Result<SafetyInput, Error> {
+    let strike = &sc.scene.strike;
+    let (gamma, link) = match strike.design {
+        crate::driven::strike::StrikeDesign::Cj => {
+            (crate::safety_simulation::GAMMA_CJ, FeLink::CompliantJoint)
+        }
+        crate::driven::strike::StrikeDesign::Cl => {
+            (crate::safety_simulation::GAMMA_CL, FeLink::CompliantLink)
+        }
+    };
+    let hertz = strike.person.contact;
+    let area_model = match input.area_model {
+        Some(a) => a,
+        None => ContactAreaModel::HertzSphere {
+            radius_m: crate::severity::paper_dome_radius_m()?,
+        },
+    };
+    let derived = SafetyInput {
+        contact: sc.contact_kind(),
+        m_eff: Some(RobotEffectiveMass::Prb {
+            gamma,
+            m_r: strike.link.m_r,
+            m_e: strike.link.m_e,
+        }),
+        k_delta: Some(strike.link.k_delta),
+        law: ContactLaw::Hertz {
+            k_c: hertz.k(),
+            n: hertz.n(),
+        },
+        area_model: Some(area_model),
+        link: Some(link),
+        simulation: Some(SimulationSettings {
+            length: strike.link.length,
+            ..input.simulation.unwrap_or(SimulationSettings::DEFAULT)
+        }),
+        ..input.clone()
+    };
+    // a design value given beside the scene must be the scene's own (a derived input passes)
+    let given = [
+        (
+            "--m-eff",
+            input.m_eff.is_some() && input.m_eff != derived.m_eff,
+        ),
+        (
+            "--k-delta",
+            input.k_delta.is_some() && input.k_delta != derived.k_delta,
+        ),
+        (
+            "--k-c",
+            input.law != ContactLaw::BodySpring && input.law != derived.law,
+        ),
+        ("--link", input.link.is_some() && input.link != derived.link),
+    ];
+    if let Some((flag, _)) = given.iter().find(|(_, g)| *g) {
+        return Err(bad(
+            flag,
+            "(given with --scene)",
+            "leave it out: the scene gives the link, its masses and stiffness and the skin's \
+             contact law (edit the scene file to change them)",
+        ));
+    }
+    Ok(derived)
+}
+
+/// `input` with its design filled in from its driven scene (see [`SafetyInput::scene`]), or
+/// `input` itself without a scene: what the methods compute with, as a report lists it.
+pub fn design_input(input: &SafetyInput) -> Result<SafetyInput, Error> {
+    match &input.scene {
+        Some(given) => scene_input(input, &crate::safety_scene::load(given)?),
+        None => Ok(input.clone()),
+    }
+}
+
+/// The simulation method on the driven scene `sc` ([`crate::safety_scene::simulate`]): the
+/// searches start at the energy method's speeds; the verdict runs the scene at the judged speed.
+fn scene_method(
+    s: &Setup,
+    input: &SafetyInput,
+    sc: &crate::safety_scene::SafetyScene,
+) -> Result<(MethodResult, crate::safety_scene::SceneSimulation), Error> {
+    let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
+    let contact = energy_contact(s)?;
+    let guess = contact.permissible_speed(s.limits)?;
+    let sim = crate::safety_scene::simulate(
+        sc,
+        &s.limits,
+        &contact,
+        guess.by_force,
+        guess.by_pressure,
+        &settings,
+    )?;
+    let p = PermissibleSpeed::from_parts(
+        sim.by_force_mps,
+        sim.by_pressure_mps,
+        contact.reduced_mass(),
+        s.limits,
+    );
+    let verdict = match input.speed {
+        Some(v) if v > 0.0 => {
+            let force = crate::safety_scene::peak_force(sc, v, &settings)?;
+            Some(Verdict::new(
+                v,
+                p,
+                force,
+                s.limits.pressure.and(pressure_at_force(s, force)),
+            ))
+        }
+        Some(v) => Some(Verdict::new(v, p, 0.0, s.limits.pressure.map(|_| 0.0))),
+        None => None,
+    };
+    Ok((
+        from_permissible(SafetyMethod::Simulation, s.m_eff, &p, verdict),
+        sim,
+    ))
 }
 
 fn from_permissible(
@@ -481,7 +641,7 @@ fn energy(s: &Setup, speed: Option<f64>) -> Result<MethodResult, Error> {
 }
 
 /// The finite-element impact of the simulation method for `s` and `input`.
-fn fe_impact(s: &Setup, input: &SafetyInput) -> Result<crate::safety_map::FeImpact, Error> {
+fn fe_impact(s: &Setup, input: &SafetyInput) -> Result<crate::safety_simulation::FeImpact, Error> {
     let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
     settings.validate()?;
     let (gamma, m_r, m_e) = match input.m_eff {
@@ -497,8 +657,8 @@ fn fe_impact(s: &Setup, input: &SafetyInput) -> Result<crate::safety_map::FeImpa
     };
     let link = match input.link {
         Some(link) => link,
-        None if gamma == crate::safety_map::GAMMA_CJ => FeLink::CompliantJoint,
-        None if (gamma - crate::safety_map::GAMMA_CL).abs() < 1e-12 => FeLink::CompliantLink,
+        None if gamma == crate::safety_simulation::GAMMA_CJ => FeLink::CompliantJoint,
+        None if (gamma - crate::safety_simulation::GAMMA_CL).abs() < 1e-12 => FeLink::CompliantLink,
         None => {
             return Err(bad(
                 "--link",
@@ -530,7 +690,7 @@ fn fe_impact(s: &Setup, input: &SafetyInput) -> Result<crate::safety_map::FeImpa
              rigid link)",
         ));
     }
-    Ok(crate::safety_map::FeImpact {
+    Ok(crate::safety_simulation::FeImpact {
         m_h: match s.region.human_mass(s.kind) {
             m if m.is_finite() => m,
             _ => CLAMPED_HUMAN_MASS,
@@ -564,7 +724,7 @@ fn simulation_traced(
     let contact = energy_contact(s)?;
     let guess = contact.permissible_speed(s.limits)?;
     let stop = std::sync::atomic::AtomicBool::new(false);
-    let (by_force, by_pressure, _) = crate::safety_map::fe_speeds(
+    let (by_force, by_pressure, _) = crate::safety_simulation::fe_speeds(
         &impact,
         &s.limits,
         &contact,
@@ -601,7 +761,14 @@ fn simulation_traced(
 pub fn simulation_trace(
     input: &SafetyInput,
     model: Option<&BodyModel>,
-) -> Result<(MethodResult, Vec<RootStep>, crate::safety_map::FeImpact), Error> {
+) -> Result<
+    (
+        MethodResult,
+        Vec<RootStep>,
+        crate::safety_simulation::FeImpact,
+    ),
+    Error,
+> {
     let bundled;
     let model = match model {
         Some(m) => m,
@@ -617,7 +784,8 @@ pub fn simulation_trace(
 }
 
 /// The simulation method's first-contact peak force \[N\] of `input` at each speed of `speeds`
-/// [m/s] (the CL's modes solved at the first speed).
+/// [m/s] (the CL's modes solved at the first speed; with a scene, its driven strike at each
+/// commanded tip speed).
 pub fn simulated_peak_forces(
     input: &SafetyInput,
     model: Option<&BodyModel>,
@@ -631,6 +799,14 @@ pub fn simulated_peak_forces(
             &bundled
         }
     };
+    if let Some(given) = &input.scene {
+        let sc = crate::safety_scene::load(given)?;
+        let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
+        return speeds
+            .iter()
+            .map(|&v| crate::safety_scene::peak_force(&sc, v, &settings))
+            .collect();
+    }
     let s = setup(input, model)?;
     let impact = fe_impact(&s, input)?;
     let stop = std::sync::atomic::AtomicBool::new(false);

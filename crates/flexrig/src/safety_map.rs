@@ -32,13 +32,10 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use flexrig_contact::{DampingSpec, Hertz, Materials};
-use flexrig_impact::cl_modal::run_on_modes;
-use flexrig_impact::graded::{GradedMesh, cl_tip_modes};
-use flexrig_impact::modal_run::ModalOptions;
-use flexrig_impact::{FreeMassImpact, ImpactError, Joint, LinkParams};
+use flexrig_contact::{Hertz, Materials};
+use flexrig_impact::ImpactError;
+use flexrig_safety::LinkStiffness;
 use flexrig_safety::{BodyModel, ContactAreaModel, ContactKind, EnergyContact, GoverningLimit};
-use flexrig_safety::{LinkStiffness, PressureCrossing};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -46,18 +43,14 @@ use crate::safety::{
     ContactLaw, MethodResult, RobotEffectiveMass, SafetyInput, SafetyMethod, Speed, Unbounded,
     safety,
 };
+pub use crate::safety_simulation::{
+    CLAMPED_HUMAN_MASS, FE_RIGID_LINK_STIFFNESS, FeImpact, FeLink, FeRuns, GAMMA_CJ, GAMMA_CL,
+    MapJoint, RootStep, SimulationSettings, fe_speeds, speed_at_ratio,
+};
 use crate::{CancelToken, Error};
 
-/// γ of the compliant joint (rigid link on a torsion spring): m_eff = m_e + m_r/3 (Eq. 5).
-pub const GAMMA_CJ: f64 = 1.0;
-/// γ of the compliant link in the lumped model: m_eff = m_e + 2m_r/9 (Eq. 5, γ = 2/3).
-pub const GAMMA_CL: f64 = 2.0 / 3.0;
 /// Most points along one axis.
 pub const MAX_AXIS_POINTS: usize = 200;
-/// The human mass \[kg\] of a clamped body (quasi-static contact) in the simulation method
-/// (the finite-element impact's largest m_h; a free hub only).
-pub const CLAMPED_HUMAN_MASS: f64 = 1e9;
-
 /// A design parameter along an axis of the map.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -72,16 +65,20 @@ pub enum MapParameter {
     BendingStiffness,
     /// Contact stiffness k_c \[N/m^n\] > 0 (Eq. 4), the exponent n kept.
     ContactStiffness,
+    /// The body region (a category: the axis names the regions of the body model, each with
+    /// its own limits, Table A.3's K and m_H, and its most sensitive area).
+    BodyRegion,
 }
 
 impl MapParameter {
     /// Every parameter.
-    pub const ALL: [MapParameter; 5] = [
+    pub const ALL: [MapParameter; 6] = [
         MapParameter::Payload,
         MapParameter::LinkMass,
         MapParameter::LinkStiffness,
         MapParameter::BendingStiffness,
         MapParameter::ContactStiffness,
+        MapParameter::BodyRegion,
     ];
 
     /// The name on the command line (`m-e`, `m-r`, `k-delta`, `ei`, `k-c`).
@@ -92,6 +89,7 @@ impl MapParameter {
             MapParameter::LinkStiffness => "k-delta",
             MapParameter::BendingStiffness => "ei",
             MapParameter::ContactStiffness => "k-c",
+            MapParameter::BodyRegion => "region",
         }
     }
 
@@ -104,6 +102,7 @@ impl MapParameter {
             "k-delta" | "link-stiffness" => MapParameter::LinkStiffness,
             "ei" | "EI" => MapParameter::BendingStiffness,
             "k-c" | "contact-stiffness" => MapParameter::ContactStiffness,
+            "region" | "body-region" => MapParameter::BodyRegion,
             _ => return None,
         })
     }
@@ -116,6 +115,7 @@ impl MapParameter {
             MapParameter::LinkStiffness => "link stiffness k_δ [N/m]",
             MapParameter::BendingStiffness => "bending stiffness EI [N·m²]",
             MapParameter::ContactStiffness => "contact stiffness k_c [N/mⁿ]",
+            MapParameter::BodyRegion => "body region",
         }
     }
 
@@ -127,6 +127,7 @@ impl MapParameter {
             MapParameter::LinkStiffness => "k_delta_n_per_m",
             MapParameter::BendingStiffness => "ei_n_m2",
             MapParameter::ContactStiffness => "k_c_n_per_m_n",
+            MapParameter::BodyRegion => "body_region",
         }
     }
 
@@ -139,6 +140,8 @@ impl MapParameter {
             MapParameter::BendingStiffness | MapParameter::ContactStiffness => {
                 v.is_finite() && v > 0.0 && v <= 1e20
             }
+            // the position along a region axis, 1, 2, …
+            MapParameter::BodyRegion => v >= 1.0 && v.fract() == 0.0,
         };
         if ok {
             Ok(())
@@ -149,6 +152,7 @@ impl MapParameter {
                 MapParameter::LinkStiffness => "a link stiffness in [1e-3, 1e12] N/m",
                 MapParameter::BendingStiffness => "a bending stiffness in (0, 1e20] N·m²",
                 MapParameter::ContactStiffness => "a contact stiffness in (0, 1e20] N/mⁿ",
+                MapParameter::BodyRegion => "a position 1, 2, … along the region axis",
             };
             Err(bad(flag, display(v), allowed))
         }
@@ -156,13 +160,63 @@ impl MapParameter {
 }
 
 /// One axis: a parameter and its values (ascending, > 0 except a payload of 0 on a linear
-/// axis, which the figure cannot draw on its log axis).
+/// axis, which the figure cannot draw on its log axis). A body-region axis has the region keys
+/// in `names` and their positions 1, 2, … as its values.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MapAxis {
     /// The parameter.
     pub parameter: MapParameter,
     /// Its values, strictly ascending.
     pub values: Vec<f64>,
+    /// The body regions of a region axis (keys of the body model, or `all`), in order.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub names: Vec<String>,
+}
+
+impl MapAxis {
+    /// A body-region axis over `names` (region keys of the body model; `all` for every region).
+    pub fn regions(names: &[&str]) -> MapAxis {
+        MapAxis {
+            parameter: MapParameter::BodyRegion,
+            values: (1..=names.len()).map(|k| k as f64).collect(),
+            names: names.iter().map(|n| n.to_string()).collect(),
+        }
+    }
+
+    /// The region key at position `v` of a region axis.
+    fn region_at(&self, v: f64) -> Option<&str> {
+        (self.parameter == MapParameter::BodyRegion)
+            .then(|| {
+                self.names
+                    .get((v as usize).wrapping_sub(1))
+                    .map(String::as_str)
+            })
+            .flatten()
+    }
+
+    /// The axis with `all` expanded to every region of `model` and each name checked (the
+    /// error names `flag` and lists the keys); other axes unchanged.
+    fn resolved(&self, flag: &str, model: &BodyModel) -> Result<MapAxis, Error> {
+        if self.parameter != MapParameter::BodyRegion {
+            return Ok(self.clone());
+        }
+        let keys: Vec<&str> = if self.names.len() == 1 && self.names[0] == "all" {
+            model.regions().iter().map(|r| r.key()).collect()
+        } else {
+            self.names
+                .iter()
+                .map(|n| {
+                    model
+                        .region(n)
+                        .map(|r| r.key())
+                        .map_err(|e| bad(flag, n, &e.to_string()))
+                })
+                .collect::<Result<_, _>>()?
+        };
+        let axis = MapAxis::regions(&keys);
+        axis.validate(flag)?;
+        Ok(axis)
+    }
 }
 
 /// Parses `PARAM=START:STOP:COUNT[:log]` (both ends included, the sweep's range syntax) or
@@ -187,6 +241,17 @@ pub fn parse_axis(flag: &str, text: &str) -> Result<MapAxis, Error> {
             &format!("the parameter must be one of {names} (then =RANGE)"),
         )
     })?;
+    if parameter == MapParameter::BodyRegion {
+        let names: Vec<&str> = spec.split(',').map(str::trim).collect();
+        if names.iter().any(|n| n.is_empty()) {
+            return Err(bad(
+                flag,
+                text,
+                "region=all or region=KEY1,KEY2,… with keys of the body model (chest, …)",
+            ));
+        }
+        return Ok(MapAxis::regions(&names));
+    }
     let number = |s: &str| s.trim().parse::<f64>().ok().filter(|v| v.is_finite());
     let values: Vec<f64> = if spec.contains(':') {
         let parts: Vec<&str> = spec.split(':').collect();
@@ -236,7 +301,11 @@ pub fn parse_axis(flag: &str, text: &str) -> Result<MapAxis, Error> {
             .map(|s| number(s).ok_or_else(|| bad(flag, text, &syntax)))
             .collect::<Result<_, _>>()?
     };
-    let axis = MapAxis { parameter, values };
+    let axis = MapAxis {
+        parameter,
+        values,
+        names: Vec::new(),
+    };
     axis.validate(flag)?;
     Ok(axis)
 }
@@ -244,6 +313,24 @@ pub fn parse_axis(flag: &str, text: &str) -> Result<MapAxis, Error> {
 impl MapAxis {
     /// Checks the values (count, order, each value's range); the error names `flag`.
     pub fn validate(&self, flag: &str) -> Result<(), Error> {
+        if self.parameter == MapParameter::BodyRegion {
+            if self.names.len() != self.values.len() {
+                return Err(bad(
+                    flag,
+                    format!("{} names, {} values", self.names.len(), self.values.len()),
+                    "a region axis has one name per value",
+                ));
+            }
+            if self.names.len() == 1 && self.names[0] == "all" {
+                return Ok(());
+            }
+        } else if !self.names.is_empty() {
+            return Err(bad(
+                flag,
+                self.names.join(","),
+                "names belong to a region axis only",
+            ));
+        }
         if !(2..=MAX_AXIS_POINTS).contains(&self.values.len()) {
             return Err(bad(
                 flag,
@@ -286,93 +373,6 @@ pub enum MapMethod {
     Energy,
     /// The finite-element impact (CJ by DOP853, CL by its modes) and a root search on v.
     Simulation,
-}
-
-/// The joint during the simulated impact.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum MapJoint {
-    /// Driven at constant speed (the body region arrives at v; the test bed's operator).
-    Held,
-    /// A free hub with the motor's rotor inertia J_R \[kg·m²\] behind the link.
-    FreeHub {
-        /// J_R \[kg·m²\] > 0.
-        rotor_inertia: f64,
-    },
-}
-
-/// Tolerances of the simulation method.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct SimulationSettings {
-    /// The joint during the impact.
-    pub joint: MapJoint,
-    /// Link length L \[m\] (the transverse impact of an Euler–Bernoulli beam depends on m_r and
-    /// k_δ only; L sets EI = k_δL³/3).
-    pub length: f64,
-    /// Tolerance of the CL's modal integrator (relative deviation of the force's linear hold).
-    pub tol: f64,
-    /// Relative tolerance of the CJ's DOP853 integration.
-    pub cj_rtol: f64,
-    /// Relative tolerance of the root search on the speed.
-    pub root_rtol: f64,
-}
-
-impl SimulationSettings {
-    /// Held joint, L = 1 m, modal tol 1e-6, CJ rtol 1e-10, root 1e-6: each speed converged well
-    /// below 1e-4 relative (tested against tol 1e-8, root 1e-10).
-    pub const DEFAULT: SimulationSettings = SimulationSettings {
-        joint: MapJoint::Held,
-        length: 1.0,
-        tol: 1e-6,
-        cj_rtol: 1e-10,
-        root_rtol: 1e-6,
-    };
-
-    /// Checks every setting; the error names its flag.
-    pub fn validate(&self) -> Result<(), Error> {
-        if let MapJoint::FreeHub { rotor_inertia } = self.joint
-            && !(rotor_inertia.is_finite() && (1e-12..=1e12).contains(&rotor_inertia))
-        {
-            return Err(bad(
-                "--rotor-inertia",
-                display(rotor_inertia),
-                "must lie in [1e-12, 1e12] kg·m²",
-            ));
-        }
-        if !(self.length.is_finite() && (1e-3..=1e3).contains(&self.length)) {
-            return Err(bad(
-                "--length",
-                display(self.length),
-                "must lie in [1e-3, 1e3] m",
-            ));
-        }
-        if !(self.tol.is_finite() && (1e-10..=1e-3).contains(&self.tol)) {
-            return Err(bad("--tol", display(self.tol), "must lie in [1e-10, 1e-3]"));
-        }
-        if !(self.cj_rtol.is_finite() && (1e-13..=1e-4).contains(&self.cj_rtol)) {
-            return Err(bad(
-                "--cj-rtol",
-                display(self.cj_rtol),
-                "must lie in [1e-13, 1e-4]",
-            ));
-        }
-        if !(self.root_rtol.is_finite() && (1e-13..=1e-4).contains(&self.root_rtol)) {
-            return Err(bad(
-                "--root-rtol",
-                display(self.root_rtol),
-                "must lie in [1e-13, 1e-4]",
-            ));
-        }
-        Ok(())
-    }
-
-    /// The joint of the finite-element impact.
-    pub fn joint(&self) -> Joint {
-        match self.joint {
-            MapJoint::Held => Joint::Held,
-            MapJoint::FreeHub { rotor_inertia } => Joint::FreeHub { rotor_inertia },
-        }
-    }
 }
 
 /// One safe-speed map question, SI units.
@@ -450,6 +450,15 @@ pub struct MapCell {
     pub k_c: f64,
     /// Contact exponent n.
     pub n: f64,
+    /// The cell's body region (a region axis only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub region: Option<String>,
+    /// The cell's force limit \[N\] (a region axis only; absent where the contact is refused).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub force_limit_n: Option<f64>,
+    /// The cell's pressure limit \[Pa\] (a region axis with an area model only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pressure_limit_pa: Option<f64>,
     /// The compliant joint (absent when the cell failed).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cj: Option<DesignSpeed>,
@@ -517,6 +526,8 @@ struct Design {
     m_e: f64,
     k_delta: Option<f64>,
     law: ContactLaw,
+    /// The body region of a region axis (absent: the map's region).
+    region: Option<String>,
 }
 
 /// What every cell shares, validated once.
@@ -536,9 +547,11 @@ impl Shared<'_> {
             m_e: i.m_e.unwrap_or(f64::NAN),
             k_delta: i.k_delta,
             law: i.law.clone(),
+            region: None,
         };
         for (axis, v) in [(&i.x, x), (&i.y, y)] {
             match axis.parameter {
+                MapParameter::BodyRegion => d.region = axis.region_at(v).map(str::to_string),
                 MapParameter::Payload => d.m_e = v,
                 MapParameter::LinkMass => d.m_r = v,
                 MapParameter::LinkStiffness => d.k_delta = Some(v),
@@ -560,7 +573,7 @@ impl Shared<'_> {
     fn point(&self, d: &Design, gamma: f64, method: SafetyMethod) -> SafetyInput {
         let i = self.input;
         SafetyInput {
-            region: i.region.clone(),
+            region: d.region.clone().unwrap_or_else(|| i.region.clone()),
             area: i.area.clone(),
             contact: i.contact,
             m_eff: Some(RobotEffectiveMass::Prb {
@@ -577,6 +590,7 @@ impl Shared<'_> {
             methods: vec![method],
             link: None,
             simulation: None,
+            scene: None,
         }
     }
 }
@@ -610,6 +624,60 @@ pub fn safety_map(
     };
     input.x.validate("--x")?;
     input.y.validate("--y")?;
+    // a region axis: `all` expanded, every name checked; the map-level region is its first
+    let resolved = SafetyMapInput {
+        x: input.x.resolved("--x", model)?,
+        y: input.y.resolved("--y", model)?,
+        ..input.clone()
+    };
+    let input = &resolved;
+    let region_axis = [&input.x, &input.y]
+        .into_iter()
+        .find(|a| a.parameter == MapParameter::BodyRegion);
+    if region_axis.is_some() && !input.region.is_empty() {
+        return Err(bad(
+            "--region",
+            &input.region,
+            "not with a body-region axis: the axis names the regions",
+        ));
+    }
+    if region_axis.is_some() && input.area.is_some() {
+        return Err(bad(
+            "--area",
+            input.area.as_deref().unwrap_or_default(),
+            "not with a body-region axis: each region's most sensitive area applies",
+        ));
+    }
+    // the map-level region: the first of a region axis whose contact is permitted (the
+    // figure's and the JSON's limits are its; every cell carries its own)
+    let map_region = match region_axis {
+        Some(axis) => axis
+            .names
+            .iter()
+            .find(|k| {
+                model.region(k).is_ok_and(|r| {
+                    r.limits(Some(r.most_sensitive_area()), input.contact)
+                        .is_ok()
+                })
+            })
+            .cloned()
+            .ok_or_else(|| {
+                bad(
+                    "--contact",
+                    "transient",
+                    "no region of the axis permits this contact (transient contact with the \
+                     head and face is not permitted)",
+                )
+            })?,
+        None if input.region.is_empty() => {
+            return Err(bad(
+                "--region",
+                "(missing)",
+                "give the body region (e.g. chest), or a region axis (e.g. --y region=all)",
+            ));
+        }
+        None => input.region.clone(),
+    };
     if input.x.parameter == input.y.parameter
         || [input.x.parameter, input.y.parameter].iter().all(|p| {
             matches!(
@@ -653,7 +721,7 @@ pub fn safety_map(
         return Err(bad("--speed", display(v), "must lie in (0, 1000] m/s"));
     }
     // the base law and the default area model, as `safety` resolves them
-    let region = model.region(&input.region)?;
+    let region = model.region(&map_region)?;
     let (base, material_radius) = match &input.law {
         ContactLaw::BodySpring => (Hertz::new(region.spring_constant(), 1.0)?, None),
         ContactLaw::Hertz { k_c, n } => {
@@ -706,8 +774,17 @@ pub fn safety_map(
     let xs = &input.x.values;
     let ys = &input.y.values;
     // the first cell answers every question the input can be refused for (region, contact,
-    // law, area model) before the map runs
-    let first = cell(&shared, xs[0], ys[0], &AtomicBool::new(false))?;
+    // law, area model) before the map runs; along a region axis a refused region (transient
+    // contact with the head) is a failed cell, not a refused map
+    let first = match cell(&shared, xs[0], ys[0], &AtomicBool::new(false)) {
+        Ok(c) => c,
+        Err(e @ Error::Safety(flexrig_safety::SafetyError::ContactNotPermitted { .. }))
+            if region_axis.is_some() =>
+        {
+            failed_cell(&shared, xs[0], ys[0], e.to_string())
+        }
+        Err(e) => return Err(e),
+    };
     let grid: Vec<(f64, f64)> = ys
         .iter()
         .flat_map(|&y| xs.iter().map(move |&x| (x, y)))
@@ -738,6 +815,8 @@ pub fn safety_map(
         Some(name) => region.area(name)?,
         None => region.most_sensitive_area(),
     };
+    // the map-level limits: the region's (the first region of a region axis, whose cells each
+    // carry their own)
     let mut limits = region.limits(Some(area), input.contact)?;
     if area_model.is_none() {
         limits.pressure = None;
@@ -762,9 +841,28 @@ pub fn safety_map(
     })
 }
 
+/// The limits of the cell's own region (a region axis): force \[N\] and pressure \[Pa\] of its
+/// most sensitive area (absent without an area model), or `None` when the contact is refused.
+fn cell_limits(shared: &Shared, d: &Design) -> (Option<f64>, Option<f64>) {
+    let Some(key) = &d.region else {
+        return (None, None);
+    };
+    let Ok(region) = shared.model.region(key) else {
+        return (None, None);
+    };
+    match region.limits(Some(region.most_sensitive_area()), shared.input.contact) {
+        Ok(l) => (
+            Some(l.force),
+            l.pressure.filter(|_| shared.area_model.is_some()),
+        ),
+        Err(_) => (None, None),
+    }
+}
+
 fn failed_cell(shared: &Shared, x: f64, y: f64, error: String) -> MapCell {
     let d = shared.design(x, y);
-    let (k_c, n) = law_numbers(shared, &d.law);
+    let limits = cell_limits(shared, &d);
+    let (k_c, n) = law_numbers(shared, &d);
     MapCell {
         x,
         y,
@@ -773,6 +871,9 @@ fn failed_cell(shared: &Shared, x: f64, y: f64, error: String) -> MapCell {
         k_delta_n_per_m: d.k_delta,
         k_c,
         n,
+        region: d.region.clone(),
+        force_limit_n: limits.0,
+        pressure_limit_pa: limits.1,
         cj: None,
         cl: None,
         ratio_cl_cj: None,
@@ -780,9 +881,14 @@ fn failed_cell(shared: &Shared, x: f64, y: f64, error: String) -> MapCell {
     }
 }
 
-fn law_numbers(shared: &Shared, law: &ContactLaw) -> (f64, f64) {
-    match law {
-        ContactLaw::Hertz { k_c, n } => (*k_c, *n),
+fn law_numbers(shared: &Shared, d: &Design) -> (f64, f64) {
+    match (&d.law, &d.region) {
+        (ContactLaw::Hertz { k_c, n }, _) => (*k_c, *n),
+        // the body spring of the cell's own region (n = 1)
+        (ContactLaw::BodySpring, Some(key)) => shared
+            .model
+            .region(key)
+            .map_or((f64::NAN, 1.0), |r| (r.spring_constant(), 1.0)),
         _ => (shared.base.k(), shared.base.n()),
     }
 }
@@ -807,7 +913,8 @@ fn cell(shared: &Shared, x: f64, y: f64, stop: &AtomicBool) -> Result<MapCell, E
     } else {
         (from_method(&cj_lumped, None), from_method(&cl_lumped, None))
     };
-    let (k_c, n) = law_numbers(shared, &d.law);
+    let (k_c, n) = law_numbers(shared, &d);
+    let limits = cell_limits(shared, &d);
     Ok(MapCell {
         x,
         y,
@@ -816,165 +923,14 @@ fn cell(shared: &Shared, x: f64, y: f64, stop: &AtomicBool) -> Result<MapCell, E
         k_delta_n_per_m: d.k_delta,
         k_c,
         n,
+        region: d.region.clone(),
+        force_limit_n: limits.0,
+        pressure_limit_pa: limits.1,
         ratio_cl_cj: Some(cl.v_max_mps.value() / cj.v_max_mps.value()),
         cj: Some(cj),
         cl: Some(cl),
         error: None,
     })
-}
-
-/// The finite-element link of the simulation method.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum FeLink {
-    /// The compliant joint: a rigid link on the torsion spring k_θr = k_δL² (DOP853).
-    #[serde(rename = "cj")]
-    CompliantJoint,
-    /// The compliant link: the Euler–Bernoulli beam by its modes (exact modal integrator).
-    #[serde(rename = "cl")]
-    CompliantLink,
-}
-
-/// The link stiffness \[N/m\] the finite-element simulation uses for a rigid link (k_δ
-/// absent in `flexrig safety`): the largest the FE link accepts; its stored energy F²/(2k_δ) is
-/// K/k_δ ≤ 1.5e-7 of the contact's for the body springs of Table A.3 (n = 1).
-pub const FE_RIGID_LINK_STIFFNESS: f64 = 1e12;
-
-/// One design's finite-element impact, for the root searches of the simulation method (the
-/// map's cells and the single-point `flexrig safety --method simulation` share it).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FeImpact {
-    /// Human mass m_h \[kg\] (a clamped body: [`CLAMPED_HUMAN_MASS`]).
-    pub m_h: f64,
-    /// The skin's contact law.
-    pub hertz: Hertz,
-    /// Link mass m_r \[kg\].
-    pub m_r: f64,
-    /// Payload m_e \[kg\].
-    pub m_e: f64,
-    /// Lateral tip stiffness k_δ \[N/m\].
-    pub k_delta: f64,
-    /// CJ or CL.
-    pub link: FeLink,
-    /// Joint, length and tolerances.
-    pub settings: SimulationSettings,
-}
-
-impl FeImpact {
-    fn setup_at(&self, v: f64) -> FreeMassImpact {
-        FreeMassImpact {
-            m_h: self.m_h,
-            v0: v,
-            link: LinkParams {
-                m_r: self.m_r,
-                length: self.settings.length,
-                k_delta: self.k_delta,
-                m_e: self.m_e,
-            },
-            joint: self.settings.joint(),
-            contact: self.hertz,
-            damping: DampingSpec::NONE,
-        }
-    }
-
-    /// The impact ready for runs at speeds near `guess` [m/s]: the CL's modes solved once (at
-    /// `guess`; the free hub's initial modal rates scale with v exactly).
-    pub fn prepare(&self, guess: f64) -> Result<FeRuns, Error> {
-        let guess = guess.clamp(1e-5, 1e2);
-        let reference = self.setup_at(guess);
-        reference.validate()?;
-        let modes = match self.link {
-            FeLink::CompliantLink => Some(cl_tip_modes(&reference, &GradedMesh::DEFAULT)?),
-            FeLink::CompliantJoint => None,
-        };
-        Ok(FeRuns {
-            impact: *self,
-            modes,
-            guess,
-            runs: 0,
-        })
-    }
-}
-
-/// A prepared [`FeImpact`]: the first-contact peak force at any speed.
-#[derive(Debug, Clone)]
-pub struct FeRuns {
-    impact: FeImpact,
-    modes: Option<flexrig_impact::tip_modes::TipModes>,
-    guess: f64,
-    /// Impacts run so far.
-    pub runs: usize,
-}
-
-impl FeRuns {
-    /// The speed the search starts from [m/s] (the guess, within [1e-5, 100]).
-    pub fn guess(&self) -> f64 {
-        self.guess
-    }
-
-    /// The first-contact peak force \[N\] at speed `v` [m/s].
-    pub fn peak(&mut self, v: f64, stop: &AtomicBool) -> Result<f64, Error> {
-        if stop.load(Ordering::Relaxed) {
-            return Err(Error::Impact(ImpactError::Interrupted));
-        }
-        self.runs += 1;
-        let settings = &self.impact.settings;
-        let setup = self.impact.setup_at(v);
-        Ok(match &self.modes {
-            None => flexrig_impact::cj::run_cj(&setup, settings.cj_rtol)?,
-            Some(m) => {
-                let mut m = m.clone();
-                // the free hub's initial modal rates are linear in v (a held joint's are 0)
-                let scale = v / self.guess;
-                m.rates.iter_mut().for_each(|r| *r *= scale);
-                let options = ModalOptions {
-                    tol: settings.tol,
-                    ..ModalOptions::DEFAULT
-                };
-                run_on_modes(&setup, &m, &options)?
-            }
-        }
-        .first
-        .peak_force_n)
-    }
-}
-
-/// The simulated speeds of one design: by force (the peak reaches `limits.force`) and by
-/// pressure (the peak reaches the force f_p at which the mean pressure of `energy`'s area model
-/// reaches the pressure limit), root searches started at the lumped speeds `guess_force` and
-/// `guess_pressure`; the force search's evaluations go to `trace`. Returns (by force, by
-/// pressure, impacts run).
-pub fn fe_speeds(
-    impact: &FeImpact,
-    limits: &flexrig_safety::Limits,
-    energy: &EnergyContact,
-    guess_force: f64,
-    guess_pressure: Option<f64>,
-    stop: &AtomicBool,
-    trace: Option<&mut Vec<RootStep>>,
-) -> Result<(f64, Option<f64>, usize), Error> {
-    let mut runs = impact.prepare(guess_force)?;
-    let guess = runs.guess();
-    let force = limits.force;
-    let root_rtol = impact.settings.root_rtol;
-    let by_force = speed_at_ratio(
-        guess,
-        root_rtol,
-        &mut |v| Ok(runs.peak(v, stop)? / force),
-        trace,
-    )?;
-    let by_pressure = match (limits.pressure, guess_pressure) {
-        (Some(p), Some(vb)) => Some(match energy.force_at_pressure(p) {
-            Some(PressureCrossing::AtForce(f)) => {
-                let g = vb.clamp(1e-5, 1e2);
-                speed_at_ratio(g, root_rtol, &mut |v| Ok(runs.peak(v, stop)? / f), None)?
-            }
-            Some(PressureCrossing::Always) => 0.0,
-            Some(PressureCrossing::Never) | None => f64::INFINITY,
-        }),
-        _ => None,
-    };
-    Ok((by_force, by_pressure, runs.runs))
 }
 
 /// The simulated permissible speed of one design: root searches on the finite-element impact's
@@ -987,7 +943,9 @@ fn simulated(
     stop: &AtomicBool,
 ) -> Result<DesignSpeed, Error> {
     let input = shared.input;
-    let region = shared.model.region(&input.region)?;
+    let region = shared
+        .model
+        .region(d.region.as_deref().unwrap_or(&input.region))?;
     let area = match &input.area {
         Some(name) => region.area(name)?,
         None => region.most_sensitive_area(),
@@ -996,7 +954,7 @@ fn simulated(
     if shared.area_model.is_none() {
         limits.pressure = None;
     }
-    let (k_c, n) = law_numbers(shared, &d.law);
+    let (k_c, n) = law_numbers(shared, d);
     let hertz = Hertz::new(k_c, n)?;
     let k_delta = d.k_delta.ok_or_else(|| {
         bad(
@@ -1053,84 +1011,6 @@ fn simulated(
     })
 }
 
-/// One evaluation of a root search on the speed.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct RootStep {
-    /// The speed tried [m/s].
-    pub speed_mps: f64,
-    /// Peak over limit at that speed.
-    pub ratio: f64,
-}
-
-/// The speed at which `ratio(v)` (peak over limit, increasing in v) equals 1: a bracket grown by
-/// factors of 2 around `guess`, then the Illinois false position on ln v until the bracket is
-/// narrower than `rtol` (relative in v). Each evaluation is pushed to `trace` when given.
-pub fn speed_at_ratio(
-    guess: f64,
-    rtol: f64,
-    ratio: &mut dyn FnMut(f64) -> Result<f64, Error>,
-    mut trace: Option<&mut Vec<RootStep>>,
-) -> Result<f64, Error> {
-    let mut g = |x: f64| -> Result<f64, Error> {
-        let r = ratio(x.exp())?;
-        if let Some(t) = trace.as_deref_mut() {
-            t.push(RootStep {
-                speed_mps: x.exp(),
-                ratio: r,
-            });
-        }
-        Ok(r.ln())
-    };
-    let mut a = (guess / 1.01).ln();
-    let mut b = (guess * 1.01).ln();
-    let mut ga = g(a)?;
-    let mut gb = g(b)?;
-    let mut grow = 0;
-    while ga * gb > 0.0 {
-        grow += 1;
-        if grow > 60 || !ga.is_finite() || !gb.is_finite() {
-            return Err(Error::NonFinite {
-                what: "simulated speed at the limit".into(),
-                value: "no bracket".into(),
-                advice: "use moderate masses and stiffnesses".into(),
-            });
-        }
-        if ga > 0.0 {
-            a -= std::f64::consts::LN_2;
-            ga = g(a)?;
-        } else {
-            b += std::f64::consts::LN_2;
-            gb = g(b)?;
-        }
-    }
-    let mut side = 0;
-    for _ in 0..200 {
-        let x = (a * gb - b * ga) / (gb - ga);
-        if (b - a).abs() < rtol {
-            return Ok(x.exp());
-        }
-        let gx = g(x)?;
-        if gx == 0.0 {
-            return Ok(x.exp());
-        }
-        if gx * gb < 0.0 {
-            a = b;
-            ga = gb;
-            side = 0;
-        } else if side == -1 {
-            ga /= 2.0;
-        } else {
-            side = -1;
-        }
-        b = x;
-        gb = gx;
-        if (b - a).abs() < rtol || gx.abs() < rtol * 1e-3 {
-            return Ok(b.exp());
-        }
-    }
-    Ok(((a + b) / 2.0).exp())
-}
-
 /// The number as CSV and JSON write it (shortest round-trip form), `unlimited` for +∞.
 fn num(v: f64) -> String {
     if v.is_finite() {
@@ -1154,13 +1034,17 @@ pub fn csv(map: &SafetyMap) -> String {
         GoverningLimit::Force => "force",
         GoverningLimit::Pressure => "pressure",
     };
+    let on_axis = |axis: &MapAxis, v: f64| match axis.region_at(v) {
+        Some(key) => key.to_string(),
+        None => num(v),
+    };
     for c in &map.cells {
         let k_delta = c.k_delta_n_per_m.map_or("rigid".into(), num);
         let _ = write!(
             s,
             "{},{},{},{},{k_delta},{},{},",
-            num(c.x),
-            num(c.y),
+            on_axis(&map.input.x, c.x),
+            on_axis(&map.input.y, c.y),
             num(c.m_r_kg),
             num(c.m_e_kg),
             num(c.k_c),
@@ -1198,6 +1082,42 @@ pub fn csv(map: &SafetyMap) -> String {
     s
 }
 
+/// The smallest and largest of the finite `values` (`None` when there is none).
+fn finite_range(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
+    values.filter(|v| v.is_finite()).fold(None, |r, v| match r {
+        None => Some((v, v)),
+        Some((a, b)) => Some((f64::min(a, v), f64::max(b, v))),
+    })
+}
+
+/// What a map found, in brief (`flexrig safety-map` prints it).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MapSummary {
+    /// Cells computed.
+    pub cells: usize,
+    /// Cells that failed (their error is in the CSV and the JSON).
+    pub failed: usize,
+    /// Smallest and largest v_max of the CJ over the cells [m/s] (absent: none finite).
+    pub v_max_cj_mps_range: Option<(f64, f64)>,
+    /// The same for the CL [m/s].
+    pub v_max_cl_mps_range: Option<(f64, f64)>,
+    /// The same for the ratio CL/CJ.
+    pub ratio_cl_cj_range: Option<(f64, f64)>,
+}
+
+/// The summary of `map`: cell counts and the ranges of v_max and of the ratio.
+pub fn summary(map: &SafetyMap) -> MapSummary {
+    let ok: Vec<&MapCell> = map.cells.iter().filter(|c| c.error.is_none()).collect();
+    let speed = |d: Option<DesignSpeed>| d.map_or(f64::NAN, |d| d.v_max_mps.value());
+    MapSummary {
+        cells: map.cells.len(),
+        failed: map.cells.len() - ok.len(),
+        v_max_cj_mps_range: finite_range(ok.iter().map(|c| speed(c.cj))),
+        v_max_cl_mps_range: finite_range(ok.iter().map(|c| speed(c.cl))),
+        ratio_cl_cj_range: finite_range(ok.iter().map(|c| c.ratio_cl_cj.unwrap_or(f64::NAN))),
+    }
+}
+
 /// The method in words, as the figure's title says it.
 pub fn method_text(map: &SafetyMap) -> String {
     let s = &map.input.simulation;
@@ -1221,7 +1141,7 @@ pub fn method_text(map: &SafetyMap) -> String {
 /// The figure: v_max of the CJ, of the CL (one logarithmic colour scale for both) and their
 /// ratio CL/CJ, at the printed width `width_pt` \[pt\].
 pub fn svg(map: &SafetyMap, width_pt: f64) -> Result<String, String> {
-    use crate::plots::{ColorScale, HeatMap, heatmaps_svg};
+    use crate::plots::{AxisNames, ColorScale, HeatMap, heatmaps_svg_named};
     let xs = &map.input.x.values;
     let ys = &map.input.y.values;
     let v = |f: &dyn Fn(&MapCell) -> Option<f64>| -> Vec<Option<f64>> {
@@ -1334,7 +1254,11 @@ pub fn svg(map: &SafetyMap, width_pt: f64) -> Result<String, String> {
         });
     }
     if let Some(c) = map.cells.first() {
-        if !axes.contains(&MapParameter::ContactStiffness) {
+        if axes.contains(&MapParameter::BodyRegion)
+            && matches!(map.input.law, ContactLaw::BodySpring)
+        {
+            fixed.push("body spring K per region".into());
+        } else if !axes.contains(&MapParameter::ContactStiffness) {
             fixed.push(format!(
                 "k_c = {} N/mⁿ, n = {}",
                 crate::plots::sci_label(c.k_c),
@@ -1344,16 +1268,35 @@ pub fn svg(map: &SafetyMap, width_pt: f64) -> Result<String, String> {
             fixed.push(format!("n = {}", display(c.n)));
         }
     }
-    let title = vec![
-        format!(
-            "Permissible speed near the {} ({}), {contact}",
-            map.region_name.to_lowercase(),
-            map.area
-        ),
-        format!("{limits}; {}", fixed.join(", ")),
-        method_text(map),
-    ];
-    heatmaps_svg(&title, &maps, width_pt)
+    fn names(a: &MapAxis) -> Option<&[String]> {
+        (a.parameter == MapParameter::BodyRegion).then_some(a.names.as_slice())
+    }
+    let region_axis = names(&map.input.x).is_some() || names(&map.input.y).is_some();
+    let title = if region_axis {
+        vec![
+            format!("Permissible speed near each body region (its most sensitive area), {contact}"),
+            format!(
+                "limits per region (Table A.2; hatched: not permitted); {}",
+                fixed.join(", ")
+            ),
+            method_text(map),
+        ]
+    } else {
+        vec![
+            format!(
+                "Permissible speed near the {} ({}), {contact}",
+                map.region_name.to_lowercase(),
+                map.area
+            ),
+            format!("{limits}; {}", fixed.join(", ")),
+            method_text(map),
+        ]
+    };
+    let axis_names = AxisNames {
+        x: names(&map.input.x),
+        y: names(&map.input.y),
+    };
+    heatmaps_svg_named(&title, &maps, axis_names, width_pt)
 }
 
 /// Where to write a map and how to draw it.
@@ -1447,6 +1390,82 @@ mod tests {
     }
 
     #[test]
+    fn a_region_axis_cell_is_the_single_point_answer_for_its_region() {
+        let model = BodyModel::iso_ts_15066_2016().unwrap();
+        let mut i = input(MapMethod::Energy);
+        i.region = String::new();
+        i.law = ContactLaw::BodySpring;
+        i.m_e = Some(0.2);
+        i.x = parse_axis("--x", "m-r=0.5:5:3:log").unwrap();
+        i.y = parse_axis("--y", "region=all").unwrap();
+        let map = safety_map(&i, Some(&model), &CancelToken::new()).unwrap();
+        let keys: Vec<&str> = model.regions().iter().map(|r| r.key()).collect();
+        assert_eq!(map.input.y.names, keys);
+        assert_eq!(map.cells.len(), 3 * keys.len());
+        for c in &map.cells {
+            let key = c.region.as_deref().unwrap();
+            assert_eq!(map.input.y.region_at(c.y), Some(key));
+            let region = model.region(key).unwrap();
+            match region.force_limit(ContactKind::Transient) {
+                Err(_) => {
+                    let e = c.error.as_deref().unwrap();
+                    assert!(e.contains("5.5.5.4"), "{key}: {e}");
+                    assert!(c.cj.is_none() && c.force_limit_n.is_none());
+                }
+                Ok(f) => {
+                    assert_eq!(c.force_limit_n, Some(f), "{key}");
+                    assert_eq!(c.k_c, region.spring_constant(), "{key}");
+                    for (gamma, design) in [(GAMMA_CJ, c.cj), (GAMMA_CL, c.cl)] {
+                        let single = safety(
+                            &SafetyInput {
+                                region: key.into(),
+                                area: None,
+                                contact: ContactKind::Transient,
+                                m_eff: Some(RobotEffectiveMass::Prb {
+                                    gamma,
+                                    m_r: c.x,
+                                    m_e: 0.2,
+                                }),
+                                k_delta: None,
+                                law: ContactLaw::BodySpring,
+                                area_model: None,
+                                moving_mass: None,
+                                payload: 0.0,
+                                speed: None,
+                                methods: vec![SafetyMethod::Energy],
+                                link: None,
+                                simulation: None,
+                                scene: None,
+                            },
+                            Some(&model),
+                        )
+                        .unwrap();
+                        let d = design.unwrap();
+                        assert_eq!(d.v_max_mps, single.methods[0].v_max_mps, "{key}");
+                    }
+                }
+            }
+        }
+        // the CSV names the region, the figure draws it
+        let text = csv(&map);
+        assert!(text.lines().nth(1).unwrap().contains(keys[0]), "{text}");
+        let figure = svg(&map, 500.0).unwrap();
+        assert!(figure.contains("hands and fingers"));
+        // --region and --area are refused beside a region axis, an unknown key names the flag
+        let mut j = i.clone();
+        j.region = "chest".into();
+        let e = safety_map(&j, Some(&model), &CancelToken::new()).unwrap_err();
+        assert!(e.to_string().contains("--region"), "{e}");
+        let mut j = i.clone();
+        j.y = parse_axis("--y", "region=chest,elbow").unwrap();
+        let e = safety_map(&j, Some(&model), &CancelToken::new()).unwrap_err();
+        assert!(
+            e.to_string().contains("--y") && e.to_string().contains("elbow"),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn a_cancelled_map_stops_with_interrupted() {
         let cancel = CancelToken::new();
         cancel.cancel();
@@ -1481,6 +1500,7 @@ mod tests {
                         payload: 0.0,
                         link: None,
                         simulation: None,
+                        scene: None,
                         speed: None,
                         methods: vec![SafetyMethod::Energy],
                     },

@@ -38,6 +38,7 @@ fn input(region: &str, contact: ContactKind, link: FeLink, joint: MapJoint) -> S
             joint,
             ..SimulationSettings::DEFAULT
         }),
+        scene: None,
     }
 }
 
@@ -122,10 +123,12 @@ fn the_single_point_simulation_is_the_maps_cell() {
         x: MapAxis {
             parameter: MapParameter::Payload,
             values: vec![0.412, 0.6],
+            names: Vec::new(),
         },
         y: MapAxis {
             parameter: MapParameter::LinkStiffness,
             values: vec![1e4, 3e4],
+            names: Vec::new(),
         },
         method: MapMethod::Simulation,
         simulation: SimulationSettings::DEFAULT,
@@ -155,6 +158,7 @@ fn the_single_point_simulation_is_the_maps_cell() {
                 methods: vec![SafetyMethod::Simulation],
                 link: Some(link),
                 simulation: None,
+                scene: None,
             };
             let m = safety(&single, None).unwrap().methods[0];
             assert_eq!(m.by_force_mps, design.by_force_mps, "{link:?} {cell:?}");

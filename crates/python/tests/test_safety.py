@@ -71,3 +71,34 @@ def test_safety_map_refuses_a_bad_axis_naming_it():
         flexrig.safety_map("chest", m_r=0.05, x="speed=1:2:3")
     with pytest.raises(flexrig.InputError):
         flexrig.safety_map("chest", m_r=0.05, x=("weight", [1, 2]))
+
+
+def test_safety_of_a_driven_scene_equals_the_cli_json(cli):
+    # the bundled driven CJ against a wall: the chest clamped, the drive's speed searched
+    got = flexrig.safety("chest", scene="driven_cj_wall")
+    assert got == cli.json("safety", "--region", "chest", "--scene", "driven_cj_wall")
+    assert got["contact"] == "quasi_static"
+    assert [m["method"] for m in got["methods"]] == ["standard", "energy", "simulation"]
+    assert got["scene"]["by_force_mps"] == got["methods"][2]["by_force_mps"]
+
+
+def test_a_scene_refuses_the_contact_keyword_and_a_transient_head():
+    with pytest.raises(flexrig.InputError) as e:
+        flexrig.safety("chest", scene="driven_cj_wall", contact="transient")
+    assert e.value.field == "contact"
+    with pytest.raises(flexrig.InputError, match="5.5.5.4"):
+        flexrig.safety("face", scene="driven_cj_free_head", method="energy")
+
+
+def test_safety_map_over_body_regions_equals_the_cli_map(cli, tmp_path):
+    import json
+
+    cli("safety-map", "--m-r", "0.5", "--x", "m-e=0.1,1", "--y", "region=chest,abdomen,face",
+        "--out", str(tmp_path))
+    expected = json.loads((tmp_path / "safety_map.json").read_text())
+    got = flexrig.safety_map(m_r=0.5, x="m-e=0.1,1", y=("region", ["chest", "abdomen", "face"]))
+    assert got["y_names"] == ["chest", "abdomen", "face"]
+    for a, b in zip(got["map"]["cells"], expected["cells"]):
+        assert a.get("cj") == b.get("cj") and a.get("error") == b.get("error")
+    assert got["v_max_cj_mps"].shape == (3, 2)
+    assert len(got["errors"]) == 2  # the face: transient contact not permitted

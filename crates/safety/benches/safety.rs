@@ -60,6 +60,17 @@ fn bench(c: &mut Criterion) {
     c.bench_function("hic15_half_sine_1001_samples", |b| {
         b.iter(|| hic(black_box(&t), black_box(&a), HicWindow::Hic15).unwrap())
     });
+    // The exact search's cost on a long trace (16385 samples of a 20 ms half-sine; before its
+    // branch and bound over the window ends this took about 10 s).
+    let n = 16385;
+    let t: Vec<f64> = (0..n).map(|i| 0.02 * i as f64 / (n - 1) as f64).collect();
+    let a: Vec<f64> = t
+        .iter()
+        .map(|&x| 500.0 * (std::f64::consts::PI * x / 0.02).sin())
+        .collect();
+    c.bench_function("hic36_half_sine_16385_samples", |b| {
+        b.iter(|| hic(black_box(&t), black_box(&a), HicWindow::Hic36).unwrap())
+    });
 }
 
 criterion_group!(benches, bench);

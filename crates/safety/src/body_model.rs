@@ -13,7 +13,6 @@
 use serde::{Deserialize, Serialize};
 
 use crate::SafetyError;
-use crate::body_model_file::parse_body_model;
 
 /// The bundled ISO/TS 15066:2016 table.
 pub const BUNDLED_BODY_MODEL_TOML: &str =
@@ -273,18 +272,9 @@ pub struct BodyModel {
     pub(crate) regions: Vec<BodyRegion>,
 }
 
+// The constructors from TOML (`BodyModel::iso_ts_15066_2016`, `BodyModel::from_toml_str`) are
+// in body_model_file.rs, which reads the file into these types (the dependency goes one way).
 impl BodyModel {
-    /// The bundled ISO/TS 15066:2016 table.
-    pub fn iso_ts_15066_2016() -> Result<Self, SafetyError> {
-        Self::from_toml_str(BUNDLED_BODY_MODEL_TOML)
-    }
-
-    /// Parses and validates a body-model table in the bundled format (see the header of
-    /// `assets/safety/iso_ts_15066_2016.toml`).
-    pub fn from_toml_str(text: &str) -> Result<Self, SafetyError> {
-        parse_body_model(text)
-    }
-
     /// Where the table comes from.
     pub fn provenance(&self) -> &Provenance {
         &self.provenance

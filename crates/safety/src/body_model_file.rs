@@ -4,7 +4,22 @@
 use serde::Deserialize;
 
 use crate::SafetyError;
-use crate::body_model::{BodyArea, BodyModel, BodyRegion, Provenance, TransientRule};
+use crate::body_model::{
+    BUNDLED_BODY_MODEL_TOML, BodyArea, BodyModel, BodyRegion, Provenance, TransientRule,
+};
+
+impl BodyModel {
+    /// The bundled ISO/TS 15066:2016 table.
+    pub fn iso_ts_15066_2016() -> Result<Self, SafetyError> {
+        Self::from_toml_str(BUNDLED_BODY_MODEL_TOML)
+    }
+
+    /// Parses and validates a body-model table in the bundled format (see the header of
+    /// `assets/safety/iso_ts_15066_2016.toml`).
+    pub fn from_toml_str(text: &str) -> Result<Self, SafetyError> {
+        parse_body_model(text)
+    }
+}
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -104,7 +119,7 @@ impl Ctx {
     }
 }
 
-pub(crate) fn parse_body_model(text: &str) -> Result<BodyModel, SafetyError> {
+fn parse_body_model(text: &str) -> Result<BodyModel, SafetyError> {
     let raw: RawFile =
         toml::from_str(text).map_err(|e| SafetyError::BodyModelSyntax(e.to_string()))?;
     let doc_ctx = Ctx("[document]".into());

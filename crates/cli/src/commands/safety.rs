@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use flexrig::Error;
 use flexrig::safety::{
-    BodyModel, ContactAreaModel, ContactKind, ContactLaw, FeLink, MethodResult, RobotEffectiveMass,
+    ContactAreaModel, ContactKind, ContactLaw, FeLink, MethodResult, RobotEffectiveMass,
     SafetyInput, SafetyMethod, SafetyReport, SimulationSettings, Speed, safety,
 };
 
@@ -118,13 +118,18 @@ pub struct SafetyArgs {
     /// A body-model TOML file in the format of assets/safety/iso_ts_15066_2016.toml.
     #[arg(long = "body-model", value_name = "FILE")]
     pub body_model: Option<PathBuf>,
-    /// Methods, comma-separated.
+    /// A driven scene as the design: a bundled scene's name (driven_cj_free_head,
+    /// driven_cj_wall, driven_cl_free_head, driven_cl_wall) or a scene file with a [drive]
+    /// section. The scene gives the link, the skin's law and the contact (a wall: quasi-static,
+    /// a free head: transient); the simulation method searches its commanded speed.
     #[arg(
         long,
-        value_enum,
-        value_delimiter = ',',
-        default_value = "standard,energy"
+        value_name = "NAME|FILE",
+        conflicts_with_all = ["m_eff", "m_r", "m_e", "gamma", "link", "k_delta", "k_c", "n", "material", "contact"]
     )]
+    pub scene: Option<String>,
+    /// Methods, comma-separated (default: standard,energy; with --scene all three).
+    #[arg(long, value_enum, value_delimiter = ',')]
     pub method: Vec<MethodArg>,
     /// Print JSON instead of text.
     #[arg(long)]
@@ -252,7 +257,7 @@ impl SafetyArgs {
             payload: self.payload,
             speed: self.speed,
             methods: self
-                .method
+                .methods()
                 .iter()
                 .map(|m| match m {
                     MethodArg::Standard => SafetyMethod::Standard,
@@ -262,23 +267,25 @@ impl SafetyArgs {
                 .collect(),
             link,
             simulation: Some(simulation),
+            scene: self.scene.clone(),
         })
+    }
+
+    /// `--method`, or its default: standard and energy, and the simulation with `--scene`.
+    fn methods(&self) -> Vec<MethodArg> {
+        match (self.method.is_empty(), &self.scene) {
+            (false, _) => self.method.clone(),
+            (true, None) => vec![MethodArg::Standard, MethodArg::Energy],
+            (true, Some(_)) => vec![
+                MethodArg::Standard,
+                MethodArg::Energy,
+                MethodArg::Simulation,
+            ],
+        }
     }
 }
 
-/// The body model of `--body-model FILE`, or `None` for the bundled ISO/TS 15066:2016 table.
-pub fn load_body_model(path: Option<&std::path::Path>) -> Result<Option<BodyModel>, Error> {
-    match path {
-        Some(path) => {
-            let text = std::fs::read_to_string(path).map_err(|source| Error::Read {
-                path: path.to_path_buf(),
-                source,
-            })?;
-            Ok(Some(BodyModel::from_toml_str(&text)?))
-        }
-        None => Ok(None),
-    }
-}
+pub use flexrig::safety::load_body_model;
 
 /// Runs `flexrig safety`.
 pub fn run(args: &SafetyArgs, out: &mut dyn Write) -> Result<(), Error> {
@@ -359,6 +366,36 @@ fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
     )?;
     for m in &r.methods {
         print_method(out, m)?;
+    }
+    if let Some(sc) = &r.scene {
+        line(
+            out,
+            format!(
+                "scene              {} ({}, {} link, head {}): commanded tip speed {} m/s \
+                 as written",
+                sc.name,
+                sc.scene,
+                format!("{:?}", sc.design).to_uppercase(),
+                sc.support,
+                sc.scene_tip_speed_mps
+            ),
+        )?;
+        line(
+            out,
+            format!(
+                "  at the force limit: commanded {:.6} m/s, arriving at {:.6} m/s, peak {:.3} N \
+                 ({} driven runs, run tolerance {:e}, root tolerance {:e})",
+                sc.by_force_mps,
+                sc.approach_speed_at_root_mps,
+                sc.peak_force_at_root_n,
+                sc.runs,
+                sc.run_tol,
+                sc.root_rtol
+            ),
+        )?;
+        for note in &sc.notes {
+            line(out, format!("  note: {note}"))?;
+        }
     }
     Ok(())
 }

@@ -34,7 +34,8 @@ pub enum MapMethodArg {
 pub struct SafetyMapArgs {
     /// The x axis: PARAM=START:STOP:COUNT[:log] (both ends included) or PARAM=V1,V2,…, with
     /// PARAM one of m-e (payload, kg), m-r (link mass, kg), k-delta (link stiffness, N/m), ei
-    /// (bending stiffness, N·m², with --length), k-c (contact stiffness, N/mⁿ).
+    /// (bending stiffness, N·m², with --length), k-c (contact stiffness, N/mⁿ); or the body
+    /// region: region=all or region=chest,abdomen,… (each cell with its region's limits).
     #[arg(long, value_name = "PARAM=RANGE", default_value = "m-e=0.01:5:30:log")]
     pub x: String,
     /// The y axis, as --x.
@@ -44,9 +45,10 @@ pub struct SafetyMapArgs {
         default_value = "k-delta=10:1e7:30:log"
     )]
     pub y: String,
-    /// Body region key of the body model, e.g. chest, hands_and_fingers.
+    /// Body region key of the body model, e.g. chest, hands_and_fingers (not with a region
+    /// axis).
     #[arg(long, value_name = "REGION")]
-    pub region: String,
+    pub region: Option<String>,
     /// Specific area of the region for the pressure limit (default: its most sensitive area).
     #[arg(long, value_name = "NAME")]
     pub area: Option<String>,
@@ -108,7 +110,7 @@ impl SafetyMapArgs {
         let (law, area_model) = (self.law.law(), self.law.area_model()?);
         let joint = map_joint(self.joint, self.rotor_inertia)?;
         Ok(SafetyMapInput {
-            region: self.region.clone(),
+            region: self.region.clone().unwrap_or_default(),
             area: self.area.clone(),
             contact: match self.contact {
                 ContactArg::Transient => ContactKind::Transient,
@@ -164,26 +166,9 @@ pub fn run(args: &SafetyMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> R
         figures: args.figure.options()?,
     };
     let (map, written) = flexrig::safety_map::run(&input, model.as_ref(), &files, cancel)?;
-    let ok: Vec<_> = map.cells.iter().filter(|c| c.error.is_none()).collect();
-    let range = |f: &dyn Fn(&&flexrig::safety_map::MapCell) -> f64| {
-        ok.iter()
-            .map(f)
-            .filter(|v| v.is_finite())
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-                (a.min(v), b.max(v))
-            })
-    };
-    let cj = range(&|c| c.cj.map_or(f64::NAN, |d| d.v_max_mps.value()));
-    let cl = range(&|c| c.cl.map_or(f64::NAN, |d| d.v_max_mps.value()));
-    let ratio = range(&|c| c.ratio_cl_cj.unwrap_or(f64::NAN));
+    let sum = flexrig::safety_map::summary(&map);
     let paths: Vec<_> = written.iter().map(|p| p.display().to_string()).collect();
-    let finite = |(a, b): (f64, f64)| {
-        if a.is_finite() && b.is_finite() {
-            json!([a, b])
-        } else {
-            json!([])
-        }
-    };
+    let pair = |r: Option<(f64, f64)>| r.map_or(json!([]), |(a, b)| json!([a, b]));
     if args.json {
         return print_json(
             out,
@@ -191,11 +176,11 @@ pub fn run(args: &SafetyMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> R
                 "region": map.input.region,
                 "area": map.area,
                 "method": map.input.method,
-                "cells": map.cells.len(),
-                "failed": map.cells.len() - ok.len(),
-                "v_max_cj_mps_range": finite(cj),
-                "v_max_cl_mps_range": finite(cl),
-                "ratio_cl_cj_range": finite(ratio),
+                "cells": sum.cells,
+                "failed": sum.failed,
+                "v_max_cj_mps_range": pair(sum.v_max_cj_mps_range),
+                "v_max_cl_mps_range": pair(sum.v_max_cl_mps_range),
+                "ratio_cl_cj_range": pair(sum.ratio_cl_cj_range),
                 "seconds": map.seconds,
                 "files": paths,
             }),
@@ -216,23 +201,21 @@ pub fn run(args: &SafetyMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> R
             flexrig::safety_map::method_text(&map)
         ),
     )?;
-    let show = |(a, b): (f64, f64)| {
-        if a.is_finite() {
-            format!("{a:.4} to {b:.4}")
-        } else {
-            "—".into()
-        }
-    };
-    line(out, format!("v_max CJ   {} m/s", show(cj)))?;
-    line(out, format!("v_max CL   {} m/s", show(cl)))?;
-    line(out, format!("CL/CJ      {}", show(ratio)))?;
+    let show = |r: Option<(f64, f64)>| r.map_or("—".into(), |(a, b)| format!("{a:.4} to {b:.4}"));
+    line(
+        out,
+        format!("v_max CJ   {} m/s", show(sum.v_max_cj_mps_range)),
+    )?;
+    line(
+        out,
+        format!("v_max CL   {} m/s", show(sum.v_max_cl_mps_range)),
+    )?;
+    line(out, format!("CL/CJ      {}", show(sum.ratio_cl_cj_range)))?;
     line(
         out,
         format!(
             "{} cells in {:.2} s ({} failed)",
-            map.cells.len(),
-            map.seconds,
-            map.cells.len() - ok.len()
+            sum.cells, map.seconds, sum.failed
         ),
     )?;
     for p in &paths {

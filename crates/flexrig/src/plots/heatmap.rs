@@ -73,6 +73,8 @@ pub enum ColorScale {
 const MIN_PANEL_W: f64 = 240.0;
 /// Height of a panel over its width (without its legend rows).
 const PANEL_ASPECT: f64 = 0.85;
+/// Height of one row of a named category axis along y \[pt\].
+const CATEGORY_ROW: f64 = 14.0;
 /// Room under a panel's legend, before the next row of panels \[pt\].
 const ROW_GAP: i32 = 6;
 /// Height of a line of the figure title \[pt\].
@@ -140,19 +142,51 @@ pub fn heatmaps_svg(
     maps: &[HeatMap<'_>],
     width_pt: f64,
 ) -> Result<String, String> {
+    heatmaps_svg_named(figure_title, maps, AxisNames::default(), width_pt)
+}
+
+/// Category names of the axes of every map (a body-region axis): the axis's centres are the
+/// positions 1, 2, …, n, drawn evenly spaced and labelled with the names; `None`: a log axis.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct AxisNames<'a> {
+    /// Names along x (drawn turned by a quarter turn).
+    pub x: Option<&'a [String]>,
+    /// Names along y.
+    pub y: Option<&'a [String]>,
+}
+
+/// [`heatmaps_svg`] with category axes `names`.
+pub fn heatmaps_svg_named(
+    figure_title: &[String],
+    maps: &[HeatMap<'_>],
+    names: AxisNames<'_>,
+    width_pt: f64,
+) -> Result<String, String> {
     if maps.is_empty() {
         return Err("no heat maps to draw".into());
     }
     let grids = maps
         .iter()
         .enumerate()
-        .map(|(i, m)| Grid::new(m).map_err(|e| format!("heat map {} ({}): {e}", i + 1, m.title)))
+        .map(|(i, m)| {
+            Grid::new(m, names).map_err(|e| format!("heat map {} ({}): {e}", i + 1, m.title))
+        })
         .collect::<Result<Vec<_>, _>>()?;
-    let cols = ((width_pt / MIN_PANEL_W).floor() as usize).clamp(1, maps.len());
+    // named y categories: the panel is wider by the names and as tall as the rows need
+    let names_w = names.y.map_or(0.0, |n| {
+        n.iter()
+            .map(|s| super::text_width_pt(s, TICK_PT))
+            .fold(0.0, f64::max)
+    });
+    let cols = ((width_pt / (MIN_PANEL_W + names_w)).floor() as usize).clamp(1, maps.len());
     let rows = maps.len().div_ceil(cols);
     let legend = maps.iter().map(legend_rows).max().unwrap_or(0);
     let panel_w = width_pt / cols as f64;
-    let panel_h = (panel_w * PANEL_ASPECT).round() as u32 + (LEGEND * legend + ROW_GAP) as u32;
+    let chart_h = match names.y {
+        Some(n) => CATEGORY_ROW * n.len() as f64 + 60.0,
+        None => panel_w * PANEL_ASPECT,
+    };
+    let panel_h = chart_h.round() as u32 + (LEGEND * legend + ROW_GAP) as u32;
     let header = HEADER_LINE * figure_title.len() as u32 + 4;
     let size = (width_pt.round() as u32, header + panel_h * rows as u32);
     render(size, |root| {
@@ -174,7 +208,7 @@ pub fn heatmaps_svg(
         }
         let panels = body.split_evenly((rows, cols));
         for ((area, map), grid) in panels.iter().zip(maps).zip(&grids) {
-            draw_panel(area, map, grid, legend)?;
+            draw_panel(area, map, grid, legend, names)?;
         }
         Ok(())
     })
@@ -189,9 +223,15 @@ struct Grid {
 
 impl Grid {
     /// Checks `map` (grid, values, mask, scale) and computes its cell edges.
-    fn new(map: &HeatMap<'_>) -> Result<Self, String> {
-        let x_edges = log_edges(map.xs, "xs")?;
-        let y_edges = log_edges(map.ys, "ys")?;
+    fn new(map: &HeatMap<'_>, names: AxisNames<'_>) -> Result<Self, String> {
+        let x_edges = match names.x {
+            Some(n) => category_edges(map.xs, n, "xs")?,
+            None => log_edges(map.xs, "xs")?,
+        };
+        let y_edges = match names.y {
+            Some(n) => category_edges(map.ys, n, "ys")?,
+            None => log_edges(map.ys, "ys")?,
+        };
         let cells = map.xs.len() * map.ys.len();
         if map.values.len() != cells {
             return Err(format!(
@@ -228,6 +268,27 @@ impl Grid {
     fn ny(&self) -> usize {
         self.y_edges.len() - 1
     }
+}
+
+/// The cell edges of a category axis: centres 1, 2, …, n (one per name), edges half-way.
+fn category_edges(cs: &[f64], names: &[String], name: &str) -> Result<Vec<f64>, String> {
+    let expected = (1..=names.len()).map(|k| k as f64);
+    if cs.len() != names.len() || !cs.iter().copied().eq(expected) {
+        return Err(format!(
+            "{name} of a category axis must be 1, 2, …, {} (one per name)",
+            names.len()
+        ));
+    }
+    Ok((0..=cs.len()).map(|k| k as f64 + 0.5).collect())
+}
+
+/// The label of category position `v` (1-based) among `names`, underscores as spaces.
+fn category_label(names: &[String], v: f64) -> String {
+    let k = v.round() as usize;
+    names
+        .get(k.wrapping_sub(1))
+        .map(|n| n.replace('_', " "))
+        .unwrap_or_default()
 }
 
 /// log10 of the cell edges of the centres `cs` (named `name` in errors): geometric midpoints,
@@ -427,6 +488,7 @@ fn draw_panel(
     map: &HeatMap<'_>,
     grid: &Grid,
     legend_rows: i32,
+    names: AxisNames<'_>,
 ) -> Result<(), String> {
     let (w, h) = area.dim_in_pixel();
     let (w, h) = (w as i32, h as i32);
@@ -439,7 +501,7 @@ fn draw_panel(
     let body = area.margin(px(TITLE), 0, 0, 0);
     let (main, legend) = body.split_vertically(h - px(TITLE) - px(LEGEND * legend_rows + ROW_GAP));
     let (chart_area, bar_area) = main.split_horizontally(w - px(BAR_STRIP));
-    let chart = build_chart(&chart_area, map, grid)?;
+    let chart = build_chart(&chart_area, map, grid, names)?;
     let plotting = chart.plotting_area().strip_coord_spec();
     let origin = plotting.get_base_pixel();
     let to_pixel = |p: (f64, f64)| {
@@ -472,20 +534,53 @@ fn build_chart<'a, 'b>(
     area: &'a DrawingArea<SVGBackend<'b>, Shift>,
     map: &HeatMap<'_>,
     grid: &Grid,
+    names: AxisNames<'_>,
 ) -> Result<Chart<'a, 'b>, String> {
     let (x0, x1) = (grid.x_edges[0], grid.x_edges[grid.x_edges.len() - 1]);
     let (y0, y1) = (grid.y_edges[0], grid.y_edges[grid.y_edges.len() - 1]);
+    let ticks = |a: f64, b: f64, n: Option<&[String]>| match n {
+        Some(n) => (1..=n.len()).map(|k| k as f64).collect(),
+        None => log_ticks(a, b),
+    };
+    // room for the longest category name (a quarter turn along x)
+    let longest = |n: Option<&[String]>| {
+        n.map_or(0.0, |n| {
+            n.iter()
+                .map(|s| super::text_width_pt(s, TICK_PT))
+                .fold(0.0, f64::max)
+        })
+    };
+    let x_area = 26 + longest(names.x).ceil() as i32;
+    let y_area = if names.y.is_some() {
+        14 + longest(names.y).ceil() as i32
+    } else {
+        36
+    };
     let mut chart = ChartBuilder::on(area)
         .margin(px(3))
         .margin_left(px(10))
         .margin_right(px(2))
-        .x_label_area_size(px(26))
-        .y_label_area_size(px(36))
+        .x_label_area_size(px(x_area))
+        .y_label_area_size(px(y_area))
         .build_cartesian_2d(
-            Linear::new(x0, x1, log_ticks(x0, x1)),
-            Linear::new(y0, y1, log_ticks(y0, y1)),
+            Linear::new(x0, x1, ticks(x0, x1, names.x)),
+            Linear::new(y0, y1, ticks(y0, y1, names.y)),
         )
         .map_err(err)?;
+    let x_format = |v: &f64| match names.x {
+        Some(n) => category_label(n, *v),
+        None => log_label(*v),
+    };
+    let y_format = |v: &f64| match names.y {
+        Some(n) => category_label(n, *v),
+        None => log_label(*v),
+    };
+    let x_style = match names.x {
+        Some(_) => font(TICK_PT)
+            .transform(FontTransform::Rotate90)
+            .into_text_style(area),
+        None => font(TICK_PT).into_text_style(area),
+    };
     chart
         .configure_mesh()
         .disable_x_mesh()
@@ -493,11 +588,12 @@ fn build_chart<'a, 'b>(
         .axis_style(stroke(BLACK, 0.75))
         .set_all_tick_mark_size(px(2))
         .label_style(font(TICK_PT))
+        .x_label_style(x_style)
         .axis_desc_style(font(LABEL_PT))
         .x_desc(map.x_label)
         .y_desc(map.y_label)
-        .x_label_formatter(&|v| log_label(*v))
-        .y_label_formatter(&|v| log_label(*v))
+        .x_label_formatter(&x_format)
+        .y_label_formatter(&y_format)
         .draw()
         .map_err(err)?;
     Ok(chart)

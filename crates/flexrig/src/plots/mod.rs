@@ -26,7 +26,7 @@ pub use curves::{Curve, CurveAxes, CurvePanel, curves_svg, log_x_curves_svg};
 pub use eta::eta_svg;
 pub use fig6::{Fig6Point, fig6_svg, fig6_with_points_svg};
 pub use fig9::{Jitter, fig9_svg, grams};
-pub use heatmap::{ColorScale, HeatMap, heatmaps_svg};
+pub use heatmap::{AxisNames, ColorScale, HeatMap, heatmaps_svg, heatmaps_svg_named};
 pub use page::{
     FigureFormat, FigureOptions, FigureWidth, MIN_TEXT_PT, svg_to_pdf, svg_to_png, write_figure,
 };

@@ -20,8 +20,9 @@ def _input_error(field: str, message: str) -> InputError:
 def safety(
     region: str,
     *,
+    scene: Optional[Union[str, "os.PathLike[str]"]] = None,
     area: Optional[str] = None,
-    contact: str = "transient",
+    contact: Optional[str] = None,
     m_eff: Optional[float] = None,
     m_r: Optional[float] = None,
     m_e: Optional[float] = None,
@@ -37,7 +38,7 @@ def safety(
     payload: float = 0.0,
     speed: Optional[float] = None,
     body_model: Optional[Union[str, "os.PathLike[str]"]] = None,
-    method: Union[str, Sequence[str]] = ("standard", "energy"),
+    method: Optional[Union[str, Sequence[str]]] = None,
     link: Optional[str] = None,
     joint: str = "held",
     rotor_inertia: Optional[float] = None,
@@ -59,7 +60,17 @@ def safety(
     or ``fixed`` (with ``contact_area`` in m²), ``speed`` in m/s, ``contact`` ``transient`` or
     ``quasi_static``. Unbounded speeds are the word ``"unlimited"``; absent values are absent
     keys. Transient contact with skull/forehead or face raises ``InputError`` quoting the clause.
+
+    ``scene`` (a bundled driven scene's name such as ``"driven_cl_wall"``, or the path of a scene
+    file with a ``[drive]`` section) is the design instead of the mass, stiffness and contact-law
+    keywords: the simulation method then searches the scene's commanded tip speed, a wall is
+    quasi-static contact and a free head transient (``contact`` is not given with a scene), and
+    ``method`` defaults to all three (without a scene: standard and energy).
     """
+    if scene is not None and contact is not None:
+        raise _input_error("contact", "contact comes from the scene's support (a wall: quasi_static, a free head: transient)")
+    if contact is None:
+        contact = "transient"
     if link is not None and link not in ("cj", "cl"):
         raise _input_error("link", f"unknown link {link!r}: cj or cl")
     if gamma is None and link is not None:
@@ -95,6 +106,8 @@ def safety(
             model = {"model": "fixed", "area_m2": contact_area}
         else:
             raise _input_error("area_model", f"unknown area_model {area_model!r}: hertz_sphere, thin_layer or fixed")
+    if method is None:
+        method = ("standard", "energy", "simulation") if scene is not None else ("standard", "energy")
     methods = [method] if isinstance(method, str) else list(method)
     methods = [m for part in methods for m in part.split(",")]
     data = {
@@ -118,6 +131,8 @@ def safety(
             "root_rtol": root_rtol,
         },
     }
+    if scene is not None:
+        data["scene"] = os.fspath(scene)
     text = None
     if body_model is not None:
         with open(body_model, encoding="utf-8") as f:
@@ -160,13 +175,16 @@ def _axis(field: str, axis: Any) -> Dict[str, Any]:
     except (TypeError, ValueError):
         raise _input_error(field, f"{field}: give 'PARAM=START:STOP:COUNT[:log]' or (PARAM, values), not {axis!r}")
     key = str(name).replace("_", "-")
+    if key in ("region", "body-region"):
+        names = [values] if isinstance(values, str) else [str(v) for v in values]
+        return {"text": "region=" + ",".join(names)}
     if key not in _MAP_PARAMETERS:
         raise _input_error(field, f"{field}: the parameter must be one of {', '.join(_MAP_PARAMETERS)}, not {name!r}")
     return {"parameter": _MAP_PARAMETERS[key], "values": [float(v) for v in values]}
 
 
 def safety_map(
-    region: str,
+    region: Optional[str] = None,
     *,
     x: Any = "m-e=0.01:5:30:log",
     y: Any = "k-delta=10:1e7:30:log",
@@ -195,7 +213,9 @@ def safety_map(
 
     ``x`` and ``y`` are ``"PARAM=START:STOP:COUNT[:log]"`` (or ``"PARAM=V1,V2"``) or
     ``(PARAM, values)`` with PARAM one of ``m-e`` (payload, kg), ``m-r`` (link mass, kg),
-    ``k-delta`` (N/m), ``ei`` (N·m², with ``length`` in m), ``k-c`` (N/m^n). ``method`` is
+    ``k-delta`` (N/m), ``ei`` (N·m², with ``length`` in m), ``k-c`` (N/m^n), or the body region
+    (``"region=all"``, ``"region=chest,abdomen"`` or ``("region", ["chest", "abdomen"])``: each
+    cell then has its region's limits, and ``region`` may be left out). ``method`` is
     ``"standard"``, ``"energy"`` or ``"simulation"`` (the FE CJ and modal CL; ``joint`` ``"held"``
     or ``"free_hub"`` with ``rotor_inertia``). The other arguments are those of
     :func:`flexrig.safety`.
@@ -235,7 +255,7 @@ def safety_map(
             raise _input_error("area_model", f"unknown area_model {area_model!r}: hertz_sphere, thin_layer or fixed")
     joint_data = _joint(joint, rotor_inertia)
     data = {
-        "region": region,
+        "region": region if region is not None else "",
         "area": area,
         "contact": contact.replace("-", "_"),
         "m_r": m_r,
@@ -284,6 +304,8 @@ def safety_map(
         "y": ys,
         "x_parameter": result["input"]["x"]["parameter"],
         "y_parameter": result["input"]["y"]["parameter"],
+        "x_names": result["input"]["x"].get("names", []),
+        "y_names": result["input"]["y"].get("names", []),
         "v_max_cj_mps": grid("cj", "v_max_mps"),
         "v_max_cl_mps": grid("cl", "v_max_mps"),
         "ratio_cl_cj": ratio,
