@@ -551,7 +551,7 @@ pub fn payload_report(r: &crate::payload::PayloadResult) -> Value {
 
 /// `flexrig experiment --json`.
 pub fn experiment_report(r: &crate::experiment::ExperimentResult) -> Value {
-    json!({"groups": r.groups, "ratios": r.ratios, "runs": r.runs, "csv": r.csv, "svg": r.svg, "figures": r.figures})
+    json!({"groups": r.groups, "ratios": r.ratios, "runs": r.runs, "csv": r.csv, "svg": r.svg, "figures": r.figures, "notes": r.notes})
 }
 
 /// The options of `flexrig prb`: `elements` (4 to 256), `model` (`ancf`, `corotational`),

@@ -211,6 +211,9 @@ fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(safety::safety_map_json, m)?)?;
     m.add_function(wrap_pyfunction!(driven::spin_up, m)?)?;
     m.add_function(wrap_pyfunction!(driven::strike, m)?)?;
+    m.add_function(wrap_pyfunction!(driven::strike_flags, m)?)?;
+    m.add_function(wrap_pyfunction!(driven::strike_defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(driven::spin_up_defaults, m)?)?;
     m.add_function(wrap_pyfunction!(driven::role_switch, m)?)?;
     m.add_class::<sweep::Sweep>()?;
     m.add("DEFAULT_RTOL", flexrig::impact::DEFAULT_RTOL)?;

@@ -47,9 +47,9 @@ pub struct SpinUpOptions {
     pub modes: usize,
 }
 
-impl Default for SpinUpOptions {
-    fn default() -> Self {
-        SpinUpOptions {
+impl SpinUpOptions {
+    /// The literature case (Kane, Ryan & Banerjee 1987): the defaults of `flexrig spin-up`.
+    pub const LITERATURE: SpinUpOptions = SpinUpOptions {
             length: 10.0,
             area: 4e-4,
             second_moment: 2e-7,
@@ -62,7 +62,12 @@ impl Default for SpinUpOptions {
             sample_every: 0.1,
             max_step: 1e-3,
             modes: 7,
-        }
+    };
+}
+
+impl Default for SpinUpOptions {
+    fn default() -> Self {
+        SpinUpOptions::LITERATURE
     }
 }
 

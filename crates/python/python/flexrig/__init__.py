@@ -721,45 +721,6 @@ _TRACE_KEYS = (
 )
 
 
-def _strike_toml(f: Mapping[str, Any]) -> str:
-    """The drive description that ``flexrig strike``'s flags build (a controller on a smooth ramp,
-    the person placed after the ramp)."""
-    torque_limit = f["torque_limit"]
-    return f"""design = "{f['design']}"
-horizon_s = {float(f['horizon'])!r}
-[link]
-m_r = {float(f['m_r'])!r}
-length = {float(f['length'])!r}
-k_delta = {float(f['k_delta'])!r}
-m_e = {float(f['m_e'])!r}
-[drive.motor]
-rotor_inertia = {float(f['rotor_inertia'])!r}
-gear_ratio = {float(f['gear_ratio'])!r}
-friction = {float(f['friction'])!r}
-[drive.command]
-command = "controller"
-torque_limit = {float(torque_limit)!r}
-[drive.command.profile]
-profile = "smooth_ramp"
-speed = {float(f['speed'])!r}
-ramp_time = {float(f['ramp_time'])!r}
-[drive.command.gains]
-kp = {float(f['kp'])!r}
-kd = {float(f['kd'])!r}
-[person]
-m_h = {float(f['m_h'])!r}
-speed = 0.0
-[person.support]
-support = "{f['support']}"
-[person.contact]
-k = {float(f['k_c'])!r}
-n = {float(f['n'])!r}
-[placement]
-placement = "after_ramp"
-settle = {float(f['settle'])!r}
-"""
-
-
 def strike(
     file: Optional[Union[str, "os.PathLike[str]"]] = None,
     *,
@@ -796,22 +757,19 @@ def strike(
     """
     import pandas as pd
 
+    every = None if trace_every is None else float(trace_every)
+    directory = None if out is None else os.fspath(out)
     if file is not None:
         path = os.fspath(file)
         with open(path, encoding="utf-8") as fh:
             text = fh.read()
-        source = path
+        r = _flexrig.strike(text, path, every, directory)
     else:
-        if design not in ("cj", "cl"):
-            raise _input_error("design", f"invalid argument design = {design!r}: one of 'cj', 'cl'")
-        if support not in ("free", "wall"):
-            raise _input_error("support", f"invalid argument support = {support!r}: one of 'free', 'wall'")
-        text = _strike_toml(locals())
-        source = "arguments"
-    r = _flexrig.strike(
-        text, source, None if trace_every is None else float(trace_every),
-        None if out is None else os.fspath(out),
-    )
+        r = _flexrig.strike_flags(
+            design, support, float(m_r), float(length), float(k_delta), float(m_e), float(rotor_inertia),
+            float(gear_ratio), float(friction), float(speed), float(ramp_time), float(kp), float(kd),
+            float(torque_limit), float(m_h), float(k_c), float(n), float(settle), float(horizon), every, directory,
+        )
     outcome = dict(r["outcome"])
     trace = outcome.pop("trace")
     if trace_every is not None:
