@@ -107,7 +107,7 @@ pub(crate) fn flag_error(e: Error) -> PyErr {
 }
 
 /// `text` with each flag `--some-flag` written as the keyword argument `some_flag`.
-fn keywords(text: &str) -> String {
+pub(crate) fn keywords(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     let mut rest = text;
     while let Some(i) = rest.find("--") {
@@ -207,6 +207,7 @@ fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tools::beam_static, m)?)?;
     m.add_function(wrap_pyfunction!(tools::prb, m)?)?;
     m.add_function(wrap_pyfunction!(tools::validate, m)?)?;
+    m.add_function(wrap_pyfunction!(tools::bench, m)?)?;
     m.add_function(wrap_pyfunction!(safety::safety_json, m)?)?;
     m.add_function(wrap_pyfunction!(safety::safety_map_json, m)?)?;
     m.add_function(wrap_pyfunction!(driven::spin_up, m)?)?;

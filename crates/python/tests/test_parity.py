@@ -31,8 +31,6 @@ TWINS = {
 CLI_ONLY = {
     "sweep merge": "joins the shard tables that `flexrig sweep --shard` runs wrote on a cluster; "
     "in Python a sweep is one call (here or on a Dask cluster) and has no shards to join",
-    "bench": "measures this machine's run times (work–precision against the scipy peer): its "
-    "numbers are timings, not results; from Python, time the twins with your own tools",
 }
 
 
@@ -106,6 +104,21 @@ def test_the_cli_only_list_names_real_commands_with_reasons(cli):
         assert len(reason) > 20
 
 
+def test_every_twin_is_compared_with_its_command(cli):
+    """The floor "the same numbers from both fronts" for every command: some test runs the
+    command through the CLI fixture (`cli.json("eta", ...)`, `cli("spin-up", ...)`) to compare
+    its twin's numbers with it."""
+    sources = "\n".join(p.read_text(encoding="utf-8") for p in Path(__file__).parent.glob("test_*.py"))
+    uncompared = []
+    for command in cli_commands(cli):
+        if command in CLI_ONLY:
+            continue
+        words = ", ".join(f'"{w}"' for w in command.split())
+        if not re.search(r"\bcli(\.json)?\(" + re.escape(words) + r"[,)]", sources):
+            uncompared.append(command)
+    assert not uncompared, f"no test compares these twins with the CLI: {uncompared}"
+
+
 # ---- the same numbers ----------------------------------------------------------------------
 
 
@@ -151,6 +164,8 @@ def without(data, *keys):
         ),
         (dict(m_eff=2.0, method="ode", formulation="indentation"),
          ["--m-eff", "2.0", "--method", "ode", "--formulation", "indentation"]),
+        (dict(m_eff=2.0, method="ode", dome_radius=0.05),
+         ["--m-eff", "2.0", "--method", "ode", "--dome-radius", "0.05"]),
     ],
 )
 @pytest.mark.parametrize("n", [1.0, 2.0])
@@ -413,6 +428,33 @@ def test_payload_and_experiment_equal_the_cli(cli, tmp_path):
     with pytest.raises(ValueError, match="repeats") as info:
         flexrig.experiment(repeats=0)
     assert info.value.field == "repeats"
+
+
+def test_bench_equals_the_cli_but_for_the_timings(cli, tmp_path):
+    """The work–precision rows: the same points and errors bit for bit; the run times (and the
+    peer's run-time ratio) are this machine's at that moment, so they are only checked to be
+    run times."""
+    r = flexrig.bench(quick=True, out=tmp_path / "py")
+    expected = cli.json("bench", "--quick", "--out", tmp_path / "cli")
+    timings = ("seconds", "scipy_dop853_over_flexrig_at_1e_9", "plots")
+    same(without(r.data, *timings), without(expected, *timings))
+    assert [row["seconds"] > 0 for row in r.rows] == [True] * len(expected["rows"])
+    assert list(r.table.columns[:5]) == ["model", "method", "setting", "error", "seconds"]
+    assert r.table["evaluations"].dtype == "Int64"
+    assert {"bench_lumped.svg", "bench_beam.svg", "bench_rig.svg"} <= set(r.figures)
+    # the errors are against each study's reference: the converged rows are small
+    assert (r.table["error"] >= 0).all() and r.table["error"].min() < 1e-6
+
+
+def test_scenes_and_write_scene_equal_the_cli(cli, tmp_path):
+    listed = cli.json("scenes")["scenes"]
+    assert [(s["name"], s["summary"]) for s in listed] == [tuple(d) for d in flexrig.scene_descriptions()]
+    assert [s["name"] for s in listed] == list(flexrig.bundled_scenes())
+    cli("scenes", "--write", "cl_iron", "--out", tmp_path / "cli.toml")
+    flexrig.write_scene("cl_iron", tmp_path / "py.toml")
+    assert (tmp_path / "py.toml").read_bytes() == (tmp_path / "cli.toml").read_bytes()
+    with pytest.raises(flexrig.InputError):
+        flexrig.write_scene("cl_iron", tmp_path / "py.toml")
 
 
 def test_validate_equals_the_cli(cli, tmp_path):

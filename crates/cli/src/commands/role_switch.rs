@@ -22,13 +22,13 @@ pub struct RoleSwitchArgs {
     pub out: PathBuf,
     /// PD loop stiffnesses κ = K_p/k_θr, comma-separated, each > 0 (the ideal position source
     /// and the torque-free rotor are always added).
-    #[arg(long, value_name = "K,...", value_delimiter = ',', default_values_t = [1e4, 1e2, 1.0, 1e-2])]
+    #[arg(long, value_name = "K,...", value_delimiter = ',', default_values_t = RoleSwitchOptions::default().kappas)]
     pub kappa: Vec<f64>,
     /// Rotor inertia J_R over the link's m_r L²/3 (> 0).
-    #[arg(long, value_name = "RATIO", default_value_t = 1.0)]
+    #[arg(long, value_name = "RATIO", default_value_t = RoleSwitchOptions::default().rotor_ratio)]
     pub rotor_ratio: f64,
     /// Damping ratio ζ of the PD loops (≥ 0).
-    #[arg(long, value_name = "ZETA", default_value_t = 0.7)]
+    #[arg(long, value_name = "ZETA", default_value_t = RoleSwitchOptions::default().damping_ratio)]
     pub damping_ratio: f64,
     /// Only the test bed's cases (leave out the Fig. 6 cases).
     #[arg(long)]

@@ -56,6 +56,7 @@ from ._commands import (
     ImpactReport,
     Report,
     beam_modal,
+    bench,
     beam_static,
     eta,
     eta_map,
@@ -95,6 +96,7 @@ __all__ = [
     "Report",
     "STRIKE_TRACE_COLUMNS",
     "beam_modal",
+    "bench",
     "beam_static",
     "eta",
     "eta_map",
@@ -426,6 +428,7 @@ def impact(
     method: str = "exact",
     formulation: str = "auto",
     rtol: float = DEFAULT_RTOL,
+    dome_radius: Optional[float] = None,
 ) -> Union[ImpactPeaks, ImpactReport]:
     """The peak of the lumped two-mass impact for every parameter set, as ``flexrig impact``.
 
@@ -436,7 +439,8 @@ def impact(
     closed form, Eq. 13: also ``k_o_n_per_m``, ``t_peak_s``, ``contact_duration_s``) or
     ``method="ode"`` (time integration with ``formulation`` auto, indentation or displacement
     and relative tolerance ``rtol``: also time to peak, duration, separation speed, right-hand-side
-    evaluations and steps) — an :class:`ImpactReport` with every key of ``flexrig impact --json``
+    evaluations, steps and the ``severity``, whose contact pressure takes the dome radius
+    ``dome_radius`` [m], default the paper's dome) — an :class:`ImpactReport` with every key of ``flexrig impact --json``
     (the same numbers), arrays over broadcast inputs.
 
     The exact (energy) method of ``flexrig impact``: ½ μ v0² = f²/(2 k_δ) + f δ_c/(n + 1) with
@@ -450,12 +454,12 @@ def impact(
     the sets with the GIL released; the first set out of range raises :class:`InputError` naming
     the argument and its flat index, e.g. ``m_h[3]``.
     """
-    if m_eff is None or gamma is not None or m_r is not None or m_e is not None or not (
+    if m_eff is None or gamma is not None or m_r is not None or m_e is not None or dome_radius is not None or not (
         isinstance(method, str) and method == "exact"
     ):
         return _impact_report(
             m_h, m_eff, k_delta, k_c, n, v0, gamma=gamma, m_r=m_r, m_e=m_e, method=method,
-            formulation=formulation, rtol=rtol,
+            formulation=formulation, rtol=rtol, dome_radius=dome_radius,
         )
     values = (m_h, m_eff, k_delta, k_c, n, v0)
     arrays = []
