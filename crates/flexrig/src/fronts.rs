@@ -623,6 +623,67 @@ pub fn bench_report(r: &crate::bench::BenchReport) -> Value {
     }))
 }
 
+/// `flexrig role-switch --json`: one row per (case, design, drive) with the PD stiffness
+/// κ = K_p/k_θr of a PD drive (absent for the ideal position source and the torque-free rotor),
+/// the two peaks and their ratio; the files written.
+pub fn role_switch_report(r: &crate::driven::role_switch::RoleSwitchResult) -> Value {
+    use crate::driven::role_switch::{design_name, level_name};
+    let rows: Vec<Value> = r
+        .rows
+        .iter()
+        .map(|row| {
+            let (drive, kappa) = level_name(&row.level);
+            let mut v = json!({
+                "case": row.case,
+                "design": design_name(row.design),
+                "drive": drive,
+                "f_test_bed_n": row.f_test_bed_n,
+                "f_driven_n": row.f_driven_n,
+                "ratio": row.ratio,
+                "f_switched_same_drive_n": row.f_switched_same_drive_n,
+            });
+            if kappa.is_finite() {
+                v["kappa"] = json!(kappa);
+            }
+            v
+        })
+        .collect();
+    json!({"rows": rows, "csv": r.csv, "svg": r.svg, "figures": r.figures})
+}
+
+/// `flexrig fig6 --json`: the design, one entry per case and exponent (m_h, k_delta, m_e, n,
+/// η at γ = 2/3 and the sampled curve γ, η) and the files written.
+pub fn fig6_report(r: &crate::fig6::Fig6Result) -> Value {
+    let cases: Vec<Value> = r
+        .curves
+        .iter()
+        .map(|c| {
+            json!({
+                "m_h": c.case.m_h,
+                "k_delta": c.case.k_delta,
+                "m_e": c.case.m_e,
+                "n": c.n,
+                "eta_at_2_3": c.eta_at_2_3,
+                "gamma": c.gamma,
+                "eta": c.eta,
+            })
+        })
+        .collect();
+    json!({"design": r.design, "cases": cases, "csv": r.csv, "svg": r.svg})
+}
+
+/// `flexrig sweep --json`: the table written, its rows, the sweep's points, the rows resumed
+/// and the rows whose run failed.
+pub fn sweep_report(r: &crate::study::SweepReport) -> Value {
+    json!({
+        "table": r.table,
+        "rows": r.rows,
+        "points": r.points,
+        "resumed": r.resumed,
+        "failed": r.failed,
+    })
+}
+
 /// `flexrig experiment --json`.
 pub fn experiment_report(r: &crate::experiment::ExperimentResult) -> Value {
     json!({"groups": r.groups, "ratios": r.ratios, "runs": r.runs, "csv": r.csv, "svg": r.svg, "figures": r.figures, "notes": r.notes})

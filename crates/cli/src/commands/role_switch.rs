@@ -6,10 +6,9 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexrig::driven::role_switch::{
-    RoleSwitchOptions, design_name, level_name, run_with_figures as run_table,
+    RoleSwitchOptions, design_name, run_with_figures as run_table,
 };
 use flexrig::{CancelToken, Error};
-use serde_json::json;
 
 use crate::print::{line, print_json};
 
@@ -51,27 +50,7 @@ pub fn run(args: &RoleSwitchArgs, out: &mut dyn Write, cancel: &CancelToken) -> 
     };
     let r = run_table(&options, &args.out, &args.figure.options()?, cancel)?;
     if args.json {
-        let rows: Vec<_> = r
-            .rows
-            .iter()
-            .map(|row| {
-                let (drive, kappa) = level_name(&row.level);
-                json!({
-                    "case": row.case,
-                    "design": design_name(row.design),
-                    "drive": drive,
-                    "kappa": if kappa.is_finite() { json!(kappa) } else { json!(null) },
-                    "f_test_bed_n": row.f_test_bed_n,
-                    "f_driven_n": row.f_driven_n,
-                    "ratio": row.ratio,
-                    "f_switched_same_drive_n": row.f_switched_same_drive_n,
-                })
-            })
-            .collect();
-        return print_json(
-            out,
-            &json!({"rows": rows, "csv": r.csv, "svg": r.svg, "figures": r.figures}),
-        );
+        return print_json(out, &flexrig::fronts::role_switch_report(&r));
     }
     line(
         out,
