@@ -474,6 +474,57 @@ def test_every_public_name_is_documented_in_docs_python_md():
         assert name in flexrig.__all__, name
 
 
+def _documented_signatures(text):
+    """{name: (parameter names, whether the entry lists them all)} of each `flexrig.name(...)`
+    entry in bold (the reference's entries), parameters split at the top-level commas."""
+    entries = {}
+    for name, inside in re.findall(r"\*\*`flexrig\.([a-z_0-9]+)\((.*?)\)`", text, re.S):
+        items, depth, current = [], 0, ""
+        for ch in inside:
+            if ch in "([{":
+                depth += 1
+            elif ch in ")]}":
+                depth -= 1
+            if ch == "," and depth == 0:
+                items.append(current)
+                current = ""
+            else:
+                current += ch
+        items.append(current)
+        names, complete = [], True
+        for item in (i.strip() for i in items):
+            if item in ("", "*", "/") or item.startswith("**"):
+                continue
+            if item.endswith(("...", "…")):
+                complete = False
+                item = item.rstrip(".…").strip()
+                if not item:
+                    continue
+            names.append(item.split("=")[0].strip())
+        entries[name] = (names, complete)
+    return entries
+
+
+def test_the_reference_lists_each_functions_real_arguments():
+    """docs/python.md is kept in step with the package: every argument an entry names is an
+    argument of the function, and an entry without "…" names all of them."""
+    import inspect
+
+    text = (ROOT / "docs" / "python.md").read_text(encoding="utf-8")
+    entries = _documented_signatures(text)
+    assert {"impact", "eta", "bench", "run", "strike"} <= set(entries), sorted(entries)
+    for name, (documented, complete) in entries.items():
+        params = [
+            p.name for p in inspect.signature(getattr(flexrig, name)).parameters.values()
+            if p.kind not in (p.VAR_KEYWORD, p.VAR_POSITIONAL)
+        ]
+        stale = [d for d in documented if d not in params]
+        assert not stale, f"docs/python.md: flexrig.{name} has no argument {stale}"
+        if complete:
+            missing = [p for p in params if p not in documented]
+            assert not missing, f"docs/python.md: flexrig.{name}(...) does not list {missing}"
+
+
 def test_the_fig6_walk_through_runs_in_both_fronts(cli, tmp_path, monkeypatch):
     """docs/cli.md, "Fig. 6 for your robot": each command and its Python twin run as written
     (each in its own directory) and give the same numbers; the quoted link numbers are the
