@@ -97,7 +97,6 @@ pub struct MotorTorque {
     pub motor_nm: f64,
 }
 
-
 /// Schema name of the `/severity` channel.
 pub const SEVERITY_SCHEMA_NAME: &str = "flexrig.Severity";
 

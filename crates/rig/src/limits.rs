@@ -157,8 +157,7 @@ pub fn check_budget(scene: &Scene) -> Result<Budget, RigError> {
     let swing_steps = simulated_s / file.solver.swing_step_s;
     let contact_steps = contacts * file.solver.contact_steps as f64;
     let impact = first_impact_estimate(scene);
-    let contact_time =
-        CONTACT_TIME_FACTOR * impact.peak_indentation_m / impact.speed_mps;
+    let contact_time = CONTACT_TIME_FACTOR * impact.peak_indentation_m / impact.speed_mps;
     let contact_step = contact_time / file.solver.contact_steps as f64;
     // A run to a fixed time may end with the pendulum resting against the block (each contact
     // loses energy to the link's vibration or the damping, the bounces shorten, and the last

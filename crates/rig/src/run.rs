@@ -16,11 +16,11 @@ use crate::beam_link::{BeamLink, LinkVariant};
 use crate::coupling::{HingeMotion, TipContact};
 use crate::free_flight::{DIM, FlightSensors, FlightStep, FreeFlight, FreeHinges, SwingPolicy};
 use crate::geometry::RigGeometry;
+use crate::hinge::HingeState;
 use crate::joint_drive::{DriveFrame, DriveSummary, RotorSync};
 use crate::limits::CONTACT_TIME_FACTOR;
 use crate::scene::{Design, Scene, StopSpec};
 use crate::sensors::{Reading, Sampler, SensorSample};
-use crate::hinge::HingeState;
 use crate::world::RapierRig;
 
 /// What a step reached (events are part of the step result).

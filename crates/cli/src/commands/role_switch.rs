@@ -5,9 +5,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::driven::role_switch::{
-    RoleSwitchOptions, design_name, run_with_figures as run_table,
-};
+use flexrig::driven::role_switch::{RoleSwitchOptions, design_name, run_with_figures as run_table};
 use flexrig::{CancelToken, Error};
 
 use crate::print::{line, print_json};

@@ -320,7 +320,10 @@ mod tests {
 
     #[test]
     fn the_default_flags_are_the_cl_free_head_description() {
-        let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/drives/cl_free_head.toml");
+        let file = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../assets/drives/cl_free_head.toml"
+        );
         let from_file = StrikeDescription::read(Path::new(file)).unwrap();
         assert_eq!(StrikeFlags::DEFAULT.description().unwrap(), from_file);
     }
@@ -333,7 +336,9 @@ mod tests {
         };
         let e = bad.description().unwrap_err().to_string();
         assert!(e.contains("--k-c/--n"), "{e}");
-        let e = StrikeDesign::parse("--design", "cx").unwrap_err().to_string();
+        let e = StrikeDesign::parse("--design", "cx")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("--design") && e.contains("cj, cl"), "{e}");
         let e = parse_support("--support", "neck").unwrap_err().to_string();
         assert!(e.contains("--support") && e.contains("free, wall"), "{e}");

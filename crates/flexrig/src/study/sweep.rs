@@ -137,7 +137,9 @@ pub fn summary_values(
 
 /// The summary quantities of a sweep's row ([`SUMMARY_COLUMNS`]): what a
 /// driven run has of them (the test bed's step counts and energies are absent).
-pub fn driven_values(s: &crate::driven::scene::DrivenSummary) -> [Option<f64>; SUMMARY_COLUMNS.len()] {
+pub fn driven_values(
+    s: &crate::driven::scene::DrivenSummary,
+) -> [Option<f64>; SUMMARY_COLUMNS.len()] {
     let mut values = [None; SUMMARY_COLUMNS.len()];
     let run = [
         Some(s.peak_force_n),
@@ -170,7 +172,6 @@ pub fn driven_values(s: &crate::driven::scene::DrivenSummary) -> [Option<f64>; S
     values[at..at + driven.len()].copy_from_slice(&driven);
     values
 }
-
 
 /// A summary value as a CSV cell of `column`: a count as a whole number, anything else in
 /// Rust's shortest exponent form (`1.25e-3`), empty when absent.
