@@ -524,9 +524,10 @@ def bench(
     with _Out(out) as o:
         data = _flexrig.bench(bool(quick), o.path, size, formats, dpi)
         report = _report("bench", data, "rows", o)
-    if "evaluations" in report.table:
-        report.table["evaluations"] = report.table["evaluations"].astype("Int64")
-    return report
+    columns = ["model", "method", "setting", "error", "seconds", "evaluations"]
+    table = report.table.reindex(columns=columns)
+    table["evaluations"] = table["evaluations"].astype("Int64")
+    return Report(command="bench", data=report.data, table=table, figures=report.figures, files=report.files)
 
 
 #: The numbers of ``flexrig impact --json`` that :func:`impact` returns as arrays (or floats),
