@@ -34,7 +34,8 @@ pub struct Row {
     pub error: f64,
     /// Median run time [s].
     pub seconds: f64,
-    /// Right-hand-side evaluations (time integrations only).
+    /// Right-hand-side evaluations (time integrations only; absent from the JSON otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub evaluations: Option<usize>,
 }
 

@@ -315,6 +315,9 @@ pub struct ExperimentResult {
     pub svg: PathBuf,
     /// fig9 in every format asked for.
     pub figures: Vec<PathBuf>,
+    /// What to read the table with ([`notes`]): a scene that ran as the other design, and
+    /// whether the paper's finding applies to these runs.
+    pub notes: Vec<String>,
 }
 
 /// Runs the experiment: the runs of [`plan`] in parallel (each writes its MCAP log into
@@ -354,7 +357,9 @@ pub fn run(
             message,
         })?;
     let figures = write_figure(&options.out, "fig9", &svg, &options.figures)?;
+    let notes = notes(&groups);
     Ok(ExperimentResult {
+        notes,
         groups,
         ratios,
         runs: records,
@@ -383,6 +388,61 @@ pub fn group_stats(records: &[RunRecord]) -> Vec<GroupStats> {
             })
         })
         .collect()
+}
+
+/// The notes to the experiment's table: one for each scene whose file name says one design and
+/// whose run (after the overrides) was the other ([`design_notes`]), then the paper's finding
+/// or why it does not apply ([`paper_comparison`]).
+pub fn notes(groups: &[GroupStats]) -> Vec<String> {
+    let mut notes = design_notes(groups);
+    notes.push(paper_comparison(groups));
+    notes
+}
+
+/// A note for each scene whose file name says one design (`cj_…`, `cl_…`) and whose run (after
+/// `--set`) was the other.
+pub fn design_notes(groups: &[GroupStats]) -> Vec<String> {
+    groups
+        .iter()
+        .filter(|g| {
+            let named = &g.scene[..2.min(g.scene.len())];
+            (named == "cj" || named == "cl") && named != g.inputs.design
+        })
+        .map(|g| {
+            format!(
+                "Note: scene file {} ran as {} (the overrides set robot.design).",
+                g.scene,
+                g.inputs.design.to_uppercase()
+            )
+        })
+        .collect()
+}
+
+/// The payload of the paper's runs of `scene` \[kg\]: 100 g for the light load (Fig. 9b), the
+/// test bed's 412 g otherwise (Fig. 9a).
+fn paper_payload_kg(scene: &str) -> f64 {
+    if scene.ends_with("light_load") {
+        0.1
+    } else {
+        0.412
+    }
+}
+
+/// The paper's finding for comparison, only when the runs had the paper's designs and payloads
+/// (CJ and CL, 412 g on the test bed, 100 g light load); otherwise why it does not apply.
+pub fn paper_comparison(groups: &[GroupStats]) -> String {
+    let as_paper = groups.iter().all(|g| {
+        g.scene.starts_with(&g.inputs.design)
+            && (g.inputs.payload_kg - paper_payload_kg(&g.scene)).abs() < 1e-9
+    });
+    if as_paper {
+        "The paper: CL slightly below CJ with the 412 g payload, clearly below with the light load."
+            .into()
+    } else {
+        "The paper's comparison (CJ vs CL, 412 g payload, 100 g light load) does not apply: \
+         these runs changed the design or the payload."
+            .into()
+    }
 }
 
 /// `mean ± ci` of a ratio: the interval to two significant digits (in e-notation when tiny), the
@@ -683,6 +743,50 @@ mod tests {
         for name in ["cl_over_cj", "cl_over_cj_mean", "cl_over_cj_ci95"] {
             assert_eq!(column(cj_row, name), "", "{cj_row}");
         }
+    }
+
+    fn group(scene: &str, design: &str, payload_kg: f64) -> GroupStats {
+        GroupStats {
+            scene: scene.into(),
+            inputs: RunInputs {
+                design: design.into(),
+                block_material: "skinned_aluminium".into(),
+                block_mass_kg: 0.398,
+                payload_kg,
+            },
+            n: 5,
+            mean_peak_force_n: 180.0,
+            ci95_n: Some(1.0),
+        }
+    }
+
+    #[test]
+    fn the_notes_name_a_scene_run_as_the_other_design_and_when_the_paper_applies() {
+        let paper = [
+            group("cj_aluminium", "cj", 0.412),
+            group("cl_aluminium", "cl", 0.412),
+            group("cj_light_load", "cj", 0.1),
+            group("cl_light_load", "cl", 0.1),
+        ];
+        let n = notes(&paper);
+        assert_eq!(n.len(), 1, "{n:?}");
+        assert!(n[0].starts_with("The paper: CL slightly below CJ"), "{n:?}");
+        // the CL file run as CJ: a note naming it, and the paper does not apply
+        let mut swapped = paper.clone();
+        swapped[1].inputs.design = "cj".into();
+        let n = notes(&swapped);
+        assert_eq!(n.len(), 2, "{n:?}");
+        assert_eq!(
+            n[0],
+            "Note: scene file cl_aluminium ran as CJ (the overrides set robot.design)."
+        );
+        assert!(n[1].contains("does not apply"), "{n:?}");
+        // another payload: no design note, the paper does not apply
+        let mut heavier = paper.clone();
+        heavier[0].inputs.payload_kg = 0.2;
+        let n = notes(&heavier);
+        assert_eq!(n.len(), 1);
+        assert!(n[0].contains("does not apply"), "{n:?}");
     }
 
     #[test]

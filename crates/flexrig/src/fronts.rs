@@ -487,6 +487,70 @@ pub fn impact_report(r: &crate::impact::ImpactResult, method: crate::impact::Met
     report
 }
 
+/// The effective robot mass of `flexrig impact`: `--m-eff` \[kg\] alone, or all of `--gamma`,
+/// `--m-r` \[kg\] and `--m-e` \[kg\] for m_eff = m_e + γ m_r/3 (Eq. 5); an incomplete or mixed
+/// set names exactly the flags missing or in excess.
+pub fn effective_mass(
+    m_eff: Option<f64>,
+    gamma: Option<f64>,
+    m_r: Option<f64>,
+    m_e: Option<f64>,
+) -> Result<crate::impact::EffectiveMass, Error> {
+    use crate::impact::EffectiveMass;
+    let prb = [("--gamma", gamma), ("--m-r", m_r), ("--m-e", m_e)];
+    let named = |given: bool| -> Vec<&str> {
+        prb.iter()
+            .filter(|(_, v)| v.is_some() == given)
+            .map(|(f, _)| *f)
+            .collect()
+    };
+    match (m_eff, gamma, m_r, m_e) {
+        (Some(m_eff), None, None, None) => Ok(EffectiveMass::Given(m_eff)),
+        (Some(_), ..) => Err(invalid(
+            "--m-eff",
+            format!("given with {}", named(true).join(" and ")),
+            "give --m-eff alone, or all of --gamma, --m-r and --m-e without it",
+        )),
+        (None, Some(gamma), Some(m_r), Some(m_e)) => Ok(EffectiveMass::Prb { gamma, m_r, m_e }),
+        (None, None, None, None) => Err(invalid(
+            "--m-eff",
+            "(missing)",
+            "give --m-eff, or all of --gamma, --m-r and --m-e",
+        )),
+        (None, ..) => {
+            let (given, missing) = (named(true), named(false));
+            Err(invalid(
+                &missing.join(" and "),
+                "(missing)",
+                format!(
+                    "{} {} m_eff = m_e + γ m_r/3 only with all of --gamma, --m-r and --m-e: \
+                     add {} (or give --m-eff alone)",
+                    given.join(" and "),
+                    if given.len() == 1 { "gives" } else { "give" },
+                    missing.join(" and ")
+                ),
+            ))
+        }
+    }
+}
+
+/// `flexrig impact --json` whole: the peak of `input` by `method`
+/// ([`crate::impact::solve`]), its report ([`impact_report`]) and, with the ode method, the
+/// severity ([`impact_severity`], at `dome_radius_m` \[m\] if given).
+pub fn impact_full_report(
+    input: &crate::impact::ImpactInput,
+    method: crate::impact::Method,
+    dome_radius_m: Option<f64>,
+) -> Result<(Value, Option<crate::severity::Severity>), Error> {
+    let r = crate::impact::solve(input, method)?;
+    let severity = impact_severity(&r, method, dome_radius_m)?;
+    let mut report = impact_report(&r, method);
+    if let Some(s) = &severity {
+        report["severity"] = json!(s);
+    }
+    Ok((report, severity))
+}
+
 /// The severity of a `flexrig impact` result (peak force, pressure, energy, head acceleration,
 /// HIC; [`crate::impact::severity`]): with the ode method only, which integrates the time
 /// history again on a fine grid; `dome_radius_m` \[m\] (`--dome-radius`, default the paper's
@@ -549,9 +613,80 @@ pub fn payload_report(r: &crate::payload::PayloadResult) -> Value {
     json!({ "rows": r.rows, "csv": r.csv, "logs": r.logs, "figures": r.figures })
 }
 
+/// `flexrig bench --json`: the rows (model, method, setting, error, run time, evaluations), the
+/// plots and the scipy peer's run-time ratio (absent when the peer could not run).
+pub fn bench_report(r: &crate::bench::BenchReport) -> Value {
+    without_nulls(json!({
+        "rows": r.rows,
+        "plots": r.plots,
+        "scipy_dop853_over_flexrig_at_1e_9": r.scipy_dop853_over_flexrig_at_1e_9,
+    }))
+}
+
+/// `flexrig role-switch --json`: one row per (case, design, drive) with the PD stiffness
+/// κ = K_p/k_θr of a PD drive (absent for the ideal position source and the torque-free rotor),
+/// the two peaks and their ratio; the files written.
+pub fn role_switch_report(r: &crate::driven::role_switch::RoleSwitchResult) -> Value {
+    use crate::driven::role_switch::{design_name, level_name};
+    let rows: Vec<Value> = r
+        .rows
+        .iter()
+        .map(|row| {
+            let (drive, kappa) = level_name(&row.level);
+            let mut v = json!({
+                "case": row.case,
+                "design": design_name(row.design),
+                "drive": drive,
+                "f_test_bed_n": row.f_test_bed_n,
+                "f_driven_n": row.f_driven_n,
+                "ratio": row.ratio,
+                "f_switched_same_drive_n": row.f_switched_same_drive_n,
+            });
+            if kappa.is_finite() {
+                v["kappa"] = json!(kappa);
+            }
+            v
+        })
+        .collect();
+    json!({"rows": rows, "csv": r.csv, "svg": r.svg, "figures": r.figures})
+}
+
+/// `flexrig fig6 --json`: the design, one entry per case and exponent (m_h, k_delta, m_e, n,
+/// η at γ = 2/3 and the sampled curve γ, η) and the files written.
+pub fn fig6_report(r: &crate::fig6::Fig6Result) -> Value {
+    let cases: Vec<Value> = r
+        .curves
+        .iter()
+        .map(|c| {
+            json!({
+                "m_h": c.case.m_h,
+                "k_delta": c.case.k_delta,
+                "m_e": c.case.m_e,
+                "n": c.n,
+                "eta_at_2_3": c.eta_at_2_3,
+                "gamma": c.gamma,
+                "eta": c.eta,
+            })
+        })
+        .collect();
+    json!({"design": r.design, "cases": cases, "csv": r.csv, "svg": r.svg})
+}
+
+/// `flexrig sweep --json`: the table written, its rows, the sweep's points, the rows resumed
+/// and the rows whose run failed.
+pub fn sweep_report(r: &crate::study::SweepReport) -> Value {
+    json!({
+        "table": r.table,
+        "rows": r.rows,
+        "points": r.points,
+        "resumed": r.resumed,
+        "failed": r.failed,
+    })
+}
+
 /// `flexrig experiment --json`.
 pub fn experiment_report(r: &crate::experiment::ExperimentResult) -> Value {
-    json!({"groups": r.groups, "ratios": r.ratios, "runs": r.runs, "csv": r.csv, "svg": r.svg, "figures": r.figures})
+    json!({"groups": r.groups, "ratios": r.ratios, "runs": r.runs, "csv": r.csv, "svg": r.svg, "figures": r.figures, "notes": r.notes})
 }
 
 /// The options of `flexrig prb`: `elements` (4 to 256), `model` (`ancf`, `corotational`),

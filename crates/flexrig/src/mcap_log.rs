@@ -74,6 +74,29 @@ pub struct EnergyState {
     pub total_j: f64,
 }
 
+/// The motion of a driven joint (the motor side's, the command's or the link's; the
+/// `/drive/*` channels of a run with a motor, on the test bed or driven).
+#[derive(Debug, Clone, Encode)]
+pub struct JointMotion {
+    /// Simulation time.
+    pub timestamp: Timestamp,
+    /// Joint angle (the motor's, after the gear) \[rad\].
+    pub angle_rad: f64,
+    /// Joint speed [rad/s].
+    pub speed_rad_s: f64,
+}
+
+/// The motor's torque.
+#[derive(Debug, Clone, Encode)]
+pub struct MotorTorque {
+    /// Simulation time.
+    pub timestamp: Timestamp,
+    /// At the joint, τ_j = N τ_m [N·m].
+    pub joint_nm: f64,
+    /// At the motor shaft, τ_m [N·m].
+    pub motor_nm: f64,
+}
+
 /// Schema name of the `/severity` channel.
 pub const SEVERITY_SCHEMA_NAME: &str = "flexrig.Severity";
 
@@ -569,7 +592,6 @@ impl<W: Write + Seek> McapRecorder<W> {
         };
         let mut channels = channels;
         if scene.drive.is_some() {
-            use crate::driven::log::{JointMotion, MotorTorque};
             let mut channel = |topic: &str, schema: Option<foxglove::Schema>, encoding: String| {
                 let schema = schema.expect("derived messages have schemas");
                 let id = writer.add_schema(&schema.name, &schema.encoding, &schema.data)?;
@@ -678,7 +700,6 @@ impl<W: Write + Seek> McapRecorder<W> {
     /// The drive's channels of frame `f` (a scene with `robot.drive`): the motor side's joint
     /// angle and speed, the command, the joint and motor torques, the link's angle and speed.
     fn write_drive(&mut self, f: &Frame<'_>) -> Result<(), RigError> {
-        use crate::driven::log::{JointMotion, MotorTorque};
         let (Some(ch), Some(d)) = (self.channels.drive, f.drive) else {
             return Ok(());
         };

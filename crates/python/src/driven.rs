@@ -6,14 +6,16 @@ use std::path::PathBuf;
 
 use flexrig::driven::role_switch::{RoleSwitchOptions, run as run_role_switch};
 use flexrig::driven::spin_up::{SpinUpOptions, run as run_spin_up};
-use flexrig::driven::strike::{StrikeDescription, StrikeOptions, run as run_strike};
+use flexrig::driven::strike::{
+    StrikeDescription, StrikeDesign, StrikeFlags, StrikeOptions, parse_support, run as run_strike,
+};
 use flexrig::{CancelToken, Error};
 use flexrig_impact::ImpactError;
 use pyo3::prelude::*;
 use serde::Serialize;
 
 use crate::convert::json_to_py;
-use crate::{detached, input_error, to_py};
+use crate::{detached, flag_error, input_error, to_py};
 
 /// A library error as a Python exception; a drive field's error names it (`drive.motor.gear_ratio`).
 fn py_error(e: Error) -> PyErr {
@@ -89,6 +91,99 @@ pub fn strike<'py>(
     let result =
         detached(py, &cancel, || run_strike(&description, &options, &cancel))?.map_err(py_error)?;
     to_object(py, &result)
+}
+
+/// One driven strike from the numbers of `flexrig strike`'s flags (the library's
+/// [`StrikeFlags`]: `design` cj or cl, `support` free or wall, SI units); returns the
+/// serialised `StrikeResult` (a dict). Errors name the keyword argument.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (design, support, m_r, length, k_delta, m_e, rotor_inertia, gear_ratio, friction, speed, ramp_time, kp, kd, torque_limit, m_h, k_c, n, settle, horizon, trace_every, out))]
+pub fn strike_flags<'py>(
+    py: Python<'py>,
+    design: &str,
+    support: &str,
+    m_r: f64,
+    length: f64,
+    k_delta: f64,
+    m_e: f64,
+    rotor_inertia: f64,
+    gear_ratio: f64,
+    friction: f64,
+    speed: f64,
+    ramp_time: f64,
+    kp: f64,
+    kd: f64,
+    torque_limit: f64,
+    m_h: f64,
+    k_c: f64,
+    n: f64,
+    settle: f64,
+    horizon: f64,
+    trace_every: Option<f64>,
+    out: Option<PathBuf>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let flags = StrikeFlags {
+        design: StrikeDesign::parse("--design", design).map_err(flag_error)?,
+        m_r,
+        length,
+        k_delta,
+        m_e,
+        rotor_inertia,
+        gear_ratio,
+        friction,
+        speed,
+        ramp_time,
+        kp,
+        kd,
+        torque_limit,
+        m_h,
+        support: parse_support("--support", support).map_err(flag_error)?,
+        k_c,
+        n,
+        settle,
+        horizon,
+    };
+    let description = flags.description().map_err(|e| match e {
+        Error::InvalidArgument { .. } => flag_error(e),
+        _ => py_error(e),
+    })?;
+    let options = StrikeOptions { trace_every, out };
+    let cancel = CancelToken::new();
+    let result =
+        detached(py, &cancel, || run_strike(&description, &options, &cancel))?.map_err(py_error)?;
+    to_object(py, &result)
+}
+
+/// The defaults of `flexrig strike`'s flags ([`StrikeFlags::DEFAULT`]) by keyword argument.
+#[pyfunction]
+pub fn strike_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    let d = StrikeFlags::DEFAULT;
+    let design = match d.design {
+        StrikeDesign::Cj => "cj",
+        StrikeDesign::Cl => "cl",
+    };
+    let support = match d.support {
+        flexrig::driven::drive::HeadSupport::Wall => "wall",
+        _ => "free",
+    };
+    let v = serde_json::json!({
+        "design": design, "support": support, "m_r": d.m_r, "length": d.length,
+        "k_delta": d.k_delta, "m_e": d.m_e, "rotor_inertia": d.rotor_inertia,
+        "gear_ratio": d.gear_ratio, "friction": d.friction, "speed": d.speed,
+        "ramp_time": d.ramp_time, "kp": d.kp, "kd": d.kd, "torque_limit": d.torque_limit,
+        "m_h": d.m_h, "k_c": d.k_c, "n": d.n, "settle": d.settle, "horizon": d.horizon,
+    });
+    json_to_py(py, &v)
+}
+
+/// The defaults of `flexrig spin-up`'s flags (the literature case, [`SpinUpOptions`]'s
+/// `Default`) by keyword argument.
+#[pyfunction]
+pub fn spin_up_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    let v = serde_json::to_value(SpinUpOptions::default())
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+    json_to_py(py, &v)
 }
 
 /// The role-switch table as `flexrig role-switch` runs it; writes into `out`; returns

@@ -107,7 +107,7 @@ pub(crate) fn flag_error(e: Error) -> PyErr {
 }
 
 /// `text` with each flag `--some-flag` written as the keyword argument `some_flag`.
-fn keywords(text: &str) -> String {
+pub(crate) fn keywords(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     let mut rest = text;
     while let Some(i) = rest.find("--") {
@@ -207,10 +207,14 @@ fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tools::beam_static, m)?)?;
     m.add_function(wrap_pyfunction!(tools::prb, m)?)?;
     m.add_function(wrap_pyfunction!(tools::validate, m)?)?;
+    m.add_function(wrap_pyfunction!(tools::bench, m)?)?;
     m.add_function(wrap_pyfunction!(safety::safety_json, m)?)?;
     m.add_function(wrap_pyfunction!(safety::safety_map_json, m)?)?;
     m.add_function(wrap_pyfunction!(driven::spin_up, m)?)?;
     m.add_function(wrap_pyfunction!(driven::strike, m)?)?;
+    m.add_function(wrap_pyfunction!(driven::strike_flags, m)?)?;
+    m.add_function(wrap_pyfunction!(driven::strike_defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(driven::spin_up_defaults, m)?)?;
     m.add_function(wrap_pyfunction!(driven::role_switch, m)?)?;
     m.add_class::<sweep::Sweep>()?;
     m.add("DEFAULT_RTOL", flexrig::impact::DEFAULT_RTOL)?;

@@ -119,11 +119,11 @@ fn indexed(e: Error, i: usize) -> PyErr {
 
 /// One lumped impact as `flexrig impact --json` reports it, for the same inputs: `m_eff` [kg],
 /// or `gamma`, `m_r` [kg] and `m_e` [kg] for m_eff = m_e + γ m_r/3; `method` exact, analytic or
-/// ode (with `formulation` auto, indentation or displacement, and `rtol`). Errors name the
-/// keyword argument.
+/// ode (with `formulation` auto, indentation or displacement, and `rtol`; the severity's dome
+/// radius `dome_radius` [m], ode only). Errors name the keyword argument.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (m_h, m_eff, gamma, m_r, m_e, k_delta, k_c, n, v0, method, formulation, rtol))]
+#[pyo3(signature = (m_h, m_eff, gamma, m_r, m_e, k_delta, k_c, n, v0, method, formulation, rtol, dome_radius=None))]
 pub fn impact_report<'py>(
     py: Python<'py>,
     m_h: f64,
@@ -138,20 +138,12 @@ pub fn impact_report<'py>(
     method: &str,
     formulation: &str,
     rtol: f64,
+    dome_radius: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use flexrig::impact::{EffectiveMass, ImpactInput, solve};
-    let m_eff = match (m_eff, gamma, m_r, m_e) {
-        (Some(m), None, None, None) => EffectiveMass::Given(m),
-        (None, Some(gamma), Some(m_r), Some(m_e)) => EffectiveMass::Prb { gamma, m_r, m_e },
-        _ => {
-            return Err(input_error(
-                "m_eff",
-                "m_eff: give m_eff, or all of gamma, m_r and m_e (m_eff = m_e + γ m_r/3), not \
-                 both"
-                    .into(),
-            ));
-        }
-    };
+    use flexrig::impact::ImpactInput;
+    // one field for the whole set, so that a vectorised call does not index it
+    let m_eff = flexrig::fronts::effective_mass(m_eff, gamma, m_r, m_e)
+        .map_err(|e| input_error("m_eff", crate::keywords(&e.to_string())))?;
     let formulation = flexrig::fronts::formulation(formulation).map_err(crate::flag_error)?;
     let method =
         flexrig::fronts::impact_method(method, formulation, rtol).map_err(crate::flag_error)?;
@@ -163,17 +155,9 @@ pub fn impact_report<'py>(
         n,
         v0,
     };
-    let (r, severity) = py
-        .detach(|| {
-            let r = solve(&input, method)?;
-            let severity = flexrig::fronts::impact_severity(&r, method, None)?;
-            Ok::<_, flexrig::Error>((r, severity))
-        })
+    let (report, _) = py
+        .detach(|| flexrig::fronts::impact_full_report(&input, method, dome_radius))
         .map_err(crate::flag_error)?;
-    let mut report = flexrig::fronts::impact_report(&r, method);
-    if let Some(s) = &severity {
-        report["severity"] = serde_json::json!(s);
-    }
     crate::convert::json_to_py(py, &report)
 }
 

@@ -1,4 +1,5 @@
-//! The model checks and tools (`flexrig fit`, `beam modal`, `beam static`, `prb`, `validate`):
+//! The model checks and tools (`flexrig fit`, `beam modal`, `beam static`, `prb`, `validate`,
+//! `bench`):
 //! the inputs checked by the same library functions as the flags ([`flexrig::fronts`]), the
 //! computation with the GIL released, and the report the command prints with `--json`.
 
@@ -151,4 +152,23 @@ pub fn validate(py: Python<'_>, quick: bool, out: PathBuf) -> PyResult<Bound<'_,
         .detach(|| flexrig::validation::run(quick, &out))
         .map_err(flag_error)?;
     json_to_py(py, &fronts::validation_report(&r))
+}
+
+/// `flexrig bench --json`: the work–precision studies (each row's error against its reference
+/// and its median run time on this machine); writes the bench_*.svg plots into `out`.
+#[pyfunction]
+#[pyo3(signature = (quick, out, size, format, dpi))]
+pub fn bench<'py>(
+    py: Python<'py>,
+    quick: bool,
+    out: PathBuf,
+    size: &str,
+    format: Vec<String>,
+    dpi: f64,
+) -> PyResult<Bound<'py, PyAny>> {
+    let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
+    let r = py
+        .detach(|| flexrig::bench::run(quick, &out, &figures))
+        .map_err(flag_error)?;
+    json_to_py(py, &fronts::bench_report(&r))
 }

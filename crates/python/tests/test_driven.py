@@ -79,3 +79,19 @@ def test_role_switch_equals_the_cli_csv_bit_for_bit(cli, tmp_path):
     # the test bed's link: the drive does not matter (docs/driven.md), prescribed exactly 1
     assert np.all(np.abs(df.ratio - 1.0) <= 1e-3)
     assert np.all(np.abs(df.ratio[df.drive == "prescribed"] - 1.0) <= 1e-6)
+
+
+@pytest.mark.parametrize(
+    "twin, defaults",
+    [(flexrig.strike, flexrig._flexrig.strike_defaults), (flexrig.spin_up, flexrig._flexrig.spin_up_defaults)],
+)
+def test_keyword_defaults_are_the_librarys(twin, defaults):
+    """The twin's defaults are the library's (the same the CLI's flags take), so a call without
+    arguments is the command without flags."""
+    import inspect
+
+    library = defaults()
+    signature = inspect.signature(twin).parameters
+    assert library and set(library) <= set(signature), sorted(set(library) - set(signature))
+    for name, value in library.items():
+        assert signature[name].default == value and type(signature[name].default) is type(value), name

@@ -31,8 +31,6 @@ TWINS = {
 CLI_ONLY = {
     "sweep merge": "joins the shard tables that `flexrig sweep --shard` runs wrote on a cluster; "
     "in Python a sweep is one call (here or on a Dask cluster) and has no shards to join",
-    "bench": "measures this machine's run times (work–precision against the scipy peer): its "
-    "numbers are timings, not results; from Python, time the twins with your own tools",
 }
 
 
@@ -106,6 +104,21 @@ def test_the_cli_only_list_names_real_commands_with_reasons(cli):
         assert len(reason) > 20
 
 
+def test_every_twin_is_compared_with_its_command(cli):
+    """The floor "the same numbers from both fronts" for every command: some test runs the
+    command through the CLI fixture (`cli.json("eta", ...)`, `cli("spin-up", ...)`) to compare
+    its twin's numbers with it."""
+    sources = "\n".join(p.read_text(encoding="utf-8") for p in Path(__file__).parent.glob("test_*.py"))
+    uncompared = []
+    for command in cli_commands(cli):
+        if command in CLI_ONLY:
+            continue
+        words = ", ".join(f'"{w}"' for w in command.split())
+        if not re.search(r"\bcli(\.json)?\(" + re.escape(words) + r"[,)]", sources):
+            uncompared.append(command)
+    assert not uncompared, f"no test compares these twins with the CLI: {uncompared}"
+
+
 # ---- the same numbers ----------------------------------------------------------------------
 
 
@@ -151,6 +164,8 @@ def without(data, *keys):
         ),
         (dict(m_eff=2.0, method="ode", formulation="indentation"),
          ["--m-eff", "2.0", "--method", "ode", "--formulation", "indentation"]),
+        (dict(m_eff=2.0, method="ode", dome_radius=0.05),
+         ["--m-eff", "2.0", "--method", "ode", "--dome-radius", "0.05"]),
     ],
 )
 @pytest.mark.parametrize("n", [1.0, 2.0])
@@ -415,6 +430,33 @@ def test_payload_and_experiment_equal_the_cli(cli, tmp_path):
     assert info.value.field == "repeats"
 
 
+def test_bench_equals_the_cli_but_for_the_timings(cli, tmp_path):
+    """The work–precision rows: the same points and errors bit for bit; the run times (and the
+    peer's run-time ratio) are this machine's at that moment, so they are only checked to be
+    run times."""
+    r = flexrig.bench(quick=True, out=tmp_path / "py")
+    expected = cli.json("bench", "--quick", "--out", tmp_path / "cli")
+    timings = ("seconds", "scipy_dop853_over_flexrig_at_1e_9", "plots")
+    same(without(r.data, *timings), without(expected, *timings))
+    assert [row["seconds"] > 0 for row in r.rows] == [True] * len(expected["rows"])
+    assert list(r.table.columns[:5]) == ["model", "method", "setting", "error", "seconds"]
+    assert r.table["evaluations"].dtype == "Int64"
+    assert {"bench_lumped.svg", "bench_beam.svg", "bench_rig.svg"} <= set(r.figures)
+    # the errors are against each study's reference: the converged rows are small
+    assert (r.table["error"] >= 0).all() and r.table["error"].min() < 1e-6
+
+
+def test_scenes_and_write_scene_equal_the_cli(cli, tmp_path):
+    listed = cli.json("scenes")["scenes"]
+    assert [(s["name"], s["summary"]) for s in listed] == [tuple(d) for d in flexrig.scene_descriptions()]
+    assert [s["name"] for s in listed] == list(flexrig.bundled_scenes())
+    cli("scenes", "--write", "cl_iron", "--out", tmp_path / "cli.toml")
+    flexrig.write_scene("cl_iron", tmp_path / "py.toml")
+    assert (tmp_path / "py.toml").read_bytes() == (tmp_path / "cli.toml").read_bytes()
+    with pytest.raises(flexrig.InputError):
+        flexrig.write_scene("cl_iron", tmp_path / "py.toml")
+
+
 def test_validate_equals_the_cli(cli, tmp_path):
     out = tmp_path / "validate"
     r = flexrig.validate(quick=True, out=out)
@@ -430,6 +472,57 @@ def test_every_public_name_is_documented_in_docs_python_md():
     # and every twin the table names exists
     for name in re.findall(r"`flexrig\.([a-z_]+)\(", text):
         assert name in flexrig.__all__, name
+
+
+def _documented_signatures(text):
+    """{name: (parameter names, whether the entry lists them all)} of each `flexrig.name(...)`
+    entry in bold (the reference's entries), parameters split at the top-level commas."""
+    entries = {}
+    for name, inside in re.findall(r"\*\*`flexrig\.([a-z_0-9]+)\((.*?)\)`", text, re.S):
+        items, depth, current = [], 0, ""
+        for ch in inside:
+            if ch in "([{":
+                depth += 1
+            elif ch in ")]}":
+                depth -= 1
+            if ch == "," and depth == 0:
+                items.append(current)
+                current = ""
+            else:
+                current += ch
+        items.append(current)
+        names, complete = [], True
+        for item in (i.strip() for i in items):
+            if item in ("", "*", "/") or item.startswith("**"):
+                continue
+            if item.endswith(("...", "…")):
+                complete = False
+                item = item.rstrip(".…").strip()
+                if not item:
+                    continue
+            names.append(item.split("=")[0].strip())
+        entries[name] = (names, complete)
+    return entries
+
+
+def test_the_reference_lists_each_functions_real_arguments():
+    """docs/python.md is kept in step with the package: every argument an entry names is an
+    argument of the function, and an entry without "…" names all of them."""
+    import inspect
+
+    text = (ROOT / "docs" / "python.md").read_text(encoding="utf-8")
+    entries = _documented_signatures(text)
+    assert {"impact", "eta", "bench", "run", "strike"} <= set(entries), sorted(entries)
+    for name, (documented, complete) in entries.items():
+        params = [
+            p.name for p in inspect.signature(getattr(flexrig, name)).parameters.values()
+            if p.kind not in (p.VAR_KEYWORD, p.VAR_POSITIONAL)
+        ]
+        stale = [d for d in documented if d not in params]
+        assert not stale, f"docs/python.md: flexrig.{name} has no argument {stale}"
+        if complete:
+            missing = [p for p in params if p not in documented]
+            assert not missing, f"docs/python.md: flexrig.{name}(...) does not list {missing}"
 
 
 def test_the_fig6_walk_through_runs_in_both_fronts(cli, tmp_path, monkeypatch):

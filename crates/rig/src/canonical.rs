@@ -2,7 +2,8 @@
 //! `flexrig validate`.
 
 use crate::geometry::OperatorGeometry;
-use crate::world::{HingeState, RapierRig};
+use crate::hinge::HingeState;
+use crate::world::RapierRig;
 
 /// Complete elliptic integral of the first kind K(k), by the arithmetic–geometric mean.
 pub fn elliptic_k(k: f64) -> f64 {

@@ -23,7 +23,8 @@ use flexrig_contact::math::{Pose, Vector};
 use flexrig_contact::{BodyKinematics, ContactCallback, DomeBlockContact};
 use rapier3d_f64::glamx::DQuat;
 
-use crate::world::{HingeState, RapierRig};
+use crate::hinge::HingeState;
+use crate::world::RapierRig;
 
 /// A hinge over one step from its synchronised state at `t0`: the angle of the velocity-Verlet
 /// step, φ(t) = φ₀ + ω₀ τ + ½ a₀ τ² with τ = t − t₀ (exact at the step's end), and the rate

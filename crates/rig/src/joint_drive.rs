@@ -26,11 +26,32 @@
 
 use flexrig_impact::ImpactError;
 use flexrig_impact::drive::{Drive, DriveCommand, Gains, Profile, TorqueProfile};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::RigError;
-use crate::scene::RobotDriveSpec;
-use crate::world::HingeState;
+use crate::hinge::HingeState;
+
+/// A motor on the robot joint, in the vocabulary of the driven scenes' `[drive]` and
+/// `[placement]` sections (`docs/driven.md`): the motor and gear, what moves it, and where the
+/// link starts. The joint angle and speed of the drive are positive towards the operator.
+///
+/// CJ: the torsion spring k_θr sits between the motor's output and the rigid link (a series
+/// elastic actuator). CL: the beam is clamped to the motor's hub.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RobotDriveSpec {
+    /// Rotor inertia J_m \[kg·m²\], gear ratio N and viscous friction c_m \[N·m·s/rad\] at the
+    /// motor shaft.
+    pub motor: flexrig_impact::drive::Motor,
+    /// A prescribed trajectory, a controller with its profile, gains and torque limit, or an
+    /// open-loop torque.
+    pub command: flexrig_impact::drive::DriveCommand,
+    /// Where the link starts: `angle` \[rad\] of joint travel before its undeformed tip touches
+    /// the operator's block hanging at the bottom of its swing (0: touching, the test bed), or
+    /// `after_ramp` with `settle` \[s\]: the commanded motion reaches the block `settle` seconds
+    /// after its ramp.
+    pub placement: flexrig_impact::drive::Placement,
+}
 
 /// Largest placement angle \[rad\]: the link starts at most a half turn from the block.
 pub const MAX_PLACEMENT_RAD: f64 = std::f64::consts::PI;

@@ -25,6 +25,7 @@ mod error;
 pub mod format_message;
 pub mod free_flight;
 pub mod geometry;
+pub mod hinge;
 pub mod joint_drive;
 pub mod limits;
 pub mod overrides;

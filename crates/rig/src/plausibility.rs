@@ -6,22 +6,8 @@
 use flexrig_contact::Materials;
 use flexrig_contact::validate::display;
 
+pub use crate::scene::Warning;
 use crate::scene::{Design, Scene, Start};
-
-/// One plausibility warning about a scene field.
-#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
-pub struct Warning {
-    /// The scene field it is about (dotted path).
-    pub field: String,
-    /// What looks wrong and what to do.
-    pub message: String,
-}
-
-impl std::fmt::Display for Warning {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}: {}", self.field, self.message)
-    }
-}
 
 fn warning(field: &str, message: String) -> Warning {
     Warning {

@@ -16,10 +16,12 @@ use crate::beam_link::{BeamLink, LinkVariant};
 use crate::coupling::{HingeMotion, TipContact};
 use crate::free_flight::{DIM, FlightSensors, FlightStep, FreeFlight, FreeHinges, SwingPolicy};
 use crate::geometry::RigGeometry;
+use crate::hinge::HingeState;
 use crate::joint_drive::{DriveFrame, DriveSummary, RotorSync};
+use crate::limits::CONTACT_TIME_FACTOR;
 use crate::scene::{Design, Scene, StopSpec};
 use crate::sensors::{Reading, Sampler, SensorSample};
-use crate::world::{HingeState, RapierRig};
+use crate::world::RapierRig;
 
 /// What a step reached (events are part of the step result).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -357,10 +359,6 @@ struct Stats {
     drive_scale: f64,
     drive_onset: Option<(f64, Option<f64>)>,
 }
-
-/// Factor of the Hertz contact duration t_c ≈ C δ_max/v0 used to size the contact step
-/// (C = 2.94 for n = 3/2, π for n = 1; 3 is close for the fitted exponents 1.8–2.0).
-pub(crate) const CONTACT_TIME_FACTOR: f64 = 3.0;
 
 impl<'s> Simulation<'s> {
     /// Builds the rig of `scene` in its initial state.

@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::RigError;
 pub use crate::free_flight::SwingPolicy;
+pub use crate::joint_drive::RobotDriveSpec;
 
 /// Compliant joint (rigid link on a torsion spring) or compliant link (flexible beam).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -183,28 +184,6 @@ pub struct RobotSpec {
     /// (the paper's test bed).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub drive: Option<RobotDriveSpec>,
-}
-
-/// A motor on the robot joint, in the vocabulary of the driven scenes' `[drive]` and
-/// `[placement]` sections (`docs/driven.md`): the motor and gear, what moves it, and where the
-/// link starts. The joint angle and speed of the drive are positive towards the operator.
-///
-/// CJ: the torsion spring k_θr sits between the motor's output and the rigid link (a series
-/// elastic actuator). CL: the beam is clamped to the motor's hub.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RobotDriveSpec {
-    /// Rotor inertia J_m \[kg·m²\], gear ratio N and viscous friction c_m \[N·m·s/rad\] at the
-    /// motor shaft.
-    pub motor: flexrig_impact::drive::Motor,
-    /// A prescribed trajectory, a controller with its profile, gains and torque limit, or an
-    /// open-loop torque.
-    pub command: flexrig_impact::drive::DriveCommand,
-    /// Where the link starts: `angle` \[rad\] of joint travel before its undeformed tip touches
-    /// the operator's block hanging at the bottom of its swing (0: touching, the test bed), or
-    /// `after_ramp` with `settle` \[s\]: the commanded motion reaches the block `settle` seconds
-    /// after its ramp.
-    pub placement: flexrig_impact::drive::Placement,
 }
 
 /// The CJ torsion spring as a scene gives it: a stiffness, or the link's own 3EI/L.
@@ -422,6 +401,22 @@ pub struct SceneFile {
     pub record: RecordSpec,
 }
 
+/// One plausibility warning about a scene field: valid, but it looks like a mistake (the
+/// checks are in [`crate::plausibility`]).
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+pub struct Warning {
+    /// The scene field it is about (dotted path).
+    pub field: String,
+    /// What looks wrong and what to do.
+    pub message: String,
+}
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.field, self.message)
+    }
+}
+
 /// A validated scene with its derived quantities.
 #[derive(Debug, Clone)]
 pub struct Scene {
@@ -439,7 +434,7 @@ pub struct Scene {
     pub torsion_spring: f64,
     /// Plausibility warnings: what is valid but looks like a mistake
     /// ([`crate::plausibility`]).
-    pub warnings: Vec<crate::plausibility::Warning>,
+    pub warnings: Vec<Warning>,
     /// The validated motor on the robot joint (`robot.drive`), if any.
     pub drive: Option<crate::joint_drive::JointDrive>,
 }

@@ -14,6 +14,7 @@ use rapier3d_f64::prelude::{
 };
 
 use crate::geometry::{OperatorGeometry, RobotGeometry};
+pub use crate::hinge::HingeState;
 
 /// A revolute joint of the world, with its axis.
 #[derive(Debug, Clone, Copy)]
@@ -37,15 +38,6 @@ impl std::fmt::Debug for RapierRig {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("RapierRig").finish_non_exhaustive()
     }
-}
-
-/// Angle and rate of a hinge.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct HingeState {
-    /// Joint angle \[rad\].
-    pub angle: f64,
-    /// Joint rate [rad/s].
-    pub rate: f64,
 }
 
 impl RapierRig {

@@ -6,7 +6,6 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexrig::Error;
-use serde_json::json;
 
 use crate::print::{line, print_json};
 
@@ -36,10 +35,7 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), Error> {
         report.scipy_dop853_over_flexrig_at_1e_9,
     );
     if args.json {
-        return print_json(
-            out,
-            &json!({ "rows": rows, "plots": files, "scipy_dop853_over_flexrig_at_1e_9": peer_ratio }),
-        );
+        return print_json(out, &flexrig::fronts::bench_report(&report));
     }
     line(
         out,

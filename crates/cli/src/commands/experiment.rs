@@ -84,6 +84,9 @@ pub fn report(
         return print_json(out, &flexrig::fronts::experiment_report(&result));
     }
     print_table(out, &result.groups, &result.ratios)?;
+    for note in &result.notes {
+        line(out, note)?;
+    }
     let figures: Vec<String> = result
         .figures
         .iter()
@@ -160,48 +163,5 @@ fn print_table(
             ),
         )?;
     }
-    for note in design_notes(groups) {
-        line(out, note)?;
-    }
-    line(out, paper_comparison(groups))
-}
-
-/// A note for each scene whose file name says one design and whose run (after `--set`) was the
-/// other.
-fn design_notes(groups: &[GroupStats]) -> Vec<String> {
-    groups
-        .iter()
-        .filter(|g| {
-            let named = &g.scene[..2.min(g.scene.len())];
-            (named == "cj" || named == "cl") && named != g.inputs.design
-        })
-        .map(|g| {
-            format!(
-                "Note: scene file {} ran as {} (the overrides set robot.design).",
-                g.scene,
-                g.inputs.design.to_uppercase()
-            )
-        })
-        .collect()
-}
-
-/// The paper's finding for comparison, only when the runs had the paper's designs and payloads
-/// (CJ and CL, 412 g on the test bed, 100 g light load); otherwise says why it does not apply.
-fn paper_comparison(groups: &[GroupStats]) -> String {
-    let as_paper = groups.iter().all(|g| {
-        let payload = if g.scene.ends_with("light_load") {
-            0.1
-        } else {
-            0.412
-        };
-        g.scene.starts_with(&g.inputs.design) && (g.inputs.payload_kg - payload).abs() < 1e-9
-    });
-    if as_paper {
-        "The paper: CL slightly below CJ with the 412 g payload, clearly below with the light load."
-            .into()
-    } else {
-        "The paper's comparison (CJ vs CL, 412 g payload, 100 g light load) does not apply: \
-         these runs changed the design or the payload."
-            .into()
-    }
+    Ok(())
 }

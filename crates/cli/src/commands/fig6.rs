@@ -7,7 +7,6 @@ use std::path::PathBuf;
 use clap::Args;
 use flexrig::Error;
 use flexrig::fig6::{DEFAULT_POINTS, Fig6Options};
-use serde_json::json;
 
 use crate::print::{line, print_json};
 
@@ -44,25 +43,7 @@ pub fn run(args: &Fig6Args, out: &mut dyn Write) -> Result<(), Error> {
         grid: args.cases.grid(),
     })?;
     if args.json {
-        let cases: Vec<_> = result
-            .curves
-            .iter()
-            .map(|c| {
-                json!({
-                    "m_h": c.case.m_h,
-                    "k_delta": c.case.k_delta,
-                    "m_e": c.case.m_e,
-                    "n": c.n,
-                    "eta_at_2_3": c.eta_at_2_3,
-                    "gamma": c.gamma,
-                    "eta": c.eta,
-                })
-            })
-            .collect();
-        return print_json(
-            out,
-            &json!({"design": result.design, "cases": cases, "csv": result.csv, "svg": result.svg}),
-        );
+        return print_json(out, &flexrig::fronts::fig6_report(&result));
     }
     let d = &result.design;
     line(

@@ -5,8 +5,7 @@ use std::io::Write;
 
 use clap::{Args, ValueEnum};
 use flexrig::Error;
-use flexrig::impact::{DEFAULT_RTOL, EffectiveMass, Formulation, ImpactInput, Method, solve};
-use serde_json::json;
+use flexrig::impact::{DEFAULT_RTOL, Formulation, ImpactInput, Method};
 
 use crate::print::{line, print_json, print_severity};
 
@@ -92,46 +91,12 @@ pub struct ImpactArgs {
 }
 
 impl ImpactArgs {
-    /// The library's input: --m-eff, or all of --gamma, --m-r and --m-e (clap refuses a mix
-    /// with --m-eff); an incomplete set names exactly the flags missing.
+    /// The library's input: --m-eff, or all of --gamma, --m-r and --m-e
+    /// ([`flexrig::fronts::effective_mass`] names the flags missing).
     pub fn input(&self) -> Result<ImpactInput, Error> {
-        let m_eff = match (self.m_eff, self.gamma, self.m_r, self.m_e) {
-            (Some(m_eff), ..) => EffectiveMass::Given(m_eff),
-            (None, Some(gamma), Some(m_r), Some(m_e)) => EffectiveMass::Prb { gamma, m_r, m_e },
-            (None, None, None, None) => {
-                return Err(Error::InvalidArgument {
-                    arg: "--m-eff".into(),
-                    value: "(missing)".into(),
-                    allowed: "give --m-eff, or all of --gamma, --m-r and --m-e".into(),
-                });
-            }
-            (None, gamma, m_r, m_e) => {
-                let given: Vec<&str> = [("--gamma", gamma), ("--m-r", m_r), ("--m-e", m_e)]
-                    .iter()
-                    .filter(|(_, v)| v.is_some())
-                    .map(|(f, _)| *f)
-                    .collect();
-                let missing: Vec<&str> = [("--gamma", gamma), ("--m-r", m_r), ("--m-e", m_e)]
-                    .iter()
-                    .filter(|(_, v)| v.is_none())
-                    .map(|(f, _)| *f)
-                    .collect();
-                return Err(Error::InvalidArgument {
-                    arg: missing.join(" and "),
-                    value: "(missing)".into(),
-                    allowed: format!(
-                        "{} {} m_eff = m_e + γ m_r/3 only with all of --gamma, --m-r and --m-e: \
-                         add {} (or give --m-eff alone)",
-                        given.join(" and "),
-                        if given.len() == 1 { "gives" } else { "give" },
-                        missing.join(" and ")
-                    ),
-                });
-            }
-        };
         Ok(ImpactInput {
             m_h: self.m_h,
-            m_eff,
+            m_eff: flexrig::fronts::effective_mass(self.m_eff, self.gamma, self.m_r, self.m_e)?,
             k_delta: self.k_delta,
             k_c: self.k_c,
             n: self.n,
@@ -154,13 +119,8 @@ impl ImpactArgs {
 
 /// Runs `flexrig impact`.
 pub fn run(args: &ImpactArgs, out: &mut dyn Write) -> Result<(), Error> {
-    let method = args.method();
-    let r = solve(&args.input()?, method)?;
-    let severity = flexrig::fronts::impact_severity(&r, method, args.dome_radius)?;
-    let mut report = flexrig::fronts::impact_report(&r, method);
-    if let Some(s) = &severity {
-        report["severity"] = json!(s);
-    }
+    let (report, severity) =
+        flexrig::fronts::impact_full_report(&args.input()?, args.method(), args.dome_radius)?;
     if args.json {
         return print_json(out, &report);
     }

@@ -5,11 +5,8 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::driven::role_switch::{
-    RoleSwitchOptions, design_name, level_name, run_with_figures as run_table,
-};
+use flexrig::driven::role_switch::{RoleSwitchOptions, design_name, run_with_figures as run_table};
 use flexrig::{CancelToken, Error};
-use serde_json::json;
 
 use crate::print::{line, print_json};
 
@@ -22,13 +19,13 @@ pub struct RoleSwitchArgs {
     pub out: PathBuf,
     /// PD loop stiffnesses κ = K_p/k_θr, comma-separated, each > 0 (the ideal position source
     /// and the torque-free rotor are always added).
-    #[arg(long, value_name = "K,...", value_delimiter = ',', default_values_t = [1e4, 1e2, 1.0, 1e-2])]
+    #[arg(long, value_name = "K,...", value_delimiter = ',', default_values_t = RoleSwitchOptions::default().kappas)]
     pub kappa: Vec<f64>,
     /// Rotor inertia J_R over the link's m_r L²/3 (> 0).
-    #[arg(long, value_name = "RATIO", default_value_t = 1.0)]
+    #[arg(long, value_name = "RATIO", default_value_t = RoleSwitchOptions::default().rotor_ratio)]
     pub rotor_ratio: f64,
     /// Damping ratio ζ of the PD loops (≥ 0).
-    #[arg(long, value_name = "ZETA", default_value_t = 0.7)]
+    #[arg(long, value_name = "ZETA", default_value_t = RoleSwitchOptions::default().damping_ratio)]
     pub damping_ratio: f64,
     /// Only the test bed's cases (leave out the Fig. 6 cases).
     #[arg(long)]
@@ -51,27 +48,7 @@ pub fn run(args: &RoleSwitchArgs, out: &mut dyn Write, cancel: &CancelToken) -> 
     };
     let r = run_table(&options, &args.out, &args.figure.options()?, cancel)?;
     if args.json {
-        let rows: Vec<_> = r
-            .rows
-            .iter()
-            .map(|row| {
-                let (drive, kappa) = level_name(&row.level);
-                json!({
-                    "case": row.case,
-                    "design": design_name(row.design),
-                    "drive": drive,
-                    "kappa": if kappa.is_finite() { json!(kappa) } else { json!(null) },
-                    "f_test_bed_n": row.f_test_bed_n,
-                    "f_driven_n": row.f_driven_n,
-                    "ratio": row.ratio,
-                    "f_switched_same_drive_n": row.f_switched_same_drive_n,
-                })
-            })
-            .collect();
-        return print_json(
-            out,
-            &json!({"rows": rows, "csv": r.csv, "svg": r.svg, "figures": r.figures}),
-        );
+        return print_json(out, &flexrig::fronts::role_switch_report(&r));
     }
     line(
         out,

@@ -10,6 +10,9 @@ use flexrig::{CancelToken, Error};
 
 use crate::print::{line, print_json};
 
+/// The flags' defaults: the library's literature case.
+const D: SpinUpOptions = SpinUpOptions::LITERATURE;
+
 /// Arguments of `flexrig spin-up` (defaults: the literature case).
 #[derive(Debug, Args)]
 pub struct SpinUpArgs {
@@ -18,40 +21,40 @@ pub struct SpinUpArgs {
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
     /// Beam length L [m].
-    #[arg(long, value_name = "M", default_value_t = 10.0)]
+    #[arg(long, value_name = "M", default_value_t = D.length)]
     pub length: f64,
     /// Cross-section area A [m²].
-    #[arg(long, value_name = "M2", default_value_t = 4e-4)]
+    #[arg(long, value_name = "M2", default_value_t = D.area)]
     pub area: f64,
     /// Second moment of area I [m⁴].
-    #[arg(long, value_name = "M4", default_value_t = 2e-7)]
+    #[arg(long, value_name = "M4", default_value_t = D.second_moment)]
     pub second_moment: f64,
     /// Young's modulus E [Pa].
-    #[arg(long, value_name = "PA", default_value_t = 7e10)]
+    #[arg(long, value_name = "PA", default_value_t = D.youngs_modulus)]
     pub youngs_modulus: f64,
     /// Density ρ [kg/m³].
-    #[arg(long, value_name = "KG_M3", default_value_t = 3000.0)]
+    #[arg(long, value_name = "KG_M3", default_value_t = D.density)]
     pub density: f64,
     /// Spin-up time T_s [s].
-    #[arg(long, value_name = "S", default_value_t = 15.0)]
+    #[arg(long, value_name = "S", default_value_t = D.t_s)]
     pub t_s: f64,
     /// Final hub speed ω_s [rad/s].
-    #[arg(long, value_name = "RAD_S", default_value_t = 6.0)]
+    #[arg(long, value_name = "RAD_S", default_value_t = D.omega_s)]
     pub omega_s: f64,
     /// FE elements (1 to 10000).
-    #[arg(long, value_name = "N", default_value_t = 16)]
+    #[arg(long, value_name = "N", default_value_t = D.elements)]
     pub elements: usize,
     /// Run length [s] (default: T_s + 5 s).
     #[arg(long, value_name = "S")]
     pub duration: Option<f64>,
     /// Reporting interval [s].
-    #[arg(long, value_name = "S", default_value_t = 0.1)]
+    #[arg(long, value_name = "S", default_value_t = D.sample_every)]
     pub sample_every: f64,
     /// Largest FE time step [s].
-    #[arg(long, value_name = "S", default_value_t = 1e-3)]
+    #[arg(long, value_name = "S", default_value_t = D.max_step)]
     pub max_step: f64,
     /// Modes of the reference and the linear model (2 to 12).
-    #[arg(long, value_name = "N", default_value_t = 7)]
+    #[arg(long, value_name = "N", default_value_t = D.modes)]
     pub modes: usize,
     /// Print JSON instead of the summary.
     #[arg(long)]

@@ -5,10 +5,10 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use flexrig::driven::LinkParams;
-use flexrig::driven::drive::{Drive, Gains, HeadSupport, Motor, Person, Placement, Profile};
-use flexrig::driven::strike::{StrikeDescription, StrikeDesign, StrikeOptions, run as run_strike};
-use flexrig::driven::{DampingSpec, Hertz};
+use flexrig::driven::drive::HeadSupport;
+use flexrig::driven::strike::{
+    StrikeDescription, StrikeDesign, StrikeFlags, StrikeOptions, run as run_strike,
+};
 use flexrig::{CancelToken, Error};
 
 use crate::print::{line, print_json};
@@ -31,32 +31,35 @@ pub enum SupportArg {
     Wall,
 }
 
+/// The flags' defaults: the library's (assets/drives/cl_free_head.toml).
+const D: StrikeFlags = StrikeFlags::DEFAULT;
+
 /// Arguments of `flexrig strike`. Without FILE the flags describe the strike (their defaults:
-/// assets/drives/cl_free_head.toml); with FILE they may not be given.
+/// assets/drives/cl_free_head.toml, [`StrikeFlags::DEFAULT`]); with FILE they may not be given.
 #[derive(Debug, Args)]
 pub struct StrikeArgs {
     /// Drive description (TOML: design, horizon_s, [link], [drive], [person], [placement]).
     #[arg(value_name = "FILE")]
     pub file: Option<PathBuf>,
     /// Link design.
-    #[arg(long, value_enum, default_value = "cl", conflicts_with = "file")]
+    #[arg(long, value_enum, default_value_t = DesignArg::of(D.design), conflicts_with = "file")]
     pub design: DesignArg,
     /// Link mass m_r [kg].
     #[arg(
         long,
         value_name = "KG",
-        default_value_t = 10.0,
+        default_value_t = D.m_r,
         conflicts_with = "file"
     )]
     pub m_r: f64,
     /// Link length L [m].
-    #[arg(long, value_name = "M", default_value_t = 1.0, conflicts_with = "file")]
+    #[arg(long, value_name = "M", default_value_t = D.length, conflicts_with = "file")]
     pub length: f64,
     /// Lateral tip stiffness k_δ [N/m].
     #[arg(
         long,
         value_name = "N_M",
-        default_value_t = 1e8,
+        default_value_t = D.k_delta,
         conflicts_with = "file"
     )]
     pub k_delta: f64,
@@ -64,7 +67,7 @@ pub struct StrikeArgs {
     #[arg(
         long,
         value_name = "KG",
-        default_value_t = 0.1,
+        default_value_t = D.m_e,
         conflicts_with = "file"
     )]
     pub m_e: f64,
@@ -72,7 +75,7 @@ pub struct StrikeArgs {
     #[arg(
         long,
         value_name = "KG_M2",
-        default_value_t = 1e-4,
+        default_value_t = D.rotor_inertia,
         conflicts_with = "file"
     )]
     pub rotor_inertia: f64,
@@ -80,7 +83,7 @@ pub struct StrikeArgs {
     #[arg(
         long,
         value_name = "N",
-        default_value_t = 50.0,
+        default_value_t = D.gear_ratio,
         conflicts_with = "file"
     )]
     pub gear_ratio: f64,
@@ -88,7 +91,7 @@ pub struct StrikeArgs {
     #[arg(
         long,
         value_name = "NMS",
-        default_value_t = 1e-5,
+        default_value_t = D.friction,
         conflicts_with = "file"
     )]
     pub friction: f64,
@@ -96,18 +99,18 @@ pub struct StrikeArgs {
     #[arg(
         long,
         value_name = "RAD_S",
-        default_value_t = 2.0,
+        default_value_t = D.speed,
         conflicts_with = "file"
     )]
     pub speed: f64,
     /// Duration of the smooth (quintic) speed ramp [s].
-    #[arg(long, value_name = "S", default_value_t = 0.5, conflicts_with = "file")]
+    #[arg(long, value_name = "S", default_value_t = D.ramp_time, conflicts_with = "file")]
     pub ramp_time: f64,
     /// PD gain on the joint angle K_p [N·m/rad].
     #[arg(
         long,
         value_name = "NM_RAD",
-        default_value_t = 500.0,
+        default_value_t = D.kp,
         conflicts_with = "file"
     )]
     pub kp: f64,
@@ -115,7 +118,7 @@ pub struct StrikeArgs {
     #[arg(
         long,
         value_name = "NMS_RAD",
-        default_value_t = 40.0,
+        default_value_t = D.kd,
         conflicts_with = "file"
     )]
     pub kd: f64,
@@ -123,7 +126,7 @@ pub struct StrikeArgs {
     #[arg(
         long,
         value_name = "NM",
-        default_value_t = 1.0,
+        default_value_t = D.torque_limit,
         conflicts_with = "file"
     )]
     pub torque_limit: f64,
@@ -131,24 +134,24 @@ pub struct StrikeArgs {
     #[arg(
         long,
         value_name = "KG",
-        default_value_t = 4.0,
+        default_value_t = D.m_h,
         conflicts_with = "file"
     )]
     pub m_h: f64,
     /// How the head is held.
-    #[arg(long, value_enum, default_value = "free", conflicts_with = "file")]
+    #[arg(long, value_enum, default_value_t = SupportArg::Free, conflicts_with = "file")]
     pub support: SupportArg,
     /// Contact stiffness k_c [N/m^n].
-    #[arg(long, value_name = "K", default_value_t = 1e8, conflicts_with = "file")]
+    #[arg(long, value_name = "K", default_value_t = D.k_c, conflicts_with = "file")]
     pub k_c: f64,
     /// Hertz exponent n.
-    #[arg(long, value_name = "N", default_value_t = 2.0, conflicts_with = "file")]
+    #[arg(long, value_name = "N", default_value_t = D.n, conflicts_with = "file")]
     pub n: f64,
     /// The person stands where the commanded motion is this long after the ramp [s].
-    #[arg(long, value_name = "S", default_value_t = 0.3, conflicts_with = "file")]
+    #[arg(long, value_name = "S", default_value_t = D.settle, conflicts_with = "file")]
     pub settle: f64,
     /// Longest wait for the link to arrive [s].
-    #[arg(long, value_name = "S", default_value_t = 5.0, conflicts_with = "file")]
+    #[arg(long, value_name = "S", default_value_t = D.horizon, conflicts_with = "file")]
     pub horizon: f64,
     /// Sample the motion every this many seconds and write strike_trace.csv into --out.
     #[arg(long, value_name = "S")]
@@ -161,57 +164,49 @@ pub struct StrikeArgs {
     pub json: bool,
 }
 
+impl DesignArg {
+    fn of(design: StrikeDesign) -> Self {
+        match design {
+            StrikeDesign::Cj => DesignArg::Cj,
+            StrikeDesign::Cl => DesignArg::Cl,
+        }
+    }
+}
+
 impl StrikeArgs {
     /// The description from FILE or from the flags (errors name the flag or the file's field).
     fn description(&self) -> Result<StrikeDescription, Error> {
         if let Some(file) = &self.file {
             return StrikeDescription::read(file);
         }
-        let flag = |arg: &str, e: flexrig::driven::ContactError| Error::InvalidArgument {
-            arg: arg.into(),
-            value: format!("{} / {}", self.k_c, self.n),
-            allowed: e.to_string(),
-        };
-        let contact = Hertz::new(self.k_c, self.n).map_err(|e| flag("--k-c/--n", e))?;
-        let motor = Motor::new(self.rotor_inertia, self.gear_ratio, self.friction)?;
-        let drive = Drive::controller(
-            motor,
-            Profile::SmoothRamp {
-                speed: self.speed,
-                ramp_time: self.ramp_time,
-            },
-            Gains::position_pd(self.kp, self.kd),
-            Some(self.torque_limit),
-        )?;
-        let d = StrikeDescription {
+        StrikeFlags {
             design: match self.design {
                 DesignArg::Cj => StrikeDesign::Cj,
                 DesignArg::Cl => StrikeDesign::Cl,
             },
-            horizon_s: self.horizon,
-            link: LinkParams {
-                m_r: self.m_r,
-                length: self.length,
-                k_delta: self.k_delta,
-                m_e: self.m_e,
+            m_r: self.m_r,
+            length: self.length,
+            k_delta: self.k_delta,
+            m_e: self.m_e,
+            rotor_inertia: self.rotor_inertia,
+            gear_ratio: self.gear_ratio,
+            friction: self.friction,
+            speed: self.speed,
+            ramp_time: self.ramp_time,
+            kp: self.kp,
+            kd: self.kd,
+            torque_limit: self.torque_limit,
+            m_h: self.m_h,
+            support: match self.support {
+                SupportArg::Free => HeadSupport::Free,
+                SupportArg::Wall => HeadSupport::Wall,
             },
-            drive,
-            person: Person {
-                m_h: self.m_h,
-                support: match self.support {
-                    SupportArg::Free => HeadSupport::Free,
-                    SupportArg::Wall => HeadSupport::Wall,
-                },
-                contact,
-                damping: DampingSpec::NONE,
-                speed: 0.0,
-            },
-            placement: Placement::AfterRamp {
-                settle: self.settle,
-            },
-        };
-        d.strike().validate()?;
-        Ok(d)
+            k_c: self.k_c,
+            n: self.n,
+            settle: self.settle,
+            horizon: self.horizon,
+        }
+        .description()
     }
 }
 

@@ -111,16 +111,7 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resul
     let bar = Bar::on_terminal("{bar:30} {pos}/{len} runs, {eta} left {msg}");
     let r = run_sweep(&request, cancel, &bar)?;
     if args.json {
-        print_json(
-            out,
-            &serde_json::json!({
-                "table": r.table,
-                "rows": r.rows,
-                "points": r.points,
-                "resumed": r.resumed,
-                "failed": r.failed,
-            }),
-        )?;
+        print_json(out, &flexrig::fronts::sweep_report(&r))?;
     } else {
         line(
             out,

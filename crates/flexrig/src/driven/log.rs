@@ -22,30 +22,9 @@ use foxglove::Encode;
 use foxglove::messages::Timestamp;
 
 use super::scene::{DrivenRun, DrivenScene, run, summary_json};
+pub use crate::mcap_log::{JointMotion, MotorTorque};
 use crate::mcap_log::{LogRates, LogTarget, PendingFile, io_of, refuse_overwrite};
 use crate::{Error, foxglove_layout};
-
-/// The joint's measured motion.
-#[derive(Debug, Clone, Encode)]
-pub struct JointMotion {
-    /// Simulation time.
-    pub timestamp: Timestamp,
-    /// Joint angle (the motor's, after the gear) \[rad\].
-    pub angle_rad: f64,
-    /// Joint speed [rad/s].
-    pub speed_rad_s: f64,
-}
-
-/// The motor's torque.
-#[derive(Debug, Clone, Encode)]
-pub struct MotorTorque {
-    /// Simulation time.
-    pub timestamp: Timestamp,
-    /// At the joint, τ_j = N τ_m [N·m].
-    pub joint_nm: f64,
-    /// At the motor shaft, τ_m [N·m].
-    pub motor_nm: f64,
-}
 
 /// The link's elastic state.
 #[derive(Debug, Clone, Encode)]

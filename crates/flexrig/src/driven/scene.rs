@@ -573,44 +573,6 @@ pub fn summary_json(s: &DrivenSummary) -> serde_json::Value {
     value
 }
 
-/// The summary quantities of a sweep's row ([`crate::study::sweep::SUMMARY_COLUMNS`]): what a
-/// driven run has of them (the test bed's step counts and energies are absent).
-pub fn sweep_values(
-    s: &DrivenSummary,
-) -> [Option<f64>; crate::study::sweep::SUMMARY_COLUMNS.len()] {
-    let mut values = [None; crate::study::sweep::SUMMARY_COLUMNS.len()];
-    let run = [
-        Some(s.peak_force_n),
-        Some(s.time_of_peak_s),
-        Some(s.impact_velocity_mps),
-        Some(s.separation_velocity_mps),
-        Some(s.onset_time_s),
-        Some(s.contact_duration_s),
-        Some(s.max_indentation_m),
-        Some(s.impulse_n_s),
-        Some(1.0),
-        Some(s.steps as f64),
-        None,
-        None,
-        None,
-        None,
-        Some(s.duration_s),
-    ];
-    values[..run.len()].copy_from_slice(&run);
-    let severity = crate::severity::severity_values(s.severity.as_ref());
-    let at = crate::study::sweep::SEVERITY_START;
-    values[at..at + severity.len()].copy_from_slice(&severity);
-    let driven = [
-        Some(s.pre_impact_deflection_m),
-        Some(s.peak_motor_torque_nm),
-        Some(s.joint_speed_at_contact_rad_s).filter(|v| v.is_finite()),
-        s.commanded_tip_speed_mps,
-    ];
-    let at = crate::study::sweep::DRIVEN_START;
-    values[at..at + driven.len()].copy_from_slice(&driven);
-    values
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -950,7 +912,7 @@ sample_rate_hz = 1e6
         let e = 0.5 * m_h * v * v;
         assert!((sev.energy_transferred_j - e).abs() <= 1e-4 * e);
         // the sweep row carries the severity and the driven columns
-        let row = sweep_values(s);
+        let row = crate::study::sweep::driven_values(s);
         let col = |name: &str| {
             let i = crate::study::sweep::SUMMARY_COLUMNS
                 .iter()
@@ -985,7 +947,7 @@ sample_rate_hz = 1e6
             "{} vs {e}",
             sev.energy_transferred_j
         );
-        let row = sweep_values(&run.summary);
+        let row = crate::study::sweep::driven_values(&run.summary);
         let hic = crate::study::sweep::SUMMARY_COLUMNS
             .iter()
             .position(|c| *c == "hic15")

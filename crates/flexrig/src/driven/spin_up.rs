@@ -47,22 +47,27 @@ pub struct SpinUpOptions {
     pub modes: usize,
 }
 
+impl SpinUpOptions {
+    /// The literature case (Kane, Ryan & Banerjee 1987): the defaults of `flexrig spin-up`.
+    pub const LITERATURE: SpinUpOptions = SpinUpOptions {
+        length: 10.0,
+        area: 4e-4,
+        second_moment: 2e-7,
+        youngs_modulus: 7e10,
+        density: 3000.0,
+        t_s: 15.0,
+        omega_s: 6.0,
+        elements: 16,
+        duration: None,
+        sample_every: 0.1,
+        max_step: 1e-3,
+        modes: 7,
+    };
+}
+
 impl Default for SpinUpOptions {
     fn default() -> Self {
-        SpinUpOptions {
-            length: 10.0,
-            area: 4e-4,
-            second_moment: 2e-7,
-            youngs_modulus: 7e10,
-            density: 3000.0,
-            t_s: 15.0,
-            omega_s: 6.0,
-            elements: 16,
-            duration: None,
-            sample_every: 0.1,
-            max_step: 1e-3,
-            modes: 7,
-        }
+        SpinUpOptions::LITERATURE
     }
 }
 

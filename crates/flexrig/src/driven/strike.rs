@@ -11,7 +11,8 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use flexrig_impact::drive::{Drive, Person, Placement};
+use flexrig_contact::{DampingSpec, Hertz};
+use flexrig_impact::drive::{Drive, Gains, HeadSupport, Motor, Person, Placement, Profile};
 use flexrig_impact::driven_cj::{CjSettings, run_driven_cj};
 use flexrig_impact::driven_cl::{ClDriveSettings, run_driven_cl};
 use flexrig_impact::{DrivenOutcome, DrivenStrike, LinkParams, TraceSample};
@@ -75,6 +76,152 @@ impl StrikeDescription {
     /// Reads, parses and checks the file at `path`.
     pub fn read(path: &Path) -> Result<StrikeDescription, Error> {
         StrikeDescription::parse(&read_text(path)?, &path.display().to_string())
+    }
+}
+
+/// A strike described by a few numbers instead of a file: the flags of `flexrig strike` and the
+/// keyword arguments of its Python twin. A position PD controller drives the joint on a smooth
+/// (quintic) speed ramp, the person stands where the commanded motion arrives `settle` seconds
+/// after the ramp, and the contact is elastic Hertz. [`StrikeFlags::DEFAULT`] is the
+/// description assets/drives/cl_free_head.toml.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StrikeFlags {
+    /// Link design (`--design`).
+    pub design: StrikeDesign,
+    /// Link mass m_r \[kg\] (`--m-r`).
+    pub m_r: f64,
+    /// Link length L \[m\] (`--length`).
+    pub length: f64,
+    /// Lateral tip stiffness k_δ \[N/m\] (`--k-delta`).
+    pub k_delta: f64,
+    /// Tip payload m_e \[kg\] (`--m-e`).
+    pub m_e: f64,
+    /// Rotor inertia at the motor shaft J_m \[kg·m²\] (`--rotor-inertia`).
+    pub rotor_inertia: f64,
+    /// Gear ratio N, > 0 (`--gear-ratio`).
+    pub gear_ratio: f64,
+    /// Viscous friction at the motor shaft \[N·m·s/rad\] (`--friction`).
+    pub friction: f64,
+    /// Commanded joint speed after the ramp \[rad/s\] (`--speed`).
+    pub speed: f64,
+    /// Duration of the smooth speed ramp \[s\] (`--ramp-time`).
+    pub ramp_time: f64,
+    /// PD gain on the joint angle K_p \[N·m/rad\] (`--kp`).
+    pub kp: f64,
+    /// PD gain on the joint speed K_d \[N·m·s/rad\] (`--kd`).
+    pub kd: f64,
+    /// Largest motor-shaft torque \[N·m\], > 0 (`--torque-limit`).
+    pub torque_limit: f64,
+    /// Head mass m_h \[kg\] (`--m-h`).
+    pub m_h: f64,
+    /// How the head is held: free or against a wall (`--support`).
+    pub support: HeadSupport,
+    /// Contact stiffness k_c \[N/mⁿ\] (`--k-c`).
+    pub k_c: f64,
+    /// Hertz exponent n (`--n`).
+    pub n: f64,
+    /// The person stands where the commanded motion is this long after the ramp \[s\]
+    /// (`--settle`).
+    pub settle: f64,
+    /// Longest wait for the link to arrive \[s\] (`--horizon`).
+    pub horizon: f64,
+}
+
+impl StrikeFlags {
+    /// The defaults of the flags: assets/drives/cl_free_head.toml (a 10 kg, 1 m CL link with a
+    /// 0.1 kg payload, geared 50:1, ramped to 2 rad/s in 0.5 s, into a free 4 kg head).
+    pub const DEFAULT: StrikeFlags = StrikeFlags {
+        design: StrikeDesign::Cl,
+        m_r: 10.0,
+        length: 1.0,
+        k_delta: 1e8,
+        m_e: 0.1,
+        rotor_inertia: 1e-4,
+        gear_ratio: 50.0,
+        friction: 1e-5,
+        speed: 2.0,
+        ramp_time: 0.5,
+        kp: 500.0,
+        kd: 40.0,
+        torque_limit: 1.0,
+        m_h: 4.0,
+        support: HeadSupport::Free,
+        k_c: 1e8,
+        n: 2.0,
+        settle: 0.3,
+        horizon: 5.0,
+    };
+
+    /// The drive description these numbers make, checked; an error names the flag
+    /// (`--k-c/--n`) or the description's field (`drive.motor.gear_ratio`).
+    pub fn description(&self) -> Result<StrikeDescription, Error> {
+        let contact = Hertz::new(self.k_c, self.n).map_err(|e| Error::InvalidArgument {
+            arg: "--k-c/--n".into(),
+            value: format!("{} / {}", self.k_c, self.n),
+            allowed: e.to_string(),
+        })?;
+        let motor = Motor::new(self.rotor_inertia, self.gear_ratio, self.friction)?;
+        let drive = Drive::controller(
+            motor,
+            Profile::SmoothRamp {
+                speed: self.speed,
+                ramp_time: self.ramp_time,
+            },
+            Gains::position_pd(self.kp, self.kd),
+            Some(self.torque_limit),
+        )?;
+        let d = StrikeDescription {
+            design: self.design,
+            horizon_s: self.horizon,
+            link: LinkParams {
+                m_r: self.m_r,
+                length: self.length,
+                k_delta: self.k_delta,
+                m_e: self.m_e,
+            },
+            drive,
+            person: Person {
+                m_h: self.m_h,
+                support: self.support,
+                contact,
+                damping: DampingSpec::NONE,
+                speed: 0.0,
+            },
+            placement: Placement::AfterRamp {
+                settle: self.settle,
+            },
+        };
+        d.strike().validate()?;
+        Ok(d)
+    }
+}
+
+impl StrikeDesign {
+    /// `cj` or `cl` as the design; an error names `flag`.
+    pub fn parse(flag: &str, word: &str) -> Result<StrikeDesign, Error> {
+        match word {
+            "cj" => Ok(StrikeDesign::Cj),
+            "cl" => Ok(StrikeDesign::Cl),
+            _ => Err(Error::InvalidArgument {
+                arg: flag.into(),
+                value: word.into(),
+                allowed: "one of cj, cl".into(),
+            }),
+        }
+    }
+}
+
+/// `free` or `wall` as the head's support (the flags' choices; a neck needs a description
+/// file); an error names `flag`.
+pub fn parse_support(flag: &str, word: &str) -> Result<HeadSupport, Error> {
+    match word {
+        "free" => Ok(HeadSupport::Free),
+        "wall" => Ok(HeadSupport::Wall),
+        _ => Err(Error::InvalidArgument {
+            arg: flag.into(),
+            value: word.into(),
+            allowed: "one of free, wall".into(),
+        }),
     }
 }
 
@@ -165,4 +312,35 @@ pub fn trace_text(trace: &[TraceSample]) -> String {
         );
     }
     text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_flags_are_the_cl_free_head_description() {
+        let file = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../assets/drives/cl_free_head.toml"
+        );
+        let from_file = StrikeDescription::read(Path::new(file)).unwrap();
+        assert_eq!(StrikeFlags::DEFAULT.description().unwrap(), from_file);
+    }
+
+    #[test]
+    fn a_bad_flag_is_named() {
+        let bad = StrikeFlags {
+            n: -1.0,
+            ..StrikeFlags::DEFAULT
+        };
+        let e = bad.description().unwrap_err().to_string();
+        assert!(e.contains("--k-c/--n"), "{e}");
+        let e = StrikeDesign::parse("--design", "cx")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("--design") && e.contains("cj, cl"), "{e}");
+        let e = parse_support("--support", "neck").unwrap_err().to_string();
+        assert!(e.contains("--support") && e.contains("free, wall"), "{e}");
+    }
 }

@@ -135,6 +135,44 @@ pub fn summary_values(
     with_link(values, link)
 }
 
+/// The summary quantities of a sweep's row ([`SUMMARY_COLUMNS`]): what a
+/// driven run has of them (the test bed's step counts and energies are absent).
+pub fn driven_values(
+    s: &crate::driven::scene::DrivenSummary,
+) -> [Option<f64>; SUMMARY_COLUMNS.len()] {
+    let mut values = [None; SUMMARY_COLUMNS.len()];
+    let run = [
+        Some(s.peak_force_n),
+        Some(s.time_of_peak_s),
+        Some(s.impact_velocity_mps),
+        Some(s.separation_velocity_mps),
+        Some(s.onset_time_s),
+        Some(s.contact_duration_s),
+        Some(s.max_indentation_m),
+        Some(s.impulse_n_s),
+        Some(1.0),
+        Some(s.steps as f64),
+        None,
+        None,
+        None,
+        None,
+        Some(s.duration_s),
+    ];
+    values[..run.len()].copy_from_slice(&run);
+    let severity = crate::severity::severity_values(s.severity.as_ref());
+    let at = SEVERITY_START;
+    values[at..at + severity.len()].copy_from_slice(&severity);
+    let driven = [
+        Some(s.pre_impact_deflection_m),
+        Some(s.peak_motor_torque_nm),
+        Some(s.joint_speed_at_contact_rad_s).filter(|v| v.is_finite()),
+        s.commanded_tip_speed_mps,
+    ];
+    let at = DRIVEN_START;
+    values[at..at + driven.len()].copy_from_slice(&driven);
+    values
+}
+
 /// A summary value as a CSV cell of `column`: a count as a whole number, anything else in
 /// Rust's shortest exponent form (`1.25e-3`), empty when absent.
 fn summary_cell(column: &str, v: Option<f64>) -> String {
@@ -320,7 +358,7 @@ impl Sweep {
             }
         };
         Ok(with_link(
-            crate::driven::scene::sweep_values(&run.summary),
+            driven_values(&run.summary),
             &crate::link::of_driven(&scene.strike.link),
         ))
     }

@@ -56,6 +56,7 @@ from ._commands import (
     ImpactReport,
     Report,
     beam_modal,
+    bench,
     beam_static,
     eta,
     eta_map,
@@ -95,6 +96,7 @@ __all__ = [
     "Report",
     "STRIKE_TRACE_COLUMNS",
     "beam_modal",
+    "bench",
     "beam_static",
     "eta",
     "eta_map",
@@ -426,6 +428,7 @@ def impact(
     method: str = "exact",
     formulation: str = "auto",
     rtol: float = DEFAULT_RTOL,
+    dome_radius: Optional[float] = None,
 ) -> Union[ImpactPeaks, ImpactReport]:
     """The peak of the lumped two-mass impact for every parameter set, as ``flexrig impact``.
 
@@ -436,7 +439,8 @@ def impact(
     closed form, Eq. 13: also ``k_o_n_per_m``, ``t_peak_s``, ``contact_duration_s``) or
     ``method="ode"`` (time integration with ``formulation`` auto, indentation or displacement
     and relative tolerance ``rtol``: also time to peak, duration, separation speed, right-hand-side
-    evaluations and steps) — an :class:`ImpactReport` with every key of ``flexrig impact --json``
+    evaluations, steps and the ``severity``, whose contact pressure takes the dome radius
+    ``dome_radius`` [m], default the paper's dome) — an :class:`ImpactReport` with every key of ``flexrig impact --json``
     (the same numbers), arrays over broadcast inputs.
 
     The exact (energy) method of ``flexrig impact``: ½ μ v0² = f²/(2 k_δ) + f δ_c/(n + 1) with
@@ -450,12 +454,12 @@ def impact(
     the sets with the GIL released; the first set out of range raises :class:`InputError` naming
     the argument and its flat index, e.g. ``m_h[3]``.
     """
-    if m_eff is None or gamma is not None or m_r is not None or m_e is not None or not (
+    if m_eff is None or gamma is not None or m_r is not None or m_e is not None or dome_radius is not None or not (
         isinstance(method, str) and method == "exact"
     ):
         return _impact_report(
             m_h, m_eff, k_delta, k_c, n, v0, gamma=gamma, m_r=m_r, m_e=m_e, method=method,
-            formulation=formulation, rtol=rtol,
+            formulation=formulation, rtol=rtol, dome_radius=dome_radius,
         )
     values = (m_h, m_eff, k_delta, k_c, n, v0)
     arrays = []
@@ -721,45 +725,6 @@ _TRACE_KEYS = (
 )
 
 
-def _strike_toml(f: Mapping[str, Any]) -> str:
-    """The drive description that ``flexrig strike``'s flags build (a controller on a smooth ramp,
-    the person placed after the ramp)."""
-    torque_limit = f["torque_limit"]
-    return f"""design = "{f['design']}"
-horizon_s = {float(f['horizon'])!r}
-[link]
-m_r = {float(f['m_r'])!r}
-length = {float(f['length'])!r}
-k_delta = {float(f['k_delta'])!r}
-m_e = {float(f['m_e'])!r}
-[drive.motor]
-rotor_inertia = {float(f['rotor_inertia'])!r}
-gear_ratio = {float(f['gear_ratio'])!r}
-friction = {float(f['friction'])!r}
-[drive.command]
-command = "controller"
-torque_limit = {float(torque_limit)!r}
-[drive.command.profile]
-profile = "smooth_ramp"
-speed = {float(f['speed'])!r}
-ramp_time = {float(f['ramp_time'])!r}
-[drive.command.gains]
-kp = {float(f['kp'])!r}
-kd = {float(f['kd'])!r}
-[person]
-m_h = {float(f['m_h'])!r}
-speed = 0.0
-[person.support]
-support = "{f['support']}"
-[person.contact]
-k = {float(f['k_c'])!r}
-n = {float(f['n'])!r}
-[placement]
-placement = "after_ramp"
-settle = {float(f['settle'])!r}
-"""
-
-
 def strike(
     file: Optional[Union[str, "os.PathLike[str]"]] = None,
     *,
@@ -796,22 +761,19 @@ def strike(
     """
     import pandas as pd
 
+    every = None if trace_every is None else float(trace_every)
+    directory = None if out is None else os.fspath(out)
     if file is not None:
         path = os.fspath(file)
         with open(path, encoding="utf-8") as fh:
             text = fh.read()
-        source = path
+        r = _flexrig.strike(text, path, every, directory)
     else:
-        if design not in ("cj", "cl"):
-            raise _input_error("design", f"invalid argument design = {design!r}: one of 'cj', 'cl'")
-        if support not in ("free", "wall"):
-            raise _input_error("support", f"invalid argument support = {support!r}: one of 'free', 'wall'")
-        text = _strike_toml(locals())
-        source = "arguments"
-    r = _flexrig.strike(
-        text, source, None if trace_every is None else float(trace_every),
-        None if out is None else os.fspath(out),
-    )
+        r = _flexrig.strike_flags(
+            design, support, float(m_r), float(length), float(k_delta), float(m_e), float(rotor_inertia),
+            float(gear_ratio), float(friction), float(speed), float(ramp_time), float(kp), float(kd),
+            float(torque_limit), float(m_h), float(k_c), float(n), float(settle), float(horizon), every, directory,
+        )
     outcome = dict(r["outcome"])
     trace = outcome.pop("trace")
     if trace_every is not None:

@@ -501,6 +501,35 @@ def validate(*, quick: bool = False, out: Optional[PathLike] = None) -> Report:
         return _report("validate", data, "cases", o)
 
 
+def bench(
+    *,
+    quick: bool = False,
+    out: Optional[PathLike] = None,
+    size: Union[str, int] = "2",
+    format: Union[str, Sequence[str]] = ("svg",),
+    dpi: float = 300.0,
+) -> Report:
+    """The work–precision studies, as ``flexrig bench`` (``quick``: fewer settings and
+    repetitions, well under a minute): the lumped impact's integrators (and the scipy peer when
+    python3 has numpy and scipy), the beam, the rig, the driven strike and the safety maps.
+    ``table``: one row per measured point — ``model``, ``method``, ``setting``, ``error`` against
+    the study's reference (the same numbers as the CLI's), ``seconds`` (median run time on this
+    machine: a timing, not a result) and ``evaluations`` (Int64, time integrations only).
+    ``data["scipy_dop853_over_flexrig_at_1e_9"]``: the peer's run time over flexrig's (absent
+    when the peer could not run). ``figures``: bench_lumped.svg, bench_beam.svg, bench_rig.svg.
+    """
+    if not isinstance(quick, (bool, np.bool_)):
+        raise _input_error("quick", f"invalid argument quick = {quick!r}: must be True or False")
+    size, formats, dpi = _figure_args(size, format, dpi)
+    with _Out(out) as o:
+        data = _flexrig.bench(bool(quick), o.path, size, formats, dpi)
+        report = _report("bench", data, "rows", o)
+    columns = ["model", "method", "setting", "error", "seconds", "evaluations"]
+    table = report.table.reindex(columns=columns)
+    table["evaluations"] = table["evaluations"].astype("Int64")
+    return Report(command="bench", data=report.data, table=table, figures=report.figures, files=report.files)
+
+
 #: The numbers of ``flexrig impact --json`` that :func:`impact` returns as arrays (or floats),
 #: beyond the method's name and formulation.
 IMPACT_FIELDS: Tuple[str, ...] = (
@@ -563,11 +592,13 @@ def impact_report(
     method: str = "exact",
     formulation: str = "auto",
     rtol: float = DEFAULT_RTOL,
+    dome_radius: Optional[float] = None,
 ) -> ImpactReport:
     """The body of :func:`flexrig.impact` for PRB masses or the analytic/ode methods."""
     method = _word("method", method)
     formulation = _word("formulation", formulation)
     rtol_f = _number("rtol", rtol)
+    dome = _number("dome_radius", dome_radius, optional=True)
     names = ["m_h", "m_eff", "gamma", "m_r", "m_e", "k_delta", "k_c", "n", "v0"]
     given = dict(zip(names, (m_h, m_eff, gamma, m_r, m_e, k_delta, k_c, n, v0)))
     for name in ("k_delta", "k_c", "n", "v0"):
@@ -596,11 +627,11 @@ def impact_report(
             reports.append(
                 _flexrig.impact_report(
                     x["m_h"], x.get("m_eff"), x.get("gamma"), x.get("m_r"), x.get("m_e"), x["k_delta"],
-                    x["k_c"], x["n"], x["v0"], method, formulation, rtol_f,
+                    x["k_c"], x["n"], x["v0"], method, formulation, rtol_f, dome,
                 )
             )
         except InputError as e:
-            if shape == () or getattr(e, "field", "") in ("method", "formulation", "rtol", "m_eff"):
+            if shape == () or getattr(e, "field", "") in ("method", "formulation", "rtol", "m_eff", "dome_radius"):
                 raise
             name = getattr(e, "field", "")
             raise _input_error(f"{name}[{i}]", str(e).replace(f"{name} =", f"{name}[{i}] =", 1)) from None

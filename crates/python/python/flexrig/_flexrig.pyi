@@ -70,8 +70,10 @@ def impact_report(
     method: str,
     formulation: str,
     rtol: float,
+    dome_radius: Optional[float] = None,
 ) -> Dict[str, Any]:
-    """``flexrig impact --json`` for one set (masses kg, k_delta N/m, k_c N/m^n, v0 m/s)."""
+    """``flexrig impact --json`` for one set (masses kg, k_delta N/m, k_c N/m^n, v0 m/s; the
+    severity's dome radius m, ode only)."""
 
 def eta(
     out: _Path, joint: str, rotor_inertia: Optional[float], method: str, tol: Optional[float],
@@ -137,6 +139,23 @@ def prb(
 
 def validate(quick: bool, out: _Path) -> Dict[str, Any]:
     """``flexrig validate --json``; writes validation.md into ``out``."""
+
+def bench(quick: bool, out: _Path, size: str, format: Sequence[str], dpi: float) -> Dict[str, Any]:
+    """``flexrig bench --json``; writes the bench_*.svg plots into ``out``."""
+
+def strike_flags(
+    design: str, support: str, m_r: float, length: float, k_delta: float, m_e: float,
+    rotor_inertia: float, gear_ratio: float, friction: float, speed: float, ramp_time: float,
+    kp: float, kd: float, torque_limit: float, m_h: float, k_c: float, n: float, settle: float,
+    horizon: float, trace_every: Optional[float], out: Optional[_Path],
+) -> Dict[str, Any]:
+    """``flexrig strike --json`` from the flags' numbers (SI units; errors name the keyword)."""
+
+def strike_defaults() -> Dict[str, Any]:
+    """The defaults of ``flexrig strike``'s flags by keyword (assets/drives/cl_free_head.toml)."""
+
+def spin_up_defaults() -> Dict[str, Any]:
+    """The defaults of ``flexrig spin-up``'s flags by keyword (the literature case)."""
 
 def safety_json(input_json: str, body_model_toml: Optional[str] = None) -> str:
     """The report of ``flexrig safety --json`` for a safety input given as JSON (see
