@@ -32,37 +32,59 @@ fn scratch_dir(name: &str) -> PathBuf {
     dir
 }
 
-const COMMANDS: [&[&str]; 22] = [
-    &["experiment"],
-    &["run"],
-    &["scenes"],
-    &["sweep"],
-    &["impact"],
-    &["fig6"],
-    &["eta"],
-    &["eta-map"],
-    &["eta-rotor"],
-    &["payload"],
-    &["fit"],
-    &["beam", "modal"],
-    &["beam", "static"],
-    &["bench"],
-    &["validate"],
-    &["prb"],
-    &["safety"],
-    &["spin-up"],
-    &["strike"],
-    &["role-switch"],
-    &["sweep", "merge"],
-    &[],
-];
+/// The subcommand names in the `Commands:` section of a help text (without `help`).
+fn subcommands(help: &str) -> Vec<String> {
+    help.lines()
+        .skip_while(|l| l.trim() != "Commands:")
+        .skip(1)
+        .take_while(|l| l.starts_with("  ") && !l.trim().is_empty())
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|name| *name != "help")
+        .map(str::to_string)
+        .collect()
+}
+
+/// Every command path of the CLI, read from its own help (`[]` is `flexrig` itself), so that a
+/// command added later is checked too.
+fn commands() -> Vec<Vec<String>> {
+    let mut found = Vec::new();
+    let mut todo: Vec<Vec<String>> = vec![Vec::new()];
+    while let Some(path) = todo.pop() {
+        let mut args: Vec<&str> = path.iter().map(String::as_str).collect();
+        args.push("--help");
+        let help = String::from_utf8(flexrig(&args).stdout).unwrap();
+        for sub in subcommands(&help) {
+            let mut next = path.clone();
+            next.push(sub);
+            todo.push(next);
+        }
+        found.push(path);
+    }
+    found
+}
 
 #[test]
 fn every_help_writes_units_in_brackets() {
     // the other styles once in use: "(kg)", ", kg.", "(degrees)"
     let paren = regex_free_units();
-    for cmd in COMMANDS {
-        let mut args: Vec<&str> = cmd.to_vec();
+    let commands = commands();
+    for expected in [
+        "safety-map",
+        "spin-up",
+        "role-switch",
+        "strike",
+        "scenes",
+        "merge",
+    ] {
+        assert!(
+            commands
+                .iter()
+                .any(|c| c.last().is_some_and(|n| n == expected)),
+            "{expected} not found in the help: {commands:?}"
+        );
+    }
+    for cmd in &commands {
+        let mut args: Vec<&str> = cmd.iter().map(String::as_str).collect();
         args.push("--help");
         let o = flexrig(&args);
         assert!(o.status.success(), "{args:?}");

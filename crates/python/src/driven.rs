@@ -4,16 +4,16 @@
 
 use std::path::PathBuf;
 
-use flexrig::driven::role_switch::{RoleSwitchOptions, run as run_role_switch};
-use flexrig::driven::spin_up::{SpinUpOptions, run as run_spin_up};
+use flexrig::driven::role_switch::{RoleSwitchOptions, run_with_figures as run_role_switch};
+use flexrig::driven::spin_up::{SpinUpOptions, run_with_figures as run_spin_up};
 use flexrig::driven::strike::{StrikeDescription, StrikeOptions, run as run_strike};
-use flexrig::{CancelToken, Error};
+use flexrig::{CancelToken, Error, fronts};
 use flexrig_impact::ImpactError;
 use pyo3::prelude::*;
 use serde::Serialize;
 
 use crate::convert::json_to_py;
-use crate::{detached, input_error, to_py};
+use crate::{detached, flag_error, input_error, to_py};
 
 /// A library error as a Python exception; a drive field's error names it (`drive.motor.gear_ratio`).
 fn py_error(e: Error) -> PyErr {
@@ -31,11 +31,12 @@ fn to_object<'py>(py: Python<'py>, value: &impl Serialize) -> PyResult<Bound<'py
     json_to_py(py, &v)
 }
 
-/// The spin-up benchmark as `flexrig spin-up` runs it; writes into `out`; returns the
-/// serialised `SpinUpResult` (a dict).
+/// The spin-up benchmark as `flexrig spin-up` runs it; writes into `out` (the figure at the
+/// printed width `size`, in `format`s, PNG at `dpi`, as `--size`, `--format`, `--dpi`); returns
+/// the serialised `SpinUpResult` (a dict).
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (out, length, area, second_moment, youngs_modulus, density, t_s, omega_s, elements, duration, sample_every, max_step, modes))]
+#[pyo3(signature = (out, length, area, second_moment, youngs_modulus, density, t_s, omega_s, elements, duration, sample_every, max_step, modes, size, format, dpi))]
 pub fn spin_up<'py>(
     py: Python<'py>,
     out: PathBuf,
@@ -51,6 +52,9 @@ pub fn spin_up<'py>(
     sample_every: f64,
     max_step: f64,
     modes: usize,
+    size: &str,
+    format: Vec<String>,
+    dpi: f64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let options = SpinUpOptions {
         length,
@@ -66,9 +70,12 @@ pub fn spin_up<'py>(
         max_step,
         modes,
     };
+    let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
     let cancel = CancelToken::new();
-    let result =
-        detached(py, &cancel, || run_spin_up(&options, &out, &cancel))?.map_err(py_error)?;
+    let result = detached(py, &cancel, || {
+        run_spin_up(&options, &out, &figures, &cancel)
+    })?
+    .map_err(py_error)?;
     to_object(py, &result)
 }
 
@@ -91,10 +98,12 @@ pub fn strike<'py>(
     to_object(py, &result)
 }
 
-/// The role-switch table as `flexrig role-switch` runs it; writes into `out`; returns
-/// (rows as a list of dicts, csv path, svg path).
+/// The role-switch table as `flexrig role-switch` runs it; writes into `out` (the figure at the
+/// printed width `size`, in `format`s, PNG at `dpi`, as `--size`, `--format`, `--dpi`); returns
+/// (rows as a list of dicts, csv path, the figures' paths).
 #[pyfunction]
-#[pyo3(signature = (out, kappa, rotor_ratio, damping_ratio, fig6))]
+#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (out, kappa, rotor_ratio, damping_ratio, fig6, size, format, dpi))]
 pub fn role_switch<'py>(
     py: Python<'py>,
     out: PathBuf,
@@ -102,15 +111,21 @@ pub fn role_switch<'py>(
     rotor_ratio: f64,
     damping_ratio: f64,
     fig6: bool,
-) -> PyResult<(Bound<'py, PyAny>, PathBuf, PathBuf)> {
+    size: &str,
+    format: Vec<String>,
+    dpi: f64,
+) -> PyResult<(Bound<'py, PyAny>, PathBuf, Vec<PathBuf>)> {
     let options = RoleSwitchOptions {
         kappas: kappa,
         rotor_ratio,
         damping_ratio,
         fig6,
     };
+    let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
     let cancel = CancelToken::new();
-    let result =
-        detached(py, &cancel, || run_role_switch(&options, &out, &cancel))?.map_err(py_error)?;
-    Ok((to_object(py, &result.rows)?, result.csv, result.svg))
+    let result = detached(py, &cancel, || {
+        run_role_switch(&options, &out, &figures, &cancel)
+    })?
+    .map_err(py_error)?;
+    Ok((to_object(py, &result.rows)?, result.csv, result.figures))
 }

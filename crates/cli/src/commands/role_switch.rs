@@ -81,7 +81,10 @@ pub fn run(args: &RoleSwitchArgs, out: &mut dyn Write, cancel: &CancelToken) -> 
     let mut header = format!("{:<52} {:>3} {:>11}", "case", "", "test bed[N]");
     header.push_str(&format!(" {:>9}", "prescr."));
     for k in &options.kappas {
-        header.push_str(&format!(" {:>9}", format!("κ={k:e}")));
+        header.push_str(&format!(
+            " {:>9}",
+            format!("κ={}", flexrig::output::display_number(*k))
+        ));
     }
     header.push_str(&format!(" {:>9}", "free"));
     line(out, header)?;
