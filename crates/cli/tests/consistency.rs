@@ -348,3 +348,88 @@ fn prb_names_its_model_load_angle_and_payload_ratios() {
     assert_eq!(v["load_angle_deg"], 90.0);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn ranges_in_messages_carry_their_unit_and_no_exponent_of_zero() {
+    let dir = scratch_dir("units");
+    let out = dir.to_str().unwrap();
+    let cases: [(&[&str], &[&str]); 3] = [
+        // a link mass given in grams: the range in kg and the conversion
+        (
+            &["fig6", "--m-r", "51000", "--out", out],
+            &[
+                "--m-r",
+                "must lie in [0.001, 10000] kg",
+                "did you give grams? 51000 g is 51 kg",
+            ],
+        ),
+        (
+            &[
+                "impact",
+                "--m-h",
+                "4",
+                "--m-eff",
+                "3",
+                "--k-delta",
+                "1e8",
+                "--k-c",
+                "1e8",
+                "--n",
+                "1",
+                "--v0",
+                "2",
+                "--damping",
+                "hunt-crossley",
+                "--restitution",
+                "2",
+            ],
+            &["--restitution", "must lie in [0, 1]"],
+        ),
+        (
+            &[
+                "beam",
+                "static",
+                "--length",
+                "0.3",
+                "--youngs",
+                "7e10",
+                "--width",
+                "0.01",
+                "--thickness",
+                "0.001",
+                "--tip-load",
+                "1",
+                "--tip-mass",
+                "-1",
+            ],
+            &["--tip-mass", "must lie in [0, 1e6] kg"],
+        ),
+    ];
+    for (args, expected) in cases {
+        let o = flexrig(args);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {stderr}");
+        for e in expected {
+            assert!(stderr.contains(e), "{args:?}: '{e}' not in {stderr}");
+        }
+        assert!(!stderr.contains("0e0"), "{args:?}: {stderr}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn list_defaults_show_as_the_lists_they_are() {
+    // a comma-separated list's default in the help reads as one would type it
+    for (cmd, default) in [
+        (&["eta-map"][..], "[default: 4,1000]"),
+        (&["fig6"][..], "[default: 1e8,200]"),
+        (&["eta-rotor"][..], "[default: 1,2]"),
+        (&["role-switch"][..], "[default: 10000,100,1,0.01]"),
+    ] {
+        let mut args = cmd.to_vec();
+        args.push("--help");
+        let help = String::from_utf8(flexrig(&args).stdout).unwrap();
+        assert!(help.contains(default), "{cmd:?}: {default} not in\n{help}");
+        assert!(!help.contains("[default: 4 1000]"), "{cmd:?}\n{help}");
+    }
+}

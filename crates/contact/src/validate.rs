@@ -86,7 +86,12 @@ pub fn unit_of(field: &str) -> &'static str {
 
 /// "must lie in [lo, hi] unit" with the bounds as [`display`] writes them (no `0e0`).
 pub fn interval(field: &str, lo: f64, hi: f64) -> String {
-    let unit = unit_of(field);
+    interval_in(unit_of(field), lo, hi)
+}
+
+/// "must lie in [lo, hi] unit" for a quantity in `unit` ("" for none), the bounds as
+/// [`display`] writes them.
+pub fn interval_in(unit: &str, lo: f64, hi: f64) -> String {
     let unit = match unit {
         "" => String::new(),
         "°" => " degrees".to_string(),
@@ -99,8 +104,13 @@ pub fn interval(field: &str, lo: f64, hi: f64) -> String {
 /// are asked for (its thousandth lies in the range), a mass in grams, an angle in degrees
 /// where radians are asked for, or the reverse. Empty when none fits.
 pub fn unit_hint(field: &str, value: f64, lo: f64, hi: f64) -> String {
+    unit_hint_in(unit_of(field), value, lo, hi)
+}
+
+/// [`unit_hint`] for a quantity in `unit` (m, kg, Pa; empty for the others).
+pub fn unit_hint_in(unit: &str, value: f64, lo: f64, hi: f64) -> String {
     let fits = |x: f64| x.is_finite() && (lo..=hi).contains(&x);
-    match unit_of(field) {
+    match unit {
         "m" if fits(value / 1000.0) => format!(
             " (did you give millimetres? {} mm is {} m)",
             display(value),

@@ -22,7 +22,12 @@ pub struct RoleSwitchArgs {
     pub out: PathBuf,
     /// PD loop stiffnesses κ = K_p/k_θr, comma-separated, each > 0 (the ideal position source
     /// and the torque-free rotor are always added).
-    #[arg(long, value_name = "K,...", value_delimiter = ',', default_values_t = [1e4, 1e2, 1.0, 1e-2])]
+    #[arg(
+        long,
+        value_name = "K,...",
+        value_delimiter = ',',
+        default_value = "10000,100,1,0.01"
+    )]
     pub kappa: Vec<f64>,
     /// Rotor inertia J_R over the link's m_r L²/3 (> 0).
     #[arg(long, value_name = "RATIO", default_value_t = 1.0)]
