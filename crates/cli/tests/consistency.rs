@@ -423,3 +423,18 @@ fn list_defaults_show_as_the_lists_they_are() {
         assert!(!help.contains("[default: 4 1000]"), "{cmd:?}\n{help}");
     }
 }
+
+#[test]
+fn a_scene_whose_design_was_set_is_named_by_the_design_that_ran() {
+    let o = flexrig(&["run", "cj_aluminium", "--set", "robot.design=cl"]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let first = stdout.lines().next().unwrap_or_default();
+    assert_eq!(
+        first, "scene cl_aluminium (scene cj_aluminium, design set to CL)",
+        "{stdout}"
+    );
+    let o = flexrig(&["run", "cj_aluminium"]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(stdout.lines().next(), Some("scene cj_aluminium (CJ)"), "{stdout}");
+}
