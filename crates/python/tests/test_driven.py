@@ -79,3 +79,22 @@ def test_role_switch_equals_the_cli_csv_bit_for_bit(cli, tmp_path):
     # the test bed's link: the drive does not matter (docs/driven.md), prescribed exactly 1
     assert np.all(np.abs(df.ratio - 1.0) <= 1e-3)
     assert np.all(np.abs(df.ratio[df.drive == "prescribed"] - 1.0) <= 1e-6)
+
+
+def test_spin_up_and_role_switch_take_the_figure_flags(cli, tmp_path):
+    # the same figure as the CLI's at one column, in SVG and PNG
+    args = ["--omega-s", "4", "--duration", "4", "--elements", "4", "--modes", "3"]
+    cli("spin-up", "--out", tmp_path / "cli", *args, "--size", "1", "--format", "svg,png")
+    df = flexrig.spin_up(
+        omega_s=4.0, duration=4.0, elements=4, modes=3, out=tmp_path / "py", size=1, format=["svg", "png"]
+    )
+    assert sorted(Path(f).name for f in df.attrs["figures"]) == ["spin_up.png", "spin_up.svg"]
+    svg = (tmp_path / "py" / "spin_up.svg").read_text()
+    assert svg == (tmp_path / "cli" / "spin_up.svg").read_text()
+    assert 'width="3.5in"' in svg
+    cli("role-switch", "--no-fig6", "--kappa", "1", "--out", tmp_path / "cli", "--format", "pdf")
+    df = flexrig.role_switch(no_fig6=True, kappa=[1.0], out=tmp_path / "py", format="pdf")
+    assert [Path(f).name for f in df.attrs["figures"]] == ["role_switch.pdf"]
+    assert (tmp_path / "py" / "role_switch.pdf").stat().st_size > 0
+    with pytest.raises(flexrig.InputError, match="size"):
+        flexrig.spin_up(size="9 feet")
