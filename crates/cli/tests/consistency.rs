@@ -436,5 +436,9 @@ fn a_scene_whose_design_was_set_is_named_by_the_design_that_ran() {
     );
     let o = flexrig(&["run", "cj_aluminium"]);
     let stdout = String::from_utf8_lossy(&o.stdout);
-    assert_eq!(stdout.lines().next(), Some("scene cj_aluminium (CJ)"), "{stdout}");
+    assert_eq!(
+        stdout.lines().next(),
+        Some("scene cj_aluminium (CJ)"),
+        "{stdout}"
+    );
 }
