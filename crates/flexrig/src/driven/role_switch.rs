@@ -242,7 +242,7 @@ mod tests {
         for (i, case) in fig6_cases(2.0).unwrap().iter().enumerate() {
             let limit = 0.1 + 0.1 * i as f64;
             for design in [Design::Cj, Design::Cl] {
-                let mut level = |level, ratio| RoleRow {
+                let level = |level, ratio| RoleRow {
                     case: case.label.clone(),
                     design,
                     level,
