@@ -59,7 +59,8 @@ pub enum Command {
     Bench(commands::bench::BenchArgs),
     /// Run the verification suite against every reference; writes validation.md.
     Validate(commands::validate::ValidateArgs),
-    /// Check the Pseudo-Rigid-Body model (γ, K_Θ) against the corotational FE beam.
+    /// Check the Pseudo-Rigid-Body model (γ, K_Θ) against the large-deflection FE beam (ANCF or
+    /// corotational).
     Prb(commands::prb::PrbArgs),
     /// Permissible speed near a body region (ISO/TS 15066): the standard's formula, the energy
     /// method and the simulated impact side by side.

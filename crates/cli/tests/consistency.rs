@@ -32,37 +32,59 @@ fn scratch_dir(name: &str) -> PathBuf {
     dir
 }
 
-const COMMANDS: [&[&str]; 22] = [
-    &["experiment"],
-    &["run"],
-    &["scenes"],
-    &["sweep"],
-    &["impact"],
-    &["fig6"],
-    &["eta"],
-    &["eta-map"],
-    &["eta-rotor"],
-    &["payload"],
-    &["fit"],
-    &["beam", "modal"],
-    &["beam", "static"],
-    &["bench"],
-    &["validate"],
-    &["prb"],
-    &["safety"],
-    &["spin-up"],
-    &["strike"],
-    &["role-switch"],
-    &["sweep", "merge"],
-    &[],
-];
+/// The subcommand names in the `Commands:` section of a help text (without `help`).
+fn subcommands(help: &str) -> Vec<String> {
+    help.lines()
+        .skip_while(|l| l.trim() != "Commands:")
+        .skip(1)
+        .take_while(|l| l.starts_with("  ") && !l.trim().is_empty())
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|name| *name != "help")
+        .map(str::to_string)
+        .collect()
+}
+
+/// Every command path of the CLI, read from its own help (`[]` is `flexrig` itself), so that a
+/// command added later is checked too.
+fn commands() -> Vec<Vec<String>> {
+    let mut found = Vec::new();
+    let mut todo: Vec<Vec<String>> = vec![Vec::new()];
+    while let Some(path) = todo.pop() {
+        let mut args: Vec<&str> = path.iter().map(String::as_str).collect();
+        args.push("--help");
+        let help = String::from_utf8(flexrig(&args).stdout).unwrap();
+        for sub in subcommands(&help) {
+            let mut next = path.clone();
+            next.push(sub);
+            todo.push(next);
+        }
+        found.push(path);
+    }
+    found
+}
 
 #[test]
 fn every_help_writes_units_in_brackets() {
     // the other styles once in use: "(kg)", ", kg.", "(degrees)"
     let paren = regex_free_units();
-    for cmd in COMMANDS {
-        let mut args: Vec<&str> = cmd.to_vec();
+    let commands = commands();
+    for expected in [
+        "safety-map",
+        "spin-up",
+        "role-switch",
+        "strike",
+        "scenes",
+        "merge",
+    ] {
+        assert!(
+            commands
+                .iter()
+                .any(|c| c.last().is_some_and(|n| n == expected)),
+            "{expected} not found in the help: {commands:?}"
+        );
+    }
+    for cmd in &commands {
+        let mut args: Vec<&str> = cmd.iter().map(String::as_str).collect();
         args.push("--help");
         let o = flexrig(&args);
         assert!(o.status.success(), "{args:?}");
@@ -325,4 +347,98 @@ fn prb_names_its_model_load_angle_and_payload_ratios() {
     let v = json(&["prb", "--elements", "8", "--out", out, "--json"]);
     assert_eq!(v["load_angle_deg"], 90.0);
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn ranges_in_messages_carry_their_unit_and_no_exponent_of_zero() {
+    let dir = scratch_dir("units");
+    let out = dir.to_str().unwrap();
+    let cases: [(&[&str], &[&str]); 3] = [
+        // a link mass given in grams: the range in kg and the conversion
+        (
+            &["fig6", "--m-r", "51000", "--out", out],
+            &[
+                "--m-r",
+                "must lie in [0.001, 10000] kg",
+                "did you give grams? 51000 g is 51 kg",
+            ],
+        ),
+        (
+            &[
+                "eta",
+                "--damping",
+                "hunt-crossley",
+                "--restitution",
+                "2",
+                "--out",
+                out,
+            ],
+            &["--restitution", "must lie in [0, 1]"],
+        ),
+        (
+            &[
+                "beam",
+                "static",
+                "--length",
+                "0.3",
+                "--youngs",
+                "7e10",
+                "--width",
+                "0.01",
+                "--thickness",
+                "0.001",
+                "--tip-load",
+                "1",
+                "--tip-mass",
+                "-1",
+            ],
+            &["--tip-mass", "must lie in [0, 1e6] kg"],
+        ),
+    ];
+    for (args, expected) in cases {
+        let o = flexrig(args);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {stderr}");
+        for e in expected {
+            assert!(stderr.contains(e), "{args:?}: '{e}' not in {stderr}");
+        }
+        assert!(!stderr.contains("0e0"), "{args:?}: {stderr}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn list_defaults_show_as_the_lists_they_are() {
+    // a comma-separated list's default in the help reads as one would type it
+    for (cmd, default) in [
+        (&["eta-map"][..], "[default: 4,1000]"),
+        (&["fig6"][..], "[default: 1e8,200]"),
+        (&["eta-rotor"][..], "[default: 1,2]"),
+        (&["role-switch"][..], "[default: 10000,100,1,0.01]"),
+    ] {
+        let mut args = cmd.to_vec();
+        args.push("--help");
+        let help = String::from_utf8(flexrig(&args).stdout).unwrap();
+        assert!(help.contains(default), "{cmd:?}: {default} not in\n{help}");
+        assert!(!help.contains("[default: 4 1000]"), "{cmd:?}\n{help}");
+    }
+}
+
+#[test]
+fn a_scene_whose_design_was_set_is_named_by_the_design_that_ran() {
+    let o = flexrig(&["run", "cj_aluminium", "--set", "robot.design=cl"]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let first = stdout.lines().next().unwrap_or_default();
+    assert_eq!(
+        first, "scene cl_aluminium (scene cj_aluminium, design set to CL)",
+        "{stdout}"
+    );
+    let o = flexrig(&["run", "cj_aluminium"]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        stdout.lines().next(),
+        Some("scene cj_aluminium (CJ)"),
+        "{stdout}"
+    );
 }

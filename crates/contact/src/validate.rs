@@ -15,6 +15,45 @@ pub fn display(value: f64) -> String {
     }
 }
 
+/// A power of ten `v` as `10` with its exponent in superscript digits, e.g. `10⁻⁵`.
+pub fn decade_label(v: f64) -> String {
+    let exponent = v.log10().round() as i64;
+    let digits: String = exponent
+        .to_string()
+        .chars()
+        .map(|c| match c {
+            '-' => '⁻',
+            '0' => '⁰',
+            '1' => '¹',
+            '2' => '²',
+            '3' => '³',
+            '4' => '⁴',
+            '5' => '⁵',
+            '6' => '⁶',
+            '7' => '⁷',
+            '8' => '⁸',
+            _ => '⁹',
+        })
+        .collect();
+    format!("10{digits}")
+}
+
+/// A number `v` as a reader writes it in a label: `10ᵏ` or `m·10ᵏ` (mantissa to 6 significant
+/// digits), e.g. `10⁸`, `2·10²`.
+pub fn sci_label(v: f64) -> String {
+    let decade = 10f64.powf(v.log10().floor());
+    let mantissa = v / decade;
+    if (mantissa - 1.0).abs() < 1e-9 {
+        decade_label(decade)
+    } else {
+        format!(
+            "{}·{}",
+            (mantissa * 1e5).round() / 1e5,
+            decade_label(decade)
+        )
+    }
+}
+
 /// The unit of a field, read from the suffix of its name (`payload_kg` → "kg",
 /// `youngs_modulus_pa` → "Pa"); empty when the name carries none.
 pub fn unit_of(field: &str) -> &'static str {
@@ -47,7 +86,12 @@ pub fn unit_of(field: &str) -> &'static str {
 
 /// "must lie in [lo, hi] unit" with the bounds as [`display`] writes them (no `0e0`).
 pub fn interval(field: &str, lo: f64, hi: f64) -> String {
-    let unit = unit_of(field);
+    interval_in(unit_of(field), lo, hi)
+}
+
+/// "must lie in [lo, hi] unit" for a quantity in `unit` ("" for none), the bounds as
+/// [`display`] writes them.
+pub fn interval_in(unit: &str, lo: f64, hi: f64) -> String {
     let unit = match unit {
         "" => String::new(),
         "°" => " degrees".to_string(),
@@ -60,8 +104,13 @@ pub fn interval(field: &str, lo: f64, hi: f64) -> String {
 /// are asked for (its thousandth lies in the range), a mass in grams, an angle in degrees
 /// where radians are asked for, or the reverse. Empty when none fits.
 pub fn unit_hint(field: &str, value: f64, lo: f64, hi: f64) -> String {
+    unit_hint_in(unit_of(field), value, lo, hi)
+}
+
+/// [`unit_hint`] for a quantity in `unit` (m, kg, Pa; empty for the others).
+pub fn unit_hint_in(unit: &str, value: f64, lo: f64, hi: f64) -> String {
     let fits = |x: f64| x.is_finite() && (lo..=hi).contains(&x);
-    match unit_of(field) {
+    match unit {
         "m" if fits(value / 1000.0) => format!(
             " (did you give millimetres? {} mm is {} m)",
             display(value),

@@ -77,15 +77,15 @@ fn invalid(arg: &str, value: impl ToString, allowed: &str) -> Error {
 impl BeamInput {
     /// Checks every number against its range (the error names the flag).
     pub fn check_ranges(&self) -> Result<(), Error> {
-        range_arg("--length", self.length, 1e-4, 1e3)?;
-        range_arg("--youngs", self.youngs, 1e3, 1e13)?;
+        range_arg("--length", self.length, 1e-4, 1e3, "m")?;
+        range_arg("--youngs", self.youngs, 1e3, 1e13, "Pa")?;
         if let Some(density) = self.density {
-            range_arg("--density", density, 1e-3, 1e6)?;
+            range_arg("--density", density, 1e-3, 1e6, "kg/m³")?;
         }
-        range_arg("--width", self.width, 1e-6, 10.0)?;
-        range_arg("--thickness", self.thickness, 1e-7, 10.0)?;
-        range_arg("--tip-mass", self.tip_mass, 0.0, 1e6)?;
-        range_arg("--k-theta", self.k_theta, 0.0, 1e12)?;
+        range_arg("--width", self.width, 1e-6, 10.0, "m")?;
+        range_arg("--thickness", self.thickness, 1e-7, 10.0, "m")?;
+        range_arg("--tip-mass", self.tip_mass, 0.0, 1e6, "kg")?;
+        range_arg("--k-theta", self.k_theta, 0.0, 1e12, "N·m/rad")?;
         if self.elements == 0 || self.elements > flexrig_beam::model::MAX_ELEMENTS {
             return Err(invalid(
                 "--elements",
@@ -274,8 +274,8 @@ fn stress_of(beam: &BeamInput, load: &TipLoad, nodes: &[(f64, f64, f64)]) -> Str
 impl TipLoad {
     /// Checks the load and the number of increments (the error names the flag).
     pub fn validate(&self) -> Result<(), Error> {
-        range_arg("--tip-load", self.force, -1e12, 1e12)?;
-        range_arg("--tip-moment", self.moment, -1e12, 1e12)?;
+        range_arg("--tip-load", self.force, -1e12, 1e12, "N")?;
+        range_arg("--tip-moment", self.moment, -1e12, 1e12, "N·m")?;
         if self.load_steps == 0 || self.load_steps > 1_000_000 {
             return Err(invalid(
                 "--load-steps",
@@ -433,7 +433,7 @@ pub fn static_warnings(
 /// Checks a yield strength \[Pa\] (`--yield-strength`), in [1e3, 1e11].
 pub fn check_yield_strength(yield_strength: Option<f64>) -> Result<(), Error> {
     if let Some(y) = yield_strength {
-        range_arg("--yield-strength", y, 1e3, 1e11)?;
+        range_arg("--yield-strength", y, 1e3, 1e11, "Pa")?;
     }
     Ok(())
 }

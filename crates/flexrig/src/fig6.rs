@@ -54,19 +54,19 @@ pub const MAX_VALUES: usize = 4;
 /// and the range.
 pub fn check_design(design: &Fig6Design) -> Result<(), Error> {
     use crate::output::range_arg;
-    range_arg("--m-r", design.m_r, M_R_RANGE.0, M_R_RANGE.1)?;
-    range_arg("--k-c", design.k_c, K_C_RANGE.0, K_C_RANGE.1)?;
-    range_arg("--v0", design.v0, V0_RANGE.0, V0_RANGE.1)?;
+    range_arg("--m-r", design.m_r, M_R_RANGE.0, M_R_RANGE.1, "kg")?;
+    range_arg("--k-c", design.k_c, K_C_RANGE.0, K_C_RANGE.1, "N/mⁿ")?;
+    range_arg("--v0", design.v0, V0_RANGE.0, V0_RANGE.1, "m/s")?;
     Ok(())
 }
 
 /// Checks the varied values (one to [`MAX_VALUES`] of each, in range, none twice); the error
 /// names the flag (`--m-h`, `--k-delta`, `--m-e`).
 pub fn check_grid(grid: &Fig6Grid) -> Result<(), Error> {
-    for (flag, values, (lo, hi)) in [
-        ("--m-h", &grid.m_h, M_H_RANGE),
-        ("--k-delta", &grid.k_delta, K_DELTA_RANGE),
-        ("--m-e", &grid.m_e, M_E_RANGE),
+    for (flag, values, (lo, hi), unit) in [
+        ("--m-h", &grid.m_h, M_H_RANGE, "kg"),
+        ("--k-delta", &grid.k_delta, K_DELTA_RANGE, "N/m"),
+        ("--m-e", &grid.m_e, M_E_RANGE, "kg"),
     ] {
         if values.is_empty() || values.len() > MAX_VALUES {
             return Err(Error::InvalidArgument {
@@ -76,7 +76,7 @@ pub fn check_grid(grid: &Fig6Grid) -> Result<(), Error> {
             });
         }
         for (i, &v) in values.iter().enumerate() {
-            crate::output::range_arg(flag, v, lo, hi)?;
+            crate::output::range_arg(flag, v, lo, hi, unit)?;
             if values[..i].contains(&v) {
                 return Err(Error::InvalidArgument {
                     arg: flag.into(),

@@ -44,6 +44,46 @@ pub struct PlotAxes {
     pub accel_mps2: Option<ValueRange>,
 }
 
+/// The value axes of a driven log's contact plots; `None` leaves an axis to the viewer's
+/// autoscale.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct DrivenAxes {
+    /// Contact force plot \[N\].
+    pub force_n: Option<ValueRange>,
+    /// Indentation plot \[mm\] (negative: the gap).
+    pub indentation_mm: Option<ValueRange>,
+    /// Tip deflection plot \[mm\].
+    pub tip_deflection_mm: Option<ValueRange>,
+}
+
+/// The contact plots' value axes of a driven run over `window`, from its samples at `time_s`
+/// \[s\] of the contact force \[N\], the indentation \[m\] and the tip deflection \[m\]: each over
+/// its range in the window (the force from zero) with room above for its one-row legend, so
+/// that the floating legend covers no curve.
+pub fn driven_axes(
+    time_s: &[f64],
+    force_n: &[f64],
+    indentation_m: &[f64],
+    tip_deflection_m: &[f64],
+    window: TimeWindow,
+) -> DrivenAxes {
+    let range = |values: &[f64], scale: f64| {
+        let (lo, hi) = time_s
+            .iter()
+            .zip(values)
+            .filter(|(t, v)| **t >= window.start_s && **t <= window.end_s && v.is_finite())
+            .fold((0.0_f64, 0.0_f64), |(lo, hi), (_, v)| {
+                (lo.min(scale * v), hi.max(scale * v))
+            });
+        with_legend_room(lo, hi, 1)
+    };
+    DrivenAxes {
+        force_n: range(force_n, 1.0).map(|r| ValueRange { min: 0.0, ..r }),
+        indentation_mm: range(indentation_m, 1e3),
+        tip_deflection_mm: range(tip_deflection_m, 1e3),
+    }
+}
+
 /// Fraction of a plot's height the floating legend takes per row of series (with its padding,
 /// at the panel heights of the layout's plots): the value axis is raised by that much so the
 /// curves stay below the legend.
@@ -64,13 +104,15 @@ fn with_legend_room(lo: f64, hi: f64, rows: usize) -> Option<ValueRange> {
             -nice_ceil(-x)
         }
     };
+    let min = if lo < 0.0 {
+        round(lo - 0.04 * span)
+    } else {
+        lo
+    };
+    // the top from the rounded bottom: the band of the legend stays free of values
     Some(ValueRange {
-        min: if lo < 0.0 {
-            round(lo - 0.04 * span)
-        } else {
-            lo
-        },
-        max: round(lo + span / (1.0 - covered)),
+        min,
+        max: round(min + (hi - min) / (1.0 - covered)),
     })
 }
 
@@ -229,13 +271,14 @@ pub fn window_around(start_s: f64, end_s: f64) -> TimeWindow {
     }
 }
 
-/// Writes [`driven_for_log`]`(window, commanded)` beside the driven run's `log`, atomically.
+/// Writes [`driven_for_log`]`(window, commanded, axes)` beside the driven run's `log`, atomically.
 pub fn write_driven_beside(
     log: &Path,
     window: Option<TimeWindow>,
     commanded: bool,
+    axes: DrivenAxes,
 ) -> Result<(), Error> {
-    let text = serde_json::to_string_pretty(&driven_for_log(window, commanded))
+    let text = serde_json::to_string_pretty(&driven_for_log(window, commanded, axes))
         .expect("a layout built from json! values serialises");
     crate::output::write_atomic(&path_beside(log), format!("{text}\n").as_bytes())
 }
@@ -244,8 +287,8 @@ pub fn write_driven_beside(
 /// left, over the whole run: the joint's angle and speed (commanded and actual; the commanded
 /// series only when `commanded`) and the motor's torque at the joint with the link's moment; on
 /// the right, over the contact `window` (synced): the contact force, the indentation and the
-/// tip deflection.
-pub fn driven_for_log(window: Option<TimeWindow>, commanded: bool) -> Value {
+/// tip deflection, on the value `axes` (see [`driven_axes`]).
+pub fn driven_for_log(window: Option<TimeWindow>, commanded: bool, axes: DrivenAxes) -> Value {
     let pair = |topic: &str, field: &str, what: &str, unit: &str| {
         let mut paths = Vec::new();
         if commanded {
@@ -298,7 +341,7 @@ pub fn driven_for_log(window: Option<TimeWindow>, commanded: bool) -> Value {
         "Contact force",
         vec![series("/contact.force_n", "contact force [N]", SENSOR, 2.0)],
         window,
-        None,
+        axes.force_n,
     );
     let indentation = plot(
         "Indentation",
@@ -309,7 +352,7 @@ pub fn driven_for_log(window: Option<TimeWindow>, commanded: bool) -> Value {
             2.0,
         )],
         window,
-        None,
+        axes.indentation_mm,
     );
     let deflection = plot(
         "Tip deflection",
@@ -320,7 +363,7 @@ pub fn driven_for_log(window: Option<TimeWindow>, commanded: bool) -> Value {
             2.0,
         )],
         window,
-        None,
+        axes.tip_deflection_mm,
     );
     json!({
         "configById": {
@@ -484,6 +527,55 @@ fn layout([force, indentation, third]: [Value; 3]) -> Value {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn driven_contact_plots_keep_their_curves_below_the_legend() {
+        // a half-sine pulse of 2 ms from 1 ms, the gap closing before it, the tip bent back
+        let t: Vec<f64> = (0..=400).map(|i| 1e-5 * f64::from(i)).collect();
+        let pulse = |t: f64| {
+            if (1e-3..=3e-3).contains(&t) {
+                (std::f64::consts::PI * (t - 1e-3) / 2e-3).sin()
+            } else {
+                0.0
+            }
+        };
+        let force: Vec<f64> = t.iter().map(|&t| 3500.0 * pulse(t)).collect();
+        let indentation: Vec<f64> = t
+            .iter()
+            .map(|&t| {
+                if t < 1e-3 {
+                    2.0 * (t - 1e-3)
+                } else {
+                    6e-3 * pulse(t)
+                }
+            })
+            .collect();
+        let deflection: Vec<f64> = t.iter().map(|&t| -2.9e-6 * pulse(t)).collect();
+        let window = window_around(1e-3, 3e-3);
+        let axes = driven_axes(&t, &force, &indentation, &deflection, window);
+        let covered = LEGEND_ROW + 0.04;
+        // (lowest value, highest value) in the window, as plotted
+        for (axis, lo, hi) in [
+            (axes.force_n, 0.0, 3500.0),
+            (axes.indentation_mm, 2e3 * (window.start_s - 1e-3), 6.0),
+            (axes.tip_deflection_mm, -2.9e-3, 0.0),
+        ] {
+            let r = axis.unwrap();
+            assert!(r.min <= lo + 1e-12 && r.max > hi, "{r:?} for [{lo}, {hi}]");
+            // the legend's band at the top holds no value
+            let top_free = (r.max - hi) / (r.max - r.min);
+            assert!(top_free >= covered - 1e-12, "{r:?}: {top_free}");
+        }
+        assert_eq!(axes.force_n.unwrap().min, 0.0);
+        let layout = driven_for_log(Some(window), true, axes);
+        let force = &layout["configById"]["Plot!force"];
+        assert_eq!(force["maxYValue"], json!(axes.force_n.unwrap().max));
+        let deflection = &layout["configById"]["Plot!deflection"];
+        assert_eq!(
+            deflection["minYValue"],
+            json!(axes.tip_deflection_mm.unwrap().min)
+        );
+    }
 
     #[test]
     fn the_bundled_layout_file_is_the_generated_one() {

@@ -102,14 +102,10 @@ pub fn damping_spec(
     c_max: Option<f64>,
     depth: Option<f64>,
 ) -> Result<DampingSpec, Error> {
-    let in_range = |arg: &str, value: Option<f64>, lo: f64, hi: f64, what: &str| {
+    let in_range = |arg: &str, value: Option<f64>, lo: f64, hi: f64, unit: &str, what: &str| {
         let v = value
             .ok_or_else(|| invalid("--damping", model.name(), format!("needs {arg} ({what})")))?;
-        if v.is_finite() && (lo..=hi).contains(&v) {
-            Ok(v)
-        } else {
-            Err(invalid(arg, v, format!("must lie in [{lo:e}, {hi:e}]")))
-        }
+        crate::output::range_arg(arg, v, lo, hi, unit)
     };
     let stray = |arg: &str, value: Option<f64>, with: &str| match value {
         Some(v) => Err(invalid(
@@ -130,14 +126,14 @@ pub fn damping_spec(
         stray("--c-max", c_max, "adams-impact")?;
         stray("--depth", depth, "adams-impact")?;
     }
-    let e = || in_range("--restitution", restitution, 0.0, 1.0, "e in [0, 1]");
+    let e = || in_range("--restitution", restitution, 0.0, 1.0, "", "e in [0, 1]");
     Ok(match model {
         DampingModel::None => DampingSpec::NONE,
         DampingModel::HuntCrossley => DampingSpec::HuntCrossley { restitution: e()? },
         DampingModel::LankaraniNikravesh => DampingSpec::LankaraniNikravesh { restitution: e()? },
         DampingModel::AdamsImpact => DampingSpec::AdamsImpact {
-            c_max_n_s_per_m: in_range("--c-max", c_max, 0.0, 1e9, "N·s/m")?,
-            depth_m: in_range("--depth", depth, 1e-9, 1.0, "m")?,
+            c_max_n_s_per_m: in_range("--c-max", c_max, 0.0, 1e9, "N·s/m", "N·s/m")?,
+            depth_m: in_range("--depth", depth, 1e-9, 1.0, "m", "m")?,
         },
     })
 }

@@ -54,21 +54,21 @@ pub struct ImpactInput {
 impl ImpactInput {
     /// The validated impact model (errors name the flag, the value and the allowed range).
     pub fn model(&self) -> Result<ImpactModel, Error> {
-        let mass = |flag: &str, v: f64| range_arg(flag, v, MASS.0, MASS.1);
+        let mass = |flag: &str, v: f64| range_arg(flag, v, MASS.0, MASS.1, "kg");
         let m_h = mass("--m-h", self.m_h)?;
         let m_eff = match self.m_eff {
             EffectiveMass::Given(m_eff) => mass("--m-eff", m_eff)?,
             EffectiveMass::Prb { gamma, m_r, m_e } => PrbLink::new(
                 in_left_open("--gamma", gamma, 0.0, 1.0)?,
                 mass("--m-r", m_r)?,
-                range_arg("--m-e", m_e, 0.0, MASS.1)?,
+                range_arg("--m-e", m_e, 0.0, MASS.1, "kg")?,
             )?
             .effective_mass(),
         };
-        let k_delta = range_arg("--k-delta", self.k_delta, STIFFNESS.0, STIFFNESS.1)?;
-        let k_c = range_arg("--k-c", self.k_c, STIFFNESS.0, STIFFNESS.1)?;
+        let k_delta = range_arg("--k-delta", self.k_delta, STIFFNESS.0, STIFFNESS.1, "N/m")?;
+        let k_c = range_arg("--k-c", self.k_c, STIFFNESS.0, STIFFNESS.1, "N/mⁿ")?;
         let n = in_left_open("--n", self.n, 0.0, flexrig_contact::MAX_EXPONENT)?;
-        let v0 = range_arg("--v0", self.v0, SPEED.0, SPEED.1)?;
+        let v0 = range_arg("--v0", self.v0, SPEED.0, SPEED.1, "m/s")?;
         let spring = SeriesCompliance::new(k_delta, Hertz::new(k_c, n)?)?;
         Ok(ImpactModel::new(m_h, m_eff, spring, v0)?)
     }
@@ -212,7 +212,7 @@ pub fn severity(
     dome_radius_m: Option<f64>,
 ) -> Result<crate::severity::Severity, Error> {
     let radius = match dome_radius_m {
-        Some(r) => range_arg("--dome-radius", r, 1e-6, 10.0)?,
+        Some(r) => range_arg("--dome-radius", r, 1e-6, 10.0, "m")?,
         None => crate::severity::paper_dome_radius_m()?,
     };
     let options = OdeOptions::new(rtol).map_err(|_| Error::InvalidArgument {

@@ -196,6 +196,20 @@ pub struct McapRecorder<W: Write + Seek> {
     deformation_scale: f64,
     /// The link is the FE beam (CL), whose deflection the 3D view exaggerates.
     flexible_link: bool,
+    /// What the simulation clock counts from, for its label ("the release", …).
+    clock_origin: &'static str,
+}
+
+/// What time 0 of a run starting with `start` is, in words: the release, the first contact
+/// (a run started at the contact) or the start of the motion (an operator already moving, or a
+/// driven robot's start).
+pub fn clock_origin(start: &flexrig_rig::scene::Start) -> &'static str {
+    use flexrig_rig::scene::Start;
+    match start {
+        Start::Release { .. } => "the release",
+        Start::Contact { .. } => "the first contact",
+        Start::Moving { .. } => "the start",
+    }
 }
 
 /// The factor on the FE beam's displacements in the 3D view by default: the CL link of the
@@ -671,6 +685,7 @@ impl<W: Write + Seek> McapRecorder<W> {
             rates: LogRates::DECIMATED,
             deformation_scale: DEFAULT_DEFORMATION_SCALE,
             flexible_link: f.robot.design == flexrig_rig::scene::Design::Cl,
+            clock_origin: clock_origin(&f.operator.start),
         })
     }
 
@@ -883,7 +898,11 @@ impl<W: Write + Seek> McapRecorder<W> {
             texts: vec![TextPrimitive {
                 color: color(0.15, 0.15, 0.15),
                 ..label(
-                    format!("t = {:.2} ms of simulation (from the release)", f.t * 1e3),
+                    format!(
+                        "t = {:.2} ms of simulation (from {})",
+                        f.t * 1e3,
+                        self.clock_origin
+                    ),
                     CLOCK_AT,
                 )
             }],

@@ -121,16 +121,22 @@ pub fn non_negative_arg(flag: &str, value: f64) -> Result<f64, Error> {
     Ok(flexrig_contact::validate::non_negative(flag, value)?)
 }
 
-/// A command-line number that must lie in the physical range [lo, hi] (the error names the flag,
-/// the value and the range).
-pub fn range_arg(flag: &str, value: f64, lo: f64, hi: f64) -> Result<f64, Error> {
+/// A command-line number in `unit` ("" for a ratio) that must lie in the physical range
+/// [lo, hi] (the error names the flag, the value, the range with its unit and, for a length,
+/// mass or modulus that looks given in mm, g or GPa/MPa, the conversion).
+pub fn range_arg(flag: &str, value: f64, lo: f64, hi: f64, unit: &str) -> Result<f64, Error> {
+    use flexrig_contact::validate::{display, interval_in, unit_hint_in};
     if value.is_finite() && value >= lo && value <= hi {
         Ok(value)
     } else {
         Err(Error::InvalidArgument {
             arg: flag.into(),
-            value: flexrig_contact::validate::display(value),
-            allowed: format!("must lie in [{lo:e}, {hi:e}]"),
+            value: display(value),
+            allowed: format!(
+                "{}{}",
+                interval_in(unit, lo, hi),
+                unit_hint_in(unit, value, lo, hi)
+            ),
         })
     }
 }

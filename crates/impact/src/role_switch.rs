@@ -156,15 +156,18 @@ pub fn test_bed_cases() -> Result<Vec<RoleCase>, ImpactError> {
     ])
 }
 
-/// The Fig. 6 design cases (m_r = 10 kg, L = 1 m, k_c = 1e8, v0 = 2 m/s) with exponent `n`.
+/// The Fig. 6 design cases (m_r = 10 kg, L = 1 m, k_c = 1e8 N/m, v0 = 2 m/s) with exponent `n`,
+/// labelled as a reader writes them ("k_δ = 10⁸ N/m").
 pub fn fig6_cases(n: f64) -> Result<Vec<RoleCase>, ImpactError> {
     flexrig_lumped::fig6::cases()
         .iter()
         .map(|c| {
             Ok(RoleCase {
                 label: format!(
-                    "Fig. 6: m_h {} kg, k_δ {:e} N/m, m_e {} kg, n {n}",
-                    c.m_h, c.k_delta, c.m_e
+                    "Fig. 6: m_h = {} kg, k_δ = {} N/m, m_e = {} kg, n = {n}",
+                    c.m_h,
+                    flexrig_contact::validate::sci_label(c.k_delta),
+                    c.m_e
                 ),
                 link: LinkParams {
                     m_r: flexrig_lumped::fig6::M_R,

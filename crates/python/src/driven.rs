@@ -4,12 +4,12 @@
 
 use std::path::PathBuf;
 
-use flexrig::driven::role_switch::{RoleSwitchOptions, run as run_role_switch};
-use flexrig::driven::spin_up::{SpinUpOptions, run as run_spin_up};
+use flexrig::driven::role_switch::{RoleSwitchOptions, run_with_figures as run_role_switch};
+use flexrig::driven::spin_up::{SpinUpOptions, run_with_figures as run_spin_up};
 use flexrig::driven::strike::{
     StrikeDescription, StrikeDesign, StrikeFlags, StrikeOptions, parse_support, run as run_strike,
 };
-use flexrig::{CancelToken, Error};
+use flexrig::{CancelToken, Error, fronts};
 use flexrig_impact::ImpactError;
 use pyo3::prelude::*;
 use serde::Serialize;
@@ -33,11 +33,12 @@ fn to_object<'py>(py: Python<'py>, value: &impl Serialize) -> PyResult<Bound<'py
     json_to_py(py, &v)
 }
 
-/// The spin-up benchmark as `flexrig spin-up` runs it; writes into `out`; returns the
-/// serialised `SpinUpResult` (a dict).
+/// The spin-up benchmark as `flexrig spin-up` runs it; writes into `out` (the figure at the
+/// printed width `size`, in `format`s, PNG at `dpi`, as `--size`, `--format`, `--dpi`); returns
+/// the serialised `SpinUpResult` (a dict).
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (out, length, area, second_moment, youngs_modulus, density, t_s, omega_s, elements, duration, sample_every, max_step, modes))]
+#[pyo3(signature = (out, length, area, second_moment, youngs_modulus, density, t_s, omega_s, elements, duration, sample_every, max_step, modes, size, format, dpi))]
 pub fn spin_up<'py>(
     py: Python<'py>,
     out: PathBuf,
@@ -53,6 +54,9 @@ pub fn spin_up<'py>(
     sample_every: f64,
     max_step: f64,
     modes: usize,
+    size: &str,
+    format: Vec<String>,
+    dpi: f64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let options = SpinUpOptions {
         length,
@@ -68,9 +72,12 @@ pub fn spin_up<'py>(
         max_step,
         modes,
     };
+    let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
     let cancel = CancelToken::new();
-    let result =
-        detached(py, &cancel, || run_spin_up(&options, &out, &cancel))?.map_err(py_error)?;
+    let result = detached(py, &cancel, || {
+        run_spin_up(&options, &out, &figures, &cancel)
+    })?
+    .map_err(py_error)?;
     to_object(py, &result)
 }
 
@@ -186,10 +193,12 @@ pub fn spin_up_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     json_to_py(py, &v)
 }
 
-/// The role-switch table as `flexrig role-switch` runs it; writes into `out`; returns
-/// (rows as a list of dicts, csv path, svg path).
+/// The role-switch table as `flexrig role-switch` runs it; writes into `out` (the figure at the
+/// printed width `size`, in `format`s, PNG at `dpi`, as `--size`, `--format`, `--dpi`); returns
+/// (rows as a list of dicts, csv path, the figures' paths).
 #[pyfunction]
-#[pyo3(signature = (out, kappa, rotor_ratio, damping_ratio, fig6))]
+#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (out, kappa, rotor_ratio, damping_ratio, fig6, size, format, dpi))]
 pub fn role_switch<'py>(
     py: Python<'py>,
     out: PathBuf,
@@ -197,15 +206,21 @@ pub fn role_switch<'py>(
     rotor_ratio: f64,
     damping_ratio: f64,
     fig6: bool,
-) -> PyResult<(Bound<'py, PyAny>, PathBuf, PathBuf)> {
+    size: &str,
+    format: Vec<String>,
+    dpi: f64,
+) -> PyResult<(Bound<'py, PyAny>, PathBuf, Vec<PathBuf>)> {
     let options = RoleSwitchOptions {
         kappas: kappa,
         rotor_ratio,
         damping_ratio,
         fig6,
     };
+    let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
     let cancel = CancelToken::new();
-    let result =
-        detached(py, &cancel, || run_role_switch(&options, &out, &cancel))?.map_err(py_error)?;
-    Ok((to_object(py, &result.rows)?, result.csv, result.svg))
+    let result = detached(py, &cancel, || {
+        run_role_switch(&options, &out, &figures, &cancel)
+    })?
+    .map_err(py_error)?;
+    Ok((to_object(py, &result.rows)?, result.csv, result.figures))
 }

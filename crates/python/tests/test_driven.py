@@ -95,3 +95,22 @@ def test_keyword_defaults_are_the_librarys(twin, defaults):
     assert library and set(library) <= set(signature), sorted(set(library) - set(signature))
     for name, value in library.items():
         assert signature[name].default == value and type(signature[name].default) is type(value), name
+
+
+def test_spin_up_and_role_switch_take_the_figure_flags(cli, tmp_path):
+    # the same figure as the CLI's at one column, in SVG and PNG
+    args = ["--omega-s", "4", "--duration", "4", "--elements", "4", "--modes", "3"]
+    cli("spin-up", "--out", tmp_path / "cli", *args, "--size", "1", "--format", "svg,png")
+    df = flexrig.spin_up(
+        omega_s=4.0, duration=4.0, elements=4, modes=3, out=tmp_path / "py", size=1, format=["svg", "png"]
+    )
+    assert sorted(Path(f).name for f in df.attrs["figures"]) == ["spin_up.png", "spin_up.svg"]
+    svg = (tmp_path / "py" / "spin_up.svg").read_text()
+    assert svg == (tmp_path / "cli" / "spin_up.svg").read_text()
+    assert 'width="3.5in"' in svg
+    cli("role-switch", "--no-fig6", "--kappa", "1", "--out", tmp_path / "cli", "--format", "pdf")
+    df = flexrig.role_switch(no_fig6=True, kappa=[1.0], out=tmp_path / "py", format="pdf")
+    assert [Path(f).name for f in df.attrs["figures"]] == ["role_switch.pdf"]
+    assert (tmp_path / "py" / "role_switch.pdf").stat().st_size > 0
+    with pytest.raises(flexrig.InputError, match="size"):
+        flexrig.spin_up(size="9 feet")

@@ -18,7 +18,12 @@ pub struct EtaMapArgs {
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
     /// Head masses m_h [kg], comma-separated (one map each).
-    #[arg(long = "m-h", value_name = "KG,...", value_delimiter = ',', default_values_t = flexrig::fig6::Fig6Grid::paper().m_h)]
+    #[arg(
+        long = "m-h",
+        value_name = "KG,...",
+        value_delimiter = ',',
+        default_value = "4,1000"
+    )]
     pub m_h: Vec<f64>,
     /// Hertz exponent n (1 to 3).
     #[arg(long, value_name = "N", default_value_t = 2.0)]

@@ -26,7 +26,12 @@ pub struct EtaRotorArgs {
     #[arg(long, value_name = "N", default_value_t = 21)]
     pub points: usize,
     /// Hertz exponents n, comma-separated (1 to 3 each).
-    #[arg(long, value_name = "N,...", value_delimiter = ',', default_values_t = [1.0, 2.0])]
+    #[arg(
+        long,
+        value_name = "N,...",
+        value_delimiter = ',',
+        default_value = "1,2"
+    )]
     pub n: Vec<f64>,
     /// Tolerance of the force's linear hold per step (1e-10 to 0.1).
     #[arg(long, value_name = "TOL", default_value_t = 1e-6)]

@@ -39,14 +39,29 @@ impl DesignArgs {
 #[derive(Debug, Args)]
 pub struct CaseArgs {
     /// Human masses m_h [kg], comma-separated (1 to 4 values, each in [1e-3, 1e6]).
-    #[arg(long = "m-h", value_name = "KG,...", value_delimiter = ',', default_values_t = Fig6Grid::paper().m_h)]
+    #[arg(
+        long = "m-h",
+        value_name = "KG,...",
+        value_delimiter = ',',
+        default_value = "4,1000"
+    )]
     pub m_h: Vec<f64>,
     /// Link lateral stiffnesses k_δ [N/m], comma-separated (1 to 4 values, each in
     /// [1e-3, 1e13]).
-    #[arg(long = "k-delta", value_name = "N_PER_M,...", value_delimiter = ',', default_values_t = Fig6Grid::paper().k_delta)]
+    #[arg(
+        long = "k-delta",
+        value_name = "N_PER_M,...",
+        value_delimiter = ',',
+        default_value = "1e8,200"
+    )]
     pub k_delta: Vec<f64>,
     /// Payloads m_e [kg], comma-separated (1 to 4 values, each in [1e-6, 1e4]).
-    #[arg(long = "m-e", value_name = "KG,...", value_delimiter = ',', default_values_t = Fig6Grid::paper().m_e)]
+    #[arg(
+        long = "m-e",
+        value_name = "KG,...",
+        value_delimiter = ',',
+        default_value = "0.1,10"
+    )]
     pub m_e: Vec<f64>,
 }
 

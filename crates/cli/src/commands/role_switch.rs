@@ -19,7 +19,12 @@ pub struct RoleSwitchArgs {
     pub out: PathBuf,
     /// PD loop stiffnesses κ = K_p/k_θr, comma-separated, each > 0 (the ideal position source
     /// and the torque-free rotor are always added).
-    #[arg(long, value_name = "K,...", value_delimiter = ',', default_values_t = RoleSwitchOptions::default().kappas)]
+    #[arg(
+        long,
+        value_name = "K,...",
+        value_delimiter = ',',
+        default_value = "10000,100,1,0.01"
+    )]
     pub kappa: Vec<f64>,
     /// Rotor inertia J_R over the link's m_r L²/3 (> 0).
     #[arg(long, value_name = "RATIO", default_value_t = RoleSwitchOptions::default().rotor_ratio)]
@@ -58,7 +63,10 @@ pub fn run(args: &RoleSwitchArgs, out: &mut dyn Write, cancel: &CancelToken) -> 
     let mut header = format!("{:<52} {:>3} {:>11}", "case", "", "test bed[N]");
     header.push_str(&format!(" {:>9}", "prescr."));
     for k in &options.kappas {
-        header.push_str(&format!(" {:>9}", format!("κ={k:e}")));
+        header.push_str(&format!(
+            " {:>9}",
+            format!("κ={}", flexrig::output::display_number(*k))
+        ));
     }
     header.push_str(&format!(" {:>9}", "free"));
     line(out, header)?;

@@ -74,7 +74,13 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
         SceneRun::Rig(s, link) => (s, link),
         SceneRun::Driven(d, link) => return print_driven(out, args, &d.summary, link),
     };
-    line(out, format!("scene {} ({})", s.scene, s.design))?;
+    // a `cj_`/`cl_` name whose design was overridden is named by the design that ran
+    let name = flexrig::mcap_log::name_as_run(&s.scene, s.design);
+    if name == s.scene {
+        line(out, format!("scene {} ({})", s.scene, s.design))?;
+    } else {
+        line(out, format!("scene {name}"))?;
+    }
     if let Some(path) = &args.out {
         line(out, format!("  log                 {}", path.display()))?;
     }

@@ -33,8 +33,8 @@ pub enum MapMethodArg {
 #[command(allow_negative_numbers = true)]
 pub struct SafetyMapArgs {
     /// The x axis: PARAM=START:STOP:COUNT[:log] (both ends included) or PARAM=V1,V2,…, with
-    /// PARAM one of m-e (payload, kg), m-r (link mass, kg), k-delta (link stiffness, N/m), ei
-    /// (bending stiffness, N·m², with --length), k-c (contact stiffness, N/mⁿ); or the body
+    /// PARAM one of m-e (payload [kg]), m-r (link mass [kg]), k-delta (link stiffness [N/m]), ei
+    /// (bending stiffness [N·m²], with --length), k-c (contact stiffness [N/mⁿ]); or the body
     /// region: region=all or region=chest,abdomen,… (each cell with its region's limits).
     #[arg(long, value_name = "PARAM=RANGE", default_value = "m-e=0.01:5:30:log")]
     pub x: String,
@@ -55,17 +55,17 @@ pub struct SafetyMapArgs {
     /// Contact kind.
     #[arg(long, value_enum, default_value = "transient")]
     pub contact: ContactArg,
-    /// Link mass m_r (kg), unless an axis.
+    /// Link mass m_r [kg], unless an axis.
     #[arg(long = "m-r", value_name = "KG")]
     pub m_r: Option<f64>,
-    /// Payload m_e (kg), unless an axis.
+    /// Payload m_e [kg], unless an axis.
     #[arg(long = "m-e", value_name = "KG")]
     pub m_e: Option<f64>,
-    /// Link lateral stiffness k_δ (N/m), unless an axis (default: a rigid link, lumped methods
+    /// Link lateral stiffness k_δ [N/m], unless an axis (default: a rigid link, lumped methods
     /// only).
     #[arg(long = "k-delta", value_name = "N_PER_M")]
     pub k_delta: Option<f64>,
-    /// Link length L (m): converts an EI axis to k_δ = 3EI/L³ and sets the simulated beam.
+    /// Link length L [m]: converts an EI axis to k_δ = 3EI/L³ and sets the simulated beam.
     #[arg(long, value_name = "M", default_value_t = 1.0)]
     pub length: f64,
     /// The contact law and the contact-area model.
@@ -78,7 +78,7 @@ pub struct SafetyMapArgs {
     /// arriving at v) or a free hub (with --rotor-inertia).
     #[arg(long, value_enum, default_value = "held")]
     pub joint: JointArg,
-    /// Rotor inertia J_R of the free hub, kg·m² (with --joint free-hub).
+    /// Rotor inertia J_R of the free hub [kg·m²] (with --joint free-hub).
     #[arg(long, value_name = "KG_M2")]
     pub rotor_inertia: Option<f64>,
     /// Tolerance of the CL's modal integrator (simulation; 1e-10 to 1e-3).
@@ -87,7 +87,7 @@ pub struct SafetyMapArgs {
     /// Relative tolerance of the root search on the speed (simulation; 1e-13 to 1e-4).
     #[arg(long = "root-rtol", value_name = "RTOL", default_value_t = 1e-6)]
     pub root_rtol: f64,
-    /// A speed (m/s) to outline on the figure: the cells that permit it.
+    /// A speed [m/s] to outline on the figure: the cells that permit it.
     #[arg(long, value_name = "M_PER_S")]
     pub speed: Option<f64>,
     /// A body-model TOML file in the format of assets/safety/iso_ts_15066_2016.toml.

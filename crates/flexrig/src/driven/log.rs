@@ -361,6 +361,25 @@ pub fn run_logged(scene: &DrivenScene, target: &LogTarget<'_>) -> Result<DrivenR
         let c = r.outcome.contact;
         foxglove_layout::window_around(c.onset_s, c.onset_s + c.duration_s)
     });
-    foxglove_layout::write_driven_beside(path, window, scene.strike.drive.profile().is_some())?;
+    // the contact plots' value axes leave room for their legends above the curves
+    let axes = match (&outcome, window) {
+        (Ok(r), Some(w)) => {
+            let t = &r.traces;
+            foxglove_layout::driven_axes(
+                &t.time_s,
+                &t.force_n,
+                &t.indentation_m,
+                &t.tip_deflection_m,
+                w,
+            )
+        }
+        _ => foxglove_layout::DrivenAxes::default(),
+    };
+    foxglove_layout::write_driven_beside(
+        path,
+        window,
+        scene.strike.drive.profile().is_some(),
+        axes,
+    )?;
     outcome
 }

@@ -223,8 +223,62 @@ fn figure(rows: &[RoleRow], options: &RoleSwitchOptions, width_pt: f64) -> Resul
             y_desc: "peak-force ratio, driven / test bed",
             x_log: true,
             markers: true,
+            reference_band: false,
         },
         &panels,
         width_pt,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plots::inspect::{min_text_pt, printed_width, texts};
+
+    /// Rows of the Fig. 6 cases with n = 2 whose ratio falls from 1 (stiff drive) to `limit`
+    /// (torque-free), the same for CJ and CL.
+    fn rows(options: &RoleSwitchOptions) -> Vec<RoleRow> {
+        let mut rows = Vec::new();
+        for (i, case) in fig6_cases(2.0).unwrap().iter().enumerate() {
+            let limit = 0.1 + 0.1 * i as f64;
+            for design in [Design::Cj, Design::Cl] {
+                let level = |level, ratio| RoleRow {
+                    case: case.label.clone(),
+                    design,
+                    level,
+                    f_test_bed_n: 1000.0,
+                    f_driven_n: 1000.0 * ratio,
+                    ratio,
+                    f_switched_same_drive_n: 1000.0 * ratio,
+                };
+                rows.push(level(DriveLevel::Prescribed, 1.0));
+                for &kappa in &options.kappas {
+                    let ratio = limit + (1.0 - limit) * kappa / (1.0 + kappa);
+                    rows.push(level(DriveLevel::Pd { kappa }, ratio));
+                }
+                rows.push(level(DriveLevel::TorqueFree, limit));
+            }
+        }
+        rows
+    }
+
+    #[test]
+    fn the_legend_names_each_case_once_as_a_reader_writes_it() {
+        let options = RoleSwitchOptions::default();
+        for width in [252.0, 504.0] {
+            let svg = figure(&rows(&options), &options, width).unwrap();
+            assert!((printed_width(&svg).unwrap().0 - width / 72.0).abs() < 1e-9);
+            assert!(min_text_pt(&svg).unwrap() >= 8.0 - 1e-3);
+            // wrapped legend lines joined again
+            let text = texts(&svg).join(" ");
+            // both panels show the same cases: one legend below them
+            let entry = "k_δ = 10⁸ N/m, m_e = 0.1 kg, n = 2";
+            assert_eq!(text.matches(entry).count(), 2, "{text}");
+            assert_eq!(text.matches("dashed: the limit").count(), 1, "{text}");
+            for code in ["1e8", "2e2", "1e-", "n 2", "m_h 4"] {
+                assert!(!text.contains(code), "'{code}' in\n{text}");
+            }
+            assert!(text.contains("2·10² N/m"), "{text}");
+        }
+    }
 }

@@ -240,8 +240,9 @@ pub fn csv(r: &SpinUpResult) -> String {
     text
 }
 
-/// The FE and reference tip deflections over time at the printed width `width_pt` \[pt\]
-/// (the linear model is in the CSV only: it diverges). Every label from the inputs that ran.
+/// The FE and reference tip deflections over time at the printed width `width_pt` \[pt\], the
+/// reference a pale band under the FE line (the linear model is in the CSV only: it diverges).
+/// Every label from the inputs that ran.
 fn figure(r: &SpinUpResult, width_pt: f64) -> Result<String, String> {
     use crate::output::display_number as n;
     let series = |label: String, y: &[f64]| Curve {
@@ -263,20 +264,22 @@ fn figure(r: &SpinUpResult, width_pt: f64) -> Result<String, String> {
             y_desc: "tip deflection [m]",
             x_log: false,
             markers: false,
+            reference_band: true,
         },
         &[CurvePanel {
             title: format!(
                 "FE against the reference: largest difference {} % of the largest deflection",
                 n(significant(100.0 * r.fe_error_of_max, 2))
             ),
+            // the reference first: a wide pale band under the thin FE line
             curves: vec![
-                series(
-                    format!("finite elements, {} corotational elements", o.elements),
-                    &r.fe,
-                ),
                 series(
                     format!("reference (elastica, {} modes)", o.modes),
                     &r.reference,
+                ),
+                series(
+                    format!("finite elements, {} corotational elements", o.elements),
+                    &r.fe,
                 ),
             ],
         }],

@@ -2,7 +2,9 @@
 //! and one linear y scale, x linear or logarithmic (whole decades), each curve a line with
 //! markers in its own colour and marker (as in the work–precision figures), its large-x limit,
 //! if given, a dashed line in the same colour, the legend (wrapped to the panel) below each
-//! panel. Laid out in points with the figures' text sizes (at least 8 pt).
+//! panel, or once below all panels when every panel has the same curves. Optionally the first
+//! curve of each panel is a reference drawn as a wide pale band under the others, so that a curve
+//! lying on it stays visible. Laid out in points with the figures' text sizes (at least 8 pt).
 
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::{DefaultFormatting, Ranged};
@@ -49,6 +51,9 @@ pub struct CurveAxes<'a> {
     pub x_log: bool,
     /// Markers at every point (for a few computed points; off for a dense time series).
     pub markers: bool,
+    /// The first curve of each panel is a reference: drawn as a wide pale band under the other
+    /// curves, which are drawn thin on top (a computed curve on its reference stays visible).
+    pub reference_band: bool,
 }
 
 /// Height of the plotting part of a panel \[pt\].
@@ -64,6 +69,36 @@ const LEGEND_X: i32 = 8;
 const LEGEND_SAMPLE: i32 = 20;
 /// The note under a legend with dashed limits.
 const LIMIT_NOTE: &str = "dashed: the limit at large x, in the curve's colour";
+/// Width of a reference band \[pt\] and of the curves drawn on it.
+const BAND_PT: f64 = 4.0;
+const ON_BAND_PT: f64 = 0.8;
+
+/// `colour` blended with white (`fraction` of white), the band of a reference curve.
+fn pale(colour: RGBColor, fraction: f64) -> RGBColor {
+    let mix = |c: u8| (f64::from(c) + (255.0 - f64::from(c)) * fraction).round() as u8;
+    RGBColor(mix(colour.0), mix(colour.1), mix(colour.2))
+}
+
+/// How curve `i` is drawn: its colour and line width \[pt\].
+fn line_style(i: usize, axes: &CurveAxes) -> (RGBColor, f64) {
+    let (colour, _, _) = style(i);
+    match (axes.reference_band, i) {
+        (true, 0) => (pale(colour, 0.55), BAND_PT),
+        (true, _) => (colour, ON_BAND_PT),
+        (false, _) => (colour, 1.0),
+    }
+}
+
+/// Whether every panel has the same curve labels (and the same dashed limits note), so that one
+/// legend below all panels serves them all.
+fn shared_legend(panels: &[CurvePanel]) -> bool {
+    let labels =
+        |p: &CurvePanel| -> Vec<String> { p.curves.iter().map(|c| c.label.clone()).collect() };
+    panels.len() > 1
+        && panels
+            .windows(2)
+            .all(|w| labels(&w[0]) == labels(&w[1]) && has_limit(&w[0]) == has_limit(&w[1]))
+}
 
 /// A curve figure titled `title` with `axes`, one panel per entry, at the printed width
 /// `width_pt` \[pt\].
@@ -82,23 +117,37 @@ pub fn curves_svg(
     let cols = ((width_pt / MIN_PANEL_W).floor() as usize).clamp(1, count);
     let rows = count.div_ceil(cols);
     let panel_w = width_pt / cols as f64;
-    let legend_rows = panels
-        .iter()
-        .map(|p| {
-            legend_lines(p, panel_w, axes.x_log)
-                .iter()
-                .map(Vec::len)
-                .sum::<usize>()
-        })
-        .max()
-        .unwrap_or(0) as u32;
-    let legend_height = 6 + LEGEND_LINE * legend_rows;
+    let shared = shared_legend(panels);
+    let legend_rows = |p: &CurvePanel, w: f64| -> u32 {
+        legend_lines(p, w, axes.x_log)
+            .iter()
+            .map(Vec::len)
+            .sum::<usize>() as u32
+    };
+    let (panel_legend, shared_height) = if shared {
+        let rows = legend_rows(&panels[0], width_pt);
+        (0, 6 + LEGEND_LINE * rows)
+    } else {
+        let rows = panels
+            .iter()
+            .map(|p| legend_rows(p, panel_w))
+            .max()
+            .unwrap_or(0);
+        (6 + LEGEND_LINE * rows, 0)
+    };
     let title_lines = wrap(title, width_pt - 8.0, TITLE_PT);
     let header = TITLE_LINE * title_lines.len() as u32 + 4;
-    let panel_h = PLOT_HEIGHT + legend_height;
-    let size = (width_pt.round() as u32, header + panel_h * rows as u32);
+    let panel_h = PLOT_HEIGHT + panel_legend;
+    let size = (
+        width_pt.round() as u32,
+        header + panel_h * rows as u32 + shared_height,
+    );
     render(size, |root| {
-        let (head, body) = root.split_vertically(px(header as i32));
+        let (head, rest) = root.split_vertically(px(header as i32));
+        let (body, foot) = rest.split_vertically(px((panel_h * rows as u32) as i32));
+        if shared {
+            draw_legend(&foot, &panels[0], width_pt, axes)?;
+        }
         let (w, _) = head.dim_in_pixel();
         for (i, line) in title_lines.iter().enumerate() {
             head.draw(&Text::new(
@@ -129,7 +178,9 @@ pub fn curves_svg(
                     x.label(*v)
                 })?;
             }
-            draw_legend(&legend, panel, panel_w, axes)?;
+            if !shared {
+                draw_legend(&legend, panel, panel_w, axes)?;
+            }
         }
         Ok(())
     })
@@ -149,6 +200,7 @@ pub fn log_x_curves_svg(
             y_desc,
             x_log: true,
             markers: true,
+            reference_band: false,
         },
         panels,
         FigureWidth::TwoColumn.points(),
@@ -328,21 +380,21 @@ where
         .draw()
         .map_err(err)?;
     for (i, curve) in panel.curves.iter().enumerate() {
-        let (colour, _, _) = style(i);
+        let (colour, width) = line_style(i, axes);
         if let Some(l) = limit(curve) {
             chart
                 .draw_series(DashedLineSeries::new(
                     [(x0, l), (x1, l)],
                     px(3),
                     px(2),
-                    stroke(colour, 1.0),
+                    stroke(colour, width),
                 ))
                 .map_err(err)?;
         }
         let points: Vec<(f64, f64)> = plottable(curve, axes.x_log).collect();
         if points.len() > 1 {
             chart
-                .draw_series(LineSeries::new(points, stroke(colour, 1.0)))
+                .draw_series(LineSeries::new(points, stroke(colour, width)))
                 .map_err(err)?;
         }
     }
@@ -396,11 +448,12 @@ fn draw_legend(
     for (i, lines) in entries.iter().enumerate() {
         let y = line_y(row);
         let colour = if i < panel.curves.len() {
-            let (colour, marker, filled) = style(i);
+            let (_, marker, filled) = style(i);
+            let (colour, width) = line_style(i, axes);
             if plottable(&panel.curves[i], axes.x_log).count() > 1 {
                 area.draw(&PathElement::new(
                     vec![(x, y), (x + px(14), y)],
-                    stroke(colour, 1.0),
+                    stroke(colour, width),
                 ))
                 .map_err(err)?;
             }
@@ -469,6 +522,7 @@ mod tests {
                 y_desc: "fraction",
                 x_log: true,
                 markers: true,
+                reference_band: false,
             };
             let svg = curves_svg("Saturation curves", &axes, &panels, inches * 72.0).unwrap();
             assert!(svg.contains("Saturation curves"));
@@ -483,6 +537,59 @@ mod tests {
         // the default width: two columns
         let svg = log_x_curves_svg("t", "x", "y", &panels).unwrap();
         assert!((printed_width(&svg).unwrap().0 - 7.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_curve_on_its_reference_band_stays_visible() {
+        // the same points twice: the reference a wide pale band drawn first, the curve thin on it
+        let points: Vec<(f64, f64)> = (0..50)
+            .map(|i| (0.1 * i as f64, (0.3 * i as f64).sin()))
+            .collect();
+        let panel = CurvePanel {
+            title: "on the band".into(),
+            curves: vec![
+                Curve {
+                    label: "reference".into(),
+                    points: points.clone(),
+                    limit: None,
+                },
+                Curve {
+                    label: "computed".into(),
+                    points,
+                    limit: None,
+                },
+            ],
+        };
+        let axes = CurveAxes {
+            x_desc: "t [s]",
+            y_desc: "y [m]",
+            x_log: false,
+            markers: false,
+            reference_band: true,
+        };
+        let svg = curves_svg("band", &axes, &[panel], 504.0).unwrap();
+        let hex = |c: RGBColor| format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2);
+        let (colour0, _, _) = style(0);
+        let (colour1, _, _) = style(1);
+        let width = |pt: f64| (pt * f64::from(crate::plots::SCALE)).round();
+        let band = format!(
+            "stroke=\"{}\" stroke-width=\"{}\"",
+            hex(pale(colour0, 0.55)),
+            width(BAND_PT)
+        );
+        let line = format!(
+            "stroke=\"{}\" stroke-width=\"{}\"",
+            hex(colour1),
+            width(ON_BAND_PT)
+        );
+        let (b, l) = (svg.find(&band), svg.rfind(&line));
+        assert!(b.is_some() && l.is_some(), "{band} / {line} not in\n{svg}");
+        // the band's plot line comes before the curve's (the legend's samples follow both)
+        assert!(
+            svg.find(&band) < svg.find(&line),
+            "the band is drawn over the curve"
+        );
+        assert!(min_text_pt(&svg).unwrap() >= 8.0 - 1e-3);
     }
 
     #[test]

@@ -253,43 +253,7 @@ impl Ranged for Linear {
     }
 }
 
-/// A power of ten `v` as `10` with its exponent in superscript digits, e.g. `10⁻⁵`.
-pub fn decade_label(v: f64) -> String {
-    let exponent = v.log10().round() as i64;
-    let digits: String = exponent
-        .to_string()
-        .chars()
-        .map(|c| match c {
-            '-' => '⁻',
-            '0' => '⁰',
-            '1' => '¹',
-            '2' => '²',
-            '3' => '³',
-            '4' => '⁴',
-            '5' => '⁵',
-            '6' => '⁶',
-            '7' => '⁷',
-            '8' => '⁸',
-            _ => '⁹',
-        })
-        .collect();
-    format!("10{digits}")
-}
-
-/// A number `v` as `10ᵏ` or `m·10ᵏ` (mantissa to 6 significant digits).
-pub fn sci_label(v: f64) -> String {
-    let decade = 10f64.powf(v.log10().floor());
-    let mantissa = v / decade;
-    if (mantissa - 1.0).abs() < 1e-9 {
-        decade_label(decade)
-    } else {
-        format!(
-            "{}·{}",
-            (mantissa * 1e5).round() / 1e5,
-            decade_label(decade)
-        )
-    }
-}
+pub use flexrig_contact::validate::{decade_label, sci_label};
 
 /// A "nice" tick step (1, 2, 2.5 or 5 × 10ᵏ) giving at most `max_ticks` intervals over `span`.
 pub(crate) fn nice_step(span: f64, max_ticks: usize) -> f64 {

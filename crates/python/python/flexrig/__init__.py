@@ -45,7 +45,7 @@ from __future__ import annotations
 import os
 import warnings as _warnings
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Dict, List, Mapping, NamedTuple, Optional, Tuple, Union
+from typing import TYPE_CHECKING, Any, Dict, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -682,24 +682,33 @@ def spin_up(
     sample_every: float = 0.1,
     max_step: float = 1e-3,
     modes: int = 7,
+    size: Union[str, int] = "2",
+    format: Union[str, Sequence[str]] = ("svg",),
+    dpi: float = 300.0,
 ) -> "pandas.DataFrame":
     """The spin-up beam benchmark (Kane, Ryan & Banerjee 1987), as ``flexrig spin-up``: the tip's
     deflection in the hub frame [m] by the corotational FE beam (``fe``), the independent elastica
     reference (``reference``) and the linear rotating-frame beam (``linear``, which diverges),
     one row per reported time ``t`` [s] — the columns of spin_up.csv. Keyword arguments are the
-    command's flags (SI units; defaults: the literature case, run to T_s + 5 s). With ``out`` the
-    CSV, JSON and SVG are written there. ``df.attrs`` holds ``fe_error_of_max``,
-    ``reference_max_m`` and the options.
+    command's flags (SI units; defaults: the literature case, run to T_s + 5 s); ``size``,
+    ``format`` and ``dpi`` are the figure's printed width (``"1"``, ``"2"`` or e.g. ``"5in"``),
+    formats (svg, pdf, png) and PNG resolution, as ``--size``, ``--format``, ``--dpi``. With
+    ``out`` the CSV, JSON and the figure are written there. ``df.attrs`` holds
+    ``fe_error_of_max``, ``reference_max_m`` and the options (and, with ``out``, the files:
+    ``csv``, ``json``, ``svg``, ``figures``).
     """
     import pandas as pd
 
+    from ._commands import _figure_args
+
+    size, formats, dpi = _figure_args(size, format, dpi)
     directory, tmp = _out_dir(out)
     try:
         r = _flexrig.spin_up(
             directory, float(length), float(area), float(second_moment), float(youngs_modulus),
             float(density), float(t_s), float(omega_s), int(elements),
             None if duration is None else float(duration), float(sample_every), float(max_step),
-            int(modes),
+            int(modes), size, formats, dpi,
         )
     finally:
         if tmp is not None:
@@ -709,7 +718,7 @@ def spin_up(
         fe_error_of_max=r["fe_error_of_max"], reference_max_m=r["reference_max_m"], options=r["options"]
     )
     if out is not None:
-        df.attrs.update(csv=r["csv"], json=r["json"], svg=r["svg"])
+        df.attrs.update(csv=r["csv"], json=r["json"], svg=r["svg"], figures=r["figures"])
     return df
 
 
@@ -793,20 +802,28 @@ def role_switch(
     damping_ratio: float = 0.7,
     no_fig6: bool = False,
     out: Optional[Union[str, "os.PathLike[str]"]] = None,
+    size: Union[str, int] = "2",
+    format: Union[str, Sequence[str]] = ("svg",),
+    dpi: float = 300.0,
 ) -> "pandas.DataFrame":
     """The role-switch table, as ``flexrig role-switch``: one row per (case, design, drive) with
     the columns of role_switch.csv — ``case``, ``design`` (cj, cl), ``drive`` (prescribed, pd,
     torque_free), ``kappa`` (K_p/k_θr; inf for the ideal position source, 0 torque-free),
     ``f_test_bed_n``, ``f_driven_n``, ``ratio``, ``f_switched_same_drive_n``. Keyword arguments
-    are the command's flags; with ``out`` the CSV and SVG are written there.
+    are the command's flags (``size``, ``format``, ``dpi``: the figure's printed width, formats
+    and PNG resolution, as ``--size``, ``--format``, ``--dpi``); with ``out`` the CSV and the
+    figure are written there (``df.attrs``: ``csv``, ``svg``, ``figures``).
     """
     import pandas as pd
 
+    from ._commands import _figure_args
+
+    size, formats, dpi = _figure_args(size, format, dpi)
     directory, tmp = _out_dir(out)
     try:
-        rows, csv, svg = _flexrig.role_switch(
+        rows, csv, figures = _flexrig.role_switch(
             directory, [float(k) for k in np.atleast_1d(kappa)], float(rotor_ratio),
-            float(damping_ratio), not no_fig6,
+            float(damping_ratio), not no_fig6, size, formats, dpi,
         )
     finally:
         if tmp is not None:
@@ -827,5 +844,7 @@ def role_switch(
         }
     )
     if out is not None:
-        df.attrs.update(csv=str(csv), svg=str(svg))
+        df.attrs.update(
+            csv=str(csv), svg=str(os.path.join(directory, "role_switch.svg")), figures=[str(f) for f in figures]
+        )
     return df
