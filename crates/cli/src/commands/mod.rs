@@ -17,6 +17,7 @@ pub mod prb;
 pub mod role_switch;
 pub mod run;
 pub mod safety;
+pub mod safety_args;
 pub mod safety_map;
 pub mod scenes;
 pub mod spin_up;

@@ -8,20 +8,12 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use flexrig::Error;
 use flexrig::safety::{
-    ContactAreaModel, ContactKind, ContactLaw, FeLink, MethodResult, RobotEffectiveMass,
-    SafetyInput, SafetyMethod, SafetyReport, SimulationSettings, Speed, safety,
+    ContactAreaModel, ContactKind, FeLink, MethodResult, RobotEffectiveMass, SafetyInput,
+    SafetyMethod, SafetyReport, SimulationSettings, Speed, safety,
 };
 
+use super::safety_args::{ContactArg, ContactLawArgs, map_joint, missing};
 use crate::print::{line, print_json};
-
-/// Contact kind.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ContactArg {
-    /// A free body region struck (Table A.3's m_H, transient limits).
-    Transient,
-    /// A clamped body region (m_H = ∞, quasi-static limits).
-    QuasiStatic,
-}
 
 /// Permissible-speed method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -41,17 +33,6 @@ pub enum LinkArg {
     Cj,
     /// The compliant link: the Euler–Bernoulli beam.
     Cl,
-}
-
-/// Contact-area model for pressure.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum AreaModelArg {
-    /// A = π R δ (elastic half-space; needs --radius).
-    HertzSphere,
-    /// A = π(2Rδ − δ²) (thin layer on a rigid backing; needs --radius).
-    ThinLayer,
-    /// A fixed area (needs --contact-area).
-    Fixed,
 }
 
 /// Arguments of `flexrig safety`.
@@ -141,78 +122,6 @@ pub struct SafetyArgs {
     pub report: Option<PathBuf>,
 }
 
-/// The contact flags of `flexrig safety` and `flexrig safety-map`: the Hertz law (or a bundled
-/// material, or the body region's spring) and the contact-area model for pressure.
-#[derive(Debug, Args)]
-pub struct ContactLawArgs {
-    /// Contact stiffness k_c [N/m^n] (with --n; default: the region's body spring, n = 1).
-    #[arg(
-        long = "k-c",
-        value_name = "K",
-        requires = "n",
-        conflicts_with = "material"
-    )]
-    pub k_c: Option<f64>,
-    /// Hertz exponent n (with --k-c).
-    #[arg(long, value_name = "N", requires = "k_c")]
-    pub n: Option<f64>,
-    /// A bundled material for the Hertz law (abs, skinned_aluminium, skinned_iron); its dome
-    /// gives the default Hertz-sphere area.
-    #[arg(long, value_name = "NAME")]
-    pub material: Option<String>,
-    /// Contact-area model for pressure (default: hertz-sphere on the material's dome with
-    /// --material, else pressure is not assessed).
-    #[arg(long = "area-model", value_enum)]
-    pub area_model: Option<AreaModelArg>,
-    /// Sphere radius R [m] of the hertz-sphere and thin-layer area models.
-    #[arg(long, value_name = "M")]
-    pub radius: Option<f64>,
-    /// Contact area [m²] of the fixed area model.
-    #[arg(long = "contact-area", value_name = "M2")]
-    pub contact_area: Option<f64>,
-}
-
-impl ContactLawArgs {
-    /// The contact law: `--k-c` with `--n`, else `--material`, else the region's body spring.
-    pub fn law(&self) -> ContactLaw {
-        match (self.k_c, self.n, &self.material) {
-            (Some(k_c), Some(n), _) => ContactLaw::Hertz { k_c, n },
-            (_, _, Some(m)) => ContactLaw::Material(m.clone()),
-            _ => ContactLaw::BodySpring,
-        }
-    }
-
-    /// The contact-area model of `--area-model` with the dimension it needs.
-    pub fn area_model(&self) -> Result<Option<ContactAreaModel>, Error> {
-        Ok(match self.area_model {
-            None => None,
-            Some(AreaModelArg::HertzSphere) => Some(ContactAreaModel::HertzSphere {
-                radius_m: self.radius.ok_or_else(|| {
-                    missing("--radius", "--area-model hertz-sphere needs --radius")
-                })?,
-            }),
-            Some(AreaModelArg::ThinLayer) => Some(ContactAreaModel::ThinLayer {
-                radius_m: self
-                    .radius
-                    .ok_or_else(|| missing("--radius", "--area-model thin-layer needs --radius"))?,
-            }),
-            Some(AreaModelArg::Fixed) => Some(ContactAreaModel::Fixed {
-                area_m2: self.contact_area.ok_or_else(|| {
-                    missing("--contact-area", "--area-model fixed needs --contact-area")
-                })?,
-            }),
-        })
-    }
-}
-
-pub(crate) fn missing(flag: &str, needed: &str) -> Error {
-    Error::InvalidArgument {
-        arg: flag.into(),
-        value: "(missing)".into(),
-        allowed: needed.into(),
-    }
-}
-
 impl SafetyArgs {
     /// The library's input.
     pub fn input(&self) -> Result<SafetyInput, Error> {
@@ -235,7 +144,7 @@ impl SafetyArgs {
             _ => None,
         };
         let simulation = SimulationSettings {
-            joint: super::safety_map::map_joint(self.joint, self.rotor_inertia)?,
+            joint: map_joint(self.joint, self.rotor_inertia)?,
             length: self.length,
             tol: self.tol,
             root_rtol: self.root_rtol,

@@ -8,13 +8,15 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use flexrig::safety::ContactKind;
 use flexrig::safety_map::{
-    MapJoint, MapMethod, SafetyMapFiles, SafetyMapInput, SimulationSettings, parse_axis,
+    MapMethod, SafetyMapFiles, SafetyMapInput, SimulationSettings, parse_axis,
 };
 use flexrig::{CancelToken, Error};
 use serde_json::json;
 
+use flexrig::safety::load_body_model;
+
 use super::impact_args::JointArg;
-use super::safety::{ContactArg, load_body_model, missing};
+use super::safety_args::{ContactArg, map_joint};
 use crate::print::{line, print_json};
 
 /// The map's method.
@@ -70,7 +72,7 @@ pub struct SafetyMapArgs {
     pub length: f64,
     /// The contact law and the contact-area model.
     #[command(flatten)]
-    pub law: super::safety::ContactLawArgs,
+    pub law: super::safety_args::ContactLawArgs,
     /// The method.
     #[arg(long, value_enum, default_value = "energy")]
     pub method: MapMethodArg,
@@ -137,23 +139,6 @@ impl SafetyMapArgs {
             },
             speed: self.speed,
         })
-    }
-}
-
-/// The joint of `--joint` with `--rotor-inertia` (only, and always, with free-hub).
-pub(crate) fn map_joint(joint: JointArg, rotor_inertia: Option<f64>) -> Result<MapJoint, Error> {
-    match (joint, rotor_inertia) {
-        (JointArg::Held, None) => Ok(MapJoint::Held),
-        (JointArg::Held, Some(j)) => Err(Error::InvalidArgument {
-            arg: "--rotor-inertia".into(),
-            value: flexrig::output::display_number(j),
-            allowed: "only with --joint free-hub".into(),
-        }),
-        (JointArg::FreeHub, None) => Err(missing(
-            "--rotor-inertia",
-            "--joint free-hub needs --rotor-inertia (kg·m², > 0)",
-        )),
-        (JointArg::FreeHub, Some(j)) => Ok(MapJoint::FreeHub { rotor_inertia: j }),
     }
 }
 
