@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """flexrig's ANCF cable against Exudyn's ANCFCable2D, side by side in one run.
 
-Problem (the Exudyn comparison's cantilever, canonical::issue13_cantilever): L 0.3 m, E 1.5 GPa, 25 x 1 mm,
+Problem (the Exudyn comparison's cantilever, canonical::polypropylene_cantilever): L 0.3 m, E 1.5 GPa, 25 x 1 mm,
 rho 900 kg/m^3 (EI, rho A, EA from these), clamped, dead transverse tip load P = alpha EI/L^2.
   transient: P = EI/L^2 applied at t = 0 to the beam at rest, generalized-alpha rho_inf = 0.9,
              h = 1 ms, 1000 steps; N = 8, 16, 32, 64 elements (both codes the same N, h, rho_inf)

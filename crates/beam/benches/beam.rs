@@ -9,7 +9,7 @@
 //! * `modal/linear_32`: the first 4 bending modes with 32 elements (dense faer eigensolver).
 //! * `transient/linear_32_x1000` and `transient/modal8_32_x1000`: the same 1000 steps with the
 //!   linear beam and with the modal-reduced one (8 modes + tip u, v, θ correction shapes).
-//! * `issue13/…`: issue 13's problem (canonical::issue13_cantilever: L 0.3 m, 25 × 1 mm,
+//! * `polypropylene/…`: the thin polypropylene cantilever of the Exudyn comparison (canonical::polypropylene_cantilever: L 0.3 m, 25 × 1 mm,
 //!   E 1.5 GPa, ρ 900): the ANCF element alone (force; force and tangent), the elastica
 //!   PL²/EI = 5 with 32 ANCF elements (10 load steps), and the step-load transient (P = EI/L²
 //!   from rest, h = 1e-3 s, 1000 steps, generalized-α ρ∞ = 0.9 or the energy-conserving step)
@@ -136,9 +136,9 @@ fn modal(c: &mut Criterion) {
     });
 }
 
-fn issue13(c: &mut Criterion) {
+fn polypropylene(c: &mut Criterion) {
     use flexrig_beam::ancf::{AncfElement, Vector8, Want};
-    let mut g = c.benchmark_group("issue13");
+    let mut g = c.benchmark_group("polypropylene");
     let el = AncfElement::new(0.3 / 32.0, 37500.0, 3.125e-3);
     let d = Vector8::from_column_slice(&[1e-4, 2e-3, -1e-3, 0.2, -3e-4, 9e-3, -2e-2, 0.25]);
     g.bench_function("ancf_element_force", |b| {
@@ -165,7 +165,7 @@ fn issue13(c: &mut Criterion) {
         (Kinematics::Corotational, "0.9", 32),
         (Kinematics::Corotational, "0.9", 64),
     ] {
-        let (model, loads) = canonical::issue13_cantilever(n, kin).unwrap();
+        let (model, loads) = canonical::polypropylene_cantilever(n, kin).unwrap();
         let ga = if integrator == "ec" {
             GeneralizedAlpha::energy_conserving()
         } else {
@@ -207,7 +207,7 @@ fn stages(c: &mut Criterion) {
         } else {
             "corotational"
         };
-        let (model, loads) = canonical::issue13_cantilever(32, kin).unwrap();
+        let (model, loads) = canonical::polypropylene_cantilever(32, kin).unwrap();
         let ga = GeneralizedAlpha::new(0.9).unwrap();
         let mut s = State::at_rest(&model, &loads).unwrap();
         let mut ws = Workspace::new(&model);
@@ -282,6 +282,13 @@ fn stages(c: &mut Criterion) {
 }
 
 criterion_group!(
-    benches, transient, reduced, statics, scaling, modal, issue13, stages
+    benches,
+    transient,
+    reduced,
+    statics,
+    scaling,
+    modal,
+    polypropylene,
+    stages
 );
 criterion_main!(benches);

@@ -1,4 +1,4 @@
-//! Issue 13's transient: L 0.3 m, E 1.5 GPa, 25 × 1 mm, ρ 900, clamped, step tip load P = EI/L²
+//! The polypropylene cantilever's transient: L 0.3 m, E 1.5 GPa, 25 × 1 mm, ρ 900, clamped, step tip load P = EI/L²
 //! from rest, 1000 steps. `probe_ancf_step NE RHO|ec H [ancf|corot] [TOL] [T_END]`
 use flexrig_beam::*;
 fn main() {

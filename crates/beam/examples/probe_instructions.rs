@@ -27,7 +27,7 @@ fn main() {
             let ga = GeneralizedAlpha::new(0.9)
                 .unwrap()
                 .with_newton_method(method);
-            let (model, loads) = canonical::issue13_cantilever(n, kin).unwrap();
+            let (model, loads) = canonical::polypropylene_cantilever(n, kin).unwrap();
             let mut s = State::at_rest(&model, &loads).unwrap();
             let mut ws = Workspace::new(&model);
             let mut its = 0;

@@ -6,7 +6,7 @@
 use flexrig_beam::*;
 
 fn run(kin: Kinematics, n: usize, steps: usize, ga: &GeneralizedAlpha) -> (Vec<f64>, StepCounters) {
-    let (model, loads) = canonical::issue13_cantilever(n, kin).unwrap();
+    let (model, loads) = canonical::polypropylene_cantilever(n, kin).unwrap();
     let mut s = State::at_rest(&model, &loads).unwrap();
     let mut ws = Workspace::new(&model);
     let mut tip = Vec::new();

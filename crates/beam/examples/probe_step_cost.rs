@@ -15,7 +15,7 @@ fn main() {
     );
     for kin in [Kinematics::Ancf, Kinematics::Corotational] {
         for n in [8usize, 16, 32, 64] {
-            let (model, loads) = canonical::issue13_cantilever(n, kin).unwrap();
+            let (model, loads) = canonical::polypropylene_cantilever(n, kin).unwrap();
             let mut best = f64::INFINITY;
             let mut c = StepCounters::default();
             let mut tip = 0.0;

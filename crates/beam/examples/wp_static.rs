@@ -13,7 +13,7 @@ fn main() {
     let ne: usize = a[2].parse().unwrap();
     let alpha: f64 = a[3].parse().unwrap();
     let repeats: usize = a[4].parse().unwrap();
-    let (model, _) = canonical::issue13_cantilever(ne, kin).unwrap();
+    let (model, _) = canonical::polypropylene_cantilever(ne, kin).unwrap();
     let mut loads = NodalLoads::zeros(&model);
     let ei = model.section().ei();
     loads.set_force(ne, 0.0, alpha * ei / 0.09).unwrap();

@@ -1,4 +1,4 @@
-//! One row of the beam work–precision table (issue 13's transient): L 0.3 m, E 1.5 GPa,
+//! One row of the beam work–precision table (the polypropylene cantilever's transient): L 0.3 m, E 1.5 GPa,
 //! 25 × 1 mm, ρ 900 kg/m³, clamped, step tip load P = EI/L² from rest, t = 1 s.
 //!
 //! `wp_transient KIN INTEGRATOR ELEMENTS H REPEATS [TOL]` with KIN ancf|corotational, INTEGRATOR a

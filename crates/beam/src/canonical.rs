@@ -42,10 +42,10 @@ pub const HOWELL_THETA_MAX_DEG: f64 = 64.3;
 /// The paper's small-deflection characteristic radius.
 pub const PAPER_GAMMA_SMALL: f64 = 2.0 / 3.0;
 
-/// Issue 13's cantilever (the Exudyn comparison): L = 0.3 m, E = 1.5 GPa, ρ = 900 kg/m³,
+/// The thin polypropylene cantilever of the Exudyn comparison: L = 0.3 m, E = 1.5 GPa, ρ = 900 kg/m³,
 /// 25 × 1 mm (EA L²/EI = 1.08e6), clamped, `elements` elements, and the tip load P = EI/L² of
 /// its step-load transient (from rest, 1000 steps of 1 ms in the benches).
-pub fn issue13_cantilever(
+pub fn polypropylene_cantilever(
     elements: usize,
     kinematics: Kinematics,
 ) -> Result<(BeamModel, NodalLoads), BeamError> {
@@ -57,11 +57,11 @@ pub fn issue13_cantilever(
     Ok((model, loads))
 }
 
-/// Issue 13's step-load transient: [`issue13_cantilever`] from rest under its tip load P = EI/L²
+/// The step-load transient: [`polypropylene_cantilever`] from rest under its tip load P = EI/L²
 /// applied at t = 0, stepped by `integrator` with the fixed step `h` \[s\] to `duration` \[s\].
 /// Returns the tip deflection v \[m\] at every multiple of `sample` \[s\] (rounded to whole
 /// steps, at least one step apart) and the Newton iterations per step.
-pub fn issue13_step_load(
+pub fn polypropylene_step_load(
     elements: usize,
     kinematics: Kinematics,
     integrator: &GeneralizedAlpha,
@@ -69,7 +69,7 @@ pub fn issue13_step_load(
     duration: f64,
     sample: f64,
 ) -> Result<(Vec<f64>, f64), BeamError> {
-    let (model, loads) = issue13_cantilever(elements, kinematics)?;
+    let (model, loads) = polypropylene_cantilever(elements, kinematics)?;
     let mut state = State::at_rest(&model, &loads)?;
     let mut workspace = Workspace::new(&model);
     let steps = (duration / h).round() as usize;

@@ -64,7 +64,7 @@ pub enum NewtonMethod {
     /// The iteration matrix kept while the corrections contract by [`MODIFIED_NEWTON_RATE`]
     /// per iteration and the iterations left can reach the tolerance at the rate measured;
     /// the same increment test. Corotational: half the instructions of full Newton on the
-    /// step-load transient of [`crate::canonical::issue13_cantilever`] at 32 elements (1.08
+    /// step-load transient of [`crate::canonical::polypropylene_cantilever`] at 32 elements (1.08
     /// instead of 3.03 factorisations per step) and within 0.5 tol·L of the full Newton
     /// solution, but its Newton error (up to ≈ 0.3 tol per step) shows in the energy of long
     /// runs at the 1e-8 level.
@@ -588,7 +588,7 @@ impl GeneralizedAlpha {
     ) -> Result<(), BeamError> {
         // The predictor that worked on the last step goes first. (Going back to the
         // extrapolated one after the velocity one took over was measured to cost more: on the
-        // step load of canonical::issue13_cantilever at 16 elements 4.92 against 4.83
+        // step load of canonical::polypropylene_cantilever at 16 elements 4.92 against 4.83
         // iterations and 1.11 against 0.87 factorisations per step, ANCF; full Newton 3.31
         // against 3.03 iterations.)
         let extrapolated = (

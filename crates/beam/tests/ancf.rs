@@ -1,6 +1,6 @@
 //! The ANCF cable element and the energy-conserving step: tangent against finite differences,
 //! rigid motion, locking, the elastica against the extensible shooting reference, modes, energy
-//! conservation and convergence order, issue 13's step-load transient.
+//! conservation and convergence order, the polypropylene cantilever's step-load transient.
 
 #![allow(clippy::needless_range_loop)]
 
@@ -56,7 +56,7 @@ fn extensible_elastica(phi: f64, ea_ratio: f64) -> (f64, f64, f64) {
 }
 
 /// Issue 13's cantilever: L 0.3 m, E 1.5 GPa, 25 × 1 mm, ρ 900 kg/m³ (EA L²/EI = 1.08e6).
-fn issue13(elements: usize, kinematics: Kinematics) -> BeamModel {
+fn polypropylene(elements: usize, kinematics: Kinematics) -> BeamModel {
     let mat = Material::new(1.5e9, 900.0).unwrap();
     let sec = Section::rectangular(&mat, 0.025, 0.001).unwrap();
     BeamModel::new(BeamSpec::cantilever(0.3, sec, elements, kinematics)).unwrap()
@@ -80,7 +80,7 @@ fn elastica_32_elements_within_1e6_of_the_extensible_reference() {
     // O(h⁴): 3.1e-5, 2.0e-6, 1.2e-7, 7.6e-9 at 8 … 64 elements). The extensible and the
     // inextensible elastica differ by ≈ P/EA = α/1.08e6 here: up to 8e-6 in u/L at α = 10,
     // more than the discretisation error, hence the extensible reference.
-    let model = issue13(32, Kinematics::Ancf);
+    let model = polypropylene(32, Kinematics::Ancf);
     let ea_ratio = model.section().ea() * 0.09 / model.section().ei();
     let mut worst = 0.0f64;
     let mut ea_effect = 0.0f64;
@@ -107,7 +107,7 @@ fn elastica_error_converges_as_h4_and_the_corotational_as_h2() {
         [4usize, 8, 16]
             .iter()
             .map(|&n| {
-                let model = issue13(n, kin);
+                let model = polypropylene(n, kin);
                 let ea_ratio = model.section().ea() * 0.09 / model.section().ei();
                 let (v, u, th) = static_tip(&model, 5.0, None);
                 let (vr, ur, tr) = extensible_elastica(5.0, ea_ratio);
@@ -173,7 +173,7 @@ fn elastica_with_rule(elements: usize, axial: Quadrature, phi: f64, ea_ratio: f6
 fn full_gauss_integration_of_the_axial_strain_locks_and_lobatto_does_not() {
     // Elastica α = 5 with 8 and 16 elements, axial term with 5 Gauss points (the "fully
     // integrated" element) or the 3-point Lobatto rule (the element's default), for a thin
-    // section (EA L²/EI = 1.08e6, issue 13) and a thick one (1e2, where nothing can lock).
+    // section (EA L²/EI = 1.08e6, the polypropylene cantilever) and a thick one (1e2, where nothing can lock).
     // Measured (thin): Gauss 5 1.6e-3 and 1.3e-4 (140× and 180× the Lobatto error: locked),
     // Lobatto 1.1e-5 and 7.0e-7 (O(h⁴), as for the thick section: 8.5e-6 at 8 elements).
     let thin = 1.08e6;
@@ -509,7 +509,7 @@ fn energy_conserving_step_is_second_order_and_conserves_energy_for_any_step() {
 }
 
 fn step_load_transient(elements: usize, ga: &GeneralizedAlpha, h: f64, steps: usize) -> State {
-    let model = issue13(elements, Kinematics::Ancf);
+    let model = polypropylene(elements, Kinematics::Ancf);
     let mut loads = NodalLoads::zeros(&model);
     let p = model.section().ei() / 0.09;
     loads.set_force(elements, 0.0, p).unwrap();
@@ -523,7 +523,7 @@ fn step_load_transient(elements: usize, ga: &GeneralizedAlpha, h: f64, steps: us
 }
 
 #[test]
-fn issue13_step_load_64_elements_runs_at_h_1e3_for_rho_08_09_and_1() {
+fn step_load_64_elements_runs_at_h_1e3_for_rho_08_09_and_1() {
     // 64 elements, step tip load P = EI/L² from rest, h = 1e-3 s, 300 steps (the whole 1000-step
     // run is in the benches and the examples): generalized-α at ρ∞ = 0.8 and 0.9, the
     // energy-conserving step for ρ∞ = 1 (the trapezoidal rule itself also runs here but is not
@@ -538,7 +538,7 @@ fn issue13_step_load_64_elements_runs_at_h_1e3_for_rho_08_09_and_1() {
         assert!(s.q.iter().all(|x| x.is_finite()));
         tips.push(s.node(64));
         if ga.is_energy_conserving() {
-            let e = s.energy(&issue13(64, Kinematics::Ancf));
+            let e = s.energy(&polypropylene(64, Kinematics::Ancf));
             // E₀ + W = T + U: dissipated ≈ 0 relative to the work done (Newton tolerance 1e-6 L)
             assert!(e.dissipated.abs() < 1e-6 * e.external_work, "{e:?}");
         }

@@ -9,7 +9,7 @@ use flexrig_beam::*;
 
 /// Tip deflections after each step and the work counted.
 fn run(kin: Kinematics, n: usize, steps: usize, ga: &GeneralizedAlpha) -> (Vec<f64>, StepCounters) {
-    let (model, loads) = canonical::issue13_cantilever(n, kin).unwrap();
+    let (model, loads) = canonical::polypropylene_cantilever(n, kin).unwrap();
     let mut s = State::at_rest(&model, &loads).unwrap();
     let mut ws = Workspace::new(&model);
     let tip = (0..steps)

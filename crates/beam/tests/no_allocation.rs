@@ -55,7 +55,7 @@ fn generalized_alpha_steps_allocate_nothing() {
         Kinematics::Corotational,
         Kinematics::Linear,
     ] {
-        let (model, loads) = canonical::issue13_cantilever(16, kin).unwrap();
+        let (model, loads) = canonical::polypropylene_cantilever(16, kin).unwrap();
         let mut s = State::at_rest(&model, &loads).unwrap();
         let mut ws = Workspace::new(&model);
         // the first steps settle the predictor (the step load makes the first one restart)

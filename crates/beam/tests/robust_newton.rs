@@ -1,4 +1,4 @@
-//! The generalized-α Newton that does not give up (issue 12), and motion-dependent node loads
+//! The generalized-α Newton that does not give up, and motion-dependent node loads
 //! treated implicitly.
 
 use flexrig_beam::canonical::unit_cantilever;

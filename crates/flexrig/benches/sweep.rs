@@ -1,6 +1,6 @@
 //! The overhead of the sweep machinery (overrides on the parsed base, validation and budget,
 //! the row) against the run itself: a CJ point from contact to the peak, run directly and as
-//! a sweep point (issue 15: ≤ 5 %).
+//! a sweep point (the target: ≤ 5 %).
 
 use std::hint::black_box;
 

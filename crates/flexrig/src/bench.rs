@@ -350,7 +350,7 @@ fn beam(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
             });
         }
     }
-    issue13_transient(rows, quick)?;
+    polypropylene_transient(rows, quick)?;
     let elements: &[usize] = if quick {
         &[4, 8, 16]
     } else {
@@ -394,17 +394,17 @@ fn beam(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
     Ok(())
 }
 
-/// Issue 13's work–precision problem (the Exudyn comparison of docs/performance-beam.md): the
+/// The polypropylene cantilever's work–precision problem (the Exudyn comparison of docs/performance-beam.md): the
 /// 0.3 m cantilever under a step tip load EI/L² from rest, 1000 generalized-α steps of 1 ms at
 /// ρ∞ = 0.9. Error: max over t = 1 … 1000 ms of |v − v_ref| / max |v_ref| of the tip deflection,
 /// against 16 ANCF elements at h = 0.25 and 0.125 ms extrapolated to h → 0 (the error is first
 /// order in h: the step load excites modes no step resolves; the extrapolated reference is good
 /// to about 1e-5, docs/performance-beam.md).
-fn issue13_transient(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
+fn polypropylene_transient(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
     use flexrig_beam::{GeneralizedAlpha, Kinematics};
     let ga = GeneralizedAlpha::new(0.9)?;
     let trajectory = |kin, elements, h| {
-        canonical::issue13_step_load(elements, kin, &ga, h, 1.0, 1e-3).map(|(v, _)| v)
+        canonical::polypropylene_step_load(elements, kin, &ga, h, 1.0, 1e-3).map(|(v, _)| v)
     };
     let coarse = trajectory(Kinematics::Ancf, 16, 2.5e-4)?;
     let fine = trajectory(Kinematics::Ancf, 16, 1.25e-4)?;
