@@ -57,8 +57,8 @@ pub fn polypropylene_cantilever(
     Ok((model, loads))
 }
 
-/// The step-load transient: [`polypropylene_cantilever`] from rest under its tip load P = EI/L²
-/// applied at t = 0, stepped by `integrator` with the fixed step `h` \[s\] to `duration` \[s\].
+/// The step-load transient: [`polypropylene_cantilever`] from rest under its tip load
+/// P = EI/L² applied at t = 0, stepped by `integrator` with the fixed step `h` \[s\] to `duration` \[s\].
 /// Returns the tip deflection v \[m\] at every multiple of `sample` \[s\] (rounded to whole
 /// steps, at least one step apart) and the Newton iterations per step.
 pub fn polypropylene_step_load(

@@ -394,8 +394,8 @@ fn beam(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
     Ok(())
 }
 
-/// The polypropylene cantilever's work–precision problem (the Exudyn comparison of docs/performance-beam.md): the
-/// 0.3 m cantilever under a step tip load EI/L² from rest, 1000 generalized-α steps of 1 ms at
+/// The polypropylene cantilever's work–precision problem (the Exudyn comparison of
+/// docs/performance-beam.md): the 0.3 m cantilever under a step tip load EI/L² from rest, 1000 generalized-α steps of 1 ms at
 /// ρ∞ = 0.9. Error: max over t = 1 … 1000 ms of |v − v_ref| / max |v_ref| of the tip deflection,
 /// against 16 ANCF elements at h = 0.25 and 0.125 ms extrapolated to h → 0 (the error is first
 /// order in h: the step load excites modes no step resolves; the extrapolated reference is good
