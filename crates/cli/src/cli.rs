@@ -112,3 +112,26 @@ pub fn run_cancellable(cli: &Cli, out: &mut dyn Write, cancel: &CancelToken) -> 
         Some(Command::RoleSwitch(args)) => commands::role_switch::run(args, out, cancel),
     }
 }
+
+/// A hint for a list given with spaces (`--m-h 4 1000`, as the help of a comma list could be
+/// misread): when clap rejects an unexpected argument that is a number, the flag before it
+/// and the list written as it is meant (`--m-h 4,1000`). `args` are the command line's
+/// arguments (the program name first, as `std::env::args`).
+pub fn list_hint(err: &clap::Error, args: &[String]) -> Option<String> {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    if err.kind() != ErrorKind::UnknownArgument {
+        return None;
+    }
+    let Some(ContextValue::String(stray)) = err.get(ContextKind::InvalidArg) else {
+        return None;
+    };
+    stray.parse::<f64>().ok()?;
+    let at = args.iter().position(|a| a == stray)?;
+    let flag_at = (1..at).rev().find(|&i| args[i].starts_with("--"))?;
+    let values = &args[flag_at + 1..=at];
+    Some(format!(
+        "tip: a list is written with commas and no spaces: {} {}",
+        args[flag_at],
+        values.join(",")
+    ))
+}

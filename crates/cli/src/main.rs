@@ -3,7 +3,18 @@
 use clap::Parser;
 
 fn main() {
-    let cli = flexrig_cli::cli::Cli::parse();
+    let cli = match flexrig_cli::cli::Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(err) => {
+            let args: Vec<String> = std::env::args().collect();
+            let hint = flexrig_cli::cli::list_hint(&err, &args);
+            let _ = err.print();
+            if let Some(hint) = hint {
+                eprintln!("\n{hint}");
+            }
+            std::process::exit(err.exit_code());
+        }
+    };
     // Ctrl-C asks running simulations to stop; their MCAP logs are finished with an error record.
     let cancel = flexrig::CancelToken::new();
     let handler = cancel.clone();

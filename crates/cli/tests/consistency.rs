@@ -442,3 +442,23 @@ fn a_scene_whose_design_was_set_is_named_by_the_design_that_ran() {
         "{stdout}"
     );
 }
+
+#[test]
+fn a_list_given_with_spaces_is_answered_with_the_comma_list() {
+    let o = flexrig(&[
+        "eta-map",
+        "--m-h",
+        "4",
+        "1000",
+        "--out",
+        "/nonexistent-never-written",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("unexpected argument '1000'"), "{err}");
+    assert!(err.contains("--m-h 4,1000"), "{err}");
+    // a stray word is not a list: no tip
+    let o = flexrig(&["eta-map", "--m-h", "4", "oops"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("tip:"));
+}
