@@ -40,8 +40,30 @@ pub struct SafetyScene {
     pub scene: DrivenScene,
 }
 
-/// Resolves and parses `given` (`--scene`: a bundled scene's name or a scene file's path); a
-/// scene without a `[drive]` section is refused (the test bed's operator speed is not searched).
+/// A scene given as the design of `flexrig safety`.
+#[derive(Debug, Clone)]
+pub enum SafetyDesignScene {
+    /// A driven scene: its commanded speed is searched.
+    Driven(SafetyScene),
+    /// A test-bed scene: the operator's speed at contact is searched
+    /// ([`crate::safety_test_bed`]).
+    TestBed(Box<crate::safety_test_bed::TestBedScene>),
+}
+
+/// Resolves and parses `given` (`--scene`: a bundled scene's name or a scene file's path): a
+/// driven scene (with a `[drive]` section) or a test-bed scene.
+pub fn load_any(given: &str) -> Result<SafetyDesignScene, Error> {
+    let source = crate::scenes::resolve("--scene", std::path::Path::new(given))?;
+    if crate::driven::scene::is_driven_text(&source.text) {
+        return Ok(SafetyDesignScene::Driven(load(given)?));
+    }
+    Ok(SafetyDesignScene::TestBed(Box::new(
+        crate::safety_test_bed::TestBedScene::parse(&source.origin, &source.text)?,
+    )))
+}
+
+/// Resolves and parses the driven scene `given` (`--scene`: a bundled scene's name or a scene
+/// file's path); a scene without a `[drive]` section is refused.
 pub fn load(given: &str) -> Result<SafetyScene, Error> {
     let source = crate::scenes::resolve("--scene", std::path::Path::new(given))?;
     if !crate::driven::scene::is_driven_text(&source.text) {
@@ -199,6 +221,13 @@ pub struct SceneSimulation {
     pub run_tol: f64,
     /// The root search's relative tolerance on the speed.
     pub root_rtol: f64,
+    /// A test-bed scene: the operator's release angle \[deg\] of the run at the force root (the
+    /// largest, 170°, when the limit is not reached); absent for a driven scene.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub release_angle_at_root_deg: Option<f64>,
+    /// False when the force limit is not reached at the largest speed the scene allows (a test
+    /// bed released from 170°): `by_force_mps` is then that speed, a lower bound.
+    pub limit_reached: bool,
 }
 
 /// The first contact's peak force \[N\] of `scene` at commanded tip speed `v` [m/s].
@@ -273,6 +302,8 @@ pub fn simulate(
             StrikeDesign::Cl => settings.tol,
         },
         root_rtol: settings.root_rtol,
+        release_angle_at_root_deg: None,
+        limit_reached: true,
     })
 }
 
