@@ -86,7 +86,9 @@ impl TestBedScene {
         let g = self.scene.file.gravity_mps2;
         let c = 1.0 - op.inertia_pivot * omega * omega / (2.0 * op.mass * g * op.com_distance);
         let angle = c.clamp(-1.0, 1.0).acos().to_degrees();
-        (c >= -1.0 && angle <= MAX_RELEASE_ANGLE_DEG && angle > 0.0).then_some(angle)
+        // the largest speed itself maps back to 170° up to rounding
+        (c >= -1.0 && angle <= MAX_RELEASE_ANGLE_DEG * (1.0 + 1e-12) && angle > 0.0)
+            .then_some(angle.min(MAX_RELEASE_ANGLE_DEG))
     }
 
     /// The largest speed at contact the test bed reaches (release from 170°) [m/s].
@@ -212,9 +214,10 @@ pub fn simulate(
         _ => None,
     };
     let speed = by_force.unwrap_or(v_cap);
-    let angle = tb
-        .release_angle_for(speed)
-        .unwrap_or(MAX_RELEASE_ANGLE_DEG);
+    let angle = match by_force {
+        Some(v) => tb.release_angle_for(v).unwrap_or(MAX_RELEASE_ANGLE_DEG),
+        None => MAX_RELEASE_ANGLE_DEG,
+    };
     let at_root = tb.run_released(angle)?;
     runs += 1;
     let g = |v: f64| flexrig_contact::validate::display(v);
