@@ -320,7 +320,10 @@ fn a_test_bed_scene_searches_the_operators_speed_and_refuses_the_head() {
         num(&method(&v, "simulation")["by_force_mps"]),
         num(&scene["by_force_mps"])
     );
-    assert!(rel(num(&scene["peak_force_at_root_n"]), f) < 1e-5, "{scene}");
+    assert!(
+        rel(num(&scene["peak_force_at_root_n"]), f) < 1e-5,
+        "{scene}"
+    );
     // the operator's block is the person: a transient head contact is refused with the clause
     let out = flexrig(&["safety", "--region", "face", "--scene", "cj_aluminium"]);
     assert_eq!(out.status.code(), Some(2));

@@ -1004,7 +1004,7 @@ fn test_bed_trace(
     ));
     d.push(Block::Equations(eqs));
     for note in &sc.notes {
-        d.push(Block::Paragraph(format!("In the run at the limit, {note}.")));
+        d.push(Block::Paragraph(format!("Note: {note}.")));
     }
 }
 

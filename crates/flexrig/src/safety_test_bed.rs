@@ -201,16 +201,20 @@ pub fn simulate(
         &mut peak,
         Some(&mut force_search),
     )?;
+    // the pressure's speed; absent when its limit is not reached on the test bed (a note says so)
+    let mut pressure_unreached = None;
     let by_pressure = match (limits.pressure, guess_pressure) {
-        (Some(p), Some(g)) => Some(match energy.force_at_pressure(p) {
+        (Some(p), Some(g)) => match energy.force_at_pressure(p) {
             Some(PressureCrossing::AtForce(f)) => {
-                capped_root(v_cap, g, settings.root_rtol, f, &mut peak, None)?
-                    .0
-                    .unwrap_or(v_cap)
+                let (root, _) = capped_root(v_cap, g, settings.root_rtol, f, &mut peak, None)?;
+                if root.is_none() {
+                    pressure_unreached = Some(p);
+                }
+                root
             }
-            Some(PressureCrossing::Always) => 0.0,
-            Some(PressureCrossing::Never) | None => f64::INFINITY,
-        }),
+            Some(PressureCrossing::Always) => Some(0.0),
+            Some(PressureCrossing::Never) | None => Some(f64::INFINITY),
+        },
         _ => None,
     };
     let speed = by_force.unwrap_or(v_cap);
@@ -221,7 +225,7 @@ pub fn simulate(
     let at_root = tb.run_released(angle)?;
     runs += 1;
     let g = |v: f64| flexrig_contact::validate::display(v);
-    let notes = vec![match by_force {
+    let mut notes = vec![match by_force {
         Some(_) => format!(
             "the operator released at rest from {}° reaches the dome at {} m/s",
             g(angle),
@@ -237,6 +241,14 @@ pub fn simulate(
             g(v_cap)
         ),
     }];
+    if let Some(p) = pressure_unreached {
+        notes.push(format!(
+            "the pressure limit of {} N/cm² is not reached on this test bed (released from \
+             {MAX_RELEASE_ANGLE_DEG}°, up to {} m/s)",
+            g(p / 1e4),
+            g(v_cap)
+        ));
+    }
     Ok(SceneSimulation {
         scene: tb.origin.clone(),
         name: tb.scene.file.name.clone(),

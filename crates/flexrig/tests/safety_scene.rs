@@ -5,10 +5,10 @@
 //! tolerance moves them by less than 1e-4); a wall is quasi-static contact, a free head
 //! transient, and a transient head contact is refused with the clause.
 
+use flexrig::safety::SafetyReport;
 use flexrig::safety::{
     ContactKind, ContactLaw, GoverningLimit, SafetyInput, SafetyMethod, SimulationSettings, safety,
 };
-use flexrig::safety::SafetyReport;
 use flexrig_safety::BodyModel;
 
 fn input(scene: &str, region: &str, methods: Vec<SafetyMethod>) -> SafetyInput {
@@ -270,10 +270,10 @@ fn the_test_bed_speed_is_a_run_at_the_limit_and_near_the_energy_method() {
         let f_max = r.force_limit_n;
         let run = flexrig::run::run_scene_file(
             std::path::Path::new(scene),
-            &[flexrig_rig::Override::parse(&format!(
-                "operator.start.release_angle_deg={angle}"
-            ))
-            .unwrap()],
+            &[
+                flexrig_rig::Override::parse(&format!("operator.start.release_angle_deg={angle}"))
+                    .unwrap(),
+            ],
             flexrig::run::LogRequest {
                 out: None,
                 force: false,
@@ -316,7 +316,10 @@ fn the_test_bed_speed_is_a_run_at_the_limit_and_near_the_energy_method() {
         .unwrap();
         let v_b = energy.speed_at_force(f_max);
         let diff = v_b / sc.by_force_mps - 1.0;
-        eprintln!("{scene}: simulated {} m/s, energy method {v_b} m/s: {diff:+e}", sc.by_force_mps);
+        eprintln!(
+            "{scene}: simulated {} m/s, energy method {v_b} m/s: {diff:+e}",
+            sc.by_force_mps
+        );
         assert!(diff.abs() < tol, "{scene}: {diff:e}");
     }
 }
