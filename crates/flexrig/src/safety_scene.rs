@@ -44,7 +44,7 @@ pub struct SafetyScene {
 #[derive(Debug, Clone)]
 pub enum SafetyDesignScene {
     /// A driven scene: its commanded speed is searched.
-    Driven(SafetyScene),
+    Driven(Box<SafetyScene>),
     /// A test-bed scene: the operator's speed at contact is searched
     /// ([`crate::safety_test_bed`]).
     TestBed(Box<crate::safety_test_bed::TestBedScene>),
@@ -55,7 +55,7 @@ pub enum SafetyDesignScene {
 pub fn load_any(given: &str) -> Result<SafetyDesignScene, Error> {
     let source = crate::scenes::resolve("--scene", std::path::Path::new(given))?;
     if crate::driven::scene::is_driven_text(&source.text) {
-        return Ok(SafetyDesignScene::Driven(load(given)?));
+        return Ok(SafetyDesignScene::Driven(Box::new(load(given)?)));
     }
     Ok(SafetyDesignScene::TestBed(Box::new(
         crate::safety_test_bed::TestBedScene::parse(&source.origin, &source.text)?,
