@@ -123,10 +123,13 @@ pub struct SafetyInput {
     /// [`SimulationSettings::DEFAULT`] (held joint).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub simulation: Option<SimulationSettings>,
-    /// A driven scene as the design (`--scene`: a bundled scene's name or a scene file's path;
-    /// [`crate::safety_scene`]): the link, the skin's law and the contact kind come from the
-    /// scene (a wall: quasi-static; a free head or a neck: transient), and the simulation
-    /// method searches the scene's commanded speed. Absent: the design of the other fields.
+    /// A scene as the design (`--scene`: a bundled scene's name or a scene file's path). A
+    /// driven scene ([`crate::safety_scene`]): the link, the skin's law and the contact kind
+    /// come from the scene (a wall: quasi-static; a free head or a neck: transient), and the
+    /// simulation method searches the scene's commanded speed. A test-bed scene
+    /// ([`crate::safety_test_bed`]): the robot link and the operator block's law, transient
+    /// contact, and the simulation method searches the operator's speed at contact through its
+    /// release angle. Absent: the design of the other fields.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scene: Option<String>,
 }
