@@ -196,11 +196,13 @@ pub struct SceneSimulation {
     pub name: String,
     /// CJ or CL.
     pub design: StrikeDesign,
-    /// The head's support: `free`, `neck` or `wall`.
+    /// The head's support: `free`, `neck` or `wall` (a test bed: `pendulum`).
     pub support: &'static str,
-    /// The commanded tip speed of the scene as written [m/s].
+    /// The commanded tip speed of the scene as written [m/s] (a test bed: the operator's speed
+    /// at contact as written).
     pub scene_tip_speed_mps: f64,
-    /// The commanded tip speed at which the peak force reaches the force limit [m/s].
+    /// The commanded tip speed at which the peak force reaches the force limit [m/s] (a test
+    /// bed: the operator's speed at contact).
     pub by_force_mps: f64,
     /// The same for the pressure limit [m/s] (absent without a pressure assessment; +∞ when
     /// the pressure never reaches its limit, 0 when it always does).
@@ -217,7 +219,8 @@ pub struct SceneSimulation {
     pub force_search: Vec<RootStep>,
     /// Driven strikes simulated (both searches).
     pub runs: usize,
-    /// The run tolerance: DOP853's relative tolerance (CJ) or the modal integrator's (CL).
+    /// The run tolerance: DOP853's relative tolerance (CJ) or the modal integrator's (CL); a test
+    /// bed: the rig's contact step \[s\].
     pub run_tol: f64,
     /// The root search's relative tolerance on the speed.
     pub root_rtol: f64,
