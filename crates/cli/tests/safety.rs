@@ -300,8 +300,32 @@ fn a_driven_scene_is_the_design_and_its_commanded_speed_is_searched() {
         err.contains("--k-delta") && err.contains("--scene"),
         "{err}"
     );
-    // a test-bed scene has no drive to search
-    let out = flexrig(&["safety", "--region", "chest", "--scene", "cj_aluminium"]);
+}
+
+#[test]
+fn a_test_bed_scene_searches_the_operators_speed_and_refuses_the_head() {
+    // The bundled CJ test bed against the abdomen (transient limit 220 N): the simulated speed
+    // is the operator's speed at contact, its run at the root reaches the limit (the search's
+    // 1e-6), and the release angle gives that speed by the pendulum's energy.
+    let v = json(&["--region", "abdomen", "--scene", "cj_aluminium"]);
+    assert_eq!(v["contact"], "transient");
+    let f = num(&v["force_limit_n"]);
+    let scene = &v["scene"];
+    assert_eq!(scene["name"], "cj_aluminium");
+    assert_eq!(scene["support"], "pendulum");
+    assert_eq!(scene["limit_reached"], true);
+    let angle = num(&scene["release_angle_at_root_deg"]);
+    assert!(angle > 0.0 && angle <= 170.0, "{scene}");
+    assert_eq!(
+        num(&method(&v, "simulation")["by_force_mps"]),
+        num(&scene["by_force_mps"])
+    );
+    assert!(
+        rel(num(&scene["peak_force_at_root_n"]), f) < 1e-5,
+        "{scene}"
+    );
+    // the operator's block is the person: a transient head contact is refused with the clause
+    let out = flexrig(&["safety", "--region", "face", "--scene", "cj_aluminium"]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("[drive]"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("5.5.5.4"));
 }

@@ -49,6 +49,7 @@ pub mod safety_map;
 pub mod safety_report;
 pub mod safety_scene;
 pub mod safety_simulation;
+pub mod safety_test_bed;
 pub mod scenes;
 pub mod severity;
 pub mod study;

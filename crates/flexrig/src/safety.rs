@@ -32,6 +32,7 @@ pub use flexrig_safety::{BodyModel, ContactAreaModel, ContactKind, GoverningLimi
 use serde::{Deserialize, Serialize};
 
 use crate::Error;
+use crate::safety_scene::SafetyDesignScene;
 
 pub use crate::safety_simulation::{
     CLAMPED_HUMAN_MASS, FE_RIGID_LINK_STIFFNESS, FeImpact, FeLink, MapJoint, RootStep,
@@ -122,10 +123,13 @@ pub struct SafetyInput {
     /// [`SimulationSettings::DEFAULT`] (held joint).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub simulation: Option<SimulationSettings>,
-    /// A driven scene as the design (`--scene`: a bundled scene's name or a scene file's path;
-    /// [`crate::safety_scene`]): the link, the skin's law and the contact kind come from the
-    /// scene (a wall: quasi-static; a free head or a neck: transient), and the simulation
-    /// method searches the scene's commanded speed. Absent: the design of the other fields.
+    /// A scene as the design (`--scene`: a bundled scene's name or a scene file's path). A
+    /// driven scene ([`crate::safety_scene`]): the link, the skin's law and the contact kind
+    /// come from the scene (a wall: quasi-static; a free head or a neck: transient), and the
+    /// simulation method searches the scene's commanded speed. A test-bed scene
+    /// ([`crate::safety_test_bed`]): the robot link and the operator block's law, transient
+    /// contact, and the simulation method searches the operator's speed at contact through its
+    /// release angle. Absent: the design of the other fields.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scene: Option<String>,
 }
@@ -403,12 +407,12 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
     let scene = input
         .scene
         .as_deref()
-        .map(crate::safety_scene::load)
+        .map(crate::safety_scene::load_any)
         .transpose()?;
     let derived;
     let input = match &scene {
         Some(sc) => {
-            derived = scene_input(input, sc)?;
+            derived = any_scene_input(input, sc)?;
             &derived
         }
         None => input,
@@ -421,8 +425,13 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
             (SafetyMethod::Standard, _) => standard(&s, input.speed)?,
             (SafetyMethod::Energy, _) => energy(&s, input.speed)?,
             (SafetyMethod::Simulation, None) => simulation(&s, input)?,
-            (SafetyMethod::Simulation, Some(sc)) => {
+            (SafetyMethod::Simulation, Some(SafetyDesignScene::Driven(sc))) => {
                 let (m, sim) = scene_method(&s, input, sc)?;
+                scene_simulation = Some(sim);
+                m
+            }
+            (SafetyMethod::Simulation, Some(SafetyDesignScene::TestBed(tb))) => {
+                let (m, sim) = test_bed_method(&s, input, tb)?;
                 scene_simulation = Some(sim);
                 m
             }
@@ -493,6 +502,69 @@ fn scene_input(
         }),
         ..input.clone()
     };
+    refuse_design_flags(input, &derived)?;
+    Ok(derived)
+}
+
+/// The input with the design of the scene `sc`, driven ([`scene_input`]) or test bed
+/// ([`test_bed_input`]).
+fn any_scene_input(input: &SafetyInput, sc: &SafetyDesignScene) -> Result<SafetyInput, Error> {
+    match sc {
+        SafetyDesignScene::Driven(d) => scene_input(input, d),
+        SafetyDesignScene::TestBed(tb) => test_bed_input(input, tb),
+    }
+}
+
+/// The input with the design of the test-bed scene `tb`: its robot link (m_eff = m_e + γ m_r/3,
+/// γ = 1 for the CJ and 2/3 for the CL, paper Eq. 5; k_δ of Eq. 1–2; length), the block's Hertz
+/// law, transient contact (the operator's pendulum is free), and the Hertz-sphere area of the
+/// scene's dome unless an area model is given.
+fn test_bed_input(
+    input: &SafetyInput,
+    tb: &crate::safety_test_bed::TestBedScene,
+) -> Result<SafetyInput, Error> {
+    let (gamma, link) = match tb.design() {
+        crate::driven::strike::StrikeDesign::Cj => {
+            (crate::safety_simulation::GAMMA_CJ, FeLink::CompliantJoint)
+        }
+        crate::driven::strike::StrikeDesign::Cl => {
+            (crate::safety_simulation::GAMMA_CL, FeLink::CompliantLink)
+        }
+    };
+    let quantities = crate::link::of_scene(&tb.scene);
+    let robot = &tb.scene.file.robot;
+    let area_model = match input.area_model {
+        Some(a) => a,
+        None => ContactAreaModel::HertzSphere {
+            radius_m: robot.dome_radius_m,
+        },
+    };
+    let derived = SafetyInput {
+        contact: ContactKind::Transient,
+        m_eff: Some(RobotEffectiveMass::Prb {
+            gamma,
+            m_r: quantities.m_r_kg,
+            m_e: robot.payload_kg,
+        }),
+        k_delta: Some(quantities.k_delta_n_per_m),
+        law: ContactLaw::Hertz {
+            k_c: tb.scene.hertz.k(),
+            n: tb.scene.hertz.n(),
+        },
+        area_model: Some(area_model),
+        link: Some(link),
+        simulation: Some(SimulationSettings {
+            length: robot.length_m,
+            ..input.simulation.unwrap_or(SimulationSettings::DEFAULT)
+        }),
+        ..input.clone()
+    };
+    refuse_design_flags(input, &derived)?;
+    Ok(derived)
+}
+
+/// Refuses a design value given beside a scene unless it is the scene's own (`derived`).
+fn refuse_design_flags(input: &SafetyInput, derived: &SafetyInput) -> Result<(), Error> {
     // a design value given beside the scene must be the scene's own (a derived input passes)
     let given = [
         (
@@ -517,14 +589,14 @@ fn scene_input(
              contact law (edit the scene file to change them)",
         ));
     }
-    Ok(derived)
+    Ok(())
 }
 
 /// `input` with its design filled in from its driven scene (see [`SafetyInput::scene`]), or
 /// `input` itself without a scene: what the methods compute with, as a report lists it.
 pub fn design_input(input: &SafetyInput) -> Result<SafetyInput, Error> {
     match &input.scene {
-        Some(given) => scene_input(input, &crate::safety_scene::load(given)?),
+        Some(given) => any_scene_input(input, &crate::safety_scene::load_any(given)?),
         None => Ok(input.clone()),
     }
 }
@@ -556,6 +628,58 @@ fn scene_method(
     let verdict = match input.speed {
         Some(v) if v > 0.0 => {
             let force = crate::safety_scene::peak_force(sc, v, &settings)?;
+            Some(Verdict::new(
+                v,
+                p,
+                force,
+                s.limits.pressure.and(pressure_at_force(s, force)),
+            ))
+        }
+        Some(v) => Some(Verdict::new(v, p, 0.0, s.limits.pressure.map(|_| 0.0))),
+        None => None,
+    };
+    Ok((
+        from_permissible(SafetyMethod::Simulation, s.m_eff, &p, verdict),
+        sim,
+    ))
+}
+
+/// The simulation method on the test-bed scene `tb` ([`crate::safety_test_bed::simulate`]):
+/// the searches start at the energy method's speeds for the operator's pendulum (the struck
+/// mass J/l² in place of the region's m_H, and the link as a free mass: the contact is short
+/// against the link's own period, so its spring hardly acts); the verdict runs the scene at the
+/// judged speed.
+fn test_bed_method(
+    s: &Setup,
+    input: &SafetyInput,
+    tb: &crate::safety_test_bed::TestBedScene,
+) -> Result<(MethodResult, crate::safety_scene::SceneSimulation), Error> {
+    let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
+    let contact = EnergyContact::new(
+        tb.operator_mass(),
+        s.m_eff,
+        s.hertz,
+        LinkStiffness::Rigid,
+        s.area_model,
+    )?;
+    let guess = contact.permissible_speed(s.limits)?;
+    let sim = crate::safety_test_bed::simulate(
+        tb,
+        &s.limits,
+        &contact,
+        guess.by_force,
+        guess.by_pressure,
+        &settings,
+    )?;
+    let p = PermissibleSpeed::from_parts(
+        sim.by_force_mps,
+        sim.by_pressure_mps,
+        contact.reduced_mass(),
+        s.limits,
+    );
+    let verdict = match input.speed {
+        Some(v) if v > 0.0 => {
+            let force = tb.peak_force(v)?;
             Some(Verdict::new(
                 v,
                 p,
@@ -784,13 +908,14 @@ pub fn simulation_trace(
 }
 
 /// The simulation method's first-contact peak force \[N\] of `input` at each speed of `speeds`
-/// [m/s] (the CL's modes solved at the first speed; with a scene, its driven strike at each
-/// commanded tip speed).
+/// [m/s], as (speed, force) pairs (the CL's modes solved at the first speed; with a driven
+/// scene, its strike at each commanded tip speed; with a test-bed scene, its run at each speed
+/// the operator reaches, those beyond its largest release angle left out).
 pub fn simulated_peak_forces(
     input: &SafetyInput,
     model: Option<&BodyModel>,
     speeds: &[f64],
-) -> Result<Vec<f64>, Error> {
+) -> Result<Vec<(f64, f64)>, Error> {
     let bundled;
     let model = match model {
         Some(m) => m,
@@ -800,12 +925,21 @@ pub fn simulated_peak_forces(
         }
     };
     if let Some(given) = &input.scene {
-        let sc = crate::safety_scene::load(given)?;
         let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
-        return speeds
-            .iter()
-            .map(|&v| crate::safety_scene::peak_force(&sc, v, &settings))
-            .collect();
+        return match crate::safety_scene::load_any(given)? {
+            SafetyDesignScene::Driven(sc) => speeds
+                .iter()
+                .map(|&v| Ok((v, crate::safety_scene::peak_force(&sc, v, &settings)?)))
+                .collect(),
+            SafetyDesignScene::TestBed(tb) => {
+                let reach = tb.max_speed();
+                speeds
+                    .iter()
+                    .filter(|&&v| v <= reach)
+                    .map(|&v| Ok((v, tb.peak_force(v)?)))
+                    .collect()
+            }
+        };
     }
     let s = setup(input, model)?;
     let impact = fe_impact(&s, input)?;
@@ -814,5 +948,8 @@ pub fn simulated_peak_forces(
         return Ok(Vec::new());
     };
     let mut runs = impact.prepare(first)?;
-    speeds.iter().map(|&v| runs.peak(v, &stop)).collect()
+    speeds
+        .iter()
+        .map(|&v| Ok((v, runs.peak(v, &stop)?)))
+        .collect()
 }

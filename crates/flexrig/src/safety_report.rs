@@ -845,6 +845,9 @@ fn scene_trace(
     r: &SafetyReport,
     m: &MethodResult,
 ) {
+    if let Some(angle) = sc.release_angle_at_root_deg {
+        return test_bed_trace(d, sc, r, m, angle);
+    }
     d.push(Block::Heading(
         2,
         "Method c: simulation (the driven scene and a root search on its commanded speed)".into(),
@@ -930,6 +933,81 @@ fn scene_trace(
     }
 }
 
+/// Method c on a test-bed scene: the scene, the search's every evaluation and the result.
+fn test_bed_trace(
+    d: &mut Document,
+    sc: &crate::safety_scene::SceneSimulation,
+    r: &SafetyReport,
+    m: &MethodResult,
+    angle: f64,
+) {
+    d.push(Block::Heading(
+        2,
+        "Method c: simulation (the test bed and a root search on the operator's speed)".into(),
+    ));
+    let f = r.force_limit_n;
+    d.push(Block::Paragraph(format!(
+        "The test-bed scene {} ({}, the {} on its axis) is run whole at each speed: the \
+         operator's pendulum is released at rest from the angle whose swing reaches the dome at \
+         that speed (the pendulum's energy, ½ J ω_b² = M g l_c (1 − cos θ₀), v = ω_b l), and the \
+         first contact is integrated with a contact step of {:e} s. The operator's block is the \
+         struck body and its pendulum is free, so the contact is transient. The speed at which \
+         the peak force reaches F_max = {} N is found by the Illinois false position on ln v \
+         until the bracket is narrower than {:e} (relative); release angles are bounded by \
+         170°. Methods a and b use the region's body mass, this one the operator's pendulum.",
+        sc.name,
+        sc.scene,
+        match sc.design {
+            crate::driven::strike::StrikeDesign::Cj => "compliant joint",
+            crate::driven::strike::StrikeDesign::Cl => "compliant link",
+        },
+        sc.run_tol,
+        n(f),
+        sc.root_rtol
+    )));
+    let rows = sc
+        .force_search
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            vec![
+                (i + 1).to_string(),
+                format!("{:.12}", s.speed_mps),
+                format!("{:.9}", s.ratio * f),
+                format!("{:+.3e}", s.ratio - 1.0),
+            ]
+        })
+        .collect();
+    d.push(Block::Table(
+        vec![
+            "iteration".into(),
+            "operator speed at contact [m/s]".into(),
+            "simulated peak force [N]".into(),
+            "peak/F_max − 1".into(),
+        ],
+        rows,
+    ));
+    let mut eqs = vec![format!(
+        "v_F {} {} m/s (released from {}°; the run's impact speed {} m/s; peak force {} N) \
+         after {} test-bed runs",
+        if sc.limit_reached { "=" } else { "≥" },
+        g(sc.by_force_mps),
+        g(angle),
+        g(sc.approach_speed_at_root_mps),
+        g(sc.peak_force_at_root_n),
+        sc.runs
+    )];
+    eqs.push(format!(
+        "v_max = {} m/s, governed by the {} limit",
+        g(m.v_max_mps.value()),
+        governing(m.governing)
+    ));
+    d.push(Block::Equations(eqs));
+    for note in &sc.notes {
+        d.push(Block::Paragraph(format!("Note: {note}.")));
+    }
+}
+
 /// The figure: peak force against speed by each method, and the force limit.
 pub fn figure_svg(
     input: &SafetyInput,
@@ -973,8 +1051,7 @@ pub fn figure_svg(
             }
             SafetyMethod::Simulation => {
                 let sampled: Vec<f64> = speeds.iter().step_by(4).copied().collect();
-                let forces = simulated_peak_forces(input, model, &sampled)?;
-                sampled.into_iter().zip(forces).collect()
+                simulated_peak_forces(input, model, &sampled)?
             }
         };
         curves.push(Curve {

@@ -40,8 +40,30 @@ pub struct SafetyScene {
     pub scene: DrivenScene,
 }
 
-/// Resolves and parses `given` (`--scene`: a bundled scene's name or a scene file's path); a
-/// scene without a `[drive]` section is refused (the test bed's operator speed is not searched).
+/// A scene given as the design of `flexrig safety`.
+#[derive(Debug, Clone)]
+pub enum SafetyDesignScene {
+    /// A driven scene: its commanded speed is searched.
+    Driven(Box<SafetyScene>),
+    /// A test-bed scene: the operator's speed at contact is searched
+    /// ([`crate::safety_test_bed`]).
+    TestBed(Box<crate::safety_test_bed::TestBedScene>),
+}
+
+/// Resolves and parses `given` (`--scene`: a bundled scene's name or a scene file's path): a
+/// driven scene (with a `[drive]` section) or a test-bed scene.
+pub fn load_any(given: &str) -> Result<SafetyDesignScene, Error> {
+    let source = crate::scenes::resolve("--scene", std::path::Path::new(given))?;
+    if crate::driven::scene::is_driven_text(&source.text) {
+        return Ok(SafetyDesignScene::Driven(Box::new(load(given)?)));
+    }
+    Ok(SafetyDesignScene::TestBed(Box::new(
+        crate::safety_test_bed::TestBedScene::parse(&source.origin, &source.text)?,
+    )))
+}
+
+/// Resolves and parses the driven scene `given` (`--scene`: a bundled scene's name or a scene
+/// file's path); a scene without a `[drive]` section is refused.
 pub fn load(given: &str) -> Result<SafetyScene, Error> {
     let source = crate::scenes::resolve("--scene", std::path::Path::new(given))?;
     if !crate::driven::scene::is_driven_text(&source.text) {
@@ -174,11 +196,13 @@ pub struct SceneSimulation {
     pub name: String,
     /// CJ or CL.
     pub design: StrikeDesign,
-    /// The head's support: `free`, `neck` or `wall`.
+    /// The head's support: `free`, `neck` or `wall` (a test bed: `pendulum`).
     pub support: &'static str,
-    /// The commanded tip speed of the scene as written [m/s].
+    /// The commanded tip speed of the scene as written [m/s] (a test bed: the operator's speed
+    /// at contact as written).
     pub scene_tip_speed_mps: f64,
-    /// The commanded tip speed at which the peak force reaches the force limit [m/s].
+    /// The commanded tip speed at which the peak force reaches the force limit [m/s] (a test
+    /// bed: the operator's speed at contact).
     pub by_force_mps: f64,
     /// The same for the pressure limit [m/s] (absent without a pressure assessment; +∞ when
     /// the pressure never reaches its limit, 0 when it always does).
@@ -195,10 +219,18 @@ pub struct SceneSimulation {
     pub force_search: Vec<RootStep>,
     /// Driven strikes simulated (both searches).
     pub runs: usize,
-    /// The run tolerance: DOP853's relative tolerance (CJ) or the modal integrator's (CL).
+    /// The run tolerance: DOP853's relative tolerance (CJ) or the modal integrator's (CL); a test
+    /// bed: the rig's contact step \[s\].
     pub run_tol: f64,
     /// The root search's relative tolerance on the speed.
     pub root_rtol: f64,
+    /// A test-bed scene: the operator's release angle \[deg\] of the run at the force root (the
+    /// largest, 170°, when the limit is not reached); absent for a driven scene.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub release_angle_at_root_deg: Option<f64>,
+    /// False when the force limit is not reached at the largest speed the scene allows (a test
+    /// bed released from 170°): `by_force_mps` is then that speed, a lower bound.
+    pub limit_reached: bool,
 }
 
 /// The first contact's peak force \[N\] of `scene` at commanded tip speed `v` [m/s].
@@ -273,6 +305,8 @@ pub fn simulate(
             StrikeDesign::Cl => settings.tol,
         },
         root_rtol: settings.root_rtol,
+        release_angle_at_root_deg: None,
+        limit_reached: true,
     })
 }
 

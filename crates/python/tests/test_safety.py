@@ -82,6 +82,21 @@ def test_safety_of_a_driven_scene_equals_the_cli_json(cli):
     assert got["scene"]["by_force_mps"] == got["methods"][2]["by_force_mps"]
 
 
+def test_safety_of_a_test_bed_scene_equals_the_cli_json(cli):
+    # the bundled CJ test bed: the operator's speed at contact searched through its release angle
+    got = flexrig.safety("abdomen", scene="cj_aluminium", method="simulation")
+    assert got == cli.json(
+        "safety", "--region", "abdomen", "--scene", "cj_aluminium", "--method", "simulation"
+    )
+    assert got["contact"] == "transient"
+    scene = got["scene"]
+    assert scene["support"] == "pendulum" and scene["limit_reached"] is True
+    assert 0.0 < scene["release_angle_at_root_deg"] <= 170.0
+    assert abs(scene["peak_force_at_root_n"] / got["force_limit_n"] - 1.0) < 1e-5
+    with pytest.raises(flexrig.InputError, match="5.5.5.4"):
+        flexrig.safety("face", scene="cj_aluminium", method="energy")
+
+
 def test_a_scene_refuses_the_contact_keyword_and_a_transient_head():
     with pytest.raises(flexrig.InputError) as e:
         flexrig.safety("chest", scene="driven_cj_wall", contact="transient")

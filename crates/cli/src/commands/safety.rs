@@ -99,10 +99,13 @@ pub struct SafetyArgs {
     /// A body-model TOML file in the format of assets/safety/iso_ts_15066_2016.toml.
     #[arg(long = "body-model", value_name = "FILE")]
     pub body_model: Option<PathBuf>,
-    /// A driven scene as the design: a bundled scene's name (driven_cj_free_head,
-    /// driven_cj_wall, driven_cl_free_head, driven_cl_wall) or a scene file with a [drive]
-    /// section. The scene gives the link, the skin's law and the contact (a wall: quasi-static,
-    /// a free head: transient); the simulation method searches its commanded speed.
+    /// A scene as the design: a driven scene (driven_cj_free_head, driven_cj_wall,
+    /// driven_cl_free_head, driven_cl_wall, or a scene file with a [drive] section: the link,
+    /// the skin's law and the contact, a wall quasi-static and a free head transient; the
+    /// simulation method searches its commanded speed) or a test-bed scene (cj_aluminium,
+    /// cl_iron, …: the robot link and the operator block's skin, transient contact; the
+    /// simulation method searches the operator's speed at contact through its release angle,
+    /// up to 170°).
     #[arg(
         long,
         value_name = "NAME|FILE",
@@ -277,6 +280,9 @@ fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
         print_method(out, m)?;
     }
     if let Some(sc) = &r.scene {
+        if let Some(angle) = sc.release_angle_at_root_deg {
+            return print_test_bed(out, sc, angle);
+        }
         line(
             out,
             format!(
@@ -305,6 +311,48 @@ fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
         for note in &sc.notes {
             line(out, format!("  note: {note}"))?;
         }
+    }
+    Ok(())
+}
+
+/// The test bed's search: the operator's speed at contact and its release angle.
+fn print_test_bed(
+    out: &mut dyn Write,
+    sc: &flexrig::safety_scene::SceneSimulation,
+    angle: f64,
+) -> Result<(), Error> {
+    line(
+        out,
+        format!(
+            "scene              {} ({}, {} link, operator pendulum): operator speed at contact \
+             {} m/s as written",
+            sc.name,
+            sc.scene,
+            format!("{:?}", sc.design).to_uppercase(),
+            sc.scene_tip_speed_mps
+        ),
+    )?;
+    line(
+        out,
+        format!(
+            "  {}: operator speed {:.6} m/s (released from {:.4}°), run's impact speed {:.6} \
+             m/s, peak {:.3} N ({} test-bed runs, contact step {:e} s, root tolerance {:e})",
+            if sc.limit_reached {
+                "at the force limit"
+            } else {
+                "limit NOT reached up to"
+            },
+            sc.by_force_mps,
+            angle,
+            sc.approach_speed_at_root_mps,
+            sc.peak_force_at_root_n,
+            sc.runs,
+            sc.run_tol,
+            sc.root_rtol
+        ),
+    )?;
+    for note in &sc.notes {
+        line(out, format!("  note: {note}"))?;
     }
     Ok(())
 }

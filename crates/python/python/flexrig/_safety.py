@@ -65,7 +65,11 @@ def safety(
     file with a ``[drive]`` section) is the design instead of the mass, stiffness and contact-law
     keywords: the simulation method then searches the scene's commanded tip speed, a wall is
     quasi-static contact and a free head transient (``contact`` is not given with a scene), and
-    ``method`` defaults to all three (without a scene: standard and energy).
+    ``method`` defaults to all three (without a scene: standard and energy). A test-bed scene
+    (``"cj_aluminium"``, ``"cl_iron"``, …) is transient contact with the operator's block; the
+    simulation method searches the operator's speed at contact through its release angle (up
+    to 170°): ``result["scene"]`` then has ``release_angle_at_root_deg`` and ``limit_reached``
+    (false: the limit is not reached on the test bed, and the speed is the largest it reaches).
     """
     if scene is not None and contact is not None:
         raise _input_error("contact", "contact comes from the scene's support (a wall: quasi_static, a free head: transient)")
