@@ -1061,7 +1061,12 @@ fn the_payload_curve_runs_the_bundled_light_load_pair() {
     let dir = scratch_dir("payload");
     let out = dir.to_str().unwrap();
     let v = json(&[
-        "payload", "--from", "0.1", "--to", "1", "--points", "2", "--out", out, "--json",
+        "payload",
+        "--payloads",
+        "0.1:1:2:log",
+        "--out",
+        out,
+        "--json",
     ]);
     let row = &v["rows"][0];
     assert_eq!(row["payload_kg"].as_f64(), Some(0.1));
@@ -1078,8 +1083,10 @@ fn the_payload_curve_runs_the_bundled_light_load_pair() {
     }
     assert_eq!(v["logs"].as_array().unwrap().len(), 6);
     for (args, flag) in [
-        (vec!["--from", "0"], "--from"),
-        (vec!["--from", "1", "--to", "0.5"], "--to"),
+        (vec!["--payloads", "0:1"], "--payloads"),
+        (vec!["--payloads", "1:0.5"], "FROM must be smaller than TO"),
+        (vec!["--payloads", "100:1000"], "did you give grams?"),
+        (vec!["--payloads", "0.1:1:5"], "--payloads"),
         (vec!["--points", "1"], "--points"),
         (vec!["--scene", "nope"], "--scene"),
     ] {

@@ -857,8 +857,7 @@ fn payload_prb_impact_beam_hostile_flags() {
     };
     let payload = vec![
         ("--scene", scenes),
-        ("--from", hostile_numbers()),
-        ("--to", hostile_numbers()),
+        ("--payloads", hostile_ranges()),
         ("--points", hostile_counts(&["1", "1001"])),
     ];
     fuzz_surface(

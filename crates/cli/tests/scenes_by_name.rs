@@ -65,7 +65,7 @@ fn run_takes_a_bundled_name_like_its_file() {
 fn payload_and_sweep_take_names_and_paths_alike() {
     let dir = scratch_dir("payload");
     let out = dir.to_str().unwrap();
-    let common = ["--from", "0.1", "--to", "1", "--points", "2", "--json"];
+    let common = ["--payloads", "0.1:1", "--points", "2", "--json"];
     let mut by_name = vec!["payload", "--scene", "cj_light_load", "--out", out];
     by_name.extend(common);
     let path = scene_path("cj_light_load");

@@ -24,11 +24,11 @@ pub struct PayloadOptions {
     /// Scene to vary: a bundled name, e.g. `cl_light_load`, or a scene file's path (`--scene`,
     /// see [`crate::scenes::resolve`]); its `robot.design` is set to cj and to cl.
     pub scene: String,
-    /// Smallest payload \[kg\], in [1e-4, 10] (`--from`).
+    /// Smallest payload \[kg\], in [1e-4, 10] (`--payloads FROM:…`).
     pub from: f64,
-    /// Largest payload \[kg\], in [1e-4, 10] and above `from` (`--to`).
+    /// Largest payload \[kg\], in [1e-4, 10] and above `from` (`--payloads …:TO`).
     pub to: f64,
-    /// Payloads, log-spaced, in [2, 1000] (`--points`).
+    /// Payloads, log-spaced, in [2, 1000] (`--payloads FROM:TO:N:log`, or `--points`).
     pub points: usize,
     /// Directory for payload.csv, the figure and the MCAP logs of three points (created if
     /// missing; `--out`).
@@ -63,6 +63,15 @@ pub struct PayloadResult {
     pub figures: Vec<PathBuf>,
 }
 
+/// The payloads of `--payloads`: `FROM:TO` \[kg\] with N from `points` (`--points`), or
+/// `FROM:TO:N:log` (the command line's one range syntax; the payloads are log-spaced, so a
+/// linear `FROM:TO:N` is refused naming the flag). Returns (from, to, N); the values are
+/// checked by [`run`].
+pub fn parse_payloads(text: &str, points: usize) -> Result<(f64, f64, usize), Error> {
+    let r = crate::eta_map::parse_log_range("--payloads", text, points)?;
+    Ok((r.from, r.to, r.points))
+}
+
 /// The scene's text, and the ranges checked (errors name the flag).
 fn check(args: &PayloadOptions) -> Result<String, Error> {
     let bad = |arg: &str, value: String, allowed: &str| Error::InvalidArgument {
@@ -90,16 +99,26 @@ fn check(args: &PayloadOptions) -> Result<String, Error> {
             )
         },
     )?;
-    for (flag, v) in [("--from", args.from), ("--to", args.to)] {
+    use crate::output::display_number;
+    let range = || format!("{}:{}", display_number(args.from), display_number(args.to));
+    for v in [args.from, args.to] {
         if !(v.is_finite() && (1e-4..=10.0).contains(&v)) {
-            return Err(bad(flag, v.to_string(), "must lie in [1e-4, 10] kg"));
+            return Err(bad(
+                "--payloads",
+                range(),
+                &format!(
+                    "FROM and TO must lie in [0.0001, 10] kg: {} does not{}",
+                    display_number(v),
+                    flexrig_contact::validate::unit_hint_in("kg", v, 1e-4, 10.0)
+                ),
+            ));
         }
     }
     if args.from >= args.to {
         return Err(bad(
-            "--to",
-            args.to.to_string(),
-            "must be larger than --from",
+            "--payloads",
+            range(),
+            "FROM must be smaller than TO (e.g. 0.01:1)",
         ));
     }
     if !(2..=1000).contains(&args.points) {

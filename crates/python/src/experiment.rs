@@ -52,21 +52,22 @@ pub fn experiment<'py>(
 /// points' MCAP logs into `out`.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (out, scene, from_, to, points, size, format, dpi))]
+#[pyo3(signature = (out, scene, payloads, points, size, format, dpi))]
 pub fn payload<'py>(
     py: Python<'py>,
     out: PathBuf,
     scene: String,
-    from_: f64,
-    to: f64,
+    payloads: &str,
     points: usize,
     size: &str,
     format: Vec<String>,
     dpi: f64,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let (from, to, points) =
+        flexrig::payload::parse_payloads(payloads, points).map_err(flag_error)?;
     let options = PayloadOptions {
         scene,
-        from: from_,
+        from,
         to,
         points,
         out,

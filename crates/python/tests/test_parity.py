@@ -416,9 +416,10 @@ def test_payload_and_experiment_equal_the_cli(cli, tmp_path):
     r = flexrig.payload(out=out, points=2)
     same(r.data, cli.json("payload", "--points", "2", "--out", out))
     assert {"payload_kg", "cj_peak_n", "cl_peak_n", "ratio"} <= set(r.table.columns)
-    with pytest.raises(ValueError, match=r"from_ = -1") as info:
-        flexrig.payload(from_=-1.0, points=2)
-    assert info.value.field == "from_"
+    with pytest.raises(ValueError, match=r"payloads = -1:1") as info:
+        flexrig.payload(payloads="-1:1", points=2)
+    assert info.value.field == "payloads"
+    assert flexrig.payload(out=tmp_path / "p2", payloads="0.01:1:2:log").data["rows"] == r.data["rows"]
     out = tmp_path / "experiment"
     r = flexrig.experiment(out=out, repeats=1, seed=3, **{"operator.start.release_angle_deg": 30.0})
     expected = cli.json("experiment", "--repeats", "1", "--seed", "3", "--set", "operator.start.release_angle_deg=30.0",

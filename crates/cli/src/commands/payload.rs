@@ -17,13 +17,11 @@ pub struct PayloadArgs {
     /// lists them) or a scene file's path.
     #[arg(long, default_value = "cl_light_load")]
     pub scene: String,
-    /// Smallest payload [kg].
-    #[arg(long, value_name = "KG", default_value_t = 0.01)]
-    pub from: f64,
-    /// Largest payload [kg].
-    #[arg(long, value_name = "KG", default_value_t = 1.0)]
-    pub to: f64,
-    /// Payloads, log-spaced (2 to 1000).
+    /// Payloads [kg], log-spaced: FROM:TO:N:log, or FROM:TO with N from --points (within
+    /// [0.0001, 10] kg; see "Ranges" in docs/cli.md).
+    #[arg(long, value_name = "FROM:TO[:N:log]", default_value = "0.01:1")]
+    pub payloads: String,
+    /// Payloads given as FROM:TO (2 to 1000).
     #[arg(long, value_name = "N", default_value_t = 25)]
     pub points: usize,
     /// Directory for payload.csv and the MCAP logs of three points (created if missing).
@@ -39,12 +37,13 @@ pub struct PayloadArgs {
 
 /// Runs `flexrig payload`.
 pub fn run(args: &PayloadArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
+    let (from, to, points) = flexrig::payload::parse_payloads(&args.payloads, args.points)?;
     let result = flexrig::payload::run(
         &PayloadOptions {
             scene: args.scene.clone(),
-            from: args.from,
-            to: args.to,
-            points: args.points,
+            from,
+            to,
+            points,
             out: args.out.clone(),
             figures: args.figure.options()?,
         },

@@ -346,31 +346,25 @@ def payload(
     *,
     out: Optional[PathLike] = None,
     scene: PathLike = "cl_light_load",
-    from_: float = 0.01,
-    to: float = 1.0,
+    payloads: str = "0.01:1",
     points: int = 25,
     size: Union[str, int] = "2",
     format: Union[str, Sequence[str]] = ("svg",),
     dpi: float = 300.0,
 ) -> Report:
     """The test bed's CL/CJ peak ratio over the payload, as ``flexrig payload``: ``scene`` (a
-    bundled scene's name or a scene file's path, as ``--scene``) run as CJ and as CL at ``points`` payloads log-spaced from ``from_`` (the flag
-    ``--from``) to ``to`` [kg], with MCAP logs of three of them. ``table``: ``payload_kg``,
+    bundled scene's name or a scene file's path, as ``--scene``) run as CJ and as CL at the payloads [kg] of ``payloads`` (as ``--payloads``:
+    ``"FROM:TO"`` with ``points`` of them, or ``"FROM:TO:N:log"``), log-spaced, with MCAP logs
+    of three of them. ``table``: ``payload_kg``,
     ``cj_peak_n``, ``cl_peak_n``, ``ratio``; ``figures``: payload.svg.
     """
     size, formats, dpi = _figure_args(size, format, dpi)
     with _Out(out) as o:
-        try:
-            data = _flexrig.payload(
-                o.path, _word("scene", os.fspath(scene) if isinstance(scene, os.PathLike) else scene),
-                _number("from_", from_), _number("to", to), _count("points", points),
-                size, formats, dpi,
-            )
-        except InputError as e:
-            if getattr(e, "field", None) != "from":
-                raise
-            # the flag --from is the keyword from_ (from is a Python keyword)
-            raise _input_error("from_", str(e).replace("argument from =", "argument from_ =", 1)) from None
+        data = _flexrig.payload(
+            o.path, _word("scene", os.fspath(scene) if isinstance(scene, os.PathLike) else scene),
+            _word("payloads", payloads), _count("points", points),
+            size, formats, dpi,
+        )
         return _report("payload", data, "rows", o)
 
 

@@ -108,7 +108,7 @@ def experiment(
     """``flexrig experiment --json`` for the same inputs; writes into ``out``."""
 
 def payload(
-    out: _Path, scene: str, from_: float, to: float, points: int, size: str, format: Sequence[str],
+    out: _Path, scene: str, payloads: str, points: int, size: str, format: Sequence[str],
     dpi: float,
 ) -> Dict[str, Any]:
     """``flexrig payload --json`` for the same inputs; writes into ``out``."""
