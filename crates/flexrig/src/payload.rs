@@ -69,6 +69,15 @@ pub struct PayloadResult {
 /// checked by [`run`].
 pub fn parse_payloads(text: &str, points: usize) -> Result<(f64, f64, usize), Error> {
     let r = crate::eta_map::parse_log_range("--payloads", text, points)?;
+    // N given in the range is the range's: named as --payloads (N from --points is checked,
+    // and named, by `run`)
+    if text.split(':').count() == 4 && !(2..=1000).contains(&r.points) {
+        return Err(Error::InvalidArgument {
+            arg: "--payloads".into(),
+            value: text.into(),
+            allowed: format!("N = {} must lie in [2, 1000]", r.points),
+        });
+    }
     Ok((r.from, r.to, r.points))
 }
 

@@ -123,23 +123,31 @@ fn mark_paper_payloads(
                 stroke(GREY, 0.75),
             ))
             .map_err(err)?;
-        // the light load's name at the bottom right of its line, the test bed's at the top left
+        // the light load's name at the bottom right of its line; the test bed's at the top
+        // right of its line in two short lines (one line would cross the light load's)
         let plotting = chart.plotting_area().strip_coord_spec();
         let origin = plotting.get_base_pixel();
         let light = kg < 0.2;
         let (x, y_px) = chart.backend_coord(&(g, if light { y.0 } else { y.1 }));
-        let (dx, h, v, dy) = if light {
-            (px(2), HPos::Left, VPos::Bottom, -px(2))
+        let (x, y_px) = (x - origin.0 + px(2), y_px - origin.1);
+        let lines = if light {
+            vec![(format!("{name}, {g} g"), VPos::Bottom, -px(2))]
         } else {
-            (-px(2), HPos::Right, VPos::Top, px(2))
+            let step = (TICK_PT * 1.15).round() as i32;
+            vec![
+                (name.to_string(), VPos::Top, px(2)),
+                (format!("{g} g"), VPos::Top, px(2 + step)),
+            ]
         };
-        plotting
-            .draw(&Text::new(
-                format!("{name}, {g} g"),
-                (x - origin.0 + dx, y_px - origin.1 + dy),
-                text(TICK_PT, GREY, h, v),
-            ))
-            .map_err(err)?;
+        for (label, v, dy) in lines {
+            plotting
+                .draw(&Text::new(
+                    label,
+                    (x, y_px + dy),
+                    text(TICK_PT, GREY, HPos::Left, v),
+                ))
+                .map_err(err)?;
+        }
     }
     Ok(())
 }
@@ -204,7 +212,8 @@ fn draw_ratio(area: &DrawingArea<SVGBackend, Shift>, rows: &[PayloadRow]) -> Res
     chart
         .draw_series(std::iter::once(Text::new(
             "CL = CJ",
-            (x0, 1.0),
+            // clear of the y axis: a few points into the log payload axis
+            (x0 * 1.08, 1.0),
             text(TICK_PT, GREY, HPos::Left, VPos::Bottom),
         )))
         .map_err(err)?;
