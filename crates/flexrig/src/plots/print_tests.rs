@@ -384,7 +384,14 @@ fn payload_and_prb_and_bench_at_print_size() {
             &payload_svg(&rows, "skinned aluminium operator, m_h = 398 g", w).unwrap(),
             w,
         );
-        assert!(text.contains("light load, 100 g") && text.contains("test bed, 412 g"));
+        // the test bed's label is two short lines (name, then mass) right of its line
+        assert!(
+            text.contains("light load, 100 g")
+                && text.contains("test bed")
+                && text.contains("412 g")
+                && !text.contains("test bed, 412 g"),
+            "{text}"
+        );
         let text = check("prb", &prb_svg(&path, &fit, "corotational", w).unwrap(), w);
         assert!(text.contains("Θ_max"), "{text}");
         check(
