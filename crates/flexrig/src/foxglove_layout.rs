@@ -189,6 +189,10 @@ pub fn write_beside(log: &Path, summary: Option<&RunSummary>) -> Result<(), Erro
         Some((s, w)) => for_run(w, plot_axes(s, w)),
         None => for_log(None),
     };
+    let layout = match summary {
+        Some(s) if s.drive.is_some() => with_drive(layout),
+        _ => layout,
+    };
     let text =
         serde_json::to_string_pretty(&layout).expect("a layout built from json! values serialises");
     crate::output::write_atomic(&path_beside(log), format!("{text}\n").as_bytes())
@@ -261,6 +265,68 @@ fn with_axes(window: Option<TimeWindow>, axes: PlotAxes) -> Value {
     ])
 }
 
+/// A test-bed layout ([`for_run`], [`for_log`]) for a run with a motor on the robot joint
+/// (`robot.drive`): below the 3D view, over the whole run (not synced with the contact's
+/// plots), the robot joint's speed (commanded, the motor side and the link after the torsion
+/// spring) and the motor's torque (at the joint and at the motor).
+pub fn with_drive(mut layout: Value) -> Value {
+    let speed = whole_run_plot(
+        "Robot joint speed",
+        vec![
+            series(
+                "/drive/command.speed_rad_s",
+                "commanded [rad/s]",
+                SENSOR,
+                1.0,
+            ),
+            series(
+                "/drive/joint.speed_rad_s",
+                "motor side [rad/s]",
+                CONTACT,
+                2.0,
+            ),
+            series(
+                "/drive/link.speed_rad_s",
+                "link, after the spring [rad/s]",
+                LOAD,
+                1.0,
+            ),
+        ],
+    );
+    let torque = whole_run_plot(
+        "Motor torque",
+        vec![
+            series(
+                "/drive/torque.joint_nm",
+                "at the joint [N·m]",
+                OPERATOR,
+                2.0,
+            ),
+            series("/drive/torque.motor_nm", "at the motor [N·m]", LOAD, 1.0),
+        ],
+    );
+    // the legends above the plots: a floating one would cover the torque's peak
+    for (id, mut p) in [("Plot!drive_speed", speed), ("Plot!drive_torque", torque)] {
+        p["legendDisplay"] = json!("top");
+        layout["configById"][id] = p;
+    }
+    let view = layout["layout"]["first"].take();
+    layout["layout"]["first"] = json!({
+        "first": view,
+        "second": { "first": "Plot!drive_speed", "second": "Plot!drive_torque", "direction": "row" },
+        "direction": "column",
+        "splitPercentage": 45
+    });
+    layout
+}
+
+/// A plot over the whole run, not synced with the contact's plots.
+fn whole_run_plot(title: &str, paths: Vec<Value>) -> Value {
+    let mut p = plot(title, paths, None, None);
+    p["isSynced"] = json!(false);
+    p
+}
+
 /// The window from `start_s` to `end_s` \[s\] with a margin of [`MARGIN`] of its length on each
 /// side (not before 0).
 pub fn window_around(start_s: f64, end_s: f64) -> TimeWindow {
@@ -307,11 +373,7 @@ pub fn driven_for_log(window: Option<TimeWindow>, commanded: bool, axes: DrivenA
         ));
         paths
     };
-    let whole = |title: &str, paths: Vec<Value>| {
-        let mut p = plot(title, paths, None, None);
-        p["isSynced"] = json!(false);
-        p
-    };
+    let whole = whole_run_plot;
     let angle = whole(
         "Joint angle",
         pair("/drive/joint", "angle_rad", "joint angle", "rad"),
@@ -527,6 +589,57 @@ fn layout([force, indentation, third]: [Value; 3]) -> Value {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every panel the layout tree names, in order (the leaves of the split tree).
+    fn leaves(node: &Value, out: &mut Vec<String>) {
+        match node {
+            Value::String(id) => out.push(id.clone()),
+            Value::Object(o) => {
+                leaves(&o["first"], out);
+                leaves(&o["second"], out);
+            }
+            _ => panic!("not a layout node: {node}"),
+        }
+    }
+
+    #[test]
+    fn a_run_with_a_motor_gets_the_drive_plots_below_the_3d_view() {
+        let plain = for_log(None);
+        let driven = with_drive(for_log(None));
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        leaves(&plain["layout"], &mut a);
+        leaves(&driven["layout"], &mut b);
+        assert_eq!(
+            b,
+            [
+                "3D!rig",
+                "Plot!drive_speed",
+                "Plot!drive_torque",
+                "Plot!force",
+                "Plot!indentation",
+                "Plot!accel"
+            ]
+        );
+        // every panel named is configured, and nothing of the plain layout is lost
+        for id in &b {
+            assert!(driven["configById"].get(id).is_some(), "{id}");
+        }
+        assert!(a.iter().all(|id| b.contains(id)));
+        let text = driven.to_string();
+        for topic in [
+            "/drive/command.speed_rad_s",
+            "/drive/joint.speed_rad_s",
+            "/drive/link.speed_rad_s",
+            "/drive/torque.joint_nm",
+            "/drive/torque.motor_nm",
+        ] {
+            assert!(text.contains(topic), "{topic}");
+        }
+        assert_eq!(
+            driven["configById"]["Plot!drive_speed"]["isSynced"],
+            json!(false)
+        );
+    }
 
     #[test]
     fn driven_contact_plots_keep_their_curves_below_the_legend() {
