@@ -619,29 +619,9 @@ fn scene_method(
         guess.by_pressure,
         &settings,
     )?;
-    let p = PermissibleSpeed::from_parts(
-        sim.by_force_mps,
-        sim.by_pressure_mps,
-        contact.reduced_mass(),
-        s.limits,
-    );
-    let verdict = match input.speed {
-        Some(v) if v > 0.0 => {
-            let force = crate::safety_scene::peak_force(sc, v, &settings)?;
-            Some(Verdict::new(
-                v,
-                p,
-                force,
-                s.limits.pressure.and(pressure_at_force(s, force)),
-            ))
-        }
-        Some(v) => Some(Verdict::new(v, p, 0.0, s.limits.pressure.map(|_| 0.0))),
-        None => None,
-    };
-    Ok((
-        from_permissible(SafetyMethod::Simulation, s.m_eff, &p, verdict),
-        sim,
-    ))
+    scene_method_result(s, input.speed, contact.reduced_mass(), sim, |v| {
+        crate::safety_scene::peak_force(sc, v, &settings)
+    })
 }
 
 /// The simulation method on the test-bed scene `tb` ([`crate::safety_test_bed::simulate`]):
@@ -671,15 +651,30 @@ fn test_bed_method(
         guess.by_pressure,
         &settings,
     )?;
+    scene_method_result(s, input.speed, contact.reduced_mass(), sim, |v| {
+        tb.peak_force(v)
+    })
+}
+
+/// The simulation method's result on a scene (driven or test bed) from its searches `sim`
+/// (reduced mass `reduced_mass` \[kg\] of the energy contact): the permissible speed, and the
+/// verdict at `speed` \[m/s\] with the scene's peak force there from `peak_at`.
+fn scene_method_result(
+    s: &Setup,
+    speed: Option<f64>,
+    reduced_mass: f64,
+    sim: crate::safety_scene::SceneSimulation,
+    peak_at: impl FnOnce(f64) -> Result<f64, Error>,
+) -> Result<(MethodResult, crate::safety_scene::SceneSimulation), Error> {
     let p = PermissibleSpeed::from_parts(
         sim.by_force_mps,
         sim.by_pressure_mps,
-        contact.reduced_mass(),
+        reduced_mass,
         s.limits,
     );
-    let verdict = match input.speed {
+    let verdict = match speed {
         Some(v) if v > 0.0 => {
-            let force = tb.peak_force(v)?;
+            let force = peak_at(v)?;
             Some(Verdict::new(
                 v,
                 p,

@@ -47,6 +47,7 @@ pub use crate::safety_simulation::{
     CLAMPED_HUMAN_MASS, FE_RIGID_LINK_STIFFNESS, FeImpact, FeLink, FeRuns, GAMMA_CJ, GAMMA_CL,
     MapJoint, RootStep, SimulationSettings, fe_speeds, speed_at_ratio,
 };
+use crate::safety_simulation::{bad, display};
 use crate::{CancelToken, Error};
 
 /// Most points along one axis.
@@ -497,18 +498,6 @@ pub struct SafetyMap {
     pub cells: Vec<MapCell>,
     /// Wall-clock time of the computation \[s\].
     pub seconds: f64,
-}
-
-fn bad(arg: &str, value: impl ToString, allowed: &str) -> Error {
-    Error::InvalidArgument {
-        arg: arg.into(),
-        value: value.to_string(),
-        allowed: allowed.into(),
-    }
-}
-
-fn display(v: f64) -> String {
-    flexrig_contact::validate::display(v)
 }
 
 fn speed(v: f64) -> Speed {

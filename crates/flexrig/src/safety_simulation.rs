@@ -20,7 +20,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::Error;
 
-fn bad(arg: &str, value: impl ToString, allowed: &str) -> Error {
+pub(crate) fn bad(arg: &str, value: impl ToString, allowed: &str) -> Error {
     Error::InvalidArgument {
         arg: arg.into(),
         value: value.to_string(),
@@ -28,7 +28,7 @@ fn bad(arg: &str, value: impl ToString, allowed: &str) -> Error {
     }
 }
 
-fn display(v: f64) -> String {
+pub(crate) fn display(v: f64) -> String {
     flexrig_contact::validate::display(v)
 }
 
