@@ -5,8 +5,10 @@
 //! Conventions: the normal `n` points from the dome into the block; the indentation is
 //! δ = −(signed distance) ≥ 0 in contact; its rate is δ̇ = (v_dome − v_block)·n at the contact
 //! point. The force on the block is +f n and on the dome −f n, both applied at the contact point
-//! (the midpoint of the two surface points). Ball–cuboid queries in parry are analytic, so δ is
-//! exact to round-off.
+//! (the midpoint of the two surface points). The closest points are computed in closed form in
+//! the block's frame (the dome's centre projected on the cuboid: a clamp of each coordinate to
+//! the half extents), exact to round-off and the same as parry's ball–cuboid query, which is
+//! kept for the one case the clamp does not cover (the dome's centre inside the block).
 
 use parry3d_f64::math::{Pose, Vector};
 use parry3d_f64::query;
@@ -117,9 +119,8 @@ impl DomeBlockContact {
     /// rate [m/s] (δ̇ of [`ContactSample`], > 0 when closing) along the normal through the closest
     /// points, touching or not; `None` if the bodies are too far apart for a query.
     pub fn approach(&self, dome: &BodyKinematics, block: &BodyKinematics) -> Option<(f64, f64)> {
-        let c = self.contact(&dome.pose, &block.pose, f64::MAX)?;
-        let point = (c.point1 + c.point2) * 0.5;
-        let rate = (dome.velocity_at(point) - block.velocity_at(point)).dot(c.normal1);
+        let c = self.closest(&dome.pose, &block.pose)?;
+        let rate = (dome.velocity_at(c.point) - block.velocity_at(c.point)).dot(c.normal);
         Some((c.dist, rate))
     }
 
@@ -128,32 +129,68 @@ impl DomeBlockContact {
         self.law.as_ref()
     }
 
-    fn contact(&self, dome: &Pose, block: &Pose, prediction: f64) -> Option<query::Contact> {
-        let dome_pose = *dome * self.dome_offset;
+    /// The signed distance between the surfaces, the normal (dome → block) and the midpoint of
+    /// the two closest surface points, all in the world: with c the dome's centre in the block's
+    /// frame and q its projection on the cuboid (each coordinate clamped to ±the half extent),
+    /// d = |c − q| − R, n = (q − c)/|c − q|, the points q and c + R n. When c lies inside the
+    /// block (|c − q| = 0) parry's ball–cuboid query answers (the nearest face).
+    fn closest(&self, dome: &Pose, block: &Pose) -> Option<Closest> {
+        let dome_center = dome.transform_point(self.dome_offset.translation);
         let block_pose = *block * self.block_offset;
+        let center = block_pose.inverse_transform_point(dome_center);
+        let half = self.block.half_extents;
+        let q = center.clamp(-half, half);
+        let (dir, len) = (q - center).normalize_and_length();
+        if len >= parry3d_f64::math::DEFAULT_EPSILON && center != q {
+            let normal = block_pose.rotation * dir;
+            let on_block = block_pose.transform_point(q);
+            let on_dome = dome_center + normal * self.dome.radius;
+            return Some(Closest {
+                dist: len - self.dome.radius,
+                normal,
+                point: (on_dome + on_block) * 0.5,
+            });
+        }
         // Ball–cuboid is always supported by the default dispatcher.
-        query::contact(&dome_pose, &self.dome, &block_pose, &self.block, prediction)
+        let dome_pose = *dome * self.dome_offset;
+        let c = query::contact(&dome_pose, &self.dome, &block_pose, &self.block, f64::MAX)
             .ok()
-            .flatten()
+            .flatten()?;
+        Some(Closest {
+            dist: c.dist,
+            normal: c.normal1,
+            point: (c.point1 + c.point2) * 0.5,
+        })
     }
+}
+
+/// The closest points of the dome and the block.
+#[derive(Debug, Clone, Copy)]
+struct Closest {
+    /// Signed distance \[m\] (negative when penetrating).
+    dist: f64,
+    /// Unit normal from the dome into the block (world).
+    normal: Vector,
+    /// Midpoint of the two closest surface points [m, world].
+    point: Vector,
 }
 
 impl ContactCallback for DomeBlockContact {
     fn gap(&self, dome: &Pose, block: &Pose) -> f64 {
-        match self.contact(dome, block, f64::MAX) {
+        match self.closest(dome, block) {
             Some(c) => c.dist,
             None => f64::INFINITY,
         }
     }
 
     fn evaluate(&self, dome: &BodyKinematics, block: &BodyKinematics) -> Option<ContactSample> {
-        let c = self.contact(&dome.pose, &block.pose, 0.0)?;
-        if c.dist >= 0.0 {
+        let c = self.closest(&dome.pose, &block.pose)?;
+        if !(c.dist < 0.0) {
             return None;
         }
         let indentation = -c.dist;
-        let normal = c.normal1;
-        let point = (c.point1 + c.point2) * 0.5;
+        let normal = c.normal;
+        let point = c.point;
         let rate = (dome.velocity_at(point) - block.velocity_at(point)).dot(normal);
         Some(ContactSample {
             indentation,

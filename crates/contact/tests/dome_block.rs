@@ -120,3 +120,83 @@ fn invalid_geometry_is_rejected() {
     .to_string();
     assert!(e.contains("block_half_extents.y"), "{e}");
 }
+
+#[test]
+fn closed_form_closest_points_agree_with_parrys_ball_cuboid_query() {
+    use parry3d_f64::query;
+    use parry3d_f64::shape::{Ball, Cuboid};
+    use rand::{Rng, SeedableRng};
+    // The callback's closed form (projection of the dome's centre on the block) against parry's
+    // general query, for the dome's centre in front of faces, edges and corners of a rotated,
+    // offset block, apart and overlapping (also inside the block, where parry answers).
+    let radius = 0.0715;
+    let half = Vector::new(0.02, 0.025, 0.03);
+    let dome_offset = Pose::from_translation(Vector::new(0.01, 0.0715, -0.005));
+    let block_offset = Pose::new(Vector::new(0.0, 0.0, -0.3), Vector::new(0.1, -0.2, 0.05));
+    let c = DomeBlockContact::new(
+        radius,
+        dome_offset,
+        half,
+        block_offset,
+        Box::new(Hertz::new(7.359e7, 1.5).unwrap()),
+    )
+    .unwrap();
+    let mut rng = rand::rngs::StdRng::seed_from_u64(7);
+    let mut touching = 0;
+    for _ in 0..2000 {
+        let block = Pose::new(
+            Vector::new(
+                rng.random_range(-0.1..0.1),
+                rng.random_range(-0.1..0.1),
+                rng.random_range(0.2..0.4),
+            ),
+            Vector::new(
+                rng.random_range(-0.5..0.5),
+                rng.random_range(-0.5..0.5),
+                rng.random_range(-0.5..0.5),
+            ),
+        );
+        let dome = Pose::new(
+            Vector::ZERO,
+            Vector::new(0.0, 0.0, rng.random_range(-0.5..0.5)),
+        );
+        let reference = query::contact(
+            &(dome * dome_offset),
+            &Ball::new(radius),
+            &(block * block_offset),
+            &Cuboid::new(half),
+            f64::MAX,
+        )
+        .unwrap()
+        .unwrap();
+        assert_abs("gap", c.gap(&dome, &block), reference.dist, 1e-15);
+        let (dome_k, block_k) = (
+            BodyKinematics {
+                angvel: Vector::new(0.0, 0.0, 1.3),
+                ..still(dome)
+            },
+            BodyKinematics {
+                linvel: Vector::new(0.2, -0.4, 0.1),
+                angvel: Vector::new(0.7, 0.0, 0.0),
+                ..still(block)
+            },
+        );
+        let point = (reference.point1 + reference.point2) * 0.5;
+        let rate = (dome_k.velocity_at(point) - block_k.velocity_at(point)).dot(reference.normal1);
+        let (gap, approach) = c.approach(&dome_k, &block_k).unwrap();
+        assert_abs("approach gap", gap, reference.dist, 1e-15);
+        assert_abs("approach rate", approach, rate, 1e-13);
+        match c.evaluate(&dome_k, &block_k) {
+            Some(s) => {
+                touching += 1;
+                assert!(reference.dist < 0.0);
+                assert_abs("δ", s.indentation, -reference.dist, 1e-15);
+                assert_abs("normal", (s.normal - reference.normal1).length(), 0.0, 1e-13);
+                assert_abs("point", (s.point - point).length(), 0.0, 1e-15);
+                assert_abs("δ̇", s.rate, rate, 1e-13);
+            }
+            None => assert!(reference.dist >= 0.0),
+        }
+    }
+    assert!(touching > 100, "only {touching} of the poses overlap");
+}

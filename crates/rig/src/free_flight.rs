@@ -33,13 +33,39 @@ pub enum SwingPolicy {
     Fixed,
 }
 
+/// How the CJ's contact is integrated (`solver.contact`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactPolicy {
+    /// Rapier's steps, `solver.contact_steps` per Hertz contact time, made velocity Verlet by
+    /// the synchronised coupling (the default).
+    #[default]
+    Fixed,
+    /// The two hinges in reduced coordinates with the contact force in the right-hand side,
+    /// integrated by DOP853 at `solver.contact_rtol` from the located onset to the located
+    /// separation; the peak is the maximum of the force on the dense output
+    /// ([`crate::contact_flight`]). Rapier does not step the contact.
+    Adaptive,
+}
+
+impl ContactPolicy {
+    /// True for the default.
+    pub fn is_fixed(&self) -> bool {
+        *self == ContactPolicy::Fixed
+    }
+}
+
+/// Default relative tolerance of the adaptive contact (`solver.contact_rtol`): peak force within
+/// 1e-7 of the converged one on the bundled CJ scenes (tests/contact_flight.rs).
+pub const CONTACT_RTOL: f64 = 1e-8;
+
 /// Relative tolerance of the free flight: onset time and impact speed within 1e-11 of the
 /// elliptic-integral and energy references (tests/free_flight.rs).
 pub const FREE_FLIGHT_RTOL: f64 = 1e-12;
 
 /// Sub-intervals of each accepted step on which the gap is sampled for a sign change, so that a
 /// grazing contact inside one step is not stepped over.
-const EVENT_SUBINTERVALS: usize = 8;
+pub const EVENT_SUBINTERVALS: usize = 8;
 
 /// Size of the free flight's state: y = (φ, φ̇, ψ, ψ̇, sin φ, cos φ).
 pub const DIM: usize = 6;
@@ -91,7 +117,8 @@ pub struct FlightStep {
     pub t_end: f64,
     /// The state at `t_end`.
     pub y: [f64; DIM],
-    /// True when the step ends at the contact onset (gap = 0).
+    /// True when the step ends at its event: the contact onset (gap = 0) out of contact, the
+    /// separation in contact.
     pub onset: bool,
 }
 
@@ -118,7 +145,31 @@ impl FreeFlight {
         }
     }
 
-    /// The system integrated.
+    /// The hinges in contact from time `t0` \[s\] in the full state `y0`, with `rhs` (the hinges
+    /// and the contact force) at relative tolerance `rtol` and absolute tolerances `atol`, steps
+    /// of at most `max_step` \[s\]; `system` is the motion without the contact.
+    pub fn in_contact(
+        system: FreeHinges,
+        rhs: &impl OdeSystem<DIM>,
+        t0: f64,
+        y0: [f64; DIM],
+        (rtol, atol): (f64, [f64; DIM]),
+        max_step: f64,
+    ) -> Self {
+        let options = Dop853Options {
+            rtol,
+            atol,
+            first_step: None,
+            max_step,
+            max_steps: usize::MAX,
+        };
+        FreeFlight {
+            system,
+            solver: Dop853::new(rhs, t0, y0, options),
+        }
+    }
+
+    /// The system integrated (without the contact).
     pub fn system(&self) -> &FreeHinges {
         &self.system
     }
@@ -130,16 +181,28 @@ impl FreeFlight {
         t_limit: Option<f64>,
         gap: impl Fn(&[f64; DIM]) -> f64,
     ) -> Result<FlightStep, StepFailure> {
+        let system = self.system;
+        self.step_with(&system, t_limit, gap)
+    }
+
+    /// [`FreeFlight::step`] with the right-hand side `rhs` (e.g. with the contact force),
+    /// ending where `event` goes from positive to zero or negative.
+    pub fn step_with(
+        &mut self,
+        rhs: &impl OdeSystem<DIM>,
+        t_limit: Option<f64>,
+        event: impl Fn(&[f64; DIM]) -> f64,
+    ) -> Result<FlightStep, StepFailure> {
         match t_limit {
-            Some(t_end) => self.solver.step_until(&self.system, t_end)?,
-            None => self.solver.step(&self.system)?,
+            Some(t_end) => self.solver.step_until(rhs, t_end)?,
+            None => self.solver.step(rhs)?,
         }
         let t_start = self.solver.t_old();
-        let dense = self.solver.dense_output(&self.system);
-        if let Some(t_onset) = first_zero(&dense, &gap) {
-            // The state at the onset by a genuine step of the method (more accurate than the
+        let dense = self.solver.dense_output(rhs);
+        if let Some(t_onset) = first_zero(&dense, &event) {
+            // The state at the event by a genuine step of the method (more accurate than the
             // interpolant).
-            let y = self.solver.restep_to(&self.system, t_onset);
+            let y = self.solver.restep_to(rhs, t_onset);
             return Ok(FlightStep {
                 t_start,
                 t_end: t_onset,
@@ -159,6 +222,11 @@ impl FreeFlight {
     /// [`FlightStep::t_end`]).
     pub fn dense(&mut self) -> DenseOutput<DIM> {
         self.solver.dense_output(&self.system)
+    }
+
+    /// [`FreeFlight::dense`] of a step taken with the right-hand side `rhs`.
+    pub fn dense_with(&mut self, rhs: &impl OdeSystem<DIM>) -> DenseOutput<DIM> {
+        self.solver.dense_output(rhs)
     }
 
     /// Right-hand-side evaluations so far.

@@ -20,6 +20,7 @@
 
 mod beam_link;
 pub mod canonical;
+pub mod contact_flight;
 pub mod coupling;
 mod error;
 pub mod format_message;
@@ -45,4 +46,6 @@ pub use run::{
     ContactEvent, Frame, Interruptible, NoRecorder, Recorder, RunOptions, RunSummary, Simulation,
     StepOutcome, run_scene_text,
 };
-pub use scene::{BeamSolverSpec, Design, RobotDriveSpec, Scene, SceneFile, SwingPolicy};
+pub use scene::{
+    BeamSolverSpec, ContactPolicy, Design, RobotDriveSpec, Scene, SceneFile, SwingPolicy,
+};

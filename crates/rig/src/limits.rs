@@ -73,6 +73,8 @@ pub const DAMPING_C_MAX: Range = range(0.0, 1e9);
 pub const DAMPING_DEPTH: Range = range(1e-9, 1.0);
 /// Swing step \[s\].
 pub const SWING_STEP: Range = range(1e-8, 0.1);
+/// Relative tolerance of the adaptive contact (`solver.contact_rtol`).
+pub const CONTACT_RTOL: Range = range(1e-13, 1e-2);
 /// Simulated duration \[s\].
 pub const DURATION: Range = range(1e-6, 1e4);
 /// Sensor sampling rate \[Hz\].

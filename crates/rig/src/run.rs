@@ -23,6 +23,9 @@ use crate::scene::{Design, Scene, StopSpec};
 use crate::sensors::{Reading, Sampler, SensorSample};
 use crate::world::RapierRig;
 
+mod adaptive_contact;
+use adaptive_contact::PeakSearch;
+
 /// What a step reached (events are part of the step result).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -286,8 +289,11 @@ pub struct Simulation<'s> {
     last: Reading,
     sampler: Sampler,
     stats: Stats,
-    /// The adaptive free flight in progress (`solver.swing = "adaptive"`, out of contact).
+    /// The adaptive free flight in progress (`solver.swing = "adaptive"`, out of contact; and
+    /// in contact with `solver.contact = "adaptive"`).
     flight: Option<FreeFlight>,
+    /// The adaptive contact in progress: the flight integrates the contact, and its peak.
+    peak_search: Option<PeakSearch>,
 }
 
 /// The state a step can be taken again from.
@@ -478,6 +484,7 @@ impl<'s> Simulation<'s> {
             sampler: Sampler::new(scene.file.record.sample_rate_hz),
             stats: Stats::default(),
             flight: None,
+            peak_search: None,
         };
         if swing.starts_in_contact {
             sim.phase = Phase::Contact;
@@ -495,6 +502,9 @@ impl<'s> Simulation<'s> {
         sim.last = sim.reading();
         if sim.phase == Phase::Swing {
             sim.start_free_flight();
+        } else if sim.adaptive_contact() {
+            let y = sim.flight_state();
+            sim.begin_contact_flight(y);
         }
         Ok(sim)
     }
@@ -778,6 +788,9 @@ impl<'s> Simulation<'s> {
 
     /// One step of the pipeline: loads → integrate → synchronise → events → check → sensors.
     pub fn step(&mut self, recorder: &mut dyn Recorder) -> Result<StepOutcome, RigError> {
+        if self.peak_search.is_some() {
+            return self.contact_flight_step(recorder);
+        }
         if self.flight.is_some() {
             return self.free_step(recorder);
         }
@@ -1030,25 +1043,30 @@ impl<'s> Simulation<'s> {
             };
             sensors.sample(&system, t, &y)
         });
-        // The new state, in Rapier too (synchronised: the next fixed step kicks half a step).
+        // The new state (synchronised: the next fixed step kicks half a step).
         self.t = step.t_end;
         self.h_prev = 0.0;
         self.now = self.flight_synced(&step.y);
-        self.rapier
-            .set_state(self.now.operator, self.now.robot.map(|(r, _)| r));
         if let RobotSide::Beam(b) = &mut self.robot {
             b.set_time(self.t);
         }
         self.stats.steps += 1;
-        if step.onset {
-            // The fixed policy takes over at the onset: its first step is the contact's.
+        let adaptive_onset = step.onset && self.adaptive_contact();
+        if step.onset && !adaptive_onset {
+            // The fixed policy takes over at the onset: its first step is the contact's, from
+            // the onset state in Rapier (which the flight leaves alone until then).
+            self.rapier
+                .set_state(self.now.operator, self.now.robot.map(|(r, _)| r));
             self.phase = Phase::Swing;
-        } else {
+        } else if !step.onset {
             self.flight = Some(flight);
         }
         let energy = self.energy();
         self.check_health(energy)?;
         self.stats.energy = energy;
+        if adaptive_onset {
+            self.begin_contact_flight(step.y);
+        }
         self.last = self.reading();
         let dt = step.t_end - step.t_start;
         self.emit(recorder, dt, StepOutcome::Advanced, energy, sampled_before)?;

@@ -9,7 +9,7 @@ use flexrig_contact::{ContactLaw, Hertz};
 use serde::{Deserialize, Serialize};
 
 use crate::RigError;
-pub use crate::free_flight::SwingPolicy;
+pub use crate::free_flight::{ContactPolicy, SwingPolicy};
 pub use crate::joint_drive::RobotDriveSpec;
 
 /// Compliant joint (rigid link on a torsion spring) or compliant link (flexible beam).
@@ -284,6 +284,15 @@ pub struct SolverSpec {
     /// as an event) or `"fixed"` (Rapier steps of `swing_step_s`).
     #[serde(default)]
     pub swing: SwingPolicy,
+    /// How the CJ's contact is integrated: `"fixed"` (default; Rapier's steps, `contact_steps`
+    /// per contact) or `"adaptive"` (the two hinges with the contact force by DOP853 at
+    /// `contact_rtol`, peak and separation located on its dense output).
+    #[serde(default, skip_serializing_if = "ContactPolicy::is_fixed")]
+    pub contact: ContactPolicy,
+    /// Relative tolerance of the adaptive contact (of the indentation and the approach speed;
+    /// default [`crate::free_flight::CONTACT_RTOL`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_rtol: Option<f64>,
 }
 
 /// How the finite-element link is solved (design `cl`; ignored for `cj`). (Struct variants, so

@@ -7,7 +7,10 @@ use flexrig_contact::{Hertz, Materials};
 use crate::RigError;
 use crate::error::invalid;
 use crate::limits;
-use crate::scene::{BeamSolverSpec, DampingSpec, Scene, SceneFile, Start, StopSpec};
+use crate::scene::{
+    BeamSolverSpec, ContactPolicy, DampingSpec, Design, Scene, SceneFile, Start, StopSpec,
+    SwingPolicy,
+};
 
 impl Scene {
     /// Parses a scene from TOML text and validates it.
@@ -155,6 +158,34 @@ impl Scene {
 
         let s = &file.solver;
         limits::SWING_STEP.check("solver.swing_step_s", s.swing_step_s)?;
+        if let Some(rtol) = s.contact_rtol {
+            limits::CONTACT_RTOL.check("solver.contact_rtol", rtol)?;
+        }
+        if s.contact == ContactPolicy::Adaptive {
+            if file.robot.design != Design::Cj {
+                return Err(invalid(
+                    "solver.contact",
+                    "\"adaptive\"",
+                    "\"adaptive\" integrates the two hinges of robot.design = \"cj\" only; \
+                     the compliant link needs \"fixed\"",
+                ));
+            }
+            if s.swing != SwingPolicy::Adaptive {
+                return Err(invalid(
+                    "solver.contact",
+                    "\"adaptive\"",
+                    "\"adaptive\" starts at the onset located by solver.swing = \"adaptive\"; \
+                     with solver.swing = \"fixed\" use \"fixed\"",
+                ));
+            }
+            if file.robot.drive.is_some() {
+                return Err(invalid(
+                    "solver.contact",
+                    "\"adaptive\"",
+                    "\"adaptive\" integrates the unforced hinges; with robot.drive use \"fixed\"",
+                ));
+            }
+        }
         limits::check_count(
             "solver.contact_steps",
             s.contact_steps,
