@@ -1,7 +1,7 @@
 //! Work against error of a whole scene, release → separation: for each swing policy and number of
-//! contact steps, the peak-force error against a converged run of the same scene (12 800 steps
-//! per contact, adaptive swing), the steps (swing and contact) and the median wall clock of the
-//! in-process run. `cargo run --release -p flexrig-rig --example work_error -- [SCENE …]`
+//! contact steps (and, for the CJ, the adaptive contact at each tolerance), the peak-force error
+//! against a converged run of the same scene (12 800 steps per contact, adaptive swing), the
+//! steps (swing and contact) and the median wall clock of the in-process run. `cargo run --release -p flexrig-rig --example work_error -- [SCENE …]`
 //! (default: cj_aluminium cl_aluminium).
 
 use std::time::Instant;
@@ -10,6 +10,20 @@ use flexrig_contact::Materials;
 use flexrig_rig::{NoRecorder, RunOptions, RunSummary, Scene, Simulation};
 
 fn scene(name: &str, swing: &str, contact_steps: usize) -> Scene {
+    scene_with(name, swing, contact_steps, "")
+}
+
+/// The scene with the adaptive contact at relative tolerance `rtol`.
+fn adaptive_contact(name: &str, rtol: f64) -> Scene {
+    scene_with(
+        name,
+        "adaptive",
+        800,
+        &format!("\ncontact = \"adaptive\"\ncontact_rtol = {rtol:e}"),
+    )
+}
+
+fn scene_with(name: &str, swing: &str, contact_steps: usize, extra: &str) -> Scene {
     let path = format!(
         "{}/../../assets/scenes/{name}.toml",
         env!("CARGO_MANIFEST_DIR")
@@ -25,7 +39,7 @@ fn scene(name: &str, swing: &str, contact_steps: usize) -> Scene {
         )
         .replace(
             "contact_steps = 800",
-            &format!("contact_steps = {contact_steps}\nswing = \"{swing}\""),
+            &format!("contact_steps = {contact_steps}\nswing = \"{swing}\"{extra}"),
         );
     Scene::from_toml_str(&text, &Materials::bundled().expect("bundled materials"))
         .expect("a valid scene")
@@ -56,6 +70,14 @@ fn median_time(s: &Scene) -> f64 {
 
 const STEPS: [usize; 13] = [10, 15, 20, 25, 30, 40, 50, 70, 100, 140, 200, 400, 800];
 
+/// Tolerances of the adaptive contact, coarse to fine.
+const RTOLS: [f64; 10] = [1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11];
+
+/// True for a scene whose contact can be integrated adaptively (the CJ).
+fn has_adaptive_contact(name: &str) -> bool {
+    name.starts_with("cj")
+}
+
 /// `--json --target T SCENE_PATH_OR_NAME`: for each swing policy, the cheapest contact steps
 /// with a peak error ≤ T (and ≤ T at the next finer setting), as JSON lines (read by
 /// scripts/peers/mujoco_testbed.py; `SAMPLE_RATE=HZ` sets the sensor rate).
@@ -82,6 +104,30 @@ fn cheapest(name: &str, target: f64) {
                 );
                 break;
             }
+        }
+    }
+    if !has_adaptive_contact(name) {
+        return;
+    }
+    for (i, &rtol) in RTOLS.iter().enumerate() {
+        let s = adaptive_contact(name, rtol);
+        let summary = run(&s);
+        let error = (summary.peak_force_n / reference - 1.0).abs();
+        let finer = RTOLS.get(i + 1).map_or(0.0, |&r| {
+            (run(&adaptive_contact(name, r)).peak_force_n / reference - 1.0).abs()
+        });
+        if error <= target && finer <= target {
+            println!(
+                "{{\"swing\": \"adaptive\", \"contact\": \"adaptive\", \"contact_rtol\": {rtol:e}, \
+                 \"error\": {error:e}, \"steps\": {}, \"contact_steps_taken\": {}, \
+                 \"peak_n\": {}, \"converged_peak_n\": {reference}, \"median_s\": {:e}, \
+                 \"cheapest\": true}}",
+                summary.steps,
+                summary.contact_steps,
+                summary.peak_force_n,
+                median_time(&s)
+            );
+            break;
         }
     }
 }
@@ -118,6 +164,20 @@ fn main() {
                 let error = (summary.peak_force_n / reference - 1.0).abs();
                 println!(
                     "{swing:9} {n:>13}  {error:10.2e}  {:>11}  {:>13}  {:>11.3}",
+                    summary.steps - summary.contact_steps,
+                    summary.contact_steps,
+                    1e3 * median_time(&s)
+                );
+            }
+        }
+        if has_adaptive_contact(name) {
+            println!("adaptive contact: rtol  peak error  swing steps  contact steps  median [ms]");
+            for rtol in RTOLS {
+                let s = adaptive_contact(name, rtol);
+                let summary = run(&s);
+                let error = (summary.peak_force_n / reference - 1.0).abs();
+                println!(
+                    "{rtol:>22.0e}  {error:10.2e}  {:>11}  {:>13}  {:>11.3}",
                     summary.steps - summary.contact_steps,
                     summary.contact_steps,
                     1e3 * median_time(&s)

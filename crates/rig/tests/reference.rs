@@ -320,3 +320,70 @@ fn the_logged_energy_is_synchronised_and_flat_in_the_free_swing() {
         assert!(rec.worst < 1e-5, "{name}: {:e}", rec.worst);
     }
 }
+
+/// `scene` with its contact integrated adaptively at relative tolerance `rtol`.
+fn adaptive(name: &str, edits: &[(&str, &str)], rtol: f64) -> Scene {
+    let solver = format!("contact_steps = 800\ncontact = \"adaptive\"\ncontact_rtol = {rtol:e}");
+    let mut all: Vec<(&str, &str)> = edits.to_vec();
+    all.push(("contact_steps = 800", &solver));
+    common::scene(name, &all)
+}
+
+#[test]
+fn the_adaptive_contact_converges_to_the_reference_for_every_law() {
+    // The adaptive contact integrates the same equations as the reference by the same method,
+    // but from the onset located by the free flight, with the peak found on its own dense
+    // output: its error falls with the tolerance for every law.
+    for (name, law) in LAWS {
+        let damping = format!("damping = {law}");
+        let edits = [
+            ("from = \"release\"", "from = \"contact\""),
+            ("damping = { model = \"none\" }", damping.as_str()),
+        ];
+        let scene = adaptive("cj_aluminium", &edits, 1e-8);
+        let system = TwoHinges::new(&scene);
+        let g = RigGeometry::of(&scene);
+        let omega0 = g
+            .operator
+            .bottom_angular_speed(30f64.to_radians(), scene.file.gravity_mps2);
+        let (reference, t_peak) = reference_peak(&system, [0.0, omega0, 0.0, 0.0]);
+        let errors: Vec<(f64, f64)> = [1e-6, 1e-8, 1e-10]
+            .iter()
+            .map(|&rtol| {
+                let s = run(&adaptive("cj_aluminium", &edits, rtol));
+                (
+                    (s.peak_force_n / reference - 1.0).abs(),
+                    (s.time_of_peak_s - t_peak).abs(),
+                )
+            })
+            .collect();
+        println!("{name}: peak errors and peak-time errors at rtol 1e-6, 1e-8, 1e-10: {errors:?}");
+        assert!(errors[0].0 < 3e-5, "{name}: {errors:?}");
+        assert!(errors[1].0 < 1e-6, "{name}: {errors:?}");
+        assert!(errors[2].0 < 2e-8, "{name}: {errors:?}");
+        assert!(errors[2].1 < 1e-9, "{name}: {errors:?}");
+    }
+}
+
+#[test]
+fn a_run_from_release_with_the_adaptive_contact_agrees_with_the_reference() {
+    for name in ["cj_aluminium", "cj_iron"] {
+        let system = TwoHinges::new(&common::scene(name, &[]));
+        let (reference, t_peak) = reference_peak(&system, [-30f64.to_radians(), 0.0, 0.0, 0.0]);
+        for (rtol, tolerance) in [(1e-8, 1e-6), (1e-10, 2e-8)] {
+            let s = run(&adaptive(name, &[], rtol));
+            let error = (s.peak_force_n / reference - 1.0).abs();
+            println!(
+                "{name}, rtol {rtol:e}: peak {} vs {reference}: {error:.2e}; at {} vs {t_peak} s \
+                 ({} steps, {} in contact)",
+                s.peak_force_n, s.time_of_peak_s, s.steps, s.contact_steps
+            );
+            assert!(error < tolerance, "{name}: peak error {error:e}");
+            assert!(
+                (s.time_of_peak_s - t_peak).abs() < 1e-8,
+                "{name}: peak at {} s, reference {t_peak} s",
+                s.time_of_peak_s
+            );
+        }
+    }
+}
