@@ -507,9 +507,19 @@ fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
         for &n in steps {
             let from_contact = ("from = \"release\"", "from = \"contact\"".to_string());
             let to_peak = ("at = \"separation\"", "at = \"peak\"".to_string());
+            let slow_sensors = (
+                "sample_rate_hz = 50000.0",
+                "sample_rate_hz = 1.0".to_string(),
+            );
             // (label, edits, solver line suffix, options)
             let mut variants: Vec<RigVariant> = vec![
                 ("release to separation", vec![], "", RunOptions::DEFAULT),
+                (
+                    "release to separation, sensors at 1 Hz",
+                    vec![slow_sensors.clone()],
+                    "",
+                    RunOptions::DEFAULT,
+                ),
                 (
                     "start at contact",
                     vec![from_contact.clone()],
@@ -567,6 +577,41 @@ fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
                     seconds: median_seconds(samples, 1, || run_scene(&s, options)),
                     evaluations: None,
                 });
+            }
+        }
+        // The CJ's contact integrated adaptively (DOP853 on the two hinges, Rapier not stepped),
+        // at the bundled 50 kHz sensors and at 1 Hz.
+        if !cl {
+            let tolerances: &[f64] = if quick {
+                &[1e-4, 1e-8]
+            } else {
+                &[1e-4, 1e-6, 1e-8, 1e-10]
+            };
+            for &rtol in tolerances {
+                for (label, rate) in [("", "50000.0"), (", sensors at 1 Hz", "1.0")] {
+                    let s = scene(
+                        name,
+                        &[
+                            (
+                                "contact_steps = 800",
+                                format!(
+                                    "contact_steps = 800\ncontact = \"adaptive\"\n\
+                                     contact_rtol = {rtol:e}"
+                                ),
+                            ),
+                            ("sample_rate_hz = 50000.0", format!("sample_rate_hz = {rate}")),
+                        ],
+                    )?;
+                    let result = run_scene(&s, RunOptions::DEFAULT)?;
+                    rows.push(Row {
+                        model: "rig".into(),
+                        method: format!("{name}: release to separation, adaptive contact{label}"),
+                        setting: format!("rtol {rtol:e}"),
+                        error: (result.peak_force_n / reference - 1.0).abs(),
+                        seconds: median_seconds(samples, 1, || run_scene(&s, RunOptions::DEFAULT)),
+                        evaluations: None,
+                    });
+                }
             }
         }
         // Logging: decimated outside contact (the default) against every step.

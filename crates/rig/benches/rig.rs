@@ -8,8 +8,13 @@
 //!   (5.2e-5);
 //! - the CL link as the modal-reduced beam (8 modes; tests/modal_link.rs for its accuracy).
 //!
+//! - the CJ's contact integrated adaptively (`solver.contact = "adaptive"`) at tolerances 1e-4
+//!   (peak error 4e-6, the cheapest at ≤ 1e-3 and ≤ 1e-4) and 1e-8 (1e-7), with the bundled
+//!   50 kHz sensors and at 1 Hz (`_sensors1hz`; also for the Rapier contact at 40 steps).
+//!
 //! Names: `{scene}[_modal8]_release_to_separation_{contact steps}[_fixed]`; the names without
-//! `_fixed` are those of the earlier benches (they now take the default, adaptive swing).
+//! `_fixed` are those of the earlier benches (they now take the default, adaptive swing);
+//! `{scene}_release_to_separation_adaptive_contact_rtol{tolerance}[_sensors1hz]`.
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -71,11 +76,44 @@ fn bench(c: &mut Criterion) {
     }
 }
 
+/// The CJ with its contact integrated adaptively, and the sensors at 1 Hz.
+fn bench_adaptive_contact(c: &mut Criterion) {
+    let slow = |s: String| s.replace("sample_rate_hz = 50000.0", "sample_rate_hz = 1.0");
+    let cj = |extra: &str, sensors_1hz: bool| {
+        let path = format!(
+            "{}/../../assets/scenes/cj_aluminium.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let mut text = std::fs::read_to_string(path)
+            .unwrap()
+            .replace("contact_steps = 800", extra);
+        if sensors_1hz {
+            text = slow(text);
+        }
+        Scene::from_toml_str(&text, &Materials::bundled().unwrap()).unwrap()
+    };
+    bench_scene(
+        c,
+        "cj_aluminium_release_to_separation_40_sensors1hz",
+        &cj("contact_steps = 40", true),
+    );
+    for rtol in ["1e-4", "1e-8"] {
+        let solver = format!("contact_steps = 800\ncontact = \"adaptive\"\ncontact_rtol = {rtol}");
+        for (suffix, sensors_1hz) in [("", false), ("_sensors1hz", true)] {
+            bench_scene(
+                c,
+                &format!("cj_aluminium_release_to_separation_adaptive_contact_rtol{rtol}{suffix}"),
+                &cj(&solver, sensors_1hz),
+            );
+        }
+    }
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default()
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
-    targets = bench
+    targets = bench, bench_adaptive_contact
 }
 criterion_main!(benches);

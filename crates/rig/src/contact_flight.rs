@@ -120,9 +120,9 @@ impl OdeSystem<DIM> for HingesInContact<'_> {
 }
 
 /// Bracket of the golden-section search left when it stops, relative to the bracket it starts
-/// with (one or two sub-intervals of a step): at a smooth maximum f(t* + Δt) = f(t*) (1 − O(Δt²)), so the value
-/// is found to about 1e-14 of the step's variation.
-const MAX_SEARCH_RESOLUTION: f64 = 1e-7;
+/// with (one or two sub-intervals of a step, ω Δt ≲ 0.3 for a step of a third of the contact):
+/// at a smooth maximum f(t* + Δt) = f(t*) (1 − O((ω Δt)²)), so the value is found to ~1e-11.
+const MAX_SEARCH_RESOLUTION: f64 = 1e-5;
 
 /// The largest value of `f` on `[a, b]` by golden-section search, `f` unimodal there (at a
 /// monotone end, that end). Returns (t, f(t)).

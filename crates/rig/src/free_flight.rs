@@ -56,7 +56,7 @@ impl ContactPolicy {
 }
 
 /// Default relative tolerance of the adaptive contact (`solver.contact_rtol`): peak force within
-/// 1e-7 of the converged one on the bundled CJ scenes (tests/contact_flight.rs).
+/// about 1e-7 of the independent two-hinge reference on the bundled CJ scenes (tests/reference.rs).
 pub const CONTACT_RTOL: f64 = 1e-8;
 
 /// Relative tolerance of the free flight: onset time and impact speed within 1e-11 of the

@@ -110,7 +110,7 @@ impl Simulation<'_> {
     /// Starts the adaptive contact at the present time in state `y` (the onset): the contact
     /// opened with its approach speed and energy, DOP853 with the tolerances of
     /// `solver.contact_rtol` relative to the peak indentation (angles: over the arm and the link
-    /// length) and to the impact speed (rates), steps of at most a quarter of the Hertz contact
+    /// length) and to the impact speed (rates), steps of at most a third of the estimated contact
     /// time.
     pub(super) fn begin_contact_flight(&mut self, y: [f64; DIM]) {
         let free = self.rigid_hinges();
@@ -308,14 +308,13 @@ impl Simulation<'_> {
             outcome = StepOutcome::Peak;
         }
         if step.onset {
-            // Separated: the contact closed, Rapier given the state, the free flight resumed.
+            // Separated: the contact closed, the free flight resumed (Rapier, stepped by neither,
+            // is given the state when a fixed step needs it).
             let open = self.stats.open.take().expect("an open contact");
             let event = open.event(Some((self.t, parting, energy)));
             self.stats.contacts.push(event);
             self.phase = Phase::After;
             self.previous_gap = None;
-            self.rapier
-                .set_state(self.now.operator, self.now.robot.map(|(r, _)| r));
             if !(outcome == StepOutcome::Peak && self.scene.file.stop == StopSpec::Peak) {
                 outcome = StepOutcome::Separation;
             }
