@@ -7,8 +7,8 @@
 //! point. The force on the block is +f n and on the dome −f n, both applied at the contact point
 //! (the midpoint of the two surface points). The closest points are computed in closed form in
 //! the block's frame (the dome's centre projected on the cuboid: a clamp of each coordinate to
-//! the half extents), exact to round-off and the same as parry's ball–cuboid query, which is
-//! kept for the one case the clamp does not cover (the dome's centre inside the block).
+//! the half extents) by the operations of parry's ball–cuboid query, bit for bit, which itself
+//! answers the one case the clamp does not cover (the dome's centre inside the block).
 
 use parry3d_f64::math::{Pose, Vector};
 use parry3d_f64::query;
@@ -132,27 +132,31 @@ impl DomeBlockContact {
     /// The signed distance between the surfaces, the normal (dome → block) and the midpoint of
     /// the two closest surface points, all in the world: with c the dome's centre in the block's
     /// frame and q its projection on the cuboid (each coordinate clamped to ±the half extent),
-    /// d = |c − q| − R, n = (q − c)/|c − q|, the points q and c + R n. When c lies inside the
-    /// block (|c − q| = 0) parry's ball–cuboid query answers (the nearest face).
+    /// d = |c − q| − R, n = (q − c)/|c − q|, the points q and c + R n. The operations are
+    /// parry's ball–cuboid query's, in its order (the same numbers to the last bit), without
+    /// its dispatch and feature bookkeeping; when c lies inside the block parry answers.
     fn closest(&self, dome: &Pose, block: &Pose) -> Option<Closest> {
-        let dome_center = dome.transform_point(self.dome_offset.translation);
+        let dome_pose = *dome * self.dome_offset;
         let block_pose = *block * self.block_offset;
-        let center = block_pose.inverse_transform_point(dome_center);
+        // the dome's pose in the block's frame, as parry forms it
+        let pos21 = dome_pose.inv_mul(&block_pose).inverse();
+        let center = pos21.translation;
         let half = self.block.half_extents;
-        let q = center.clamp(-half, half);
-        let (dir, len) = (q - center).normalize_and_length();
-        if len >= parry3d_f64::math::DEFAULT_EPSILON && center != q {
-            let normal = block_pose.rotation * dir;
-            let on_block = block_pose.transform_point(q);
-            let on_dome = dome_center + normal * self.dome.radius;
-            return Some(Closest {
-                dist: len - self.dome.radius,
-                normal,
-                point: (on_dome + on_block) * 0.5,
-            });
+        let shift = (-half - center).max(Vector::ZERO) - (center - half).max(Vector::ZERO);
+        if shift != Vector::ZERO {
+            let (dir, len) = ((center + shift) - center).normalize_and_length();
+            if len >= parry3d_f64::math::DEFAULT_EPSILON {
+                let normal_dome = pos21.rotation.inverse() * dir;
+                let on_dome = dome_pose * (normal_dome * self.dome.radius);
+                let on_block = block_pose * (center + shift);
+                return Some(Closest {
+                    dist: len - self.dome.radius,
+                    normal: dome_pose.rotation * normal_dome,
+                    point: (on_dome + on_block) * 0.5,
+                });
+            }
         }
         // Ball–cuboid is always supported by the default dispatcher.
-        let dome_pose = *dome * self.dome_offset;
         let c = query::contact(&dome_pose, &self.dome, &block_pose, &self.block, f64::MAX)
             .ok()
             .flatten()?;

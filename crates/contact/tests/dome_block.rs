@@ -127,8 +127,8 @@ fn closed_form_closest_points_agree_with_parrys_ball_cuboid_query() {
     use parry3d_f64::shape::{Ball, Cuboid};
     use rand::{Rng, SeedableRng};
     // The callback's closed form (projection of the dome's centre on the block) against parry's
-    // general query, for the dome's centre in front of faces, edges and corners of a rotated,
-    // offset block, apart and overlapping (also inside the block, where parry answers).
+    // general query, bit for bit, for the dome's centre in front of faces, edges and corners of a
+    // rotated, offset block, apart and overlapping (also inside the block, where parry answers).
     let radius = 0.0715;
     let half = Vector::new(0.02, 0.025, 0.03);
     let dome_offset = Pose::from_translation(Vector::new(0.01, 0.0715, -0.005));
@@ -169,7 +169,7 @@ fn closed_form_closest_points_agree_with_parrys_ball_cuboid_query() {
         )
         .unwrap()
         .unwrap();
-        assert_abs("gap", c.gap(&dome, &block), reference.dist, 1e-15);
+        assert_eq!(c.gap(&dome, &block), reference.dist, "gap: bit for bit");
         let (dome_k, block_k) = (
             BodyKinematics {
                 angvel: Vector::new(0.0, 0.0, 1.3),
@@ -184,16 +184,16 @@ fn closed_form_closest_points_agree_with_parrys_ball_cuboid_query() {
         let point = (reference.point1 + reference.point2) * 0.5;
         let rate = (dome_k.velocity_at(point) - block_k.velocity_at(point)).dot(reference.normal1);
         let (gap, approach) = c.approach(&dome_k, &block_k).unwrap();
-        assert_abs("approach gap", gap, reference.dist, 1e-15);
-        assert_abs("approach rate", approach, rate, 1e-13);
+        assert_eq!(gap, reference.dist, "approach gap");
+        assert_eq!(approach, rate, "approach rate");
         match c.evaluate(&dome_k, &block_k) {
             Some(s) => {
                 touching += 1;
                 assert!(reference.dist < 0.0);
-                assert_abs("δ", s.indentation, -reference.dist, 1e-15);
-                assert_abs("normal", (s.normal - reference.normal1).length(), 0.0, 1e-13);
-                assert_abs("point", (s.point - point).length(), 0.0, 1e-15);
-                assert_abs("δ̇", s.rate, rate, 1e-13);
+                assert_eq!(s.indentation, -reference.dist, "δ");
+                assert_eq!(s.normal, reference.normal1, "normal");
+                assert_eq!(s.point, point, "point");
+                assert_eq!(s.rate, rate, "δ̇");
             }
             None => assert!(reference.dist >= 0.0),
         }

@@ -1043,20 +1043,23 @@ impl<'s> Simulation<'s> {
             };
             sensors.sample(&system, t, &y)
         });
-        // The new state (synchronised: the next fixed step kicks half a step).
+        // The new state, in Rapier too (synchronised: the next fixed step kicks half a step)
+        // unless the contact is integrated adaptively too (then Rapier is not stepped).
         self.t = step.t_end;
         self.h_prev = 0.0;
         self.now = self.flight_synced(&step.y);
+        let adaptive = self.adaptive_contact();
+        if !adaptive {
+            self.rapier
+                .set_state(self.now.operator, self.now.robot.map(|(r, _)| r));
+        }
         if let RobotSide::Beam(b) = &mut self.robot {
             b.set_time(self.t);
         }
         self.stats.steps += 1;
-        let adaptive_onset = step.onset && self.adaptive_contact();
-        if step.onset && !adaptive_onset {
-            // The fixed policy takes over at the onset: its first step is the contact's, from
-            // the onset state in Rapier (which the flight leaves alone until then).
-            self.rapier
-                .set_state(self.now.operator, self.now.robot.map(|(r, _)| r));
+        let adaptive_onset = step.onset && adaptive;
+        if step.onset && !adaptive {
+            // The fixed policy takes over at the onset: its first step is the contact's.
             self.phase = Phase::Swing;
         } else if !step.onset {
             self.flight = Some(flight);
