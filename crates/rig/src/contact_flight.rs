@@ -13,7 +13,7 @@
 //! forces of each step.
 
 use flexrig_contact::math::Vector;
-use flexrig_contact::{ContactCallback, ContactSample, DomeBlockContact};
+use flexrig_contact::{ContactSample, DomeBlockContact};
 use flexrig_lumped::ode::dop853::{DenseOutput, OdeSystem};
 
 use crate::free_flight::{DIM, EVENT_SUBINTERVALS, FreeHinges};
@@ -38,19 +38,21 @@ impl HingesInContact<'_> {
     /// The contact in state `y`, if touching.
     pub fn sample(&self, y: &[f64; DIM]) -> Option<ContactSample> {
         let (dome, block) = self.bodies(y);
-        self.contact.evaluate(&dome, &block)
+        self.contact.evaluate_direct(&dome, &block)
     }
 
     /// The signed dome–block gap \[m\] in state `y` (negative in contact).
     pub fn gap(&self, y: &[f64; DIM]) -> f64 {
         let (dome, block) = self.bodies(y);
-        self.contact.gap(&dome.pose, &block.pose)
+        self.contact.gap_direct(&dome.pose, &block.pose)
     }
 
     /// The gap \[m\] and the approach rate [m/s] (> 0 closing) in state `y`.
     pub fn approach(&self, y: &[f64; DIM]) -> (f64, f64) {
         let (dome, block) = self.bodies(y);
-        self.contact.approach(&dome, &block).unwrap_or((f64::INFINITY, 0.0))
+        self.contact
+            .approach_direct(&dome, &block)
+            .unwrap_or((f64::INFINITY, 0.0))
     }
 
     fn bodies(

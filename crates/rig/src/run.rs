@@ -959,7 +959,8 @@ impl<'s> Simulation<'s> {
     }
 
     /// The signed dome–block gap \[m\] with the hinges in state `y` of the free flight (the CL
-    /// beam at rest).
+    /// beam at rest); before an adaptive contact by the direct sequence of operations (the
+    /// Rapier path keeps parry's, bit for bit).
     fn flight_gap(&self, y: &[f64; DIM]) -> f64 {
         let block = self.rapier.operator_kinematics_at(HingeState {
             angle: y[0],
@@ -972,7 +973,11 @@ impl<'s> Simulation<'s> {
             }),
             RobotSide::Beam(b) => b.tip_kinematics(),
         };
-        self.contact.gap(&dome.pose, &block.pose)
+        if self.adaptive_contact() {
+            self.contact.gap_direct(&dome.pose, &block.pose)
+        } else {
+            self.contact.gap(&dome.pose, &block.pose)
+        }
     }
 
     /// The synchronised state of the free flight's `y` (no contact).
