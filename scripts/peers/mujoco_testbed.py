@@ -23,7 +23,9 @@ target — a lucky cancellation of errors at one setting is not a converged resu
 is applied to flexrig. Two MuJoCo step policies are reported: one step for the whole run (the
 plain use) and flexrig's onset policy above. The cheapest counted setting is timed in-process (time.perf_counter around the whole run, model
 built once; median of --repeat runs). If flexrig's `work_error` example is built, it is run in
-the same call at its cheapest setting and the ratio printed (both in-process medians).
+the same call at its cheapest setting and the ratio printed (both in-process medians): for each
+swing policy with Rapier's contact steps, and with the adaptive contact (solver.contact =
+"adaptive", its cheapest tolerance).
 
 Usage (in the project venv: .venv/bin/pip install mujoco):
   .venv/bin/python scripts/peers/mujoco_testbed.py [--scene assets/scenes/cj_aluminium.toml]
@@ -323,7 +325,8 @@ def main():
             row = dict(row, code="flexrig", sample_rate_hz=rate or "scene")
             print(json.dumps(row))
             print(json.dumps({"ratio_mujoco_over_flexrig": best["median_s"] / row["median_s"],
-                              "swing": row["swing"], "sample_rate_hz": row["sample_rate_hz"],
+                              "swing": row["swing"], "contact": row.get("contact", "fixed"),
+                              "sample_rate_hz": row["sample_rate_hz"],
                               "target": args.target}))
 
 
