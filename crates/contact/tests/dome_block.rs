@@ -198,7 +198,12 @@ fn closed_form_closest_points_agree_with_parrys_ball_cuboid_query() {
             None => assert!(reference.dist >= 0.0),
         }
         // the direct sequence of operations: the same to round-off
-        assert_abs("direct gap", c.gap_direct(&dome, &block), reference.dist, 1e-15);
+        assert_abs(
+            "direct gap",
+            c.gap_direct(&dome, &block),
+            reference.dist,
+            1e-15,
+        );
         let (gap, approach) = c.approach_direct(&dome_k, &block_k).unwrap();
         assert_abs("direct approach gap", gap, reference.dist, 1e-15);
         assert_abs("direct approach rate", approach, rate, 1e-13);
@@ -206,7 +211,12 @@ fn closed_form_closest_points_agree_with_parrys_ball_cuboid_query() {
             Some(s) => {
                 assert!(reference.dist < 0.0);
                 assert_abs("direct δ", s.indentation, -reference.dist, 1e-15);
-                assert_abs("direct normal", (s.normal - reference.normal1).length(), 0.0, 1e-13);
+                assert_abs(
+                    "direct normal",
+                    (s.normal - reference.normal1).length(),
+                    0.0,
+                    1e-13,
+                );
                 assert_abs("direct point", (s.point - point).length(), 0.0, 1e-15);
                 assert_abs("direct δ̇", s.rate, rate, 1e-13);
             }

@@ -599,7 +599,10 @@ fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
                                      contact_rtol = {rtol:e}"
                                 ),
                             ),
-                            ("sample_rate_hz = 50000.0", format!("sample_rate_hz = {rate}")),
+                            (
+                                "sample_rate_hz = 50000.0",
+                                format!("sample_rate_hz = {rate}"),
+                            ),
                         ],
                     )?;
                     let result = run_scene(&s, RunOptions::DEFAULT)?;

@@ -85,7 +85,13 @@ impl HingesInContact<'_> {
     /// Every sensor at time `t` \[s\] in state `y`: as [`crate::free_flight::FlightSensors`]
     /// with the accelerations of the equations of motion above and the contact force;
     /// `arm_length` l and `link_length` L \[m\].
-    pub fn sensors(&self, t: f64, y: &[f64; DIM], arm_length: f64, link_length: f64) -> SensorSample {
+    pub fn sensors(
+        &self,
+        t: f64,
+        y: &[f64; DIM],
+        arm_length: f64,
+        link_length: f64,
+    ) -> SensorSample {
         let c = self.sample(y);
         let d = self.derivative(y, c.as_ref());
         let (sin, cos) = (y[4], y[5]);

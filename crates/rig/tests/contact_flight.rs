@@ -75,7 +75,12 @@ fn every_quantity_of_the_contact_agrees_with_the_rapier_contact_at_a_fine_step()
             5e-6,
         );
         let (before, after) = a.energy_through_contact_j.unwrap();
-        close("energy before", before, fixed.energy_through_contact_j.unwrap().0, 1e-12);
+        close(
+            "energy before",
+            before,
+            fixed.energy_through_contact_j.unwrap().0,
+            1e-12,
+        );
         // undamped: conserved through the contact to the tolerance
         close("energy through the contact", after, before, 1e-7);
         assert!(a.contact_steps < 30, "{} contact steps", a.contact_steps);
@@ -118,7 +123,12 @@ fn a_run_that_starts_in_contact_and_a_run_to_a_duration_with_several_contacts() 
     let a = run(&with_contact("cj_aluminium", 3200, true, &start));
     let fixed = run(&with_contact("cj_aluminium", 3200, false, &start));
     close("peak", a.peak_force_n, fixed.peak_force_n, 5e-7);
-    close("impact speed", a.impact_velocity_mps, fixed.impact_velocity_mps, 1e-12);
+    close(
+        "impact speed",
+        a.impact_velocity_mps,
+        fixed.impact_velocity_mps,
+        1e-12,
+    );
     // 1.5 s: the pendulum swings back and strikes again; every contact as with Rapier
     let long = [("at = \"separation\"", "at = \"duration\"\nduration_s = 1.5")];
     let a = run(&with_contact("cj_aluminium", 800, true, &long));
@@ -135,7 +145,11 @@ fn a_run_that_starts_in_contact_and_a_run_to_a_duration_with_several_contacts() 
 fn scenes_the_adaptive_contact_does_not_take_are_refused_naming_the_field() {
     let materials = flexrig_contact::Materials::bundled().unwrap();
     let cases = [
-        ("cl_aluminium", "contact_steps = 800\ncontact = \"adaptive\"", "robot.design"),
+        (
+            "cl_aluminium",
+            "contact_steps = 800\ncontact = \"adaptive\"",
+            "robot.design",
+        ),
         (
             "cj_aluminium",
             "contact_steps = 800\ncontact = \"adaptive\"\nswing = \"fixed\"",

@@ -10,12 +10,12 @@ use super::{OpenContact, Phase, RobotSide, Simulation, StepOutcome, Synced};
 use crate::RigError;
 use crate::contact_flight::{HingesInContact, golden_max, sample_times, simpson};
 use crate::free_flight::EVENT_SUBINTERVALS;
-use flexrig_lumped::ode::dop853::DenseOutput;
 use crate::free_flight::{CONTACT_RTOL, ContactPolicy, DIM, FreeFlight, FreeHinges};
 use crate::hinge::HingeState;
 use crate::limits::CONTACT_TIME_FACTOR;
 use crate::run::Recorder;
 use crate::scene::StopSpec;
+use flexrig_lumped::ode::dop853::DenseOutput;
 
 /// The maxima of the contact in progress.
 #[derive(Debug, Clone, Copy)]
@@ -124,13 +124,11 @@ impl Simulation<'_> {
         if !self.stats.contacts.is_empty() && rate > 0.0 {
             self.size_contact(rate);
         }
-        let rtol = self
-            .scene
-            .file
-            .solver
-            .contact_rtol
-            .unwrap_or(CONTACT_RTOL);
-        let (arm, link) = (self.geometry.operator.arm_length, self.geometry.robot.length);
+        let rtol = self.scene.file.solver.contact_rtol.unwrap_or(CONTACT_RTOL);
+        let (arm, link) = (
+            self.geometry.operator.arm_length,
+            self.geometry.robot.length,
+        );
         let depth = rtol * self.indentation_scale;
         let speed = rtol * rate.max(1e-3);
         let atol = [
@@ -233,11 +231,7 @@ impl Simulation<'_> {
                     reason: format!("failed: {failure:?}"),
                     suggestion: format!(
                         "solver.contact = \"fixed\" or a larger solver.contact_rtol (now {:e})",
-                        self.scene
-                            .file
-                            .solver
-                            .contact_rtol
-                            .unwrap_or(CONTACT_RTOL)
+                        self.scene.file.solver.contact_rtol.unwrap_or(CONTACT_RTOL)
                     ),
                 });
             }
@@ -274,7 +268,10 @@ impl Simulation<'_> {
         search.steps += 1;
         // Sensors from the dense output.
         let sampled_before = self.sampler.samples().len();
-        let (arm, link) = (self.geometry.operator.arm_length, self.geometry.robot.length);
+        let (arm, link) = (
+            self.geometry.operator.arm_length,
+            self.geometry.robot.length,
+        );
         self.sampler.record_exact(step.t_start, step.t_end, |t| {
             system.sensors(t, &at(t), arm, link)
         });
