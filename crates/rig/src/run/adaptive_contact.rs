@@ -8,7 +8,7 @@ use flexrig_contact::math::Vector;
 
 use super::{OpenContact, Phase, RobotSide, Simulation, StepOutcome, Synced};
 use crate::RigError;
-use crate::contact_flight::{HingesInContact, golden_max, sample_times, simpson};
+use crate::contact_flight::{HingesInContact, sample_times, search_max, simpson};
 use crate::free_flight::EVENT_SUBINTERVALS;
 use crate::free_flight::{CONTACT_RTOL, ContactPolicy, DIM, FreeFlight, FreeHinges};
 use crate::hinge::HingeState;
@@ -62,11 +62,11 @@ fn refine_max(
         // still rising: the step's end, refined once the quantity turns
         return (times[k], samples[k]);
     }
-    let mut found = golden_max(times[k.saturating_sub(1)], times[k + 1], |t| value(&at(t)));
+    let mut found = search_max(times[k.saturating_sub(1)], times[k + 1], |t| value(&at(t)));
     if k == 0
         && let Some((dense, t)) = previous
     {
-        let before = golden_max(t[last - 1], t[last], |t| value(&dense.eval(t)));
+        let before = search_max(t[last - 1], t[last], |t| value(&dense.eval(t)));
         if before.1 > found.1 {
             found = before;
         }
