@@ -179,7 +179,9 @@ pub struct RunSummary {
     /// Steps taken in contact.
     pub contact_steps: usize,
     /// Step size used in the first contact \[s\] (each later contact is sized by its own
-    /// impact speed).
+    /// impact speed); with `solver.contact = "adaptive"` the Hertz contact time over
+    /// `solver.contact_steps`, which the adaptive steps do not use (`contact_steps` counts
+    /// those).
     pub contact_step_s: f64,
     /// Mechanical energy at the start \[J\] (for a release from rest: M g l_c (1 − cos θ₀)).
     pub energy_initial_j: f64,
