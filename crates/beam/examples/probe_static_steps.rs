@@ -1,16 +1,39 @@
 use flexrig_beam::*;
+fn run(what: &str, model: &BeamModel, loads: &NodalLoads, n: usize) {
+    let fx = solve_static(model, loads, &StaticOptions::new(50, 30, 1e-10).unwrap());
+    let ad = solve_static(model, loads, &StaticOptions::adaptive());
+    match (fx, ad) {
+        (Ok(a), Ok(b)) => {
+            let d = a.q.iter().zip(&b.q).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+            println!("{what}: its {} -> {} maxdiff {d:.2e} tip {:?}{}", a.iterations, b.iterations, b.node(n), if d > 1e-10 {" !!!"} else {""});
+        }
+        (a, b) => println!("{what}: fixed {:?} adaptive {:?} !!!", a.map(|s| s.iterations), b.map(|s| s.iterations)),
+    }
+}
 fn main() {
-    let a: Vec<String> = std::env::args().collect();
-    let phi: f64 = a.get(1).map_or(5.0, |s| s.parse().unwrap());
-    let n: usize = a.get(2).map_or(32, |s| s.parse().unwrap());
     for kin in [Kinematics::Ancf, Kinematics::Corotational] {
-        let (model, loads) = canonical::elastica_problem_with(kin, phi, n).unwrap();
-        for (steps, ad) in [(1, false), (10, false), (1, true), (10, true)] {
-            let mut o = StaticOptions::new(steps, 30, 1e-10).unwrap();
-            if ad { o = o.with_adaptive_steps(); }
-            match solve_static(&model, &loads, &o) {
-                Ok(s) => println!("{kin:?} steps {steps} adaptive {ad}: its {} tip {:.15e} res {:.2e}", s.iterations, s.node(n).1, s.residual),
-                Err(e) => println!("{kin:?} steps {steps} adaptive {ad}: {e}"),
+        for slender in [5.0, 2.0] {
+            for n in [8usize, 32] {
+                let mat = Material::new(210e9, 7850.0).unwrap();
+                let sec = Section::rectangular(&mat, 0.02, 1.0 / slender).unwrap();
+                let m = BeamModel::new(BeamSpec::cantilever(1.0, sec, n, kin)).unwrap();
+                let mut loads = NodalLoads::zeros(&m);
+                loads.set_force(n, 0.0, 5.0 * m.section().ei()).unwrap();
+                run(&format!("{kin:?} stubby L/t {slender} n {n}"), &m, &loads, n);
+            }
+        }
+        for n in [4usize, 16, 64] {
+            for ml in [1.0, 3.14159, 6.2832, 12.0] {
+                let m = canonical::unit_cantilever(n, kin).unwrap();
+                let mut loads = NodalLoads::zeros(&m);
+                loads.set_moment(n, ml).unwrap();
+                run(&format!("{kin:?} moment {ml} n {n}"), &m, &loads, n);
+            }
+            for p in [-1.0, -3.0, -10.0] {
+                let m = canonical::unit_cantilever(n, kin).unwrap();
+                let mut loads = NodalLoads::zeros(&m);
+                loads.set_force(n, p, 0.01).unwrap();
+                run(&format!("{kin:?} compression {p} n {n}"), &m, &loads, n);
             }
         }
     }

@@ -15,7 +15,13 @@
 //! predictor q_k + (Δλ_{k+1}/Δλ_k)(q_k − q_{k−1}). The equilibrium reached is the same as with
 //! fixed steps (the same Newton test at the full load); the number of Newton solves is what the
 //! load needs rather than what was asked for. Below an increment of 2⁻³⁰ the solve stops with
-//! the load level reached.
+//! the load level reached. Two checks keep a long increment from landing on another
+//! equilibrium than the load path's: a converged level is tried again with half the increment
+//! if its tangent stiffness is no longer positive definite while the last level's was (an
+//! unstable equilibrium or a jump over a limit point or bifurcation; accepted once the
+//! increment is down to 1/(32 K), as fine steps would cross it), and, corotational, if the two
+//! nodal rotations of an element differ by π or more (the element is 2π-periodic in them, so
+//! a node can converge turned by a full turn).
 
 use crate::BeamError;
 use crate::assembly::{JacobianWeights, Kinematic, assemble, band_for};
@@ -178,6 +184,8 @@ struct Newton<'a> {
 /// How the Newton solve of one load level ended.
 struct Level {
     converged: bool,
+    /// Whether the last tangent factorised was positive definite (its LDLᵀ factorisation).
+    positive_definite: bool,
     iterations: usize,
     /// The last residual ‖r‖∞ over the free DOFs \[N\].
     residual: f64,
@@ -218,6 +226,7 @@ impl Newton<'_> {
         };
         let mut iterations = 0;
         let mut residual = 0.0;
+        let mut positive_definite = false;
         while iterations < self.options.max_iterations {
             let soft_now = soft || (soft_after_first && iterations > 0);
             let kin = Kinematic {
@@ -248,6 +257,7 @@ impl Newton<'_> {
             if (iterations > 0 && residual <= self.options.tolerance * scale) || scale == 0.0 {
                 return Ok(Level {
                     converged: true,
+                    positive_definite,
                     iterations,
                     residual,
                 });
@@ -256,6 +266,7 @@ impl Newton<'_> {
                 Err(_) if soft_now => break,
                 other => other?,
             }
+            positive_definite = self.band.is_ldlt();
             self.dq
                 .iter_mut()
                 .zip(&self.r[nfix..])
@@ -275,6 +286,7 @@ impl Newton<'_> {
             if kinematics == Kinematics::Linear {
                 return Ok(Level {
                     converged: true,
+                    positive_definite,
                     iterations,
                     residual,
                 });
@@ -289,6 +301,7 @@ impl Newton<'_> {
                 assemble(model, kin, &self.f, &mut self.r, None);
                 return Ok(Level {
                     converged: true,
+                    positive_definite,
                     iterations,
                     residual: self.free_residual(),
                 });
@@ -296,6 +309,7 @@ impl Newton<'_> {
         }
         Ok(Level {
             converged: false,
+            positive_definite: false,
             iterations,
             residual,
         })
@@ -451,6 +465,11 @@ fn adaptive_levels(newton: &mut Newton, q: &mut [f64]) -> Result<usize, BeamErro
     let mut last_increment = 0.0f64;
     let mut q_level = q.to_vec();
     let mut q_level_prev = q.to_vec();
+    // whether the last converged level's tangent was positive definite (the start's assumed),
+    // and the increment below which a loss of definiteness is accepted
+    let mut positive_definite = true;
+    let guard = increment / 32.0;
+    let mut failed_before = false;
     while lambda < 1.0 {
         // the load left when it is close to one increment (no sliver of a last level)
         let target = if lambda + 1.5 * increment >= 1.0 {
@@ -471,19 +490,38 @@ fn adaptive_levels(newton: &mut Newton, q: &mut [f64]) -> Result<usize, BeamErro
         // structure's or the load's (a singular support, overflowing loads), not the step's
         let level = newton.solve_level(q, predicted, true)?;
         total_iterations += level.iterations;
-        if level.converged {
-            last_increment = target - lambda;
+        let step = target - lambda;
+        let lost_definiteness =
+            level.converged && positive_definite && !level.positive_definite && step > guard;
+        let accepted = level.converged && !lost_definiteness && !full_turn(newton.model, q);
+        if accepted {
+            positive_definite = level.positive_definite;
+            last_increment = step;
             lambda = target;
             std::mem::swap(&mut q_level_prev, &mut q_level);
             q_level.copy_from_slice(q);
-            increment = (2.0 * last_increment).min(1.0 - lambda);
+            // longer only after a level that was not cut back
+            let factor = if failed_before { 1.0 } else { 2.0 };
+            increment = (factor * last_increment).min(1.0 - lambda);
+            failed_before = false;
         } else {
             q.copy_from_slice(&q_level);
-            increment = 0.5 * (target - lambda);
+            increment = 0.5 * step;
+            failed_before = true;
             if increment < MIN_ADAPTIVE_INCREMENT {
                 return Err(not_converged(lambda, &level));
             }
         }
     }
     Ok(total_iterations)
+}
+
+/// Corotational: whether the nodal rotations of some element differ by π or more (a node turned
+/// by a full turn against its neighbour: the element's energy is 2π-periodic in the nodal
+/// rotations, so such a state is an equilibrium of the discrete model off the load path).
+fn full_turn(model: &BeamModel, q: &[f64]) -> bool {
+    model.kinematics() == Kinematics::Corotational
+        && q.chunks_exact(3)
+            .zip(q.chunks_exact(3).skip(1))
+            .any(|(a, b)| (b[2] - a[2]).abs() >= std::f64::consts::PI)
 }
