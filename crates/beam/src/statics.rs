@@ -21,7 +21,8 @@
 //! unstable equilibrium or a jump over a limit point or bifurcation; accepted once the
 //! increment is down to 1/(32 K), as fine steps would cross it), and, corotational, if the two
 //! nodal rotations of an element differ by π or more (the element is 2π-periodic in them, so
-//! a node can converge turned by a full turn).
+//! a node can converge turned by a full turn). Each level's Newton solve also stops when the
+//! next increment, extrapolated at the rate of the last two, would pass the increment test.
 
 use crate::BeamError;
 use crate::assembly::{JacobianWeights, Kinematic, assemble, band_for};
@@ -209,12 +210,16 @@ impl Newton<'_> {
     /// Newton's iterations on the current level from `q` (overwritten with the last iterate).
     /// `soft`: a non-finite residual or a singular tangent ends the level as not converged
     /// (the caller tries again) instead of as an error; with `soft_after_first` only from the
-    /// second iteration on.
+    /// second iteration on. `rate_test`: also converged when the next increment, extrapolated
+    /// at the rate of the last two (ρ = ‖Δq_k‖/‖Δq_{k−1}‖ < 0.1, from the second iteration on),
+    /// ρ‖Δq_k‖, is below the increment test's 1e-3·tol·L (the iteration that would only
+    /// confirm it is saved; quadratic convergence makes the true next increment smaller still).
     fn solve_level(
         &mut self,
         q: &mut [f64],
         soft: bool,
         soft_after_first: bool,
+        rate_test: bool,
     ) -> Result<Level, BeamError> {
         let model = self.model;
         let nfix = self.nfix;
@@ -227,6 +232,8 @@ impl Newton<'_> {
         let mut iterations = 0;
         let mut residual = 0.0;
         let mut positive_definite = false;
+        let mut last_dmax = f64::INFINITY;
+        let small = self.options.tolerance * 1e-3 * model.length();
         while iterations < self.options.max_iterations {
             let soft_now = soft || (soft_after_first && iterations > 0);
             let kin = Kinematic {
@@ -291,8 +298,12 @@ impl Newton<'_> {
                     residual,
                 });
             }
-            if dmax <= self.options.tolerance * 1e-3 * model.length() {
-                // increment at round-off level: accept after one last residual evaluation
+            let rate = dmax / last_dmax;
+            last_dmax = dmax;
+            if dmax <= small || (rate_test && iterations >= 2 && rate < 0.1 && dmax * rate <= small)
+            {
+                // increment at round-off level (or the next one would be): accept after one
+                // last residual evaluation
                 let kin = Kinematic {
                     q,
                     v: None,
@@ -373,7 +384,7 @@ pub fn solve_static_from(
     let iterations = match model.kinematics() {
         Kinematics::Linear => {
             newton.set_level(1.0);
-            newton.solve_level(&mut q, false, false)?.iterations
+            newton.solve_level(&mut q, false, false, false)?.iterations
         }
         Kinematics::Corotational | Kinematics::Ancf if options.adaptive => {
             adaptive_levels(&mut newton, &mut q)?
@@ -433,7 +444,7 @@ fn fixed_levels(newton: &mut Newton, q: &mut [f64]) -> Result<usize, BeamError> 
             }
             predicted = true;
         }
-        let level = newton.solve_level(q, predicted, false)?;
+        let level = newton.solve_level(q, predicted, false, false)?;
         total_iterations += level.iterations;
         if !level.converged && predicted {
             // from the last converged level instead
@@ -488,7 +499,7 @@ fn adaptive_levels(newton: &mut Newton, q: &mut [f64]) -> Result<usize, BeamErro
         }
         // from a converged state without predictor, a failure at the first iteration is the
         // structure's or the load's (a singular support, overflowing loads), not the step's
-        let level = newton.solve_level(q, predicted, true)?;
+        let level = newton.solve_level(q, predicted, true, true)?;
         total_iterations += level.iterations;
         let step = target - lambda;
         let lost_definiteness =
