@@ -146,7 +146,9 @@ fn an_adaptive_solve_that_cannot_converge_reports_the_load_level_reached() {
     // one iteration per level can never pass the Newton test (it needs a second residual):
     // every increment fails down to the smallest, nothing is carried
     let (m, l) = elastica_problem_with(Kinematics::Ancf, 5.0, 8).unwrap();
-    let opts = StaticOptions::new(1, 1, 1e-10).unwrap().with_adaptive_steps();
+    let opts = StaticOptions::new(1, 1, 1e-10)
+        .unwrap()
+        .with_adaptive_steps();
     let e = solve_static(&m, &l, &opts).unwrap_err();
     assert!(!e.is_input_error(), "{e}");
     assert!(e.to_string().contains("load level reached 0.0000"), "{e}");

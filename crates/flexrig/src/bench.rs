@@ -381,7 +381,11 @@ fn beam(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
     let fixed = StaticOptions::new(10, 50, 1e-10)?;
     let adaptive = StaticOptions::new(1, 50, 1e-10)?.with_adaptive_steps();
     let cases = [
-        (Kinematics::Corotational, fixed, "elastica PL²/EI=5, corotational"),
+        (
+            Kinematics::Corotational,
+            fixed,
+            "elastica PL²/EI=5, corotational",
+        ),
         (
             Kinematics::Corotational,
             adaptive,
