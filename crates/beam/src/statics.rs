@@ -11,7 +11,9 @@
 //! the load (the full load for K = 1); a level whose Newton solve fails (no convergence within
 //! the iteration limit, a non-finite residual or a singular tangent after the first iteration)
 //! is tried again from the last converged state with half the increment, and after each
-//! converged level the increment doubles (at most the load left), starting from the secant
+//! converged level the increment doubles (at most the load left; kept after a level that
+//! needed a cut, and a last increment of up to 1.5 times the current one taken whole), the
+//! next level starting from the secant
 //! predictor q_k + (Δλ_{k+1}/Δλ_k)(q_k − q_{k−1}). The equilibrium reached is the same as with
 //! fixed steps (the same Newton test at the full load); the number of Newton solves is what the
 //! load needs rather than what was asked for. Below an increment of 2⁻³⁰ the solve stops with
