@@ -60,10 +60,10 @@ def exudyn_transient(peer, elements, h, steps, rho):
     return seconds, tip_v
 
 
-def exudyn_static(peer, elements, alpha):
+def exudyn_static(peer, elements, alpha, load_steps=10):
     sc, mbs, tip, _ = peer.build(elements, alpha, 0)
     s = peer.settings(True)
-    s.staticSolver.numberOfLoadSteps = 10
+    s.staticSolver.numberOfLoadSteps = load_steps
     s.staticSolver.newton.relativeTolerance = 1e-10
     s.staticSolver.newton.absoluteTolerance = 1e-12
     t0 = time.perf_counter()
@@ -84,6 +84,11 @@ def main():
     p.add_argument("--rounds", type=int, default=5)
     p.add_argument("--elements", type=int, nargs="+", default=[8, 16, 32, 64])
     p.add_argument("--no-static", action="store_true")
+    p.add_argument("--no-transient", action="store_true")
+    p.add_argument("--load-steps", type=int, default=10,
+                   help="Exudyn's static load steps (10: the comparison's setting)")
+    p.add_argument("--adaptive", action="store_true",
+                   help="flexrig's static solve with adaptive load steps from the full load")
     a = p.parse_args()
     try:
         sys.path.insert(0, os.path.dirname(HERE))
@@ -94,10 +99,11 @@ def main():
         return 0
     print(f"Exudyn {peer.exu.__version__}, flexrig examples from {a.bin_dir}, {a.rounds} rounds")
     h, steps, rho = 1e-3, 1000, 0.9
-    ref = flexrig(a.bin_dir, "wp_transient", "ancf", rho, 32, 2.5e-5, 1)["tip_v"]
-    print("\n| N | flexrig ms | its/step | error | Exudyn ms | error | Exudyn / flexrig |")
-    print("|---|---|---|---|---|---|---|")
-    for n in a.elements:
+    if not a.no_transient:
+        ref = flexrig(a.bin_dir, "wp_transient", "ancf", rho, 32, 2.5e-5, 1)["tip_v"]
+        print("\n| N | flexrig ms | its/step | error | Exudyn ms | error | Exudyn / flexrig |")
+        print("|---|---|---|---|---|---|---|")
+    for n in ([] if a.no_transient else a.elements):
         fx, ex = [], []
         for _ in range(a.rounds):
             r = flexrig(a.bin_dir, "wp_transient", "ancf", rho, n, h, 3)
@@ -119,15 +125,18 @@ def main():
         return max(abs(tip[0] - ref_tip[0]) / 0.3, abs(tip[1] - ref_tip[1]) / 0.3,
                    abs(tip[2] - ref_tip[2]))
 
-    print(f"\nstatic elastica alpha = {alpha}, 10 load steps (reference: flexrig, 64 ANCF elements)")
+    how = "adaptive load steps" if a.adaptive else "10 load steps"
+    print(f"\nstatic elastica alpha = {alpha}, flexrig {how}, Exudyn {a.load_steps} load steps "
+          "(reference: flexrig, 64 ANCF elements)")
     print("\n| N | flexrig ms | iterations | error | Exudyn ms | error | Exudyn / flexrig |")
     print("|---|---|---|---|---|---|---|")
     for n in [x for x in a.elements if x < 64]:
         fx, ex = [], []
         for _ in range(a.rounds):
-            r = flexrig(a.bin_dir, "wp_static", "ancf", n, alpha, 20)
+            r = flexrig(a.bin_dir, "wp_static", "ancf", n, alpha, 20,
+                        *(["adaptive"] if a.adaptive else []))
             fx.append(r["seconds"])
-            t, tip = exudyn_static(peer, n, alpha)
+            t, tip = exudyn_static(peer, n, alpha, a.load_steps)
             ex.append(t)
         fm, em = statistics.median(fx), statistics.median(ex)
         print(f"| {n} | {fm * 1e3:.3f} | {r['iterations']} | {err((r['u'], r['v'], r['theta'])):.1e} "

@@ -8,7 +8,8 @@ load-independent measure on a shared machine:
   valgrind --tool=callgrind .venv/bin/python scripts/peers/exudyn_ancf_steps.py 32 0
   valgrind --tool=callgrind .venv/bin/python scripts/peers/exudyn_ancf_steps.py 32 static
 
-(`static`: the elastica PL^2/EI = 5 in 10 load steps, the static comparison's solve.)
+(`static`: the elastica PL^2/EI = 5 in 10 load steps, the static comparison's solve; `static K`:
+in K load steps, e.g. `32 static 1` for the full load at once.)
 The difference of a count and the set-up's is the work alone (the interpreter's start, the import
 and the model's set-up cancel). flexrig's side: crates/beam/examples/probe_instructions.rs
 (`transient ancf 32`, whose start-up is a few hundred thousand instructions).
@@ -28,12 +29,13 @@ def main():
     if what == "static":
         sc, mbs, tip, _ = peer.build(elements, 5.0, 0)
         s = peer.settings(True)
-        s.staticSolver.numberOfLoadSteps = 10
+        load_steps = int(sys.argv[3]) if len(sys.argv) > 3 else 10
+        s.staticSolver.numberOfLoadSteps = load_steps
         s.staticSolver.newton.relativeTolerance = 1e-10
         s.staticSolver.newton.absoluteTolerance = 1e-12
         peer.exu.SolveStatic(mbs, s)
         u, v, theta = peer.tip_state(mbs, tip)
-        print(f"tip v {v:.15e} (static, alpha = 5)")
+        print(f"tip v {v:.15e} (static, alpha = 5, {load_steps} load steps)")
         return 0
     steps = int(what)
     h, rho = 1e-3, 0.9

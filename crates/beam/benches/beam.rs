@@ -92,6 +92,10 @@ fn statics(c: &mut Criterion) {
     c.bench_function("static/elastica_PL2_EI_5_32", |b| {
         b.iter(|| black_box(solve_static(&model, &loads, &opts).unwrap().iterations))
     });
+    let adaptive = StaticOptions::adaptive();
+    c.bench_function("static/elastica_PL2_EI_5_32_adaptive", |b| {
+        b.iter(|| black_box(solve_static(&model, &loads, &adaptive).unwrap().iterations))
+    });
 }
 
 fn scaling(c: &mut Criterion) {
@@ -151,6 +155,10 @@ fn polypropylene(c: &mut Criterion) {
     let opts = StaticOptions::with_load_steps(10).unwrap();
     g.bench_function("static_elastica_PL2_EI_5_32_ancf", |b| {
         b.iter(|| black_box(solve_static(&model, &loads, &opts).unwrap().iterations))
+    });
+    let adaptive = StaticOptions::adaptive();
+    g.bench_function("static_elastica_PL2_EI_5_32_ancf_adaptive", |b| {
+        b.iter(|| black_box(solve_static(&model, &loads, &adaptive).unwrap().iterations))
     });
     g.sample_size(10);
     for (kin, integrator, n) in [

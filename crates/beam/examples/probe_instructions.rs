@@ -5,7 +5,10 @@
 //!   E 1.5 GPa, ρ 900, tip load P = EI/L² from rest), generalized-α ρ∞ = 0.9, h = 1 ms,
 //!   STEPS steps (default 1000), KIN ancf|corotational, METHOD auto (default), modified or full:
 //!   `probe_instructions transient KIN N [STEPS [METHOD]]`;
-//! * `probe_instructions static KIN N`: the elastica PL²/EI = 5, 10 load steps;
+//! * `probe_instructions static KIN N [fixed|adaptive [unit|peer]]`: the elastica PL²/EI = 5,
+//!   10 load steps (`adaptive`: adaptive load steps from the full load), on the unit cantilever
+//!   (EA L²/EI = 1e7, the default) or the Exudyn comparison's (`peer`: L 0.3 m, 25 × 1 mm,
+//!   E 1.5 GPa, EA L²/EI = 1.08e6, the problem of scripts/peers/exudyn_ancf_steps.py);
 //! * `probe_instructions modes N`: the first 4 transverse modes of the linear CL link.
 //!
 //! Prints the tip deflection (and the modes' ω₁) so the work cannot be optimised away.
@@ -46,8 +49,20 @@ fn main() {
         "static" => {
             let kin = Kinematics::parse("kinematics", &a[2]).unwrap();
             let n: usize = a[3].parse().unwrap();
-            let (model, loads) = canonical::elastica_problem_with(kin, 5.0, n).unwrap();
-            let opts = StaticOptions::with_load_steps(10).unwrap();
+            let (model, loads) = if a.get(5).map(String::as_str) == Some("peer") {
+                let (model, _) = canonical::polypropylene_cantilever(n, kin).unwrap();
+                let mut loads = NodalLoads::zeros(&model);
+                let p = 5.0 * model.section().ei() / model.length().powi(2);
+                loads.set_force(n, 0.0, p).unwrap();
+                (model, loads)
+            } else {
+                canonical::elastica_problem_with(kin, 5.0, n).unwrap()
+            };
+            let opts = if a.get(4).map(String::as_str) == Some("adaptive") {
+                StaticOptions::adaptive()
+            } else {
+                StaticOptions::with_load_steps(10).unwrap()
+            };
             let sol = solve_static(&model, &loads, &opts).unwrap();
             println!("tip v {:.15e} iterations {}", sol.node(n).1, sol.iterations);
         }

@@ -2,8 +2,9 @@
 //! tip load P = α EI/L², 10 load steps) for the side-by-side peer timing
 //! (scripts/peers/exudyn_ancf_cable.py).
 //!
-//! `wp_static KIN ELEMENTS ALPHA REPEATS` prints one JSON line: the tip (u, v, θ), the Newton
-//! iterations and the best wall time of REPEATS solves.
+//! `wp_static KIN ELEMENTS ALPHA REPEATS [adaptive]` prints one JSON line: the tip (u, v, θ),
+//! the Newton iterations and the best wall time of REPEATS solves (`adaptive`: adaptive load
+//! steps from the full load instead of 10 fixed ones).
 use flexrig_beam::*;
 use std::time::Instant;
 
@@ -17,7 +18,11 @@ fn main() {
     let mut loads = NodalLoads::zeros(&model);
     let ei = model.section().ei();
     loads.set_force(ne, 0.0, alpha * ei / 0.09).unwrap();
-    let opts = StaticOptions::with_load_steps(10).unwrap();
+    let opts = if a.get(5).map(String::as_str) == Some("adaptive") {
+        StaticOptions::adaptive()
+    } else {
+        StaticOptions::with_load_steps(10).unwrap()
+    };
     let mut best = f64::INFINITY;
     let mut sol = None;
     for _ in 0..repeats.max(1) {

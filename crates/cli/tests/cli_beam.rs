@@ -182,6 +182,55 @@ fn static_linear_is_pl3_over_3ei_and_corotational_matches_the_elastica() {
 }
 
 #[test]
+fn adaptive_load_steps_reach_the_same_elastica_in_fewer_iterations() {
+    // PL²/EI = 5, both large-deflection models: the whole load at once (`--load-steps 1
+    // --adaptive-steps`) ends at the equilibrium of 10 fixed increments (within the Newton
+    // tolerance times the length, 1e-10 m) and on the elastica table
+    let p = format!("{}", 5.0 * ei());
+    for model in ["corotational", "ancf"] {
+        let run = |extra: &[&str]| {
+            let mut args = vec!["beam", "static"];
+            args.extend(BEAM);
+            args.extend([
+                "--elements",
+                "32",
+                "--tip-load",
+                &p,
+                "--model",
+                model,
+                "--json",
+            ]);
+            args.extend(extra);
+            json(&args)
+        };
+        let fixed = run(&[]);
+        let adaptive = run(&["--load-steps", "1", "--adaptive-steps"]);
+        for key in ["tip_u_m", "tip_v_m", "tip_angle_rad"] {
+            let (a, f) = (
+                adaptive[key].as_f64().unwrap(),
+                fixed[key].as_f64().unwrap(),
+            );
+            assert!((a - f).abs() <= 1e-10 * L, "{model} {key}: {a} against {f}");
+        }
+        assert_rel(
+            "elastica v/L",
+            adaptive["tip_v_m"].as_f64().unwrap(),
+            0.7137915236,
+            5e-4,
+        );
+        assert_eq!(adaptive["load_level"].as_f64(), Some(1.0));
+        let (a, f) = (
+            adaptive["iterations"].as_u64().unwrap(),
+            fixed["iterations"].as_u64().unwrap(),
+        );
+        assert!(
+            4 * a <= f,
+            "{model}: {a} adaptive against {f} fixed iterations"
+        );
+    }
+}
+
+#[test]
 fn prb_reproduces_howell_and_writes_the_svg() {
     let dir = std::env::temp_dir().join(format!("flexrig-prb-{}", std::process::id()));
     let d = dir.to_str().unwrap().to_string();

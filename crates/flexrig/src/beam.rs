@@ -184,6 +184,11 @@ pub struct TipLoad {
     pub kinematics: Kinematics,
     /// Load increments of the Newton solve, 1 to 1000000 (`--load-steps`).
     pub load_steps: usize,
+    /// Adaptive load increments (`--adaptive-steps`): the first is 1/`load_steps` of the load,
+    /// halved where Newton fails and doubled after each converged increment; the same
+    /// equilibrium as fixed increments in as few Newton solves as the load needs.
+    #[serde(default)]
+    pub adaptive_steps: bool,
 }
 
 /// The tip's static displacement and how the solve went.
@@ -295,11 +300,11 @@ pub fn statics(beam: &BeamInput, load: &TipLoad) -> Result<TipDisplacement, Erro
     let mut loads = NodalLoads::zeros(&model);
     loads.set_force(tip, 0.0, load.force)?;
     loads.set_moment(tip, load.moment)?;
-    let sol = solve_static(
-        &model,
-        &loads,
-        &StaticOptions::with_load_steps(load.load_steps)?,
-    )?;
+    let mut options = StaticOptions::with_load_steps(load.load_steps)?;
+    if load.adaptive_steps {
+        options = options.with_adaptive_steps();
+    }
+    let sol = solve_static(&model, &loads, &options)?;
     let (u, v, angle) = sol.node(tip);
     let nodes: Vec<_> = (0..=tip).map(|i| sol.node(i)).collect();
     Ok(TipDisplacement {
@@ -505,6 +510,7 @@ mod tests {
             moment,
             kinematics,
             load_steps: 20,
+            adaptive_steps: false,
         }
     }
 

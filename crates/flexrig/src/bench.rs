@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use flexrig_beam::canonical::{self, ELASTICA};
-use flexrig_beam::{ModalDirection, StaticOptions, modal_analysis, solve_static};
+use flexrig_beam::{Kinematics, ModalDirection, StaticOptions, modal_analysis, solve_static};
 use flexrig_contact::{Hertz, SeriesCompliance};
 use flexrig_lumped::ode::{Formulation, OdeOptions, StopAt, integrate};
 use flexrig_lumped::{ImpactModel, peak_exact};
@@ -375,21 +375,43 @@ fn beam(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
             evaluations: None,
         });
     }
+    // The elastica: 10 fixed load steps, and adaptive ones from the full load (the same
+    // equilibrium in fewer Newton iterations), corotational and ANCF.
     let (load, v_over_l, _, _) = ELASTICA[2];
-    let options = StaticOptions::new(10, 50, 1e-10)?;
-    for &n in elements {
-        let (model, loads) = canonical::elastica_problem(load, n)?;
-        let s = solve_static(&model, &loads, &options)?;
-        rows.push(Row {
-            model: "beam".into(),
-            method: "elastica PL²/EI=5, corotational".into(),
-            setting: format!("{n} elements"),
-            error: (s.q[3 * model.tip_node() + 1] / v_over_l - 1.0).abs(),
-            seconds: median_seconds(if quick { 3 } else { 5 }, 3, || {
-                solve_static(&model, &loads, &options)
-            }),
-            evaluations: None,
-        });
+    let fixed = StaticOptions::new(10, 50, 1e-10)?;
+    let adaptive = StaticOptions::new(1, 50, 1e-10)?.with_adaptive_steps();
+    let cases = [
+        (
+            Kinematics::Corotational,
+            fixed,
+            "elastica PL²/EI=5, corotational",
+        ),
+        (
+            Kinematics::Corotational,
+            adaptive,
+            "elastica PL²/EI=5, corotational, adaptive load steps",
+        ),
+        (
+            Kinematics::Ancf,
+            adaptive,
+            "elastica PL²/EI=5, ANCF, adaptive load steps",
+        ),
+    ];
+    for (kinematics, options, method) in cases {
+        for &n in elements {
+            let (model, loads) = canonical::elastica_problem_with(kinematics, load, n)?;
+            let s = solve_static(&model, &loads, &options)?;
+            rows.push(Row {
+                model: "beam".into(),
+                method: method.into(),
+                setting: format!("{n} elements"),
+                error: (s.node(model.tip_node()).1 / v_over_l - 1.0).abs(),
+                seconds: median_seconds(if quick { 3 } else { 5 }, 3, || {
+                    solve_static(&model, &loads, &options)
+                }),
+                evaluations: None,
+            });
+        }
     }
     Ok(())
 }

@@ -904,12 +904,13 @@ fn without_nulls(mut report: Value) -> Value {
 }
 
 /// The tip load of `flexrig beam static`: force [N], moment [N·m], `model` (`linear`,
-/// `corotational`, `ancf`), load steps; errors name the flag.
+/// `corotational`, `ancf`), load steps, whether they are adaptive; errors name the flag.
 pub fn beam_tip_load(
     force: f64,
     moment: f64,
     model: &str,
     load_steps: usize,
+    adaptive_steps: bool,
 ) -> Result<crate::beam::TipLoad, Error> {
     use crate::beam::Kinematics;
     let kinematics = match model {
@@ -929,6 +930,7 @@ pub fn beam_tip_load(
         moment,
         kinematics,
         load_steps,
+        adaptive_steps,
     };
     load.validate()?;
     Ok(load)

@@ -87,7 +87,7 @@ pub fn beam_modal<'py>(
 /// load.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (scene, length, youngs, density, width, thickness, elements, tip_mass, root, k_theta, tip_load, tip_moment, model, load_steps, yield_strength))]
+#[pyo3(signature = (scene, length, youngs, density, width, thickness, elements, tip_mass, root, k_theta, tip_load, tip_moment, model, load_steps, adaptive_steps, yield_strength))]
 pub fn beam_static<'py>(
     py: Python<'py>,
     scene: Option<PathBuf>,
@@ -104,10 +104,11 @@ pub fn beam_static<'py>(
     tip_moment: f64,
     model: &str,
     load_steps: usize,
+    adaptive_steps: bool,
     yield_strength: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let load =
-        fronts::beam_tip_load(tip_load, tip_moment, model, load_steps).map_err(flag_error)?;
+    let load = fronts::beam_tip_load(tip_load, tip_moment, model, load_steps, adaptive_steps)
+        .map_err(flag_error)?;
     let (input, origin) = beam(
         scene, length, youngs, density, width, thickness, elements, tip_mass, root, k_theta,
     )?;

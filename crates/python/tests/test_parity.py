@@ -258,6 +258,13 @@ def test_beam_modal_and_static_equal_the_cli(cli):
         expected = cli.json("beam", "static", *BEAM_FLAGS, "--tip-load", "5", "--model", model, "--root", "pinned",
                             "--k-theta", "50")
         same(r.data, expected)
+        # adaptive load steps from the whole load: the same numbers as the CLI's
+        r = flexrig.beam_static(**BEAM, tip_load=5.0, model=model, load_steps=1, adaptive_steps=True)
+        same(r.data, cli.json("beam", "static", *BEAM_FLAGS, "--tip-load", "5", "--model", model, "--load-steps", "1",
+                              "--adaptive-steps"))
+    with pytest.raises(ValueError) as info:
+        flexrig.beam_static(**BEAM, tip_load=5.0, model="ancf", adaptive_steps="yes")
+    assert info.value.field == "adaptive_steps"
     # the scene's link, a flag overriding it, the yield strength and the warnings
     r = flexrig.beam_static(scene="cl_aluminium", tip_load=2.0, elements=8, yield_strength=1e6)
     same(r.data, cli.json("beam", "static", "--scene", "cl_aluminium", "--tip-load", "2", "--elements", "8",

@@ -115,6 +115,12 @@ def _count(name: str, value: Any, optional: bool = False) -> Optional[int]:
     return int(value)
 
 
+def _flag(name: str, value: Any) -> bool:
+    if not isinstance(value, (bool, np.bool_)):
+        raise _input_error(name, f"invalid argument {name} = {value!r}: must be True or False")
+    return bool(value)
+
+
 def _word(name: str, value: Any) -> str:
     if not isinstance(value, str):
         raise _input_error(name, f"invalid argument {name} = {value!r}: must be a str")
@@ -463,12 +469,15 @@ def beam_static(
     tip_moment: float = 0.0,
     model: str = "linear",
     load_steps: int = 10,
+    adaptive_steps: bool = False,
     yield_strength: Optional[float] = None,
 ) -> Report:
     """The tip displacement and largest stress of the FE cantilever under a dead tip load, as
     ``flexrig beam static``: the beam as :func:`beam_modal` (``density`` is not needed),
     ``tip_load`` [N] perpendicular to the undeformed beam, ``tip_moment`` [N·m], ``model``
-    linear, corotational or ancf, ``load_steps``, ``yield_strength`` [Pa] (a warning when the
+    linear, corotational or ancf, ``load_steps``, ``adaptive_steps`` (the first increment
+    1/``load_steps`` of the load, halved where Newton fails, doubled after each converged one;
+    the same equilibrium in fewer iterations), ``yield_strength`` [Pa] (a warning when the
     largest stress exceeds it). ``data``: ``tip_u_m``, ``tip_v_m``, ``tip_angle_rad``,
     ``iterations``, ``residual_n``, ``load_level``, ``max_stress_pa`` and ``max_stress``
     (``stress_pa``, ``bending_pa``, ``axial_pa``, ``moment_nm``, ``axial_force_n``, ``at_m``:
@@ -477,7 +486,8 @@ def beam_static(
     data = _flexrig.beam_static(
         *_beam_args(scene, length, youngs, density, width, thickness, elements, tip_mass, root, k_theta),
         _number("tip_load", tip_load), _number("tip_moment", tip_moment), _word("model", model),
-        _count("load_steps", load_steps), _number("yield_strength", yield_strength, True),
+        _count("load_steps", load_steps), _flag("adaptive_steps", adaptive_steps),
+        _number("yield_strength", yield_strength, True),
     )
     return Report(command="beam static", data=data)
 
