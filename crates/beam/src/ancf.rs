@@ -234,15 +234,20 @@ const LANES: usize = 7;
 /// sums in the order of the per-point loops.
 #[inline(always)]
 fn gather_lanes(lanes: &[[f64; 4]; LANES], d: &Vector8) -> [[f64; 2]; LANES] {
-    let d: [f64; 8] = std::array::from_fn(|k| d[k]);
-    std::array::from_fn(|k| {
-        let mut s = [0.0f64; 2];
+    // (plain loops rather than `std::array::from_fn`, whose helper is not inlined into the
+    // AVX2 build of the kernels)
+    let mut dd = [0.0f64; 8];
+    for (k, x) in dd.iter_mut().enumerate() {
+        *x = d[k];
+    }
+    let mut out = [[0.0f64; 2]; LANES];
+    for (s, lane) in out.iter_mut().zip(lanes) {
         for a in 0..4 {
-            s[0] += d[2 * a] * lanes[k][a];
-            s[1] += d[2 * a + 1] * lanes[k][a];
+            s[0] += dd[2 * a] * lane[a];
+            s[1] += dd[2 * a + 1] * lane[a];
         }
-        s
-    })
+    }
+    out
 }
 
 /// Adds Σₖ cₐ,ₖ `fl`ₖ to the slot forces `f` (element coordinates).

@@ -49,6 +49,7 @@ pub fn element_of(model: &BeamModel) -> AncfElement {
     AncfElement::new(model.element_length(), sec.ea(), sec.ei())
 }
 
+#[inline(always)]
 fn gather(x: &[f64], e: usize) -> Vector8 {
     let x: &[f64; 8] = x[4 * e..4 * e + 8].try_into().expect("element DOFs");
     Vector8::from_fn(|k, _| x[ELEMENT_DOFS[k]])
@@ -125,7 +126,43 @@ pub fn discrete_angle_gradient(s0: (f64, f64), s1: (f64, f64)) -> ([f64; 2], [[f
 /// With `discrete`, `kin.q` must be the midpoint ½(q₀ + q₁) and the elastic forces and the
 /// moments are discrete gradients (module docs). Returns the strain energy at `kin.q` (or, with
 /// `discrete`, at q₁) \[J\].
+///
+/// On an x86-64 processor with AVX2 the same code runs compiled for it (the element kernels
+/// are too, see `AncfElement::force`): the same operations in the same order without fused
+/// multiply-adds, so the same results bit for bit.
 pub fn assemble_ancf(
+    model: &BeamModel,
+    kin: Kinematic<'_>,
+    f_ext: &[f64],
+    r: &mut [f64],
+    jac: Option<(&mut BandMatrix, JacobianWeights)>,
+    discrete: Option<&mut Discrete<'_>>,
+) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the processor has AVX2 (checked just above).
+        return unsafe { assemble_ancf_avx2(model, kin, f_ext, r, jac, discrete) };
+    }
+    assemble_ancf_portable(model, kin, f_ext, r, jac, discrete)
+}
+
+/// [`assemble_ancf`] compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn assemble_ancf_avx2(
+    model: &BeamModel,
+    kin: Kinematic<'_>,
+    f_ext: &[f64],
+    r: &mut [f64],
+    jac: Option<(&mut BandMatrix, JacobianWeights)>,
+    discrete: Option<&mut Discrete<'_>>,
+) -> f64 {
+    assemble_ancf_portable(model, kin, f_ext, r, jac, discrete)
+}
+
+/// [`assemble_ancf`] for any processor.
+#[inline(always)]
+fn assemble_ancf_portable(
     model: &BeamModel,
     kin: Kinematic<'_>,
     f_ext: &[f64],
