@@ -110,7 +110,7 @@ impl BandMatrix {
     /// Adds the dense block `block` (by columns: `block[j][i]` is entry (first + i, first + j))
     /// to the rows and columns first … first + N − 1, which must lie inside the band
     /// (N − 1 ≤ kl, ku); the same sums as N² calls of [`BandMatrix::add`].
-    #[inline]
+    #[inline(always)]
     pub fn add_block<const N: usize>(&mut self, first: usize, block: &[[f64; N]; N]) {
         assert!(
             N <= self.kl + 1 && N <= self.ku + 1 && first + N <= self.n,
