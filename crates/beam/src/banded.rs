@@ -498,25 +498,41 @@ impl BandMatrix {
 
     /// Solves with the LDLᵀ factors (1/D_jj at offset K of column j, L below it, then a zero;
     /// P = K + 1, S = 2K + 2).
+    ///
+    /// Both sweeps keep the K entries of the right-hand side that the current column touches
+    /// in registers (a window moved along by one row per column), so that the only dependency
+    /// from one column to the next is a single multiply and add: the substitutions are
+    /// sequential, and column updates through memory (a store, then an overlapping load one
+    /// row further) made the solve the slowest stage in time though not in instructions.
+    /// Forward, each row receives the same subtractions in the same order as column by
+    /// column; backward, the row just solved enters its neighbours' sums last (the sums'
+    /// order differs from a left-to-right one by round-off).
     #[inline(always)]
     fn solve_ldlt_portable<const K: usize, const P: usize, const S: usize>(&self, b: &mut [f64]) {
+        debug_assert!(P == K + 1 && S == 2 * K + 2);
         let n = self.n;
         let (cols, _) = self.ldl.as_chunks::<S>();
         let cols = &cols[..n];
         let b = &mut b[..n];
-        // L y = b: columns with P rows below the diagonal (K multipliers and the zero, which
-        // subtracts exactly nothing), then the last K + 1
-        let full = n.saturating_sub(P);
-        for (j, l) in cols[..full].iter().enumerate() {
-            let bj = b[j];
-            let seg: &mut [f64; P] = (&mut b[j + 1..j + 1 + P]).try_into().expect("rhs");
-            let l: &[f64; P] = l[K + 1..].try_into().expect("band column");
-            // (loaded whole and stored whole: the compiler then vectorises it)
-            let mut x = *seg;
-            for i in 0..P {
-                x[i] -= l[i] * bj;
+        // the columns with K multipliers inside the matrix
+        let full = n.saturating_sub(K);
+        // L y = b: rows j + 1 … j + K of the running right-hand side in `w`
+        if full > 0 {
+            let mut w = [0.0f64; K];
+            w.copy_from_slice(&b[1..=K]);
+            let mut bj = b[0];
+            for j in 0..full {
+                let l: &[f64; K] = cols[j][K + 1..2 * K + 1].try_into().expect("band column");
+                let mut next = [0.0f64; K];
+                for i in 0..K {
+                    next[i] = w[i] - l[i] * bj;
+                }
+                bj = next[0];
+                b[j + 1] = bj;
+                w[..K - 1].copy_from_slice(&next[1..]);
+                w[K - 1] = if j + K + 1 < n { b[j + K + 1] } else { 0.0 };
             }
-            *seg = x;
+            b[full + 1..].copy_from_slice(&w[..n - full - 1]);
         }
         for j in full..n {
             let (bj, l) = (b[j], &cols[j]);
@@ -533,14 +549,21 @@ impl BandMatrix {
             }
             b[j] = b[j] * l[K] - sum;
         }
-        for j in (0..full).rev() {
-            let l = &cols[j];
-            let seg: &[f64; K] = b[j + 1..j + 1 + K].try_into().expect("rhs");
-            let mut sum = 0.0;
-            for i in 0..K {
-                sum += l[K + 1 + i] * seg[i];
+        if full > 0 {
+            // x_{j+1} … x_{j+K} in `w`
+            let mut w: [f64; K] = b[full..].try_into().expect("the last K rows");
+            for j in (0..full).rev() {
+                let l: &[f64; K] = cols[j][K + 1..2 * K + 1].try_into().expect("band column");
+                let mut sum = l[K - 1] * w[K - 1];
+                for i in (1..K - 1).rev() {
+                    sum += l[i] * w[i];
+                }
+                sum += l[0] * w[0];
+                let x = b[j] * cols[j][K] - sum;
+                b[j] = x;
+                w.copy_within(..K - 1, 1);
+                w[0] = x;
             }
-            b[j] = b[j] * l[K] - sum;
         }
     }
 
