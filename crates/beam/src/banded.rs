@@ -500,13 +500,13 @@ impl BandMatrix {
     /// P = K + 1, S = 2K + 2).
     ///
     /// Both sweeps keep the K entries of the right-hand side that the current column touches
-    /// in registers (a window moved along by one row per column), so that the only dependency
-    /// from one column to the next is a single multiply and add: the substitutions are
-    /// sequential, and column updates through memory (a store, then an overlapping load one
-    /// row further) made the solve the slowest stage in time though not in instructions.
-    /// Forward, each row receives the same subtractions in the same order as column by
-    /// column; backward, the row just solved enters its neighbours' sums last (the sums'
-    /// order differs from a left-to-right one by round-off).
+    /// in registers (a window moved along by one row per column) instead of passing them
+    /// through memory from one column to the next (a store, then an overlapping load one row
+    /// further, which stalls: the substitutions are sequential, and that made the solve the
+    /// slowest stage in time though not in instructions). The same operations in the same
+    /// order as column by column: the same solution bit for bit. (Summing the back
+    /// substitution's row just solved last would shorten its chain further but changes the
+    /// round-off, which a 10 s energy-conserving rig run amplifies past its tolerance.)
     #[inline(always)]
     fn solve_ldlt_portable<const K: usize, const P: usize, const S: usize>(&self, b: &mut [f64]) {
         debug_assert!(P == K + 1 && S == 2 * K + 2);
@@ -554,11 +554,10 @@ impl BandMatrix {
             let mut w: [f64; K] = b[full..].try_into().expect("the last K rows");
             for j in (0..full).rev() {
                 let l: &[f64; K] = cols[j][K + 1..2 * K + 1].try_into().expect("band column");
-                let mut sum = l[K - 1] * w[K - 1];
-                for i in (1..K - 1).rev() {
+                let mut sum = 0.0;
+                for i in 0..K {
                     sum += l[i] * w[i];
                 }
-                sum += l[0] * w[0];
                 let x = b[j] * cols[j][K] - sum;
                 b[j] = x;
                 w.copy_within(..K - 1, 1);
