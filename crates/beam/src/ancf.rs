@@ -1183,13 +1183,21 @@ mod tests {
             let d = sample() * s;
             let (u, f) = el.force(&d);
             let (up, fp) = el.force_default_portable(&d);
-            assert_eq!((u.to_bits(), bits8(&f)), (up.to_bits(), bits8(&fp)), "force, s {s}");
+            assert_eq!(
+                (u.to_bits(), bits8(&f)),
+                (up.to_bits(), bits8(&fp)),
+                "force, s {s}"
+            );
             let (mut k, mut m) = (SlotBlocks::ZERO, SlotBlocks::ZERO);
             let (mut kp, mut mp) = (SlotBlocks::ZERO, SlotBlocks::ZERO);
             let (u, f) = el.force_and_tangent(&tables, &d, 0.37, &mut k, Some(&mut m));
             let (up, fp) =
                 el.force_and_tangent_default_portable(&tables, &d, 0.37, &mut kp, Some(&mut mp));
-            assert_eq!((u.to_bits(), bits8(&f)), (up.to_bits(), bits8(&fp)), "s {s}");
+            assert_eq!(
+                (u.to_bits(), bits8(&f)),
+                (up.to_bits(), bits8(&fp)),
+                "s {s}"
+            );
             assert_eq!(bits(&k), bits(&kp), "tangent, s {s}");
             assert_eq!(bits(&m), bits(&mp), "material, s {s}");
         }

@@ -634,12 +634,17 @@ mod tests {
         // assemble_ancf (AVX2 where the processor has it) against the portable code at a
         // deformed, moving state: identical residual, energy and iteration matrix.
         let (model, loads) =
-            crate::canonical::polypropylene_cantilever(8, crate::model::Kinematics::Ancf)
-                .unwrap();
+            crate::canonical::polypropylene_cantilever(8, crate::model::Kinematics::Ancf).unwrap();
         let n = model.n_dofs();
         let wave = |s: f64| -> Vec<f64> {
             (0..n)
-                .map(|i| if i < model.n_fixed() { 0.0 } else { s * (0.37 * i as f64).sin() })
+                .map(|i| {
+                    if i < model.n_fixed() {
+                        0.0
+                    } else {
+                        s * (0.37 * i as f64).sin()
+                    }
+                })
                 .collect()
         };
         let (q, v, a) = (wave(0.05), wave(0.7), wave(30.0));
@@ -659,9 +664,22 @@ mod tests {
             crate::assembly::band_for(&model),
             crate::assembly::band_for(&model),
         );
-        let u1 = assemble_ancf(&model, kin, loads.as_slice(), &mut r1, Some((&mut b1, w)), None);
-        let u2 =
-            assemble_ancf_portable(&model, kin, loads.as_slice(), &mut r2, Some((&mut b2, w)), None);
+        let u1 = assemble_ancf(
+            &model,
+            kin,
+            loads.as_slice(),
+            &mut r1,
+            Some((&mut b1, w)),
+            None,
+        );
+        let u2 = assemble_ancf_portable(
+            &model,
+            kin,
+            loads.as_slice(),
+            &mut r2,
+            Some((&mut b2, w)),
+            None,
+        );
         assert_eq!(u1.to_bits(), u2.to_bits());
         assert_eq!(bits(&r1), bits(&r2));
         let m = model.n_free();
