@@ -6,10 +6,13 @@
 #   maturin, numpy, pandas, pyarrow, pytest, dask[distributed]
 #                                building and testing the Python package (crates/python;
 #                                scripts/python-package.sh)
-# Usage: bash scripts/python-env.sh [--minimal | --package]
+#   mujoco, exudyn               the peer codes timed side by side (scripts/peers/*.py), only
+#                                with --peers
+# Usage: bash scripts/python-env.sh [--minimal | --package | --peers]
 #   --minimal  only the MCAP check's packages
 #   --package  the MCAP check's and the Python package's (what .ci/run uses)
-#   (none)     everything above
+#   --peers    everything below, and MuJoCo and Exudyn for the side-by-side timings
+#   (none)     everything above except the peer codes
 # The tests find it at .venv/bin/python, or wherever FLEXRIG_PYTHON points.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,7 +24,8 @@ case "${1:-}" in
   --minimal) ;;
   --package) packages+=("${package[@]}") ;;
   "") packages+=(scipy mpmath "${package[@]}") ;;
-  *) echo "usage: bash scripts/python-env.sh [--minimal | --package]"; exit 2 ;;
+  --peers) packages+=(scipy mpmath "${package[@]}" mujoco exudyn) ;;
+  *) echo "usage: bash scripts/python-env.sh [--minimal | --package | --peers]"; exit 2 ;;
 esac
 .venv/bin/python -m pip install -q --disable-pip-version-check "${packages[@]}"
 echo "Python environment ready: $(pwd)/.venv (${packages[*]})"

@@ -22,7 +22,7 @@ best of 3 inside its process, each Exudyn run one SolveDynamic / SolveStatic cal
 gives the medians over the rounds and the ratio of the medians. The machine may be shared: the
 ratio of interleaved runs is the meaningful number, not the absolute times.
 
-Run it with the project's venv, where `pip install exudyn numpy` put Exudyn:
+Run it with the project's venv, where `bash scripts/python-env.sh --peers` put Exudyn:
   .venv/bin/python scripts/peers/exudyn_ancf_cable.py [--rounds 5] [--bin-dir target/release/examples]
 Without Exudyn it prints that it skipped and exits 0.
 """
@@ -95,7 +95,7 @@ def main():
         import peer_exudyn as peer  # imports exudyn
     except ImportError as e:
         print(f"skipped: Exudyn is not installed in this interpreter ({sys.executable}: {e}); "
-              "`.venv/bin/pip install exudyn numpy`, then run this script with .venv/bin/python")
+              "`bash scripts/python-env.sh --peers`, then run this script with .venv/bin/python")
         return 0
     print(f"Exudyn {peer.exu.__version__}, flexrig examples from {a.bin_dir}, {a.rounds} rounds")
     h, steps, rho = 1e-3, 1000, 0.9

@@ -27,7 +27,7 @@ the same call at its cheapest setting and the ratio printed (both in-process med
 swing policy with Rapier's contact steps, and with the adaptive contact (solver.contact =
 "adaptive", its cheapest tolerance).
 
-Usage (in the project venv: .venv/bin/pip install mujoco):
+Usage (in the project venv: bash scripts/python-env.sh --peers):
   .venv/bin/python scripts/peers/mujoco_testbed.py [--scene assets/scenes/cj_aluminium.toml]
       [--target 1e-3] [--repeat 21] [--flexrig target/release/examples/work_error]
 Prints one JSON object per line. Exits 0 with a "skipped" line when mujoco is not installed.
@@ -45,7 +45,7 @@ import tomllib
 try:
     import mujoco
 except ImportError:
-    print(json.dumps({"skipped": "mujoco is not installed (.venv/bin/pip install mujoco)"}))
+    print(json.dumps({"skipped": "mujoco is not installed (bash scripts/python-env.sh --peers)"}))
     sys.exit(0)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
