@@ -29,6 +29,9 @@ pub enum LinkVariant {
         /// Factor on EI and EA (e.g. 1e4).
         stiffness_factor: f64,
     },
+    /// The scene's beam on a free pin at the robot axis (no spring, no hub inertia): the
+    /// free-hub reference of a compliant link on a torque-free drive.
+    FreePin,
 }
 
 /// The FE link with its state and scratch space.
@@ -105,14 +108,14 @@ impl BeamLink {
         let r = &scene.file.robot;
         let driven = match (variant, scene.drive.as_ref()) {
             (LinkVariant::Compliant, d) => d,
-            (LinkVariant::StiffOnTorsionSpring { .. }, Some(_)) => {
+            (LinkVariant::StiffOnTorsionSpring { .. } | LinkVariant::FreePin, Some(_)) => {
                 return Err(crate::error::invalid(
                     "robot.drive",
                     "a drive",
-                    "none for the stiffened FE cross-check of the compliant joint",
+                    "none for the FE cross-checks (the stiffened joint, the free pin)",
                 ));
             }
-            (LinkVariant::StiffOnTorsionSpring { .. }, None) => None,
+            (LinkVariant::StiffOnTorsionSpring { .. } | LinkVariant::FreePin, None) => None,
         };
         let solver = match (driven, scene.file.solver.beam) {
             // a driven link turns through large angles: corotational elements
@@ -136,6 +139,12 @@ impl BeamLink {
             )?;
             spec.root = RootSupport::Pinned {
                 k_theta: scene.torsion_spring,
+                c_theta: 0.0,
+            };
+        }
+        if variant == LinkVariant::FreePin {
+            spec.root = RootSupport::Pinned {
+                k_theta: 0.0,
                 c_theta: 0.0,
             };
         }
