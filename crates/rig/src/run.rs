@@ -861,11 +861,12 @@ impl<'s> Simulation<'s> {
                 .map_or(-start.0.rotor.map_or(0.0, |r| r.state.rate), |(r, _)| {
                     -r.rate
                 });
-            self.stats.drive_onset = Some((
-                link,
-                d.commanded(onset).map(|(_, w, _)| -w),
-                deflection_before,
-            ));
+            // the deflection at the onset, linear between the step's ends
+            let frac = ((onset - (self.t - dt)) / dt).clamp(0.0, 1.0);
+            let deflection =
+                deflection_before + frac * (self.link_deflection() - deflection_before);
+            self.stats.drive_onset =
+                Some((link, d.commanded(onset).map(|(_, w, _)| -w), deflection));
         }
         if outcome == StepOutcome::Separation {
             self.start_free_flight();
