@@ -725,7 +725,12 @@ impl<'s> Simulation<'s> {
             }
             (RobotSide::Beam(b), _) => {
                 let (v, vdot, _) = b.tip_transverse();
-                (0.0, v, vdot)
+                // the shaft turns with a drive's hub
+                let shaft = match self.now.rotor {
+                    Some(hub) => hub.state.angle,
+                    None => 0.0,
+                };
+                (shaft, v, vdot)
             }
             (RobotSide::Rigid { .. }, None) => unreachable!("a rigid robot has a hinge state"),
         };
