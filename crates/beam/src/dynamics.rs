@@ -33,6 +33,10 @@ use crate::counters::StepCounters;
 use crate::model::{BeamModel, Kinematics, NodalLoads};
 use crate::node_load::NodeLoad;
 
+/// A prescribed root rotation: the hub's (θ \[rad\], θ̇ [rad/s], θ̈ [rad/s²]) at a time \[s\]
+/// ([`GeneralizedAlpha::step_with_root`]).
+type RootPath<'a> = &'a dyn Fn(f64) -> [f64; 3];
+
 /// Generalized-α integrator settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GeneralizedAlpha {
@@ -588,7 +592,7 @@ impl GeneralizedAlpha {
         state: &mut State,
         ws: &mut Workspace,
         h: f64,
-        (loads, root): (&NodalLoads, Option<&dyn Fn(f64) -> [f64; 3]>),
+        (loads, root): (&NodalLoads, Option<RootPath<'_>>),
         mut node_load: Option<&mut (dyn NodeLoad + 'l)>,
     ) -> Result<StepReport, BeamError> {
         if !(h.is_finite() && h > 0.0) {
@@ -671,7 +675,7 @@ impl GeneralizedAlpha {
         state: &mut State,
         ws: &mut Workspace,
         (h, depth): (f64, u32),
-        (start, end, root): (&NodalLoads, &NodalLoads, Option<&dyn Fn(f64) -> [f64; 3]>),
+        (start, end, root): (&NodalLoads, &NodalLoads, Option<RootPath<'_>>),
         mut node_load: Option<&mut (dyn NodeLoad + 'l)>,
         report: &mut StepReport,
     ) -> Result<(), BeamError> {
@@ -712,7 +716,7 @@ impl GeneralizedAlpha {
         state: &mut State,
         ws: &mut Workspace,
         h: f64,
-        (loads, root): (&NodalLoads, Option<&dyn Fn(f64) -> [f64; 3]>),
+        (loads, root): (&NodalLoads, Option<RootPath<'_>>),
         mut node_load: Option<&mut (dyn NodeLoad + 'l)>,
         report: &mut StepReport,
     ) -> Result<(), BeamError> {
@@ -780,7 +784,7 @@ impl GeneralizedAlpha {
         model: &BeamModel,
         state: &mut State,
         ws: &mut Workspace,
-        (loads, root): (&NodalLoads, Option<&dyn Fn(f64) -> [f64; 3]>),
+        (loads, root): (&NodalLoads, Option<RootPath<'_>>),
         mut node_load: Option<&mut (dyn NodeLoad + 'l)>,
         step: NewtonStep,
     ) -> Result<(usize, f64, f64), (usize, BeamError)> {

@@ -638,12 +638,18 @@ fn driven(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
 fn driven_test_bed(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
     let refine = |k: u32| {
         vec![
-            ("swing_step_s = 5e-4", format!("swing_step_s = {:e}", 5e-4 / f64::from(k))),
-            ("contact_steps = 800", format!("contact_steps = {}", 800 * k)),
+            (
+                "swing_step_s = 5e-4",
+                format!("swing_step_s = {:e}", 5e-4 / f64::from(k)),
+            ),
+            (
+                "contact_steps = 800",
+                format!("contact_steps = {}", 800 * k),
+            ),
         ]
     };
-    let reference = run_scene(&scene("rig_driven_cl", &refine(4))?, RunOptions::DEFAULT)?
-        .peak_force_n;
+    let reference =
+        run_scene(&scene("rig_driven_cl", &refine(4))?, RunOptions::DEFAULT)?.peak_force_n;
     let levels: &[u32] = if quick { &[1] } else { &[1, 2] };
     for &k in levels {
         let s = scene("rig_driven_cl", &refine(k))?;

@@ -128,8 +128,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
                 d.motor_work_j, d.friction_dissipated_j, d.peak_joint_torque_nm
             ),
         )?;
-        if let (Some(speed), Some(bent)) =
-            (d.link_speed_at_onset_rad_s, d.pre_impact_deflection_m)
+        if let (Some(speed), Some(bent)) = (d.link_speed_at_onset_rad_s, d.pre_impact_deflection_m)
         {
             let commanded = d
                 .commanded_speed_at_onset_rad_s
