@@ -415,6 +415,11 @@ impl JointDrive {
         Some((law, self.limited(law, predicted)))
     }
 
+    /// True when the joint torque has a finite limit N τ_m,max.
+    pub fn is_torque_limited(&self) -> bool {
+        self.limit.is_finite()
+    }
+
     /// `law`, or the constant torque at the limit when the unlimited torque `torque` [N·m]
     /// exceeds it.
     pub fn limited(&self, law: HubLaw, torque: f64) -> HubLaw {

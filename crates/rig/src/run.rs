@@ -1196,7 +1196,13 @@ impl<'s> Simulation<'s> {
                 (Some(d), Some(r)) => d.hub_law(self.t, dt, r),
                 _ => None,
             };
-            let saved = hub_law.map(|_| b.clone());
+            // only a torque limit can make the predicted branch wrong
+            let limited = self
+                .scene
+                .drive
+                .as_ref()
+                .is_some_and(|d| d.is_torque_limited());
+            let saved = hub_law.filter(|_| limited).map(|_| b.clone());
             let mut stepped = match hub_law {
                 Some((_, law)) => b
                     .set_hub_law(law)

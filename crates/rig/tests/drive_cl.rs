@@ -397,3 +397,38 @@ fn bad_cl_drive_input_names_the_scene_field() {
         sim.step(&mut Keep::default()).unwrap();
     }
 }
+
+/// A controller at its torque limit: the bundled strike with a limit of 0.004 N·m at the shaft
+/// (0.04 N·m at the joint, below the 0.059 N·m the ramp asks for): the joint torque never
+/// exceeds the limit (to round-off), sits on it for part of the ramp, and the energy still
+/// balances to 1e-5 of the motor's work (the limit's branch taken implicitly, the step retaken
+/// on the other branch when its end says so).
+#[test]
+fn a_controller_at_its_torque_limit_keeps_to_it_and_balances_the_energy() {
+    let scene = common::scene(
+        "rig_driven_cl",
+        &[("torque_limit = 0.2", "torque_limit = 0.004")],
+    );
+    let (s, frames) = run_keep(&scene);
+    let d = s.drive.unwrap();
+    let limit = 0.04;
+    let at_limit = frames
+        .iter()
+        .filter(|(_, _, f)| (f.joint_torque_nm.abs() - limit).abs() <= 1e-12 * limit)
+        .count();
+    let worst = frames
+        .iter()
+        .map(|f| residual(s.energy_initial_j, f).abs())
+        .fold(0.0, f64::max);
+    eprintln!(
+        "limited: {at_limit} of {} frames at the limit, largest torque {:.6e} N·m, worst residual {:.3e} of the work, link at the onset {:.6} rad/s, peak {:.4} N",
+        frames.len(),
+        d.peak_joint_torque_nm,
+        worst / d.motor_work_j,
+        d.link_speed_at_onset_rad_s.unwrap(),
+        s.peak_force_n
+    );
+    assert!(d.peak_joint_torque_nm <= limit * (1.0 + 1e-12));
+    assert!(at_limit > 100);
+    assert!(worst <= 1e-5 * d.motor_work_j);
+}
