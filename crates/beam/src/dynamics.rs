@@ -33,6 +33,10 @@ use crate::counters::StepCounters;
 use crate::model::{BeamModel, Kinematics, NodalLoads};
 use crate::node_load::NodeLoad;
 
+/// A prescribed root rotation: the hub's (θ \[rad\], θ̇ [rad/s], θ̈ [rad/s²]) at a time \[s\]
+/// ([`GeneralizedAlpha::step_with_root`]).
+type RootPath<'a> = &'a dyn Fn(f64) -> [f64; 3];
+
 /// Generalized-α integrator settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GeneralizedAlpha {
@@ -277,6 +281,87 @@ impl State {
         })
     }
 
+    /// The undeformed link in rigid rotation about its root at t = `t0` \[s\]: every node turned
+    /// by `angle` \[rad\] about z, moving at `rate` [rad/s] (node at x: u = x (cos θ − 1),
+    /// v = x sin θ, θ; u̇ = −x sin θ θ̇, v̇ = x cos θ θ̇), the root's acceleration `accel`
+    /// [rad/s²] when it is prescribed (a clamped root: the rotating clamp of
+    /// [`GeneralizedAlpha::step_with_root`]; the root's angle, rate and acceleration are then
+    /// those of the hub) and the free accelerations from M q̈ = F − f_int − f_in (a hub root:
+    /// its angle is free, `accel` unused). Corotational elements only (a linear beam has
+    /// strain in a rigid rotation).
+    pub fn in_rigid_rotation(
+        model: &BeamModel,
+        [angle, rate, accel]: [f64; 3],
+        t0: f64,
+        loads: &NodalLoads,
+    ) -> Result<Self, BeamError> {
+        if model.kinematics() != Kinematics::Corotational {
+            return Err(BeamError::invalid(
+                "kinematics",
+                format!("{:?}", model.kinematics()),
+                "corotational (a link turned through a large angle)",
+            ));
+        }
+        for (name, x) in [
+            ("angle", angle),
+            ("rate", rate),
+            ("accel", accel),
+            ("t0", t0),
+        ] {
+            if !x.is_finite() {
+                return Err(BeamError::invalid(name, x, "a finite number"));
+            }
+        }
+        loads.check(model)?;
+        let n = model.n_dofs();
+        let nfix = model.n_fixed();
+        let (sin, cos) = angle.sin_cos();
+        let mut q = vec![0.0; n];
+        let mut v = vec![0.0; n];
+        let mut a = vec![0.0; n];
+        for i in 0..model.n_nodes() {
+            let x = model.node_x(i);
+            q[3 * i..3 * i + 3].copy_from_slice(&[x * (cos - 1.0), x * sin, angle]);
+            v[3 * i..3 * i + 3].copy_from_slice(&[-x * sin * rate, x * cos * rate, rate]);
+        }
+        if nfix == 3 {
+            a[2] = accel;
+        }
+        let mut r = vec![0.0; n];
+        let mut band = band_for(model);
+        let kin = Kinematic {
+            q: &q,
+            v: Some(&v),
+            a: Some(&a),
+        };
+        let w = JacobianWeights {
+            stiffness: 0.0,
+            velocity: 0.0,
+            acceleration: 1.0,
+        };
+        assemble(model, kin, loads.as_slice(), &mut r, Some((&mut band, w)));
+        band.factorize("mass matrix")?;
+        let mut a_free: Vec<f64> = r[nfix..].iter().map(|x| -x).collect();
+        band.solve_in_place(&mut a_free);
+        a[nfix..].copy_from_slice(&a_free);
+        let initial_energy = kinetic_energy(model, &q, &v) + strain_energy(model, &q);
+        Ok(State {
+            t: t0,
+            q,
+            v,
+            a_aux: a.clone(),
+            a_aux_prev: Vec::new(),
+            h_prev: None,
+            a,
+            f_prev: loads.as_slice().to_vec(),
+            node_force_prev: (0, [0.0; 3]),
+            external_work: 0.0,
+            initial_energy,
+            dofs_per_node: model.dofs_per_node(),
+            element_energies: Vec::new(),
+        })
+    }
+
     /// The undeformed state at rest at t = 0 under `loads`.
     pub fn at_rest(model: &BeamModel, loads: &NodalLoads) -> Result<Self, BeamError> {
         let n = model.n_dofs();
@@ -467,6 +552,47 @@ impl GeneralizedAlpha {
         ws: &mut Workspace,
         h: f64,
         loads: &NodalLoads,
+        node_load: Option<&mut (dyn NodeLoad + 'l)>,
+    ) -> Result<StepReport, BeamError> {
+        self.step_inner(model, state, ws, h, (loads, None), node_load)
+    }
+
+    /// [`GeneralizedAlpha::step_with`] for a beam clamped to a hub whose rotation is
+    /// prescribed (a rotating clamp, as in [`crate::rotating_clamp`]): `root(t)` gives the hub's
+    /// angle θ \[rad\], rate θ̇ [rad/s] and acceleration θ̈ [rad/s²] at time t, and the root node
+    /// is held at (u, v, θ) = (0, 0, θ(t)) with rates (0, 0, θ̇(t)) and accelerations
+    /// (0, 0, θ̈(t)) at the end of the step (and of each piece of a split step). The model's root
+    /// must be clamped and its elements corotational (large rotation of the hub); the torque
+    /// the hub applies is [`root_reaction`]'s moment.
+    #[allow(clippy::too_many_arguments)]
+    pub fn step_with_root<'l>(
+        &self,
+        model: &BeamModel,
+        state: &mut State,
+        ws: &mut Workspace,
+        h: f64,
+        loads: &NodalLoads,
+        node_load: Option<&mut (dyn NodeLoad + 'l)>,
+        root: &dyn Fn(f64) -> [f64; 3],
+    ) -> Result<StepReport, BeamError> {
+        check_rotating_clamp(model)?;
+        if self.energy_conserving {
+            return Err(BeamError::invalid(
+                "integrator",
+                "energy-conserving",
+                "generalized-α (the energy-conserving step has no prescribed root)",
+            ));
+        }
+        self.step_inner(model, state, ws, h, (loads, Some(root)), node_load)
+    }
+
+    fn step_inner<'l>(
+        &self,
+        model: &BeamModel,
+        state: &mut State,
+        ws: &mut Workspace,
+        h: f64,
+        (loads, root): (&NodalLoads, Option<RootPath<'_>>),
         mut node_load: Option<&mut (dyn NodeLoad + 'l)>,
     ) -> Result<StepReport, BeamError> {
         if !(h.is_finite() && h > 0.0) {
@@ -501,7 +627,7 @@ impl GeneralizedAlpha {
             state,
             ws,
             h,
-            loads,
+            (loads, root),
             node_load.as_deref_mut(),
             &mut report,
         ) {
@@ -518,7 +644,7 @@ impl GeneralizedAlpha {
             state,
             ws,
             (h, 1),
-            (&start, loads),
+            (&start, loads, root),
             node_load,
             &mut report,
         );
@@ -549,21 +675,29 @@ impl GeneralizedAlpha {
         state: &mut State,
         ws: &mut Workspace,
         (h, depth): (f64, u32),
-        (start, end): (&NodalLoads, &NodalLoads),
+        (start, end, root): (&NodalLoads, &NodalLoads, Option<RootPath<'_>>),
         mut node_load: Option<&mut (dyn NodeLoad + 'l)>,
         report: &mut StepReport,
     ) -> Result<(), BeamError> {
         let half = 0.5 * h;
         let middle = start.lerp(end, 0.5);
         for (from, to) in [(start, &middle), (&middle, end)] {
-            match self.attempt(model, state, ws, half, to, node_load.as_deref_mut(), report) {
+            match self.attempt(
+                model,
+                state,
+                ws,
+                half,
+                (to, root),
+                node_load.as_deref_mut(),
+                report,
+            ) {
                 Ok(()) => report.substeps += 1,
                 Err(e) if recoverable(&e) && depth < MAX_STEP_HALVINGS => self.take_in_halves(
                     model,
                     state,
                     ws,
                     (half, depth + 1),
-                    (from, to),
+                    (from, to, root),
                     node_load.as_deref_mut(),
                     report,
                 )?,
@@ -582,7 +716,7 @@ impl GeneralizedAlpha {
         state: &mut State,
         ws: &mut Workspace,
         h: f64,
-        loads: &NodalLoads,
+        (loads, root): (&NodalLoads, Option<RootPath<'_>>),
         mut node_load: Option<&mut (dyn NodeLoad + 'l)>,
         report: &mut StepReport,
     ) -> Result<(), BeamError> {
@@ -610,7 +744,14 @@ impl GeneralizedAlpha {
                 predictor,
                 max_iterations,
             };
-            match self.newton(model, state, ws, loads, node_load.as_deref_mut(), newton) {
+            match self.newton(
+                model,
+                state,
+                ws,
+                (loads, root),
+                node_load.as_deref_mut(),
+                newton,
+            ) {
                 Ok((iterations, first, last)) => {
                     ws.last_predictor = predictor;
                     report.iterations += iterations;
@@ -647,16 +788,16 @@ impl GeneralizedAlpha {
         model: &BeamModel,
         state: &mut State,
         ws: &mut Workspace,
-        loads: &NodalLoads,
+        (loads, root): (&NodalLoads, Option<RootPath<'_>>),
         node_load: Option<&mut (dyn NodeLoad + 'l)>,
         step: NewtonStep,
     ) -> Result<(usize, f64, f64), (usize, BeamError)> {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the processor has AVX2 (checked just above).
-            return unsafe { self.newton_avx2(model, state, ws, loads, node_load, step) };
+            return unsafe { self.newton_avx2(model, state, ws, (loads, root), node_load, step) };
         }
-        self.newton_portable(model, state, ws, loads, node_load, step)
+        self.newton_portable(model, state, ws, (loads, root), node_load, step)
     }
 
     /// [`GeneralizedAlpha::newton`] compiled for AVX2.
@@ -667,11 +808,11 @@ impl GeneralizedAlpha {
         model: &BeamModel,
         state: &mut State,
         ws: &mut Workspace,
-        loads: &NodalLoads,
+        (loads, root): (&NodalLoads, Option<RootPath<'_>>),
         node_load: Option<&mut (dyn NodeLoad + 'l)>,
         step: NewtonStep,
     ) -> Result<(usize, f64, f64), (usize, BeamError)> {
-        self.newton_portable(model, state, ws, loads, node_load, step)
+        self.newton_portable(model, state, ws, (loads, root), node_load, step)
     }
 
     /// [`GeneralizedAlpha::newton`] for any processor.
@@ -681,7 +822,7 @@ impl GeneralizedAlpha {
         model: &BeamModel,
         state: &mut State,
         ws: &mut Workspace,
-        loads: &NodalLoads,
+        (loads, root): (&NodalLoads, Option<RootPath<'_>>),
         mut node_load: Option<&mut (dyn NodeLoad + 'l)>,
         step: NewtonStep,
     ) -> Result<(usize, f64, f64), (usize, BeamError)> {
@@ -737,6 +878,20 @@ impl GeneralizedAlpha {
             };
             ws.q_new[i] = state.q[i] + ws.dq_step[i];
         }
+        // A prescribed root: its angle at t + h (its rate and acceleration below).
+        let root = root.map(|f| f(t_new));
+        if let Some([theta, _, _]) = root {
+            if !root.iter().flatten().all(|x| x.is_finite()) {
+                return Err((
+                    0,
+                    BeamError::NonFinite {
+                        what: format!("hub motion at t = {t_new}"),
+                    },
+                ));
+            }
+            ws.dq_step[..3].copy_from_slice(&[0.0, 0.0, theta - state.q[2]]);
+            ws.q_new[..3].copy_from_slice(&[0.0, 0.0, theta]);
+        }
         let tol = self.tolerance * model.length();
         let mut iterations = 0;
         let mut last = f64::INFINITY;
@@ -778,6 +933,11 @@ impl GeneralizedAlpha {
                 ahat_new[i] = ahat;
                 v_new[i] = v0[i] + h * ((1.0 - g) * aux[i] + g * ahat);
                 a_new[i] = ((1.0 - am) * ahat + am * aux[i] - af * a0[i]) / (1.0 - af);
+            }
+            if let Some([_, rate, accel]) = root {
+                v_new[..3].copy_from_slice(&[0.0, 0.0, rate]);
+                a_new[..3].copy_from_slice(&[0.0, 0.0, accel]);
+                ahat_new[..3].copy_from_slice(&[0.0, 0.0, accel]);
             }
             if iterations > 0 && (converged || (single_solve && iterations == 1)) {
                 break;
@@ -1070,6 +1230,46 @@ pub(crate) fn step_work(
         work += 0.5 * (0..3).map(|d| fnew[d] * dq[d]).sum::<f64>();
     }
     work
+}
+
+/// The forces the supports apply to the beam at the root node's (u \[N\], v \[N\], θ [N·m])
+/// in `state` under `loads`: the residual f_int + f_in − F of the root's rows (with a clamped
+/// root that a hub turns, [`GeneralizedAlpha::step_with_root`], the third entry is the torque
+/// the hub applies to the beam; with a pinned or hub root it includes the root spring, damper
+/// and hub inertia on θ, which are not supports: use the first two only).
+pub fn root_reaction(model: &BeamModel, state: &State, loads: &NodalLoads) -> [f64; 3] {
+    let mut r = vec![0.0; state.q.len()];
+    assemble(
+        model,
+        Kinematic {
+            q: &state.q,
+            v: Some(&state.v),
+            a: Some(&state.a),
+        },
+        loads.as_slice(),
+        &mut r,
+        None,
+    );
+    [r[0], r[1], r[2]]
+}
+
+/// A beam that a hub turns by its clamped root: clamped, corotational (3 DOFs per node).
+fn check_rotating_clamp(model: &BeamModel) -> Result<(), BeamError> {
+    if model.root() != crate::model::RootSupport::Clamped {
+        return Err(BeamError::invalid(
+            "root",
+            format!("{:?}", model.root()),
+            "clamped (the hub's angle is prescribed)",
+        ));
+    }
+    if model.kinematics() != Kinematics::Corotational {
+        return Err(BeamError::invalid(
+            "kinematics",
+            format!("{:?}", model.kinematics()),
+            "corotational (large rotation of the hub)",
+        ));
+    }
+    Ok(())
 }
 
 /// Adds `scale` × the motion-dependent node load at the current iterate to the residual

@@ -268,7 +268,8 @@ fn with_axes(window: Option<TimeWindow>, axes: PlotAxes) -> Value {
 /// A test-bed layout ([`for_run`], [`for_log`]) for a run with a motor on the robot joint
 /// (`robot.drive`): below the 3D view, over the whole run (not synced with the contact's
 /// plots), the robot joint's speed (commanded, the motor side and the link after the torsion
-/// spring) and the motor's torque (at the joint and at the motor).
+/// spring), the motor's torque (at the joint and at the motor) with the link's moment on the
+/// hub (the CJ's spring, the CL's beam root), and the link's deflection from the hub's line.
 pub fn with_drive(mut layout: Value) -> Value {
     let speed = whole_run_plot(
         "Robot joint speed",
@@ -303,17 +304,45 @@ pub fn with_drive(mut layout: Value) -> Value {
                 2.0,
             ),
             series("/drive/torque.motor_nm", "at the motor [N·m]", LOAD, 1.0),
+            series(
+                "/drive/load.moment_nm",
+                "link's moment on the hub (spring or beam root) [N·m]",
+                SENSOR,
+                1.0,
+            ),
         ],
     );
+    let deflection = whole_run_plot(
+        "Link deflection",
+        vec![series(
+            "/drive/load.deflection_m",
+            "tip from the hub's line, towards the operator [m]",
+            CONTACT,
+            1.0,
+        )],
+    );
     // the legends above the plots: a floating one would cover the torque's peak
-    for (id, mut p) in [("Plot!drive_speed", speed), ("Plot!drive_torque", torque)] {
+    for (id, mut p) in [
+        ("Plot!drive_speed", speed),
+        ("Plot!drive_torque", torque),
+        ("Plot!drive_deflection", deflection),
+    ] {
         p["legendDisplay"] = json!("top");
         layout["configById"][id] = p;
     }
     let view = layout["layout"]["first"].take();
     layout["layout"]["first"] = json!({
         "first": view,
-        "second": { "first": "Plot!drive_speed", "second": "Plot!drive_torque", "direction": "row" },
+        "second": {
+            "first": "Plot!drive_speed",
+            "second": {
+                "first": "Plot!drive_torque",
+                "second": "Plot!drive_deflection",
+                "direction": "row"
+            },
+            "direction": "row",
+            "splitPercentage": 33.3
+        },
         "direction": "column",
         "splitPercentage": 45
     });
@@ -615,6 +644,7 @@ mod tests {
                 "3D!rig",
                 "Plot!drive_speed",
                 "Plot!drive_torque",
+                "Plot!drive_deflection",
                 "Plot!force",
                 "Plot!indentation",
                 "Plot!accel"
@@ -632,6 +662,8 @@ mod tests {
             "/drive/link.speed_rad_s",
             "/drive/torque.joint_nm",
             "/drive/torque.motor_nm",
+            "/drive/load.moment_nm",
+            "/drive/load.deflection_m",
         ] {
             assert!(text.contains(topic), "{topic}");
         }

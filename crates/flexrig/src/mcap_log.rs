@@ -97,6 +97,18 @@ pub struct MotorTorque {
     pub motor_nm: f64,
 }
 
+/// What the link puts on the drive's joint and how far it is bent.
+#[derive(Debug, Clone, Encode)]
+pub struct LinkLoad {
+    /// Simulation time.
+    pub timestamp: Timestamp,
+    /// The link's elastic moment on the motor's hub [N·m] (CJ: the torsion spring's
+    /// k_θr (φ_m − φ_l); CL: the beam's root moment).
+    pub moment_nm: f64,
+    /// Deflection of the link's tip from the hub's line \[m\], positive towards the operator.
+    pub deflection_m: f64,
+}
+
 /// Schema name of the `/severity` channel.
 pub const SEVERITY_SCHEMA_NAME: &str = "flexrig.Severity";
 
@@ -138,7 +150,8 @@ struct Channels {
     severity: u16,
     /// The drive on the robot joint (`robot.drive`): `/drive/joint` (the motor side),
     /// `/drive/command`, `/drive/torque`, `/drive/link` (the link after the spring) — the
-    /// driven scenes' messages.
+    /// driven scenes' messages — and `/drive/load` (the link's moment on the hub, its
+    /// deflection).
     drive: Option<DriveChannels>,
 }
 
@@ -149,6 +162,7 @@ struct DriveChannels {
     command: u16,
     torque: u16,
     link: u16,
+    load: u16,
 }
 
 /// How often the channels are written. Inside the contact window `/contact` and the sensor
@@ -632,6 +646,11 @@ impl<W: Write + Seek> McapRecorder<W> {
                     JointMotion::get_schema(),
                     JointMotion::get_message_encoding(),
                 )?,
+                load: channel(
+                    "/drive/load",
+                    LinkLoad::get_schema(),
+                    LinkLoad::get_message_encoding(),
+                )?,
             });
         }
         writer.attach(&mcap::Attachment {
@@ -713,7 +732,8 @@ impl<W: Write + Seek> McapRecorder<W> {
     }
 
     /// The drive's channels of frame `f` (a scene with `robot.drive`): the motor side's joint
-    /// angle and speed, the command, the joint and motor torques, the link's angle and speed.
+    /// angle and speed, the command, the joint and motor torques, the link's angle and speed,
+    /// its moment on the hub (spring or beam root) and its deflection.
     fn write_drive(&mut self, f: &Frame<'_>) -> Result<(), RigError> {
         let (Some(ch), Some(d)) = (self.channels.drive, f.drive) else {
             return Ok(());
@@ -742,7 +762,16 @@ impl<W: Write + Seek> McapRecorder<W> {
                 motor_nm: d.motor_torque_nm,
             },
         )?;
-        self.write(ch.link, f.t, &motion(d.link_angle_rad, d.link_speed_rad_s))
+        self.write(ch.link, f.t, &motion(d.link_angle_rad, d.link_speed_rad_s))?;
+        self.write(
+            ch.load,
+            f.t,
+            &LinkLoad {
+                timestamp: stamp(f.t),
+                moment_nm: d.spring_moment_nm,
+                deflection_m: d.link_deflection_m,
+            },
+        )
     }
 
     /// Messages written so far.

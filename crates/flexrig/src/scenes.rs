@@ -9,7 +9,7 @@ use flexrig_rig::Scene;
 use crate::Error;
 
 /// The bundled scene files, compiled in (the binary needs no assets directory).
-pub const BUNDLED_SCENES: [(&str, &str); 11] = [
+pub const BUNDLED_SCENES: [(&str, &str); 12] = [
     (
         "cj_aluminium",
         include_str!("../../../assets/scenes/cj_aluminium.toml"),
@@ -53,6 +53,10 @@ pub const BUNDLED_SCENES: [(&str, &str); 11] = [
     (
         "rig_driven_cj",
         include_str!("../../../assets/scenes/rig_driven_cj.toml"),
+    ),
+    (
+        "rig_driven_cl",
+        include_str!("../../../assets/scenes/rig_driven_cl.toml"),
     ),
 ];
 

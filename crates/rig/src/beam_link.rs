@@ -14,6 +14,8 @@ use flexrig_contact::math::Vector;
 
 use crate::RigError;
 use crate::coupling::section_kinematics;
+use crate::hinge::HingeState;
+use crate::joint_drive::JointDrive;
 use crate::scene::{BeamSolverSpec, Scene};
 
 /// Which beam stands for the robot link.
@@ -27,6 +29,9 @@ pub enum LinkVariant {
         /// Factor on EI and EA (e.g. 1e4).
         stiffness_factor: f64,
     },
+    /// The scene's beam on a free pin at the robot axis (no spring, no hub inertia): the
+    /// free-hub reference of a compliant link on a torque-free drive.
+    FreePin,
 }
 
 /// The FE link with its state and scratch space.
@@ -37,6 +42,51 @@ pub struct BeamLink {
     integrator: GeneralizedAlpha,
     loads: NodalLoads,
     tip: usize,
+    /// The motor's hub the link is clamped to (`robot.drive`), or `None`: the test bed's fixed
+    /// axis.
+    hub: Option<DrivenHub>,
+}
+
+/// The hub of a driven compliant link (corotational elements: the link turns through large
+/// angles).
+#[derive(Debug, Clone)]
+enum DrivenHub {
+    /// An ideal position source: the clamped root turns as the command says (a rotating clamp,
+    /// [`GeneralizedAlpha::step_with_root`]); the motor's torque is the root's reaction plus
+    /// the rotor's J_m N² θ̈ and the friction's c_m N² θ̇.
+    Prescribed(Box<JointDrive>),
+    /// A hub of the rotor's inertia J_m N² pinned at the axis (flexrig-beam's
+    /// `RootSupport::Hub`), turned by the drive's torque: the law of the step folded into the
+    /// hub's torsion spring and damper to ground and a moment ([`HubLaw`]).
+    Free {
+        /// J_m N² [kg·m²].
+        inertia: f64,
+        /// c_m N² [N·m·s/rad].
+        friction: f64,
+        /// The law of the next step.
+        law: HubLaw,
+    },
+}
+
+/// The drive's torque on a free hub over a step, affine in the hub's angle φ and rate φ̇ at
+/// the step's end (rig convention, about +z): τ = `moment` − `stiffness` φ − `damping` φ̇.
+/// The hub's root support takes the stiffness and the damping (with the friction) implicitly;
+/// the moment is the root node's nodal moment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HubLaw {
+    /// ∂τ/∂(−φ) [N·m/rad] (a position loop's K_p, plus K_i h/2 of its integral).
+    pub stiffness: f64,
+    /// ∂τ/∂(−φ̇) [N·m·s/rad] (the loop's K_d; the friction is added by the link).
+    pub damping: f64,
+    /// The rest [N·m].
+    pub moment: f64,
+}
+
+impl HubLaw {
+    /// The torque [N·m] at hub angle `angle` \[rad\] and rate `rate` [rad/s].
+    pub fn torque(&self, angle: f64, rate: f64) -> f64 {
+        self.moment - self.stiffness * angle - self.damping * rate
+    }
 }
 
 /// Every FE DOF, or the modal-reduced linear beam.
@@ -56,7 +106,22 @@ impl BeamLink {
     /// contact force and moment act).
     pub fn new(scene: &Scene, rho_inf: f64, variant: LinkVariant) -> Result<Self, RigError> {
         let r = &scene.file.robot;
-        let solver = scene.file.solver.beam.resolve(scene.file.stop);
+        let driven = match (variant, scene.drive.as_ref()) {
+            (LinkVariant::Compliant, d) => d,
+            (LinkVariant::StiffOnTorsionSpring { .. } | LinkVariant::FreePin, Some(_)) => {
+                return Err(crate::error::invalid(
+                    "robot.drive",
+                    "a drive",
+                    "none for the FE cross-checks (the stiffened joint, the free pin)",
+                ));
+            }
+            (LinkVariant::StiffOnTorsionSpring { .. } | LinkVariant::FreePin, None) => None,
+        };
+        let solver = match (driven, scene.file.solver.beam) {
+            // a driven link turns through large angles: corotational elements
+            (Some(_), BeamSolverSpec::Auto {}) => BeamSolverSpec::Corotational {},
+            (_, solver) => solver.resolve(scene.file.stop),
+        };
         let kinematics = match solver {
             BeamSolverSpec::Auto {} => unreachable!("resolved above"),
             BeamSolverSpec::Corotational {} => Kinematics::Corotational,
@@ -77,27 +142,75 @@ impl BeamLink {
                 c_theta: 0.0,
             };
         }
+        if variant == LinkVariant::FreePin {
+            spec.root = RootSupport::Pinned {
+                k_theta: 0.0,
+                c_theta: 0.0,
+            };
+        }
         spec.point_masses.push(PointMass {
             node: r.beam_elements,
             mass: r.payload_kg,
             inertia: 0.0,
         });
+        let hub = driven.map(|d| match d.is_prescribed() {
+            true => DrivenHub::Prescribed(Box::new(d.clone())),
+            false => DrivenHub::Free {
+                inertia: d.inertia(),
+                friction: d.friction(),
+                law: HubLaw {
+                    stiffness: 0.0,
+                    damping: 0.0,
+                    moment: 0.0,
+                },
+            },
+        });
+        if let Some(DrivenHub::Free { inertia, .. }) = &hub {
+            spec.root = RootSupport::Hub {
+                inertia: *inertia,
+                k_theta: 0.0,
+                c_theta: driven.map_or(0.0, |d| d.friction()),
+            };
+        }
         let model = BeamModel::new(spec)?;
         let loads = NodalLoads::zeros(&model);
         let tip = model.tip_node();
-        let dynamics = match solver {
-            BeamSolverSpec::Modal { modes } => {
-                let reduced =
-                    ReducedModel::new(&model, modes, &[3 * tip, 3 * tip + 1, 3 * tip + 2])?;
-                LinkDynamics::Modal {
-                    state: ReducedState::at_rest(&reduced, &loads)?,
-                    reduced: Box::new(reduced),
-                }
+        let dynamics = match (solver, driven) {
+            (BeamSolverSpec::Corotational {}, Some(d)) => {
+                let (start, _, _) = d.initial();
+                let accel = d.prescribed(0.0).map_or(0.0, |(_, a)| a);
+                LinkDynamics::Full(Box::new((
+                    State::in_rigid_rotation(
+                        &model,
+                        [start.angle, start.rate, accel],
+                        0.0,
+                        &loads,
+                    )?,
+                    Workspace::new(&model),
+                )))
             }
-            _ => LinkDynamics::Full(Box::new((
-                State::at_rest(&model, &loads)?,
-                Workspace::new(&model),
-            ))),
+            (_, Some(_)) => {
+                return Err(crate::error::invalid(
+                    "solver.beam",
+                    format!("{solver:?}"),
+                    "\"auto\" or \"corotational\" for a driven compliant link (the motor turns \
+                     it through large angles)",
+                ));
+            }
+            (solver, None) => match solver {
+                BeamSolverSpec::Modal { modes } => {
+                    let reduced =
+                        ReducedModel::new(&model, modes, &[3 * tip, 3 * tip + 1, 3 * tip + 2])?;
+                    LinkDynamics::Modal {
+                        state: ReducedState::at_rest(&reduced, &loads)?,
+                        reduced: Box::new(reduced),
+                    }
+                }
+                _ => LinkDynamics::Full(Box::new((
+                    State::at_rest(&model, &loads)?,
+                    Workspace::new(&model),
+                ))),
+            },
         };
         // ANCF at ρ∞ = 1: the energy-conserving midpoint step (generalized-α's trapezoidal
         // rule does not bound the energy of its stiff axial modes).
@@ -112,6 +225,7 @@ impl BeamLink {
             model,
             dynamics,
             loads,
+            hub,
         })
     }
 
@@ -189,12 +303,22 @@ impl BeamLink {
         self.tip_dofs()[1]
     }
 
-    /// Kinetic plus strain energy \[J\].
+    /// Kinetic plus strain energy of the link \[J\] (a driven link's hub: without the rotor's
+    /// kinetic energy and the loop's spring folded into the hub's support, which the drive
+    /// accounts for).
     pub fn energy(&self) -> f64 {
         match &self.dynamics {
             LinkDynamics::Full(full) => {
                 let e = full.0.energy(&self.model);
-                e.kinetic + e.strain
+                let (k, _, j) = self.model.root().spring_damper_inertia();
+                let hub = match self.hub {
+                    Some(DrivenHub::Free { .. }) => {
+                        let (angle, rate, _) = self.node_motion(0)[2];
+                        0.5 * j * rate * rate + 0.5 * k * angle * angle
+                    }
+                    _ => 0.0,
+                };
+                e.kinetic + e.strain - hub
             }
             LinkDynamics::Modal { reduced, state } => {
                 let (kinetic, strain) = reduced.energy(state);
@@ -230,8 +354,30 @@ impl BeamLink {
     /// beam's own forces, with its stiffness and damping in the Newton iteration matrix (the
     /// ANCF link's energy-conserving midpoint step averages it over the step, as velocity
     /// Verlet does for the operator).
+    ///
+    /// A driven link: a prescribed hub turns the clamped root as commanded; a free hub takes
+    /// the law set by [`BeamLink::set_hub_law`].
     pub fn step(&mut self, dt: f64, tip_load: &mut dyn NodeLoad) -> Result<(), RigError> {
         match &mut self.dynamics {
+            LinkDynamics::Full(full) if matches!(self.hub, Some(DrivenHub::Prescribed(_))) => {
+                let Some(DrivenHub::Prescribed(drive)) = &self.hub else {
+                    unreachable!("matched above")
+                };
+                let (state, workspace) = &mut **full;
+                let root = |t: f64| match drive.prescribed(t) {
+                    Some((s, accel)) => [s.angle, s.rate, accel],
+                    None => [f64::NAN; 3],
+                };
+                self.integrator.step_with_root(
+                    &self.model,
+                    state,
+                    workspace,
+                    dt,
+                    &self.loads,
+                    Some(tip_load),
+                    &root,
+                )?;
+            }
             LinkDynamics::Full(full) => {
                 let (state, workspace) = &mut **full;
                 self.integrator.step_with(
@@ -254,5 +400,101 @@ impl BeamLink {
             }
         }
         Ok(())
+    }
+}
+
+impl BeamLink {
+    /// Sets the drive's law on a free hub for the next step: the stiffness and the damping
+    /// (with the drive's friction) become the hub's torsion spring and damper to ground, the
+    /// moment the root node's nodal moment. No effect on a link without a free hub.
+    pub fn set_hub_law(&mut self, law: HubLaw) -> Result<(), RigError> {
+        let Some(DrivenHub::Free {
+            inertia, friction, ..
+        }) = self.hub
+        else {
+            return Ok(());
+        };
+        let root = RootSupport::Hub {
+            inertia,
+            k_theta: law.stiffness,
+            c_theta: law.damping + friction,
+        };
+        if self.model.root() != root {
+            let mut spec = self.model.spec().clone();
+            spec.root = root;
+            self.model = BeamModel::new(spec)?;
+            if let LinkDynamics::Full(full) = &mut self.dynamics {
+                full.1 = Workspace::new(&self.model);
+            }
+        }
+        self.loads.set_moment(0, law.moment)?;
+        if let Some(DrivenHub::Free { law: l, .. }) = &mut self.hub {
+            *l = law;
+        }
+        Ok(())
+    }
+
+    /// The drive's law on a free hub (the last set), or `None` (a prescribed or no hub).
+    pub fn hub_law(&self) -> Option<HubLaw> {
+        match &self.hub {
+            Some(DrivenHub::Free { law, .. }) => Some(*law),
+            _ => None,
+        }
+    }
+
+    /// Sets the law at the start on a free hub and takes the start's accelerations again
+    /// under it (the link in rigid rotation as built, its hub loaded by the drive at t = 0).
+    pub fn start_hub_law(&mut self, law: HubLaw) -> Result<(), RigError> {
+        self.set_hub_law(law)?;
+        let (hub, _) = self.hub_motion();
+        if let LinkDynamics::Full(full) = &mut self.dynamics {
+            full.0 = State::in_rigid_rotation(
+                &self.model,
+                [hub.angle, hub.rate, 0.0],
+                full.0.t,
+                &self.loads,
+            )?;
+        }
+        Ok(())
+    }
+
+    /// The hub's (root node's) angle and rate and its angular acceleration (rig convention,
+    /// about +z) [rad, rad/s, rad/s²].
+    pub fn hub_motion(&self) -> (HingeState, f64) {
+        let (angle, rate, accel) = self.node_motion(0)[2];
+        (HingeState { angle, rate }, accel)
+    }
+
+    /// The torque [N·m] about +z the hub applies to the link at the root: the clamped root's
+    /// reaction (prescribed hub), or, on a free hub, the drive's law less the rotor's inertia
+    /// and the friction (what the root's rotation row carries).
+    pub fn root_moment(&self) -> f64 {
+        match (&self.dynamics, &self.hub) {
+            (LinkDynamics::Full(full), Some(DrivenHub::Prescribed(_))) => {
+                flexrig_beam::root_reaction(&self.model, &full.0, &self.loads)[2]
+            }
+            (
+                LinkDynamics::Full(full),
+                Some(DrivenHub::Free {
+                    inertia,
+                    friction,
+                    law,
+                }),
+            ) => {
+                let (hub, accel) = self.hub_motion();
+                let _ = full;
+                law.torque(hub.angle, hub.rate) - friction * hub.rate - inertia * accel
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// Transverse deflection of the tip in the hub's frame \[m\] (positive about +z from the
+    /// hub's line: d = −sin θ (L + u) + cos θ v, θ the root node's angle).
+    pub fn tip_deflection_in_hub_frame(&self) -> f64 {
+        let theta = self.node_motion(0)[2].0;
+        let [u, v, _] = self.tip_dofs();
+        let (sin, cos) = theta.sin_cos();
+        -sin * (self.model.length() + u.0) + cos * v.0
     }
 }

@@ -29,6 +29,7 @@ use flexrig_impact::drive::{Drive, DriveCommand, Gains, Profile, TorqueProfile};
 use serde::{Deserialize, Serialize};
 
 use crate::RigError;
+use crate::beam_link::HubLaw;
 use crate::hinge::HingeState;
 
 /// A motor on the robot joint, in the vocabulary of the driven scenes' `[drive]` and
@@ -105,7 +106,12 @@ pub struct DriveFrame {
     pub joint_torque_nm: f64,
     /// Motor-shaft torque τ_m [N·m].
     pub motor_torque_nm: f64,
-    /// Elastic moment of the link at the joint [N·m] (CJ: k_θr (φ_m − φ_l)).
+    /// Deflection of the link's tip from the hub's line \[m\], positive towards the operator
+    /// (CJ: L sin(φ_m − φ_l) of the rigid link on its spring; CL: the beam's tip in the hub's
+    /// frame).
+    pub link_deflection_m: f64,
+    /// Elastic moment of the link at the joint [N·m] (CJ: k_θr (φ_m − φ_l); CL: the beam's
+    /// root moment).
     pub spring_moment_nm: f64,
     /// Work of the joint-side motor torque since the start, ∫ τ_j ω_m dt \[J\].
     pub motor_work_j: f64,
@@ -122,6 +128,11 @@ pub struct DriveSummary {
     pub friction_dissipated_j: f64,
     /// Largest |τ_j| over the run [N·m].
     pub peak_joint_torque_nm: f64,
+    /// Deflection of the link's tip from the hub's line at the contact onset \[m\], positive
+    /// towards the operator (the drive's acceleration pre-bends the link; negative: the tip
+    /// lags).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pre_impact_deflection_m: Option<f64>,
     /// Link speed at the contact onset [rad/s] (towards the operator).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub link_speed_at_onset_rad_s: Option<f64>,
@@ -365,15 +376,74 @@ impl JointDrive {
         }
     }
 
+    /// The drive's torque on the free hub of a compliant link over a step of `h` \[s\] from
+    /// `start` at `t0` (rig convention), affine in the hub's angle and rate at the step's end
+    /// t₁ = t₀ + h, so that the link's integrator takes it implicitly: a controller's
+    /// τ = K_p (φ_cmd − φ) + K_d (ω_cmd − φ̇) + K_i z₁ with z₁ = z₀ + (h/2)(e₀ + φ_cmd − φ) is
+    /// (K_p φ_cmd + K_d ω_cmd + K_i (z₀ + (h/2)(e₀ + φ_cmd))) − (K_p + K_i h/2) φ − K_d φ̇; an
+    /// open-loop torque is the moment −N τ_m(t₁). Returns the unlimited law and the one to
+    /// step with: at the torque limit (a constant moment) when the unlimited torque at the
+    /// predicted end (φ₀ + h φ̇₀ + h² φ̈₀/2, φ̇₀ + h φ̈₀) exceeds it. `None` for a prescribed
+    /// trajectory. h = 0: the law at t₀ itself.
+    pub fn hub_law(&self, t0: f64, h: f64, start: &RotorSync) -> Option<(HubLaw, HubLaw)> {
+        let t1 = t0 + h;
+        let law = match self.drive.command() {
+            DriveCommand::Trajectory { .. } => return None,
+            DriveCommand::OpenLoop { torque, .. } => HubLaw {
+                stiffness: 0.0,
+                damping: 0.0,
+                moment: -self.drive.motor().gear_ratio * torque.at(t1),
+            },
+            DriveCommand::Controller { gains, .. } => {
+                let Gains { kp, kd, ki } = *gains;
+                let (c_angle, c_rate, _) = self.commanded(t1).expect("a controller has a profile");
+                let e0 = self.angle_error(t0, start.state.angle);
+                HubLaw {
+                    stiffness: kp + 0.5 * h * ki,
+                    damping: kd,
+                    moment: kp * c_angle
+                        + kd * c_rate
+                        + ki * (start.integral + 0.5 * h * (e0 + c_angle)),
+                }
+            }
+        };
+        let s = start.state;
+        let predicted = law.torque(
+            s.angle + h * (s.rate + 0.5 * h * start.accel),
+            s.rate + h * start.accel,
+        );
+        Some((law, self.limited(law, predicted)))
+    }
+
+    /// True when the joint torque has a finite limit N τ_m,max.
+    pub fn is_torque_limited(&self) -> bool {
+        self.limit.is_finite()
+    }
+
+    /// `law`, or the constant torque at the limit when the unlimited torque `torque` [N·m]
+    /// exceeds it.
+    pub fn limited(&self, law: HubLaw, torque: f64) -> HubLaw {
+        if torque.abs() <= self.limit {
+            law
+        } else {
+            HubLaw {
+                stiffness: 0.0,
+                damping: 0.0,
+                moment: self.limit.copysign(torque),
+            }
+        }
+    }
+
     /// The channels of a frame: hub `hub`, link `link`, joint torque `torque` (rig convention),
-    /// elastic moment on the hub `spring`, at `t`; the motor's work and the friction's so far.
+    /// the elastic moment on the hub `spring` and the link's deflection \[m\] (towards the
+    /// operator), at `t`; the motor's work and the friction's so far.
     pub fn frame(
         &self,
         t: f64,
         hub: HingeState,
         link: HingeState,
         torque: f64,
-        spring: f64,
+        (spring, link_deflection_m): (f64, f64),
         (motor_work_j, friction_dissipated_j): (f64, f64),
     ) -> DriveFrame {
         let a = self.start_angle;
@@ -393,6 +463,7 @@ impl JointDrive {
             link_speed_rad_s: -link.rate,
             joint_torque_nm: -torque,
             motor_torque_nm: -torque / self.drive.motor().gear_ratio,
+            link_deflection_m,
             spring_moment_nm: spring,
             motor_work_j,
             friction_dissipated_j,

@@ -365,7 +365,7 @@ struct Stats {
     drive_friction: f64,
     drive_peak_torque: f64,
     drive_scale: f64,
-    drive_onset: Option<(f64, Option<f64>)>,
+    drive_onset: Option<(f64, Option<f64>, f64)>,
 }
 
 impl<'s> Simulation<'s> {
@@ -497,6 +497,18 @@ impl<'s> Simulation<'s> {
         sim.rapier.set_state(operator, robot_initial);
         if let Some(hub) = hub_initial {
             sim.rapier.set_rotor_state(hub);
+        }
+        if let (Some(d), RobotSide::Beam(b)) = (drive, &mut sim.robot) {
+            let (hub, accel) = b.hub_motion();
+            let start = RotorSync {
+                state: hub,
+                accel,
+                torque: 0.0,
+                integral: d.initial().2,
+            };
+            if let Some((free, _)) = d.hub_law(0.0, 0.0, &start) {
+                b.start_hub_law(d.limited(free, free.torque(hub.angle, hub.rate)))?;
+            }
         }
         sim.now = sim.synchronize(0.0);
         sim.stats.energy_initial = sim.energy();
@@ -632,6 +644,9 @@ impl<'s> Simulation<'s> {
     /// advanced by the trapezoidal rule.
     fn sync_rotor(&self, h: f64, link: Option<HingeState>) -> Option<RotorSync> {
         let drive = self.scene.drive.as_ref()?;
+        if let RobotSide::Beam(b) = &self.robot {
+            return Some(self.sync_hub(drive, b, h));
+        }
         let link = link?;
         let (angle, lagging_rate) = match self.rapier.rotor_state() {
             Some(s) => (s.angle, s.rate),
@@ -650,6 +665,35 @@ impl<'s> Simulation<'s> {
             None => drive.initial().2,
         };
         Some(drive.synchronise(self.t, angle, lagging_rate, integral, spring, h))
+    }
+
+    /// The hub of a driven compliant link after a step of `h` (0: at the start): its motion
+    /// is the beam's root node's (synchronised: the link's integrator keeps rates and angles at
+    /// the same instant); the torque is the law the step took (free hub) or, for a prescribed
+    /// trajectory, τ_j = J_m N² θ̈ + c_m N² θ̇ + the root's reaction.
+    fn sync_hub(&self, drive: &crate::joint_drive::JointDrive, b: &BeamLink, h: f64) -> RotorSync {
+        let (state, accel) = b.hub_motion();
+        let integral = match self.now.rotor {
+            Some(r) if h > 0.0 => {
+                r.integral
+                    + 0.5
+                        * h
+                        * (drive.angle_error(self.t - h, r.state.angle)
+                            + drive.angle_error(self.t, state.angle))
+            }
+            Some(r) => r.integral,
+            None => drive.initial().2,
+        };
+        let torque = match b.hub_law() {
+            Some(law) => law.torque(state.angle, state.rate),
+            None => drive.inertia() * accel + drive.friction() * state.rate + b.root_moment(),
+        };
+        RotorSync {
+            state,
+            accel,
+            torque,
+            integral,
+        }
     }
 
     /// Total mechanical energy \[J\] at the synchronised state.
@@ -693,7 +737,12 @@ impl<'s> Simulation<'s> {
             }
             (RobotSide::Beam(b), _) => {
                 let (v, vdot, _) = b.tip_transverse();
-                (0.0, v, vdot)
+                // the shaft turns with a drive's hub
+                let shaft = match self.now.rotor {
+                    Some(hub) => hub.state.angle,
+                    None => 0.0,
+                };
+                (shaft, v, vdot)
             }
             (RobotSide::Rigid { .. }, None) => unreachable!("a rigid robot has a hinge state"),
         };
@@ -798,6 +847,7 @@ impl<'s> Simulation<'s> {
         }
         let mut dt = self.next_step();
         let start = (self.now, self.dome_kinematics(), self.block_kinematics());
+        let deflection_before = self.link_deflection();
         // Near an onset a step may overshoot it (a vibrating link tip defeats the prediction):
         // keep what is needed to take it again, smaller.
         let retry = (self.phase != Phase::Contact && dt > self.contact_step && self.near_contact())
@@ -831,7 +881,12 @@ impl<'s> Simulation<'s> {
                 .map_or(-start.0.rotor.map_or(0.0, |r| r.state.rate), |(r, _)| {
                     -r.rate
                 });
-            self.stats.drive_onset = Some((link, d.commanded(onset).map(|(_, w, _)| -w)));
+            // the deflection at the onset, linear between the step's ends
+            let frac = ((onset - (self.t - dt)) / dt).clamp(0.0, 1.0);
+            let deflection =
+                deflection_before + frac * (self.link_deflection() - deflection_before);
+            self.stats.drive_onset =
+                Some((link, d.commanded(onset).map(|(_, w, _)| -w), deflection));
         }
         if outcome == StepOutcome::Separation {
             self.start_free_flight();
@@ -883,18 +938,33 @@ impl<'s> Simulation<'s> {
     /// The drive's channels at the synchronised state.
     fn drive_frame(&self) -> Option<DriveFrame> {
         let (d, hub) = (self.scene.drive.as_ref()?, self.now.rotor?);
-        let (link, spring) = match self.now.robot {
-            Some((r, _)) => (r, -self.scene.torsion_spring * (hub.state.angle - r.angle)),
-            None => (hub.state, 0.0),
+        let (link, spring) = match (&self.robot, self.now.robot) {
+            (_, Some((r, _))) => (r, -self.scene.torsion_spring * (hub.state.angle - r.angle)),
+            (RobotSide::Beam(b), None) => (hub.state, -b.root_moment()),
+            (RobotSide::Rigid { .. }, None) => (hub.state, 0.0),
         };
+        let deflection = self.link_deflection();
         Some(d.frame(
             self.t,
             hub.state,
             link,
             hub.torque,
-            spring,
+            (spring, deflection),
             (self.stats.drive_work, self.stats.drive_friction),
         ))
+    }
+
+    /// Deflection of the link's tip from the drive's hub line \[m\], positive towards the
+    /// operator (the drive's convention: −y of the hub frame): CJ L sin(φ_m − φ_l), CL the
+    /// beam's tip in the hub's frame; 0 without a drive.
+    fn link_deflection(&self) -> f64 {
+        match (&self.robot, self.now.robot, self.now.rotor) {
+            (RobotSide::Beam(b), _, Some(_)) => -b.tip_deflection_in_hub_frame(),
+            (RobotSide::Rigid { .. }, Some((r, _)), Some(hub)) => {
+                self.geometry.robot.length * (hub.state.angle - r.angle).sin()
+            }
+            _ => 0.0,
+        }
     }
 
     /// Adds the step of `dt` from `start` to the drive's work, friction loss and peak torque
@@ -1150,7 +1220,38 @@ impl<'s> Simulation<'s> {
                 tip_x: b.model().length(),
                 tip: b.tip_node(),
             };
-            if let Err(e) = b.step(dt, &mut tip_contact) {
+            let hub_law = match (&self.scene.drive, &start.rotor) {
+                (Some(d), Some(r)) => d.hub_law(self.t, dt, r),
+                _ => None,
+            };
+            // only a torque limit can make the predicted branch wrong
+            let limited = self
+                .scene
+                .drive
+                .as_ref()
+                .is_some_and(|d| d.is_torque_limited());
+            let saved = hub_law.filter(|_| limited).map(|_| b.clone());
+            let mut stepped = match hub_law {
+                Some((_, law)) => b
+                    .set_hub_law(law)
+                    .and_then(|()| b.step(dt, &mut tip_contact)),
+                None => b.step(dt, &mut tip_contact),
+            };
+            // The torque limit's branch as the step's end says: once more on the other if
+            // the prediction chose wrong (the law is piecewise affine in the hub's motion).
+            if let (Ok(()), Some((free, used)), Some(d), Some(saved)) =
+                (&stepped, hub_law, &self.scene.drive, saved)
+            {
+                let (hub, _) = b.hub_motion();
+                let right = d.limited(free, free.torque(hub.angle, hub.rate));
+                if right != used {
+                    **b = *saved;
+                    stepped = b
+                        .set_hub_law(right)
+                        .and_then(|()| b.step(dt, &mut tip_contact));
+                }
+            }
+            if let Err(e) = stepped {
                 return Err(self.beam_failure(e));
             }
         }
@@ -1435,6 +1536,7 @@ impl<'s> Simulation<'s> {
                 motor_work_j: self.stats.drive_work,
                 friction_dissipated_j: self.stats.drive_friction,
                 peak_joint_torque_nm: self.stats.drive_peak_torque,
+                pre_impact_deflection_m: self.stats.drive_onset.map(|o| o.2),
                 link_speed_at_onset_rad_s: self.stats.drive_onset.map(|o| o.0),
                 commanded_speed_at_onset_rad_s: self.stats.drive_onset.and_then(|o| o.1),
             }),

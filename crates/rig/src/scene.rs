@@ -331,7 +331,8 @@ impl Default for BeamSolverSpec {
 }
 
 impl BeamSolverSpec {
-    /// The concrete solver of `auto` for a run that stops at `stop`.
+    /// The concrete solver of `auto` for a run that stops at `stop` (a compliant link on a
+    /// drive takes the corotational beam whatever the stop: it turns through large angles).
     pub fn resolve(self, stop: StopSpec) -> BeamSolverSpec {
         match (self, stop) {
             (BeamSolverSpec::Auto {}, StopSpec::Duration { .. }) => BeamSolverSpec::Ancf {},

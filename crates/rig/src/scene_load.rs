@@ -116,17 +116,24 @@ impl Scene {
         };
 
         let drive = match &r.drive {
-            Some(_) if r.design == crate::scene::Design::Cl => {
-                return Err(invalid(
-                    "robot.drive",
-                    "a drive",
-                    "the compliant link (robot.design = \"cl\") has no drive in the test bed \
-                     yet; use robot.design = \"cj\" or a driven scene with [drive]",
-                ));
-            }
             Some(spec) => Some(crate::joint_drive::JointDrive::new(spec)?),
             None => None,
         };
+        if drive.is_some() && r.design == crate::scene::Design::Cl {
+            match file.solver.beam {
+                crate::scene::BeamSolverSpec::Auto {}
+                | crate::scene::BeamSolverSpec::Corotational {} => {}
+                other => {
+                    return Err(invalid(
+                        "solver.beam",
+                        format!("{other:?}").to_lowercase().replace(" {}", ""),
+                        "\"auto\" or \"corotational\" for a compliant link on a drive (the \
+                         motor turns the link through large angles, which the linear and modal \
+                         beams cannot follow and the ANCF beam's clamp does not turn)",
+                    ));
+                }
+            }
+        }
 
         let c = &file.contact;
         let k = match c.k {

@@ -13,7 +13,8 @@ pub struct SensorSample {
     pub t: f64,
     /// Operator encoder: pendulum angle from the vertical, positive towards the robot \[rad\].
     pub operator_angle_rad: f64,
-    /// Robot encoder: angle of the robot axis \[rad\] (0 for CL: the link is clamped to the shaft).
+    /// Robot encoder: angle of the robot axis \[rad\] (CL: the shaft the link is clamped to, 0
+    /// without a drive).
     pub robot_angle_rad: f64,
     /// Lateral tip deflection of the link (CJ: L sin θ; CL: beam tip v) \[m\].
     pub link_tip_deflection_m: f64,

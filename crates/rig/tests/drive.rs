@@ -408,7 +408,6 @@ fn bad_drive_input_names_the_scene_field() {
             "speed = -2.6365",
             "robot.drive.placement.settle",
         ),
-        ("design = \"cj\"", "design = \"cl\"", "robot.drive"),
     ];
     for (from, to, field) in cases {
         assert!(bundled.contains(from));

@@ -120,6 +120,27 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
             s.samples.len()
         ),
     )?;
+    if let Some(d) = &s.drive {
+        line(
+            out,
+            format!(
+                "  drive               motor work {:.6e} J (friction {:.6e} J), largest joint torque {:.6e} N·m",
+                d.motor_work_j, d.friction_dissipated_j, d.peak_joint_torque_nm
+            ),
+        )?;
+        if let (Some(speed), Some(bent)) = (d.link_speed_at_onset_rad_s, d.pre_impact_deflection_m)
+        {
+            let commanded = d
+                .commanded_speed_at_onset_rad_s
+                .map_or(String::new(), |c| format!(" (commanded {c:.6} rad/s)"));
+            line(
+                out,
+                format!(
+                    "  at the onset        link {speed:.6} rad/s{commanded}, tip {bent:.6e} m from the hub's line (towards the operator)"
+                ),
+            )?;
+        }
+    }
     print_link(out, link)?;
     if let Some(severity) = &s.severity {
         print_severity(out, severity, "operator block, its accelerometer")?;

@@ -132,6 +132,12 @@ pub fn summary_values(
     let mut values = [None; SUMMARY_COLUMNS.len()];
     values[..run.len()].copy_from_slice(&run);
     values[SEVERITY_START..SEVERITY_START + severity.len()].copy_from_slice(&severity);
+    // a test-bed run with a motor on the robot joint: its pre-impact deflection and the link's
+    // speed at the onset (its peak torque is the run's, not the contact's: left empty)
+    if let Some(d) = &s.drive {
+        values[DRIVEN_START] = d.pre_impact_deflection_m;
+        values[DRIVEN_START + 2] = d.link_speed_at_onset_rad_s;
+    }
     with_link(values, link)
 }
 
