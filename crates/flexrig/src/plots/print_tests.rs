@@ -164,6 +164,12 @@ fn fig9_labels_are_the_inputs_that_ran() {
         );
         assert!(text.contains("(a) m_e = 1000 g") && text.contains("(b) m_e = 1000 g"));
         assert!(text.contains("m_h = 4000 g"), "{text}");
+        // at two columns the ratio panel's three "m_e = 1000 g" would run together: they are
+        // written in kilograms there
+        if w > 400.0 {
+            let kg = text.lines().filter(|l| *l == "m_e = 1 kg").count();
+            assert_eq!(kg, 3, "{text}");
+        }
         for stale in ["412 g", "0.1 kg", "100 g", "398 g"] {
             assert!(!text.contains(stale), "{stale} at {w} pt:\n{text}");
         }
