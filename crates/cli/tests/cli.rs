@@ -706,6 +706,16 @@ fn bench_quick_reports_rows_and_plots() {
         }
         assert!(r["seconds"].as_f64().unwrap() > 0.0);
     }
+    // The scipy peer's interpreter: FLEXRIG_PYTHON, else the project's .venv, else python3.
+    let python = v["peer_python"].as_str().unwrap();
+    let venv = concat!(env!("CARGO_MANIFEST_DIR"), "/../../.venv/bin/python");
+    match std::env::var("FLEXRIG_PYTHON") {
+        Ok(p) if !p.is_empty() => assert_eq!(python, p),
+        _ if std::path::Path::new(venv).exists() => {
+            assert!(python.ends_with("/.venv/bin/python"), "{python}")
+        }
+        _ => assert_eq!(python, "python3"),
+    }
     // Tighter tolerances give smaller errors (work–precision): the lumped ode rows of one method
     // are ordered by rtol, and the error falls by at least 100× from the loosest to the tightest.
     let errors: Vec<f64> = rows
