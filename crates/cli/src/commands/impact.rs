@@ -63,7 +63,7 @@ pub struct ImpactArgs {
     /// Link lateral stiffness k_δ [N/m].
     #[arg(long = "k-delta", value_name = "N_PER_M")]
     pub k_delta: f64,
-    /// Contact stiffness k_c [N/m^n].
+    /// Contact stiffness k_c [N/mⁿ].
     #[arg(long = "k-c", value_name = "K")]
     pub k_c: f64,
     /// Hertz exponent n.
