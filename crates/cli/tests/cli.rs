@@ -577,6 +577,13 @@ fn every_command_has_help() {
         assert!(out.status.success(), "{cmd:?}");
         assert!(!out.stdout.is_empty());
     }
+    // the top-level help says what no command does, in the product's words
+    let help = String::from_utf8(flexrig(&["--help"]).stdout).unwrap();
+    assert!(
+        help.contains("Without a command, flexrig replays the paper's §VI experiment"),
+        "{help}"
+    );
+    assert!(!help.contains("clap"), "{help}");
 }
 
 fn scene_path(name: &str) -> String {

@@ -84,10 +84,10 @@ pub struct SafetyMapArgs {
     #[arg(long, value_name = "KG_M2")]
     pub rotor_inertia: Option<f64>,
     /// Tolerance of the CL's modal integrator (simulation; 1e-10 to 1e-3).
-    #[arg(long, value_name = "TOL", default_value_t = 1e-6)]
+    #[arg(long, value_name = "TOL", default_value = "1e-6")]
     pub tol: f64,
     /// Relative tolerance of the root search on the speed (simulation; 1e-13 to 1e-4).
-    #[arg(long = "root-rtol", value_name = "RTOL", default_value_t = 1e-6)]
+    #[arg(long = "root-rtol", value_name = "RTOL", default_value = "1e-6")]
     pub root_rtol: f64,
     /// A speed [m/s] to outline on the figure: the cells that permit it.
     #[arg(long, value_name = "M_PER_S")]
