@@ -34,7 +34,7 @@ pub enum MapMethodArg {
 #[derive(Debug, Args)]
 #[command(allow_negative_numbers = true)]
 pub struct SafetyMapArgs {
-    /// The x axis: PARAM=START:STOP:COUNT[:log] (both ends included) or PARAM=V1,V2,…, with
+    /// The x axis: PARAM=FROM:TO:N[:log] (both ends included) or PARAM=V1,V2,…, with
     /// PARAM one of m-e (payload [kg]), m-r (link mass [kg]), k-delta (link stiffness [N/m]), ei
     /// (bending stiffness [N·m²], with --length), k-c (contact stiffness [N/mⁿ]); or the body
     /// region: region=all or region=chest,abdomen,… (each cell with its region's limits).
