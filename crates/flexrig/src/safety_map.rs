@@ -1469,12 +1469,18 @@ mod tests {
     /// two columns.
     #[test]
     fn the_figure_says_the_inputs_that_ran() {
-        use crate::plots::inspect::{min_text_pt, texts};
+        use crate::plots::inspect::{min_text_pt, texts, texts_outside};
         let model = BodyModel::iso_ts_15066_2016().unwrap();
         let map = safety_map(&input(MapMethod::Energy), Some(&model), &CancelToken::new()).unwrap();
         for width in [252.0, 504.0] {
             let figure = svg(&map, width).unwrap();
-            let text = texts(&figure).join("\n");
+            // the title's lines broken to the width, read as one text
+            let text = texts(&figure).join(" ");
+            assert!(
+                texts_outside(&figure).is_empty(),
+                "{:?}",
+                texts_outside(&figure)
+            );
             for label in [
                 "hands and fingers",
                 "F_max = 280 N",

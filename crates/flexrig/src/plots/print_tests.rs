@@ -7,7 +7,7 @@ use flexrig_impact::map::{LogRange, MapPoint, MapSpec};
 use flexrig_impact::rotor::RotorPoint;
 use flexrig_lumped::fig6::{Fig6Case, cases, fig6};
 
-use super::inspect::{min_text_pt, printed_width, texts};
+use super::inspect::{min_text_pt, printed_width, texts, texts_outside};
 use super::*;
 use crate::eta_map::ComputedMap;
 use crate::experiment::{GroupStats, RatioStats, RunInputs};
@@ -27,6 +27,11 @@ fn check(name: &str, svg: &str, width_pt: f64) -> String {
     assert!(
         min >= MIN_TEXT_PT - 1e-3,
         "{name} at {width_pt} pt: text of {min:.2} pt"
+    );
+    let outside = texts_outside(svg);
+    assert!(
+        outside.is_empty(),
+        "{name} at {width_pt} pt: text beyond the edge {outside:?}"
     );
     let text = texts(svg).join("\n");
     for code in ["1e8", "1e-", "e-5", "v0 ", "f_CL/f_CJ", "issue", "NaN"] {
@@ -299,7 +304,12 @@ fn eta_map_shows_gamma_eff_only_with_values() {
         .unwrap();
         let text = check("eta_map", &none, w);
         assert!(!text.contains("effective γ ("), "{text}");
-        assert!(text.contains("no γ in (0, 1] fits at any point (16 need γ > 1"));
+        // (broken into lines at one column)
+        assert!(
+            text.replace('\n', " ")
+                .contains("no γ in (0, 1] fits at any point (16 need γ > 1"),
+            "{text}"
+        );
         let some = crate::eta_map::svg(
             &map(4, true),
             "held joint",
@@ -342,7 +352,12 @@ fn eta_rotor_at_print_size() {
     for w in WIDTHS {
         let text = check(
             "eta_rotor",
-            &eta_rotor_svg(&points, "elastic contact; m_r = 10 kg", w).unwrap(),
+            &eta_rotor_svg(
+                &points,
+                "elastic Hertz contact; m_r = 10 kg, k_c = 10⁸ N/mⁿ, v_0 = 2 m/s",
+                w,
+            )
+            .unwrap(),
             w,
         );
         for n in [2, 1] {

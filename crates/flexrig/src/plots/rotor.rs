@@ -103,7 +103,9 @@ pub fn eta_rotor_svg(
     let cols = ((width_pt / MIN_PANEL_W).floor() as usize).clamp(1, panels.len());
     let rows = panels.len().div_ceil(cols);
     let legend = Legend::new(&payloads, points, width_pt);
-    let header = 2 * LINE + LINE * legend.rows + 6;
+    let subtitle = super::wrap(subtitle, width_pt - 8.0, LABEL_PT);
+    let title_lines = 1 + subtitle.len() as i32;
+    let header = title_lines * LINE + LINE * legend.rows + 6;
     let size = (
         width_pt.round() as u32,
         header as u32 + PANEL_H * rows as u32,
@@ -118,10 +120,9 @@ pub fn eta_rotor_svg(
         .into_iter()
         .find(|t| text_width_pt(t, TITLE_PT) < width_pt - 8.0)
         .unwrap_or("η_FE over the rotor inertia");
-        for (i, (line, size, colour)) in [(title, TITLE_PT, BLACK), (subtitle, LABEL_PT, GREY)]
-            .into_iter()
-            .enumerate()
-        {
+        let lines = std::iter::once((title, TITLE_PT, BLACK))
+            .chain(subtitle.iter().map(|l| (l.as_str(), LABEL_PT, GREY)));
+        for (i, (line, size, colour)) in lines.enumerate() {
             head.draw(&Text::new(
                 line.to_string(),
                 (w / 2, px(2 + LINE * i as i32)),
@@ -129,7 +130,7 @@ pub fn eta_rotor_svg(
             ))
             .map_err(err)?;
         }
-        legend.draw(&head, 2 * LINE + 4)?;
+        legend.draw(&head, title_lines * LINE + 4)?;
         let areas = body.split_evenly((rows, cols));
         for (i, (area, panel)) in areas.iter().zip(&panels).enumerate() {
             let letter = (b'a' + i as u8) as char;
