@@ -230,7 +230,8 @@ fn plot_panels(rows: &[&Row]) -> Vec<Panel> {
             && !panel.series.iter().any(|s| s.label.starts_with("scipy"))
         {
             panel.note = Some(
-                "scipy peer not run (no numpy and scipy in the project's .venv or FLEXRIG_PYTHON)"
+                "scipy peer not run (no numpy and scipy in FLEXRIG_PYTHON, the project's .venv \
+                 or python3)"
                     .into(),
             );
         }
