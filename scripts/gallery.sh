@@ -28,6 +28,7 @@ RUNS=(
   "prb|prb|The PRB model's circle against the FE tip path, on equal axes."
   "spin_up|spin-up|The spin-up beam (Kane, Ryan & Banerjee 1987): the FE tip deflection in the hub frame against the elastica reference."
   "role_switch|role-switch|The role switch: the driven robot's peak over the test bed's against the drive's compliance, CJ and CL, for the test bed's link and the Fig. 6 cases."
+  "safety_map|safety-map --region hands_and_fingers --material skinned_aluminium --m-r 0.051|The permissible speed near the back of the hand (ISO/TS 15066) of the CJ and the CL over payload × link stiffness, by the lumped energy method, and their ratio."
   "bench|bench --quick|Work–precision: run time against error of the lumped impact, the beam and the rig."
 )
 

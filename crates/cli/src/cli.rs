@@ -12,7 +12,17 @@ use flexrig::{CancelToken, Error};
 ///
 /// Without a command, runs the main job on the bundled defaults and says where its output is.
 #[derive(Debug, Parser)]
-#[command(name = "flexrig", version, about, long_about = None)]
+#[command(
+    name = "flexrig",
+    version,
+    about = "flexrig: impact simulation of flexible robot links for safe human–robot interaction \
+             — the compliant joint (CJ) against the compliant link (CL)",
+    long_about = None,
+    after_help = "Without a command, flexrig replays the paper's §VI experiment (Fig. 9) as \
+                  `flexrig experiment --out out` does: 5 repeats of each scene with release-angle \
+                  jitter, a table, out/experiment.csv, out/fig9.svg and an MCAP log per run. \
+                  `flexrig <COMMAND> --help` describes each command."
+)]
 pub struct Cli {
     /// The command to run; none runs the default job.
     #[command(subcommand)]

@@ -577,6 +577,13 @@ fn every_command_has_help() {
         assert!(out.status.success(), "{cmd:?}");
         assert!(!out.stdout.is_empty());
     }
+    // the top-level help says what no command does, in the product's words
+    let help = String::from_utf8(flexrig(&["--help"]).stdout).unwrap();
+    assert!(
+        help.contains("Without a command, flexrig replays the paper's §VI experiment"),
+        "{help}"
+    );
+    assert!(!help.contains("clap"), "{help}");
 }
 
 fn scene_path(name: &str) -> String {
@@ -705,6 +712,16 @@ fn bench_quick_reports_rows_and_plots() {
             assert!(r.get(key).is_some(), "{key} in {r}");
         }
         assert!(r["seconds"].as_f64().unwrap() > 0.0);
+    }
+    // The scipy peer's interpreter: FLEXRIG_PYTHON, else the project's .venv, else python3.
+    let python = v["peer_python"].as_str().unwrap();
+    let venv = concat!(env!("CARGO_MANIFEST_DIR"), "/../../.venv/bin/python");
+    match std::env::var("FLEXRIG_PYTHON") {
+        Ok(p) if !p.is_empty() => assert_eq!(python, p),
+        _ if std::path::Path::new(venv).exists() => {
+            assert!(python.ends_with("/.venv/bin/python"), "{python}")
+        }
+        _ => assert_eq!(python, "python3"),
     }
     // Tighter tolerances give smaller errors (work–precision): the lumped ode rows of one method
     // are ordered by rtol, and the error falls by at least 100× from the loosest to the tightest.

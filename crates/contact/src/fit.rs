@@ -166,7 +166,7 @@ pub fn fit_hertz(points: &[CompressionPoint]) -> Result<HertzFit, ContactError> 
         return Err(ContactError::FitDidNotConverge {
             iterations: fit.iterations,
             reason: format!(
-                "the fitted k = {} N/m^n (n = {}) is not representable in double precision: \
+                "the fitted k = {} N/mⁿ (n = {}) is not representable in double precision: \
                  give the data in other units (e.g. mm and kN)",
                 crate::validate::display(fit.k),
                 fit.n

@@ -62,8 +62,37 @@ pub struct BenchReport {
     /// The plots (bench_lumped.svg, bench_beam.svg, bench_rig.svg).
     pub plots: Vec<PathBuf>,
     /// scipy's DOP853 run time over flexrig's at a peak error ≤ 1e-9; none when the peer could
-    /// not run (it needs python3 with numpy and scipy).
+    /// not run (its interpreter, [`BenchReport::peer_python`], lacks numpy or scipy).
     pub scipy_dop853_over_flexrig_at_1e_9: Option<f64>,
+    /// The Python interpreter the scipy peer was run with ([`peer_python`]).
+    pub peer_python: String,
+}
+
+/// The Python interpreter for the scipy peer: `FLEXRIG_PYTHON`, else the project's virtual
+/// environment (`.venv/bin/python`, made with numpy and scipy by `scripts/python-env.sh`), else
+/// `python3` on the PATH — the order the tests' independent checks use.
+pub fn peer_python() -> String {
+    if let Some(p) = std::env::var_os("FLEXRIG_PYTHON").filter(|p| !p.is_empty()) {
+        return p.to_string_lossy().into_owned();
+    }
+    // the project's root written out (the interpreter itself is a link that must stay one: a
+    // virtual environment is known by the path it is called by)
+    let root = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+    let root = root.canonicalize().unwrap_or_else(|_| root.to_path_buf());
+    let venv = root.join(".venv/bin/python");
+    if venv.exists() {
+        return venv.display().to_string();
+    }
+    "python3".into()
+}
+
+/// Why the scipy peer did not run, for the table and the plot's note: the interpreter it asked
+/// and how to give it one with numpy and scipy.
+pub fn peer_missing_note(python: &str) -> String {
+    format!(
+        "scipy peer not run: {python} has no numpy and scipy (bash scripts/python-env.sh makes \
+         the project's .venv with them; FLEXRIG_PYTHON names another interpreter)"
+    )
 }
 
 /// Runs every study (fewer settings and repetitions if `quick`: well under a minute) and draws
@@ -76,7 +105,8 @@ pub fn run(
     figures.validate()?;
     let mut rows = Vec::new();
     lumped(&mut rows, quick)?;
-    let peer_ratio = peer(&mut rows, quick)?;
+    let python = peer_python();
+    let peer_ratio = peer(&mut rows, quick, &python)?;
     beam(&mut rows, quick)?;
     rig(&mut rows, quick)?;
     driven(&mut rows, quick)?;
@@ -101,6 +131,7 @@ pub fn run(
         rows,
         plots: files,
         scipy_dop853_over_flexrig_at_1e_9: peer_ratio,
+        peer_python: python,
     })
 }
 
@@ -198,7 +229,11 @@ fn plot_panels(rows: &[&Row]) -> Vec<Panel> {
         if panel.title.ends_with("to the peak")
             && !panel.series.iter().any(|s| s.label.starts_with("scipy"))
         {
-            panel.note = Some("scipy peer not run (needs python3 with numpy and scipy)".into());
+            panel.note = Some(
+                "scipy peer not run (no numpy and scipy in FLEXRIG_PYTHON, the project's .venv \
+                 or python3)"
+                    .into(),
+            );
         }
         panel.title = format!("({}) {}", (b'a' + i as u8) as char, panel.title);
     }
@@ -246,9 +281,10 @@ fn lumped(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
 
 /// The paper's Fig. 6 CJ case (m_h = 4 kg, m_eff = 3.433 kg, k_δ = k_c = 1e8, n = 2, v0 = 2 m/s)
 /// integrated to the peak by flexrig and, when Python with scipy is present, by
-/// `scripts/peer_scipy.py` (solve_ivp DOP853, Radau, LSODA) over the same tolerances. Returns the
-/// ratio of the fastest DOP853 time to the fastest flexrig time with a peak error ≤ 1e-9.
-fn peer(rows: &mut Vec<Row>, quick: bool) -> Result<Option<f64>, Error> {
+/// `scripts/peer_scipy.py` (solve_ivp DOP853, Radau, LSODA) over the same tolerances, run by the
+/// interpreter `python`. Returns the ratio of the fastest DOP853 time to the fastest flexrig time
+/// with a peak error ≤ 1e-9.
+fn peer(rows: &mut Vec<Row>, quick: bool, python: &str) -> Result<Option<f64>, Error> {
     let spring = SeriesCompliance::new(1e8, Hertz::new(1e8, 2.0)?)?;
     let model = ImpactModel::new(4.0, 10.0 / 3.0 + 0.1, spring, 2.0)?;
     let exact = peak_exact(&model).f_max;
@@ -267,7 +303,7 @@ fn peer(rows: &mut Vec<Row>, quick: bool) -> Result<Option<f64>, Error> {
         });
     }
     let script = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scripts/peer_scipy.py");
-    let mut command = std::process::Command::new("python3");
+    let mut command = std::process::Command::new(python);
     command.arg(script);
     for v in [4.0, 10.0 / 3.0 + 0.1, 1e8, 1e8, 2.0, 2.0] {
         command.arg(format!("{v:e}"));

@@ -610,12 +610,14 @@ pub fn payload_report(r: &crate::payload::PayloadResult) -> Value {
 }
 
 /// `flexrig bench --json`: the rows (model, method, setting, error, run time, evaluations), the
-/// plots and the scipy peer's run-time ratio (absent when the peer could not run).
+/// plots, the scipy peer's run-time ratio (absent when the peer could not run) and the Python
+/// interpreter the peer was run with.
 pub fn bench_report(r: &crate::bench::BenchReport) -> Value {
     without_nulls(json!({
         "rows": r.rows,
         "plots": r.plots,
         "scipy_dop853_over_flexrig_at_1e_9": r.scipy_dop853_over_flexrig_at_1e_9,
+        "peer_python": r.peer_python,
     }))
 }
 

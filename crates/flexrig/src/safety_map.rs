@@ -220,7 +220,7 @@ impl MapAxis {
     }
 }
 
-/// Parses `PARAM=START:STOP:COUNT[:log]` (both ends included, the sweep's range syntax) or
+/// Parses `PARAM=FROM:TO:N[:log]` (both ends included, the sweep's range syntax) or
 /// `PARAM=V1,V2,…` for the flag `flag`.
 pub fn parse_axis(flag: &str, text: &str) -> Result<MapAxis, Error> {
     let names = MapParameter::ALL
@@ -229,7 +229,7 @@ pub fn parse_axis(flag: &str, text: &str) -> Result<MapAxis, Error> {
         .collect::<Vec<_>>()
         .join(", ");
     let syntax = format!(
-        "PARAM=START:STOP:COUNT[:log] (both ends included, e.g. k-delta=10:1e7:30:log) or \
+        "PARAM=FROM:TO:N[:log] (both ends included, e.g. k-delta=10:1e7:30:log) or \
          PARAM=V1,V2,… with PARAM one of {names}"
     );
     let (name, spec) = text
@@ -266,7 +266,7 @@ pub fn parse_axis(flag: &str, text: &str) -> Result<MapAxis, Error> {
             bad(
                 flag,
                 text,
-                "START:STOP:COUNT needs a whole number of points, e.g. 10:1e7:30:log",
+                "FROM:TO:N needs a whole number of points, e.g. 10:1e7:30:log",
             )
         })?;
         if !(2..=MAX_AXIS_POINTS).contains(&count) {
@@ -1462,6 +1462,43 @@ mod tests {
         i.x = parse_axis("--x", "m-e=0.05:2:20:log").unwrap();
         let e = safety_map(&i, None, &cancel).unwrap_err();
         assert_eq!(e.kind(), crate::ErrorKind::Interrupted, "{e}");
+    }
+
+    /// The map's figure read back: its region, limits, link mass and method are the inputs that
+    /// ran, every symbol set with a real subscript (no literal `v_max`), text ≥ 8 pt at one and
+    /// two columns.
+    #[test]
+    fn the_figure_says_the_inputs_that_ran() {
+        use crate::plots::inspect::{min_text_pt, texts, texts_outside};
+        let model = BodyModel::iso_ts_15066_2016().unwrap();
+        let map = safety_map(&input(MapMethod::Energy), Some(&model), &CancelToken::new()).unwrap();
+        for width in [252.0, 504.0] {
+            let figure = svg(&map, width).unwrap();
+            // the title's lines broken to the width, read as one text
+            let text = texts(&figure).join(" ");
+            assert!(
+                texts_outside(&figure).is_empty(),
+                "{:?}",
+                texts_outside(&figure)
+            );
+            for label in [
+                "hands and fingers",
+                "F_max = 280 N",
+                "p_max = 380 N/cm²",
+                "m_r = 0.051 kg",
+                "lumped energy method (CJ: m_eff = m_e + m_r/3",
+                "v_max [m/s]",
+                "payload m_e [kg]",
+                "link stiffness k_δ [N/m]",
+            ] {
+                assert!(text.contains(label), "{label} at {width} pt:\n{text}");
+            }
+            // each symbol a subscript, not a literal underscore
+            for literal in ["v_max", "F_max", "p_max", "m_eff"] {
+                assert!(!figure.contains(literal), "literal {literal} at {width} pt");
+            }
+            assert!(min_text_pt(&figure).unwrap() >= crate::plots::MIN_TEXT_PT - 1e-3);
+        }
     }
 
     #[test]

@@ -32,7 +32,7 @@ pub fn safety_json(
 
 /// The safe-speed map of [`flexrig::safety_map::safety_map`] as JSON (what `flexrig safety-map`
 /// writes to safety_map.json) for a [`flexrig::safety_map::SafetyMapInput`] given as JSON; an
-/// axis may also be `{"text": "PARAM=START:STOP:COUNT[:log]"}`, parsed as the command line
+/// axis may also be `{"text": "PARAM=FROM:TO:N[:log]"}`, parsed as the command line
 /// parses `--x`/`--y`. Ctrl-C stops it (KeyboardInterrupt).
 #[pyfunction]
 #[pyo3(signature = (input_json, body_model_toml=None))]

@@ -106,7 +106,7 @@ fn exponent_without_its_stiffness(scene: &Scene, materials: &Materials, out: &mu
         out.push(warning(
             "contact.n",
             format!(
-                "{} with the stiffness k = {} N/m^n fitted for n = {} ({}): the force at 1 mm \
+                "{} with the stiffness k = {} N/mⁿ fitted for n = {} ({}): the force at 1 mm \
                  indentation changes ×{}; give contact.k fitted for this exponent",
                 display(n),
                 display(fitted.k()),
@@ -137,7 +137,7 @@ fn indentation_deeper_than_the_bodies(scene: &Scene, out: &mut Vec<Warning>) {
             format!(
                 "the contact law gives an indentation of about {} mm at this impact, more \
                  than half {what} ({} mm): the Hertz law is far outside its fit; check \
-                 contact.k and contact.n (k is in N/m^n)",
+                 contact.k and contact.n (k is in N/mⁿ)",
                 mm(delta),
                 mm(size)
             ),

@@ -235,8 +235,11 @@ fn statics(args: &StaticArgs, out: &mut dyn Write) -> Result<(), Error> {
     line(
         out,
         format!(
-            "{} static solve ({} elements, {} Newton iterations):",
-            args.model, beam.elements, sol.iterations
+            "{} static solve ({} elements, {} Newton iteration{}):",
+            args.model,
+            beam.elements,
+            sol.iterations,
+            if sol.iterations == 1 { "" } else { "s" }
         ),
     )?;
     line(out, format!("  tip u (axial)      = {u:.9e} m"))?;

@@ -56,12 +56,12 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), Error> {
     match peer_ratio {
         Some(r) => line(
             out,
-            format!("scipy DOP853 / flexrig run time at a peak error <= 1e-9: {r:.0}x"),
+            format!(
+                "scipy DOP853 / flexrig run time at a peak error <= 1e-9: {r:.0}x (scipy run by {})",
+                report.peer_python
+            ),
         )?,
-        None => line(
-            out,
-            "scipy peer not run (needs python3 with numpy and scipy)",
-        )?,
+        None => line(out, flexrig::bench::peer_missing_note(&report.peer_python))?,
     }
     line(
         out,

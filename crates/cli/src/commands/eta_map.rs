@@ -47,7 +47,7 @@ pub struct EtaMapArgs {
     pub rotor_inertia: Option<f64>,
     /// Tolerance of the force's linear hold per step (1e-10 to 0.1); 1e-5 keeps each peak
     /// within 5e-5 of the converged one (tested).
-    #[arg(long, value_name = "TOL", default_value_t = 1e-5)]
+    #[arg(long, value_name = "TOL", default_value = "1e-5")]
     pub tol: f64,
     /// The contact's damping.
     #[command(flatten)]

@@ -34,7 +34,7 @@ pub struct EtaRotorArgs {
     )]
     pub n: Vec<f64>,
     /// Tolerance of the force's linear hold per step (1e-10 to 0.1).
-    #[arg(long, value_name = "TOL", default_value_t = 1e-6)]
+    #[arg(long, value_name = "TOL", default_value = "1e-6")]
     pub tol: f64,
     /// The contact's damping.
     #[command(flatten)]

@@ -35,7 +35,7 @@ pub fn run(args: &FitArgs, out: &mut dyn Write) -> Result<(), Error> {
     )?;
     line(
         out,
-        format!("  k  = {:.6e} ± {:.2e} N/m^n", fit.k, fit.k_stderr),
+        format!("  k  = {:.6e} ± {:.2e} N/mⁿ", fit.k, fit.k_stderr),
     )?;
     line(out, format!("  n  = {:.6} ± {:.2e}", fit.n, fit.n_stderr))?;
     line(out, format!("  R² = {:.8}", fit.r2))?;

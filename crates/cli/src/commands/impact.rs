@@ -5,9 +5,12 @@ use std::io::Write;
 
 use clap::{Args, ValueEnum};
 use flexrig::Error;
-use flexrig::impact::{DEFAULT_RTOL, Formulation, ImpactInput, Method};
+use flexrig::impact::{Formulation, ImpactInput, Method};
 
 use crate::print::{line, print_json, print_severity};
+
+/// The default of `--rtol` as its help shows it: [`flexrig::impact::DEFAULT_RTOL`] (checked by a test).
+const RTOL_TEXT: &str = "1e-10";
 
 /// How the peak is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -63,7 +66,7 @@ pub struct ImpactArgs {
     /// Link lateral stiffness k_δ [N/m].
     #[arg(long = "k-delta", value_name = "N_PER_M")]
     pub k_delta: f64,
-    /// Contact stiffness k_c [N/m^n].
+    /// Contact stiffness k_c [N/mⁿ].
     #[arg(long = "k-c", value_name = "K")]
     pub k_c: f64,
     /// Hertz exponent n.
@@ -79,7 +82,7 @@ pub struct ImpactArgs {
     #[arg(long, value_enum, default_value_t = FormulationArg::Auto)]
     pub formulation: FormulationArg,
     /// Relative tolerance of the ode method.
-    #[arg(long, value_name = "R", default_value_t = DEFAULT_RTOL)]
+    #[arg(long, value_name = "R", default_value = RTOL_TEXT)]
     pub rtol: f64,
     /// Dome radius for the contact pressure of the ode method's severity [m] (default: the
     /// paper's dome, 71.5 mm).
@@ -165,4 +168,17 @@ fn print_text(out: &mut dyn Write, report: &serde_json::Value) -> Result<(), Err
         line(out, format!("{label:<30} {text} {unit}"))?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_rtol_shown_is_the_default() {
+        assert_eq!(
+            RTOL_TEXT.parse::<f64>().unwrap(),
+            flexrig::impact::DEFAULT_RTOL
+        );
+    }
 }

@@ -76,10 +76,10 @@ pub struct SafetyArgs {
     #[arg(long, value_name = "M", default_value_t = 1.0)]
     pub length: f64,
     /// Tolerance of the simulated CL's modal integrator (1e-10 to 1e-3).
-    #[arg(long, value_name = "TOL", default_value_t = 1e-6)]
+    #[arg(long, value_name = "TOL", default_value = "1e-6")]
     pub tol: f64,
     /// Relative tolerance of the simulation's root search on the speed (1e-13 to 1e-4).
-    #[arg(long = "root-rtol", value_name = "RTOL", default_value_t = 1e-6)]
+    #[arg(long = "root-rtol", value_name = "RTOL", default_value = "1e-6")]
     pub root_rtol: f64,
     /// Link lateral stiffness k_δ [N/m] (default: a rigid link).
     #[arg(long = "k-delta", value_name = "N_PER_M")]

@@ -32,7 +32,7 @@ pub enum AreaModelArg {
 /// material, or the body region's spring) and the contact-area model for pressure.
 #[derive(Debug, Args)]
 pub struct ContactLawArgs {
-    /// Contact stiffness k_c [N/m^n] (with --n; default: the region's body spring, n = 1).
+    /// Contact stiffness k_c [N/mⁿ] (with --n; default: the region's body spring, n = 1).
     #[arg(
         long = "k-c",
         value_name = "K",

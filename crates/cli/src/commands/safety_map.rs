@@ -34,7 +34,7 @@ pub enum MapMethodArg {
 #[derive(Debug, Args)]
 #[command(allow_negative_numbers = true)]
 pub struct SafetyMapArgs {
-    /// The x axis: PARAM=START:STOP:COUNT[:log] (both ends included) or PARAM=V1,V2,…, with
+    /// The x axis: PARAM=FROM:TO:N[:log] (both ends included) or PARAM=V1,V2,…, with
     /// PARAM one of m-e (payload [kg]), m-r (link mass [kg]), k-delta (link stiffness [N/m]), ei
     /// (bending stiffness [N·m²], with --length), k-c (contact stiffness [N/mⁿ]); or the body
     /// region: region=all or region=chest,abdomen,… (each cell with its region's limits).
@@ -84,10 +84,10 @@ pub struct SafetyMapArgs {
     #[arg(long, value_name = "KG_M2")]
     pub rotor_inertia: Option<f64>,
     /// Tolerance of the CL's modal integrator (simulation; 1e-10 to 1e-3).
-    #[arg(long, value_name = "TOL", default_value_t = 1e-6)]
+    #[arg(long, value_name = "TOL", default_value = "1e-6")]
     pub tol: f64,
     /// Relative tolerance of the root search on the speed (simulation; 1e-13 to 1e-4).
-    #[arg(long = "root-rtol", value_name = "RTOL", default_value_t = 1e-6)]
+    #[arg(long = "root-rtol", value_name = "RTOL", default_value = "1e-6")]
     pub root_rtol: f64,
     /// A speed [m/s] to outline on the figure: the cells that permit it.
     #[arg(long, value_name = "M_PER_S")]

@@ -141,7 +141,7 @@ pub struct StrikeArgs {
     /// How the head is held.
     #[arg(long, value_enum, default_value_t = SupportArg::Free, conflicts_with = "file")]
     pub support: SupportArg,
-    /// Contact stiffness k_c [N/m^n].
+    /// Contact stiffness k_c [N/mⁿ].
     #[arg(long, value_name = "K", default_value_t = D.k_c, conflicts_with = "file")]
     pub k_c: f64,
     /// Hertz exponent n.

@@ -7,7 +7,9 @@
 //!
 //! [`fig6_with_points_svg`] adds finite-element results as diamonds in the colour of their curve:
 //! filled where η_FE lies on the curve, hollow at the edge of the γ range where it does not; the
-//! table then moves to a corner the markers leave free.
+//! table then moves to a corner the markers leave free. Markers whose points lie within a
+//! marker's width of each other (several η_FE ≈ 1 at γ ≈ 1) are set in a column below their
+//! points with their values, the points marked by dots and joined to the column by a leader.
 
 use flexrig_lumped::fig6::{EtaCurve, Fig6Case, Fig6Design, GAMMA_RANGE};
 use plotters::coord::Shift;
@@ -540,13 +542,9 @@ fn draw_panel(
             ((x, y), (x, y))
         }));
     }
-    let markers = place_markers(points, to_pixel);
-    let r = DIAMOND;
-    obstacles.extend(
-        markers
-            .iter()
-            .map(|(_, (x, y))| ((x - r, y - r), (x + r, y + r))),
-    );
+    let (plot_w, _) = chart.plotting_area().dim_in_pixel();
+    let markers = place_markers(points, to_pixel, plot_w as i32);
+    obstacles.extend(markers.iter().flat_map(placed_boxes));
     // Each payload is labelled under its pair's start; if that leaves the table no free
     // corner, the lowest pair's label goes above its start instead.
     let mut placed: Vec<PixelRect> = labels.iter().map(|l| l.below).collect();
@@ -576,39 +574,159 @@ struct PairLabel {
     above: PixelRect,
 }
 
-/// The markers of `points` with their pixel centres: on-curve markers where they belong,
-/// off-curve ones at the edge, each moved inwards by a marker's width while it would cover a
-/// marker placed before it (their γ means only "off the curve").
+/// A finite-element marker where it is drawn.
+struct Placed {
+    marker: Marker,
+    /// Centre of the marker [drawing units, from the plotting area's corner].
+    at: (i32, i32),
+    /// Set when the marker was moved out of a cluster of on-curve markers that would cover
+    /// each other: its own point on the curve (drawn as a dot) and the top of the leader line
+    /// that joins the cluster's column to it.
+    callout: Option<Callout>,
+}
+
+/// Where a moved marker belongs, and the leader line of its cluster.
+#[derive(Clone, Copy)]
+struct Callout {
+    /// The marker's own point on its curve.
+    point: (i32, i32),
+    /// The leader line from the cluster's points down to its column (drawn once, by the
+    /// column's first marker).
+    leader: Option<((i32, i32), (i32, i32))>,
+}
+
+/// The markers of `points` with their pixel centres. On-curve markers sit where they belong,
+/// except where two or more would cover each other (their points lie within a marker's width,
+/// e.g. several η_FE ≈ 1 at γ ≈ 1): those are set in a column below their points, highest η
+/// first, each with its value beside it, their points marked by dots and joined to the column
+/// by a leader line. Off-curve markers sit at the edge, each moved inwards by a marker's width
+/// while it would cover a marker placed before it (their γ means only "off the curve").
+/// `width` is the plotting area's width in drawing units.
 fn place_markers(
     points: &[&Fig6Point],
     to_pixel: impl Fn((f64, f64)) -> (i32, i32),
-) -> Vec<(Marker, (i32, i32))> {
-    let mut placed: Vec<(Marker, (i32, i32))> = Vec::new();
+    width: i32,
+) -> Vec<Placed> {
     let step = 2 * DIAMOND + px(1);
-    for on_curve in [true, false] {
-        for p in points {
-            let m = Marker::of(p);
-            if m.on_curve != on_curve {
-                continue;
-            }
-            let (mut x, y) = to_pixel((m.gamma, m.eta));
-            let inwards = if m.gamma < GAMMA_RANGE.0 + 0.5 * GAMMA_PAD {
-                1
-            } else {
-                -1
-            };
-            let covers = |x: i32, placed: &[(Marker, (i32, i32))]| {
-                placed
-                    .iter()
-                    .any(|(_, (px_, py))| (x - px_).abs() < step && (y - py).abs() < step)
-            };
-            while !on_curve && covers(x, &placed) {
-                x += inwards * step;
-            }
-            placed.push((m, (x, y)));
+    let near = |a: (i32, i32), b: (i32, i32)| (a.0 - b.0).abs() < step && (a.1 - b.1).abs() < step;
+    let on: Vec<(Marker, (i32, i32))> = points
+        .iter()
+        .map(|p| Marker::of(p))
+        .filter(|m| m.on_curve)
+        .map(|m| {
+            let at = to_pixel((m.gamma, m.eta));
+            (m, at)
+        })
+        .collect();
+    let mut placed: Vec<Placed> = Vec::new();
+    for cluster in clusters(&on.iter().map(|(_, at)| *at).collect::<Vec<_>>(), near) {
+        if let [single] = cluster.as_slice() {
+            let (m, at) = &on[*single];
+            placed.push(Placed {
+                marker: *m,
+                at: *at,
+                callout: None,
+            });
+            continue;
+        }
+        let mut members = cluster.clone();
+        members.sort_by(|a, b| on[*b].0.eta.total_cmp(&on[*a].0.eta));
+        let n = members.len() as i32;
+        let cx = members.iter().map(|i| on[*i].1.0).sum::<i32>() / n;
+        let cy = members.iter().map(|i| on[*i].1.1).sum::<i32>() / n;
+        let bottom = members.iter().map(|i| on[*i].1.1).max().unwrap_or(cy);
+        let x = cx.clamp(DIAMOND + px(1), width - DIAMOND - px(1));
+        let first = bottom + step + px(4);
+        for (k, i) in members.iter().enumerate() {
+            let (m, point) = &on[*i];
+            let y = first + k as i32 * step;
+            placed.push(Placed {
+                marker: *m,
+                at: (x, y),
+                callout: Some(Callout {
+                    point: *point,
+                    leader: (k == 0).then_some(((cx, cy), (x, y - DIAMOND))),
+                }),
+            });
         }
     }
+    for p in points {
+        let m = Marker::of(p);
+        if m.on_curve {
+            continue;
+        }
+        let (mut x, y) = to_pixel((m.gamma, m.eta));
+        let inwards = if m.gamma < GAMMA_RANGE.0 + 0.5 * GAMMA_PAD {
+            1
+        } else {
+            -1
+        };
+        while placed.iter().any(|q| near((x, y), q.at)) {
+            x += inwards * step;
+        }
+        placed.push(Placed {
+            marker: m,
+            at: (x, y),
+            callout: None,
+        });
+    }
     placed
+}
+
+/// The groups of `points` joined (directly or through others) by `near`, each in the order of
+/// `points`, the groups in the order of their first member.
+fn clusters(
+    points: &[(i32, i32)],
+    near: impl Fn((i32, i32), (i32, i32)) -> bool,
+) -> Vec<Vec<usize>> {
+    let mut group: Vec<usize> = (0..points.len()).collect();
+    fn root(group: &mut [usize], mut i: usize) -> usize {
+        while group[i] != i {
+            group[i] = group[group[i]];
+            i = group[i];
+        }
+        i
+    }
+    for i in 0..points.len() {
+        for j in 0..i {
+            if near(points[i], points[j]) {
+                let (a, b) = (root(&mut group, i), root(&mut group, j));
+                group[a.max(b)] = a.min(b);
+            }
+        }
+    }
+    let mut out: Vec<Vec<usize>> = Vec::new();
+    let mut roots: Vec<usize> = Vec::new();
+    for i in 0..points.len() {
+        let r = root(&mut group, i);
+        match roots.iter().position(|&q| q == r) {
+            Some(k) => out[k].push(i),
+            None => {
+                roots.push(r);
+                out.push(vec![i]);
+            }
+        }
+    }
+    out
+}
+
+/// The pixel boxes a placed marker covers: the marker, and for a moved one its value.
+fn placed_boxes(p: &Placed) -> Vec<PixelRect> {
+    let (x, y) = p.at;
+    let r = DIAMOND;
+    let mut boxes = vec![((x - r, y - r), (x + r, y + r))];
+    if p.callout.is_some() {
+        let w = px(text_width_pt(&value_label(p.marker.eta), TICK_PT).ceil() as i32);
+        let h = px(TICK_PT as i32) / 2;
+        boxes.push(((x - r - px(2) - w, y - h), (x - r - px(2), y + h)));
+    }
+    boxes
+}
+
+/// η_FE as written beside a moved marker: to four decimals, one more than the η(2/3) table,
+/// since the markers of a cluster lie within a few 10⁻³ of each other.
+fn value_label(eta: f64) -> String {
+    format!("{eta:.4}")
 }
 
 type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<Linear, Linear>>;
@@ -693,6 +811,7 @@ fn curve_colour(n: f64) -> RGBColor {
 const HEAVY_PAYLOAD: f64 = 1.0;
 
 /// Where and how a finite-element point is drawn.
+#[derive(Clone, Copy)]
 struct Marker {
     gamma: f64,
     eta: f64,
@@ -722,17 +841,35 @@ impl Marker {
     }
 }
 
-/// The finite-element markers at their pixel centres: filled on the curve, hollow off it.
-fn draw_points(chart: &Chart, markers: &[(Marker, (i32, i32))]) -> Result<(), String> {
+/// The finite-element markers at their places: filled on the curve, hollow off it; a moved
+/// marker with its value on its left, a dot on its own point and its cluster's leader line.
+fn draw_points(chart: &Chart, placed: &[Placed]) -> Result<(), String> {
     let area = chart.plotting_area().strip_coord_spec();
-    for (m, at) in markers {
+    for c in placed.iter().filter_map(|p| p.callout) {
+        if let Some((from, to)) = c.leader {
+            area.draw(&PathElement::new(vec![from, to], stroke(GREY, 0.5)))
+                .map_err(err)?;
+        }
+    }
+    for p in placed {
+        let m = &p.marker;
         marker(
             &area,
-            *at,
+            p.at,
             m.on_curve.then_some(m.colour),
             m.colour,
             m.square,
         )?;
+        if let Some(c) = p.callout {
+            area.draw(&Circle::new(c.point, px(1) + 2, m.colour.filled()))
+                .map_err(err)?;
+            area.draw(&Text::new(
+                value_label(m.eta),
+                (p.at.0 - DIAMOND - px(2), p.at.1),
+                text(TICK_PT, BLACK, HPos::Right, VPos::Center),
+            ))
+            .map_err(err)?;
+        }
     }
     Ok(())
 }
@@ -977,6 +1114,72 @@ mod tests {
         let plain = fig6_svg(&curves, &Fig6Design::PAPER, 504.0).unwrap();
         assert!(!plain.contains("off its curve"));
         assert!(round_up_1(9.3e-5) > 9.99e-5 && round_up_1(8.2e-5) < 9.01e-5);
+    }
+
+    /// Panel (c) of the paper's points (m_h = 1000 kg, k_δ = 10⁸ N/m) has three η_FE within
+    /// 0.006 of 1 at γ ≈ 1: they are set in a column below their points, covering neither each
+    /// other nor the fourth marker, their points kept exactly, one leader line, their values in
+    /// the figure's text.
+    #[test]
+    fn markers_that_would_cover_each_other_are_set_apart() {
+        let curves = fig6(101).unwrap();
+        let pts = points(&curves);
+        let panel: Vec<&Fig6Point> = pts
+            .iter()
+            .filter(|p| p.case.m_h == 1000.0 && p.case.k_delta == 1e8)
+            .collect();
+        assert_eq!(panel.len(), 4);
+        // a 200 × 150 pt plot over γ ∈ [0.5, 1], η ∈ [0.15, 1.03]
+        let (w, h) = (f64::from(px(200)), f64::from(px(150)));
+        let to_pixel = |(g, e): (f64, f64)| {
+            (
+                ((g - 0.5) / 0.5 * w).round() as i32,
+                ((1.03 - e) / 0.88 * h).round() as i32,
+            )
+        };
+        let placed = place_markers(&panel, to_pixel, px(200));
+        assert_eq!(placed.len(), 4);
+        for (i, a) in placed.iter().enumerate() {
+            for b in &placed[..i] {
+                // a marker covers neither the other marker nor its value
+                for (m, other) in [(a, b), (b, a)] {
+                    for o in placed_boxes(other) {
+                        assert!(!overlap(&placed_boxes(m)[0], &o, 0), "{:?}, {:?}", m.at, o);
+                    }
+                }
+            }
+            // inside the plot
+            assert!(
+                a.at.0 + DIAMOND <= px(200) && a.at.0 - DIAMOND >= 0,
+                "{:?}",
+                a.at
+            );
+        }
+        let moved: Vec<&Placed> = placed.iter().filter(|p| p.callout.is_some()).collect();
+        assert_eq!(moved.len(), 3);
+        for p in &moved {
+            let c = p.callout.unwrap();
+            assert_eq!(c.point, to_pixel((p.marker.gamma, p.marker.eta)));
+            // below its point by at least a marker's width
+            assert!(
+                p.at.1 - c.point.1 >= 2 * DIAMOND,
+                "{:?} {:?}",
+                p.at,
+                c.point
+            );
+        }
+        let leaders = moved
+            .iter()
+            .filter(|p| p.callout.unwrap().leader.is_some())
+            .count();
+        assert_eq!(leaders, 1);
+        // highest η first
+        assert!(moved.windows(2).all(|m| m[0].marker.eta >= m[1].marker.eta));
+        let svg = fig6_with_points_svg(&curves, &pts, &Fig6Design::PAPER, 504.0).unwrap();
+        let text = crate::plots::inspect::texts(&svg);
+        for v in ["1.0000", "0.9999", "0.9943"] {
+            assert!(text.iter().any(|t| t == v), "{v} not in {text:?}");
+        }
     }
 
     #[test]

@@ -9,7 +9,7 @@ use plotters::style::text_anchor::{HPos, VPos};
 
 use super::{
     GREY, GRID, LABEL_PT, Linear, PALETTE, TICK_PT, TITLE_PT, err, font, nice_step, px, render,
-    stroke, text, ticks, wrap,
+    stroke, text, text_width_pt, ticks, wrap,
 };
 use crate::experiment::{GroupStats, RatioStats, RunInputs};
 
@@ -31,6 +31,8 @@ const CAP: i32 = 3;
 struct Category {
     name: String,
     detail: String,
+    /// The detail with masses of 1 kg and more in kilograms, for categories too narrow for it.
+    compact: String,
     key: &'static str,
 }
 
@@ -58,6 +60,16 @@ pub fn grams(kg: f64) -> String {
     }
 }
 
+/// A mass as [`grams`] below 1 kg and in kilograms from 1 kg (`1 kg`, `4.008 kg`, to the gram):
+/// the shorter form for narrow labels.
+fn compact_mass(kg: f64) -> String {
+    if kg >= 1.0 {
+        format!("{} kg", (kg * 1e3).round() / 1e3)
+    } else {
+        grams(kg)
+    }
+}
+
 /// A block material as the labels say it: `skinned_aluminium` as `aluminium` (all the bundled
 /// blocks are skinned), any other name with spaces for underscores.
 fn material(name: &str) -> String {
@@ -71,13 +83,14 @@ fn operator_of<'a>(groups: &'a [GroupStats], case: &str) -> Option<&'a RunInputs
         .map(|g| &g.inputs)
 }
 
-/// The payloads m_e that ran in `cases`, as a label (`m_e = 412 g` or a list when they differ).
-fn payload_label(groups: &[GroupStats], cases: &[&str]) -> String {
+/// The payloads m_e that ran in `cases`, as a label (`m_e = 412 g` or a list when they differ),
+/// each mass written by `mass`.
+fn payload_label(groups: &[GroupStats], cases: &[&str], mass: fn(f64) -> String) -> String {
     let mut values: Vec<String> = Vec::new();
     for case in cases {
         for design in ["cj", "cl"] {
             if let Some(g) = group(groups, &format!("{design}_{case}")) {
-                let v = grams(g.inputs.payload_kg);
+                let v = mass(g.inputs.payload_kg);
                 if !values.contains(&v) {
                     values.push(v);
                 }
@@ -93,6 +106,7 @@ fn operator_category(groups: &[GroupStats], case: &'static str) -> Option<Catego
     Some(Category {
         name: material(&op.block_material),
         detail: format!("m_h = {}", grams(op.block_mass_kg)),
+        compact: format!("m_h = {}", compact_mass(op.block_mass_kg)),
         key: case,
     })
 }
@@ -144,8 +158,11 @@ pub fn fig9_svg(
         let light_load: Vec<Category> = operator_category(groups, "light_load")
             .into_iter()
             .collect();
-        let bed_title = format!("(a) {}", payload_label(groups, &["aluminium", "iron"]));
-        let light_title = format!("(b) {}", payload_label(groups, &["light_load"]));
+        let bed_title = format!(
+            "(a) {}",
+            payload_label(groups, &["aluminium", "iron"], grams)
+        );
+        let light_title = format!("(b) {}", payload_label(groups, &["light_load"], grams));
         let axis = ForceAxis { top: y_top, step };
         draw_bars(&bed, &bed_title, &test_bed, groups, axis, true)?;
         draw_bars(&light, &light_title, &light_load, groups, axis, false)?;
@@ -311,7 +328,9 @@ fn draw_whisker(chart: &mut Chart, x: f64, m: f64, ci: f64) -> Result<(), String
     Ok(())
 }
 
-/// Each category's two label lines, centred under it, the first `below` pixels under the axis.
+/// Each category's two label lines, centred under it, the first `below` pixels under the axis;
+/// the details in their compact form when one of them is wider than a category and its compact
+/// form is narrower.
 fn draw_category_labels(
     area: &DrawingArea<SVGBackend, Shift>,
     chart: &Chart,
@@ -321,6 +340,15 @@ fn draw_category_labels(
 ) -> Result<(), String> {
     let origin = area.get_base_pixel();
     let (_, axis) = chart.backend_coord(&(0.0, chart.y_range().start));
+    let (x0, _) = chart.backend_coord(&(category_centre(0, width), 0.0));
+    let (x1, _) = chart.backend_coord(&(category_centre(1, width), 0.0));
+    // the room of a category, less 4 points between neighbours' labels [pt]
+    let room = f64::from((x1 - x0).abs()) / f64::from(px(1)) - 4.0;
+    let width_of = |s: &str| text_width_pt(s, TICK_PT);
+    let compact = cats.len() > 1
+        && cats
+            .iter()
+            .any(|c| width_of(&c.detail) > room && width_of(&c.compact) < width_of(&c.detail));
     for (i, cat) in cats.iter().enumerate() {
         let (x, _) = chart.backend_coord(&(category_centre(i, width), 0.0));
         let (x, y) = (x - origin.0, axis - origin.1 + px(below));
@@ -331,7 +359,7 @@ fn draw_category_labels(
         ))
         .map_err(err)?;
         area.draw(&Text::new(
-            cat.detail.clone(),
+            if compact { &cat.compact } else { &cat.detail }.clone(),
             (x, y + px(10)),
             text(TICK_PT, GREY, HPos::Center, VPos::Top),
         ))
@@ -370,7 +398,8 @@ fn ratio_category(groups: &[GroupStats], case: &'static str) -> Option<Category>
     let op = operator_of(groups, case)?;
     Some(Category {
         name: material(&op.block_material),
-        detail: payload_label(groups, &[case]),
+        detail: payload_label(groups, &[case], grams),
+        compact: payload_label(groups, &[case], compact_mass),
         key: case,
     })
 }

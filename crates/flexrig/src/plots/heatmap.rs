@@ -187,17 +187,28 @@ pub fn heatmaps_svg_named(
         None => panel_w * PANEL_ASPECT,
     };
     let panel_h = chart_h.round() as u32 + (LEGEND * legend + ROW_GAP) as u32;
-    let header = HEADER_LINE * figure_title.len() as u32 + 4;
-    let size = (width_pt.round() as u32, header + panel_h * rows as u32);
-    render(size, |root| {
-        let (header_area, body) = root.split_vertically(px(header as i32));
-        let (w, _) = header_area.dim_in_pixel();
-        for (i, line) in figure_title.iter().enumerate() {
+    // the title's first line in black, the others in grey, each broken to the width
+    let lines: Vec<(String, f64, RGBColor)> = figure_title
+        .iter()
+        .enumerate()
+        .flat_map(|(i, line)| {
             let (size, colour) = if i == 0 {
                 (TITLE_PT, BLACK)
             } else {
                 (LABEL_PT, GREY)
             };
+            super::wrap(line, width_pt - 8.0, size)
+                .into_iter()
+                .map(move |l| (l, size, colour))
+        })
+        .collect();
+    let header = HEADER_LINE * lines.len() as u32 + 4;
+    let size = (width_pt.round() as u32, header + panel_h * rows as u32);
+    render(size, |root| {
+        let (header_area, body) = root.split_vertically(px(header as i32));
+        let (w, _) = header_area.dim_in_pixel();
+        for (i, (line, size, colour)) in lines.iter().enumerate() {
+            let (size, colour) = (*size, *colour);
             header_area
                 .draw(&Text::new(
                     line.clone(),

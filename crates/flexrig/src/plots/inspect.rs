@@ -68,6 +68,62 @@ pub fn texts(svg: &str) -> Vec<String> {
     out
 }
 
+/// The advance of character `c` in DejaVu Sans over the font size (the font's advance widths in
+/// units of 1/2048 em, rounded up by class: narrow punctuation and i, l, j, t, f, r; lower case;
+/// wide m, w and the relations; upper case).
+fn advance(c: char) -> f64 {
+    match c {
+        ' ' | ',' | '.' | ':' | ';' | '\'' | '|' | '!' | '·' => 0.32,
+        'i' | 'l' | 'j' | 'I' | 'J' => 0.28,
+        '(' | ')' | '[' | ']' | '/' | 't' | 'f' | 'r' | '-' => 0.42,
+        'm' | 'w' | 'M' | 'W' | '=' | '+' | '<' | '>' | '≤' | '≥' | '±' | '×' | '→' | '–' | '—' => {
+            0.98
+        }
+        'A'..='Z' => 0.78,
+        _ => 0.64,
+    }
+}
+
+/// Every horizontal `<text>` whose estimated extent leaves the drawing: (its text, left and
+/// right edge in viewBox units). The extent is the sum of the characters' [`advance`]s × the
+/// font size from its `x` and `text-anchor`, subscripts counted at the base size (an estimate on
+/// the wide side); rotated texts (a `transform`) are skipped.
+pub fn texts_outside(svg: &str) -> Vec<(String, f64, f64)> {
+    let Some((_, vb_width)) = printed_width(svg) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    let mut rest = svg;
+    while let Some(start) = rest.find("<text") {
+        let after = &rest[start..];
+        let (Some(open_end), Some(close)) = (after.find('>'), after.find("</text>")) else {
+            break;
+        };
+        let element = &after[..open_end];
+        let content = decode(&strip_tags(&after[open_end + 1..close]))
+            .trim()
+            .to_string();
+        rest = &after[close + "</text>".len()..];
+        if element.contains("transform") {
+            continue;
+        }
+        let number = |name: &str| attribute_text(element, name).and_then(|v| v.parse::<f64>().ok());
+        let (Some(x), Some(size)) = (number("x"), number("font-size")) else {
+            continue;
+        };
+        let width = size * content.chars().map(advance).sum::<f64>();
+        let left = match attribute_text(element, "text-anchor") {
+            Some("middle") => x - width / 2.0,
+            Some("end") => x - width,
+            _ => x,
+        };
+        if left < 0.0 || left + width > vb_width {
+            out.push((content, left, left + width));
+        }
+    }
+    out
+}
+
 /// `s` without its tags.
 fn strip_tags(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
@@ -109,5 +165,22 @@ mod tests {
         assert_eq!(texts(svg), ["m_e = 412 g & more", "B"]);
         assert_eq!(printed_width(svg), Some((7.0, 2016.0)));
         assert_eq!(min_text_pt("<svg width=\"100\">"), None);
+    }
+
+    #[test]
+    fn texts_beyond_the_edge_are_found() {
+        // 32 units = 8 pt; "mmmm" is about 4 × 0.98 × 32 = 125 units wide
+        let svg = |x: u32, anchor: &str| {
+            format!(
+                "<svg width=\"1in\" height=\"1in\" viewBox=\"0 0 288 288\">\
+                 <text x=\"{x}\" y=\"9\" text-anchor=\"{anchor}\" font-size=\"32\">mmmm</text>\
+                 <text x=\"0\" y=\"9\" transform=\"rotate(-90)\" font-size=\"32\">rotated, skipped</text></svg>"
+            )
+        };
+        assert!(texts_outside(&svg(144, "middle")).is_empty());
+        assert!(texts_outside(&svg(150, "start")).is_empty());
+        assert_eq!(texts_outside(&svg(200, "start")).len(), 1);
+        assert_eq!(texts_outside(&svg(40, "middle")).len(), 1);
+        assert_eq!(texts_outside(&svg(100, "end")).len(), 1);
     }
 }

@@ -156,7 +156,7 @@ pub(crate) fn render(
 }
 
 /// Symbols written `m_h` in the figures' text and set with a real subscript in the SVG.
-const SUBSCRIPTED: [(&str, &str); 18] = [
+const SUBSCRIPTED: [(&str, &str); 23] = [
     ("k_θr", "θr"),
     ("K_p", "p"),
     ("ω_s", "s"),
@@ -165,6 +165,12 @@ const SUBSCRIPTED: [(&str, &str); 18] = [
     ("f_placed", "placed"),
     ("Θ_max", "max"),
     ("γ_eff", "eff"),
+    // before m_e, which it contains
+    ("m_eff", "eff"),
+    ("m_R", "R"),
+    ("v_max", "max"),
+    ("F_max", "max"),
+    ("p_max", "max"),
     ("f_CL", "CL"),
     ("f_CJ", "CJ"),
     ("m_h", "h"),

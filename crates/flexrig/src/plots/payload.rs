@@ -19,6 +19,11 @@ const STACK_BELOW: f64 = 420.0;
 const PANEL_H: u32 = 190;
 /// The paper's payloads \[kg\]: the light load (Fig. 9b) and the test bed's.
 const PAPER_PAYLOADS: [(f64, &str); 2] = [(0.1, "light load"), (0.412, "test bed")];
+/// Line spacing of the test bed's two-line label \[pt\].
+const LINE_PT: i32 = 9;
+/// Depth of the test bed's label under the top of the plot, with 7 points clear below it (the
+/// glyphs reach about 2 points below their nominal box) \[pt\].
+const TOP_LABEL_PT: i32 = 2 + LINE_PT + TICK_PT as i32 + 7;
 
 /// The payload study's figure at the printed width `width_pt` \[pt\]; `operator` names the
 /// operator as run (e.g. `skinned aluminium operator, m_h = 398 g`).
@@ -56,6 +61,35 @@ type LogChart<'a, 'b> = ChartContext<
     Cartesian2d<plotters::coord::combinators::LogCoord<f64>, Linear>,
 >;
 
+/// The builder of a panel's chart on `area`: caption, margins and label areas.
+fn builder<'a, 'b>(
+    area: &'a DrawingArea<SVGBackend<'b>, Shift>,
+    caption: &str,
+) -> ChartBuilder<'a, 'b, SVGBackend<'b>> {
+    let mut builder = ChartBuilder::on(area);
+    builder
+        .caption(caption, font(TITLE_PT))
+        .margin(px(4))
+        .margin_right(px(14))
+        .x_label_area_size(px(26))
+        .y_label_area_size(px(40));
+    builder
+}
+
+/// Height of the plotting area of a panel of `size` captioned `caption` \[drawing units\],
+/// measured on a scratch drawing of the same size.
+fn plot_height(size: (u32, u32), caption: &str) -> Result<i32, String> {
+    let mut scratch = String::new();
+    let height = {
+        let area = SVGBackend::with_string(&mut scratch, size).into_drawing_area();
+        let chart = builder(&area, caption)
+            .build_cartesian_2d(0.0..1.0, 0.0..1.0)
+            .map_err(err)?;
+        chart.plotting_area().dim_in_pixel().1
+    };
+    Ok(height as i32)
+}
+
 /// The chart of one panel over the rows' payloads \[g\] with y in `y`.
 fn chart<'a, 'b>(
     area: &'a DrawingArea<SVGBackend<'b>, Shift>,
@@ -74,12 +108,7 @@ fn chart<'a, 'b>(
             (s - s.round()).abs() < 1e-6
         })
         .unwrap_or(6) as usize;
-    let mut chart = ChartBuilder::on(area)
-        .caption(caption, font(TITLE_PT))
-        .margin(px(4))
-        .margin_right(px(14))
-        .x_label_area_size(px(26))
-        .y_label_area_size(px(40))
+    let mut chart = builder(area, caption)
         .build_cartesian_2d(
             (lo..hi).log_scale(),
             Linear::new(y.0, y.1, ticks(first, y.1, step)),
@@ -123,20 +152,22 @@ fn mark_paper_payloads(
                 stroke(GREY, 0.75),
             ))
             .map_err(err)?;
-        // the light load's name at the bottom right of its line; the test bed's at the top
-        // right of its line in two short lines (one line would cross the light load's)
+        // each name in two short lines right of its line (one line would cross the other
+        // payload's line): the light load's at the bottom, the test bed's at the top
         let plotting = chart.plotting_area().strip_coord_spec();
         let origin = plotting.get_base_pixel();
         let light = kg < 0.2;
         let (x, y_px) = chart.backend_coord(&(g, if light { y.0 } else { y.1 }));
         let (x, y_px) = (x - origin.0 + px(2), y_px - origin.1);
         let lines = if light {
-            vec![(format!("{name}, {g} g"), VPos::Bottom, -px(2))]
+            vec![
+                (name.to_string(), VPos::Bottom, -px(2 + LINE_PT)),
+                (format!("{g} g"), VPos::Bottom, -px(2)),
+            ]
         } else {
-            let step = (TICK_PT * 1.15).round() as i32;
             vec![
                 (name.to_string(), VPos::Top, px(2)),
-                (format!("{g} g"), VPos::Top, px(2 + step)),
+                (format!("{g} g"), VPos::Top, px(2 + LINE_PT)),
             ]
         };
         for (label, v, dy) in lines {
@@ -190,12 +221,33 @@ fn draw_peaks(area: &DrawingArea<SVGBackend, Shift>, rows: &[PayloadRow]) -> Res
         .map_err(err)
 }
 
-fn draw_ratio(area: &DrawingArea<SVGBackend, Shift>, rows: &[PayloadRow]) -> Result<(), String> {
+/// The y range of the ratio panel, whose plotting area is `plot_h` drawing units high: the
+/// ratios and 1 (the line CL = CJ) with a tenth of their span below and two tenths above, and,
+/// when the test bed's payload is in the range, room above them for its label hanging from the
+/// top ([`TOP_LABEL_PT`]).
+fn ratio_range(rows: &[PayloadRow], plot_h: i32) -> (f64, f64) {
     let lo = rows.iter().map(|r| r.ratio).fold(1.0, f64::min);
     let hi = rows.iter().map(|r| r.ratio).fold(1.0, f64::max);
     let pad = 0.1 * (hi - lo).max(0.01);
-    let y = (lo - pad, hi + 2.0 * pad);
-    let mut chart = chart(area, rows, "(b) CL/CJ", y, "peak-force ratio CL/CJ")?;
+    let bottom = lo - pad;
+    let room = f64::from(px(TOP_LABEL_PT)) / f64::from(plot_h.max(1));
+    let test_bed_shown = rows
+        .first()
+        .zip(rows.last())
+        .is_some_and(|(a, b)| (a.payload_kg..=b.payload_kg).contains(&PAPER_PAYLOADS[1].0));
+    // (top − hi)/(top − bottom) = room
+    let clear = if test_bed_shown && room < 0.5 {
+        (hi - room * bottom) / (1.0 - room)
+    } else {
+        hi
+    };
+    (bottom, (hi + 2.0 * pad).max(clear))
+}
+
+fn draw_ratio(area: &DrawingArea<SVGBackend, Shift>, rows: &[PayloadRow]) -> Result<(), String> {
+    let caption = "(b) CL/CJ";
+    let y = ratio_range(rows, plot_height(area.dim_in_pixel(), caption)?);
+    let mut chart = chart(area, rows, caption, y, "peak-force ratio CL/CJ")?;
     mark_paper_payloads(&mut chart, rows, y)?;
     let (x0, x1) = (
         rows[0].payload_kg * 1e3,
@@ -230,4 +282,44 @@ fn draw_ratio(area: &DrawingArea<SVGBackend, Shift>, rows: &[PayloadRow]) -> Res
         )
         .map_err(err)?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rows(ratio_at_1kg: f64) -> Vec<PayloadRow> {
+        (0..9)
+            .map(|i| {
+                let m = 0.01 * 10f64.powf(f64::from(i) / 4.0);
+                let ratio = 0.6 + (ratio_at_1kg - 0.6) * f64::from(i) / 8.0;
+                PayloadRow {
+                    payload_kg: m,
+                    cj_peak_n: 100.0,
+                    cl_peak_n: 100.0 * ratio,
+                    ratio,
+                }
+            })
+            .collect()
+    }
+
+    /// The test bed's label, hanging TOP_LABEL_PT from the top, stays clear of the line CL = CJ
+    /// and of the curve, for ratios below and above 1 and any panel height.
+    #[test]
+    fn the_test_bed_label_clears_the_line_and_the_curve() {
+        for ratio in [0.9, 0.998, 1.05] {
+            let rows = rows(ratio);
+            for plot_h in [px(100), px(140), px(300)] {
+                let (bottom, top) = ratio_range(&rows, plot_h);
+                let highest = rows.iter().map(|r| r.ratio).fold(1.0, f64::max);
+                let below_top = (top - highest) / (top - bottom) * f64::from(plot_h);
+                assert!(
+                    below_top >= f64::from(px(TOP_LABEL_PT)) - 1e-6,
+                    "ratio {ratio}, height {plot_h}: {below_top} < {}",
+                    px(TOP_LABEL_PT)
+                );
+                assert!(bottom < rows[0].ratio, "{bottom}");
+            }
+        }
+    }
 }

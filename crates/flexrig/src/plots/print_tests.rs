@@ -7,7 +7,7 @@ use flexrig_impact::map::{LogRange, MapPoint, MapSpec};
 use flexrig_impact::rotor::RotorPoint;
 use flexrig_lumped::fig6::{Fig6Case, cases, fig6};
 
-use super::inspect::{min_text_pt, printed_width, texts};
+use super::inspect::{min_text_pt, printed_width, texts, texts_outside};
 use super::*;
 use crate::eta_map::ComputedMap;
 use crate::experiment::{GroupStats, RatioStats, RunInputs};
@@ -27,6 +27,11 @@ fn check(name: &str, svg: &str, width_pt: f64) -> String {
     assert!(
         min >= MIN_TEXT_PT - 1e-3,
         "{name} at {width_pt} pt: text of {min:.2} pt"
+    );
+    let outside = texts_outside(svg);
+    assert!(
+        outside.is_empty(),
+        "{name} at {width_pt} pt: text beyond the edge {outside:?}"
     );
     let text = texts(svg).join("\n");
     for code in ["1e8", "1e-", "e-5", "v0 ", "f_CL/f_CJ", "issue", "NaN"] {
@@ -164,6 +169,12 @@ fn fig9_labels_are_the_inputs_that_ran() {
         );
         assert!(text.contains("(a) m_e = 1000 g") && text.contains("(b) m_e = 1000 g"));
         assert!(text.contains("m_h = 4000 g"), "{text}");
+        // at two columns the ratio panel's three "m_e = 1000 g" would run together: they are
+        // written in kilograms there
+        if w > 400.0 {
+            let kg = text.lines().filter(|l| *l == "m_e = 1 kg").count();
+            assert_eq!(kg, 3, "{text}");
+        }
         for stale in ["412 g", "0.1 kg", "100 g", "398 g"] {
             assert!(!text.contains(stale), "{stale} at {w} pt:\n{text}");
         }
@@ -293,7 +304,12 @@ fn eta_map_shows_gamma_eff_only_with_values() {
         .unwrap();
         let text = check("eta_map", &none, w);
         assert!(!text.contains("effective γ ("), "{text}");
-        assert!(text.contains("no γ in (0, 1] fits at any point (16 need γ > 1"));
+        // (broken into lines at one column)
+        assert!(
+            text.replace('\n', " ")
+                .contains("no γ in (0, 1] fits at any point (16 need γ > 1"),
+            "{text}"
+        );
         let some = crate::eta_map::svg(
             &map(4, true),
             "held joint",
@@ -336,14 +352,18 @@ fn eta_rotor_at_print_size() {
     for w in WIDTHS {
         let text = check(
             "eta_rotor",
-            &eta_rotor_svg(&points, "elastic contact; m_r = 10 kg", w).unwrap(),
+            &eta_rotor_svg(
+                &points,
+                "elastic Hertz contact; m_r = 10 kg, k_c = 10⁸ N/mⁿ, v_0 = 2 m/s",
+                w,
+            )
+            .unwrap(),
             w,
         );
-        assert_eq!(
-            text.lines().filter(|l| *l == "held joint").count(),
-            1,
-            "{text}"
-        );
+        for n in [2, 1] {
+            let label = format!("held joint, n = {n}");
+            assert_eq!(text.lines().filter(|l| *l == label).count(), 1, "{text}");
+        }
     }
 }
 
@@ -384,14 +404,12 @@ fn payload_and_prb_and_bench_at_print_size() {
             &payload_svg(&rows, "skinned aluminium operator, m_h = 398 g", w).unwrap(),
             w,
         );
-        // the test bed's label is two short lines (name, then mass) right of its line
-        assert!(
-            text.contains("light load, 100 g")
-                && text.contains("test bed")
-                && text.contains("412 g")
-                && !text.contains("test bed, 412 g"),
-            "{text}"
-        );
+        // each paper payload's label is two short lines (name, then mass) right of its line
+        let lines: Vec<&str> = text.lines().collect();
+        for (name, mass) in [("light load", "100 g"), ("test bed", "412 g")] {
+            assert_eq!(lines.iter().filter(|l| **l == name).count(), 2, "{text}");
+            assert_eq!(lines.iter().filter(|l| **l == mass).count(), 2, "{text}");
+        }
         let text = check("prb", &prb_svg(&path, &fit, "corotational", w).unwrap(), w);
         assert!(text.contains("Θ_max"), "{text}");
         check(

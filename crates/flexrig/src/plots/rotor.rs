@@ -1,7 +1,9 @@
 //! `flexrig eta-rotor`'s figure: η_FE along the free hub's rotor inertia, one panel per head mass
 //! and link stiffness, one curve per payload (colour) and exponent (n = 2 solid, n = 1 dashed on
 //! top, so coinciding curves both show), the held joint as a diamond in a column of its own at
-//! the right, each panel on its own η range (the variation is what matters), one legend.
+//! the right (filled for n = 2, hollow for n = 1, each curve's diamond in a slot of its own so
+//! equal values do not hide each other), each panel on its own η range (the variation is what
+//! matters), one legend.
 
 use std::collections::BTreeMap;
 
@@ -22,6 +24,8 @@ const MIN_PANEL_W: f64 = 240.0;
 const PANEL_H: u32 = 165;
 /// Height of a title or legend line \[pt\].
 const LINE: i32 = 12;
+/// Spacing of the held joint's diamonds in their column \[pt\].
+const HELD_SLOT: f64 = 7.0;
 
 /// A curve key: payload m_e \[kg\] and exponent n, as bit patterns for ordering.
 type Key = (u64, u64);
@@ -99,7 +103,9 @@ pub fn eta_rotor_svg(
     let cols = ((width_pt / MIN_PANEL_W).floor() as usize).clamp(1, panels.len());
     let rows = panels.len().div_ceil(cols);
     let legend = Legend::new(&payloads, points, width_pt);
-    let header = 2 * LINE + LINE * legend.rows + 6;
+    let subtitle = super::wrap(subtitle, width_pt - 8.0, LABEL_PT);
+    let title_lines = 1 + subtitle.len() as i32;
+    let header = title_lines * LINE + LINE * legend.rows + 6;
     let size = (
         width_pt.round() as u32,
         header as u32 + PANEL_H * rows as u32,
@@ -114,10 +120,9 @@ pub fn eta_rotor_svg(
         .into_iter()
         .find(|t| text_width_pt(t, TITLE_PT) < width_pt - 8.0)
         .unwrap_or("η_FE over the rotor inertia");
-        for (i, (line, size, colour)) in [(title, TITLE_PT, BLACK), (subtitle, LABEL_PT, GREY)]
-            .into_iter()
-            .enumerate()
-        {
+        let lines = std::iter::once((title, TITLE_PT, BLACK))
+            .chain(subtitle.iter().map(|l| (l.as_str(), LABEL_PT, GREY)));
+        for (i, (line, size, colour)) in lines.enumerate() {
             head.draw(&Text::new(
                 line.to_string(),
                 (w / 2, px(2 + LINE * i as i32)),
@@ -125,7 +130,7 @@ pub fn eta_rotor_svg(
             ))
             .map_err(err)?;
         }
-        legend.draw(&head, 2 * LINE + 4)?;
+        legend.draw(&head, title_lines * LINE + 4)?;
         let areas = body.split_evenly((rows, cols));
         for (i, (area, panel)) in areas.iter().zip(&panels).enumerate() {
             let letter = (b'a' + i as u8) as char;
@@ -163,7 +168,10 @@ struct Legend {
 enum Item {
     Colour(RGBColor),
     Line(bool),
-    Held,
+    /// The held joint's diamond, hollow for n = 1.
+    Held {
+        hollow: bool,
+    },
 }
 
 impl Legend {
@@ -175,10 +183,15 @@ impl Legend {
         let mut ns: Vec<f64> = points.iter().map(|p| p.n).collect();
         ns.sort_by(|a, b| b.total_cmp(a));
         ns.dedup();
-        for n in ns {
-            entries.push((Item::Line(n < 1.5), format!("n = {n}")));
+        for n in &ns {
+            entries.push((Item::Line(*n < 1.5), format!("n = {n}")));
         }
-        entries.push((Item::Held, "held joint".into()));
+        for n in &ns {
+            entries.push((
+                Item::Held { hollow: *n < 1.5 },
+                format!("held joint, n = {n}"),
+            ));
+        }
         let (mut x, mut row) = (4.0, 0);
         let mut items = Vec::new();
         for (item, label) in entries {
@@ -222,7 +235,7 @@ impl Legend {
                         .map_err(err)?;
                     }
                 }
-                Item::Held => held_marker(area, (x0 + px(7), y), BLACK)?,
+                Item::Held { hollow } => held_marker(area, (x0 + px(7), y), BLACK, hollow)?,
             }
             area.draw(&Text::new(
                 label.clone(),
@@ -235,18 +248,28 @@ impl Legend {
     }
 }
 
-/// A diamond with a white edge at `at` (drawing units).
+/// A diamond at `at` (drawing units) in colour `c`: filled, or white with a `c` edge when
+/// `hollow`.
 fn held_marker(
     area: &DrawingArea<SVGBackend, Shift>,
     (x, y): (i32, i32),
     c: RGBColor,
+    hollow: bool,
 ) -> Result<(), String> {
     let r = px(3);
+    let corners = vec![(x, y - r), (x + r, y), (x, y + r), (x - r, y)];
     area.draw(&Polygon::new(
-        vec![(x, y - r), (x + r, y), (x, y + r), (x - r, y)],
-        c.filled(),
+        corners.clone(),
+        if hollow { WHITE } else { c }.filled(),
     ))
-    .map_err(err)
+    .map_err(err)?;
+    if hollow {
+        let mut closed = corners.clone();
+        closed.extend_from_slice(&corners[..2]);
+        area.draw(&PathElement::new(closed, stroke(c, 1.0)))
+            .map_err(err)?;
+    }
+    Ok(())
 }
 
 /// The y range of a panel: its values with a margin, at least 0.02 wide.
@@ -273,7 +296,8 @@ fn draw_panel(
     payloads: &[f64],
     bottom: bool,
 ) -> Result<(), String> {
-    let held_x = f64::from(x_hi) + 1.0;
+    // the held column: a decade and a half wide, room for four diamonds side by side
+    let held_x = f64::from(x_hi) + 1.5;
     let (y_lo, y_hi, step) = y_range(panel);
     let x_ticks: Vec<f64> = (x_lo..=x_hi)
         .step_by(((x_hi - x_lo) / 6 + 1) as usize)
@@ -300,7 +324,7 @@ fn draw_panel(
         .x_label_area_size(px(if bottom { 28 } else { 16 }))
         .y_label_area_size(px(40))
         .build_cartesian_2d(
-            Linear::new(f64::from(x_lo), held_x + 0.5, x_ticks),
+            Linear::new(f64::from(x_lo), held_x + 1.0, x_ticks),
             Linear::new(y_lo, y_hi, ticks(y_lo, y_hi, step)),
         )
         .map_err(err)?;
@@ -330,7 +354,7 @@ fn draw_panel(
     // the held column, apart from the sweep
     chart
         .draw_series(DashedLineSeries::new(
-            [(held_x - 0.5, y_lo), (held_x - 0.5, y_hi)],
+            [(held_x - 1.0, y_lo), (held_x - 1.0, y_hi)],
             px(2),
             px(2),
             stroke(GREY, 0.5),
@@ -344,7 +368,8 @@ fn draw_panel(
             .total_cmp(&f64::from_bits(a.1))
             .then(f64::from_bits(a.0).total_cmp(&f64::from_bits(b.0)))
     });
-    for key in keys {
+    let slots = keys.len();
+    for (slot, key) in keys.into_iter().enumerate() {
         let (points, held) = &panel.curves[key];
         let (m_e, n) = (f64::from_bits(key.0), f64::from_bits(key.1));
         let c = colour(payloads, m_e);
@@ -368,8 +393,10 @@ fn draw_panel(
             let plotting = chart.plotting_area().strip_coord_spec();
             let origin = plotting.get_base_pixel();
             let (x, y) = chart.backend_coord(&(held_x, *h));
-            let dx = if n < 1.5 { px(4) } else { -px(4) };
-            held_marker(&plotting, (x - origin.0 + dx, y - origin.1), c)?;
+            // slots in the order of the curves: n = 2 before n = 1, lighter payload first
+            let dx = (slot as f64 - 0.5 * (slots as f64 - 1.0)) * HELD_SLOT;
+            let dx = px(1) * dx.round() as i32;
+            held_marker(&plotting, (x - origin.0 + dx, y - origin.1), c, n < 1.5)?;
         }
     }
     Ok(())
@@ -417,11 +444,16 @@ mod tests {
         }
         let svg = eta_rotor_svg(&points, "elastic contact", 504.0).unwrap();
         let lines = super::super::inspect::texts(&svg);
-        assert_eq!(
-            lines.iter().filter(|l| *l == "held joint").count(),
-            1,
-            "one legend"
-        );
+        for n in ["2", "1"] {
+            assert_eq!(
+                lines
+                    .iter()
+                    .filter(|l| **l == format!("held joint, n = {n}"))
+                    .count(),
+                1,
+                "one legend"
+            );
+        }
         assert!(lines.iter().any(|l| l == "held"));
         assert!(svg.contains("m<tspan") && !svg.contains("1e8"));
     }

@@ -200,8 +200,8 @@ fn parse_range(spec: &str, arg: &str, budget: usize) -> Result<Option<Vec<toml::
     let number = |s: &str| s.trim().parse::<f64>().ok().filter(|v| v.is_finite());
     // a value with a colon is meant as a range (no scene value has one): a malformed range
     // gets the range syntax, not a type error about the text
-    let syntax = "a range is START:STOP:COUNT with both ends included, e.g. 10:60:11, or \
-                  START:STOP:COUNT:log, e.g. 1e-3:1:25:log; a list is 0.1,0.2,0.5";
+    let syntax = "a range is FROM:TO:N with both ends included, e.g. 10:60:11, or \
+                  FROM:TO:N:log, e.g. 1e-3:1:25:log; a list is 0.1,0.2,0.5";
     if parts.len() < 2 || spec.starts_with('{') || spec.starts_with('"') || spec.starts_with('[') {
         return Ok(None);
     }
@@ -367,7 +367,7 @@ mod tests {
                 .unwrap_err()
                 .to_string();
             assert!(
-                e.contains("START:STOP:COUNT") && e.contains("--set a.b"),
+                e.contains("FROM:TO:N") && e.contains("--set a.b"),
                 "{spec}: {e}"
             );
         }

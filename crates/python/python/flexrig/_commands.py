@@ -515,7 +515,9 @@ def bench(
 ) -> Report:
     """The work–precision studies, as ``flexrig bench`` (``quick``: fewer settings and
     repetitions, well under a minute): the lumped impact's integrators (and the scipy peer when
-    python3 has numpy and scipy), the beam, the rig, the driven strike and the safety maps.
+    its interpreter has numpy and scipy: ``FLEXRIG_PYTHON``, else the project's ``.venv``, else
+    ``python3``; ``data["peer_python"]`` names it), the beam, the rig, the driven strike and the
+    safety maps.
     ``table``: one row per measured point — ``model``, ``method``, ``setting``, ``error`` against
     the study's reference (the same numbers as the CLI's), ``seconds`` (median run time on this
     machine: a timing, not a result) and ``evaluations`` (Int64, time integrations only).

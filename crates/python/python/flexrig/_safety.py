@@ -170,14 +170,14 @@ _MAP_PARAMETERS = {
 
 
 def _axis(field: str, axis: Any) -> Dict[str, Any]:
-    """An axis as the library's JSON: from ``"PARAM=START:STOP:COUNT[:log]"`` (parsed by the
+    """An axis as the library's JSON: from ``"PARAM=FROM:TO:N[:log]"`` (parsed by the
     library, as the command line does) or from ``(PARAM, values)``."""
     if isinstance(axis, str):
         return {"text": axis}
     try:
         name, values = axis
     except (TypeError, ValueError):
-        raise _input_error(field, f"{field}: give 'PARAM=START:STOP:COUNT[:log]' or (PARAM, values), not {axis!r}")
+        raise _input_error(field, f"{field}: give 'PARAM=FROM:TO:N[:log]' or (PARAM, values), not {axis!r}")
     key = str(name).replace("_", "-")
     if key in ("region", "body-region"):
         names = [values] if isinstance(values, str) else [str(v) for v in values]
@@ -215,7 +215,7 @@ def safety_map(
     """The safe-speed map of ``flexrig safety-map`` (the same numbers, no files): the permissible
     speed of the compliant joint (CJ) and the compliant link (CL) over two design parameters.
 
-    ``x`` and ``y`` are ``"PARAM=START:STOP:COUNT[:log]"`` (or ``"PARAM=V1,V2"``) or
+    ``x`` and ``y`` are ``"PARAM=FROM:TO:N[:log]"`` (or ``"PARAM=V1,V2"``) or
     ``(PARAM, values)`` with PARAM one of ``m-e`` (payload, kg), ``m-r`` (link mass, kg),
     ``k-delta`` (N/m), ``ei`` (N·m², with ``length`` in m), ``k-c`` (N/m^n), or the body region
     (``"region=all"``, ``"region=chest,abdomen"`` or ``("region", ["chest", "abdomen"])``: each
