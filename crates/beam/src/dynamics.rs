@@ -1405,8 +1405,9 @@ mod tests {
                 let (mut s2, mut w2) = (state.clone(), Workspace::new(&model));
                 w2.band = ws.band.clone();
                 w2.factored_for = ws.factored_for;
-                let fast = ga.newton(&model, &mut state, &mut ws, &loads, None, newton);
-                let portable = ga.newton_portable(&model, &mut s2, &mut w2, &loads, None, newton);
+                let fast = ga.newton(&model, &mut state, &mut ws, (&loads, None), None, newton);
+                let portable =
+                    ga.newton_portable(&model, &mut s2, &mut w2, (&loads, None), None, newton);
                 let (a, b) = (fast.unwrap(), portable.unwrap());
                 assert_eq!(
                     (a.0, a.1.to_bits(), a.2.to_bits()),
