@@ -306,7 +306,7 @@ pub fn with_drive(mut layout: Value) -> Value {
             series("/drive/torque.motor_nm", "at the motor [N·m]", LOAD, 1.0),
             series(
                 "/drive/load.moment_nm",
-                "link's moment on the hub (spring or beam root) [N·m]",
+                "link on the hub [N·m]",
                 SENSOR,
                 1.0,
             ),
@@ -315,8 +315,8 @@ pub fn with_drive(mut layout: Value) -> Value {
     let deflection = whole_run_plot(
         "Link deflection",
         vec![series(
-            "/drive/load.deflection_m",
-            "tip from the hub's line, towards the operator [m]",
+            "/drive/load.deflection_mm",
+            "tip from the hub's line [mm]",
             CONTACT,
             1.0,
         )],
@@ -663,7 +663,7 @@ mod tests {
             "/drive/torque.joint_nm",
             "/drive/torque.motor_nm",
             "/drive/load.moment_nm",
-            "/drive/load.deflection_m",
+            "/drive/load.deflection_mm",
         ] {
             assert!(text.contains(topic), "{topic}");
         }

@@ -107,6 +107,8 @@ pub struct LinkLoad {
     pub moment_nm: f64,
     /// Deflection of the link's tip from the hub's line \[m\], positive towards the operator.
     pub deflection_m: f64,
+    /// The same deflection in millimetres \[mm\], for the plot.
+    pub deflection_mm: f64,
 }
 
 /// Schema name of the `/severity` channel.
@@ -770,6 +772,7 @@ impl<W: Write + Seek> McapRecorder<W> {
                 timestamp: stamp(f.t),
                 moment_nm: d.spring_moment_nm,
                 deflection_m: d.link_deflection_m,
+                deflection_mm: d.link_deflection_m * 1e3,
             },
         )
     }
