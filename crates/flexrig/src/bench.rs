@@ -745,8 +745,8 @@ fn driven_test_bed(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
     let refine = |k: u32| {
         vec![
             (
-                "swing_step_s = 5e-4",
-                format!("swing_step_s = {:e}", 5e-4 / f64::from(k)),
+                "swing_step_s = 6e-4",
+                format!("swing_step_s = {:e}", 6e-4 / f64::from(k)),
             ),
             (
                 "contact_steps = 800",
@@ -766,7 +766,7 @@ fn driven_test_bed(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
                 .into(),
             setting: format!(
                 "swing step {:.2e} s, {} steps/contact",
-                5e-4 / f64::from(k),
+                6e-4 / f64::from(k),
                 800 * k
             ),
             error: (result.peak_force_n / reference - 1.0).abs(),
