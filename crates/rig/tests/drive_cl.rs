@@ -441,3 +441,54 @@ fn a_controller_at_its_torque_limit_keeps_to_it_and_balances_the_energy() {
     assert!(at_limit > 100);
     assert!(worst <= 1e-5 * d.motor_work_j);
 }
+
+/// Keeps every sensor sample.
+#[derive(Default)]
+struct Samples(Vec<flexrig_rig::sensors::SensorSample>);
+
+impl Recorder for Samples {
+    fn frame(&mut self, frame: &Frame<'_>) -> Result<(), RigError> {
+        self.0.extend_from_slice(frame.samples);
+        Ok(())
+    }
+}
+
+/// The run's severity, computed over the samples that carry it (the block hangs at rest for the
+/// 1.7 s approach: all but about 160 of the 85 125 samples are exact zeros), is the severity of
+/// every sample (flexrig-safety over the whole trace), bit for bit; and the run's summary
+/// reports it.
+#[test]
+fn the_severity_over_the_carrying_samples_is_that_of_every_sample() {
+    let scene = common::scene("rig_driven_cl", &[]);
+    let mut samples = Samples::default();
+    let s = Simulation::new(&scene, RunOptions::default())
+        .unwrap()
+        .run(&mut samples)
+        .unwrap();
+    let all = samples.0;
+    let column = |f: fn(&flexrig_rig::sensors::SensorSample) -> f64| {
+        all.iter().map(f).collect::<Vec<f64>>()
+    };
+    let (times, force, indentation) = (
+        column(|s| s.t),
+        column(|s| s.force_n),
+        column(|s| s.indentation_m),
+    );
+    let acceleration = column(|s| s.operator_accel_mps2.abs());
+    let dome = scene.file.robot.dome_radius_m;
+    let every = flexrig_safety::severity(
+        &flexrig_safety::ContactTraces {
+            times: &times,
+            force: &force,
+            indentation: &indentation,
+            head_acceleration: Some(&acceleration),
+        },
+        &flexrig_safety::ContactAreaModel::dome_models(dome),
+    )
+    .unwrap();
+    let kept = flexrig_rig::severity::carrying(&all).len();
+    eprintln!("{kept} of {} samples carry the severity", all.len());
+    assert!(kept < all.len() / 100);
+    assert_eq!(flexrig_rig::severity::of_samples(&all, dome).unwrap(), every);
+    assert_eq!(s.severity.unwrap(), every);
+}
