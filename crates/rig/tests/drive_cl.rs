@@ -466,9 +466,8 @@ fn the_severity_over_the_carrying_samples_is_that_of_every_sample() {
         .run(&mut samples)
         .unwrap();
     let all = samples.0;
-    let column = |f: fn(&flexrig_rig::sensors::SensorSample) -> f64| {
-        all.iter().map(f).collect::<Vec<f64>>()
-    };
+    let column =
+        |f: fn(&flexrig_rig::sensors::SensorSample) -> f64| all.iter().map(f).collect::<Vec<f64>>();
     let (times, force, indentation) = (
         column(|s| s.t),
         column(|s| s.force_n),
@@ -489,6 +488,9 @@ fn the_severity_over_the_carrying_samples_is_that_of_every_sample() {
     let kept = flexrig_rig::severity::carrying(&all).len();
     eprintln!("{kept} of {} samples carry the severity", all.len());
     assert!(kept < all.len() / 100);
-    assert_eq!(flexrig_rig::severity::of_samples(&all, dome).unwrap(), every);
+    assert_eq!(
+        flexrig_rig::severity::of_samples(&all, dome).unwrap(),
+        every
+    );
     assert_eq!(s.severity.unwrap(), every);
 }
