@@ -243,42 +243,7 @@ impl State {
         if !t0.is_finite() {
             return Err(BeamError::invalid("t0", t0, "a finite number"));
         }
-        let nfix = model.n_fixed();
-        let zeros = vec![0.0; n];
-        let mut r = vec![0.0; n];
-        let mut band = band_for(model);
-        let kin = Kinematic {
-            q: &q0,
-            v: Some(&v0),
-            a: Some(&zeros),
-        };
-        let w = JacobianWeights {
-            stiffness: 0.0,
-            velocity: 0.0,
-            acceleration: 1.0,
-        };
-        assemble(model, kin, loads.as_slice(), &mut r, Some((&mut band, w)));
-        band.factorize("mass matrix")?;
-        let mut a_free: Vec<f64> = r[nfix..].iter().map(|x| -x).collect();
-        band.solve_in_place(&mut a_free);
-        let mut a = vec![0.0; n];
-        a[nfix..].copy_from_slice(&a_free);
-        let initial_energy = kinetic_energy(model, &q0, &v0) + strain_energy(model, &q0);
-        Ok(State {
-            t: t0,
-            q: q0,
-            v: v0,
-            a_aux: a.clone(),
-            a_aux_prev: Vec::new(),
-            h_prev: None,
-            a,
-            f_prev: loads.as_slice().to_vec(),
-            node_force_prev: (0, [0.0; 3]),
-            external_work: 0.0,
-            initial_energy,
-            dofs_per_node: model.dofs_per_node(),
-            element_energies: Vec::new(),
-        })
+        State::with_free_accelerations(model, t0, (q0, v0, vec![0.0; n]), loads)
     }
 
     /// The undeformed link in rigid rotation about its root at t = `t0` \[s\]: every node turned
@@ -327,7 +292,22 @@ impl State {
         if nfix == 3 {
             a[2] = accel;
         }
-        let mut r = vec![0.0; n];
+        State::with_free_accelerations(model, t0, (q, v, a), loads)
+    }
+
+    /// The state at `t0` \[s\] with displacements and velocities `q`, `v` and the constrained
+    /// entries of `a` given (prescribed root accelerations; the free entries are overwritten):
+    /// the free accelerations solve M(q) q̈ = F − f_int − f_damp − g with the constrained
+    /// ones moving the root, and the energy is counted from this state.
+    fn with_free_accelerations(
+        model: &BeamModel,
+        t0: f64,
+        (q, v, mut a): (Vec<f64>, Vec<f64>, Vec<f64>),
+        loads: &NodalLoads,
+    ) -> Result<Self, BeamError> {
+        let nfix = model.n_fixed();
+        a[nfix..].fill(0.0);
+        let mut r = vec![0.0; model.n_dofs()];
         let mut band = band_for(model);
         let kin = Kinematic {
             q: &q,
