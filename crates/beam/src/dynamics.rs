@@ -1234,7 +1234,7 @@ pub fn root_reaction(model: &BeamModel, state: &State, loads: &NodalLoads) -> [f
 }
 
 /// A beam that a hub turns by its clamped root: clamped, corotational (3 DOFs per node).
-fn check_rotating_clamp(model: &BeamModel) -> Result<(), BeamError> {
+pub(crate) fn check_rotating_clamp(model: &BeamModel) -> Result<(), BeamError> {
     if model.root() != crate::model::RootSupport::Clamped {
         return Err(BeamError::invalid(
             "root",

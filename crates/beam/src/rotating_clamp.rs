@@ -16,7 +16,7 @@
 
 use crate::BeamError;
 use crate::assembly::{JacobianWeights, Kinematic, assemble, band_for};
-use crate::model::{BeamModel, Kinematics, RootSupport};
+use crate::model::BeamModel;
 
 /// Settings of the integration.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -66,20 +66,7 @@ pub fn run_rotating_clamp(
     sample_every: f64,
     options: &RotatingClampOptions,
 ) -> Result<Vec<HubFrameSample>, BeamError> {
-    if model.root() != RootSupport::Clamped {
-        return Err(BeamError::invalid(
-            "root",
-            format!("{:?}", model.root()),
-            "clamped (the hub's angle is prescribed)",
-        ));
-    }
-    if model.kinematics() != Kinematics::Corotational {
-        return Err(BeamError::invalid(
-            "kinematics",
-            format!("{:?}", model.kinematics()),
-            "corotational (large rotation of the hub)",
-        ));
-    }
+    crate::dynamics::check_rotating_clamp(model)?;
     if !(t_end.is_finite() && t_end > 0.0) {
         return Err(BeamError::invalid("t_end", t_end, "a finite time > 0 s"));
     }

@@ -120,8 +120,7 @@ impl DomeBlockContact {
     /// points, touching or not; `None` if the bodies are too far apart for a query.
     pub fn approach(&self, dome: &BodyKinematics, block: &BodyKinematics) -> Option<(f64, f64)> {
         let c = self.closest(&dome.pose, &block.pose)?;
-        let rate = (dome.velocity_at(c.point) - block.velocity_at(c.point)).dot(c.normal);
-        Some((c.dist, rate))
+        Some((c.dist, c.closing_rate(dome, block)))
     }
 
     /// The contact law.
@@ -212,8 +211,7 @@ impl DomeBlockContact {
         block: &BodyKinematics,
     ) -> Option<(f64, f64)> {
         let c = self.closest_direct(&dome.pose, &block.pose)?;
-        let rate = (dome.velocity_at(c.point) - block.velocity_at(c.point)).dot(c.normal);
-        Some((c.dist, rate))
+        Some((c.dist, c.closing_rate(dome, block)))
     }
 
     /// The contact sample of the closest points `c`, if the surfaces overlap.
@@ -227,7 +225,7 @@ impl DomeBlockContact {
             return None;
         }
         let indentation = -c.dist;
-        let rate = (dome.velocity_at(c.point) - block.velocity_at(c.point)).dot(c.normal);
+        let rate = c.closing_rate(dome, block);
         Some(ContactSample {
             indentation,
             rate,
@@ -247,6 +245,13 @@ struct Closest {
     normal: Vector,
     /// Midpoint of the two closest surface points [m, world].
     point: Vector,
+}
+
+impl Closest {
+    /// The rate of approach δ̇ = (v_dome − v_block)·n at the midpoint [m/s] (> 0 closing).
+    fn closing_rate(&self, dome: &BodyKinematics, block: &BodyKinematics) -> f64 {
+        (dome.velocity_at(self.point) - block.velocity_at(self.point)).dot(self.normal)
+    }
 }
 
 impl ContactCallback for DomeBlockContact {

@@ -93,11 +93,7 @@ pub fn strike<'py>(
     out: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let description = StrikeDescription::parse(text, source).map_err(py_error)?;
-    let options = StrikeOptions { trace_every, out };
-    let cancel = CancelToken::new();
-    let result =
-        detached(py, &cancel, || run_strike(&description, &options, &cancel))?.map_err(py_error)?;
-    to_object(py, &result)
+    run_described(py, &description, StrikeOptions { trace_every, out })
 }
 
 /// One driven strike from the numbers of `flexrig strike`'s flags (the library's
@@ -155,10 +151,19 @@ pub fn strike_flags<'py>(
         Error::InvalidArgument { .. } => flag_error(e),
         _ => py_error(e),
     })?;
-    let options = StrikeOptions { trace_every, out };
+    run_described(py, &description, StrikeOptions { trace_every, out })
+}
+
+/// Runs a described strike with the GIL released (cancellable by Ctrl-C) and returns its
+/// serialised result.
+fn run_described<'py>(
+    py: Python<'py>,
+    description: &StrikeDescription,
+    options: StrikeOptions,
+) -> PyResult<Bound<'py, PyAny>> {
     let cancel = CancelToken::new();
     let result =
-        detached(py, &cancel, || run_strike(&description, &options, &cancel))?.map_err(py_error)?;
+        detached(py, &cancel, || run_strike(description, &options, &cancel))?.map_err(py_error)?;
     to_object(py, &result)
 }
 
