@@ -128,6 +128,9 @@ pub struct DriveSummary {
     pub friction_dissipated_j: f64,
     /// Largest |τ_j| over the run [N·m].
     pub peak_joint_torque_nm: f64,
+    /// Time \[s\] the controller spent at its torque limit (steps that end there); 0 without a
+    /// limit or when the command never needed more.
+    pub time_at_torque_limit_s: f64,
     /// Deflection of the link's tip from the hub's line at the contact onset \[m\], positive
     /// towards the operator (the drive's acceleration pre-bends the link; negative: the tip
     /// lags).
@@ -173,6 +176,22 @@ impl JointDrive {
     pub fn new(spec: &RobotDriveSpec) -> Result<Self, RigError> {
         let drive = Drive::new(spec.motor, spec.command.clone()).map_err(scene_error)?;
         let start_angle = spec.placement.angle(&drive).map_err(scene_error)?;
+        let speed = match drive.command() {
+            DriveCommand::OpenLoop { initial_speed, .. } => *initial_speed,
+            _ => drive.profile().map_or(0.0, |p| p.final_speed()),
+        };
+        let after_ramp = matches!(
+            spec.placement,
+            flexrig_impact::drive::Placement::AfterRamp { .. }
+        );
+        if after_ramp && speed <= 0.0 && !matches!(drive.command(), DriveCommand::OpenLoop { .. }) {
+            return Err(crate::error::invalid(
+                "robot.drive.command.profile.speed",
+                flexrig_contact::validate::display(speed),
+                "must be > 0 rad/s (towards the operator) for placement = \"after_ramp\", \
+                 which puts the block where the commanded motion arrives",
+            ));
+        }
         if !(0.0..=MAX_PLACEMENT_RAD).contains(&start_angle) {
             let field = match spec.placement {
                 flexrig_impact::drive::Placement::Angle { .. } => "robot.drive.placement.angle",
@@ -191,10 +210,6 @@ impl JointDrive {
         }
         let preload = drive.steady_preload().map_err(scene_error)?;
         let motor = drive.motor();
-        let speed = match drive.command() {
-            DriveCommand::OpenLoop { initial_speed, .. } => *initial_speed,
-            _ => drive.profile().map_or(0.0, |p| p.final_speed()),
-        };
         if let DriveCommand::OpenLoop {
             torque: TorqueProfile::Constant { torque },
             initial_speed,

@@ -364,6 +364,8 @@ struct Stats {
     drive_work: f64,
     drive_friction: f64,
     drive_peak_torque: f64,
+    /// Time the drive's torque spent at its limit \[s\].
+    drive_limit_time: f64,
     drive_scale: f64,
     drive_onset: Option<(f64, Option<f64>, f64)>,
 }
@@ -954,6 +956,33 @@ impl<'s> Simulation<'s> {
         ))
     }
 
+    /// Why a run may never touch, for the error after 60 s without contact: without a drive the
+    /// pendulum's swing; with one, how far and how fast the drive has moved the link against
+    /// the travel to the block and the commanded speed, and its torque limit.
+    fn no_contact_hint(&self) -> String {
+        let (Some(d), Some(f)) = (&self.scene.drive, self.drive_frame()) else {
+            return "does the pendulum reach the dome?".into();
+        };
+        let mut hint = format!(
+            "the drive has moved the link {:.4} of the {:.4} rad to the block and turns it at \
+             {:.4} rad/s, commanded {:.4} rad/s",
+            f.link_angle_rad,
+            d.start_angle(),
+            f.link_speed_rad_s,
+            f.commanded_speed_rad_s
+        );
+        if d.is_torque_limited() {
+            hint.push_str(&format!(
+                "; is robot.drive.command.torque_limit = {} N·m at the motor shaft enough to \
+                 move it?",
+                flexrig_contact::validate::display(
+                    d.drive().joint_torque_limit() / d.drive().motor().gear_ratio
+                )
+            ));
+        }
+        hint
+    }
+
     /// Deflection of the link's tip from the drive's hub line \[m\], positive towards the
     /// operator (the drive's convention: −y of the hub frame): CJ L sin(φ_m − φ_l), CL the
     /// beam's tip in the hub's frame; 0 without a drive.
@@ -978,6 +1007,9 @@ impl<'s> Simulation<'s> {
         self.stats.drive_work += 0.5 * dt * (a.torque * wa + b.torque * wb);
         self.stats.drive_friction += 0.5 * dt * c * (wa * wa + wb * wb);
         self.stats.drive_peak_torque = self.stats.drive_peak_torque.max(b.torque.abs());
+        if b.torque.abs() >= d.drive().joint_torque_limit() {
+            self.stats.drive_limit_time += dt;
+        }
         self.stats.drive_scale = self
             .stats
             .drive_scale
@@ -1486,7 +1518,7 @@ impl<'s> Simulation<'s> {
             {
                 return Err(RigError::NotReached {
                     what: "contact".into(),
-                    limit: "60 s of simulated time (does the pendulum reach the dome?)".into(),
+                    limit: format!("60 s of simulated time ({})", self.no_contact_hint()),
                 });
             }
         }
@@ -1536,6 +1568,7 @@ impl<'s> Simulation<'s> {
                 motor_work_j: self.stats.drive_work,
                 friction_dissipated_j: self.stats.drive_friction,
                 peak_joint_torque_nm: self.stats.drive_peak_torque,
+                time_at_torque_limit_s: self.stats.drive_limit_time,
                 pre_impact_deflection_m: self.stats.drive_onset.map(|o| o.2),
                 link_speed_at_onset_rad_s: self.stats.drive_onset.map(|o| o.0),
                 commanded_speed_at_onset_rad_s: self.stats.drive_onset.and_then(|o| o.1),

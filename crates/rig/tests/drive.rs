@@ -406,7 +406,7 @@ fn bad_drive_input_names_the_scene_field() {
         (
             "speed = 2.6365",
             "speed = -2.6365",
-            "robot.drive.placement.settle",
+            "robot.drive.command.profile.speed",
         ),
     ];
     for (from, to, field) in cases {
@@ -430,4 +430,80 @@ fn bad_drive_input_names_the_scene_field() {
         "start = { from = \"moving\", angle_deg = 0.0, angular_velocity_rad_s = 0.0 }",
     );
     assert_eq!(field_of(&text), "operator.start.angle_deg");
+}
+
+/// A torque limit too small to bring the link to the block: after 60 s of simulated time the
+/// run stops with an error that says how far and how fast the drive has moved the link and
+/// names the limit. With the joint torque at its limit N τ_m,max against the viscous friction
+/// N² c_m ω, the link can turn no faster than the terminal speed τ_m,max / (N c_m) (the
+/// friction of the hub's own inertia's approach to it): 1e-6 / (10 · 1e-5) = 0.01 rad/s.
+#[test]
+fn a_drive_too_weak_to_reach_the_block_says_so() {
+    let text =
+        common::scene_text("rig_driven_cl").replace("torque_limit = 0.2", "torque_limit = 1e-6");
+    let scene = parse(&text).unwrap();
+    let sim = Simulation::new(&scene, RunOptions::default()).unwrap();
+    let limit = match sim.run(&mut Keep::default()) {
+        Err(RigError::NotReached { what, limit }) => {
+            assert_eq!(what, "contact");
+            limit
+        }
+        other => panic!("{other:?}"),
+    };
+    assert!(
+        limit.contains("robot.drive.command.torque_limit = 1e-6 N·m"),
+        "{limit}"
+    );
+    let number_after = |key: &str| -> f64 {
+        let rest =
+            &limit[limit.find(key).unwrap_or_else(|| panic!("{key}: {limit}")) + key.len()..];
+        rest.split_whitespace().next().unwrap().parse().unwrap()
+    };
+    let (travel, to_block) = (number_after("moved the link "), number_after(" of the "));
+    let speed = number_after("turns it at ");
+    eprintln!("{limit}");
+    assert!(travel > 0.0 && travel < to_block, "{travel} of {to_block}");
+    assert!(speed > 0.0 && speed <= 0.01, "{speed} rad/s");
+}
+
+/// The time at the torque limit in the summary is the time of the steps whose torque ends at
+/// the limit (the frames a log carries), and 0 for the bundled drive, whose limit the command
+/// never needs (its largest torque stays below it).
+#[test]
+fn the_summary_counts_the_time_at_the_torque_limit() {
+    let bundled = parse(&common::scene_text("rig_driven_cj")).unwrap();
+    let s = run(&bundled);
+    let d = s.drive.unwrap();
+    assert!(
+        d.peak_joint_torque_nm < 2.0 && d.time_at_torque_limit_s == 0.0,
+        "{d:?}"
+    );
+
+    let text =
+        common::scene_text("rig_driven_cj").replace("torque_limit = 0.2", "torque_limit = 0.004");
+    let scene = parse(&text).unwrap();
+    let mut keep = Keep::default();
+    let s = Simulation::new(&scene, RunOptions::default())
+        .unwrap()
+        .run(&mut keep)
+        .unwrap();
+    let d = s.drive.unwrap();
+    let limit = 0.004 * 10.0;
+    let mut at_limit = 0.0;
+    let mut t_before = 0.0;
+    for (t, _, f) in &keep.0 {
+        if f.joint_torque_nm.abs() >= limit * (1.0 - 1e-12) {
+            at_limit += t - t_before;
+        }
+        t_before = *t;
+    }
+    eprintln!(
+        "at the limit for {} s (frames: {at_limit} s)",
+        d.time_at_torque_limit_s
+    );
+    assert!(d.time_at_torque_limit_s > 0.1, "{d:?}");
+    assert!(
+        (d.time_at_torque_limit_s - at_limit).abs() <= 1e-9 * s.duration_s,
+        "{at_limit}"
+    );
 }
