@@ -563,9 +563,7 @@ impl BandMatrix {
                 }
                 b[j] = x;
                 let mut shifted = [x; K];
-                for i in 1..K {
-                    shifted[i] = w[i - 1];
-                }
+                shifted[1..].copy_from_slice(&w[..K - 1]);
                 w = shifted;
             }
         }
