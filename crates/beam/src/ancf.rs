@@ -50,6 +50,7 @@
 use nalgebra::{SMatrix, SVector, Vector2};
 
 use crate::element::HERMITE_PRODUCTS;
+use crate::lanes::{Lanes4, Real};
 
 /// Element coordinates: (r₁ₓ, r₁ᵧ, r₁′ₓ, r₁′ᵧ, r₂ₓ, r₂ᵧ, r₂′ₓ, r₂′ᵧ).
 pub type Vector8 = SVector<f64, 8>;
@@ -230,21 +231,27 @@ pub struct AncfElement {
 /// Interior lanes of the default rules (see `AncfElement::lanes`).
 const LANES: usize = 7;
 
-/// The lanes' values Σₐ cₐ (d₂ₐ, d₂ₐ₊₁) (r′ or r″ at each point, as displacements): the
-/// sums in the order of the per-point loops.
+/// The element coordinates as an array.
 #[inline(always)]
-fn gather_lanes(lanes: &[[f64; 4]; LANES], d: &Vector8) -> [[f64; 2]; LANES] {
+fn coordinates(d: &Vector8) -> [f64; 8] {
     // (plain loops rather than `std::array::from_fn`, whose helper is not inlined into the
     // AVX2 build of the kernels)
     let mut dd = [0.0f64; 8];
     for (k, x) in dd.iter_mut().enumerate() {
         *x = d[k];
     }
-    let mut out = [[0.0f64; 2]; LANES];
+    dd
+}
+
+/// The lanes' values Σₐ cₐ (d₂ₐ, d₂ₐ₊₁) (r′ or r″ at each point, as displacements): the
+/// sums in the order of the per-point loops.
+#[inline(always)]
+fn gather_lanes<T: Real>(lanes: &[[f64; 4]; LANES], dd: &[T; 8]) -> [[T; 2]; LANES] {
+    let mut out = [[T::splat(0.0); 2]; LANES];
     for (s, lane) in out.iter_mut().zip(lanes) {
         for a in 0..4 {
-            s[0] += dd[2 * a] * lane[a];
-            s[1] += dd[2 * a + 1] * lane[a];
+            s[0] = s[0] + dd[2 * a] * T::splat(lane[a]);
+            s[1] = s[1] + dd[2 * a + 1] * T::splat(lane[a]);
         }
     }
     out
@@ -252,11 +259,11 @@ fn gather_lanes(lanes: &[[f64; 4]; LANES], d: &Vector8) -> [[f64; 2]; LANES] {
 
 /// Adds Σₖ cₐ,ₖ `fl`ₖ to the slot forces `f` (element coordinates).
 #[inline(always)]
-fn scatter_lanes(lanes: &[[f64; 4]; LANES], fl: &[[f64; 2]; LANES], f: &mut [f64; 8]) {
+fn scatter_lanes<T: Real>(lanes: &[[f64; 4]; LANES], fl: &[[T; 2]; LANES], f: &mut [T; 8]) {
     for k in 0..LANES {
         for a in 0..4 {
-            f[2 * a] += lanes[k][a] * fl[k][0];
-            f[2 * a + 1] += lanes[k][a] * fl[k][1];
+            f[2 * a] = f[2 * a] + T::splat(lanes[k][a]) * fl[k][0];
+            f[2 * a + 1] = f[2 * a + 1] + T::splat(lanes[k][a]) * fl[k][1];
         }
     }
 }
@@ -647,26 +654,65 @@ fn combine<const R: usize, const N: usize>(acc: &mut [f64; N], rows: [&[f64; N];
     *acc = s;
 }
 
+/// One axial point's energy and force term (EA ε wl t, to be multiplied by c¹ₐ) at the
+/// displacement gradient d′ = `dp`: the force part of [`axial_point`], the same operations, for
+/// one element or four side by side.
+#[inline(always)]
+fn axial_force<T: Real>(ea: f64, wl: f64, dp: [T; 2]) -> (T, [T; 2]) {
+    let one = T::splat(1.0);
+    let g1 = T::splat(2.0) * dp[0] + (dp[0] * dp[0] + dp[1] * dp[1]);
+    let norm = (one + g1).sqrt();
+    let eps = g1 / (norm + one);
+    let n_ax = T::splat(ea) * eps;
+    let inv = one / norm;
+    let (tx, ty) = ((one + dp[0]) * inv, dp[1] * inv);
+    let w = T::splat(wl) * n_ax;
+    (T::splat(0.5 * wl) * n_ax * eps, [tx * w, ty * w])
+}
+
+/// One bending point's energy and force factors α wl M, β wl M (to be multiplied by c¹ₐ, c²ₐ):
+/// the force part of [`bending_point`], the same operations, for one element or four side by
+/// side.
+#[inline(always)]
+fn bending_force<T: Real>(ei: f64, wl: f64, dp: [T; 2], rpp: [T; 2]) -> (T, [T; 2], [T; 2]) {
+    let rp = [T::splat(1.0) + dp[0], dp[1]];
+    let g = rp[0] * rp[0] + rp[1] * rp[1];
+    let gi = T::splat(1.0) / g;
+    let kappa = (rp[0] * rpp[1] - rp[1] * rpp[0]) * gi;
+    let m_b = T::splat(ei) * kappa;
+    let (pv, qv) = ([rpp[1], -rpp[0]], [-rp[1], rp[0]]);
+    let k2 = T::splat(2.0) * kappa * gi;
+    let al = [pv[0] * gi - rp[0] * k2, pv[1] * gi - rp[1] * k2];
+    let be = [qv[0] * gi, qv[1] * gi];
+    let fm = T::splat(wl) * m_b;
+    (
+        T::splat(0.5 * wl) * m_b * kappa,
+        [fm * al[0], fm * al[1]],
+        [fm * be[0], fm * be[1]],
+    )
+}
+
 /// One axial point at the displacement gradient d′ = `dp`: its energy, the force term
 /// (EA ε wl t, to be multiplied by c¹ₐ) and the 2 × 2 tangent EA (t tᵀ + ε P/|r′|) and material
 /// EA t tᵀ blocks as (xx, yy, xy) (without wl, which the tables carry).
 #[inline(always)]
-fn axial_point(ea: f64, wl: f64, dp: [f64; 2]) -> (f64, [f64; 2], [f64; 3], [f64; 3]) {
-    let g1 = 2.0 * dp[0] + (dp[0] * dp[0] + dp[1] * dp[1]);
-    let norm = (1.0 + g1).sqrt();
-    let eps = g1 / (norm + 1.0);
+fn axial_point<T: Real>(ea: f64, wl: f64, dp: [T; 2]) -> (T, [T; 2], [T; 3], [T; 3]) {
+    let (one, ea) = (T::splat(1.0), T::splat(ea));
+    let g1 = T::splat(2.0) * dp[0] + (dp[0] * dp[0] + dp[1] * dp[1]);
+    let norm = (one + g1).sqrt();
+    let eps = g1 / (norm + one);
     let n_ax = ea * eps;
-    let inv = 1.0 / norm;
-    let (tx, ty) = ((1.0 + dp[0]) * inv, dp[1] * inv);
-    let w = wl * n_ax;
+    let inv = one / norm;
+    let (tx, ty) = ((one + dp[0]) * inv, dp[1] * inv);
+    let w = T::splat(wl) * n_ax;
     let s = eps * inv;
     let (txx, txy, tyy) = (tx * tx, tx * ty, ty * ty);
     (
-        0.5 * wl * n_ax * eps,
+        T::splat(0.5 * wl) * n_ax * eps,
         [tx * w, ty * w],
         [
-            ea * (txx + s * (1.0 - txx)),
-            ea * (tyy + s * (1.0 - tyy)),
+            ea * (txx + s * (one - txx)),
+            ea * (tyy + s * (one - tyy)),
             ea * (txy - s * txy),
         ],
         [ea * txx, ea * tyy, ea * txy],
@@ -676,21 +722,22 @@ fn axial_point(ea: f64, wl: f64, dp: [f64; 2]) -> (f64, [f64; 2], [f64; 3], [f64
 /// One bending point: energy, the force factors α wl M, β wl M (to be multiplied by c¹ₐ,
 /// c²ₐ), and the coefficients (`ei` times K₁₁, K₁₂, K₂₂ of the module docs) of the symmetric
 /// rows (P¹¹, P¹² + P²¹, P²²) for x–x and y–y and of the rows (P¹¹, P²², P¹², P²¹) for x–y.
-struct BendingPoint {
-    energy: f64,
-    fa: [f64; 2],
-    fb: [f64; 2],
-    al: [f64; 2],
-    be: [f64; 2],
-    xx: [f64; 3],
-    yy: [f64; 3],
-    xy: [f64; 4],
+struct BendingPoint<T> {
+    energy: T,
+    fa: [T; 2],
+    fb: [T; 2],
+    al: [T; 2],
+    be: [T; 2],
+    xx: [T; 3],
+    yy: [T; 3],
+    xy: [T; 4],
 }
 
 /// The coefficients of a bending point's material matrix `ei` (ααᵀ, αβᵀ, ββᵀ) for the rows of
 /// [`BendingPoint`]: (x–x, y–y, x–y).
 #[inline(always)]
-fn bending_material(ei: f64, al: [f64; 2], be: [f64; 2]) -> ([f64; 3], [f64; 3], [f64; 4]) {
+fn bending_material<T: Real>(ei: f64, al: [T; 2], be: [T; 2]) -> ([T; 3], [T; 3], [T; 4]) {
+    let ei = T::splat(ei);
     (
         [ei * al[0] * al[0], ei * al[0] * be[0], ei * be[0] * be[0]],
         [ei * al[1] * al[1], ei * al[1] * be[1], ei * be[1] * be[1]],
@@ -706,33 +753,41 @@ fn bending_material(ei: f64, al: [f64; 2], be: [f64; 2]) -> ([f64; 3], [f64; 3],
 /// A bending point (see [`BendingPoint`]): the force with `ei`, the tangent coefficients with
 /// `ei_k` (`ei` times the tangent's scale).
 #[inline(always)]
-fn bending_point(ei: f64, ei_k: f64, wl: f64, dp: [f64; 2], rpp: [f64; 2]) -> BendingPoint {
-    let rp = [1.0 + dp[0], dp[1]];
+fn bending_point<T: Real>(ei: f64, ei_k: f64, wl: f64, dp: [T; 2], rpp: [T; 2]) -> BendingPoint<T> {
+    let c = T::splat;
+    let (ei, ei_k) = (c(ei), c(ei_k));
+    let rp = [c(1.0) + dp[0], dp[1]];
     let g = rp[0] * rp[0] + rp[1] * rp[1];
-    let gi = 1.0 / g;
+    let gi = c(1.0) / g;
     let kappa = (rp[0] * rpp[1] - rp[1] * rpp[0]) * gi;
     let m_b = ei * kappa;
     // J r″, Jᵀ r′; α = J r″/g − 2κ r′/g, β = Jᵀ r′/g
     let pv = [rpp[1], -rpp[0]];
     let qv = [-rp[1], rp[0]];
-    let k2 = 2.0 * kappa * gi;
+    let k2 = c(2.0) * kappa * gi;
     let al = [pv[0] * gi - rp[0] * k2, pv[1] * gi - rp[1] * k2];
     let be = [qv[0] * gi, qv[1] * gi];
-    let fm = wl * m_b;
+    let fm = c(wl) * m_b;
     // B₁₁ (symmetric), B₁₂ (module docs)
     let gi2 = gi * gi;
     let b11 = [
-        -4.0 * pv[0] * rp[0] * gi2 - 2.0 * kappa * gi + 8.0 * kappa * rp[0] * rp[0] * gi2,
-        -4.0 * pv[1] * rp[1] * gi2 - 2.0 * kappa * gi + 8.0 * kappa * rp[1] * rp[1] * gi2,
-        -2.0 * (pv[0] * rp[1] + rp[0] * pv[1]) * gi2 + 8.0 * kappa * rp[0] * rp[1] * gi2,
+        c(-4.0) * pv[0] * rp[0] * gi2 - c(2.0) * kappa * gi + c(8.0) * kappa * rp[0] * rp[0] * gi2,
+        c(-4.0) * pv[1] * rp[1] * gi2 - c(2.0) * kappa * gi + c(8.0) * kappa * rp[1] * rp[1] * gi2,
+        c(-2.0) * (pv[0] * rp[1] + rp[0] * pv[1]) * gi2 + c(8.0) * kappa * rp[0] * rp[1] * gi2,
     ];
     let b12 = [
-        [-2.0 * rp[0] * qv[0] * gi2, gi - 2.0 * rp[0] * qv[1] * gi2],
-        [-gi - 2.0 * rp[1] * qv[0] * gi2, -2.0 * rp[1] * qv[1] * gi2],
+        [
+            c(-2.0) * rp[0] * qv[0] * gi2,
+            gi - c(2.0) * rp[0] * qv[1] * gi2,
+        ],
+        [
+            -gi - c(2.0) * rp[1] * qv[0] * gi2,
+            c(-2.0) * rp[1] * qv[1] * gi2,
+        ],
     ];
     let k12 = |i: usize, j: usize| ei_k * (al[i] * be[j] + kappa * b12[i][j]);
     BendingPoint {
-        energy: 0.5 * wl * m_b * kappa,
+        energy: c(0.5 * wl) * m_b * kappa,
         fa: [fm * al[0], fm * al[1]],
         fb: [fm * be[0], fm * be[1]],
         al,
@@ -754,6 +809,55 @@ fn bending_point(ei: f64, ei_k: f64, wl: f64, dp: [f64; 2], rpp: [f64; 2]) -> Be
             k12(1, 0),
         ],
     }
+}
+
+/// The per-point values of an element's tangent evaluation (default rules): energy, force,
+/// the nodal axial points' 2 × 2 blocks (tangent, material), the coefficients of the table
+/// rows (x–x, y–y, x–y), the middle axial point's material block and each bending point's
+/// α, β (for the material matrix).
+#[derive(Debug, Clone, Copy)]
+struct TangentPoints<T> {
+    energy: T,
+    f: [T; 8],
+    nodal_k: [[T; 3]; 2],
+    nodal_m: [[T; 3]; 2],
+    cxx: [T; 10],
+    cyy: [T; 10],
+    cxy: [T; 13],
+    mm: [T; 3],
+    albe: [([T; 2], [T; 2]); 3],
+}
+
+impl TangentPoints<Lanes4> {
+    /// The values of the element in lane `j`.
+    #[inline(always)]
+    fn lane(&self, j: usize) -> TangentPoints<f64> {
+        let l = |x: &Lanes4| x.0[j];
+        let pair = |x: &[Lanes4; 2]| [l(&x[0]), l(&x[1])];
+        TangentPoints {
+            energy: l(&self.energy),
+            f: self.f.each_ref().map(l),
+            nodal_k: self.nodal_k.each_ref().map(|r| r.each_ref().map(l)),
+            nodal_m: self.nodal_m.each_ref().map(|r| r.each_ref().map(l)),
+            cxx: self.cxx.each_ref().map(l),
+            cyy: self.cyy.each_ref().map(l),
+            cxy: self.cxy.each_ref().map(l),
+            mm: self.mm.each_ref().map(l),
+            albe: self.albe.each_ref().map(|(a, b)| (pair(a), pair(b))),
+        }
+    }
+}
+
+/// Four elements' coordinates side by side (lane k: element k).
+#[inline(always)]
+fn transpose_in(d: &[Vector8; 4]) -> [Lanes4; 8] {
+    let mut x = [Lanes4([0.0; 4]); 8];
+    for (k, xk) in x.iter_mut().enumerate() {
+        for (j, dj) in d.iter().enumerate() {
+            xk.0[j] = dj[k];
+        }
+    }
+    x
 }
 
 impl AncfElement {
@@ -785,32 +889,80 @@ impl AncfElement {
         self.force_default_portable(d)
     }
 
-    /// [`AncfElement::force`] for the default rules (fixed point counts; the nodal axial
-    /// points read and write the slope slots alone).
+    /// [`AncfElement::force`] for the default rules.
     #[inline(always)]
     fn force_default_portable(&self, d: &Vector8) -> (f64, Vector8) {
-        let mut f = [0.0f64; 8];
-        let mut energy = 0.0;
+        let (energy, f) = self.force_default_lanes(&coordinates(d));
+        (energy, Vector8::from(f))
+    }
+
+    /// [`AncfElement::force`] for the default rules (fixed point counts; the nodal axial
+    /// points read and write the slope slots alone), for one element (`T` = `f64`) or four
+    /// side by side ([`Lanes4`]: each lane gets that element's result bit for bit).
+    #[inline(always)]
+    fn force_default_lanes<T: Real>(&self, d: &[T; 8]) -> (T, [T; 8]) {
+        let zero = T::splat(0.0);
+        let mut f = [zero; 8];
+        let mut energy = zero;
         for (slot, t) in [(1usize, 0usize), (3, 2)] {
-            let (u, ft, _, _) =
-                axial_point(self.ea, self.axial[t].wl, [d[2 * slot], d[2 * slot + 1]]);
-            energy += u;
-            f[2 * slot] += ft[0];
-            f[2 * slot + 1] += ft[1];
+            let (u, ft) = axial_force(self.ea, self.axial[t].wl, [d[2 * slot], d[2 * slot + 1]]);
+            energy = energy + u;
+            f[2 * slot] = f[2 * slot] + ft[0];
+            f[2 * slot + 1] = f[2 * slot + 1] + ft[1];
         }
         let g = gather_lanes(&self.lanes, d);
-        let mut fl = [[0.0f64; 2]; LANES];
-        let (u, ft, _, _) = axial_point(self.ea, self.axial[1].wl, g[0]);
-        energy += u;
+        let mut fl = [[zero; 2]; LANES];
+        let (u, ft) = axial_force(self.ea, self.axial[1].wl, g[0]);
+        energy = energy + u;
         fl[0] = ft;
         for t in 0..3 {
-            let b = bending_point(self.ei, 0.0, self.bending[t].wl, g[1 + t], g[4 + t]);
-            energy += b.energy;
-            fl[1 + t] = b.fa;
-            fl[4 + t] = b.fb;
+            let (u, fa, fb) = bending_force(self.ei, self.bending[t].wl, g[1 + t], g[4 + t]);
+            energy = energy + u;
+            fl[1 + t] = fa;
+            fl[4 + t] = fb;
         }
         scatter_lanes(&self.lanes, &fl, &mut f);
-        (energy, Vector8::from(f))
+        (energy, f)
+    }
+
+    /// [`AncfElement::force`] of four elements at once (element k at the displacement
+    /// `d[k]`, its energy and force into `out[k]`): with the default rules the kernel runs once with the four elements side by
+    /// side, one per vector lane (compiled for AVX2 when the processor has it), so that their
+    /// square roots and divisions share instructions; each element's energy and force are
+    /// those of [`AncfElement::force`] bit for bit (the same operations, tested).
+    #[inline]
+    pub fn force4(&self, d: &[Vector8; 4], out: &mut [(f64, Vector8); 4]) {
+        if !self.default_rules() {
+            for (o, dk) in out.iter_mut().zip(d) {
+                *o = self.force(dk);
+            }
+            return;
+        }
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor has AVX2 (checked just above).
+            return unsafe { self.force4_default_avx2(d, out) };
+        }
+        self.force4_default_portable(d, out)
+    }
+
+    /// [`AncfElement::force4`] for the default rules compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn force4_default_avx2(&self, d: &[Vector8; 4], out: &mut [(f64, Vector8); 4]) {
+        self.force4_default_portable(d, out)
+    }
+
+    /// [`AncfElement::force4`] for the default rules.
+    #[inline(always)]
+    fn force4_default_portable(&self, d: &[Vector8; 4], out: &mut [(f64, Vector8); 4]) {
+        let (energy, f) = self.force_default_lanes(&transpose_in(d));
+        for (j, (e, fj)) in out.iter_mut().enumerate() {
+            *e = energy.0[j];
+            for k in 0..8 {
+                fj[k] = f[k].0[j];
+            }
+        }
     }
 
     /// The shape-function products of this element's points (see [`TangentTables`]).
@@ -916,32 +1068,42 @@ impl AncfElement {
         tangent: &mut SlotBlocks,
         material: Option<&mut SlotBlocks>,
     ) -> (f64, Vector8) {
-        let mut f = [0.0f64; 8];
-        let mut energy = 0.0;
-        let mut nodal_k = [[0.0f64; 3]; 2];
-        let mut nodal_m = [[0.0f64; 3]; 2];
+        let points = self.tangent_points(&coordinates(d), scale);
+        self.tangent_from_points(tables, &points, tangent, material)
+    }
+
+    /// The per-point part of [`AncfElement::force_and_tangent`] (default rules): energy,
+    /// force and the coefficients of the table rows, for one element (`T` = `f64`) or four
+    /// side by side ([`Lanes4`]: each lane gets that element's values bit for bit).
+    #[inline(always)]
+    fn tangent_points<T: Real>(&self, d: &[T; 8], scale: f64) -> TangentPoints<T> {
+        let zero = T::splat(0.0);
+        let mut f = [zero; 8];
+        let mut energy = zero;
+        let mut nodal_k = [[zero; 3]; 2];
+        let mut nodal_m = [[zero; 3]; 2];
         for (n, (slot, t)) in [(1usize, 0usize), (3, 2)].into_iter().enumerate() {
             let p = &self.axial[t];
             let (u, ft, k, m) = axial_point(self.ea, p.wl, [d[2 * slot], d[2 * slot + 1]]);
-            energy += u;
-            f[2 * slot] += ft[0];
-            f[2 * slot + 1] += ft[1];
-            nodal_k[n] = k.map(|x| x * (p.wl * scale));
-            nodal_m[n] = m.map(|x| x * p.wl);
+            energy = energy + u;
+            f[2 * slot] = f[2 * slot] + ft[0];
+            f[2 * slot + 1] = f[2 * slot + 1] + ft[1];
+            nodal_k[n] = k.map(|x| x * T::splat(p.wl * scale));
+            nodal_m[n] = m.map(|x| x * T::splat(p.wl));
         }
         let g = gather_lanes(&self.lanes, d);
-        let mut fl = [[0.0f64; 2]; LANES];
+        let mut fl = [[zero; 2]; LANES];
         let (u, ft, km, mm) = axial_point(self.ea, self.axial[1].wl, g[0]);
-        energy += u;
+        energy = energy + u;
         fl[0] = ft;
-        // row coefficients: x–x and y–y over `sym_rows`, x–y over `cross_rows`
-        let mut cxx = [0.0f64; 10];
-        let mut cyy = [0.0f64; 10];
-        let mut cxy = [0.0f64; 13];
-        cxx[0] = km[0] * scale;
-        cyy[0] = km[1] * scale;
-        cxy[0] = km[2] * scale;
-        let mut albe = [([0.0f64; 2], [0.0f64; 2]); 3];
+        // row coefficients: x–x and y–y over the symmetric rows, x–y over the cross rows
+        let mut cxx = [zero; 10];
+        let mut cyy = [zero; 10];
+        let mut cxy = [zero; 13];
+        cxx[0] = km[0] * T::splat(scale);
+        cyy[0] = km[1] * T::splat(scale);
+        cxy[0] = km[2] * T::splat(scale);
+        let mut albe = [([zero; 2], [zero; 2]); 3];
         for t in 0..3 {
             let b = bending_point(
                 self.ei,
@@ -950,7 +1112,7 @@ impl AncfElement {
                 g[1 + t],
                 g[4 + t],
             );
-            energy += b.energy;
+            energy = energy + b.energy;
             fl[1 + t] = b.fa;
             fl[4 + t] = b.fb;
             cxx[1 + 3 * t..4 + 3 * t].copy_from_slice(&b.xx);
@@ -959,6 +1121,109 @@ impl AncfElement {
             albe[t] = (b.al, b.be);
         }
         scatter_lanes(&self.lanes, &fl, &mut f);
+        TangentPoints {
+            energy,
+            f,
+            nodal_k,
+            nodal_m,
+            cxx,
+            cyy,
+            cxy,
+            mm,
+            albe,
+        }
+    }
+
+    /// [`AncfElement::force_and_tangent`] of four elements at once (default rules; others one
+    /// by one): element k at the displacement `d[k]`, `tangent[k]`, `material[k]`, its
+    /// energy and force into `out[k]`. The
+    /// per-point part runs once with the four elements side by side, one per vector lane
+    /// (compiled for AVX2 when the processor has it), the table part element by element: each
+    /// element's energy, force, tangent and material matrix are those of
+    /// [`AncfElement::force_and_tangent`] bit for bit (tested).
+    #[inline]
+    pub fn force_and_tangent4(
+        &self,
+        tables: &TangentTables,
+        d: &[Vector8; 4],
+        scale: f64,
+        tangent: &mut [SlotBlocks; 4],
+        material: Option<&mut [SlotBlocks; 4]>,
+        out: &mut [(f64, Vector8); 4],
+    ) {
+        if !self.default_rules() {
+            let mut material = material;
+            for k in 0..4 {
+                let m = material.as_deref_mut().map(|m| &mut m[k]);
+                out[k] = self.force_and_tangent(tables, &d[k], scale, &mut tangent[k], m);
+            }
+            return;
+        }
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor has AVX2 (checked just above).
+            return unsafe {
+                self.force_and_tangent4_default_avx2(tables, d, scale, tangent, material, out)
+            };
+        }
+        self.force_and_tangent4_default_portable(tables, d, scale, tangent, material, out)
+    }
+
+    /// [`AncfElement::force_and_tangent4`] for the default rules compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn force_and_tangent4_default_avx2(
+        &self,
+        tables: &TangentTables,
+        d: &[Vector8; 4],
+        scale: f64,
+        tangent: &mut [SlotBlocks; 4],
+        material: Option<&mut [SlotBlocks; 4]>,
+        out: &mut [(f64, Vector8); 4],
+    ) {
+        self.force_and_tangent4_default_portable(tables, d, scale, tangent, material, out)
+    }
+
+    /// [`AncfElement::force_and_tangent4`] for the default rules.
+    #[inline(always)]
+    fn force_and_tangent4_default_portable(
+        &self,
+        tables: &TangentTables,
+        d: &[Vector8; 4],
+        scale: f64,
+        tangent: &mut [SlotBlocks; 4],
+        mut material: Option<&mut [SlotBlocks; 4]>,
+        out: &mut [(f64, Vector8); 4],
+    ) {
+        let p = self.tangent_points(&transpose_in(d), scale);
+        for (k, (o, t)) in out.iter_mut().zip(tangent.iter_mut()).enumerate() {
+            let m = material.as_deref_mut().map(|m| &mut m[k]);
+            *o = self.tangent_from_points(tables, &p.lane(k), t, m);
+        }
+    }
+
+    /// The table part of [`AncfElement::force_and_tangent`] (default rules) from the element's
+    /// per-point values: the tangent (and material) sums added to `tangent` (`material`);
+    /// returns the energy and force.
+    #[inline(always)]
+    fn tangent_from_points(
+        &self,
+        tables: &TangentTables,
+        points: &TangentPoints<f64>,
+        tangent: &mut SlotBlocks,
+        material: Option<&mut SlotBlocks>,
+    ) -> (f64, Vector8) {
+        let TangentPoints {
+            energy,
+            f,
+            nodal_k,
+            nodal_m,
+            cxx,
+            cyy,
+            cxy,
+            mm,
+            albe,
+        } = *points;
         let (ts, tc) = (&tables.bending_sym, &tables.bending_cross);
         let sym_rows = [
             &tables.axial_packed[1],
@@ -1200,6 +1465,108 @@ mod tests {
             );
             assert_eq!(bits(&k), bits(&kp), "tangent, s {s}");
             assert_eq!(bits(&m), bits(&mp), "material, s {s}");
+        }
+    }
+
+    #[test]
+    fn four_elements_side_by_side_get_the_single_element_forces_bit_for_bit() {
+        // force4 (four elements in the lanes of one kernel run; AVX2 where the processor has
+        // it, and the portable build) against force element by element: energy and force
+        // identical to the last bit, for four different states in the four lanes (a straight,
+        // a small, a large and a stretched one), in every order; with other rules force4 calls
+        // force itself.
+        let bits = |(u, f): (f64, Vector8)| {
+            let mut b = vec![u.to_bits()];
+            b.extend(f.iter().map(|x| x.to_bits()));
+            b
+        };
+        let mut states = [
+            sample() * 0.0,
+            sample() * 1e-3,
+            sample() * 2.5,
+            sample() * -0.7,
+        ];
+        states[3][2] += 0.01; // a stretched slope
+        for el in [
+            AncfElement::new(0.3 / 32.0, 1.5e9 * 2.5e-5, 3.125e-3),
+            AncfElement::with_rules(
+                0.3 / 8.0,
+                37.5e3,
+                3.125e-3,
+                Quadrature::Gauss(5),
+                Quadrature::Gauss(3),
+            ),
+        ] {
+            for shift in 0..4 {
+                let d: [Vector8; 4] = std::array::from_fn(|k| states[(k + shift) % 4]);
+                let single = d.map(|dk| bits(el.force(&dk)));
+                let mut out = [(f64::NAN, Vector8::zeros()); 4];
+                el.force4(&d, &mut out);
+                assert_eq!(out.map(bits), single, "dispatched, shift {shift}");
+                if el.default_rules() {
+                    let mut out = [(f64::NAN, Vector8::zeros()); 4];
+                    el.force4_default_portable(&d, &mut out);
+                    assert_eq!(out.map(bits), single, "portable, shift {shift}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn four_elements_side_by_side_get_the_single_element_tangents_bit_for_bit() {
+        // force_and_tangent4 against force_and_tangent element by element: energy, force,
+        // tangent (added to different starting blocks) and material matrix identical to the
+        // last bit, four different states in the four lanes, for the default and other rules.
+        let bits8 = |(u, f): (f64, Vector8)| {
+            let mut b = vec![u.to_bits()];
+            b.extend(f.iter().map(|x| x.to_bits()));
+            b
+        };
+        let bits = |b: &SlotBlocks| {
+            [&b.xx[..], &b.yy[..], &b.xy[..]]
+                .concat()
+                .iter()
+                .map(|x| x.to_bits())
+                .collect::<Vec<_>>()
+        };
+        let mut states = [
+            sample() * 0.0,
+            sample() * 1e-3,
+            sample() * 2.5,
+            sample() * -0.7,
+        ];
+        states[3][2] += 0.01;
+        let mut start = SlotBlocks::ZERO;
+        start.xx[4] = 3.5;
+        start.xy[7] = -1.25;
+        for el in [
+            AncfElement::new(0.3 / 32.0, 1.5e9 * 2.5e-5, 3.125e-3),
+            AncfElement::with_rules(
+                0.3 / 8.0,
+                37.5e3,
+                3.125e-3,
+                Quadrature::Gauss(5),
+                Quadrature::Gauss(3),
+            ),
+        ] {
+            let tables = el.tangent_tables();
+            for shift in 0..4 {
+                let d: [Vector8; 4] = std::array::from_fn(|k| states[(k + shift) % 4]);
+                let (mut k4, mut m4) = ([start; 4], [SlotBlocks::ZERO; 4]);
+                let mut out = [(f64::NAN, Vector8::zeros()); 4];
+                el.force_and_tangent4(&tables, &d, 0.37, &mut k4, Some(&mut m4), &mut out);
+                for j in 0..4 {
+                    let (mut k, mut m) = (start, SlotBlocks::ZERO);
+                    let single = el.force_and_tangent(&tables, &d[j], 0.37, &mut k, Some(&mut m));
+                    assert_eq!(
+                        bits8(out[j]),
+                        bits8(single),
+                        "force, shift {shift} lane {j}"
+                    );
+                    assert_eq!(bits(&k4[j]), bits(&k), "tangent, shift {shift} lane {j}");
+                    assert_eq!(bits(&m4[j]), bits(&m), "material, shift {shift} lane {j}");
+                }
+            }
         }
     }
 

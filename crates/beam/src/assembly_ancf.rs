@@ -44,9 +44,8 @@ pub const SLOPE_X: usize = 3;
 pub const SLOPE_Y: usize = 2;
 
 /// The element of a model.
-pub fn element_of(model: &BeamModel) -> AncfElement {
-    let sec = model.section();
-    AncfElement::new(model.element_length(), sec.ea(), sec.ei())
+pub fn element_of(model: &BeamModel) -> &AncfElement {
+    &model.ancf_parts().element
 }
 
 #[inline(always)]
@@ -208,7 +207,7 @@ fn assemble_ancf_portable(
     }
     // the iteration matrix without a discrete gradient: the table-based tangent kernel
     // (AncfElement::force_and_tangent), the inertia part as its slot blocks
-    let tables = (jac.is_some() && discrete.is_none()).then(|| el.tangent_tables());
+    let tables = (jac.is_some() && discrete.is_none()).then(|| &model.ancf_parts().tables);
     let inertia_blocks = if dynamic && tables.is_some() {
         let mut b = SlotBlocks::ZERO;
         for a in 0..4 {
@@ -222,19 +221,90 @@ fn assemble_ancf_portable(
         SlotBlocks::ZERO
     };
     let mut energy = 0.0;
-    for e in 0..model.n_elements() {
+    // the residual alone (the most frequent call): the element forces four elements at a time
+    // (`AncfElement::force4`), no 8 × 8 matrix formed or zeroed
+    let residual_only = want == Want::Force && discrete.is_none() && tables.is_none();
+    let ne = model.n_elements();
+    let mut e0 = 0;
+    let mut forces = [(0.0, Vector8::zeros()); 4];
+    while residual_only && e0 < ne {
+        let batch = (ne - e0).min(4);
+        if batch == 4 {
+            let d = [
+                gather(kin.q, e0),
+                gather(kin.q, e0 + 1),
+                gather(kin.q, e0 + 2),
+                gather(kin.q, e0 + 3),
+            ];
+            el.force4(&d, &mut forces);
+        } else {
+            for (k, x) in forces.iter_mut().take(batch).enumerate() {
+                *x = el.force(&gather(kin.q, e0 + k));
+            }
+        }
+        for (k, &(element_energy, mut f)) in forces.iter().take(batch).enumerate() {
+            let e = e0 + k;
+            energy += element_energy;
+            if dynamic {
+                let pv = gather(kin.v.unwrap(), e);
+                let pa = gather(kin.a.unwrap(), e);
+                let acc = pa + pv * damping.alpha_mass;
+                add_inertia_force(&mut f, &acc, &mass, lumped.then_some(&m_lump));
+            }
+            let re: &mut [f64; 8] = (&mut r[4 * e..4 * e + 8]).try_into().expect("element DOFs");
+            for k in 0..8 {
+                re[ELEMENT_DOFS[k]] += f[k];
+            }
+        }
+        e0 += batch;
+    }
+    // the iteration matrix's element kernels four elements at a time
+    // (`AncfElement::force_and_tangent4`), the rest element by element
+    let mut batch = (
+        [(0.0, Vector8::zeros()); 4],
+        [SlotBlocks::ZERO; 4],
+        [SlotBlocks::ZERO; 4],
+    );
+    for e in (0..ne).filter(|_| !residual_only) {
         let d = gather(kin.q, e);
         if let (Some(tables), Some((band, w))) = (tables.as_ref(), jac.as_mut()) {
             // w_k K_t + (w_a + w_v a₀) M + w_v a₁ K_m
-            let mut kb = inertia_blocks;
-            let mut mb = SlotBlocks::ZERO;
-            let (u, mut f) = el.force_and_tangent(
-                tables,
-                &d,
-                w.stiffness,
-                &mut kb,
-                need_material.then_some(&mut mb),
-            );
+            let k = e % 4;
+            let (res, kb4, mb4) = &mut batch;
+            if k == 0 {
+                let count = (ne - e).min(4);
+                kb4[..count].fill(inertia_blocks);
+                if need_material {
+                    mb4[..count].fill(SlotBlocks::ZERO);
+                }
+                if count == 4 {
+                    el.force_and_tangent4(
+                        tables,
+                        &[
+                            d,
+                            gather(kin.q, e + 1),
+                            gather(kin.q, e + 2),
+                            gather(kin.q, e + 3),
+                        ],
+                        w.stiffness,
+                        kb4,
+                        need_material.then_some(mb4),
+                        res,
+                    );
+                } else {
+                    for j in 0..count {
+                        res[j] = el.force_and_tangent(
+                            tables,
+                            &gather(kin.q, e + j),
+                            w.stiffness,
+                            &mut kb4[j],
+                            need_material.then_some(&mut mb4[j]),
+                        );
+                    }
+                }
+            }
+            let (u, mut f) = res[k];
+            let (kb, mb) = (&mut kb4[k], &mb4[k]);
             energy += u;
             if dynamic {
                 let pv = gather(kin.v.unwrap(), e);
@@ -262,7 +332,7 @@ fn assemble_ancf_portable(
                 re[ELEMENT_DOFS[k]] += f[k];
             }
             // the block in the global DOF order 4e … 4e+7, by columns
-            let block = global_block(&kb);
+            let block = global_block(kb);
             if 4 * e >= nfix {
                 band.add_block(4 * e - nfix, &block);
             } else {
@@ -273,23 +343,6 @@ fn assemble_ancf_portable(
                         }
                     }
                 }
-            }
-            continue;
-        }
-        // the residual alone (the most frequent call) forms no 8 × 8 matrix
-        if want == Want::Force && discrete.is_none() {
-            // the residual alone (the most frequent call): no 8 × 8 matrix formed or zeroed
-            let (element_energy, mut f) = el.force(&d);
-            energy += element_energy;
-            if dynamic {
-                let pv = gather(kin.v.unwrap(), e);
-                let pa = gather(kin.a.unwrap(), e);
-                let acc = pa + pv * damping.alpha_mass;
-                add_inertia_force(&mut f, &acc, &mass, lumped.then_some(&m_lump));
-            }
-            let re: &mut [f64; 8] = (&mut r[4 * e..4 * e + 8]).try_into().expect("element DOFs");
-            for k in 0..8 {
-                re[ELEMENT_DOFS[k]] += f[k];
             }
             continue;
         }

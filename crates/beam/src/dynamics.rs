@@ -843,20 +843,19 @@ impl GeneralizedAlpha {
             Some(hp) if state.a_aux_prev.len() == n => h / hp,
             _ => 0.0,
         };
-        for i in 0..n {
-            ws.dq_step[i] = match predictor {
-                Predictor::Rest => 0.0,
-                Predictor::Velocity => h * state.v[i],
-                Predictor::Extrapolated => {
-                    let ahat = if ratio > 0.0 {
-                        ws.a_aux[i] + ratio * (ws.a_aux[i] - state.a_aux_prev[i])
-                    } else {
-                        ws.a_aux[i]
-                    };
-                    h * state.v[i] + h * h * ((0.5 - b) * ws.a_aux[i] + b * ahat)
-                }
-            };
-            ws.q_new[i] = state.q[i] + ws.dq_step[i];
+        predict(
+            predictor,
+            (h, b, ratio),
+            state,
+            &ws.a_aux[..n],
+            &mut ws.dq_step[..n],
+        );
+        for ((qn, q0), d) in ws.q_new[..n]
+            .iter_mut()
+            .zip(&state.q[..n])
+            .zip(&ws.dq_step[..n])
+        {
+            *qn = q0 + d;
         }
         // A prescribed root: its angle at t + h (its rate and acceleration below).
         let root = root.map(|f| f(t_new));
@@ -874,7 +873,7 @@ impl GeneralizedAlpha {
         }
         let tol = self.tolerance * model.length();
         let mut iterations = 0;
-        let mut last = f64::INFINITY;
+        let mut last;
         let mut first = f64::INFINITY;
         // modified Newton (every iterating model): the iteration matrix is kept over the step's
         // iterations while the corrections contract by MODIFIED_NEWTON_RATE per iteration and
@@ -896,32 +895,22 @@ impl GeneralizedAlpha {
             modified && model.kinematics() == Kinematics::Ancf && ws.factored_for == key;
         let mut refactor = !single_solve && !started_retained;
         let mut previous = f64::INFINITY;
-        let mut converged = false;
+        let relations = NewmarkRelations {
+            h,
+            alpha_m: am,
+            alpha_f: af,
+            gamma: g,
+            beta: b,
+        };
+        // â, q̇, q̈ at the predictor (the constrained DOFs keep these: their increments are
+        // fixed; the free ones are updated with each correction below)
+        relations.apply(state, ws, 0..n);
+        if let Some([_, rate, accel]) = root {
+            ws.v_new[..3].copy_from_slice(&[0.0, 0.0, rate]);
+            ws.a_new[..3].copy_from_slice(&[0.0, 0.0, accel]);
+            ws.ahat_new[..3].copy_from_slice(&[0.0, 0.0, accel]);
+        }
         loop {
-            // Newmark relations: â, q̇, q̈ from the increment Δq = q_{n+1} − q_n (not from
-            // q_{n+1} − q_n, which cancels to ε|q| and leaves ε|q|/(βh²) of noise in â at tiny h).
-            // (every slice cut to n, so that the loop runs without bounds checks)
-            let (dq, aux) = (&ws.dq_step[..n], &ws.a_aux[..n]);
-            let (v0, a0) = (&state.v[..n], &state.a[..n]);
-            let (ahat_new, v_new, a_new) = (
-                &mut ws.ahat_new[..n],
-                &mut ws.v_new[..n],
-                &mut ws.a_new[..n],
-            );
-            for i in 0..n {
-                let ahat = (dq[i] - h * v0[i] - h * h * (0.5 - b) * aux[i]) / (b * h * h);
-                ahat_new[i] = ahat;
-                v_new[i] = v0[i] + h * ((1.0 - g) * aux[i] + g * ahat);
-                a_new[i] = ((1.0 - am) * ahat + am * aux[i] - af * a0[i]) / (1.0 - af);
-            }
-            if let Some([_, rate, accel]) = root {
-                v_new[..3].copy_from_slice(&[0.0, 0.0, rate]);
-                a_new[..3].copy_from_slice(&[0.0, 0.0, accel]);
-                ahat_new[..3].copy_from_slice(&[0.0, 0.0, accel]);
-            }
-            if iterations > 0 && (converged || (single_solve && iterations == 1)) {
-                break;
-            }
             let kin = Kinematic {
                 q: &ws.q_new,
                 v: Some(&ws.v_new),
@@ -1001,7 +990,6 @@ impl GeneralizedAlpha {
             } else {
                 1.0
             };
-            last = 0.0;
             for (((step, qn), q0), d) in ws.dq_step[nfix..n]
                 .iter_mut()
                 .zip(&mut ws.q_new[nfix..n])
@@ -1010,8 +998,9 @@ impl GeneralizedAlpha {
             {
                 *step += s * d;
                 *qn = q0 + *step;
-                last = last.max((s * d).abs());
             }
+            relations.apply(state, ws, nfix..n);
+            last = max_abs_scaled(&ws.dq, s);
             if !last.is_finite() {
                 return Err((
                     iterations,
@@ -1039,7 +1028,7 @@ impl GeneralizedAlpha {
             if modified && left > 0 && last * rate.min(1.0).powi(left as i32) > tol {
                 refactor = true;
             }
-            converged = last <= tol;
+            let converged = last <= tol;
             // ... and, on an ANCF step started from the matrix retained from the last step,
             // right after its first correction: that matrix's stiffness is a step out of date
             // (the stiff axial direction has turned with the beam), so it resolves the step's
@@ -1054,6 +1043,9 @@ impl GeneralizedAlpha {
             }
             previous = last;
             iterations += 1;
+            if converged || single_solve {
+                break;
+            }
         }
         // A converged step that turns a node by more than the Newton limiter allows in one
         // iteration has not resolved the rotation: it may be a spurious root (a node turned by
@@ -1078,9 +1070,9 @@ impl GeneralizedAlpha {
             ));
         }
         // A step so small or so large that h² under- or overflows gives inf/NaN in â, q̇, q̈.
-        if [&ws.q_new, &ws.v_new, &ws.a_new, &ws.ahat_new]
+        if ![&ws.q_new, &ws.v_new, &ws.a_new, &ws.ahat_new]
             .iter()
-            .any(|x| x.iter().any(|v| !v.is_finite()))
+            .all(|x| all_finite(x))
         {
             return Err((
                 iterations,
@@ -1117,18 +1109,134 @@ impl GeneralizedAlpha {
         );
         state.node_force_prev = node_force.unwrap_or((state.node_force_prev.0, [0.0; 3]));
         state.f_prev.copy_from_slice(f);
-        state.q.copy_from_slice(&ws.q_new);
-        state.v.copy_from_slice(&ws.v_new);
-        state.a.copy_from_slice(&ws.a_new);
+        // (the workspace's vectors are written in full before they are read on the next step:
+        // exchanged, not copied)
+        std::mem::swap(&mut state.q, &mut ws.q_new);
+        std::mem::swap(&mut state.v, &mut ws.v_new);
+        std::mem::swap(&mut state.a, &mut ws.a_new);
         // â_{n−1} ← â_n (rescaled to h), â_n ← â_{n+1}
-        state.a_aux_prev.clear();
-        state.a_aux_prev.extend_from_slice(&ws.a_aux);
-        state.a_aux.copy_from_slice(&ws.ahat_new);
+        if state.a_aux_prev.len() == n {
+            std::mem::swap(&mut state.a_aux_prev, &mut ws.a_aux);
+        } else {
+            state.a_aux_prev.clear();
+            state.a_aux_prev.extend_from_slice(&ws.a_aux);
+        }
+        std::mem::swap(&mut state.a_aux, &mut ws.ahat_new);
         state.h_prev = Some(h);
         state.t = t_new;
         ws.counters.steps += 1;
         Ok((iterations, first, last))
     }
+}
+
+/// The generalized-α relations between the step's increment Δq = q_{n+1} − q_n and â_{n+1},
+/// q̇_{n+1}, q̈_{n+1} (module docs), for a step `h` \[s\].
+#[derive(Debug, Clone, Copy)]
+struct NewmarkRelations {
+    h: f64,
+    alpha_m: f64,
+    alpha_f: f64,
+    gamma: f64,
+    beta: f64,
+}
+
+impl NewmarkRelations {
+    /// â_{n+1}, q̇_{n+1} and q̈_{n+1} of the DOFs `range` from the increment in `ws.dq_step`, the
+    /// state at t_n and â_n (rescaled to h) in `ws.a_aux`, into the workspace. From Δq itself,
+    /// not from q_{n+1} − q_n, which cancels to ε|q| and leaves ε|q|/(βh²) of noise in â at
+    /// tiny h.
+    #[inline(always)]
+    fn apply(&self, state: &State, ws: &mut Workspace, range: std::ops::Range<usize>) {
+        let NewmarkRelations {
+            h,
+            alpha_m: am,
+            alpha_f: af,
+            gamma: g,
+            beta: b,
+        } = *self;
+        // (every slice cut to the range, so that the loop runs without bounds checks)
+        let (dq, aux) = (&ws.dq_step[range.clone()], &ws.a_aux[range.clone()]);
+        let (v0, a0) = (&state.v[range.clone()], &state.a[range.clone()]);
+        let (ahat_new, v_new, a_new) = (
+            &mut ws.ahat_new[range.clone()],
+            &mut ws.v_new[range.clone()],
+            &mut ws.a_new[range],
+        );
+        for i in 0..dq.len() {
+            let ahat = (dq[i] - h * v0[i] - h * h * (0.5 - b) * aux[i]) / (b * h * h);
+            ahat_new[i] = ahat;
+            v_new[i] = v0[i] + h * ((1.0 - g) * aux[i] + g * ahat);
+            a_new[i] = ((1.0 - am) * ahat + am * aux[i] - af * a0[i]) / (1.0 - af);
+        }
+    }
+}
+
+/// The predicted increment Δq of a step `h` \[s\] (Newmark β `b`, `ratio` = h over the last
+/// step, 0 on the first) into `dq`, from the state at t_n and â_n (rescaled to h) `aux`.
+#[inline(always)]
+fn predict(
+    predictor: Predictor,
+    (h, b, ratio): (f64, f64, f64),
+    state: &State,
+    aux: &[f64],
+    dq: &mut [f64],
+) {
+    let n = dq.len();
+    let (v0, aux) = (&state.v[..n], &aux[..n]);
+    match predictor {
+        Predictor::Rest => dq.fill(0.0),
+        Predictor::Velocity => {
+            for (d, v) in dq.iter_mut().zip(v0) {
+                *d = h * v;
+            }
+        }
+        Predictor::Extrapolated if ratio > 0.0 => {
+            // â_{n+1} extrapolated linearly from â_{n−1}, â_n
+            let prev = &state.a_aux_prev[..n];
+            for i in 0..n {
+                let ahat = aux[i] + ratio * (aux[i] - prev[i]);
+                dq[i] = h * v0[i] + h * h * ((0.5 - b) * aux[i] + b * ahat);
+            }
+        }
+        Predictor::Extrapolated => {
+            for i in 0..n {
+                dq[i] = h * v0[i] + h * h * ((0.5 - b) * aux[i] + b * aux[i]);
+            }
+        }
+    }
+}
+
+/// max |s xᵢ| (0 for an empty `x`; NaN entries are skipped, as `f64::max` does), in four
+/// lanes: the maximum is exact, so the order does not matter, and four independent lanes do not
+/// wait on one another.
+#[inline(always)]
+fn max_abs_scaled(x: &[f64], s: f64) -> f64 {
+    let mut m = [0.0f64; 4];
+    let (chunks, rest) = x.as_chunks::<4>();
+    for c in chunks {
+        for k in 0..4 {
+            let a = (s * c[k]).abs();
+            m[k] = if a > m[k] { a } else { m[k] };
+        }
+    }
+    for &v in rest {
+        let a = (s * v).abs();
+        m[0] = if a > m[0] { a } else { m[0] };
+    }
+    m[0].max(m[1]).max(m[2].max(m[3]))
+}
+
+/// True if every entry of `x` is finite (checked in four lanes, without an early exit).
+#[inline(always)]
+fn all_finite(x: &[f64]) -> bool {
+    let mut ok = [true; 4];
+    let (chunks, rest) = x.as_chunks::<4>();
+    for c in chunks {
+        for k in 0..4 {
+            ok[k] &= c[k].abs() < f64::INFINITY;
+        }
+    }
+    rest.iter().all(|v| v.is_finite()) && ok.iter().all(|&o| o)
 }
 
 /// One Newton solve's settings.

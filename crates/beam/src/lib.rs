@@ -58,6 +58,7 @@ pub mod energy;
 pub mod energy_conserving;
 mod error;
 pub mod evaluation;
+mod lanes;
 pub mod modal;
 pub mod model;
 pub mod node_load;

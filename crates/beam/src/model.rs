@@ -198,6 +198,23 @@ impl BeamSpec {
 pub struct BeamModel {
     spec: BeamSpec,
     element_length: f64,
+    /// The mesh's ANCF element and its tangent tables (derived from `spec`, built once: every
+    /// assembly of an ANCF model uses them).
+    ancf: Box<AncfParts>,
+}
+
+/// The ANCF element of a uniform mesh and its tangent tables.
+#[derive(Clone, PartialEq)]
+pub(crate) struct AncfParts {
+    pub(crate) element: crate::ancf::AncfElement,
+    pub(crate) tables: crate::ancf::TangentTables,
+}
+
+impl std::fmt::Debug for AncfParts {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // (derived from the spec, which the model's debug output shows)
+        f.write_str("AncfParts { .. }")
+    }
 }
 
 impl TryFrom<BeamSpec> for BeamModel {
@@ -258,10 +275,19 @@ impl BeamModel {
         non_negative("rayleigh alpha_mass", spec.damping.alpha_mass)?;
         non_negative("rayleigh beta_stiffness", spec.damping.beta_stiffness)?;
         let element_length = spec.length / spec.elements as f64;
+        let element =
+            crate::ancf::AncfElement::new(element_length, spec.section.ea(), spec.section.ei());
+        let tables = element.tangent_tables();
         Ok(BeamModel {
             spec,
             element_length,
+            ancf: Box::new(AncfParts { element, tables }),
         })
+    }
+
+    /// The ANCF element of this mesh and its tangent tables.
+    pub(crate) fn ancf_parts(&self) -> &AncfParts {
+        &self.ancf
     }
 
     /// The parameters.
