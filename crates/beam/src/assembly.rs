@@ -153,20 +153,27 @@ pub fn assemble(
             r[3 * e + d] += f[d];
         }
         if let Some((band, w)) = jac.as_mut() {
-            for d in 0..6 {
-                let gd = 3 * e + d;
-                if gd < nfix {
-                    continue;
-                }
-                for k in 0..6 {
-                    let gk = 3 * e + k;
-                    if gk < nfix {
+            let entry = |d: usize, k: usize| {
+                w.stiffness * kt[(d, k)] + w.velocity * cv[(d, k)] + w.acceleration * ca[(d, k)]
+            };
+            if 3 * e >= nfix {
+                // the element's 6 × 6 block, by columns
+                let block: [[f64; 6]; 6] =
+                    std::array::from_fn(|k| std::array::from_fn(|d| entry(d, k)));
+                band.add_block(3 * e - nfix, &block);
+            } else {
+                for d in 0..6 {
+                    let gd = 3 * e + d;
+                    if gd < nfix {
                         continue;
                     }
-                    let v = w.stiffness * kt[(d, k)]
-                        + w.velocity * cv[(d, k)]
-                        + w.acceleration * ca[(d, k)];
-                    band.add(gd - nfix, gk - nfix, v);
+                    for k in 0..6 {
+                        let gk = 3 * e + k;
+                        if gk < nfix {
+                            continue;
+                        }
+                        band.add(gd - nfix, gk - nfix, entry(d, k));
+                    }
                 }
             }
         }

@@ -33,6 +33,8 @@ pub struct BandMatrix {
     ldl: Vec<f64>,
     /// True when `ldl` holds the factorisation (else `data` holds the LU factors).
     symmetric: bool,
+    /// True when the LU factorisation interchanged rows (else U has only `ku` super-diagonals).
+    interchanged: bool,
 }
 
 impl BandMatrix {
@@ -49,6 +51,7 @@ impl BandMatrix {
             factored: false,
             ldl: Vec::with_capacity(if kl == ku { (n + kl) * (2 * kl + 2) } else { 0 }),
             symmetric: false,
+            interchanged: false,
         }
     }
     /// Dimension n.
@@ -181,6 +184,7 @@ impl BandMatrix {
         if matches!((self.kl, self.ku), (5, 5) | (7, 7)) {
             self.clear_fill();
         }
+        self.interchanged = false;
         let done = match (self.kl, self.ku) {
             (5, 5) => self.factorize_fixed::<5, 10>(tiny),
             (7, 7) => self.factorize_fixed::<7, 14>(tiny),
@@ -263,6 +267,7 @@ impl BandMatrix {
         let last = (j + kl).min(n - 1);
         let p = self.pivot(j, last, tiny)?;
         self.pivots[j] = p;
+        self.interchanged |= p != j;
         let cend = (j + ku + kl).min(n - 1);
         self.swap_rows(j, p, cend);
         let d = self.data[self.idx(j, j)];
@@ -292,19 +297,28 @@ impl BandMatrix {
     /// The columns 0..n − KL − W of the factorisation for kl = KL, ku + kl = W (the fill-in
     /// width), with fixed-length updates; returns the first column left to the general loop,
     /// or the column of a zero pivot.
+    ///
+    /// As LAPACK's `gbtf2`, the updates reach only the columns that the interchanges so far
+    /// can have filled (column j + ku without any, up to j + kl + ku): row j's entries beyond
+    /// them are zeros, whose updates would leave every entry as it is. Without interchanges (a
+    /// diagonally dominant matrix, as a dynamic step's mass-dominated one) half the work.
     fn factorize_fixed<const KL: usize, const W: usize>(
         &mut self,
         tiny: f64,
     ) -> Result<usize, usize> {
         debug_assert!(self.kl == KL && self.kl + self.ku == W);
-        let (n, ld) = (self.n, self.ld);
+        let (n, ld, ku) = (self.n, self.ld, self.ku);
         let end = n.saturating_sub(W + 1);
+        // the last column that the rows moved up by the interchanges so far reach
+        let mut reach = 0;
         // row j of column c sits at c·ld + W + j − c: column c's rows j+1..=j+KL start at
         // c·ld + W + j + 1 − c
         for j in 0..end {
             let p = self.pivot(j, j + KL, tiny)?;
             self.pivots[j] = p;
-            self.swap_rows(j, p, j + W);
+            self.interchanged |= p != j;
+            reach = reach.max(p + ku);
+            self.swap_rows(j, p, reach);
             let dstart = j * ld + W;
             let d = self.data[dstart];
             let l: [f64; KL] = {
@@ -316,7 +330,7 @@ impl BandMatrix {
                 }
                 *col
             };
-            for c in j + 1..=j + W {
+            for c in j + 1..=reach {
                 let base = c * ld + W + j - c;
                 let ajc = self.data[base];
                 let seg: &mut [f64; KL] = (&mut self.data[base + 1..base + 1 + KL])
@@ -580,9 +594,11 @@ impl BandMatrix {
                 _ => self.solve_ldlt::<7, 8, 16>(b),
             };
         }
-        match (self.kl, self.ku) {
-            (5, 5) => self.solve_fixed::<5, 10>(b),
-            (7, 7) => self.solve_fixed::<7, 14>(b),
+        match (self.kl, self.ku, self.interchanged) {
+            (5, 5, true) => self.solve_fixed::<5, 10, 10>(b),
+            (5, 5, false) => self.solve_fixed::<5, 10, 5>(b),
+            (7, 7, true) => self.solve_fixed::<7, 14, 14>(b),
+            (7, 7, false) => self.solve_fixed::<7, 14, 7>(b),
             _ => self.solve_general(b),
         }
     }
@@ -614,8 +630,10 @@ impl BandMatrix {
     }
 
     /// [`BandMatrix::solve_in_place`] for kl = KL, kl + ku = W with fixed-length column
-    /// updates away from the matrix's ends (the same operations as the general loop).
-    fn solve_fixed<const KL: usize, const W: usize>(&self, b: &mut [f64]) {
+    /// updates away from the matrix's ends (the same operations as the general loop), U's
+    /// super-diagonals taken as U = W (after row interchanges) or ku (without any: the
+    /// others are zeros, whose updates would leave the solution as it is).
+    fn solve_fixed<const KL: usize, const W: usize, const U: usize>(&self, b: &mut [f64]) {
         let (n, ld) = (self.n, self.ld);
         if n <= W + 1 {
             return self.solve_general(b);
@@ -640,15 +658,15 @@ impl BandMatrix {
                 }
             }
         }
-        // backward: U (kl + ku super-diagonals after the interchanges)
+        // backward: U (kl + ku super-diagonals after the interchanges, ku without)
         for j in (0..n).rev() {
             let diag = j * ld + W;
             b[j] /= self.data[diag];
             let bj = b[j];
-            if j >= W {
-                let u: &[f64; W] = self.data[diag - W..diag].try_into().expect("band");
-                let seg: &mut [f64; W] = (&mut b[j - W..j]).try_into().expect("rhs");
-                for i in 0..W {
+            if j >= U {
+                let u: &[f64; U] = self.data[diag - U..diag].try_into().expect("band");
+                let seg: &mut [f64; U] = (&mut b[j - U..j]).try_into().expect("rhs");
+                for i in 0..U {
                     seg[i] -= u[i] * bj;
                 }
             } else {
