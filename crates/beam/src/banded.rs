@@ -1,7 +1,9 @@
 //! A banded matrix and its LU factorisation with partial pivoting (LAPACK `gbtf2` scheme), or,
 //! for an exactly symmetric band whose pivots all come out positive (a symmetric positive
 //! definite matrix: the ANCF iteration matrix and mass matrix, the linear model's matrices), an
-//! LDLᵀ factorisation without pivoting at about a third of the LU's operations.
+//! LDLᵀ factorisation without pivoting at about a third of the LU's operations; for an
+//! unsymmetric band that eliminates as stably as a positive definite one (the corotational
+//! dynamic step's matrix), LU without row interchanges at half the pivoting LU's updates.
 //!
 //! The beam's node-ordered DOFs give a half-bandwidth of 5 (one element couples 6 consecutive
 //! DOFs), so factorisation costs O(n·kl·(kl + ku)) and a solve O(n·(2kl + ku)): linear in the
@@ -35,6 +37,9 @@ pub struct BandMatrix {
     symmetric: bool,
     /// True when the LU factorisation interchanged rows (else U has only `ku` super-diagonals).
     interchanged: bool,
+    /// The matrix as given, while the factorisation without interchanges is tried (see
+    /// `factorize_diagonal`); reserved by `zeros` for the beam's band shapes.
+    given: Vec<f64>,
 }
 
 impl BandMatrix {
@@ -52,6 +57,11 @@ impl BandMatrix {
             ldl: Vec::with_capacity(if kl == ku { (n + kl) * (2 * kl + 2) } else { 0 }),
             symmetric: false,
             interchanged: false,
+            given: Vec::with_capacity(if matches!((kl, ku), (5, 5) | (7, 7)) {
+                ld * n
+            } else {
+                0
+            }),
         }
     }
     /// Dimension n.
@@ -141,9 +151,12 @@ impl BandMatrix {
     ///
     /// An exactly symmetric band of the beam's shapes (kl = ku = 5 or 7) is first factorised as
     /// LDLᵀ without pivoting ([`BandMatrix::is_ldlt`]; it leaves the matrix's entries in place);
-    /// if a pivot is not positive (the matrix is not positive definite) or any other shape or
-    /// an unsymmetric matrix, the LU factorisation with partial pivoting
-    /// ([`BandMatrix::factorize_lu`]) is made instead.
+    /// if a pivot is not positive (the matrix is not positive definite) or the band is not
+    /// symmetric, as LU without row interchanges if that comes out as stable as LDLᵀ of a
+    /// positive definite matrix (`factorize_diagonal`: the corotational dynamic step's
+    /// matrix, positive definite but for its inertia's and contact's small unsymmetric
+    /// terms); failing that, and for any other shape, the LU factorisation with partial
+    /// pivoting ([`BandMatrix::factorize_lu`]) is made instead.
     pub fn factorize(&mut self, what: &str) -> Result<(), BeamError> {
         self.factored = false;
         self.symmetric = false;
@@ -158,7 +171,94 @@ impl BandMatrix {
             self.factored = true;
             return Ok(());
         }
+        let diagonal = match (self.kl, self.ku) {
+            (5, 5) => self.factorize_diagonal::<5, 10>(tiny),
+            (7, 7) => self.factorize_diagonal::<7, 14>(tiny),
+            _ => false,
+        };
+        if diagonal {
+            self.factored = true;
+            return Ok(());
+        }
         self.lu(what, tiny)
+    }
+
+    /// LU without row interchanges of an unsymmetric band of the beam's shapes (kl = ku = K,
+    /// W = 2K, the diagonal's storage offset), in place; `false` (the matrix as given put back)
+    /// unless every pivot d_j is above `tiny` and every multiplier l_ij and entry u_ji of U
+    /// obeys l_ij² d_j ≤ 2 a_ii and u_ji² / d_j ≤ 2 a_ii, a_ii the given diagonal.
+    ///
+    /// A positive definite matrix meets these with 1 for 2 (the diagonal of a Schur
+    /// complement stays positive and below the given one), and they bound every product
+    /// |l_ik u_kj| by 2 (a_ii a_jj)^½: the backward error is then that of LDLᵀ of a positive
+    /// definite matrix (Cholesky's), whatever the scaling of the unknowns, which partial
+    /// pivoting is not indifferent to. The bound is invariant under a diagonal scaling. The
+    /// factors sit where the pivoting LU puts its own (no interchanges, U with K super-diagonals):
+    /// its solve uses them. Half the updates of the pivoting LU, which interchanges rows in most
+    /// columns of a turned corotational link (its axial stiffness then lies along y as much as
+    /// along x) and widens U to 2K super-diagonals.
+    fn factorize_diagonal<const K: usize, const W: usize>(&mut self, tiny: f64) -> bool {
+        debug_assert!(self.kl == K && self.ku == K && W == 2 * K);
+        // (the capacity was reserved by `zeros`: no allocation here)
+        self.given.clear();
+        self.given.extend_from_slice(&self.data);
+        let stable = self.eliminate_in_place::<K, W>(tiny);
+        if stable {
+            self.pivots.iter_mut().enumerate().for_each(|(j, p)| *p = j);
+            self.interchanged = false;
+        } else {
+            self.data.copy_from_slice(&self.given);
+        }
+        self.given.clear();
+        stable
+    }
+
+    /// The elimination of [`BandMatrix::factorize_diagonal`]; `false` at the first pivot or
+    /// entry out of its bounds.
+    #[inline(always)]
+    fn eliminate_in_place<const K: usize, const W: usize>(&mut self, tiny: f64) -> bool {
+        let (n, ld) = (self.n, self.ld);
+        let given = |i: usize, g: &[f64]| g[i * ld + W];
+        for j in 0..n {
+            let dstart = j * ld + W;
+            let d = self.data[dstart];
+            if d.is_nan() || d <= tiny {
+                return false;
+            }
+            let m = K.min(n - 1 - j);
+            // the multipliers (rows j + 1 … j + m of column j)
+            for i in 0..m {
+                let x = self.data[dstart + 1 + i];
+                if !(x * x <= 2.0 * d * given(j + 1 + i, &self.given)) {
+                    return false;
+                }
+                self.data[dstart + 1 + i] = x / d;
+            }
+            // row j of U in columns j + 1 … j + m, and the update of their rows j + 1 … j + m
+            for c in 1..=m {
+                let base = (j + c) * ld + W - c;
+                let ajc = self.data[base];
+                if !(ajc * ajc <= 2.0 * d * given(j + c, &self.given)) {
+                    return false;
+                }
+                if m == K {
+                    let (head, tail) = self.data.split_at_mut(base + 1);
+                    let l: &[f64; K] = head[dstart + 1..dstart + 1 + K]
+                        .try_into()
+                        .expect("band column");
+                    let seg: &mut [f64; K] = (&mut tail[..K]).try_into().expect("band column");
+                    for i in 0..K {
+                        seg[i] -= l[i] * ajc;
+                    }
+                } else {
+                    for i in 0..m {
+                        let li = self.data[dstart + 1 + i];
+                        self.data[base + 1 + i] -= li * ajc;
+                    }
+                }
+            }
+        }
+        true
     }
 
     /// True if the last factorisation was the symmetric LDLᵀ one (else the pivoting LU).
@@ -892,6 +992,58 @@ mod tests {
                 assert_eq!(bits(&x_fast), bits(&x_portable), "k {k} n {n}: solution");
                 assert!(x_fast.iter().all(|x| x.is_finite()));
             }
+        }
+    }
+
+    #[test]
+    fn unsymmetric_positive_definite_bands_factor_without_interchanges() {
+        // Independent reference: the pivoting LU of the same matrix. Positive definite
+        // (diagonally dominant) bands, rows scaled by 1e-2 and 1e2 (the pivoting LU then
+        // interchanges rows), made unsymmetric by 1e-3 of every entry above the diagonal;
+        // and a band with a small diagonal, which must take the pivoting LU.
+        let mut seed = 5u64;
+        for k in [5usize, 7] {
+            for n in [2usize, 3, k + 1, 2 * k + 3, 40, 126] {
+                for scale in [1.0, 1e-2, 1e2] {
+                    let mut a = random_symmetric(n, k, &mut seed, 1.05, scale);
+                    for j in 0..n {
+                        for i in j.saturating_sub(k)..j {
+                            a.add(i, j, 1e-3 * a.get(i, j) * next(&mut seed));
+                        }
+                    }
+                    let x: Vec<f64> = (0..n).map(|_| next(&mut seed)).collect();
+                    let mut b = vec![0.0; n];
+                    a.mul_vec(&x, &mut b);
+                    let mut diagonal = a.clone();
+                    diagonal.factorize("unsymmetric").unwrap();
+                    assert!(!diagonal.is_ldlt() && !diagonal.interchanged, "k {k} n {n}");
+                    let mut lu = a.clone();
+                    lu.factorize_lu("unsymmetric").unwrap();
+                    let (mut xd, mut xl) = (b.clone(), b.clone());
+                    diagonal.solve_in_place(&mut xd);
+                    lu.solve_in_place(&mut xl);
+                    let xmax = xl.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                    let tol = 1e-12 * (scale * scale).max(1.0 / (scale * scale));
+                    for i in 0..n {
+                        assert!(
+                            (xd[i] - xl[i]).abs() <= tol * xmax,
+                            "k {k} n {n} scale {scale} [{i}]: {} vs {}",
+                            xd[i],
+                            xl[i]
+                        );
+                    }
+                }
+            }
+            let a = pivoting_band(40, k, k);
+            let mut f = a.clone();
+            f.factorize("small diagonal").unwrap();
+            assert!(f.interchanged, "k {k}: the pivoting LU expected");
+            let mut lu = a.clone();
+            lu.factorize_lu("small diagonal").unwrap();
+            assert_eq!(
+                f, lu,
+                "k {k}: the matrix as given is put back before the LU"
+            );
         }
     }
 
