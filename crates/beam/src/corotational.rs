@@ -36,6 +36,7 @@ pub fn corotational_element(l0: f64, ea: f64, ei: f64, p: &Vector6<f64>) -> Coro
 
 /// [`corotational_element`] with the nodal (sin θᵢ, cos θᵢ) given (the assembly computes them
 /// once per node). θ̄ᵢ = atan2(sin θᵢ cos β − cos θᵢ sin β, cos θᵢ cos β + sin θᵢ sin β).
+#[inline(always)]
 pub fn corotational_element_trig(
     l0: f64,
     ea: f64,
