@@ -218,7 +218,8 @@ impl BandMatrix {
     #[inline(always)]
     fn eliminate_in_place<const K: usize, const W: usize>(&mut self, tiny: f64) -> bool {
         let (n, ld) = (self.n, self.ld);
-        let given = |i: usize, g: &[f64]| g[i * ld + W];
+        // x²/d ≤ 2 a_ii, a_ii the given diagonal (false for NaN)
+        let bounded = |x: f64, d: f64, i: usize, g: &[f64]| x * x <= 2.0 * d * g[i * ld + W];
         for j in 0..n {
             let dstart = j * ld + W;
             let d = self.data[dstart];
@@ -229,7 +230,7 @@ impl BandMatrix {
             // the multipliers (rows j + 1 … j + m of column j)
             for i in 0..m {
                 let x = self.data[dstart + 1 + i];
-                if !(x * x <= 2.0 * d * given(j + 1 + i, &self.given)) {
+                if !bounded(x, d, j + 1 + i, &self.given) {
                     return false;
                 }
                 self.data[dstart + 1 + i] = x / d;
@@ -238,7 +239,7 @@ impl BandMatrix {
             for c in 1..=m {
                 let base = (j + c) * ld + W - c;
                 let ajc = self.data[base];
-                if !(ajc * ajc <= 2.0 * d * given(j + c, &self.given)) {
+                if !bounded(ajc, d, j + c, &self.given) {
                     return false;
                 }
                 if m == K {
