@@ -10,10 +10,11 @@
 use nalgebra::{Matrix6, Vector6};
 
 use crate::banded::BandMatrix;
-use crate::corotational::{corotational_element_trig, corotational_force_trig};
+use crate::corotational::{
+    corotational_element_trig, corotational_force_trig, corotational_strain_energy_trig,
+};
 use crate::element::{
-    consistent_inertia, consistent_inertia_force_trig, consistent_inertia_trig, linear_stiffness,
-    lumped_mass,
+    consistent_inertia_force_trig, consistent_inertia_trig, linear_stiffness, lumped_mass,
 };
 pub use crate::evaluation::{JacobianWeights, Kinematic};
 use crate::model::{BeamModel, Kinematics, MassMatrix};
@@ -152,20 +153,27 @@ pub fn assemble(
             r[3 * e + d] += f[d];
         }
         if let Some((band, w)) = jac.as_mut() {
-            for d in 0..6 {
-                let gd = 3 * e + d;
-                if gd < nfix {
-                    continue;
-                }
-                for k in 0..6 {
-                    let gk = 3 * e + k;
-                    if gk < nfix {
+            let entry = |d: usize, k: usize| {
+                w.stiffness * kt[(d, k)] + w.velocity * cv[(d, k)] + w.acceleration * ca[(d, k)]
+            };
+            if 3 * e >= nfix {
+                // the element's 6 × 6 block, by columns
+                let block: [[f64; 6]; 6] =
+                    std::array::from_fn(|k| std::array::from_fn(|d| entry(d, k)));
+                band.add_block(3 * e - nfix, &block);
+            } else {
+                for d in 0..6 {
+                    let gd = 3 * e + d;
+                    if gd < nfix {
                         continue;
                     }
-                    let v = w.stiffness * kt[(d, k)]
-                        + w.velocity * cv[(d, k)]
-                        + w.acceleration * ca[(d, k)];
-                    band.add(gd - nfix, gk - nfix, v);
+                    for k in 0..6 {
+                        let gk = 3 * e + k;
+                        if gk < nfix {
+                            continue;
+                        }
+                        band.add(gd - nfix, gk - nfix, entry(d, k));
+                    }
                 }
             }
         }
@@ -222,6 +230,15 @@ pub fn kinetic_energy(model: &BeamModel, q: &[f64], v: &[f64]) -> f64 {
     let l = model.element_length();
     let nonlinear = model.kinematics() == Kinematics::Corotational;
     let mut t = 0.0;
+    // (sin θ, cos θ) of the element's first node, carried over from the previous element
+    let trig_of = |i: usize| {
+        if nonlinear {
+            q[i].sin_cos()
+        } else {
+            (0.0, 1.0)
+        }
+    };
+    let mut trig_next = trig_of(2);
     for e in 0..model.n_elements() {
         let pv = gather(v, e);
         match model.spec().mass {
@@ -231,10 +248,11 @@ pub fn kinetic_energy(model: &BeamModel, q: &[f64], v: &[f64]) -> f64 {
             }
             MassMatrix::Consistent => {
                 // f_in with a = q̇ and θ̇ = 0 gives M(q) q̇.
-                let p = gather(q, e);
-                let inert =
-                    consistent_inertia(l, sec.rho_a(), [p[2], p[5]], [0.0; 2], &pv, nonlinear);
-                t += 0.5 * pv.dot(&inert.force);
+                let trig = [trig_next, trig_of(3 * e + 5)];
+                trig_next = trig[1];
+                let f =
+                    consistent_inertia_force_trig(l, sec.rho_a(), trig, [0.0; 2], &pv, nonlinear);
+                t += 0.5 * pv.dot(&f);
             }
         }
     }
@@ -247,23 +265,36 @@ pub fn kinetic_energy(model: &BeamModel, q: &[f64], v: &[f64]) -> f64 {
     t + 0.5 * j_hub * v[2] * v[2]
 }
 
-/// Strain energy of the elements and the root spring \[J\].
+/// Strain energy of the elements and the root spring \[J\] (the energy [`assemble`] returns,
+/// without the forces).
 pub fn strain_energy(model: &BeamModel, q: &[f64]) -> f64 {
     if model.kinematics() == Kinematics::Ancf {
         let mut out = vec![0.0; model.n_nodes()];
         return crate::assembly_ancf::strain_energies_ancf(model, q, &mut out);
     }
-    let zeros = vec![0.0; 3 * model.n_nodes()];
-    let mut r = vec![0.0; q.len()];
-    assemble(
-        model,
-        Kinematic {
-            q,
-            v: None,
-            a: None,
-        },
-        &zeros,
-        &mut r,
-        None,
-    )
+    let sec = *model.section();
+    let l = model.element_length();
+    let nonlinear = model.kinematics() == Kinematics::Corotational;
+    let k_lin = linear_stiffness(l, sec.ea(), sec.ei());
+    let mut energy = 0.0;
+    let mut trig_next = if nonlinear {
+        q[2].sin_cos()
+    } else {
+        (0.0, 1.0)
+    };
+    for e in 0..model.n_elements() {
+        let p = gather(q, e);
+        if nonlinear {
+            let trig = [trig_next, p[5].sin_cos()];
+            trig_next = trig[1];
+            energy += corotational_strain_energy_trig(l, sec.ea(), sec.ei(), &p, trig);
+        } else {
+            energy += 0.5 * p.dot(&(k_lin * p));
+        }
+    }
+    if model.n_fixed() == 2 {
+        let (k_theta, _, _) = model.root().spring_damper_inertia();
+        energy += 0.5 * k_theta * q[2] * q[2];
+    }
+    energy
 }

@@ -1,7 +1,9 @@
 //! A banded matrix and its LU factorisation with partial pivoting (LAPACK `gbtf2` scheme), or,
 //! for an exactly symmetric band whose pivots all come out positive (a symmetric positive
 //! definite matrix: the ANCF iteration matrix and mass matrix, the linear model's matrices), an
-//! LDLᵀ factorisation without pivoting at about a third of the LU's operations.
+//! LDLᵀ factorisation without pivoting at about a third of the LU's operations; for an
+//! unsymmetric band that eliminates as stably as a positive definite one (the corotational
+//! dynamic step's matrix), LU without row interchanges at half the pivoting LU's updates.
 //!
 //! The beam's node-ordered DOFs give a half-bandwidth of 5 (one element couples 6 consecutive
 //! DOFs), so factorisation costs O(n·kl·(kl + ku)) and a solve O(n·(2kl + ku)): linear in the
@@ -33,6 +35,11 @@ pub struct BandMatrix {
     ldl: Vec<f64>,
     /// True when `ldl` holds the factorisation (else `data` holds the LU factors).
     symmetric: bool,
+    /// True when the LU factorisation interchanged rows (else U has only `ku` super-diagonals).
+    interchanged: bool,
+    /// The matrix as given, while the factorisation without interchanges is tried (see
+    /// `factorize_diagonal`); reserved by `zeros` for the beam's band shapes.
+    given: Vec<f64>,
 }
 
 impl BandMatrix {
@@ -49,6 +56,12 @@ impl BandMatrix {
             factored: false,
             ldl: Vec::with_capacity(if kl == ku { (n + kl) * (2 * kl + 2) } else { 0 }),
             symmetric: false,
+            interchanged: false,
+            given: Vec::with_capacity(if matches!((kl, ku), (5, 5) | (7, 7)) {
+                ld * n
+            } else {
+                0
+            }),
         }
     }
     /// Dimension n.
@@ -138,9 +151,12 @@ impl BandMatrix {
     ///
     /// An exactly symmetric band of the beam's shapes (kl = ku = 5 or 7) is first factorised as
     /// LDLᵀ without pivoting ([`BandMatrix::is_ldlt`]; it leaves the matrix's entries in place);
-    /// if a pivot is not positive (the matrix is not positive definite) or any other shape or
-    /// an unsymmetric matrix, the LU factorisation with partial pivoting
-    /// ([`BandMatrix::factorize_lu`]) is made instead.
+    /// if a pivot is not positive (the matrix is not positive definite) or the band is not
+    /// symmetric, as LU without row interchanges if that comes out as stable as LDLᵀ of a
+    /// positive definite matrix (`factorize_diagonal`: the corotational dynamic step's
+    /// matrix, positive definite but for its inertia's and contact's small unsymmetric
+    /// terms); failing that, and for any other shape, the LU factorisation with partial
+    /// pivoting ([`BandMatrix::factorize_lu`]) is made instead.
     pub fn factorize(&mut self, what: &str) -> Result<(), BeamError> {
         self.factored = false;
         self.symmetric = false;
@@ -155,7 +171,95 @@ impl BandMatrix {
             self.factored = true;
             return Ok(());
         }
+        let diagonal = match (self.kl, self.ku) {
+            (5, 5) => self.factorize_diagonal::<5, 10>(tiny),
+            (7, 7) => self.factorize_diagonal::<7, 14>(tiny),
+            _ => false,
+        };
+        if diagonal {
+            self.factored = true;
+            return Ok(());
+        }
         self.lu(what, tiny)
+    }
+
+    /// LU without row interchanges of an unsymmetric band of the beam's shapes (kl = ku = K,
+    /// W = 2K, the diagonal's storage offset), in place; `false` (the matrix as given put back)
+    /// unless every pivot d_j is above `tiny` and every multiplier l_ij and entry u_ji of U
+    /// obeys l_ij² d_j ≤ 2 a_ii and u_ji² / d_j ≤ 2 a_ii, a_ii the given diagonal.
+    ///
+    /// A positive definite matrix meets these with 1 for 2 (the diagonal of a Schur
+    /// complement stays positive and below the given one), and they bound every product
+    /// |l_ik u_kj| by 2 (a_ii a_jj)^½: the backward error is then that of LDLᵀ of a positive
+    /// definite matrix (Cholesky's), whatever the scaling of the unknowns, which partial
+    /// pivoting is not indifferent to. The bound is invariant under a diagonal scaling. The
+    /// factors sit where the pivoting LU puts its own (no interchanges, U with K super-diagonals):
+    /// its solve uses them. Half the updates of the pivoting LU, which interchanges rows in most
+    /// columns of a turned corotational link (its axial stiffness then lies along y as much as
+    /// along x) and widens U to 2K super-diagonals.
+    fn factorize_diagonal<const K: usize, const W: usize>(&mut self, tiny: f64) -> bool {
+        debug_assert!(self.kl == K && self.ku == K && W == 2 * K);
+        // (the capacity was reserved by `zeros`: no allocation here)
+        self.given.clear();
+        self.given.extend_from_slice(&self.data);
+        let stable = self.eliminate_in_place::<K, W>(tiny);
+        if stable {
+            self.pivots.iter_mut().enumerate().for_each(|(j, p)| *p = j);
+            self.interchanged = false;
+        } else {
+            self.data.copy_from_slice(&self.given);
+        }
+        self.given.clear();
+        stable
+    }
+
+    /// The elimination of [`BandMatrix::factorize_diagonal`]; `false` at the first pivot or
+    /// entry out of its bounds.
+    #[inline(always)]
+    fn eliminate_in_place<const K: usize, const W: usize>(&mut self, tiny: f64) -> bool {
+        let (n, ld) = (self.n, self.ld);
+        // x²/d ≤ 2 a_ii, a_ii the given diagonal (false for NaN)
+        let bounded = |x: f64, d: f64, i: usize, g: &[f64]| x * x <= 2.0 * d * g[i * ld + W];
+        for j in 0..n {
+            let dstart = j * ld + W;
+            let d = self.data[dstart];
+            if d.is_nan() || d <= tiny {
+                return false;
+            }
+            let m = K.min(n - 1 - j);
+            // the multipliers (rows j + 1 … j + m of column j)
+            for i in 0..m {
+                let x = self.data[dstart + 1 + i];
+                if !bounded(x, d, j + 1 + i, &self.given) {
+                    return false;
+                }
+                self.data[dstart + 1 + i] = x / d;
+            }
+            // row j of U in columns j + 1 … j + m, and the update of their rows j + 1 … j + m
+            for c in 1..=m {
+                let base = (j + c) * ld + W - c;
+                let ajc = self.data[base];
+                if !bounded(ajc, d, j + c, &self.given) {
+                    return false;
+                }
+                if m == K {
+                    let (head, tail) = self.data.split_at_mut(base + 1);
+                    let l: &[f64; K] = head[dstart + 1..dstart + 1 + K]
+                        .try_into()
+                        .expect("band column");
+                    let seg: &mut [f64; K] = (&mut tail[..K]).try_into().expect("band column");
+                    for i in 0..K {
+                        seg[i] -= l[i] * ajc;
+                    }
+                } else {
+                    for i in 0..m {
+                        let li = self.data[dstart + 1 + i];
+                        self.data[base + 1 + i] -= li * ajc;
+                    }
+                }
+            }
+        }
+        true
     }
 
     /// True if the last factorisation was the symmetric LDLᵀ one (else the pivoting LU).
@@ -181,6 +285,7 @@ impl BandMatrix {
         if matches!((self.kl, self.ku), (5, 5) | (7, 7)) {
             self.clear_fill();
         }
+        self.interchanged = false;
         let done = match (self.kl, self.ku) {
             (5, 5) => self.factorize_fixed::<5, 10>(tiny),
             (7, 7) => self.factorize_fixed::<7, 14>(tiny),
@@ -263,6 +368,7 @@ impl BandMatrix {
         let last = (j + kl).min(n - 1);
         let p = self.pivot(j, last, tiny)?;
         self.pivots[j] = p;
+        self.interchanged |= p != j;
         let cend = (j + ku + kl).min(n - 1);
         self.swap_rows(j, p, cend);
         let d = self.data[self.idx(j, j)];
@@ -292,19 +398,28 @@ impl BandMatrix {
     /// The columns 0..n − KL − W of the factorisation for kl = KL, ku + kl = W (the fill-in
     /// width), with fixed-length updates; returns the first column left to the general loop,
     /// or the column of a zero pivot.
+    ///
+    /// As LAPACK's `gbtf2`, the updates reach only the columns that the interchanges so far
+    /// can have filled (column j + ku without any, up to j + kl + ku): row j's entries beyond
+    /// them are zeros, whose updates would leave every entry as it is. Without interchanges (a
+    /// diagonally dominant matrix, as a dynamic step's mass-dominated one) half the work.
     fn factorize_fixed<const KL: usize, const W: usize>(
         &mut self,
         tiny: f64,
     ) -> Result<usize, usize> {
         debug_assert!(self.kl == KL && self.kl + self.ku == W);
-        let (n, ld) = (self.n, self.ld);
+        let (n, ld, ku) = (self.n, self.ld, self.ku);
         let end = n.saturating_sub(W + 1);
+        // the last column that the rows moved up by the interchanges so far reach
+        let mut reach = 0;
         // row j of column c sits at c·ld + W + j − c: column c's rows j+1..=j+KL start at
         // c·ld + W + j + 1 − c
         for j in 0..end {
             let p = self.pivot(j, j + KL, tiny)?;
             self.pivots[j] = p;
-            self.swap_rows(j, p, j + W);
+            self.interchanged |= p != j;
+            reach = reach.max(p + ku);
+            self.swap_rows(j, p, reach);
             let dstart = j * ld + W;
             let d = self.data[dstart];
             let l: [f64; KL] = {
@@ -316,7 +431,7 @@ impl BandMatrix {
                 }
                 *col
             };
-            for c in j + 1..=j + W {
+            for c in j + 1..=reach {
                 let base = c * ld + W + j - c;
                 let ajc = self.data[base];
                 let seg: &mut [f64; KL] = (&mut self.data[base + 1..base + 1 + KL])
@@ -583,9 +698,11 @@ impl BandMatrix {
                 _ => self.solve_ldlt::<7, 8, 16>(b),
             };
         }
-        match (self.kl, self.ku) {
-            (5, 5) => self.solve_fixed::<5, 10>(b),
-            (7, 7) => self.solve_fixed::<7, 14>(b),
+        match (self.kl, self.ku, self.interchanged) {
+            (5, 5, true) => self.solve_fixed::<5, 10, 10>(b),
+            (5, 5, false) => self.solve_fixed::<5, 10, 5>(b),
+            (7, 7, true) => self.solve_fixed::<7, 14, 14>(b),
+            (7, 7, false) => self.solve_fixed::<7, 14, 7>(b),
             _ => self.solve_general(b),
         }
     }
@@ -617,8 +734,10 @@ impl BandMatrix {
     }
 
     /// [`BandMatrix::solve_in_place`] for kl = KL, kl + ku = W with fixed-length column
-    /// updates away from the matrix's ends (the same operations as the general loop).
-    fn solve_fixed<const KL: usize, const W: usize>(&self, b: &mut [f64]) {
+    /// updates away from the matrix's ends (the same operations as the general loop), U's
+    /// super-diagonals taken as U = W (after row interchanges) or ku (without any: the
+    /// others are zeros, whose updates would leave the solution as it is).
+    fn solve_fixed<const KL: usize, const W: usize, const U: usize>(&self, b: &mut [f64]) {
         let (n, ld) = (self.n, self.ld);
         if n <= W + 1 {
             return self.solve_general(b);
@@ -643,15 +762,15 @@ impl BandMatrix {
                 }
             }
         }
-        // backward: U (kl + ku super-diagonals after the interchanges)
+        // backward: U (kl + ku super-diagonals after the interchanges, ku without)
         for j in (0..n).rev() {
             let diag = j * ld + W;
             b[j] /= self.data[diag];
             let bj = b[j];
-            if j >= W {
-                let u: &[f64; W] = self.data[diag - W..diag].try_into().expect("band");
-                let seg: &mut [f64; W] = (&mut b[j - W..j]).try_into().expect("rhs");
-                for i in 0..W {
+            if j >= U {
+                let u: &[f64; U] = self.data[diag - U..diag].try_into().expect("band");
+                let seg: &mut [f64; U] = (&mut b[j - U..j]).try_into().expect("rhs");
+                for i in 0..U {
                     seg[i] -= u[i] * bj;
                 }
             } else {
@@ -877,6 +996,58 @@ mod tests {
                 assert_eq!(bits(&x_fast), bits(&x_portable), "k {k} n {n}: solution");
                 assert!(x_fast.iter().all(|x| x.is_finite()));
             }
+        }
+    }
+
+    #[test]
+    fn unsymmetric_positive_definite_bands_factor_without_interchanges() {
+        // Independent reference: the pivoting LU of the same matrix. Positive definite
+        // (diagonally dominant) bands, rows scaled by 1e-2 and 1e2 (the pivoting LU then
+        // interchanges rows), made unsymmetric by 1e-3 of every entry above the diagonal;
+        // and a band with a small diagonal, which must take the pivoting LU.
+        let mut seed = 5u64;
+        for k in [5usize, 7] {
+            for n in [2usize, 3, k + 1, 2 * k + 3, 40, 126] {
+                for scale in [1.0, 1e-2, 1e2] {
+                    let mut a = random_symmetric(n, k, &mut seed, 1.05, scale);
+                    for j in 0..n {
+                        for i in j.saturating_sub(k)..j {
+                            a.add(i, j, 1e-3 * a.get(i, j) * next(&mut seed));
+                        }
+                    }
+                    let x: Vec<f64> = (0..n).map(|_| next(&mut seed)).collect();
+                    let mut b = vec![0.0; n];
+                    a.mul_vec(&x, &mut b);
+                    let mut diagonal = a.clone();
+                    diagonal.factorize("unsymmetric").unwrap();
+                    assert!(!diagonal.is_ldlt() && !diagonal.interchanged, "k {k} n {n}");
+                    let mut lu = a.clone();
+                    lu.factorize_lu("unsymmetric").unwrap();
+                    let (mut xd, mut xl) = (b.clone(), b.clone());
+                    diagonal.solve_in_place(&mut xd);
+                    lu.solve_in_place(&mut xl);
+                    let xmax = xl.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                    let tol = 1e-12 * (scale * scale).max(1.0 / (scale * scale));
+                    for i in 0..n {
+                        assert!(
+                            (xd[i] - xl[i]).abs() <= tol * xmax,
+                            "k {k} n {n} scale {scale} [{i}]: {} vs {}",
+                            xd[i],
+                            xl[i]
+                        );
+                    }
+                }
+            }
+            let a = pivoting_band(40, k, k);
+            let mut f = a.clone();
+            f.factorize("small diagonal").unwrap();
+            assert!(f.interchanged, "k {k}: the pivoting LU expected");
+            let mut lu = a.clone();
+            lu.factorize_lu("small diagonal").unwrap();
+            assert_eq!(
+                f, lu,
+                "k {k}: the matrix as given is put back before the LU"
+            );
         }
     }
 

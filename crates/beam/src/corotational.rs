@@ -36,6 +36,7 @@ pub fn corotational_element(l0: f64, ea: f64, ei: f64, p: &Vector6<f64>) -> Coro
 
 /// [`corotational_element`] with the nodal (sin θᵢ, cos θᵢ) given (the assembly computes them
 /// once per node). θ̄ᵢ = atan2(sin θᵢ cos β − cos θᵢ sin β, cos θᵢ cos β + sin θᵢ sin β).
+#[inline(always)]
 pub fn corotational_element_trig(
     l0: f64,
     ea: f64,
@@ -43,18 +44,10 @@ pub fn corotational_element_trig(
     p: &Vector6<f64>,
     trig: [(f64, f64); 2],
 ) -> CorotationalElement {
-    let dx = l0 + p[3] - p[0];
-    let dy = p[4] - p[1];
-    let l = dx.hypot(dy);
-    let (c, s) = (dx / l, dy / l);
-    let local_angle = |(sn, cs): (f64, f64)| (sn * c - cs * s).atan2(cs * c + sn * s);
-    let ub = l - l0;
-    let t1 = local_angle(trig[0]);
-    let t2 = local_angle(trig[1]);
+    let d = Deformation::of(l0, p, trig);
+    let (l, c, s) = (d.length, d.cos, d.sin);
     let (ka, kb) = (ea / l0, ei / l0);
-    let n_ax = ka * ub;
-    let m1 = kb * (4.0 * t1 + 2.0 * t2);
-    let m2 = kb * (2.0 * t1 + 4.0 * t2);
+    let (n_ax, m1, m2, strain_energy) = d.forces(ka, kb);
     let r = [-c, -s, 0.0, c, s, 0.0];
     let z = [s, -c, 0.0, -s, c, 0.0];
     // rows 2 and 3 of B: b₁ = e₃ − z/l, b₂ = e₆ − z/l
@@ -82,12 +75,12 @@ pub fn corotational_element_trig(
             tangent[(i, j)] = km_ij + kn * z[i] * z[j] + km * (r[i] * z[j] + z[i] * r[j]);
         }
     }
-    let local = Vector3::new(ub, t1, t2);
+    let local = Vector3::new(d.axial, d.theta1, d.theta2);
     CorotationalElement {
         force,
         tangent,
         material,
-        strain_energy: 0.5 * (n_ax * ub + m1 * t1 + m2 * t2),
+        strain_energy,
         local,
     }
 }
@@ -102,18 +95,9 @@ pub fn corotational_force_trig(
     p: &Vector6<f64>,
     trig: [(f64, f64); 2],
 ) -> (Vector6<f64>, f64) {
-    let dx = l0 + p[3] - p[0];
-    let dy = p[4] - p[1];
-    let l = dx.hypot(dy);
-    let (c, s) = (dx / l, dy / l);
-    let local_angle = |(sn, cs): (f64, f64)| (sn * c - cs * s).atan2(cs * c + sn * s);
-    let ub = l - l0;
-    let t1 = local_angle(trig[0]);
-    let t2 = local_angle(trig[1]);
-    let (ka, kb) = (ea / l0, ei / l0);
-    let n_ax = ka * ub;
-    let m1 = kb * (4.0 * t1 + 2.0 * t2);
-    let m2 = kb * (2.0 * t1 + 4.0 * t2);
+    let d = Deformation::of(l0, p, trig);
+    let (l, c, s) = (d.length, d.cos, d.sin);
+    let (n_ax, m1, m2, strain_energy) = d.forces(ea / l0, ei / l0);
     let r = [-c, -s, 0.0, c, s, 0.0];
     let z = [s, -c, 0.0, -s, c, 0.0];
     let mut force = Vector6::zeros();
@@ -125,7 +109,62 @@ pub fn corotational_force_trig(
         );
         force[j] = r[j] * n_ax + b1 * m1 + b2 * m2;
     }
-    (force, 0.5 * (n_ax * ub + m1 * t1 + m2 * t2))
+    (force, strain_energy)
+}
+
+/// The strain energy \[J\] of [`corotational_element_trig`] alone (the same operations, without
+/// the force: the energy of a state).
+#[inline]
+pub fn corotational_strain_energy_trig(
+    l0: f64,
+    ea: f64,
+    ei: f64,
+    p: &Vector6<f64>,
+    trig: [(f64, f64); 2],
+) -> f64 {
+    Deformation::of(l0, p, trig).forces(ea / l0, ei / l0).3
+}
+
+/// The element's chord (length l, direction (cos β, sin β)) and local deformations ū, θ̄₁, θ̄₂.
+struct Deformation {
+    length: f64,
+    cos: f64,
+    sin: f64,
+    axial: f64,
+    theta1: f64,
+    theta2: f64,
+}
+
+impl Deformation {
+    /// At element displacements `p` with the nodal (sin θᵢ, cos θᵢ) `trig`, undeformed length
+    /// `l0` \[m\].
+    #[inline(always)]
+    fn of(l0: f64, p: &Vector6<f64>, trig: [(f64, f64); 2]) -> Self {
+        let dx = l0 + p[3] - p[0];
+        let dy = p[4] - p[1];
+        let l = dx.hypot(dy);
+        let (c, s) = (dx / l, dy / l);
+        let local_angle = |(sn, cs): (f64, f64)| (sn * c - cs * s).atan2(cs * c + sn * s);
+        Deformation {
+            length: l,
+            cos: c,
+            sin: s,
+            axial: l - l0,
+            theta1: local_angle(trig[0]),
+            theta2: local_angle(trig[1]),
+        }
+    }
+
+    /// The local forces N \[N\], M₁, M₂ \[N·m\] and the strain energy \[J\], with `ka` = EA/l₀
+    /// and `kb` = EI/l₀.
+    #[inline(always)]
+    fn forces(&self, ka: f64, kb: f64) -> (f64, f64, f64, f64) {
+        let (ub, t1, t2) = (self.axial, self.theta1, self.theta2);
+        let n_ax = ka * ub;
+        let m1 = kb * (4.0 * t1 + 2.0 * t2);
+        let m2 = kb * (2.0 * t1 + 4.0 * t2);
+        (n_ax, m1, m2, 0.5 * (n_ax * ub + m1 * t1 + m2 * t2))
+    }
 }
 
 #[cfg(test)]
@@ -180,6 +219,8 @@ mod tests {
             let (f, u) = corotational_force_trig(l0, ea, ei, &p, [p[2].sin_cos(), p[5].sin_cos()]);
             assert_eq!(f, e.force);
             assert_eq!(u, e.strain_energy);
+            let trig = [p[2].sin_cos(), p[5].sin_cos()];
+            assert_eq!(corotational_strain_energy_trig(l0, ea, ei, &p, trig), u);
         }
     }
 

@@ -167,7 +167,9 @@ impl GeneralizedAlpha {
 }
 
 /// The dynamic state: time, displacements, velocities, accelerations (one entry per DOF).
-#[derive(Debug, Clone, PartialEq)]
+/// [`Clone::clone_from`] copies into the target's buffers (no allocation once they are sized):
+/// the cheap way to keep a state for taking a step again.
+#[derive(Debug, PartialEq)]
 pub struct State {
     /// Time t \[s\].
     pub t: f64,
@@ -190,6 +192,42 @@ pub struct State {
     /// Element (and root spring) strain energies at q (energy-conserving step; empty until
     /// first needed).
     pub(crate) element_energies: Vec<f64>,
+}
+
+impl Clone for State {
+    fn clone(&self) -> Self {
+        State {
+            t: self.t,
+            q: self.q.clone(),
+            v: self.v.clone(),
+            a: self.a.clone(),
+            a_aux: self.a_aux.clone(),
+            a_aux_prev: self.a_aux_prev.clone(),
+            h_prev: self.h_prev,
+            f_prev: self.f_prev.clone(),
+            node_force_prev: self.node_force_prev,
+            external_work: self.external_work,
+            initial_energy: self.initial_energy,
+            dofs_per_node: self.dofs_per_node,
+            element_energies: self.element_energies.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.t = source.t;
+        self.q.clone_from(&source.q);
+        self.v.clone_from(&source.v);
+        self.a.clone_from(&source.a);
+        self.a_aux.clone_from(&source.a_aux);
+        self.a_aux_prev.clone_from(&source.a_aux_prev);
+        self.h_prev = source.h_prev;
+        self.f_prev.clone_from(&source.f_prev);
+        self.node_force_prev = source.node_force_prev;
+        self.external_work = source.external_work;
+        self.initial_energy = source.initial_energy;
+        self.dofs_per_node = source.dofs_per_node;
+        self.element_energies.clone_from(&source.element_energies);
+    }
 }
 
 /// Energies of a state \[J\].
@@ -448,6 +486,30 @@ impl Workspace {
     pub fn reset_counters(&mut self) {
         self.counters = StepCounters::default();
     }
+
+    /// What this workspace carries from one step into the next (besides scratch space).
+    pub fn memory(&self) -> StepMemory {
+        StepMemory {
+            predictor: self.last_predictor,
+        }
+    }
+
+    /// Puts back a [`Workspace::memory`] (kept with a [`State`] to take a step again from that
+    /// state as it was first taken) and drops any iteration matrix kept for reuse (it may be
+    /// the abandoned step's): with the state restored, the step starts as the first try did
+    /// (bit for bit for the models that build a fresh matrix every step, the corotational and
+    /// the nonlinear ones under full Newton).
+    pub fn restore_memory(&mut self, memory: StepMemory) {
+        self.last_predictor = memory.predictor;
+        self.factored_for = None;
+    }
+}
+
+/// What a [`Workspace`] carries from one step into the next: the Newton predictor that
+/// worked on the last step (tried first on the next).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StepMemory {
+    predictor: Predictor,
 }
 
 /// What one step did.

@@ -138,6 +138,7 @@ pub fn consistent_inertia_force_trig(
 }
 
 /// [`consistent_inertia`] with the nodal (sin θᵢ, cos θᵢ) given.
+#[inline(always)]
 pub fn consistent_inertia_trig(
     l: f64,
     rho_a: f64,

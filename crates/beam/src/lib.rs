@@ -70,7 +70,8 @@ pub mod statics;
 
 pub use counters::StepCounters;
 pub use dynamics::{
-    GeneralizedAlpha, MAX_STEP_HALVINGS, NewtonMethod, State, StepReport, Workspace, root_reaction,
+    GeneralizedAlpha, MAX_STEP_HALVINGS, NewtonMethod, State, StepMemory, StepReport, Workspace,
+    root_reaction,
 };
 pub use error::BeamError;
 pub use modal::{ModalAnalysis, ModalDirection, modal_analysis};

@@ -7,7 +7,7 @@
 
 use flexrig_beam::{
     BeamModel, BeamSpec, GeneralizedAlpha, Kinematics, Material, NodalLoads, NodeLoad, PointMass,
-    ReducedModel, ReducedState, RootSupport, Section, State, Workspace,
+    ReducedModel, ReducedState, RootSupport, Section, State, StepMemory, Workspace,
 };
 use flexrig_contact::BodyKinematics;
 use flexrig_contact::math::Vector;
@@ -87,6 +87,25 @@ impl HubLaw {
     pub fn torque(&self, angle: f64, rate: f64) -> f64 {
         self.moment - self.stiffness * angle - self.damping * rate
     }
+}
+
+/// The link as a step found it, to take the step again ([`BeamLink::save`],
+/// [`BeamLink::restore`]): the beam's state with its workspace's memory of the last step, the
+/// hub's support and law, and the hub's moment; not the model and the scratch space, which a
+/// step does not change (or rebuilds from these).
+#[derive(Debug, Clone)]
+pub struct LinkCheckpoint {
+    dynamics: SavedDynamics,
+    root: RootSupport,
+    law: Option<HubLaw>,
+    hub_moment: f64,
+}
+
+/// The state part of a [`LinkCheckpoint`].
+#[derive(Debug, Clone)]
+enum SavedDynamics {
+    Full(Box<(State, StepMemory)>),
+    Modal(ReducedState),
 }
 
 /// Every FE DOF, or the modal-reduced linear beam.
@@ -414,11 +433,21 @@ impl BeamLink {
         else {
             return Ok(());
         };
-        let root = RootSupport::Hub {
+        self.set_root(RootSupport::Hub {
             inertia,
             k_theta: law.stiffness,
             c_theta: law.damping + friction,
-        };
+        })?;
+        self.loads.set_moment(0, law.moment)?;
+        if let Some(DrivenHub::Free { law: l, .. }) = &mut self.hub {
+            *l = law;
+        }
+        Ok(())
+    }
+
+    /// Rebuilds the model with the root support `root` (and a fresh workspace) if it has
+    /// another.
+    fn set_root(&mut self, root: RootSupport) -> Result<(), RigError> {
         if self.model.root() != root {
             let mut spec = self.model.spec().clone();
             spec.root = root;
@@ -427,9 +456,60 @@ impl BeamLink {
                 full.1 = Workspace::new(&self.model);
             }
         }
-        self.loads.set_moment(0, law.moment)?;
-        if let Some(DrivenHub::Free { law: l, .. }) = &mut self.hub {
-            *l = law;
+        Ok(())
+    }
+
+    /// Keeps what a step changes in `into` (its buffers reused: no allocation once sized), so
+    /// that [`BeamLink::restore`] can take the step again from here.
+    pub fn save(&self, into: &mut Option<LinkCheckpoint>) {
+        let c = into.get_or_insert_with(|| LinkCheckpoint {
+            dynamics: self.saved_dynamics(),
+            root: RootSupport::Clamped,
+            law: None,
+            hub_moment: 0.0,
+        });
+        match (&mut c.dynamics, &self.dynamics) {
+            (SavedDynamics::Full(saved), LinkDynamics::Full(full)) => {
+                saved.0.clone_from(&full.0);
+                saved.1 = full.1.memory();
+            }
+            (SavedDynamics::Modal(saved), LinkDynamics::Modal { state, .. }) => {
+                saved.clone_from(state)
+            }
+            (saved, _) => *saved = self.saved_dynamics(),
+        }
+        c.root = self.model.root();
+        c.law = self.hub_law();
+        c.hub_moment = self.loads.as_slice()[2];
+    }
+
+    /// The state part of a new [`LinkCheckpoint`].
+    fn saved_dynamics(&self) -> SavedDynamics {
+        match &self.dynamics {
+            LinkDynamics::Full(full) => {
+                SavedDynamics::Full(Box::new((full.0.clone(), full.1.memory())))
+            }
+            LinkDynamics::Modal { state, .. } => SavedDynamics::Modal(state.clone()),
+        }
+    }
+
+    /// Puts the link back as [`BeamLink::save`] kept it: its state, its workspace's memory of
+    /// the last step, the hub's support, law and moment.
+    pub fn restore(&mut self, from: &LinkCheckpoint) -> Result<(), RigError> {
+        self.set_root(from.root)?;
+        match (&mut self.dynamics, &from.dynamics) {
+            (LinkDynamics::Full(full), SavedDynamics::Full(saved)) => {
+                full.0.clone_from(&saved.0);
+                full.1.restore_memory(saved.1);
+            }
+            (LinkDynamics::Modal { state, .. }, SavedDynamics::Modal(saved)) => {
+                state.clone_from(saved);
+            }
+            _ => unreachable!("a checkpoint of another link"),
+        }
+        self.loads.set_moment(0, from.hub_moment)?;
+        if let (Some(DrivenHub::Free { law, .. }), Some(saved)) = (&mut self.hub, from.law) {
+            *law = saved;
         }
         Ok(())
     }

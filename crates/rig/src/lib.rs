@@ -38,7 +38,7 @@ pub mod sensors;
 pub mod severity;
 pub mod world;
 
-pub use beam_link::{BeamLink, LinkVariant};
+pub use beam_link::{BeamLink, LinkCheckpoint, LinkVariant};
 pub use error::RigError;
 pub use joint_drive::{DriveFrame, DriveSummary, JointDrive};
 pub use overrides::{Override, scene_from_table, scene_with_overrides};

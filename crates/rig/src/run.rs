@@ -12,7 +12,7 @@ use flexrig_contact::{
 use serde::Serialize;
 
 use crate::RigError;
-use crate::beam_link::{BeamLink, LinkVariant};
+use crate::beam_link::{BeamLink, LinkCheckpoint, LinkVariant};
 use crate::coupling::{HingeMotion, TipContact};
 use crate::free_flight::{DIM, FlightSensors, FlightStep, FreeFlight, FreeHinges, SwingPolicy};
 use crate::geometry::RigGeometry;
@@ -296,6 +296,9 @@ pub struct Simulation<'s> {
     flight: Option<FreeFlight>,
     /// The adaptive contact in progress: the flight integrates the contact, and its peak.
     peak_search: Option<PeakSearch>,
+    /// The compliant link before the step in progress, for the drive's torque limit to take
+    /// the step again on its other branch (a buffer reused every step).
+    retake: Option<LinkCheckpoint>,
 }
 
 /// The state a step can be taken again from.
@@ -307,7 +310,7 @@ struct Snapshot {
     operator: HingeState,
     robot: Option<HingeState>,
     rotor: Option<HingeState>,
-    beam: Option<Box<BeamLink>>,
+    beam: Option<LinkCheckpoint>,
 }
 
 /// The contact in progress.
@@ -489,6 +492,7 @@ impl<'s> Simulation<'s> {
             stats: Stats::default(),
             flight: None,
             peak_search: None,
+            retake: None,
         };
         if swing.starts_in_contact {
             sim.phase = Phase::Contact;
@@ -863,7 +867,7 @@ impl<'s> Simulation<'s> {
                 && dt > self.contact_step
                 && c.indentation > c.rate.abs() * self.contact_step
             {
-                self.restore(snapshot);
+                self.restore(snapshot)?;
                 dt = (dt / 8.0).max(self.contact_step);
                 continue;
             }
@@ -1262,7 +1266,10 @@ impl<'s> Simulation<'s> {
                 .drive
                 .as_ref()
                 .is_some_and(|d| d.is_torque_limited());
-            let saved = hub_law.filter(|_| limited).map(|_| b.clone());
+            let retake = hub_law.is_some() && limited;
+            if retake {
+                b.save(&mut self.retake);
+            }
             let mut stepped = match hub_law {
                 Some((_, law)) => b
                     .set_hub_law(law)
@@ -1271,15 +1278,15 @@ impl<'s> Simulation<'s> {
             };
             // The torque limit's branch as the step's end says: once more on the other if
             // the prediction chose wrong (the law is piecewise affine in the hub's motion).
-            if let (Ok(()), Some((free, used)), Some(d), Some(saved)) =
-                (&stepped, hub_law, &self.scene.drive, saved)
+            if let (Ok(()), Some((free, used)), Some(d), Some(saved), true) =
+                (&stepped, hub_law, &self.scene.drive, &self.retake, retake)
             {
                 let (hub, _) = b.hub_motion();
                 let right = d.limited(free, free.torque(hub.angle, hub.rate));
                 if right != used {
-                    **b = *saved;
                     stepped = b
-                        .set_hub_law(right)
+                        .restore(saved)
+                        .and_then(|()| b.set_hub_law(right))
                         .and_then(|()| b.step(dt, &mut tip_contact));
                 }
             }
@@ -1312,13 +1319,17 @@ impl<'s> Simulation<'s> {
             robot: self.rapier.robot_state(),
             rotor: self.rapier.rotor_state(),
             beam: match &self.robot {
-                RobotSide::Beam(b) => Some(b.clone()),
+                RobotSide::Beam(b) => {
+                    let mut saved = None;
+                    b.save(&mut saved);
+                    saved
+                }
                 RobotSide::Rigid { .. } => None,
             },
         }
     }
 
-    fn restore(&mut self, s: &Snapshot) {
+    fn restore(&mut self, s: &Snapshot) -> Result<(), RigError> {
         self.t = s.t;
         self.h_prev = s.h_prev;
         self.now = s.now;
@@ -1327,8 +1338,9 @@ impl<'s> Simulation<'s> {
             self.rapier.set_rotor_state(r);
         }
         if let (RobotSide::Beam(b), Some(saved)) = (&mut self.robot, &s.beam) {
-            b.clone_from(saved);
+            b.restore(saved)?;
         }
+        Ok(())
     }
 
     /// A failed beam step as the user meets it: what failed, when, and which scene field to

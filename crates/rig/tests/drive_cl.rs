@@ -246,11 +246,18 @@ fn the_motor_work_balances_the_energy() {
     assert!(bent.abs() > 1e-4);
 }
 
-fn peak_of(edits: &[(&str, &str)]) -> (f64, f64, f64) {
-    let s = run(&common::scene("rig_driven_cl", edits));
+/// (peak force \[N\], contact duration \[s\], pre-impact deflection \[m\], the approach's largest
+/// deflection \[m\]) of the bundled driven CL with `edits`.
+fn peak_of(edits: &[(&str, &str)]) -> (f64, f64, f64, f64) {
+    let (s, frames) = run_keep(&common::scene("rig_driven_cl", edits));
     let d = s.drive.unwrap();
+    let swing = frames
+        .iter()
+        .filter(|(t, ..)| *t <= s.onset_time_s)
+        .map(|(_, _, f)| f.link_deflection_m.abs())
+        .fold(0.0, f64::max);
     eprintln!(
-        "{edits:?}: peak {:.9} N, duration {:.9e} s, pre-impact deflection {:.6e} m, {} steps",
+        "{edits:?}: peak {:.9} N, duration {:.9e} s, pre-impact deflection {:.6e} m (largest {swing:.6e} m), {} steps",
         s.peak_force_n,
         s.contact_duration_s.unwrap(),
         d.pre_impact_deflection_m.unwrap(),
@@ -260,6 +267,7 @@ fn peak_of(edits: &[(&str, &str)]) -> (f64, f64, f64) {
         s.peak_force_n,
         s.contact_duration_s.unwrap(),
         d.pre_impact_deflection_m.unwrap(),
+        swing,
     )
 }
 
@@ -267,6 +275,14 @@ fn peak_of(edits: &[(&str, &str)]) -> (f64, f64, f64) {
 /// and doubling the contact's steps, and doubling the elements (16 → 32 → 64), change the peak
 /// force, the contact's duration and the pre-impact deflection by less than the stated
 /// tolerances; the deviation of each refinement falls.
+///
+/// The pre-impact deflection's change is measured against the largest deflection of the
+/// approach (13.9 mm, the link lagging its hub in the ramp), as the driven strike's against
+/// its f_max/k_δ and the spin-up's tip deflection against its largest: the deflection at the
+/// onset (0.65 mm) is the small remainder of the link's swing about the hub's line, taken near
+/// a zero crossing, and a step's error there is the swing's phase error (≈ 0.33 m/s² × h²,
+/// whatever the remainder), so its change relative to the remainder itself grows without
+/// bound as the onset nears the crossing.
 #[test]
 fn the_driven_cl_converges_in_step_and_mesh() {
     let base = peak_of(&[]);
@@ -280,7 +296,10 @@ fn the_driven_cl_converges_in_step_and_mesh() {
     ]);
     let mesh2 = peak_of(&[("beam_elements = 16", "beam_elements = 32")]);
     let mesh4 = peak_of(&[("beam_elements = 16", "beam_elements = 64")]);
-    let d = |a: (f64, f64, f64), b: (f64, f64, f64)| [rel(a.0, b.0), rel(a.1, b.1), rel(a.2, b.2)];
+    let swing = base.3;
+    let d = |a: (f64, f64, f64, f64), b: (f64, f64, f64, f64)| {
+        [rel(a.0, b.0), rel(a.1, b.1), (a.2 - b.2).abs() / swing]
+    };
     let (s1, s2, m1, m2) = (
         d(base, step2),
         d(step2, step4),
@@ -290,12 +309,12 @@ fn the_driven_cl_converges_in_step_and_mesh() {
     eprintln!("step: {s1:?} then {s2:?}");
     eprintln!("mesh: {m1:?} then {m2:?}");
     // peak and duration to 1e-5 at the default step and mesh (measured: step 1.6e-6, 1.1e-6;
-    // mesh 7.6e-6, 3.5e-6); the pre-impact deflection to 2e-4 in the step (1.4e-4) and 1e-3
-    // in the mesh (7.5e-4)
+    // mesh 7.6e-6, 3.5e-6); the pre-impact deflection to 1e-5 of the approach's largest in the
+    // step (6.4e-6) and 4e-5 in the mesh (3.5e-5)
     for (i, tol) in [(0, 1e-5), (1, 1e-5)] {
         assert!(s1[i] <= tol && m1[i] <= tol, "{i}: {} {}", s1[i], m1[i]);
     }
-    assert!(s1[2] <= 2e-4 && m1[2] <= 1e-3);
+    assert!(s1[2] <= 1e-5 && m1[2] <= 4e-5, "{} {}", s1[2], m1[2]);
     for i in 0..3 {
         assert!(
             s2[i] < s1[i] && m2[i] < m1[i],
@@ -303,14 +322,18 @@ fn the_driven_cl_converges_in_step_and_mesh() {
         );
     }
     // the default against the converged step: the two refined runs extrapolated (Richardson,
-    // second order in the step) — peak and duration within 1e-5 (measured 2.2e-6, 1.4e-6)
+    // second order in the step) — peak and duration within 1e-5 (measured 2.2e-6, 1.4e-6),
+    // the pre-impact deflection within 1e-5 of the approach's largest (8.5e-6)
     let converged = |a: f64, b: f64| b + (b - a) / 3.0;
-    let (peak, duration) = (
+    let (peak, duration, deflection) = (
         rel(base.0, converged(step2.0, step4.0)),
         rel(base.1, converged(step2.1, step4.1)),
+        (base.2 - converged(step2.2, step4.2)).abs() / swing,
     );
-    eprintln!("default against the extrapolated step: peak {peak:.3e}, duration {duration:.3e}");
-    assert!(peak <= 1e-5 && duration <= 1e-5);
+    eprintln!(
+        "default against the extrapolated step: peak {peak:.3e}, duration {duration:.3e}, pre-impact deflection {deflection:.3e} of the largest"
+    );
+    assert!(peak <= 1e-5 && duration <= 1e-5 && deflection <= 1e-5);
 }
 
 /// (a) An ideal position source at constant speed with everything turning at that speed at
