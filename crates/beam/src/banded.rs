@@ -1052,7 +1052,7 @@ mod tests {
     }
 
     #[test]
-    fn indefinite_or_unsymmetric_bands_take_the_pivoting_lu() {
+    fn indefinite_or_unsymmetric_bands_take_an_lu_not_the_ldlt() {
         let mut seed = 11u64;
         for k in [5usize, 7] {
             let n = 40;
