@@ -410,7 +410,7 @@ fn bad_cl_drive_input_names_the_scene_field() {
         (
             "speed = 2.6365",
             "speed = -2.6365",
-            "robot.drive.placement.settle",
+            "robot.drive.command.profile.speed",
         ),
     ] {
         assert!(bundled.contains(from));
