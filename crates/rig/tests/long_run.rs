@@ -49,11 +49,14 @@ fn a_ten_second_compliant_link_run_keeps_its_energy() {
     );
     assert!(s.duration_s >= 10.0);
     assert!(s.contacts.len() >= 10, "{} contacts", s.contacts.len());
-    // measured: end 4.1e-6, worst 2.7e-5 along the way; since the beam solve's summation order
-    // changed (2026-11-29): end 3.6e-8, worst 1.8e-5, worst contact 1.5e-5. After the first 8
-    // contacts these depend on round-off (the later contacts' phase is chaotic: runs with the
-    // release angle moved by 1e-12° … 1e-10° spread over 1.2e-5 … 4.1e-5 and 1.9e-6 … 1.5e-5; see
-    // docs/performance.md, the beam's fifth pass)
+    // The run's energy at its end and along the way, and at each contact. Up to the 8th contact
+    // the trajectory does not depend on round-off: runs with the release angle moved by 1e-12°
+    // … 1e-10° agree there, and each contact keeps the energy to ≤ 1.8e-7 (measured; bound
+    // 1e-6). Later the link's vibration phase at a contact is chaotic, and the same runs spread
+    // over 1.9e-6 … 1.5e-5 at their worst contact and 1.2e-5 … 4.1e-5 along the run
+    // (docs/performance.md, the beam's fifth pass): a bound there must hold for any round-off,
+    // 5e-5 per contact and 1e-4 along the run. Measured on this build: end 6.9e-6, worst 3.4e-5,
+    // contacts 1.8e-7 up to the 8th and 8.1e-6 after it.
     assert!(
         (s.energy_final_j / s.energy_initial_j - 1.0).abs() < 1e-4,
         "{} -> {}",
@@ -61,11 +64,14 @@ fn a_ten_second_compliant_link_run_keeps_its_energy() {
         s.energy_final_j
     );
     assert!(drift.worst < 1e-4, "worst deviation {:e}", drift.worst);
-    for c in &s.contacts {
+    for (i, c) in s.contacts.iter().enumerate() {
         if let Some(after) = c.energy_after_j {
+            let error = (after / c.energy_before_j - 1.0).abs();
+            println!("contact {i} at {:.6} s: {error:.2e}", c.onset_time_s);
+            let bound = if i < 8 { 1e-6 } else { 5e-5 };
             assert!(
-                (after / c.energy_before_j - 1.0).abs() < 2e-5,
-                "contact at {} s: {} -> {after}",
+                error < bound,
+                "contact {i} at {} s: {} -> {after}",
                 c.onset_time_s,
                 c.energy_before_j
             );
