@@ -221,41 +221,89 @@ pub fn assemble(
     energy
 }
 
-/// Kinetic energy ½ q̇ᵀ M(q) q̇ of the beam, its point masses and the hub \[J\].
-pub fn kinetic_energy(model: &BeamModel, q: &[f64], v: &[f64]) -> f64 {
-    if model.kinematics() == Kinematics::Ancf {
-        return crate::assembly_ancf::kinetic_energy_ancf(model, v);
-    }
-    let sec = model.section();
-    let l = model.element_length();
+/// (sin θ, cos θ) of each element's two nodes at displacements `q`, each node's computed once
+/// and handed on to the next element ((0, 1) for a model that is not corotational).
+fn element_trig<'q>(model: &BeamModel, q: &'q [f64]) -> impl Iterator<Item = [(f64, f64); 2]> + 'q {
     let nonlinear = model.kinematics() == Kinematics::Corotational;
-    let mut t = 0.0;
-    // (sin θ, cos θ) of the element's first node, carried over from the previous element
-    let trig_of = |i: usize| {
+    let trig = move |node: usize| {
         if nonlinear {
-            q[i].sin_cos()
+            q[3 * node + 2].sin_cos()
         } else {
             (0.0, 1.0)
         }
     };
-    let mut trig_next = trig_of(2);
-    for e in 0..model.n_elements() {
-        let pv = gather(v, e);
-        match model.spec().mass {
-            MassMatrix::Lumped => {
-                let m = lumped_mass(l, sec.rho_a());
-                t += 0.5 * (0..6).map(|d| m[d] * pv[d] * pv[d]).sum::<f64>();
-            }
-            MassMatrix::Consistent => {
-                // f_in with a = q̇ and θ̇ = 0 gives M(q) q̇.
-                let trig = [trig_next, trig_of(3 * e + 5)];
-                trig_next = trig[1];
-                let f =
-                    consistent_inertia_force_trig(l, sec.rho_a(), trig, [0.0; 2], &pv, nonlinear);
-                t += 0.5 * pv.dot(&f);
-            }
+    (0..model.n_elements()).scan(trig(0), move |first, e| {
+        let next = trig(e + 1);
+        let pair = [*first, next];
+        *first = next;
+        Some(pair)
+    })
+}
+
+/// The element energies' constants, taken from the model once per pass.
+struct ElementEnergies {
+    l: f64,
+    ea: f64,
+    ei: f64,
+    rho_a: f64,
+    corotational: bool,
+    lumped: bool,
+    /// The linear element's stiffness (a model that is not corotational).
+    k_lin: Matrix6<f64>,
+}
+
+impl ElementEnergies {
+    fn of(model: &BeamModel) -> Self {
+        let sec = model.section();
+        let l = model.element_length();
+        ElementEnergies {
+            l,
+            ea: sec.ea(),
+            ei: sec.ei(),
+            rho_a: sec.rho_a(),
+            corotational: model.kinematics() == Kinematics::Corotational,
+            lumped: model.spec().mass == MassMatrix::Lumped,
+            k_lin: linear_stiffness(l, sec.ea(), sec.ei()),
         }
     }
+
+    /// Kinetic energy ½ q̇ₑᵀ Mₑ q̇ₑ of element `e` at velocities `v`, its nodes' (sin θ, cos θ)
+    /// `trig` \[J\].
+    #[inline(always)]
+    fn kinetic(&self, v: &[f64], e: usize, trig: [(f64, f64); 2]) -> f64 {
+        let pv = gather(v, e);
+        if self.lumped {
+            let m = lumped_mass(self.l, self.rho_a);
+            0.5 * (0..6).map(|d| m[d] * pv[d] * pv[d]).sum::<f64>()
+        } else {
+            // f_in with a = q̇ and θ̇ = 0 gives M(q) q̇.
+            let f = consistent_inertia_force_trig(
+                self.l,
+                self.rho_a,
+                trig,
+                [0.0; 2],
+                &pv,
+                self.corotational,
+            );
+            0.5 * pv.dot(&f)
+        }
+    }
+
+    /// Strain energy of element `e` at displacements `q`, its nodes' (sin θ, cos θ) `trig`
+    /// \[J\].
+    #[inline(always)]
+    fn strain(&self, q: &[f64], e: usize, trig: [(f64, f64); 2]) -> f64 {
+        let p = gather(q, e);
+        if self.corotational {
+            corotational_strain_energy_trig(self.l, self.ea, self.ei, &p, trig)
+        } else {
+            0.5 * p.dot(&(self.k_lin * p))
+        }
+    }
+}
+
+/// Kinetic energy of the point masses and the hub added to the elements' `t` \[J\].
+fn with_point_and_hub_kinetic_energy(model: &BeamModel, v: &[f64], mut t: f64) -> f64 {
     for pm in &model.spec().point_masses {
         let g = 3 * pm.node;
         t += 0.5
@@ -265,6 +313,28 @@ pub fn kinetic_energy(model: &BeamModel, q: &[f64], v: &[f64]) -> f64 {
     t + 0.5 * j_hub * v[2] * v[2]
 }
 
+/// The root spring's strain energy added to the elements' `energy` \[J\].
+fn with_root_strain_energy(model: &BeamModel, q: &[f64], mut energy: f64) -> f64 {
+    if model.n_fixed() == 2 {
+        let (k_theta, _, _) = model.root().spring_damper_inertia();
+        energy += 0.5 * k_theta * q[2] * q[2];
+    }
+    energy
+}
+
+/// Kinetic energy ½ q̇ᵀ M(q) q̇ of the beam, its point masses and the hub \[J\].
+pub fn kinetic_energy(model: &BeamModel, q: &[f64], v: &[f64]) -> f64 {
+    if model.kinematics() == Kinematics::Ancf {
+        return crate::assembly_ancf::kinetic_energy_ancf(model, v);
+    }
+    let elements = ElementEnergies::of(model);
+    let mut t = 0.0;
+    for (e, trig) in element_trig(model, q).enumerate() {
+        t += elements.kinetic(v, e, trig);
+    }
+    with_point_and_hub_kinetic_energy(model, v, t)
+}
+
 /// Strain energy of the elements and the root spring \[J\] (the energy [`assemble`] returns,
 /// without the forces).
 pub fn strain_energy(model: &BeamModel, q: &[f64]) -> f64 {
@@ -272,29 +342,29 @@ pub fn strain_energy(model: &BeamModel, q: &[f64]) -> f64 {
         let mut out = vec![0.0; model.n_nodes()];
         return crate::assembly_ancf::strain_energies_ancf(model, q, &mut out);
     }
-    let sec = *model.section();
-    let l = model.element_length();
-    let nonlinear = model.kinematics() == Kinematics::Corotational;
-    let k_lin = linear_stiffness(l, sec.ea(), sec.ei());
+    let elements = ElementEnergies::of(model);
     let mut energy = 0.0;
-    let mut trig_next = if nonlinear {
-        q[2].sin_cos()
-    } else {
-        (0.0, 1.0)
-    };
-    for e in 0..model.n_elements() {
-        let p = gather(q, e);
-        if nonlinear {
-            let trig = [trig_next, p[5].sin_cos()];
-            trig_next = trig[1];
-            energy += corotational_strain_energy_trig(l, sec.ea(), sec.ei(), &p, trig);
-        } else {
-            energy += 0.5 * p.dot(&(k_lin * p));
-        }
+    for (e, trig) in element_trig(model, q).enumerate() {
+        energy += elements.strain(q, e, trig);
     }
-    if model.n_fixed() == 2 {
-        let (k_theta, _, _) = model.root().spring_damper_inertia();
-        energy += 0.5 * k_theta * q[2] * q[2];
+    with_root_strain_energy(model, q, energy)
+}
+
+/// ([`kinetic_energy`], [`strain_energy`]) in one pass over the elements: each node's sin and
+/// cos computed once for both (the same operations in the same order: the same two energies
+/// bit for bit).
+pub fn kinetic_and_strain_energy(model: &BeamModel, q: &[f64], v: &[f64]) -> (f64, f64) {
+    if model.kinematics() == Kinematics::Ancf {
+        return (kinetic_energy(model, q, v), strain_energy(model, q));
     }
-    energy
+    let elements = ElementEnergies::of(model);
+    let (mut t, mut u) = (0.0, 0.0);
+    for (e, trig) in element_trig(model, q).enumerate() {
+        t += elements.kinetic(v, e, trig);
+        u += elements.strain(q, e, trig);
+    }
+    (
+        with_point_and_hub_kinetic_energy(model, v, t),
+        with_root_strain_energy(model, q, u),
+    )
 }
