@@ -628,11 +628,15 @@ impl<'s> Simulation<'s> {
                 .evaluate(&dome, &self.rapier.operator_kinematics_at(operator))
         };
         // Predictor: the rates with the forces of the step's start; then twice with the
-        // contact at the synchronised rates.
+        // contact at the synchronised rates. Out of contact at both (no force before, none
+        // found), the second pass would repeat the first with the same numbers: skipped.
         let mut guess = at(self.now.contact.as_ref());
         let mut contact = None;
-        for _ in 0..2 {
+        for pass in 0..2 {
             contact = evaluate(guess.0, guess.2);
+            if pass == 0 && contact.is_none() && self.now.contact.is_none() {
+                break;
+            }
             guess = at(contact.as_ref());
         }
         let (operator, operator_accel, robot) = guess;
