@@ -25,9 +25,7 @@
 //! unchanged. A failed step (Newton, singular or non-finite) leaves the [`State`] unchanged.
 
 use crate::BeamError;
-use crate::assembly::{
-    JacobianWeights, Kinematic, assemble, band_for, kinetic_energy, strain_energy,
-};
+use crate::assembly::{JacobianWeights, Kinematic, assemble, band_for, kinetic_and_strain_energy};
 use crate::banded::BandMatrix;
 use crate::counters::StepCounters;
 use crate::model::{BeamModel, Kinematics, NodalLoads};
@@ -362,7 +360,8 @@ impl State {
         let mut a_free: Vec<f64> = r[nfix..].iter().map(|x| -x).collect();
         band.solve_in_place(&mut a_free);
         a[nfix..].copy_from_slice(&a_free);
-        let initial_energy = kinetic_energy(model, &q, &v) + strain_energy(model, &q);
+        let (kinetic, strain) = kinetic_and_strain_energy(model, &q, &v);
+        let initial_energy = kinetic + strain;
         Ok(State {
             t: t0,
             q,
@@ -412,8 +411,7 @@ impl State {
 
     /// Energies of this state.
     pub fn energy(&self, model: &BeamModel) -> Energy {
-        let kinetic = kinetic_energy(model, &self.q, &self.v);
-        let strain = strain_energy(model, &self.q);
+        let (kinetic, strain) = kinetic_and_strain_energy(model, &self.q, &self.v);
         Energy {
             kinetic,
             strain,

@@ -3,5 +3,5 @@
 //! the dissipated energy E₀ + W − T − U (damping plus algorithmic dissipation of
 //! generalized-α; 0 up to round-off for ρ∞ = 1, undamped, linear model).
 
-pub use crate::assembly::{kinetic_energy, strain_energy};
+pub use crate::assembly::{kinetic_and_strain_energy, kinetic_energy, strain_energy};
 pub use crate::dynamics::Energy;

@@ -5,7 +5,7 @@ mod common;
 use common::order;
 
 use flexrig_beam::canonical::*;
-use flexrig_beam::energy::kinetic_energy;
+use flexrig_beam::energy::{kinetic_and_strain_energy, kinetic_energy, strain_energy};
 use flexrig_beam::*;
 
 /// Initial velocity: the first (linear) mode shape scaled to a tip speed `tip_speed`.
@@ -303,4 +303,62 @@ fn rayleigh_damping_gives_the_modal_damping_ratio() {
         (got - exact).abs() < 1e-3 * exact.abs(),
         "tip {got} vs {exact} (ζ = {zeta})"
     );
+}
+
+/// The kinetic and strain energy in one pass over the elements are the separate passes' bit
+/// for bit (linear and corotational, lumped and consistent mass, a tip mass with rotary
+/// inertia, a deformed and moving state), and for a rigid turn of the corotational beam about
+/// its root (angle φ, rate ω) they are the rod's ½ (ρAL³/3 + m L² + J) ω² and zero.
+#[test]
+fn the_energies_in_one_pass_are_the_separate_ones() {
+    let (tip_mass, tip_inertia) = (0.3, 0.01);
+    for kin in [Kinematics::Linear, Kinematics::Corotational] {
+        for mass in [MassMatrix::Lumped, MassMatrix::Consistent] {
+            let mut spec = BeamSpec::cantilever(1.0, canonical::unit_section(), 8, kin);
+            spec.mass = mass;
+            spec.point_masses.push(PointMass {
+                node: 8,
+                mass: tip_mass,
+                inertia: tip_inertia,
+            });
+            let m = BeamModel::new(spec).unwrap();
+            let n = m.n_dofs();
+            let q: Vec<f64> = (0..n).map(|i| 0.1 * (1.7 * i as f64).sin()).collect();
+            let v: Vec<f64> = (0..n).map(|i| (0.9 * i as f64).cos()).collect();
+            let (t, u) = kinetic_and_strain_energy(&m, &q, &v);
+            assert_eq!(
+                t.to_bits(),
+                kinetic_energy(&m, &q, &v).to_bits(),
+                "{kin:?} {mass:?}"
+            );
+            assert_eq!(
+                u.to_bits(),
+                strain_energy(&m, &q).to_bits(),
+                "{kin:?} {mass:?}"
+            );
+            assert!(t > 0.0 && u > 0.0);
+            if kin == Kinematics::Corotational && mass == MassMatrix::Consistent {
+                let (phi, omega) = (2.0f64, 3.0);
+                let mut q = vec![0.0; n];
+                let mut v = vec![0.0; n];
+                for node in 0..=8 {
+                    let x = node as f64 / 8.0;
+                    q[3 * node..3 * node + 3].copy_from_slice(&[
+                        x * phi.cos() - x,
+                        x * phi.sin(),
+                        phi,
+                    ]);
+                    v[3 * node..3 * node + 3].copy_from_slice(&[
+                        -x * phi.sin() * omega,
+                        x * phi.cos() * omega,
+                        omega,
+                    ]);
+                }
+                let (t, u) = kinetic_and_strain_energy(&m, &q, &v);
+                let want = 0.5 * (1.0 / 3.0 + tip_mass + tip_inertia) * omega * omega;
+                common::assert_rel("rigid turn's kinetic energy", t, want, 1e-13);
+                assert!(u.abs() < 1e-18 * 1e7, "rigid turn's strain energy {u:e}");
+            }
+        }
+    }
 }

@@ -32,6 +32,11 @@ pub struct RapierRig {
     robot: Option<Hinge>,
     /// The drive's rotor on the robot axis (CJ with a motor that is not a prescribed trajectory).
     rotor: Option<Hinge>,
+    /// The torque about the operator's pivot applied over the next step \[N·m\].
+    operator_torque: f64,
+    /// Whether [`Self::step`] leaves the world alone while it is at rest in equilibrium (true but
+    /// in the test that compares a run with and without).
+    skip_rest: bool,
 }
 
 impl std::fmt::Debug for RapierRig {
@@ -100,6 +105,8 @@ impl RapierRig {
             operator: operator_hinge,
             robot: robot_hinge,
             rotor: None,
+            operator_torque: 0.0,
+            skip_rest: true,
         };
         rig.settle_multibody();
         rig
@@ -267,6 +274,7 @@ impl RapierRig {
     /// pivot axis and `robot_torque` about the robot axis (CJ) [N·m], held over the next step
     /// (Rapier adds gravity itself).
     pub fn apply_torques(&mut self, operator_torque: f64, robot_torque: f64) {
+        self.operator_torque = operator_torque;
         let hinges = [Some(self.operator), self.robot];
         for (hinge, torque) in hinges.into_iter().zip([operator_torque, robot_torque]) {
             if let Some(h) = hinge {
@@ -278,9 +286,132 @@ impl RapierRig {
         }
     }
 
-    /// Advances the world by `dt` \[s\] (symplectic Euler).
+    /// Advances the world by `dt` \[s\] (symplectic Euler). A world at rest in equilibrium
+    /// ([`Self::at_rest_in_equilibrium`]) is left as it is: Rapier's step would leave it bit for
+    /// bit the same (tested), so the step is skipped (the driven link's approach, with the
+    /// operator hanging at rest, steps Rapier thousands of times for nothing).
     pub fn step(&mut self, dt: f64) {
+        if self.skip_rest && self.at_rest_in_equilibrium() {
+            return;
+        }
         self.world.integration_parameters.dt = dt;
         self.world.step();
+    }
+
+    /// True when the world holds the operator alone (no rigid robot link, no rotor), hanging
+    /// straight down (angle 0, where gravity's moment about the pivot vanishes) at rest with no
+    /// torque applied: the exact equilibrium, which a step leaves unchanged. The angle and the
+    /// rate are the positive zero (a step turns a rate of −0 into +0).
+    pub(crate) fn at_rest_in_equilibrium(&self) -> bool {
+        let s = self.operator_state();
+        self.robot.is_none()
+            && self.rotor.is_none()
+            && self.operator_torque == 0.0
+            && s.angle.to_bits() == 0
+            && s.rate.to_bits() == 0
+    }
+
+    /// Makes [`Self::step`] step Rapier even at rest (to compare a run with the skip).
+    #[cfg(test)]
+    pub(crate) fn step_even_at_rest(&mut self) {
+        self.skip_rest = false;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An operator of the given pivot, arm and masses (a rod with the block at its end).
+    fn operator(pivot: Vector, arm: f64, arm_mass: f64, block_mass: f64) -> OperatorGeometry {
+        let mass = arm_mass + block_mass;
+        let com = (0.5 * arm_mass * arm + block_mass * arm) / mass;
+        let inertia_pivot = arm_mass * arm * arm / 3.0 + block_mass * arm * arm;
+        let about_com = inertia_pivot - mass * com * com;
+        OperatorGeometry {
+            pivot,
+            arm_length: arm,
+            mass,
+            com_distance: com,
+            inertia_pivot,
+            inertia_com: Vector::new(about_com, about_com, 1e-4 * block_mass),
+            block_half_extents: Vector::splat(0.0264),
+            block_center_local: Vector::new(0.0, 0.0, -arm),
+        }
+    }
+
+    /// The skip is exact: Rapier's own step leaves the operator hanging at rest (angle and rate
+    /// zero, no torque, of either sign) bit for bit as it was, over many steps of different
+    /// sizes, for pivots off the origin, light and heavy pendulums and Earth's and other
+    /// gravities. A rate of −0 becomes +0 in a step, so the skip waits for that step.
+    #[test]
+    fn a_step_leaves_the_operator_at_rest_in_equilibrium_bit_for_bit() {
+        let pivots = [
+            Vector::new(0.33802, -0.0979, 0.30),
+            Vector::new(0.1, -0.05, 0.3),
+            Vector::new(-1.7, 3.1, 0.9),
+        ];
+        let mut cases = 0;
+        for (pivot, (arm, arm_mass, block_mass)) in
+            pivots
+                .into_iter()
+                .zip([(0.30, 0.030, 0.3978), (0.45, 0.2, 2.5), (0.12, 0.01, 0.05)])
+        {
+            for gravity in [9.81, 1.62, 24.8] {
+                for zero in [0.0, -0.0] {
+                    let mut rig =
+                        RapierRig::new(gravity, &operator(pivot, arm, arm_mass, block_mass), None);
+                    rig.step_even_at_rest();
+                    let rest = HingeState {
+                        angle: zero,
+                        rate: zero,
+                    };
+                    rig.set_state(rest, None);
+                    let set = rig.operator_state();
+                    rig.apply_torques(zero, 0.0);
+                    assert_eq!(rig.at_rest_in_equilibrium(), set.rate.to_bits() == 0);
+                    rig.step(6e-4);
+                    let start = rig.operator_state();
+                    assert_eq!((start.angle.to_bits(), start.rate.to_bits()), (0, 0));
+                    for k in 0..500 {
+                        let torque = if k % 2 == 0 { zero } else { -zero };
+                        rig.apply_torques(torque, 0.0);
+                        assert!(rig.at_rest_in_equilibrium());
+                        rig.step([6e-4, 1e-5, 4.36e-6, 2e-3][k % 4]);
+                        let s = rig.operator_state();
+                        assert_eq!(
+                            (s.angle.to_bits(), s.rate.to_bits()),
+                            (start.angle.to_bits(), start.rate.to_bits()),
+                            "pivot {pivot:?}, g {gravity}, step {k}: {s:?} from {start:?}"
+                        );
+                    }
+                    cases += 1;
+                }
+            }
+        }
+        assert_eq!(cases, 18);
+    }
+
+    /// The skip's condition holds only in the equilibrium: off it (an angle, a rate or a torque
+    /// however small) Rapier steps the operator, and it moves.
+    #[test]
+    fn out_of_equilibrium_the_operator_is_stepped() {
+        let op = operator(Vector::new(0.33802, -0.0979, 0.30), 0.30, 0.030, 0.3978);
+        for (angle, rate, torque) in [(1e-12, 0.0, 0.0), (0.0, 1e-12, 0.0), (0.0, 0.0, 1e-12)] {
+            let mut rig = RapierRig::new(9.81, &op, None);
+            rig.set_state(HingeState { angle, rate }, None);
+            rig.apply_torques(torque, 0.0);
+            assert!(!rig.at_rest_in_equilibrium());
+            let before = rig.operator_state();
+            for _ in 0..10 {
+                rig.apply_torques(torque, 0.0);
+                rig.step(6e-4);
+            }
+            let after = rig.operator_state();
+            assert!(
+                after.angle != before.angle && after.rate != before.rate,
+                "{before:?} → {after:?} (angle {angle}, rate {rate}, torque {torque})"
+            );
+        }
     }
 }
