@@ -979,13 +979,15 @@ impl<'s> Simulation<'s> {
             f.link_speed_rad_s,
             f.commanded_speed_rad_s
         );
-        if d.is_torque_limited() {
+        if let flexrig_impact::drive::DriveCommand::Controller {
+            torque_limit: Some(limit),
+            ..
+        } = d.drive().command()
+        {
             hint.push_str(&format!(
                 "; is robot.drive.command.torque_limit = {} N·m at the motor shaft enough to \
                  move it?",
-                flexrig_contact::validate::display(
-                    d.drive().joint_torque_limit() / d.drive().motor().gear_ratio
-                )
+                flexrig_contact::validate::display(*limit)
             ));
         }
         hint

@@ -109,10 +109,17 @@ fn parse(text: &str) -> Result<Scene, RigError> {
 }
 
 fn run(scene: &Scene) -> RunSummary {
-    Simulation::new(scene, RunOptions::default())
+    run_keeping(scene).0
+}
+
+/// The run's summary and the drive's channels of every frame.
+fn run_keeping(scene: &Scene) -> (RunSummary, Keep) {
+    let mut keep = Keep::default();
+    let s = Simulation::new(scene, RunOptions::default())
         .unwrap()
-        .run(&mut Keep::default())
-        .unwrap()
+        .run(&mut keep)
+        .unwrap();
+    (s, keep)
 }
 
 /// The bundled driven scene with its `[robot.drive.*]` tables replaced by `drive` (TOML
@@ -273,12 +280,7 @@ fn a_constant_acceleration_loads_the_spring_as_the_analytic_solution() {
 /// ramp, contact with the hanging block, separation.
 #[test]
 fn the_motor_work_balances_the_energy() {
-    let scene = common::scene("rig_driven_cj", &[]);
-    let mut keep = Keep::default();
-    let s = Simulation::new(&scene, RunOptions::default())
-        .unwrap()
-        .run(&mut keep)
-        .unwrap();
+    let (s, keep) = run_keeping(&common::scene("rig_driven_cj", &[]));
     let d = s.drive.unwrap();
     let e0 = s.energy_initial_j;
     let mut worst: f64 = 0.0;
@@ -439,9 +441,10 @@ fn bad_drive_input_names_the_scene_field() {
 /// friction of the hub's own inertia's approach to it): 1e-6 / (10 · 1e-5) = 0.01 rad/s.
 #[test]
 fn a_drive_too_weak_to_reach_the_block_says_so() {
-    let text =
-        common::scene_text("rig_driven_cl").replace("torque_limit = 0.2", "torque_limit = 1e-6");
-    let scene = parse(&text).unwrap();
+    let scene = common::scene(
+        "rig_driven_cl",
+        &[("torque_limit = 0.2", "torque_limit = 1e-6")],
+    );
     let sim = Simulation::new(&scene, RunOptions::default()).unwrap();
     let limit = match sim.run(&mut Keep::default()) {
         Err(RigError::NotReached { what, limit }) => {
@@ -471,22 +474,15 @@ fn a_drive_too_weak_to_reach_the_block_says_so() {
 /// never needs (its largest torque stays below it).
 #[test]
 fn the_summary_counts_the_time_at_the_torque_limit() {
-    let bundled = parse(&common::scene_text("rig_driven_cj")).unwrap();
-    let s = run(&bundled);
+    let s = run(&common::scene("rig_driven_cj", &[]));
     let d = s.drive.unwrap();
     assert!(
         d.peak_joint_torque_nm < 2.0 && d.time_at_torque_limit_s == 0.0,
         "{d:?}"
     );
 
-    let text =
-        common::scene_text("rig_driven_cj").replace("torque_limit = 0.2", "torque_limit = 0.004");
-    let scene = parse(&text).unwrap();
-    let mut keep = Keep::default();
-    let s = Simulation::new(&scene, RunOptions::default())
-        .unwrap()
-        .run(&mut keep)
-        .unwrap();
+    let edit = ("torque_limit = 0.2", "torque_limit = 0.004");
+    let (s, keep) = run_keeping(&common::scene("rig_driven_cj", &[edit]));
     let d = s.drive.unwrap();
     let limit = 0.004 * 10.0;
     let mut at_limit = 0.0;
