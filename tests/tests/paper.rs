@@ -1,7 +1,7 @@
 //! End-to-end checks against the paper (§III–V) through the public APIs of the crates and the
 //! `flexrig` library, each against an independent reference.
 
-use flexrig::fig6::Fig6Options;
+use flexrig::lumped::fig6::Fig6Options;
 use flexrig_contact::tolerance::{assert_abs, assert_close, relative_error};
 use flexrig_contact::{Materials, SeriesCompliance};
 use flexrig_lumped::ode::{OdeOptions, integrate};
@@ -13,12 +13,12 @@ use flexrig_lumped::{ImpactModel, peak_exact};
 #[test]
 fn fig6_command_reproduces_the_quoted_etas() {
     let dir = std::env::temp_dir().join(format!("flexrig-paper-fig6-{}", std::process::id()));
-    let result = flexrig::fig6::run(&Fig6Options {
+    let result = flexrig::lumped::fig6::run(&Fig6Options {
         out: dir.clone(),
         points: 3,
         figures: flexrig::plots::FigureOptions::two_column_svg(),
-        design: flexrig::fig6::Fig6Design::PAPER,
-        grid: flexrig::fig6::Fig6Grid::paper(),
+        design: flexrig::lumped::fig6::Fig6Design::PAPER,
+        grid: flexrig::lumped::fig6::Fig6Grid::paper(),
     })
     .unwrap();
     let eta = |m_h: f64, k_delta: f64, m_e: f64, n: f64| {

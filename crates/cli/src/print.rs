@@ -5,7 +5,7 @@ use std::io::{IsTerminal, Write};
 use std::sync::OnceLock;
 
 use flexrig::Error;
-use flexrig::run::Override;
+use flexrig::testbed::run::Override;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 /// Writes `value` as pretty JSON and a newline to the report.
@@ -89,10 +89,10 @@ impl flexrig::Progress for Bar {
 /// body, in words) and HIC15/HIC36 with their windows.
 pub fn print_severity(
     out: &mut dyn Write,
-    s: &flexrig::severity::Severity,
+    s: &flexrig::shared::severity::Severity,
     struck: &str,
 ) -> Result<(), Error> {
-    use flexrig::severity::ContactAreaModel;
+    use flexrig::shared::severity::ContactAreaModel;
     line(out, format!("  severity (struck body: {struck})"))?;
     line(
         out,

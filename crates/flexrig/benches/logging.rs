@@ -5,8 +5,8 @@ use std::hint::black_box;
 use std::io::Cursor;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use flexrig::mcap_log::McapRecorder;
-use flexrig::scenes::BUNDLED_SCENES;
+use flexrig::log::mcap::McapRecorder;
+use flexrig::testbed::scenes::BUNDLED_SCENES;
 use flexrig_contact::Materials;
 use flexrig_rig::{NoRecorder, RunOptions, Scene, Simulation};
 

@@ -5,8 +5,8 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use flexrig::scenes::BUNDLED_SCENES;
 use flexrig::study::{Dimension, Sweep, SweepOptions};
+use flexrig::testbed::scenes::BUNDLED_SCENES;
 use flexrig_contact::Materials;
 use flexrig_rig::{NoRecorder, Override, RunOptions, Simulation, scene_with_overrides};
 

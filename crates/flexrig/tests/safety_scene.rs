@@ -176,7 +176,7 @@ fn the_scene_report_lists_the_search_and_ends_on_the_methods_speed() {
             SafetyMethod::Simulation,
         ],
     );
-    let (r, doc, trace) = flexrig::safety_report::report_document(&i, None, None).unwrap();
+    let (r, doc, trace) = flexrig::safety::report::report_document(&i, None, None).unwrap();
     let md = doc.markdown();
     assert!(md.contains("driven_cj_wall"), "{md}");
     let sim = r
@@ -204,7 +204,7 @@ fn test_bed(
     let given = match solver {
         None => scene.to_string(),
         Some((from, to)) => {
-            let text = flexrig::scenes::scene_text(scene, None).unwrap().0;
+            let text = flexrig::testbed::scenes::scene_text(scene, None).unwrap().0;
             assert!(text.contains(from), "{from}");
             dir = std::env::temp_dir().join(format!(
                 "flexrig_safety_test_bed_{}_{scene}",
@@ -271,22 +271,22 @@ fn the_test_bed_speed_is_a_run_at_the_limit_and_near_the_energy_method() {
         let sc = r.scene.as_ref().unwrap();
         let angle = sc.release_angle_at_root_deg.unwrap();
         let f_max = r.force_limit_n;
-        let run = flexrig::run::run_scene_file(
+        let run = flexrig::testbed::run::run_scene_file(
             std::path::Path::new(scene),
             &[
                 flexrig_rig::Override::parse(&format!("operator.start.release_angle_deg={angle}"))
                     .unwrap(),
             ],
-            flexrig::run::LogRequest {
+            flexrig::testbed::run::LogRequest {
                 out: None,
                 force: false,
-                rates: flexrig::mcap_log::LogRates::DECIMATED,
+                rates: flexrig::log::mcap::LogRates::DECIMATED,
                 deformation_scale: 1.0,
             },
-            &flexrig::cancel::CancelToken::new(),
+            &flexrig::shared::cancel::CancelToken::new(),
         )
         .unwrap();
-        let flexrig::run::SceneRun::Rig(summary, link) = run else {
+        let flexrig::testbed::run::SceneRun::Rig(summary, link) = run else {
             panic!("{scene} is a test-bed scene")
         };
         assert!(
@@ -300,8 +300,8 @@ fn the_test_bed_speed_is_a_run_at_the_limit_and_near_the_energy_method() {
             summary.impact_velocity_mps,
             sc.by_force_mps
         );
-        let tb = match flexrig::safety_scene::load_any(scene).unwrap() {
-            flexrig::safety_scene::SafetyDesignScene::TestBed(tb) => tb,
+        let tb = match flexrig::safety::scene::load_any(scene).unwrap() {
+            flexrig::safety::scene::SafetyDesignScene::TestBed(tb) => tb,
             _ => panic!("{scene}"),
         };
         let gamma = match tb.design() {

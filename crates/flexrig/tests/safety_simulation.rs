@@ -5,11 +5,11 @@
 //! the map's cell.
 
 use flexrig::CancelToken;
+use flexrig::safety::map::{MapAxis, MapMethod, MapParameter, SafetyMapInput, safety_map};
 use flexrig::safety::{
     ContactKind, ContactLaw, FeLink, MapJoint, RobotEffectiveMass, SafetyInput, SafetyMethod,
     SimulationSettings, safety,
 };
-use flexrig::safety_map::{MapAxis, MapMethod, MapParameter, SafetyMapInput, safety_map};
 use flexrig_safety::BodyModel;
 
 const M_R: f64 = 2.0;

@@ -5,9 +5,9 @@
 //! balance.
 
 use flexrig::CancelToken;
-use flexrig::impact::{EffectiveMass, Formulation, ImpactInput};
-use flexrig::severity::{ContactAreaModel, of_lumped, of_samples};
-use flexrig::traces::run_traced;
+use flexrig::lumped::impact::{EffectiveMass, Formulation, ImpactInput};
+use flexrig::shared::severity::{ContactAreaModel, of_lumped, of_samples};
+use flexrig::testbed::traces::run_traced;
 use flexrig_contact::tolerance::assert_close;
 use flexrig_safety::{ContactTraces, HicWindow, hic_half_sine, severity};
 use std::f64::consts::PI;

@@ -17,19 +17,19 @@ fn damping(
     restitution: Option<f64>,
     c_max: Option<f64>,
     depth: Option<f64>,
-) -> PyResult<flexrig::eta::DampingSpec> {
+) -> PyResult<flexrig::fe::eta::DampingSpec> {
     let model = DampingModel::parse(model).map_err(flag_error)?;
     fronts::damping_spec(model, restitution, c_max, depth).map_err(flag_error)
 }
 
 /// The design held fixed (`m_r` [kg], `k_c` [N/mⁿ], `v0` [m/s]), checked by the library.
-fn design_of((m_r, k_c, v0): (f64, f64, f64)) -> flexrig::fig6::Fig6Design {
-    flexrig::fig6::Fig6Design { m_r, k_c, v0 }
+fn design_of((m_r, k_c, v0): (f64, f64, f64)) -> flexrig::lumped::fig6::Fig6Design {
+    flexrig::lumped::fig6::Fig6Design { m_r, k_c, v0 }
 }
 
 /// The cases (`m_h`, `k_delta`, `m_e`: every combination), checked by the library.
-fn grid_of((m_h, k_delta, m_e): (Vec<f64>, Vec<f64>, Vec<f64>)) -> flexrig::fig6::Fig6Grid {
-    flexrig::fig6::Fig6Grid { m_h, k_delta, m_e }
+fn grid_of((m_h, k_delta, m_e): (Vec<f64>, Vec<f64>, Vec<f64>)) -> flexrig::lumped::fig6::Fig6Grid {
+    flexrig::lumped::fig6::Fig6Grid { m_h, k_delta, m_e }
 }
 
 /// `flexrig eta --json` for the same inputs; writes eta.csv and the figures into `out`.
@@ -88,7 +88,7 @@ pub fn eta<'py>(
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
     let cancel = CancelToken::new();
     let r = detached(py, &cancel, || {
-        flexrig::eta::run(&settings, &grid_of(grid), &out, &figures, &cancel)
+        flexrig::fe::eta::run(&settings, &grid_of(grid), &out, &figures, &cancel)
     })?
     .map_err(|e| flag_error(fronts::impact_as_flag(e)))?;
     json_to_py(py, &fronts::eta_report(&settings, &r))
@@ -132,14 +132,14 @@ pub fn eta_map<'py>(
     )
     .map_err(flag_error)?;
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
-    let options = flexrig::eta_map::EtaMapOptions {
+    let options = flexrig::fe::eta_map::EtaMapOptions {
         out,
         specs,
         settings,
         figures,
     };
     let cancel = CancelToken::new();
-    let r = detached(py, &cancel, || flexrig::eta_map::run(&options, &cancel))?
+    let r = detached(py, &cancel, || flexrig::fe::eta_map::run(&options, &cancel))?
         .map_err(|e| flag_error(fronts::impact_as_flag(e)))?;
     json_to_py(py, &fronts::eta_map_report(&options.settings, &r))
 }
@@ -176,7 +176,7 @@ pub fn eta_rotor<'py>(
     )
     .map_err(flag_error)?;
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
-    let options = flexrig::eta_rotor::EtaRotorOptions {
+    let options = flexrig::fe::eta_rotor::EtaRotorOptions {
         out,
         ratios,
         n,
@@ -185,7 +185,9 @@ pub fn eta_rotor<'py>(
         figures,
     };
     let cancel = CancelToken::new();
-    let r = detached(py, &cancel, || flexrig::eta_rotor::run(&options, &cancel))?
-        .map_err(|e| flag_error(fronts::eta_rotor_error(e, ratio)))?;
+    let r = detached(py, &cancel, || {
+        flexrig::fe::eta_rotor::run(&options, &cancel)
+    })?
+    .map_err(|e| flag_error(fronts::eta_rotor_error(e, ratio)))?;
     json_to_py(py, &fronts::eta_rotor_report(&settings, &r))
 }

@@ -4,8 +4,8 @@
 
 use std::path::PathBuf;
 
-use flexrig::experiment::ExperimentOptions;
-use flexrig::payload::PayloadOptions;
+use flexrig::fe::payload::PayloadOptions;
+use flexrig::testbed::experiment::ExperimentOptions;
 use flexrig::{CancelToken, NoProgress, fronts};
 use pyo3::prelude::*;
 
@@ -42,7 +42,7 @@ pub fn experiment<'py>(
     options.overrides = crate::run::overrides(&overrides)?;
     let cancel = CancelToken::new();
     let r = detached(py, &cancel, || {
-        flexrig::experiment::run(&options, &cancel, &NoProgress)
+        flexrig::testbed::experiment::run(&options, &cancel, &NoProgress)
     })?
     .map_err(flag_error)?;
     json_to_py(py, &fronts::experiment_report(&r))
@@ -64,7 +64,7 @@ pub fn payload<'py>(
     dpi: f64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let (from, to, points) =
-        flexrig::payload::parse_payloads(payloads, points).map_err(flag_error)?;
+        flexrig::fe::payload::parse_payloads(payloads, points).map_err(flag_error)?;
     let options = PayloadOptions {
         scene,
         from,
@@ -74,7 +74,7 @@ pub fn payload<'py>(
         figures: fronts::figure_options(size, &format, dpi).map_err(flag_error)?,
     };
     let cancel = CancelToken::new();
-    let r =
-        detached(py, &cancel, || flexrig::payload::run(&options, &cancel))?.map_err(flag_error)?;
+    let r = detached(py, &cancel, || flexrig::fe::payload::run(&options, &cancel))?
+        .map_err(flag_error)?;
     json_to_py(py, &fronts::payload_report(&r))
 }

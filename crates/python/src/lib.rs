@@ -217,7 +217,7 @@ fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(driven::spin_up_defaults, m)?)?;
     m.add_function(wrap_pyfunction!(driven::role_switch, m)?)?;
     m.add_class::<sweep::Sweep>()?;
-    m.add("DEFAULT_RTOL", flexrig::impact::DEFAULT_RTOL)?;
+    m.add("DEFAULT_RTOL", flexrig::lumped::impact::DEFAULT_RTOL)?;
     m.add(
         "SUMMARY_COLUMNS",
         flexrig::study::sweep::SUMMARY_COLUMNS.to_vec(),
@@ -226,6 +226,6 @@ fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "INTEGER_SUMMARY_COLUMNS",
         flexrig::study::sweep::INTEGER_COLUMNS.to_vec(),
     )?;
-    m.add("LINK_COLUMNS", flexrig::link::COLUMNS.to_vec())?;
+    m.add("LINK_COLUMNS", flexrig::testbed::link::COLUMNS.to_vec())?;
     Ok(())
 }

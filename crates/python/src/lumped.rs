@@ -1,7 +1,7 @@
 //! The lumped two-mass impact, vectorised (exact method), and the paper's Fig. 6.
 
 use flexrig::Error;
-use flexrig::impact::exact;
+use flexrig::lumped::impact::exact;
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -140,7 +140,7 @@ pub fn impact_report<'py>(
     rtol: f64,
     dome_radius: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use flexrig::impact::ImpactInput;
+    use flexrig::lumped::impact::ImpactInput;
     // one field for the whole set, so that a vectorised call does not index it
     let m_eff = flexrig::fronts::effective_mass(m_eff, gamma, m_r, m_e)
         .map_err(|e| input_error("m_eff", crate::keywords(&e.to_string())))?;
@@ -184,13 +184,13 @@ pub fn fig6<'py>(
     format: Vec<String>,
     dpi: f64,
 ) -> PyResult<Vec<Bound<'py, PyDict>>> {
-    use flexrig::fig6::{Fig6Design, Fig6Grid, Fig6Options};
+    use flexrig::lumped::fig6::{Fig6Design, Fig6Grid, Fig6Options};
     let design = Fig6Design { m_r, k_c, v0 };
     let grid = Fig6Grid { m_h, k_delta, m_e };
     let figures = flexrig::fronts::figure_options(size, &format, dpi).map_err(crate::flag_error)?;
     let curves = py
         .detach(|| match out {
-            Some(out) => flexrig::fig6::run(&Fig6Options {
+            Some(out) => flexrig::lumped::fig6::run(&Fig6Options {
                 out,
                 points,
                 figures,
@@ -198,7 +198,7 @@ pub fn fig6<'py>(
                 grid,
             })
             .map(|r| r.curves),
-            None => flexrig::fig6::curves(points, &design, &grid),
+            None => flexrig::lumped::fig6::curves(points, &design, &grid),
         })
         .map_err(crate::flag_error)?;
     curves

@@ -4,8 +4,8 @@
 use std::path::PathBuf;
 
 use flexrig::CancelToken;
-use flexrig::run::summary_json;
-use flexrig::traces::run_traced_logged;
+use flexrig::testbed::run::summary_json;
+use flexrig::testbed::traces::run_traced_logged;
 use flexrig_rig::Override;
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -17,13 +17,13 @@ use crate::{detached, input_error, to_py};
 /// The names of the bundled scenes (`flexrig.run("cj_aluminium")`).
 #[pyfunction]
 pub fn bundled_scenes() -> Vec<&'static str> {
-    flexrig::scenes::bundled_names()
+    flexrig::testbed::scenes::bundled_names()
 }
 
 /// The bundled scenes as `flexrig scenes` lists them: (name, one-line description) pairs.
 #[pyfunction]
 pub fn scene_descriptions() -> Vec<(&'static str, String)> {
-    flexrig::scenes::list_bundled()
+    flexrig::testbed::scenes::list_bundled()
         .into_iter()
         .map(|s| (s.name, s.summary))
         .collect()
@@ -34,7 +34,7 @@ pub fn scene_descriptions() -> Vec<(&'static str, String)> {
 #[pyfunction]
 #[pyo3(signature = (name, path, force=false))]
 pub fn write_scene(name: &str, path: PathBuf, force: bool) -> PyResult<()> {
-    flexrig::scenes::write_bundled(name, &path, force).map_err(to_py)
+    flexrig::testbed::scenes::write_bundled(name, &path, force).map_err(to_py)
 }
 
 /// The TOML text of `scene`: a path (str or os.PathLike) to a scene file, the name of a bundled
@@ -82,7 +82,7 @@ pub fn scene_text(scene: &Bound<'_, PyAny>) -> PyResult<(String, Option<PathBuf>
 /// A bundled name or a file, resolved as the command line does (a near miss of a bundled name
 /// is an InputError with "did you mean").
 fn resolve(path: PathBuf) -> PyResult<(String, Option<PathBuf>)> {
-    let source = flexrig::scenes::resolve("scene", &path).map_err(to_py)?;
+    let source = flexrig::testbed::scenes::resolve("scene", &path).map_err(to_py)?;
     let Some(path) = source.path else {
         return Ok((source.text, None));
     };
@@ -152,7 +152,7 @@ fn array<'py>(py: Python<'py>, v: Vec<f64>) -> Bound<'py, PyAny> {
 /// traces, step traces): the summary as `flexrig run --json` prints it (the link quantities
 /// included), the traces as dicts of NumPy arrays.
 #[pyfunction]
-#[pyo3(signature = (text, overrides, out=None, force=false, log_every_step=false, deformation_scale=flexrig::mcap_log::DEFAULT_DEFORMATION_SCALE))]
+#[pyo3(signature = (text, overrides, out=None, force=false, log_every_step=false, deformation_scale=flexrig::log::mcap::DEFAULT_DEFORMATION_SCALE))]
 pub fn run<'py>(
     py: Python<'py>,
     text: &str,
@@ -163,15 +163,16 @@ pub fn run<'py>(
     deformation_scale: f64,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>, Bound<'py, PyDict>)> {
     let overrides = self::overrides(&overrides)?;
-    let deformation_scale = flexrig::output::positive_arg("--deformation-scale", deformation_scale)
-        .map_err(crate::flag_error)?;
-    let log = flexrig::run::LogRequest {
+    let deformation_scale =
+        flexrig::shared::output::positive_arg("--deformation-scale", deformation_scale)
+            .map_err(crate::flag_error)?;
+    let log = flexrig::testbed::run::LogRequest {
         out: out.as_ref(),
         force,
         rates: if log_every_step {
-            flexrig::mcap_log::LogRates::EVERY_STEP
+            flexrig::log::mcap::LogRates::EVERY_STEP
         } else {
-            flexrig::mcap_log::LogRates::DECIMATED
+            flexrig::log::mcap::LogRates::DECIMATED
         },
         deformation_scale,
     };
@@ -180,20 +181,24 @@ pub fn run<'py>(
         // a driven scene: the strike's summary and its traces (no steps of a rig), its log
         // written as `flexrig run --out` writes it
         let (run, link) = detached(py, &cancel, || {
-            let run = flexrig::run::run_driven_text(text, &overrides, log, &cancel)?;
-            Ok::<_, flexrig::Error>((run, flexrig::link::of_text(text, &overrides)?))
+            let run = flexrig::testbed::run::run_driven_text(text, &overrides, log, &cancel)?;
+            Ok::<_, flexrig::Error>((run, flexrig::testbed::link::of_text(text, &overrides)?))
         })?
         .map_err(crate::flag_error)?;
         let samples = PyDict::new(py);
         for (name, column) in run.traces.columns() {
             samples.set_item(name, array(py, column.clone()))?;
         }
-        let summary = flexrig::run::driven_summary_json(&run.summary, &link);
+        let summary = flexrig::testbed::run::driven_summary_json(&run.summary, &link);
         return Ok((json_to_py(py, &summary)?, samples, PyDict::new(py)));
     }
     let (summary, traces, link) = detached(py, &cancel, || {
         let (summary, traces) = run_traced_logged(text, &overrides, log, &cancel)?;
-        Ok::<_, flexrig::Error>((summary, traces, flexrig::link::of_text(text, &overrides)?))
+        Ok::<_, flexrig::Error>((
+            summary,
+            traces,
+            flexrig::testbed::link::of_text(text, &overrides)?,
+        ))
     })?
     .map_err(crate::flag_error)?;
     let s = traces.samples;

@@ -30,8 +30,8 @@ pub fn safety_json(
         .map_err(|e| input_error("input", format!("the report does not serialise: {e}")))
 }
 
-/// The safe-speed map of [`flexrig::safety_map::safety_map`] as JSON (what `flexrig safety-map`
-/// writes to safety_map.json) for a [`flexrig::safety_map::SafetyMapInput`] given as JSON; an
+/// The safe-speed map of [`flexrig::safety::map::safety_map`] as JSON (what `flexrig safety-map`
+/// writes to safety_map.json) for a [`flexrig::safety::map::SafetyMapInput`] given as JSON; an
 /// axis may also be `{"text": "PARAM=FROM:TO:N[:log]"}`, parsed as the command line
 /// parses `--x`/`--y`. Ctrl-C stops it (KeyboardInterrupt).
 #[pyfunction]
@@ -45,12 +45,12 @@ pub fn safety_map_json(
         .map_err(|e| input_error("input", format!("invalid safety map input: {e}")))?;
     for axis in ["x", "y"] {
         if let Some(text) = value[axis].get("text").and_then(|t| t.as_str()) {
-            let parsed = flexrig::safety_map::parse_axis(axis, text).map_err(to_py)?;
+            let parsed = flexrig::safety::map::parse_axis(axis, text).map_err(to_py)?;
             value[axis] = serde_json::to_value(parsed)
                 .map_err(|e| input_error(axis, format!("{axis}: {e}")))?;
         }
     }
-    let input: flexrig::safety_map::SafetyMapInput = serde_json::from_value(value)
+    let input: flexrig::safety::map::SafetyMapInput = serde_json::from_value(value)
         .map_err(|e| input_error("input", format!("invalid safety map input: {e}")))?;
     let model = body_model_toml
         .map(BodyModel::from_toml_str)
@@ -58,7 +58,7 @@ pub fn safety_map_json(
         .map_err(|e| to_py(Error::from(e)))?;
     let cancel = flexrig::CancelToken::new();
     let map = crate::detached(py, &cancel, || {
-        flexrig::safety_map::safety_map(&input, model.as_ref(), &cancel)
+        flexrig::safety::map::safety_map(&input, model.as_ref(), &cancel)
     })?
     .map_err(to_py)?;
     serde_json::to_string(&map)

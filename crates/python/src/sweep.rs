@@ -50,11 +50,11 @@ fn dimension(
         let read = |file: &str| {
             let local = PathBuf::from(file);
             match base_dir {
-                Some(dir) if !local.exists() => flexrig::output::read_text_limited(
+                Some(dir) if !local.exists() => flexrig::shared::output::read_text_limited(
                     &dir.join(file),
                     flexrig::study::spec::MAX_VALUE_FILE_BYTES,
                 ),
-                _ => flexrig::output::read_text_limited(
+                _ => flexrig::shared::output::read_text_limited(
                     &local,
                     flexrig::study::spec::MAX_VALUE_FILE_BYTES,
                 ),

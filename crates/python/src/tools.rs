@@ -15,7 +15,7 @@ use crate::flag_error;
 #[pyfunction]
 pub fn fit(py: Python<'_>, file: PathBuf) -> PyResult<Bound<'_, PyAny>> {
     let (fit, warnings) = py
-        .detach(|| flexrig::fit::fit_file_with_warnings(&file))
+        .detach(|| flexrig::lumped::fit::fit_file_with_warnings(&file))
         .map_err(flag_error)?;
     json_to_py(py, &fronts::fit_report(&fit, &warnings))
 }
@@ -33,7 +33,7 @@ fn beam(
     tip_mass: Option<f64>,
     root: &str,
     k_theta: f64,
-) -> PyResult<(flexrig::beam::BeamInput, Option<String>)> {
+) -> PyResult<(flexrig::fe::beam::BeamInput, Option<String>)> {
     fronts::beam_input(&fronts::BeamFlags {
         scene,
         length,
@@ -68,7 +68,7 @@ pub fn beam_modal<'py>(
     modes: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
     if let Some(elements) = elements {
-        flexrig::beam::check_modal_elements(elements).map_err(flag_error)?;
+        flexrig::fe::beam::check_modal_elements(elements).map_err(flag_error)?;
     }
     let (input, origin) = beam(
         scene, length, youngs, density, width, thickness, elements, tip_mass, root, k_theta,
@@ -76,7 +76,7 @@ pub fn beam_modal<'py>(
     let frequencies = py
         .detach(|| fronts::beam_modal(&input, modes))
         .map_err(flag_error)?;
-    let warnings = flexrig::beam::beam_warnings(&input);
+    let warnings = flexrig::fe::beam::beam_warnings(&input);
     json_to_py(
         py,
         &fronts::beam_modal_report(&frequencies, &warnings, origin.as_deref()),
@@ -140,7 +140,7 @@ pub fn prb<'py>(
     let options =
         fronts::prb_options(elements, model, criterion, out, figures).map_err(flag_error)?;
     let r = py
-        .detach(|| flexrig::prb::run(&options))
+        .detach(|| flexrig::fe::prb::run(&options))
         .map_err(flag_error)?;
     json_to_py(py, &fronts::prb_report(&options, &r))
 }
@@ -150,7 +150,7 @@ pub fn prb<'py>(
 #[pyfunction]
 pub fn validate(py: Python<'_>, quick: bool, out: PathBuf) -> PyResult<Bound<'_, PyAny>> {
     let r = py
-        .detach(|| flexrig::validation::run(quick, &out))
+        .detach(|| flexrig::quality::validation::run(quick, &out))
         .map_err(flag_error)?;
     json_to_py(py, &fronts::validation_report(&r))
 }
@@ -169,7 +169,7 @@ pub fn bench<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
     let r = py
-        .detach(|| flexrig::bench::run(quick, &out, &figures))
+        .detach(|| flexrig::quality::bench::run(quick, &out, &figures))
         .map_err(flag_error)?;
     json_to_py(py, &fronts::bench_report(&r))
 }

@@ -1,11 +1,11 @@
 //! `flexrig beam modal|static`: natural frequencies and static tip deflection of the
-//! finite-element Euler–Bernoulli beam, see [`flexrig::beam`].
+//! finite-element Euler–Bernoulli beam, see [`flexrig::fe::beam`].
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
-use flexrig::beam::{BeamInput, Warning};
+use flexrig::fe::beam::{BeamInput, Warning};
 use flexrig::fronts::BeamFlags;
 
 use crate::print::{line, print_json};
@@ -149,7 +149,7 @@ fn print_warnings(warnings: &[Warning]) {
 
 /// The beam in words: `L = 0.338 m, E = 1.5e9 Pa, …` (and its scene).
 fn describe(beam: &BeamInput, scene: Option<&str>) -> String {
-    use flexrig::output::display_number as n;
+    use flexrig::shared::output::display_number as n;
     let mut s = format!(
         "L = {} m, E = {} Pa, w = {} m, t = {} m",
         n(beam.length),
@@ -179,11 +179,11 @@ pub fn run(cmd: &BeamCommand, out: &mut dyn Write) -> Result<(), Error> {
 
 fn modal(args: &ModalArgs, out: &mut dyn Write) -> Result<(), Error> {
     if let Some(elements) = args.beam.elements {
-        flexrig::beam::check_modal_elements(elements)?;
+        flexrig::fe::beam::check_modal_elements(elements)?;
     }
     let (beam, scene) = beam_input(&args.beam)?;
     let frequencies_hz = flexrig::fronts::beam_modal(&beam, args.modes)?;
-    let warnings = flexrig::beam::beam_warnings(&beam);
+    let warnings = flexrig::fe::beam::beam_warnings(&beam);
     print_warnings(&warnings);
     if args.beam.json {
         print_json(
@@ -270,7 +270,7 @@ fn statics(args: &StaticArgs, out: &mut dyn Write) -> Result<(), Error> {
             s.bending_pa, s.moment_nm
         ),
     )?;
-    if load.kinematics != flexrig::beam::Kinematics::Linear {
+    if load.kinematics != flexrig::fe::beam::Kinematics::Linear {
         line(
             out,
             format!(

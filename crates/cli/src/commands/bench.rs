@@ -1,5 +1,5 @@
 //! `flexrig bench`: work–precision studies — run time against error — for the lumped impact,
-//! the beam and the rig ([`flexrig::bench`]), as a table or JSON rows, with log–log SVG plots.
+//! the beam and the rig ([`flexrig::quality::bench`]), as a table or JSON rows, with log–log SVG plots.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -28,7 +28,7 @@ pub struct BenchArgs {
 
 /// Runs `flexrig bench`.
 pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), Error> {
-    let report = flexrig::bench::run(args.quick, &args.out, &args.figure.options()?)?;
+    let report = flexrig::quality::bench::run(args.quick, &args.out, &args.figure.options()?)?;
     let (rows, files, peer_ratio) = (
         &report.rows,
         &report.plots,
@@ -61,7 +61,10 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), Error> {
                 report.peer_python
             ),
         )?,
-        None => line(out, flexrig::bench::peer_missing_note(&report.peer_python))?,
+        None => line(
+            out,
+            flexrig::quality::bench::peer_missing_note(&report.peer_python),
+        )?,
     }
     line(
         out,

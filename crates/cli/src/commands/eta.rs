@@ -1,11 +1,13 @@
 //! `flexrig eta`: the paper's Fig. 6 design cases at finite-element fidelity, see
-//! [`flexrig::eta`]; the flags into [`EtaSettings`], the table printed.
+//! [`flexrig::fe::eta`]; the flags into [`EtaSettings`], the table printed.
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use flexrig::eta::{ClMethod, EffectiveGamma, EtaSettings, WindowReport, contact_text, joint_text};
+use flexrig::fe::eta::{
+    ClMethod, EffectiveGamma, EtaSettings, WindowReport, contact_text, joint_text,
+};
 use flexrig::fronts::{EtaInputs, JointKind};
 use flexrig::{CancelToken, Error};
 
@@ -124,7 +126,7 @@ fn method_text(method: &ClMethod) -> String {
 /// Runs `flexrig eta`.
 pub fn run(args: &EtaArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     let settings = settings(args)?;
-    let r = flexrig::eta::run(
+    let r = flexrig::fe::eta::run(
         &settings,
         &args.cases.grid(),
         &args.out,

@@ -1,11 +1,11 @@
 //! `flexrig eta-map`: maps of η_FE and the lumped and placed models' errors over
-//! m_e/m_r × k_δ/k_c, see [`flexrig::eta_map`].
+//! m_e/m_r × k_δ/k_c, see [`flexrig::fe::eta_map`].
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::eta_map::{EtaMapOptions, settings_text};
+use flexrig::fe::eta_map::{EtaMapOptions, settings_text};
 use flexrig::{CancelToken, Error};
 
 use super::impact_args::{DampingArgs, JointArg, impact_as_flag, joint_from_args};
@@ -85,7 +85,7 @@ pub fn run(args: &EtaMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resu
         args.length,
     )?;
     let joint_text = settings_text(&settings);
-    let r = flexrig::eta_map::run(
+    let r = flexrig::fe::eta_map::run(
         &EtaMapOptions {
             out: args.out.clone(),
             specs,

@@ -1,12 +1,12 @@
 //! `flexrig eta-rotor`: η_FE of the Fig. 6 cases along the free hub's rotor inertia, see
-//! [`flexrig::eta_rotor`].
+//! [`flexrig::fe::eta_rotor`].
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::eta::contact_text;
-use flexrig::eta_rotor::EtaRotorOptions;
+use flexrig::fe::eta::contact_text;
+use flexrig::fe::eta_rotor::EtaRotorOptions;
 use flexrig::{CancelToken, Error};
 
 use super::impact_args::DampingArgs;
@@ -65,7 +65,7 @@ pub fn run(args: &EtaRotorArgs, out: &mut dyn Write, cancel: &CancelToken) -> Re
         args.design.design(),
         args.length,
     )?;
-    let r = flexrig::eta_rotor::run(
+    let r = flexrig::fe::eta_rotor::run(
         &EtaRotorOptions {
             out: args.out.clone(),
             ratios,

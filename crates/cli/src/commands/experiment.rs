@@ -1,11 +1,11 @@
 //! `flexrig experiment`: the paper's §VI experiment replayed (Fig. 9), see
-//! [`flexrig::experiment`]; a progress bar while the runs go, then the table.
+//! [`flexrig::testbed::experiment`]; a progress bar while the runs go, then the table.
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::experiment::{self, ExperimentOptions, GroupStats, RatioStats, mean_pm_ci};
+use flexrig::testbed::experiment::{self, ExperimentOptions, GroupStats, RatioStats, mean_pm_ci};
 use flexrig::{CancelToken, Error};
 
 use super::figure_args::FigureArgs;

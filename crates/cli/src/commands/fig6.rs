@@ -1,4 +1,4 @@
-//! `flexrig fig6`: the paper's Fig. 6 η(γ) study (§V, Eq. 15), see [`flexrig::fig6`]; a table or
+//! `flexrig fig6`: the paper's Fig. 6 η(γ) study (§V, Eq. 15), see [`flexrig::lumped::fig6`]; a table or
 //! JSON.
 
 use std::io::Write;
@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use flexrig::Error;
-use flexrig::fig6::{DEFAULT_POINTS, Fig6Options};
+use flexrig::lumped::fig6::{DEFAULT_POINTS, Fig6Options};
 
 use crate::print::{line, print_json};
 
@@ -35,7 +35,7 @@ pub struct Fig6Args {
 
 /// Runs `flexrig fig6`.
 pub fn run(args: &Fig6Args, out: &mut dyn Write) -> Result<(), Error> {
-    let result = flexrig::fig6::run(&Fig6Options {
+    let result = flexrig::lumped::fig6::run(&Fig6Options {
         out: args.out.clone(),
         points: args.points,
         figures: args.figure.options()?,
@@ -70,7 +70,7 @@ pub fn run(args: &Fig6Args, out: &mut dyn Write) -> Result<(), Error> {
             ),
         )?;
     }
-    if *d == flexrig::fig6::Fig6Design::PAPER {
+    if *d == flexrig::lumped::fig6::Fig6Design::PAPER {
         line(
             out,
             "The paper quotes η = 0.89 (m_h = 4 kg) and 0.82 (m_h = 1000 kg) for m_e = 0.1 kg: the n = 1 values.",

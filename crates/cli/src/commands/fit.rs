@@ -1,5 +1,5 @@
 //! `flexrig fit`: least-squares Hertz fit f = k δ^n of compression data (paper §III-B), see
-//! [`flexrig::fit`].
+//! [`flexrig::lumped::fit`].
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -22,7 +22,7 @@ pub struct FitArgs {
 
 /// Runs `flexrig fit`.
 pub fn run(args: &FitArgs, out: &mut dyn Write) -> Result<(), Error> {
-    let (fit, warnings) = flexrig::fit::fit_file_with_warnings(&args.file)?;
+    let (fit, warnings) = flexrig::lumped::fit::fit_file_with_warnings(&args.file)?;
     for w in &warnings {
         eprintln!("warning: {w}");
     }

@@ -1,15 +1,15 @@
 //! `flexrig impact`: the peak force of the lumped two-mass impact (paper Eq. 10–14), see
-//! [`flexrig::impact`].
+//! [`flexrig::lumped::impact`].
 
 use std::io::Write;
 
 use clap::{Args, ValueEnum};
 use flexrig::Error;
-use flexrig::impact::{Formulation, ImpactInput, Method};
+use flexrig::lumped::impact::{Formulation, ImpactInput, Method};
 
 use crate::print::{line, print_json, print_severity};
 
-/// The default of `--rtol` as its help shows it: [`flexrig::impact::DEFAULT_RTOL`] (checked by a test).
+/// The default of `--rtol` as its help shows it: [`flexrig::lumped::impact::DEFAULT_RTOL`] (checked by a test).
 const RTOL_TEXT: &str = "1e-10";
 
 /// How the peak is computed.
@@ -178,7 +178,7 @@ mod tests {
     fn the_rtol_shown_is_the_default() {
         assert_eq!(
             RTOL_TEXT.parse::<f64>().unwrap(),
-            flexrig::impact::DEFAULT_RTOL
+            flexrig::lumped::impact::DEFAULT_RTOL
         );
     }
 }

@@ -3,10 +3,10 @@
 
 use clap::{Args, ValueEnum};
 use flexrig::Error;
-use flexrig::eta::{DampingSpec, Joint};
-use flexrig::fig6::{Fig6Design, Fig6Grid};
+use flexrig::fe::eta::{DampingSpec, Joint};
 use flexrig::fronts::{DampingModel, JointKind, damping_spec};
 pub use flexrig::fronts::{as_flag, impact_as_flag, parse_range};
+use flexrig::lumped::fig6::{Fig6Design, Fig6Grid};
 
 /// The design held fixed across the cases (`fig6`, `eta`, `eta-map`, `eta-rotor`); the
 /// defaults are the paper's (§V).

@@ -33,6 +33,6 @@ use flexrig::{CancelToken, Error};
 /// The main job on bundled defaults: the paper's §VI experiment replayed (Fig. 9) into
 /// `out_dir`, with its table and where its files are.
 pub fn default_job(out_dir: &Path, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
-    let options = flexrig::experiment::ExperimentOptions::defaults(out_dir.to_path_buf());
+    let options = flexrig::testbed::experiment::ExperimentOptions::defaults(out_dir.to_path_buf());
     experiment::report(&options, false, out, cancel)
 }

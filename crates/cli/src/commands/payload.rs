@@ -1,10 +1,10 @@
-//! `flexrig payload`: the test bed's CL/CJ peak ratio over the payload, see [`flexrig::payload`].
+//! `flexrig payload`: the test bed's CL/CJ peak ratio over the payload, see [`flexrig::fe::payload`].
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::payload::PayloadOptions;
+use flexrig::fe::payload::PayloadOptions;
 use flexrig::{CancelToken, Error};
 
 use crate::print::{line, print_json};
@@ -37,8 +37,8 @@ pub struct PayloadArgs {
 
 /// Runs `flexrig payload`.
 pub fn run(args: &PayloadArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
-    let (from, to, points) = flexrig::payload::parse_payloads(&args.payloads, args.points)?;
-    let result = flexrig::payload::run(
+    let (from, to, points) = flexrig::fe::payload::parse_payloads(&args.payloads, args.points)?;
+    let result = flexrig::fe::payload::run(
         &PayloadOptions {
             scene: args.scene.clone(),
             from,

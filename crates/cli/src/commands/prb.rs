@@ -1,12 +1,12 @@
 //! `flexrig prb`: the Pseudo-Rigid-Body model (γ, K_Θ) against the large-deflection FE beam, see
-//! [`flexrig::prb`].
+//! [`flexrig::fe::prb`].
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
 use flexrig::Error;
-use flexrig::prb::{
+use flexrig::fe::prb::{
     HOWELL_GAMMA, HOWELL_K_THETA, HOWELL_THETA_MAX_DEG, LOAD_ANGLE_DEG, PAPER_GAMMA_SMALL,
     kinematics_name,
 };
@@ -47,7 +47,7 @@ pub fn run(args: &PrbArgs, out: &mut dyn Write) -> Result<(), Error> {
         args.out.clone(),
         args.figure.options()?,
     )?;
-    let r = flexrig::prb::run(&options)?;
+    let r = flexrig::fe::prb::run(&options)?;
     let report = flexrig::fronts::prb_report(&options, &r);
     let (fit, other, svg_path) = (r.fit, r.other, &r.svg);
     let pi = std::f64::consts::PI;

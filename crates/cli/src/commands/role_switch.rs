@@ -65,7 +65,7 @@ pub fn run(args: &RoleSwitchArgs, out: &mut dyn Write, cancel: &CancelToken) -> 
     for k in &options.kappas {
         header.push_str(&format!(
             " {:>9}",
-            format!("κ={}", flexrig::output::display_number(*k))
+            format!("κ={}", flexrig::shared::output::display_number(*k))
         ));
     }
     header.push_str(&format!(" {:>9}", "free"));

@@ -1,14 +1,14 @@
-//! `flexrig run SCENE`: one run of the drop-pendulum test rig ([`flexrig::run`]).
+//! `flexrig run SCENE`: one run of the drop-pendulum test rig ([`flexrig::testbed::run`]).
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
 use flexrig::driven::scene::DrivenSummary;
-use flexrig::link::LinkQuantities;
-use flexrig::mcap_log::{DEFAULT_DEFORMATION_SCALE, LogRates};
-use flexrig::output::positive_arg;
-use flexrig::run::{LogRequest, SceneRun, run_scene_file, scene_warnings};
+use flexrig::log::mcap::{DEFAULT_DEFORMATION_SCALE, LogRates};
+use flexrig::shared::output::positive_arg;
+use flexrig::testbed::link::LinkQuantities;
+use flexrig::testbed::run::{LogRequest, SceneRun, run_scene_file, scene_warnings};
 use flexrig::{CancelToken, Error};
 
 use crate::print::{line, parse_overrides, print_json, print_severity};
@@ -75,7 +75,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
         SceneRun::Driven(d, link) => return print_driven(out, args, &d.summary, link),
     };
     // a `cj_`/`cl_` name whose design was overridden is named by the design that ran
-    let name = flexrig::mcap_log::name_as_run(&s.scene, s.design);
+    let name = flexrig::log::mcap::name_as_run(&s.scene, s.design);
     if name == s.scene {
         line(out, format!("scene {} ({})", s.scene, s.design))?;
     } else {

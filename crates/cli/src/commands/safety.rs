@@ -133,8 +133,8 @@ impl SafetyArgs {
             LinkArg::Cl => FeLink::CompliantLink,
         });
         let implied = link.map(|l| match l {
-            FeLink::CompliantJoint => flexrig::safety_map::GAMMA_CJ,
-            FeLink::CompliantLink => flexrig::safety_map::GAMMA_CL,
+            FeLink::CompliantJoint => flexrig::safety::map::GAMMA_CJ,
+            FeLink::CompliantLink => flexrig::safety::map::GAMMA_CL,
         });
         let m_eff = match (self.m_eff, self.gamma.or(implied), self.m_r, self.m_e) {
             (Some(m), ..) => Some(RobotEffectiveMass::Given(m)),
@@ -205,7 +205,7 @@ pub fn run(args: &SafetyArgs, out: &mut dyn Write) -> Result<(), Error> {
     let input = args.input()?;
     let (report, written) = match &args.report {
         Some(path) => {
-            let (r, files) = flexrig::safety_report::write_report(&input, model.as_ref(), path)?;
+            let (r, files) = flexrig::safety::report::write_report(&input, model.as_ref(), path)?;
             (r, files)
         }
         None => (safety(&input, model.as_ref())?, Vec::new()),
@@ -318,7 +318,7 @@ fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
 /// The test bed's search: the operator's speed at contact and its release angle.
 fn print_test_bed(
     out: &mut dyn Write,
-    sc: &flexrig::safety_scene::SceneSimulation,
+    sc: &flexrig::safety::simulation::SceneSimulation,
     angle: f64,
 ) -> Result<(), Error> {
     line(

@@ -3,8 +3,8 @@
 
 use clap::{Args, ValueEnum};
 use flexrig::Error;
+use flexrig::safety::map::MapJoint;
 use flexrig::safety::{ContactAreaModel, ContactLaw};
-use flexrig::safety_map::MapJoint;
 
 use super::impact_args::JointArg;
 
@@ -106,7 +106,7 @@ pub(crate) fn map_joint(joint: JointArg, rotor_inertia: Option<f64>) -> Result<M
         (JointArg::Held, None) => Ok(MapJoint::Held),
         (JointArg::Held, Some(j)) => Err(Error::InvalidArgument {
             arg: "--rotor-inertia".into(),
-            value: flexrig::output::display_number(j),
+            value: flexrig::shared::output::display_number(j),
             allowed: "only with --joint free-hub".into(),
         }),
         (JointArg::FreeHub, None) => Err(missing(

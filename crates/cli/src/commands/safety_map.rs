@@ -1,13 +1,13 @@
 //! `flexrig safety-map`: the permissible speed of the CJ and the CL design over two design
 //! parameters, with their ratio, as CSV, JSON and a heat-map figure, see
-//! [`flexrig::safety_map`].
+//! [`flexrig::safety::map`].
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use flexrig::safety::ContactKind;
-use flexrig::safety_map::{
+use flexrig::safety::map::{
     MapMethod, SafetyMapFiles, SafetyMapInput, SimulationSettings, parse_axis,
 };
 use flexrig::{CancelToken, Error};
@@ -150,8 +150,8 @@ pub fn run(args: &SafetyMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> R
         out: args.out.clone(),
         figures: args.figure.options()?,
     };
-    let (map, written) = flexrig::safety_map::run(&input, model.as_ref(), &files, cancel)?;
-    let sum = flexrig::safety_map::summary(&map);
+    let (map, written) = flexrig::safety::map::run(&input, model.as_ref(), &files, cancel)?;
+    let sum = flexrig::safety::map::summary(&map);
     let paths: Vec<_> = written.iter().map(|p| p.display().to_string()).collect();
     let pair = |r: Option<(f64, f64)>| r.map_or(json!([]), |(a, b)| json!([a, b]));
     if args.json {
@@ -183,7 +183,7 @@ pub fn run(args: &SafetyMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> R
             ny,
             map.input.x.parameter.label(),
             map.input.y.parameter.label(),
-            flexrig::safety_map::method_text(&map)
+            flexrig::safety::map::method_text(&map)
         ),
     )?;
     let show = |r: Option<(f64, f64)>| r.map_or("—".into(), |(a, b)| format!("{a:.4} to {b:.4}"));

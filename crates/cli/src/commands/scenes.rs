@@ -1,12 +1,12 @@
 //! `flexrig scenes`: the bundled scenes with a one-line description each, and `--write NAME`
-//! to copy one out for editing ([`flexrig::scenes`]).
+//! to copy one out for editing ([`flexrig::testbed::scenes`]).
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
 use flexrig::Error;
-use flexrig::scenes::{list_bundled, write_bundled};
+use flexrig::testbed::scenes::{list_bundled, write_bundled};
 use serde_json::json;
 
 use crate::print::{line, print_json};

@@ -1,5 +1,5 @@
 //! `flexrig validate`: the verification report against every reference
-//! ([`flexrig::validation`]).
+//! ([`flexrig::quality::validation`]).
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -24,7 +24,7 @@ pub struct ValidateArgs {
 
 /// Runs `flexrig validate`; fails (exit code 1) if any case fails.
 pub fn run(args: &ValidateArgs, out: &mut dyn Write) -> Result<(), Error> {
-    let result = flexrig::validation::run(args.quick, &args.out)?;
+    let result = flexrig::quality::validation::run(args.quick, &args.out)?;
     let (cases, report) = (&result.cases, &result.report);
     if args.json {
         print_json(out, &flexrig::fronts::validation_report(&result))?;

@@ -1,12 +1,12 @@
 //! The MCAP log of a driven run (docs/foxglove.md, "Driven runs"), with its Foxglove layout
-//! beside it ([`crate::foxglove_layout::driven_for_log`]).
+//! beside it ([`crate::log::layout::driven_for_log`]).
 //!
 //! Channels (protobuf, simulation time from 0 in ns, as the test bed's logs):
 //! `/drive/joint` (actual joint angle and speed), `/drive/command` (commanded joint angle and
 //! speed; absent under an open-loop torque), `/drive/torque` (motor torque at the joint and at
 //! the motor shaft), `/link` (the spring's or the beam root's moment, the tip deflection) and
 //! `/contact` (force, indentation and the head's acceleration), and at the run's end one JSON
-//! message on `/severity` (the summary's severity, [`crate::mcap_log::SEVERITY_JSON_SCHEMA`],
+//! message on `/severity` (the summary's severity, [`crate::log::mcap::SEVERITY_JSON_SCHEMA`],
 //! struck body the head). Inside the contact every trace sample is logged; outside
 //! it the channels are decimated to [`LogRates::scalar_period_ns`]. The scene file is attached;
 //! `flexrig` (parameters), `view` and `summary` metadata records as in the test bed's logs. The
@@ -22,9 +22,11 @@ use foxglove::Encode;
 use foxglove::messages::Timestamp;
 
 use super::scene::{DrivenRun, DrivenScene, run, summary_json};
-pub use crate::mcap_log::{JointMotion, MotorTorque};
-use crate::mcap_log::{LogRates, LogTarget, PendingFile, io_of, refuse_overwrite};
-use crate::{Error, foxglove_layout};
+use crate::Error;
+use crate::log::file::{LogTarget, PendingFile, io_of, refuse_overwrite};
+use crate::log::layout as foxglove_layout;
+use crate::log::mcap::LogRates;
+pub use crate::log::mcap::{JointMotion, MotorTorque};
 
 /// The link's elastic state.
 #[derive(Debug, Clone, Encode)]
@@ -172,9 +174,9 @@ pub fn write<W: Write + Seek>(
     let contact = w.channel::<DrivenContact>("/contact")?;
     let severity_channel = {
         let id = w.mcap.add_schema(
-            crate::mcap_log::SEVERITY_SCHEMA_NAME,
+            crate::log::mcap::SEVERITY_SCHEMA_NAME,
             "jsonschema",
-            crate::mcap_log::SEVERITY_JSON_SCHEMA.as_bytes(),
+            crate::log::mcap::SEVERITY_JSON_SCHEMA.as_bytes(),
         )?;
         w.mcap
             .add_channel(id, "/severity", "json", &BTreeMap::new())?
@@ -323,14 +325,14 @@ pub fn write<W: Write + Seek>(
 }
 
 /// Runs `scene` and logs it to `target.path` with its layout beside it (as
-/// [`crate::mcap_log::run_logged`] does for the test bed: never a half-written file under the
+/// [`crate::log::file::run_logged`] does for the test bed: never a half-written file under the
 /// requested name; a failed run leaves its finished log with an `error` record and returns the
 /// run's error).
 pub fn run_logged(scene: &DrivenScene, target: &LogTarget<'_>) -> Result<DrivenRun, Error> {
     let path = target.path;
     let layout = foxglove_layout::path_beside(path);
-    crate::output::check_output_target(path)?;
-    crate::output::check_output_target(&layout)?;
+    crate::shared::output::check_output_target(path)?;
+    crate::shared::output::check_output_target(&layout)?;
     if !target.force {
         for existing in [path, layout.as_path()] {
             if existing.exists() {
@@ -339,7 +341,7 @@ pub fn run_logged(scene: &DrivenScene, target: &LogTarget<'_>) -> Result<DrivenR
         }
     }
     if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
-        crate::output::ensure_dir(parent)?;
+        crate::shared::output::ensure_dir(parent)?;
     }
     let outcome = run(scene, &target.cancel);
     let pending = PendingFile::new(path);

@@ -13,8 +13,8 @@ use flexrig_impact::role_switch::{
 };
 
 use super::{check, num};
-use crate::output::{ensure_dir, non_negative_arg, positive_arg, write_atomic};
 use crate::plots::{Curve, CurveAxes, CurvePanel, FigureOptions, curves_svg, write_figure};
+use crate::shared::output::{ensure_dir, non_negative_arg, positive_arg, write_atomic};
 use crate::{CancelToken, Error};
 
 /// The drive levels and the cases.
@@ -161,7 +161,7 @@ pub fn csv(rows: &[RoleRow]) -> String {
 /// at every level are left out (named in the title count). At the printed width `width_pt`
 /// \[pt\]; the drive's rotor and damping from `options`.
 fn figure(rows: &[RoleRow], options: &RoleSwitchOptions, width_pt: f64) -> Result<String, String> {
-    use crate::output::display_number as n;
+    use crate::shared::output::display_number as n;
     let kappas = &options.kappas;
     let mut panels = Vec::new();
     let mut flat = 0;

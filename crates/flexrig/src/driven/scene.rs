@@ -362,11 +362,11 @@ pub struct DrivenSummary {
     pub samples: usize,
     /// Plausibility warnings (none are defined for driven scenes yet: always empty).
     pub warnings: Vec<String>,
-    /// Severity of the contact ([`crate::severity::of_driven`] over the trace: peak force,
+    /// Severity of the contact ([`crate::shared::severity::of_driven`] over the trace: peak force,
     /// pressure under both dome area models, energy transferred, and for a head that moves
     /// its peak acceleration, HIC15 and HIC36; the struck body is the person's head).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub severity: Option<crate::severity::Severity>,
+    pub severity: Option<crate::shared::severity::Severity>,
 }
 
 /// The motion of a driven run, one entry per trace sample (at the integrator's steps, at most
@@ -502,13 +502,13 @@ pub fn run(scene: &DrivenScene, cancel: &CancelToken) -> Result<DrivenRun, Error
     };
     let head_moves = s.person.support != HeadSupport::Wall;
     let severity = if contact.len() >= 2 {
-        Some(crate::severity::of_driven(
+        Some(crate::shared::severity::of_driven(
             &traces.time_s,
             &traces.force_n,
             &traces.indentation_m,
             head_moves.then_some(traces.head_acceleration_mps2.as_slice()),
             (c.onset_s, end),
-            crate::severity::paper_dome_radius_m()?,
+            crate::shared::severity::paper_dome_radius_m()?,
         )?)
     } else {
         None
@@ -577,7 +577,7 @@ pub fn summary_json(s: &DrivenSummary) -> serde_json::Value {
 mod tests {
     use super::*;
     use crate::driven::strike::{self, StrikeOptions};
-    use crate::run::{LogRequest, run_driven_text};
+    use crate::testbed::run::{LogRequest, run_driven_text};
 
     const CJ_FREE: &str = include_str!("../../../../assets/scenes/driven_cj_free_head.toml");
     const CJ_WALL: &str = include_str!("../../../../assets/scenes/driven_cj_wall.toml");
@@ -592,7 +592,7 @@ mod tests {
         LogRequest {
             out: None,
             force: false,
-            rates: crate::mcap_log::LogRates::DECIMATED,
+            rates: crate::log::mcap::LogRates::DECIMATED,
             deformation_scale: 1.0,
         }
     }
@@ -622,7 +622,7 @@ mod tests {
             assert!(is_driven_text(scene));
             assert_eq!(s.sample_rate_hz, 50_000.0);
         }
-        for (name, text) in crate::scenes::BUNDLED_SCENES {
+        for (name, text) in crate::testbed::scenes::BUNDLED_SCENES {
             assert_eq!(is_driven_text(text), name.starts_with("driven_"), "{name}");
         }
     }
@@ -870,7 +870,7 @@ sample_rate_hz = 1e6
         let (v, k_c, m_h) = (2.0, 1e5, 4.0_f64);
         let omega = (k_c / m_h).sqrt();
         let t_c = std::f64::consts::PI / omega;
-        let a_g = v * omega / crate::severity::STANDARD_GRAVITY;
+        let a_g = v * omega / crate::shared::severity::STANDARD_GRAVITY;
         // tan x = 5x/3 by Newton from 1
         let mut x: f64 = 1.0;
         for _ in 0..50 {

@@ -14,8 +14,8 @@ use flexrig_impact::spin_up::{
 use serde::Serialize;
 
 use super::{check, num};
-use crate::output::{ensure_dir, positive_arg, write_atomic};
 use crate::plots::{Curve, CurveAxes, CurvePanel, FigureOptions, curves_svg, write_figure};
+use crate::shared::output::{ensure_dir, positive_arg, write_atomic};
 use crate::{CancelToken, Error};
 
 /// The benchmark's beam, spin-up and discretisation (SI units; defaults: the literature case).
@@ -244,7 +244,7 @@ pub fn csv(r: &SpinUpResult) -> String {
 /// reference a pale band under the FE line (the linear model is in the CSV only: it diverges).
 /// Every label from the inputs that ran.
 fn figure(r: &SpinUpResult, width_pt: f64) -> Result<String, String> {
-    use crate::output::display_number as n;
+    use crate::shared::output::display_number as n;
     let series = |label: String, y: &[f64]| Curve {
         label,
         points: r.t.iter().copied().zip(y.iter().copied()).collect(),

@@ -19,7 +19,7 @@ use flexrig_impact::{DrivenOutcome, DrivenStrike, LinkParams, TraceSample};
 use serde::{Deserialize, Serialize};
 
 use super::{check, num};
-use crate::output::{ensure_dir, positive_arg, read_text, write_atomic};
+use crate::shared::output::{ensure_dir, positive_arg, read_text, write_atomic};
 use crate::{CancelToken, Error};
 
 /// The link design.

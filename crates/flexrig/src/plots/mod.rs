@@ -11,26 +11,20 @@
 mod curves;
 mod eta;
 mod fig6;
-mod fig9;
 mod heatmap;
 pub mod inspect;
 pub mod page;
-mod payload;
 mod prb;
-#[cfg(test)]
-mod print_tests;
 mod rotor;
 mod work_precision;
 
 pub use curves::{Curve, CurveAxes, CurvePanel, curves_svg, log_x_curves_svg};
 pub use eta::eta_svg;
 pub use fig6::{Fig6Point, fig6_svg, fig6_with_points_svg};
-pub use fig9::{Jitter, fig9_svg, grams};
 pub use heatmap::{AxisNames, ColorScale, HeatMap, heatmaps_svg, heatmaps_svg_named};
 pub use page::{
     FigureFormat, FigureOptions, FigureWidth, MIN_TEXT_PT, svg_to_pdf, svg_to_png, write_figure,
 };
-pub use payload::payload_svg;
 pub use prb::prb_svg;
 pub use rotor::eta_rotor_svg;
 pub use work_precision::{Panel, Series, work_precision_svg};
@@ -276,6 +270,16 @@ pub(crate) fn nice_step(span: f64, max_ticks: usize) -> f64 {
 pub(crate) fn ticks(start: f64, end: f64, step: f64) -> Vec<f64> {
     let count = ((end - start) / step + 1e-9).floor().max(0.0) as usize;
     (0..=count).map(|i| start + step * i as f64).collect()
+}
+
+/// A mass of `0.412` kg as `412 g`, `4.008` kg as `4008 g` (to the gram; to 0.1 g below 10 g).
+pub fn grams(kg: f64) -> String {
+    let g = kg * 1e3;
+    if g >= 10.0 {
+        format!("{} g", g.round())
+    } else {
+        format!("{:.1} g", g)
+    }
 }
 
 #[cfg(test)]

@@ -16,7 +16,7 @@ use resvg::usvg;
 use serde::Serialize;
 
 use crate::Error;
-use crate::output::write_atomic;
+use crate::shared::output::write_atomic;
 
 /// Smallest text of any figure at its printed width \[pt\] (journals ask for ≥ 8 pt).
 pub const MIN_TEXT_PT: f64 = 8.0;

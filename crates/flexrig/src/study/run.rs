@@ -5,9 +5,9 @@
 use std::path::{Path, PathBuf};
 
 use crate::Error;
-use crate::cancel::CancelToken;
-use crate::output::{ensure_dir, read_text_limited, write_atomic};
-use crate::progress::Progress;
+use crate::shared::cancel::CancelToken;
+use crate::shared::output::{ensure_dir, read_text_limited, write_atomic};
+use crate::shared::progress::Progress;
 use crate::study::spec::MAX_VALUE_FILE_BYTES;
 use crate::study::spec::{Dimension, parse_all};
 use crate::study::sweep::{Journal, Sweep, SweepManifest, SweepOptions, rows_done, write_tables};
@@ -15,7 +15,7 @@ use crate::study::sweep::{Journal, Sweep, SweepManifest, SweepOptions, rows_done
 /// What to sweep and where.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SweepRequest {
-    /// The base scene: a bundled name or a scene file's path ([`crate::scenes::resolve`]).
+    /// The base scene: a bundled name or a scene file's path ([`crate::testbed::scenes::resolve`]).
     pub base: PathBuf,
     /// The varied fields.
     pub dimensions: Vec<Dimension>,
@@ -105,7 +105,7 @@ pub fn run_sweep(
         });
     }
     let sweep = Sweep::new(
-        &crate::scenes::resolve("BASE", &request.base)?.text,
+        &crate::testbed::scenes::resolve("BASE", &request.base)?.text,
         request.dimensions.clone(),
         request.zip,
     )?;

@@ -18,11 +18,11 @@ use serde::{Deserialize, Serialize};
 
 use super::spec::{Dimension, point, point_count};
 use crate::Error;
-use crate::cancel::CancelToken;
-use crate::output::write_atomic;
+use crate::shared::cancel::CancelToken;
+use crate::shared::output::write_atomic;
 
 /// The summary quantities of a row, in column order: the run summary's, the severity's
-/// ([`crate::severity::SEVERITY_COLUMNS`]), the link's ([`crate::link::COLUMNS`]), then the
+/// ([`crate::shared::severity::SEVERITY_COLUMNS`]), the link's ([`crate::testbed::link::COLUMNS`]), then the
 /// driven robot's ([`DRIVEN_COLUMNS`]).
 pub const SUMMARY_COLUMNS: [&str; 33] = [
     "peak_force_n",
@@ -49,7 +49,7 @@ pub const SUMMARY_COLUMNS: [&str; 33] = [
     "peak_accel_g",
     "hic15",
     "hic36",
-    // the link quantities (crate::link::COLUMNS)
+    // the link quantities (crate::testbed::link::COLUMNS)
     "m_r_kg",
     "ei_n_m2",
     "k_delta_n_per_m",
@@ -77,7 +77,7 @@ pub const DRIVEN_COLUMNS: [&str; 4] = [
 /// Index of the first driven column in [`SUMMARY_COLUMNS`].
 pub const DRIVEN_START: usize = SUMMARY_COLUMNS.len() - DRIVEN_COLUMNS.len();
 
-/// Index of the first severity column ([`crate::severity::SEVERITY_COLUMNS`]) in
+/// Index of the first severity column ([`crate::shared::severity::SEVERITY_COLUMNS`]) in
 /// [`SUMMARY_COLUMNS`].
 pub const SEVERITY_START: usize = 15;
 
@@ -89,14 +89,14 @@ pub const INTEGER_COLUMNS: [&str; 3] = ["contacts", "steps", "contact_steps"];
 fn link_offset() -> usize {
     SUMMARY_COLUMNS
         .iter()
-        .position(|c| *c == crate::link::COLUMNS[0])
+        .position(|c| *c == crate::testbed::link::COLUMNS[0])
         .expect("the link columns are summary columns")
 }
 
 /// `values` with the link quantities `link` in their columns.
 pub fn with_link(
     mut values: [Option<f64>; SUMMARY_COLUMNS.len()],
-    link: &crate::link::LinkQuantities,
+    link: &crate::testbed::link::LinkQuantities,
 ) -> [Option<f64>; SUMMARY_COLUMNS.len()] {
     let at = link_offset();
     for (i, v) in link.values().into_iter().enumerate() {
@@ -109,7 +109,7 @@ pub fn with_link(
 /// scene's link quantities.
 pub fn summary_values(
     s: &RunSummary,
-    link: &crate::link::LinkQuantities,
+    link: &crate::testbed::link::LinkQuantities,
 ) -> [Option<f64>; SUMMARY_COLUMNS.len()] {
     let run = [
         Some(s.peak_force_n),
@@ -128,7 +128,7 @@ pub fn summary_values(
         Some(s.energy_final_j),
         Some(s.duration_s),
     ];
-    let severity = crate::severity::severity_values(s.severity.as_ref());
+    let severity = crate::shared::severity::severity_values(s.severity.as_ref());
     let mut values = [None; SUMMARY_COLUMNS.len()];
     values[..run.len()].copy_from_slice(&run);
     values[SEVERITY_START..SEVERITY_START + severity.len()].copy_from_slice(&severity);
@@ -165,7 +165,7 @@ pub fn driven_values(
         Some(s.duration_s),
     ];
     values[..run.len()].copy_from_slice(&run);
-    let severity = crate::severity::severity_values(s.severity.as_ref());
+    let severity = crate::shared::severity::severity_values(s.severity.as_ref());
     let at = SEVERITY_START;
     values[at..at + severity.len()].copy_from_slice(&severity);
     let driven = [
@@ -352,20 +352,20 @@ impl Sweep {
                 let path = dir.join(format!("run-{index}.mcap"));
                 crate::driven::log::run_logged(
                     &scene,
-                    &crate::mcap_log::LogTarget {
+                    &crate::log::file::LogTarget {
                         path: &path,
                         force: true,
                         scene_text: &text,
                         cancel: options.cancel.clone(),
-                        rates: crate::mcap_log::LogRates::DECIMATED,
-                        deformation_scale: crate::mcap_log::DEFAULT_DEFORMATION_SCALE,
+                        rates: crate::log::mcap::LogRates::DECIMATED,
+                        deformation_scale: crate::log::mcap::DEFAULT_DEFORMATION_SCALE,
                     },
                 )?
             }
         };
         Ok(with_link(
             driven_values(&run.summary),
-            &crate::link::of_driven(&scene.strike.link),
+            &crate::testbed::link::of_driven(&scene.strike.link),
         ))
     }
 
@@ -449,9 +449,9 @@ impl Sweep {
         index: usize,
         overrides: &[Override],
         options: &SweepOptions,
-    ) -> Result<(RunSummary, crate::link::LinkQuantities), Error> {
+    ) -> Result<(RunSummary, crate::testbed::link::LinkQuantities), Error> {
         let scene = flexrig_rig::scene_from_table(&self.base, overrides, &self.materials)?;
-        let link = crate::link::of_scene(&scene);
+        let link = crate::testbed::link::of_scene(&scene);
         let simulation = Simulation::new(&scene, RunOptions::default())?;
         let Some(dir) = &options.mcap_dir else {
             return Ok((
@@ -461,16 +461,16 @@ impl Sweep {
         };
         let text = flexrig_rig::overrides::apply(&self.base_text, overrides)?;
         let path = dir.join(format!("run-{index}.mcap"));
-        let target = crate::mcap_log::LogTarget {
+        let target = crate::log::file::LogTarget {
             path: &path,
             force: true,
             scene_text: &text,
             cancel: options.cancel.clone(),
-            rates: crate::mcap_log::LogRates::DECIMATED,
-            deformation_scale: crate::mcap_log::DEFAULT_DEFORMATION_SCALE,
+            rates: crate::log::mcap::LogRates::DECIMATED,
+            deformation_scale: crate::log::mcap::DEFAULT_DEFORMATION_SCALE,
         };
         Ok((
-            crate::mcap_log::run_logged(simulation, &scene, &target)?,
+            crate::log::file::run_logged(simulation, &scene, &target)?,
             link,
         ))
     }
@@ -949,55 +949,4 @@ pub fn merge(dir: &Path, json: bool) -> Result<(PathBuf, usize), Error> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_table_carries_the_severity_columns_with_their_units() {
-        let header = csv_header(&["robot.payload_kg"]);
-        for column in crate::severity::SEVERITY_COLUMNS {
-            assert!(header.split(',').any(|c| c == column), "{column}");
-        }
-        let n = crate::severity::SEVERITY_COLUMNS.len();
-        assert_eq!(
-            SUMMARY_COLUMNS[SEVERITY_START..SEVERITY_START + n],
-            crate::severity::SEVERITY_COLUMNS
-        );
-        // the link quantities, one block
-        let at = link_offset();
-        assert_eq!(SUMMARY_COLUMNS[at..at + 5], crate::link::COLUMNS);
-        assert_eq!(SUMMARY_COLUMNS[DRIVEN_START..], DRIVEN_COLUMNS);
-        // every column but the counts, HIC and the mass ratio (no unit) names its unit
-        for column in SUMMARY_COLUMNS {
-            let unitless = [
-                "contacts",
-                "steps",
-                "contact_steps",
-                "hic15",
-                "hic36",
-                "m_e_over_m_r",
-            ];
-            let units = [
-                "_n",
-                "_s",
-                "_mps",
-                "_m",
-                "_n_s",
-                "_j",
-                "_pa",
-                "_mps2",
-                "_g",
-                "_kg",
-                "_n_m2",
-                "_n_per_m",
-                "_nm_per_rad",
-                "_nm",
-                "_rad_s",
-            ];
-            assert!(
-                unitless.contains(&column) || units.iter().any(|u| column.ends_with(u)),
-                "{column}"
-            );
-        }
-    }
-}
+mod tests;

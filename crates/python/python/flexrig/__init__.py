@@ -67,6 +67,7 @@ from ._commands import (
     prb,
     validate,
 )
+from ._checks import _check_count, _input_error
 from ._commands import impact_report as _impact_report
 from ._safety import safety, safety_map
 from ._flexrig import (
@@ -158,12 +159,6 @@ class PlausibilityWarning(UserWarning):
     """A scene that is valid but looks like a mistake (a unit that looks wrong, a contact law
     outside its fit, a joint spring left behind by the link): the run goes on; the summary's
     ``warnings`` lists them (``field``, ``message``)."""
-
-
-def _input_error(field: str, message: str) -> InputError:
-    error = InputError(message)
-    error.field = field  # type: ignore[attr-defined]
-    return error
 
 
 def _overrides(overrides: Optional[Mapping[str, Any]], keywords: Mapping[str, Any]) -> List[Tuple[str, Any]]:
@@ -602,17 +597,6 @@ def sweep(
     else:
         parts = _run_on_dask(native, client, chunk_size)
     return _frame(native.paths, parts)
-
-
-def _check_count(name: str, value: Any, none_means: str) -> None:
-    """``value`` must be None or a whole number from 1 to 2**31 - 1 (not a bool, not a float)."""
-    if value is None:
-        return
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 1 <= int(value) < 2**31:
-        raise _input_error(
-            name,
-            f"{name} = {value!r}: must be a whole number from 1 to 2147483647 ({none_means})",
-        )
 
 
 def _run_chunk(indices: List[int], sweep: Sweep) -> Dict[str, Any]:

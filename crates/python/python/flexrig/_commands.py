@@ -21,18 +21,13 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _flexrig
+from ._checks import _count, _flag, _input_error, _number, _numbers, _range, _word
 from ._flexrig import InputError
 
 PathLike = Union[str, "os.PathLike[str]"]
 
 #: The default relative tolerance of the ode method of :func:`impact` (``flexrig impact --rtol``).
 DEFAULT_RTOL: float = _flexrig.DEFAULT_RTOL
-
-
-def _input_error(field_name: str, message: str) -> InputError:
-    error = InputError(message)
-    error.field = field_name  # type: ignore[attr-defined]
-    return error
 
 
 @dataclass(frozen=True, repr=False, eq=False)
@@ -97,49 +92,6 @@ class _Out:
                 if self.given:
                     files.append(full)
         return figures, files
-
-
-def _number(name: str, value: Any, optional: bool = False) -> Optional[float]:
-    if value is None and optional:
-        return None
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise _input_error(name, f"invalid argument {name} = {value!r}: must be a number")
-    return float(value)
-
-
-def _count(name: str, value: Any, optional: bool = False) -> Optional[int]:
-    if value is None and optional:
-        return None
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or not 0 <= int(value) < 2**63:
-        raise _input_error(name, f"invalid argument {name} = {value!r}: must be a whole number ≥ 0")
-    return int(value)
-
-
-def _flag(name: str, value: Any) -> bool:
-    if not isinstance(value, (bool, np.bool_)):
-        raise _input_error(name, f"invalid argument {name} = {value!r}: must be True or False")
-    return bool(value)
-
-
-def _word(name: str, value: Any) -> str:
-    if not isinstance(value, str):
-        raise _input_error(name, f"invalid argument {name} = {value!r}: must be a str")
-    return value
-
-
-def _numbers(name: str, value: Any) -> List[float]:
-    items = np.atleast_1d(np.asarray(value, dtype=object)).ravel().tolist()
-    return [_number(f"{name}", v) for v in items]  # type: ignore[misc]
-
-
-def _range(name: str, value: Any) -> str:
-    """A ``FROM:TO`` range as the CLI reads it: the str itself, or a (from, to) pair."""
-    if isinstance(value, str):
-        return value
-    if isinstance(value, (tuple, list)) and len(value) == 2:
-        a, b = (_number(name, v) for v in value)
-        return f"{a!r}:{b!r}"
-    raise _input_error(name, f"invalid argument {name} = {value!r}: a (from, to) pair or 'FROM:TO'")
 
 
 def _figure_args(size: Any, format: Any, dpi: Any) -> Tuple[str, List[str], float]:

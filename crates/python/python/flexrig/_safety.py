@@ -8,13 +8,36 @@ import os
 from typing import Any, Dict, Optional, Sequence, Union
 
 from . import _flexrig
-from ._flexrig import InputError
+from ._checks import _input_error
 
 
-def _input_error(field: str, message: str) -> InputError:
-    error = InputError(message)
-    error.field = field
-    return error
+def _contact_law(k_c: Optional[float], n: Optional[float], material: Optional[str]) -> Any:
+    """The contact law of ``k_c`` and ``n`` (together), or ``material``, or the body's spring."""
+    if (k_c is None) != (n is None):
+        raise _input_error("k_c", "k_c and n go together (f = k_c δ^n)")
+    if k_c is not None:
+        if material is not None:
+            raise _input_error("material", "give either k_c and n or material")
+        return {"hertz": {"k_c": k_c, "n": n}}
+    if material is not None:
+        return {"material": material}
+    return "body_spring"
+
+
+def _area_model(area_model: Optional[str], radius: Optional[float], contact_area: Optional[float]) -> Optional[Dict[str, Any]]:
+    """The contact-area model of ``area_model`` with the ``radius`` or ``contact_area`` it needs."""
+    if area_model is None:
+        return None
+    kind = area_model.replace("-", "_")
+    if kind in ("hertz_sphere", "thin_layer"):
+        if radius is None:
+            raise _input_error("radius", f"area_model {area_model} needs radius (m)")
+        return {"model": kind, "radius_m": radius}
+    if kind == "fixed":
+        if contact_area is None:
+            raise _input_error("contact_area", "area_model fixed needs contact_area (m²)")
+        return {"model": "fixed", "area_m2": contact_area}
+    raise _input_error("area_model", f"unknown area_model {area_model!r}: hertz_sphere, thin_layer or fixed")
 
 
 def safety(
@@ -87,29 +110,8 @@ def safety(
         mass = {"prb": {"gamma": gamma, "m_r": m_r, "m_e": m_e}}
     else:
         mass = None
-    if (k_c is None) != (n is None):
-        raise _input_error("k_c", "k_c and n go together (f = k_c δ^n)")
-    if k_c is not None:
-        if material is not None:
-            raise _input_error("material", "give either k_c and n or material")
-        law: Any = {"hertz": {"k_c": k_c, "n": n}}
-    elif material is not None:
-        law = {"material": material}
-    else:
-        law = "body_spring"
-    model: Optional[Dict[str, Any]] = None
-    if area_model is not None:
-        kind = area_model.replace("-", "_")
-        if kind in ("hertz_sphere", "thin_layer"):
-            if radius is None:
-                raise _input_error("radius", f"area_model {area_model} needs radius (m)")
-            model = {"model": kind, "radius_m": radius}
-        elif kind == "fixed":
-            if contact_area is None:
-                raise _input_error("contact_area", "area_model fixed needs contact_area (m²)")
-            model = {"model": "fixed", "area_m2": contact_area}
-        else:
-            raise _input_error("area_model", f"unknown area_model {area_model!r}: hertz_sphere, thin_layer or fixed")
+    law = _contact_law(k_c, n, material)
+    model = _area_model(area_model, radius, contact_area)
     if method is None:
         method = ("standard", "energy", "simulation") if scene is not None else ("standard", "energy")
     methods = [method] if isinstance(method, str) else list(method)
@@ -234,29 +236,8 @@ def safety_map(
     """
     import numpy as np
 
-    if (k_c is None) != (n is None):
-        raise _input_error("k_c", "k_c and n go together (f = k_c δ^n)")
-    if k_c is not None:
-        if material is not None:
-            raise _input_error("material", "give either k_c and n or material")
-        law: Any = {"hertz": {"k_c": k_c, "n": n}}
-    elif material is not None:
-        law = {"material": material}
-    else:
-        law = "body_spring"
-    model: Optional[Dict[str, Any]] = None
-    if area_model is not None:
-        kind = area_model.replace("-", "_")
-        if kind in ("hertz_sphere", "thin_layer"):
-            if radius is None:
-                raise _input_error("radius", f"area_model {area_model} needs radius (m)")
-            model = {"model": kind, "radius_m": radius}
-        elif kind == "fixed":
-            if contact_area is None:
-                raise _input_error("contact_area", "area_model fixed needs contact_area (m²)")
-            model = {"model": "fixed", "area_m2": contact_area}
-        else:
-            raise _input_error("area_model", f"unknown area_model {area_model!r}: hertz_sphere, thin_layer or fixed")
+    law = _contact_law(k_c, n, material)
+    model = _area_model(area_model, radius, contact_area)
     joint_data = _joint(joint, rotor_inertia)
     data = {
         "region": region if region is not None else "",

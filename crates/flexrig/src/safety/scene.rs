@@ -1,0 +1,273 @@
+//! The simulation method on a driven scene: the permissible commanded speed of a driven robot
+//! (a scene file with a `[drive]` section, docs/driven.md) near a body region.
+//!
+//! The scene fixes everything but the speed: the link (CJ or CL, m_r, L, k_δ, m_e), the drive
+//! (motor, gear, controller or trajectory, the profile's shape), the person (head mass, support,
+//! the skin's Hertz law f = k_c δ_c^n, paper Eq. 4) and the placement. The search variable is
+//! the commanded joint speed ω_c of the profile (`drive.command.profile.speed`), quoted as the
+//! commanded tip speed v = L ω_c; the whole driven strike (the ramp, the settling, the approach
+//! and the contact with the drive's torque acting) is simulated at each speed by flexrig-impact's
+//! driven solvers (the CJ by DOP853 at `cj_rtol`, the CL by the exact modal integrator at
+//! `tol` in the contact and 10 × `tol` before it), and the speed at which the first contact's
+//! peak force reaches the region's force limit (or the force at which the mean pressure of the
+//! contact-area model reaches the pressure limit) is found by the Illinois root search on ln v
+//! to `root_rtol` ([`crate::safety::simulation::speed_at_ratio`]).
+//!
+//! The contact kind follows the scene's support: a head against a wall is clamped
+//! (quasi-static limits, ISO/TS 15066:2016 Table A.2's quasi-static values), a free head or a
+//! head on a neck is transient (the transient multiplier), and a transient contact where the
+//! body model does not permit one (skull and forehead, face) is refused with its clause before
+//! any run.
+
+use flexrig_impact::drive::{Drive, DriveCommand, HeadSupport, Profile};
+use flexrig_impact::driven_cj::{CjSettings, run_driven_cj};
+use flexrig_impact::driven_cl::{ClDriveSettings, run_driven_cl};
+use flexrig_impact::{DrivenOutcome, DrivenStrike};
+use flexrig_safety::{ContactKind, EnergyContact, Limits, PressureCrossing};
+
+use crate::Error;
+use crate::driven::scene::{DrivenScene, note_text};
+use crate::driven::strike::StrikeDesign;
+use crate::safety::simulation::{SceneSimulation, SimulationSettings, speed_at_ratio};
+
+/// A driven scene loaded for the safety verdict.
+#[derive(Debug, Clone)]
+pub struct SafetyScene {
+    /// Where it came from (`bundled driven_cl_wall` or the file's path).
+    pub origin: String,
+    /// The checked scene.
+    pub scene: DrivenScene,
+}
+
+/// A scene given as the design of `flexrig safety`.
+#[derive(Debug, Clone)]
+pub enum SafetyDesignScene {
+    /// A driven scene: its commanded speed is searched.
+    Driven(Box<SafetyScene>),
+    /// A test-bed scene: the operator's speed at contact is searched
+    /// ([`crate::safety::test_bed`]).
+    TestBed(Box<crate::safety::test_bed::TestBedScene>),
+}
+
+/// Resolves and parses `given` (`--scene`: a bundled scene's name or a scene file's path): a
+/// driven scene (with a `[drive]` section) or a test-bed scene.
+pub fn load_any(given: &str) -> Result<SafetyDesignScene, Error> {
+    let source = crate::testbed::scenes::resolve("--scene", std::path::Path::new(given))?;
+    if crate::driven::scene::is_driven_text(&source.text) {
+        return Ok(SafetyDesignScene::Driven(Box::new(load(given)?)));
+    }
+    Ok(SafetyDesignScene::TestBed(Box::new(
+        crate::safety::test_bed::TestBedScene::parse(&source.origin, &source.text)?,
+    )))
+}
+
+/// Resolves and parses the driven scene `given` (`--scene`: a bundled scene's name or a scene
+/// file's path); a scene without a `[drive]` section is refused.
+pub fn load(given: &str) -> Result<SafetyScene, Error> {
+    let source = crate::testbed::scenes::resolve("--scene", std::path::Path::new(given))?;
+    if !crate::driven::scene::is_driven_text(&source.text) {
+        return Err(Error::InvalidArgument {
+            arg: "--scene".into(),
+            value: given.into(),
+            allowed: "a driven scene (a scene file with a [drive] section, e.g. \
+                      driven_cl_wall, driven_cj_free_head): its commanded speed is searched"
+                .into(),
+        });
+    }
+    let scene = DrivenScene::parse(&source.text)?;
+    if scene.strike.drive.profile().is_none() {
+        return Err(Error::InvalidArgument {
+            arg: "--scene".into(),
+            value: given.into(),
+            allowed: "a driven scene whose drive follows a commanded profile (a trajectory or a \
+                      controller): an open-loop torque has no commanded speed to search"
+                .into(),
+        });
+    }
+    Ok(SafetyScene {
+        origin: source.origin,
+        scene,
+    })
+}
+
+impl SafetyScene {
+    /// The contact kind of the scene's support: a wall clamps the head (quasi-static), a free
+    /// head or one on a neck recoils (transient).
+    pub fn contact_kind(&self) -> ContactKind {
+        match self.scene.strike.person.support {
+            HeadSupport::Wall => ContactKind::QuasiStatic,
+            HeadSupport::Free | HeadSupport::Neck { .. } => ContactKind::Transient,
+        }
+    }
+
+    /// Link length L \[m\].
+    pub fn length(&self) -> f64 {
+        self.scene.strike.link.length
+    }
+
+    /// The commanded tip speed L ω_c of the scene as written [m/s].
+    pub fn commanded_tip_speed(&self) -> f64 {
+        let omega = self
+            .scene
+            .strike
+            .drive
+            .profile()
+            .map_or(0.0, |p| p.final_speed());
+        self.length() * omega.abs()
+    }
+
+    /// The strike with the profile's final speed set to give the commanded tip speed `v` [m/s]
+    /// (the sign of the written speed kept).
+    fn strike_at(&self, v: f64) -> Result<DrivenStrike, Error> {
+        let s = &self.scene.strike;
+        let sign = match s.drive.profile().map(|p| p.final_speed()) {
+            Some(w) if w < 0.0 => -1.0,
+            _ => 1.0,
+        };
+        let omega = sign * v / s.link.length;
+        let command = match s.drive.command().clone() {
+            DriveCommand::Trajectory { profile } => DriveCommand::Trajectory {
+                profile: with_speed(profile, omega),
+            },
+            DriveCommand::Controller {
+                profile,
+                gains,
+                torque_limit,
+            } => DriveCommand::Controller {
+                profile: with_speed(profile, omega),
+                gains,
+                torque_limit,
+            },
+            open @ DriveCommand::OpenLoop { .. } => open,
+        };
+        let drive = Drive::new(*s.drive.motor(), command)?;
+        let mut strike = s.strike();
+        strike.drive = drive;
+        Ok(strike)
+    }
+
+    /// The driven strike at commanded tip speed `v` [m/s] with the run tolerances of
+    /// `settings` (`cj_rtol` for the CJ; `tol` in the CL's contact, 10 × `tol` before it).
+    pub fn run_at(&self, v: f64, settings: &SimulationSettings) -> Result<DrivenOutcome, Error> {
+        let strike = self.strike_at(v)?;
+        Ok(match self.scene.strike.design {
+            StrikeDesign::Cj => run_driven_cj(
+                &strike,
+                &CjSettings {
+                    rtol: settings.cj_rtol,
+                    ..CjSettings::DEFAULT
+                },
+            )?,
+            StrikeDesign::Cl => run_driven_cl(
+                &strike,
+                &ClDriveSettings {
+                    tol: settings.tol,
+                    approach_tol: (10.0 * settings.tol).min(1e-3),
+                    ..ClDriveSettings::DEFAULT
+                },
+            )?,
+        })
+    }
+}
+
+/// The profile with final joint speed `omega` [rad/s] (its shape kept).
+fn with_speed(profile: Profile, omega: f64) -> Profile {
+    match profile {
+        Profile::Steady { .. } => Profile::Steady { speed: omega },
+        Profile::SmoothRamp { ramp_time, .. } => Profile::SmoothRamp {
+            speed: omega,
+            ramp_time,
+        },
+        Profile::Trapezoid { acceleration, .. } => Profile::Trapezoid {
+            speed: omega,
+            acceleration,
+        },
+        Profile::SpinUp { time, .. } => Profile::SpinUp { speed: omega, time },
+    }
+}
+
+/// The first contact's peak force \[N\] of `scene` at commanded tip speed `v` [m/s].
+pub fn peak_force(
+    scene: &SafetyScene,
+    v: f64,
+    settings: &SimulationSettings,
+) -> Result<f64, Error> {
+    Ok(scene.run_at(v, settings)?.contact.peak_force_n)
+}
+
+/// The permissible commanded tip speed of `scene` under `limits` (force; pressure through
+/// `energy`'s contact-area model, [`EnergyContact::force_at_pressure`]), the searches started at
+/// `guess_force` and `guess_pressure` [m/s] (the energy method's speeds).
+pub fn simulate(
+    scene: &SafetyScene,
+    limits: &Limits,
+    energy: &EnergyContact,
+    guess_force: f64,
+    guess_pressure: Option<f64>,
+    settings: &SimulationSettings,
+) -> Result<SceneSimulation, Error> {
+    settings.validate()?;
+    let mut runs = 0usize;
+    let mut peak = |v: f64| -> Result<f64, Error> {
+        runs += 1;
+        peak_force(scene, v, settings)
+    };
+    let force = limits.force;
+    let mut force_search = Vec::new();
+    let by_force = speed_at_ratio(
+        clamp_guess(guess_force),
+        settings.root_rtol,
+        &mut |v| Ok(peak(v)? / force),
+        Some(&mut force_search),
+    )?;
+    let by_pressure = match (limits.pressure, guess_pressure) {
+        (Some(p), Some(g)) => Some(match energy.force_at_pressure(p) {
+            Some(PressureCrossing::AtForce(f)) => speed_at_ratio(
+                clamp_guess(g),
+                settings.root_rtol,
+                &mut |v| Ok(peak(v)? / f),
+                None,
+            )?,
+            Some(PressureCrossing::Always) => 0.0,
+            Some(PressureCrossing::Never) | None => f64::INFINITY,
+        }),
+        _ => None,
+    };
+    let at_root = scene.run_at(by_force, settings)?;
+    runs += 1;
+    let s = &scene.scene.strike;
+    Ok(SceneSimulation {
+        scene: scene.origin.clone(),
+        name: scene.scene.name.clone(),
+        design: s.design,
+        support: match s.person.support {
+            HeadSupport::Free => "free",
+            HeadSupport::Neck { .. } => "neck",
+            HeadSupport::Wall => "wall",
+        },
+        scene_tip_speed_mps: scene.commanded_tip_speed(),
+        by_force_mps: by_force,
+        by_pressure_mps: by_pressure,
+        approach_speed_at_root_mps: at_root.approach_speed_mps,
+        peak_force_at_root_n: at_root.contact.peak_force_n,
+        notes: at_root.notes.iter().map(note_text).collect(),
+        force_search,
+        runs,
+        run_tol: match s.design {
+            StrikeDesign::Cj => settings.cj_rtol,
+            StrikeDesign::Cl => settings.tol,
+        },
+        root_rtol: settings.root_rtol,
+        release_angle_at_root_deg: None,
+        limit_reached: true,
+    })
+}
+
+/// A search's starting speed within [1e-4, 50] m/s.
+fn clamp_guess(v: f64) -> f64 {
+    if v.is_finite() {
+        v.clamp(1e-4, 50.0)
+    } else {
+        1.0
+    }
+}

@@ -1,0 +1,407 @@
+//! The simulation method's finite-element impact and its root search on the speed, shared by
+//! `flexrig safety --method simulation` ([`crate::safety::point`]) and the simulated safe-speed maps
+//! ([`crate::safety::map`]): the first contact of a body region (mass m_h, the skin's Hertz law
+//! f = k_c δ^n, Eq. 4) with the tip of a link of mass m_r, payload m_e and lateral stiffness
+//! k_δ (Eq. 1–3), the CJ as a rigid link on its torsion spring k_θr = k_δL² (DOP853,
+//! [`flexrig_impact::cj`]), the CL as the Euler–Bernoulli beam on a mesh graded towards the
+//! tip, by its modes and the exact modal integrator ([`flexrig_impact::cl_modal`]); and the
+//! bracket and Illinois false position on ln v that finds the speed at which the peak reaches a
+//! limit ([`speed_at_ratio`]).
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use flexrig_contact::{DampingSpec, Hertz};
+use flexrig_impact::cl_modal::run_on_modes;
+use flexrig_impact::graded::{GradedMesh, cl_tip_modes};
+use flexrig_impact::modal_run::ModalOptions;
+use flexrig_impact::{FreeMassImpact, ImpactError, Joint, LinkParams};
+use flexrig_safety::{EnergyContact, PressureCrossing};
+use serde::{Deserialize, Serialize};
+
+use crate::Error;
+use crate::driven::strike::StrikeDesign;
+
+pub(crate) fn bad(arg: &str, value: impl ToString, allowed: &str) -> Error {
+    Error::InvalidArgument {
+        arg: arg.into(),
+        value: value.to_string(),
+        allowed: allowed.into(),
+    }
+}
+
+pub(crate) fn display(v: f64) -> String {
+    flexrig_contact::validate::display(v)
+}
+
+/// γ of the compliant joint (rigid link on a torsion spring): m_eff = m_e + m_r/3 (Eq. 5).
+pub const GAMMA_CJ: f64 = 1.0;
+/// γ of the compliant link in the lumped model: m_eff = m_e + 2m_r/9 (Eq. 5, γ = 2/3).
+pub const GAMMA_CL: f64 = 2.0 / 3.0;
+/// The human mass \[kg\] of a clamped body (quasi-static contact) in the simulation method
+/// (the finite-element impact's largest m_h; a free hub only).
+pub const CLAMPED_HUMAN_MASS: f64 = 1e9;
+
+/// The joint during the simulated impact.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MapJoint {
+    /// Driven at constant speed (the body region arrives at v; the test bed's operator).
+    Held,
+    /// A free hub with the motor's rotor inertia J_R \[kg·m²\] behind the link.
+    FreeHub {
+        /// J_R \[kg·m²\] > 0.
+        rotor_inertia: f64,
+    },
+}
+
+/// Tolerances of the simulation method.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SimulationSettings {
+    /// The joint during the impact.
+    pub joint: MapJoint,
+    /// Link length L \[m\] (the transverse impact of an Euler–Bernoulli beam depends on m_r and
+    /// k_δ only; L sets EI = k_δL³/3).
+    pub length: f64,
+    /// Tolerance of the CL's modal integrator (relative deviation of the force's linear hold).
+    pub tol: f64,
+    /// Relative tolerance of the CJ's DOP853 integration.
+    pub cj_rtol: f64,
+    /// Relative tolerance of the root search on the speed.
+    pub root_rtol: f64,
+}
+
+impl SimulationSettings {
+    /// Held joint, L = 1 m, modal tol 1e-6, CJ rtol 1e-10, root 1e-6: each speed converged well
+    /// below 1e-4 relative (tested against tol 1e-8, root 1e-10).
+    pub const DEFAULT: SimulationSettings = SimulationSettings {
+        joint: MapJoint::Held,
+        length: 1.0,
+        tol: 1e-6,
+        cj_rtol: 1e-10,
+        root_rtol: 1e-6,
+    };
+
+    /// Checks every setting; the error names its flag.
+    pub fn validate(&self) -> Result<(), Error> {
+        if let MapJoint::FreeHub { rotor_inertia } = self.joint
+            && !(rotor_inertia.is_finite() && (1e-12..=1e12).contains(&rotor_inertia))
+        {
+            return Err(bad(
+                "--rotor-inertia",
+                display(rotor_inertia),
+                "must lie in [1e-12, 1e12] kg·m²",
+            ));
+        }
+        if !(self.length.is_finite() && (1e-3..=1e3).contains(&self.length)) {
+            return Err(bad(
+                "--length",
+                display(self.length),
+                "must lie in [1e-3, 1e3] m",
+            ));
+        }
+        if !(self.tol.is_finite() && (1e-10..=1e-3).contains(&self.tol)) {
+            return Err(bad("--tol", display(self.tol), "must lie in [1e-10, 1e-3]"));
+        }
+        if !(self.cj_rtol.is_finite() && (1e-13..=1e-4).contains(&self.cj_rtol)) {
+            return Err(bad(
+                "--cj-rtol",
+                display(self.cj_rtol),
+                "must lie in [1e-13, 1e-4]",
+            ));
+        }
+        if !(self.root_rtol.is_finite() && (1e-13..=1e-4).contains(&self.root_rtol)) {
+            return Err(bad(
+                "--root-rtol",
+                display(self.root_rtol),
+                "must lie in [1e-13, 1e-4]",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The joint of the finite-element impact.
+    pub fn joint(&self) -> Joint {
+        match self.joint {
+            MapJoint::Held => Joint::Held,
+            MapJoint::FreeHub { rotor_inertia } => Joint::FreeHub { rotor_inertia },
+        }
+    }
+}
+
+/// The finite-element link of the simulation method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FeLink {
+    /// The compliant joint: a rigid link on the torsion spring k_θr = k_δL² (DOP853).
+    #[serde(rename = "cj")]
+    CompliantJoint,
+    /// The compliant link: the Euler–Bernoulli beam by its modes (exact modal integrator).
+    #[serde(rename = "cl")]
+    CompliantLink,
+}
+
+/// The link stiffness \[N/m\] the finite-element simulation uses for a rigid link (k_δ
+/// absent in `flexrig safety`): the largest the FE link accepts; its stored energy F²/(2k_δ) is
+/// K/k_δ ≤ 1.5e-7 of the contact's for the body springs of Table A.3 (n = 1).
+pub const FE_RIGID_LINK_STIFFNESS: f64 = 1e12;
+
+/// One design's finite-element impact, for the root searches of the simulation method (the
+/// map's cells and the single-point `flexrig safety --method simulation` share it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FeImpact {
+    /// Human mass m_h \[kg\] (a clamped body: [`CLAMPED_HUMAN_MASS`]).
+    pub m_h: f64,
+    /// The skin's contact law.
+    pub hertz: Hertz,
+    /// Link mass m_r \[kg\].
+    pub m_r: f64,
+    /// Payload m_e \[kg\].
+    pub m_e: f64,
+    /// Lateral tip stiffness k_δ \[N/m\].
+    pub k_delta: f64,
+    /// CJ or CL.
+    pub link: FeLink,
+    /// Joint, length and tolerances.
+    pub settings: SimulationSettings,
+}
+
+impl FeImpact {
+    fn setup_at(&self, v: f64) -> FreeMassImpact {
+        FreeMassImpact {
+            m_h: self.m_h,
+            v0: v,
+            link: LinkParams {
+                m_r: self.m_r,
+                length: self.settings.length,
+                k_delta: self.k_delta,
+                m_e: self.m_e,
+            },
+            joint: self.settings.joint(),
+            contact: self.hertz,
+            damping: DampingSpec::NONE,
+        }
+    }
+
+    /// The impact ready for runs at speeds near `guess` [m/s]: the CL's modes solved once (at
+    /// `guess`; the free hub's initial modal rates scale with v exactly).
+    pub fn prepare(&self, guess: f64) -> Result<FeRuns, Error> {
+        let guess = guess.clamp(1e-5, 1e2);
+        let reference = self.setup_at(guess);
+        reference.validate()?;
+        let modes = match self.link {
+            FeLink::CompliantLink => Some(cl_tip_modes(&reference, &GradedMesh::DEFAULT)?),
+            FeLink::CompliantJoint => None,
+        };
+        Ok(FeRuns {
+            impact: *self,
+            modes,
+            guess,
+            runs: 0,
+        })
+    }
+}
+
+/// A prepared [`FeImpact`]: the first-contact peak force at any speed.
+#[derive(Debug, Clone)]
+pub struct FeRuns {
+    impact: FeImpact,
+    modes: Option<flexrig_impact::tip_modes::TipModes>,
+    guess: f64,
+    /// Impacts run so far.
+    pub runs: usize,
+}
+
+impl FeRuns {
+    /// The speed the search starts from [m/s] (the guess, within [1e-5, 100]).
+    pub fn guess(&self) -> f64 {
+        self.guess
+    }
+
+    /// The first-contact peak force \[N\] at speed `v` [m/s].
+    pub fn peak(&mut self, v: f64, stop: &AtomicBool) -> Result<f64, Error> {
+        if stop.load(Ordering::Relaxed) {
+            return Err(Error::Impact(ImpactError::Interrupted));
+        }
+        self.runs += 1;
+        let settings = &self.impact.settings;
+        let setup = self.impact.setup_at(v);
+        Ok(match &self.modes {
+            None => flexrig_impact::cj::run_cj(&setup, settings.cj_rtol)?,
+            Some(m) => {
+                let mut m = m.clone();
+                // the free hub's initial modal rates are linear in v (a held joint's are 0)
+                let scale = v / self.guess;
+                m.rates.iter_mut().for_each(|r| *r *= scale);
+                let options = ModalOptions {
+                    tol: settings.tol,
+                    ..ModalOptions::DEFAULT
+                };
+                run_on_modes(&setup, &m, &options)?
+            }
+        }
+        .first
+        .peak_force_n)
+    }
+}
+
+/// The simulated speeds of one design: by force (the peak reaches `limits.force`) and by
+/// pressure (the peak reaches the force f_p at which the mean pressure of `energy`'s area model
+/// reaches the pressure limit), root searches started at the lumped speeds `guess_force` and
+/// `guess_pressure`; the force search's evaluations go to `trace`. Returns (by force, by
+/// pressure, impacts run).
+pub fn fe_speeds(
+    impact: &FeImpact,
+    limits: &flexrig_safety::Limits,
+    energy: &EnergyContact,
+    guess_force: f64,
+    guess_pressure: Option<f64>,
+    stop: &AtomicBool,
+    trace: Option<&mut Vec<RootStep>>,
+) -> Result<(f64, Option<f64>, usize), Error> {
+    let mut runs = impact.prepare(guess_force)?;
+    let guess = runs.guess();
+    let force = limits.force;
+    let root_rtol = impact.settings.root_rtol;
+    let by_force = speed_at_ratio(
+        guess,
+        root_rtol,
+        &mut |v| Ok(runs.peak(v, stop)? / force),
+        trace,
+    )?;
+    let by_pressure = match (limits.pressure, guess_pressure) {
+        (Some(p), Some(vb)) => Some(match energy.force_at_pressure(p) {
+            Some(PressureCrossing::AtForce(f)) => {
+                let g = vb.clamp(1e-5, 1e2);
+                speed_at_ratio(g, root_rtol, &mut |v| Ok(runs.peak(v, stop)? / f), None)?
+            }
+            Some(PressureCrossing::Always) => 0.0,
+            Some(PressureCrossing::Never) | None => f64::INFINITY,
+        }),
+        _ => None,
+    };
+    Ok((by_force, by_pressure, runs.runs))
+}
+
+/// One evaluation of a root search on the speed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RootStep {
+    /// The speed tried [m/s].
+    pub speed_mps: f64,
+    /// Peak over limit at that speed.
+    pub ratio: f64,
+}
+
+/// The speed at which `ratio(v)` (peak over limit, increasing in v) equals 1: a bracket grown by
+/// factors of 2 around `guess`, then the Illinois false position on ln v until the bracket is
+/// narrower than `rtol` (relative in v). Each evaluation is pushed to `trace` when given.
+pub fn speed_at_ratio(
+    guess: f64,
+    rtol: f64,
+    ratio: &mut dyn FnMut(f64) -> Result<f64, Error>,
+    mut trace: Option<&mut Vec<RootStep>>,
+) -> Result<f64, Error> {
+    let mut g = |x: f64| -> Result<f64, Error> {
+        let r = ratio(x.exp())?;
+        if let Some(t) = trace.as_deref_mut() {
+            t.push(RootStep {
+                speed_mps: x.exp(),
+                ratio: r,
+            });
+        }
+        Ok(r.ln())
+    };
+    let mut a = (guess / 1.01).ln();
+    let mut b = (guess * 1.01).ln();
+    let mut ga = g(a)?;
+    let mut gb = g(b)?;
+    let mut grow = 0;
+    while ga * gb > 0.0 {
+        grow += 1;
+        if grow > 60 || !ga.is_finite() || !gb.is_finite() {
+            return Err(Error::NonFinite {
+                what: "simulated speed at the limit".into(),
+                value: "no bracket".into(),
+                advice: "use moderate masses and stiffnesses".into(),
+            });
+        }
+        if ga > 0.0 {
+            a -= std::f64::consts::LN_2;
+            ga = g(a)?;
+        } else {
+            b += std::f64::consts::LN_2;
+            gb = g(b)?;
+        }
+    }
+    let mut side = 0;
+    for _ in 0..200 {
+        let x = (a * gb - b * ga) / (gb - ga);
+        if (b - a).abs() < rtol {
+            return Ok(x.exp());
+        }
+        let gx = g(x)?;
+        if gx == 0.0 {
+            return Ok(x.exp());
+        }
+        if gx * gb < 0.0 {
+            a = b;
+            ga = gb;
+            side = 0;
+        } else if side == -1 {
+            ga /= 2.0;
+        } else {
+            side = -1;
+        }
+        b = x;
+        gb = gx;
+        if (b - a).abs() < rtol || gx.abs() < rtol * 1e-3 {
+            return Ok(b.exp());
+        }
+    }
+    Ok(((a + b) / 2.0).exp())
+}
+
+/// The simulated permissible speed of a driven scene, with what the search did.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SceneSimulation {
+    /// Where the scene came from.
+    pub scene: String,
+    /// The scene's name.
+    pub name: String,
+    /// CJ or CL.
+    pub design: StrikeDesign,
+    /// The head's support: `free`, `neck` or `wall` (a test bed: `pendulum`).
+    pub support: &'static str,
+    /// The commanded tip speed of the scene as written [m/s] (a test bed: the operator's speed
+    /// at contact as written).
+    pub scene_tip_speed_mps: f64,
+    /// The commanded tip speed at which the peak force reaches the force limit [m/s] (a test
+    /// bed: the operator's speed at contact).
+    pub by_force_mps: f64,
+    /// The same for the pressure limit [m/s] (absent without a pressure assessment; +∞ when
+    /// the pressure never reaches its limit, 0 when it always does).
+    #[serde(skip)]
+    pub by_pressure_mps: Option<f64>,
+    /// The approach speed δ̇ at the onset of the run at the force root [m/s] (the drive lags its
+    /// command).
+    pub approach_speed_at_root_mps: f64,
+    /// The peak force of the run at the force root \[N\].
+    pub peak_force_at_root_n: f64,
+    /// What the drive did in the run at the force root, in words.
+    pub notes: Vec<String>,
+    /// Every evaluation of the search on the force limit.
+    pub force_search: Vec<RootStep>,
+    /// Driven strikes simulated (both searches).
+    pub runs: usize,
+    /// The run tolerance: DOP853's relative tolerance (CJ) or the modal integrator's (CL); a test
+    /// bed: the rig's contact step \[s\].
+    pub run_tol: f64,
+    /// The root search's relative tolerance on the speed.
+    pub root_rtol: f64,
+    /// A test-bed scene: the operator's release angle \[deg\] of the run at the force root (the
+    /// largest, 170°, when the limit is not reached); absent for a driven scene.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub release_angle_at_root_deg: Option<f64>,
+    /// False when the force limit is not reached at the largest speed the scene allows (a test
+    /// bed released from 170°): `by_force_mps` is then that speed, a lower bound.
+    pub limit_reached: bool,
+}

@@ -1,0 +1,279 @@
+//! The simulation method on a test-bed scene: the operator's permissible speed on the
+//! drop-pendulum rig (a scene file without a `[drive]` section, docs/scenes.md).
+//!
+//! The scene fixes the robot (CJ or CL at rest on its axis, its payload and dome) and the person:
+//! the operator's block on its free pendulum, whose skin is the contact's Hertz law
+//! f = k_c δ_c^n (paper Eq. 4). The search variable is the block's speed at the bottom of the
+//! swing, where it meets the dome, v = ω_b l (l the arm's length to the block centre); the
+//! operator is released at rest from the angle θ₀ that gives it,
+//! ½ J ω_b² = M g l_c (1 − cos θ₀), so 1 − cos θ₀ = J v²/(2 M g l_c l²). Each speed is one whole
+//! rig run (the swing, the contact to the scene's stop) by flexrig-rig, and the speed at which
+//! the first contact's peak force reaches the region's force limit is found by the same Illinois
+//! root search on ln v as a driven scene's ([`crate::safety::simulation::speed_at_ratio`]).
+//!
+//! The release angle is bounded by 170° (the scene's own bound): the largest speed the test bed
+//! can reach. When the peak force there is still below the limit, the search reports that speed
+//! as the highest tried and says that the limit is not reached, instead of extrapolating.
+//!
+//! The pendulum is free, so the contact is transient; a transient contact where the body model
+//! does not permit one (skull and forehead, face) is refused with its clause before any run.
+
+use flexrig_contact::Materials;
+use flexrig_rig::geometry::RigGeometry;
+use flexrig_rig::{Design, NoRecorder, Override, RunOptions, RunSummary, Scene, Simulation};
+use flexrig_safety::{EnergyContact, Limits, PressureCrossing};
+
+use crate::Error;
+use crate::driven::strike::StrikeDesign;
+use crate::safety::simulation::SceneSimulation;
+use crate::safety::simulation::{RootStep, SimulationSettings, speed_at_ratio};
+
+/// The largest release angle of the test bed \[deg\] (`operator.start.release_angle_deg`).
+pub const MAX_RELEASE_ANGLE_DEG: f64 = 170.0;
+
+/// A test-bed scene loaded for the safety verdict.
+#[derive(Debug, Clone)]
+pub struct TestBedScene {
+    /// Where it came from (`bundled cj_aluminium` or the file's path).
+    pub origin: String,
+    /// The scene's text (overrides are applied to it for each run).
+    text: String,
+    /// The checked scene as written.
+    pub scene: Scene,
+    /// Its geometry, masses and inertias.
+    pub geometry: RigGeometry,
+}
+
+impl TestBedScene {
+    /// Parses and validates the test-bed scene `text` from `origin`.
+    pub fn parse(origin: &str, text: &str) -> Result<Self, Error> {
+        let scene = Scene::from_toml_str(text, &Materials::bundled()?)?;
+        let geometry = RigGeometry::of(&scene);
+        Ok(TestBedScene {
+            origin: origin.into(),
+            text: text.into(),
+            scene,
+            geometry,
+        })
+    }
+
+    /// CJ or CL.
+    pub fn design(&self) -> StrikeDesign {
+        match self.scene.file.robot.design {
+            Design::Cj => StrikeDesign::Cj,
+            Design::Cl => StrikeDesign::Cl,
+        }
+    }
+
+    /// The mass \[kg\] the operator pendulum presents at the contact, J/l².
+    pub fn operator_mass(&self) -> f64 {
+        self.geometry.operator.effective_mass()
+    }
+
+    /// The block's speed at the bottom of a swing released at rest from `angle_deg` \[deg\]:
+    /// v = ω_b l [m/s].
+    pub fn speed_of_release(&self, angle_deg: f64) -> f64 {
+        let op = &self.geometry.operator;
+        op.bottom_angular_speed(angle_deg.to_radians(), self.scene.file.gravity_mps2)
+            * op.arm_length
+    }
+
+    /// The release angle \[deg\] whose swing reaches the contact at `v` [m/s]:
+    /// 1 − cos θ₀ = J v²/(2 M g l_c l²); `None` beyond [`MAX_RELEASE_ANGLE_DEG`].
+    pub fn release_angle_for(&self, v: f64) -> Option<f64> {
+        let op = &self.geometry.operator;
+        let omega = v / op.arm_length;
+        let g = self.scene.file.gravity_mps2;
+        let c = 1.0 - op.inertia_pivot * omega * omega / (2.0 * op.mass * g * op.com_distance);
+        let angle = c.clamp(-1.0, 1.0).acos().to_degrees();
+        // the largest speed itself maps back to 170° up to rounding
+        (c >= -1.0 && angle <= MAX_RELEASE_ANGLE_DEG * (1.0 + 1e-12) && angle > 0.0)
+            .then_some(angle.min(MAX_RELEASE_ANGLE_DEG))
+    }
+
+    /// The largest speed at contact the test bed reaches (release from 170°) [m/s].
+    pub fn max_speed(&self) -> f64 {
+        self.speed_of_release(MAX_RELEASE_ANGLE_DEG)
+    }
+
+    /// The speed at contact of the scene as written [m/s] (its release angle; the speed of its
+    /// start otherwise).
+    pub fn scene_speed(&self) -> f64 {
+        let op = &self.geometry.operator;
+        let swing = self.scene.file.operator.start.initial_swing(
+            op.mass,
+            op.com_distance,
+            op.inertia_pivot,
+            self.scene.file.gravity_mps2,
+        );
+        swing.rate_at_contact * op.arm_length
+    }
+
+    /// The scene run with the operator released from rest at `angle_deg` \[deg\].
+    pub fn run_released(&self, angle_deg: f64) -> Result<RunSummary, Error> {
+        let start = toml::Value::Table(toml::Table::from_iter([
+            ("from".to_string(), toml::Value::String("release".into())),
+            (
+                "release_angle_deg".to_string(),
+                toml::Value::Float(angle_deg),
+            ),
+        ]));
+        let scene = flexrig_rig::scene_with_overrides(
+            &self.text,
+            &[Override::new("operator.start", start)],
+            &Materials::bundled()?,
+        )?;
+        Ok(Simulation::new(&scene, RunOptions::default())?.run(&mut NoRecorder)?)
+    }
+
+    /// The first contact's peak force \[N\] at speed `v` [m/s] at contact (a release angle up to
+    /// 170°; beyond it an error naming the speed and the largest).
+    pub fn peak_force(&self, v: f64) -> Result<f64, Error> {
+        let angle = self.release_angle_for(v).ok_or_else(|| Error::InvalidArgument {
+            arg: "--speed".into(),
+            value: flexrig_contact::validate::display(v),
+            allowed: format!(
+                "a speed the test bed reaches: up to {} m/s (release from {MAX_RELEASE_ANGLE_DEG}°)",
+                flexrig_contact::validate::display(self.max_speed())
+            ),
+        })?;
+        Ok(self.run_released(angle)?.peak_force_n)
+    }
+}
+
+/// The root of `peak(v)/limit = 1` below the test bed's largest speed `v_cap`, or `None` when the
+/// peak at `v_cap` is still below the limit. Above `v_cap` (where the bracket may grow) the ratio
+/// is continued as r(v_cap) v/v_cap without a run: it stays above 1 there, so the root found is
+/// a simulated one.
+fn capped_root(
+    v_cap: f64,
+    guess: f64,
+    rtol: f64,
+    limit: f64,
+    peak: &mut dyn FnMut(f64) -> Result<f64, Error>,
+    trace: Option<&mut Vec<RootStep>>,
+) -> Result<(Option<f64>, f64), Error> {
+    let at_cap = peak(v_cap)?;
+    if at_cap < limit {
+        return Ok((None, at_cap));
+    }
+    let r_cap = at_cap / limit;
+    let guess = clamp_guess(guess).min(v_cap / 1.05);
+    let root = speed_at_ratio(
+        guess,
+        rtol,
+        &mut |v| {
+            if v >= v_cap {
+                Ok(r_cap * v / v_cap)
+            } else {
+                Ok(peak(v)? / limit)
+            }
+        },
+        trace,
+    )?;
+    Ok((Some(root.min(v_cap)), at_cap))
+}
+
+/// The permissible speed at contact of the test bed `tb` under `limits` (force; pressure
+/// through `energy`'s contact-area model), the searches started at `guess_force` and
+/// `guess_pressure` [m/s], to the root tolerance of `settings`.
+pub fn simulate(
+    tb: &TestBedScene,
+    limits: &Limits,
+    energy: &EnergyContact,
+    guess_force: f64,
+    guess_pressure: Option<f64>,
+    settings: &SimulationSettings,
+) -> Result<SceneSimulation, Error> {
+    settings.validate()?;
+    let mut runs = 0usize;
+    let mut peak = |v: f64| -> Result<f64, Error> {
+        runs += 1;
+        tb.peak_force(v)
+    };
+    let v_cap = tb.max_speed();
+    let mut force_search = Vec::new();
+    let (by_force, peak_at_cap) = capped_root(
+        v_cap,
+        guess_force,
+        settings.root_rtol,
+        limits.force,
+        &mut peak,
+        Some(&mut force_search),
+    )?;
+    // the pressure's speed; absent when its limit is not reached on the test bed (a note says so)
+    let mut pressure_unreached = None;
+    let by_pressure = match (limits.pressure, guess_pressure) {
+        (Some(p), Some(g)) => match energy.force_at_pressure(p) {
+            Some(PressureCrossing::AtForce(f)) => {
+                let (root, _) = capped_root(v_cap, g, settings.root_rtol, f, &mut peak, None)?;
+                if root.is_none() {
+                    pressure_unreached = Some(p);
+                }
+                root
+            }
+            Some(PressureCrossing::Always) => Some(0.0),
+            Some(PressureCrossing::Never) | None => Some(f64::INFINITY),
+        },
+        _ => None,
+    };
+    let speed = by_force.unwrap_or(v_cap);
+    let angle = match by_force {
+        Some(v) => tb.release_angle_for(v).unwrap_or(MAX_RELEASE_ANGLE_DEG),
+        None => MAX_RELEASE_ANGLE_DEG,
+    };
+    let at_root = tb.run_released(angle)?;
+    runs += 1;
+    let g = |v: f64| flexrig_contact::validate::display(v);
+    let mut notes = vec![match by_force {
+        Some(_) => format!(
+            "the operator released at rest from {}° reaches the dome at {} m/s",
+            g(angle),
+            g(speed)
+        ),
+        None => format!(
+            "the force limit is not reached on this test bed: released from the largest angle, \
+             {MAX_RELEASE_ANGLE_DEG}°, the operator reaches the dome at {} m/s and the peak force \
+             is {} N, below the limit of {} N; the permissible speed is at least {} m/s",
+            g(v_cap),
+            g(peak_at_cap),
+            g(limits.force),
+            g(v_cap)
+        ),
+    }];
+    if let Some(p) = pressure_unreached {
+        notes.push(format!(
+            "the pressure limit of {} N/cm² is not reached on this test bed (released from \
+             {MAX_RELEASE_ANGLE_DEG}°, up to {} m/s)",
+            g(p / 1e4),
+            g(v_cap)
+        ));
+    }
+    Ok(SceneSimulation {
+        scene: tb.origin.clone(),
+        name: tb.scene.file.name.clone(),
+        design: tb.design(),
+        support: "pendulum",
+        scene_tip_speed_mps: tb.scene_speed(),
+        by_force_mps: speed,
+        by_pressure_mps: by_pressure,
+        approach_speed_at_root_mps: at_root.impact_velocity_mps,
+        peak_force_at_root_n: at_root.peak_force_n,
+        notes,
+        force_search,
+        runs,
+        run_tol: at_root.contact_step_s,
+        root_rtol: settings.root_rtol,
+        release_angle_at_root_deg: Some(angle),
+        limit_reached: by_force.is_some(),
+    })
+}
+
+/// A search's starting speed within [1e-4, 50] m/s.
+fn clamp_guess(v: f64) -> f64 {
+    if v.is_finite() {
+        v.clamp(1e-4, 50.0)
+    } else {
+        1.0
+    }
+}
