@@ -312,7 +312,10 @@ fn spin_up_and_role_switch_figures_say_the_inputs_that_ran() {
         "--size",
         "1",
     ]);
-    let text = check_svg(&dir.join("role_switch.svg"), 3.5).replace('\n', " ");
+    let lines = check_svg(&dir.join("role_switch.svg"), 3.5).replace('\u{a0}', " ");
+    // the rotor's inertia on one line of the wrapped title, never broken inside
+    assert!(lines.contains("J_R = 2 m_r L²/3"), "{lines}");
+    let text = lines.replace('\n', " ");
     for label in ["J_R = 2 m_r L²/3", "damping ratio 0.5", "k_θr/K_p"] {
         assert!(
             text.contains(label),

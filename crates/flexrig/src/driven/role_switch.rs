@@ -213,8 +213,11 @@ fn figure(rows: &[RoleRow], options: &RoleSwitchOptions, width_pt: f64) -> Resul
     };
     curves_svg(
         &format!(
-            "Role switch: the driven robot's peak over the test bed's, PD drives of rotor J_R = {} \
-             m_r L²/3 and damping ratio {} (dashed: torque-free rotor{left_out})",
+            // the rotor's inertia as one unbreakable phrase (no-break spaces): a title wrapped
+            // inside "J_R = 1 m_r L²/3" reads as two quantities
+            "Role switch: the driven robot's peak over the test bed's, PD drives of rotor \
+             J_R\u{a0}=\u{a0}{}\u{a0}m_r\u{a0}L²/3 and damping ratio {} (dashed: torque-free \
+             rotor{left_out})",
             n(options.rotor_ratio),
             n(options.damping_ratio)
         ),

@@ -459,12 +459,14 @@ fn log_ticks(l0: f64, l1: f64) -> Vec<f64> {
     out
 }
 
-/// The label of a log-axis tick at log10 `v`: `10ᵏ` or `m·10ᵏ`.
+/// The label of a log-axis tick at log10 `v`: `10ᵏ` at a decade; between decades the number as
+/// written (`2`, `0.05`, `300`; [`plain`]), `m·10ᵏ` only where that would be long — never a
+/// factor of `10⁰`.
 fn log_label(v: f64) -> String {
     if (v - v.round()).abs() < 1e-9 {
         decade_label(10f64.powf(v.round()))
     } else {
-        sci_label(10f64.powf(v))
+        plain(10f64.powf(v))
     }
 }
 

@@ -156,6 +156,8 @@ fn fig9_labels_are_the_inputs_that_ran() {
             "0.985\n± 0.004",
             "0.935\n1 pair, no CI",
             "release-angle scatter (σ = 0.5°, seed 7)",
+            // panel (b) is one run: the note says so rather than "mean of 5 runs" for both
+            "Bars: (a) mean of 5 runs ± 95 % CI; (b) one run, no confidence interval.",
         ] {
             let joined = text.replace('\n', " ");
             assert!(

@@ -122,20 +122,29 @@ pub fn list_bundled() -> Vec<BundledScene> {
         .collect()
 }
 
-/// The first sentence of a scene text's `description` (its lines joined), or "" without one.
+/// The first sentence of a scene text's `description` (its lines joined), or "" without one: the
+/// text up to the first full stop followed by a capital letter (so `Fig. 9a` and `0.1 kg` do not
+/// end it) or up to a colon that opens a list (`: -`), whichever comes first.
 fn summary(text: &str) -> String {
     let description = toml::from_str::<toml::Table>(text)
         .ok()
         .and_then(|t| t.get("description")?.as_str().map(str::to_string))
         .unwrap_or_default();
-    let mut words = String::new();
-    for line in description.lines().map(str::trim).filter(|l| !l.is_empty()) {
-        if !words.is_empty() {
-            words.push(' ');
+    let words = description
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join(" ");
+    let chars: Vec<(usize, char)> = words.char_indices().collect();
+    for (k, &(at, c)) in chars.iter().enumerate() {
+        let next = chars.get(k + 1).map(|&(_, c)| c);
+        let after = chars.get(k + 2).map(|&(_, c)| c);
+        if c == '.' && next == Some(' ') && after.is_some_and(char::is_uppercase) {
+            return words[..=at].to_string();
         }
-        words.push_str(line);
-        if line.ends_with('.') || line.ends_with(':') {
-            break;
+        if c == ':' && next == Some(' ') && after == Some('-') {
+            return words[..at].to_string();
         }
     }
     words.trim_end_matches(':').to_string()
@@ -302,5 +311,41 @@ mod tests {
         for s in list_bundled() {
             assert!(!s.summary.is_empty() && !s.summary.contains('\n'), "{s:?}");
         }
+    }
+
+    #[test]
+    fn every_bundled_summary_is_its_descriptions_first_sentence() {
+        for scene in list_bundled() {
+            let s = &scene.summary;
+            assert!(s.ends_with('.'), "{}: {s}", scene.name);
+            assert!(!s.contains("Sources and choices"), "{}: {s}", scene.name);
+            assert!(
+                !s.contains(". V") && !s.contains(": -"),
+                "{}: {s}",
+                scene.name
+            );
+            assert!(s.len() > 40, "{}: {s}", scene.name);
+        }
+        let rig = list_bundled()
+            .into_iter()
+            .find(|b| b.name == "rig_driven_cl")
+            .unwrap();
+        assert!(
+            rig.summary
+                .ends_with("the drive of rig_driven_cj on the compliant link."),
+            "{}",
+            rig.summary
+        );
+        let cj = list_bundled()
+            .into_iter()
+            .find(|b| b.name == "cj_aluminium")
+            .unwrap();
+        assert!(
+            cj.summary
+                .starts_with("Paper §VI, Fig. 9a: compliant joint"),
+            "{}",
+            cj.summary
+        );
+        assert!(cj.summary.ends_with("payload 412 g."), "{}", cj.summary);
     }
 }

@@ -144,7 +144,10 @@ fn labels_and_colours() {
     assert_eq!(plain(1e5), "10⁵");
     assert_eq!(plain(1e-17), "0");
     assert_eq!(log_label(2.0), "10²");
-    assert_eq!(log_label(2f64.log10()), "2·10⁰");
+    // between decades the number itself, never `2·10⁰`
+    assert_eq!(log_label(2f64.log10()), "2");
+    assert_eq!(log_label(0.05f64.log10()), "0.05");
+    assert_eq!(log_label(3e5f64.log10()), "3·10⁵");
     assert_eq!(log_ticks(-2.1, 2.1), vec![-2.0, -1.0, 0.0, 1.0, 2.0]);
     assert_eq!(log_ticks(0.1, 0.9).len(), 2);
     let d = ColorScale::Diverging {

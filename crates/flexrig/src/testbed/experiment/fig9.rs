@@ -173,17 +173,39 @@ pub fn fig9_svg(
     })
 }
 
-/// The note under the panels: runs, and where the intervals come from.
+/// The note under the panels: how many runs each panel's bars are, and where the intervals come
+/// from (panel (a) holds the aluminium and iron cases, panel (b) the light-load case).
 fn note_text(groups: &[GroupStats], jitter: Jitter) -> String {
-    let n = groups.iter().map(|g| g.n).max().unwrap_or(0);
-    if n > 1 {
-        format!(
-            "Bars: mean of {n} runs ± 95 % CI. The CI reflects only the simulated release-angle \
-             scatter (σ = {}°, seed {}).",
-            jitter.sd_deg, jitter.seed
-        )
+    let runs = |cases: &[&str]| {
+        groups
+            .iter()
+            .filter(|g| cases.iter().any(|c| g.scene.ends_with(&format!("_{c}"))))
+            .map(|g| g.n)
+            .max()
+    };
+    let words = |n: usize| {
+        if n > 1 {
+            format!("mean of {n} runs ± 95 % CI")
+        } else {
+            "one run, no confidence interval".to_string()
+        }
+    };
+    let (a, b) = (runs(&["aluminium", "iron"]), runs(&["light_load"]));
+    let scatter = format!(
+        "The CI reflects only the simulated release-angle scatter (σ = {}°, seed {}).",
+        jitter.sd_deg, jitter.seed
+    );
+    let any_ci = a.into_iter().chain(b).any(|n| n > 1);
+    let bars = match (a, b) {
+        (Some(a), Some(b)) if a == b => format!("Bars: {}.", words(a)),
+        (Some(a), Some(b)) => format!("Bars: (a) {}; (b) {}.", words(a), words(b)),
+        (Some(n), None) | (None, Some(n)) => format!("Bars: {}.", words(n)),
+        (None, None) => return String::new(),
+    };
+    if any_ci {
+        format!("{bars} {scatter}")
     } else {
-        "One run per bar: no confidence interval.".into()
+        bars
     }
 }
 
