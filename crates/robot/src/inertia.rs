@@ -40,7 +40,7 @@ impl RigidInertia {
         let r = pose.rotation.to_rotation_matrix().into_inner();
         RigidInertia {
             mass: self.mass,
-            com: pose * nalgebra::Point3::from(self.com).coords,
+            com: (pose * nalgebra::Point3::from(self.com)).coords,
             inertia: r * self.inertia * r.transpose(),
         }
     }
