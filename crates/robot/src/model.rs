@@ -480,8 +480,8 @@ fn build(raw: RawUrdf) -> Result<Robot, RobotError> {
                 raw.links[l].line,
                 format!("link {:?}", body.link),
                 format!(
-                    "moves with joint {jname:?} (line {jline}) but {}, nor has any link fixed \
-                     to it; a moving link needs <inertial> with a mass > 0 kg",
+                    "moves with joint {jname:?} (line {jline}) but {} and no link fixed to it \
+                     has mass; a moving link needs <inertial> with a mass > 0 kg",
                     if has_inertial {
                         "its <inertial> has zero mass"
                     } else {

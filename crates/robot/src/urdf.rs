@@ -19,6 +19,9 @@ pub const MAX_LINKS: usize = 1024;
 pub const MAX_JOINTS: usize = 1024;
 /// The most XML markup tags (`<`) a URDF may have, checked before parsing (bounded memory).
 pub const MAX_XML_TAGS: usize = 1_000_000;
+/// The deepest nesting of XML elements read, checked before parsing (the XML parser recurses
+/// per level; a URDF nests about 5 deep).
+pub const MAX_XML_DEPTH: usize = 256;
 
 /// The kind of a moving joint: one degree of freedom each.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -423,6 +426,17 @@ pub(crate) fn parse(text: &str, source_name: &str) -> Result<RawUrdf, RobotError
             what: "URDF file",
         });
     }
+    let (depth, at) = nesting_depth(text);
+    if depth > MAX_XML_DEPTH {
+        return Err(RobotError::Urdf {
+            source_name: source_name.to_string(),
+            line: LineIndex::new(text).line(at),
+            element: "the document".into(),
+            problem: format!(
+                "nests XML elements more than {MAX_XML_DEPTH} deep; a URDF nests about 5 deep"
+            ),
+        });
+    }
     let tags = text.bytes().filter(|&b| b == b'<').count();
     if tags > MAX_XML_TAGS {
         return Err(RobotError::Urdf {
@@ -496,6 +510,64 @@ pub(crate) fn parse(text: &str, source_name: &str) -> Result<RawUrdf, RobotError
     })
 }
 
+/// The deepest element nesting of an XML text (comments, CDATA, processing instructions,
+/// declarations and quoted attribute values skipped), stopping at the first element deeper than
+/// [`MAX_XML_DEPTH`]; with the byte offset where it was reached. A scan without recursion.
+fn nesting_depth(text: &str) -> (usize, usize) {
+    let b = text.as_bytes();
+    let find = |from: usize, pat: &[u8]| -> usize {
+        b[from..]
+            .windows(pat.len())
+            .position(|w| w == pat)
+            .map_or(b.len(), |p| from + p + pat.len())
+    };
+    let (mut i, mut depth, mut max, mut at) = (0, 0usize, 0usize, 0usize);
+    while i < b.len() {
+        if b[i] != b'<' {
+            i += 1;
+            continue;
+        }
+        let rest = &b[i..];
+        if rest.starts_with(b"<!--") {
+            i = find(i + 4, b"-->");
+        } else if rest.starts_with(b"<![CDATA[") {
+            i = find(i + 9, b"]]>");
+        } else if rest.starts_with(b"<?") {
+            i = find(i + 2, b"?>");
+        } else if rest.starts_with(b"<!") {
+            i = find(i + 2, b">");
+        } else if rest.starts_with(b"</") {
+            depth = depth.saturating_sub(1);
+            i = find(i + 2, b">");
+        } else {
+            let start = i;
+            let mut quote = None;
+            let mut j = i + 1;
+            while j < b.len() {
+                match (quote, b[j]) {
+                    (None, b'"' | b'\'') => quote = Some(b[j]),
+                    (Some(q), c) if c == q => quote = None,
+                    (None, b'>') => break,
+                    _ => {}
+                }
+                j += 1;
+            }
+            if j < b.len() && b[j - 1] != b'/' {
+                depth += 1;
+                if depth > max {
+                    max = depth;
+                    at = start;
+                }
+                if depth > MAX_XML_DEPTH {
+                    return (depth, start);
+                }
+            }
+            i = j + 1;
+        }
+    }
+    (max, at)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -508,5 +580,13 @@ mod tests {
         assert_eq!(idx.line(2), 2);
         assert_eq!(idx.line(5), 3);
         assert_eq!(idx.line(6), 4);
+    }
+
+    #[test]
+    fn nesting_depth_skips_comments_and_quotes() {
+        assert_eq!(nesting_depth("<a><b/><c x=\"/>\"><d></d></c></a>").0, 3);
+        assert_eq!(nesting_depth("<a><!-- <b><c> --><![CDATA[<e><f>]]><?p <g>?></a>").0, 1);
+        let deep = format!("{}{}", "<x>".repeat(300), "</x>".repeat(300));
+        assert_eq!(nesting_depth(&deep), (MAX_XML_DEPTH + 1, 3 * MAX_XML_DEPTH));
     }
 }
