@@ -28,6 +28,7 @@ use crate::urdf::JointKind;
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContactPoint {
     link: String,
+    link_index: usize,
     body: usize,
     point_in_link: Vector3<f64>,
     point_in_body: Vector3<f64>,
@@ -37,7 +38,8 @@ impl ContactPoint {
     /// The point `point` (m, in the frame of link `link`) of `robot`. Any URDF link may be named,
     /// also one merged into its parent by a fixed joint (e.g. a tool frame).
     pub fn new(robot: &Robot, link: &str, point: [f64; 3]) -> Result<ContactPoint, RobotError> {
-        let frame = robot.link(link)?;
+        let link_index = robot.link_index(link)?;
+        let frame = &robot.links()[link_index];
         for (k, x) in point.iter().enumerate() {
             if !x.is_finite() {
                 return Err(RobotError::parameter(
@@ -50,6 +52,7 @@ impl ContactPoint {
         let p = Vector3::from(point);
         Ok(ContactPoint {
             link: link.to_string(),
+            link_index,
             body: frame.body(),
             point_in_link: p,
             point_in_body: (frame.pose_in_body() * Point3::from(p)).coords,
@@ -89,6 +92,8 @@ pub struct Workspace {
     pub(crate) mass: DMatrix<f64>,
     /// Lower Cholesky factor of the (armature-augmented) mass matrix, when `factored`.
     pub(crate) chol: DMatrix<f64>,
+    /// 1 / L_ii (the solves multiply instead of dividing).
+    inv_diag: Vec<f64>,
     pub(crate) factored: bool,
     pub(crate) jac: Matrix3xX<f64>,
     pub(crate) rhs: DVector<f64>,
@@ -109,6 +114,7 @@ impl Workspace {
             comp_i: vec![Matrix3::zeros(); nb],
             mass: DMatrix::zeros(n, n),
             chol: DMatrix::zeros(n, n),
+            inv_diag: vec![0.0; n],
             factored: false,
             jac: Matrix3xX::zeros(n),
             rhs: DVector::zeros(n),
@@ -207,8 +213,8 @@ impl Robot {
     pub(crate) fn check_point(&self, point: &ContactPoint) -> Result<(), RobotError> {
         let ok = self
             .links()
-            .iter()
-            .any(|l| l.name() == point.link() && l.body() == point.body());
+            .get(point.link_index)
+            .is_some_and(|l| l.body() == point.body() && l.name() == point.link());
         if !ok {
             return Err(RobotError::parameter(
                 format!("contact point on link {:?}", point.link()),
@@ -234,8 +240,8 @@ impl Robot {
             let m = inertia.mass;
             ws.comp_m[b] = m;
             ws.comp_h[b] = m * c.coords;
-            ws.comp_i[b] = r * inertia.inertia * r.transpose()
-                + crate::inertia::parallel_axis(m, &c.coords);
+            ws.comp_i[b] =
+                r * inertia.inertia * r.transpose() + crate::inertia::parallel_axis(m, &c.coords);
         }
         // Composite inertias, from the leaves to the root (parents have smaller numbers).
         for b in (2..=n).rev() {
@@ -330,6 +336,7 @@ impl Robot {
             }
             let l = d.sqrt();
             ws.chol[(j, j)] = l;
+            ws.inv_diag[j] = 1.0 / l;
             for i in (j + 1)..n {
                 let mut s = ws.chol[(i, j)];
                 for k in 0..j {
@@ -346,22 +353,31 @@ impl Robot {
     }
 }
 
-/// Solves L Lᵀ x = rhs with the factor in `ws.chol`, from `ws.rhs` into `ws.sol`.
+/// Solves L Lᵀ x = rhs with the factor in `ws.chol`, from `ws.rhs` into `ws.sol`; both
+/// triangular solves walk the columns of L (contiguous in memory).
 pub(crate) fn cholesky_solve(ws: &mut Workspace) {
     let n = ws.dof;
-    for i in 0..n {
-        let mut s = ws.rhs[i];
-        for k in 0..i {
-            s -= ws.chol[(i, k)] * ws.sol[k];
+    let l = ws.chol.as_slice();
+    let x = ws.sol.as_mut_slice();
+    x.copy_from_slice(ws.rhs.as_slice());
+    // L y = rhs, column by column.
+    for k in 0..n {
+        let col = &l[k * n..(k + 1) * n];
+        let xk = x[k] * ws.inv_diag[k];
+        x[k] = xk;
+        for (xi, lik) in x[k + 1..].iter_mut().zip(&col[k + 1..]) {
+            *xi -= lik * xk;
         }
-        ws.sol[i] = s / ws.chol[(i, i)];
     }
+    // Lᵀ x = y: row i of Lᵀ is column i of L.
     for i in (0..n).rev() {
-        let mut s = ws.sol[i];
-        for k in (i + 1)..n {
-            s -= ws.chol[(k, i)] * ws.sol[k];
-        }
-        ws.sol[i] = s / ws.chol[(i, i)];
+        let col = &l[i * n..(i + 1) * n];
+        let s: f64 = x[i + 1..]
+            .iter()
+            .zip(&col[i + 1..])
+            .map(|(xk, lki)| lki * xk)
+            .sum();
+        x[i] = (x[i] - s) * ws.inv_diag[i];
     }
 }
 

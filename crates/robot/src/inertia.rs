@@ -61,11 +61,7 @@ impl RigidInertia {
             + parallel_axis(self.mass, &(self.com - com))
             + other.inertia
             + parallel_axis(other.mass, &(other.com - com));
-        RigidInertia {
-            mass,
-            com,
-            inertia,
-        }
+        RigidInertia { mass, com, inertia }
     }
 }
 

@@ -56,6 +56,8 @@ pub use dynamics::{ContactPoint, Workspace};
 pub use error::RobotError;
 pub use inertia::{RigidInertia, inertia_problem, parallel_axis, pose_from_xyz_rpy};
 pub use model::{Body, Joint, LinkFrame, Robot};
-pub use reflected::{Direction, JointModel, Posture, WALL_TOLERANCE, reflected_mass};
-pub use trajectory::{MAX_CSV_BYTES, PointSample, REST_SPEED, Sample, Trajectory};
+pub use reflected::{
+    Direction, JointModel, PointSample, Posture, REST_SPEED, WALL_TOLERANCE, reflected_mass,
+};
+pub use trajectory::{MAX_CSV_BYTES, Sample, Trajectory};
 pub use urdf::{JointKind, MAX_JOINTS, MAX_LINKS, MAX_URDF_BYTES, MAX_XML_DEPTH, MAX_XML_TAGS};

@@ -176,9 +176,13 @@ impl Robot {
     }
     /// A link by name.
     pub fn link(&self, name: &str) -> Result<&LinkFrame, RobotError> {
+        Ok(&self.links[self.link_index(name)?])
+    }
+    /// The index of a link in [`Robot::links`] by name.
+    pub fn link_index(&self, name: &str) -> Result<usize, RobotError> {
         self.links
             .iter()
-            .find(|l| l.name == name)
+            .position(|l| l.name == name)
             .ok_or_else(|| RobotError::UnknownLink {
                 robot: self.name.clone(),
                 name: name.to_string(),
@@ -241,7 +245,11 @@ impl Robot {
 }
 
 /// Reads at most `max` bytes of a UTF-8 file; larger files are refused before reading.
-pub(crate) fn read_bounded(path: &Path, max: u64, what: &'static str) -> Result<String, RobotError> {
+pub(crate) fn read_bounded(
+    path: &Path,
+    max: u64,
+    what: &'static str,
+) -> Result<String, RobotError> {
     use std::io::Read;
     let shown = path.display().to_string();
     let io = |e: std::io::Error| RobotError::Io {

@@ -52,6 +52,26 @@ use crate::model::Robot;
 /// The relative size of ‖Jᵀu‖ against ‖J‖_F below which the point cannot move along u.
 pub const WALL_TOLERANCE: f64 = 1e-12;
 
+/// Below this speed (m/s) a contact point is taken to be at rest: no direction, no mass.
+pub const REST_SPEED: f64 = 1e-9;
+
+/// One contact point in motion at one posture ([`Posture::motion`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointSample {
+    /// World position, m.
+    pub position: Vector3<f64>,
+    /// World velocity J q̇, m/s.
+    pub velocity: Vector3<f64>,
+    /// |velocity|, m/s.
+    pub speed: f64,
+    /// The contact direction (the velocity's direction); `None` when the point is at rest
+    /// (speed ≤ [`REST_SPEED`]).
+    pub direction: Option<Unit<Vector3<f64>>>,
+    /// The reflected mass along the direction, kg (`f64::INFINITY`: the arm cannot move the
+    /// point along it); `None` when the point is at rest.
+    pub reflected_mass: Option<f64>,
+}
+
 /// How the joints behave on the impact's time scale.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum JointModel<'a> {
@@ -147,20 +167,62 @@ impl<'r, 'w> Posture<'r, 'w> {
     ) -> Result<f64, RobotError> {
         let u = self.unit_direction(point, direction)?;
         self.robot.fill_point_jacobian(point, self.ws);
+        Ok(self.inverse_along(&u))
+    }
+
+    /// uᵀ J M⁻¹ Jᵀ u with the Jacobian already in the workspace.
+    fn inverse_along(&mut self, u: &Vector3<f64>) -> f64 {
         let ws = &mut *self.ws;
         let n = ws.jac.ncols();
         let mut g2 = 0.0;
         for i in 0..n {
-            let g = ws.jac.column(i).dot(&u);
+            let g = ws.jac.column(i).dot(u);
             ws.rhs[i] = g;
             g2 += g * g;
         }
         let j2 = ws.jac.norm_squared();
         if !(g2 > WALL_TOLERANCE * WALL_TOLERANCE * j2) {
-            return Ok(0.0);
+            return 0.0;
         }
         cholesky_solve(ws);
-        Ok(ws.rhs.dot(&ws.sol))
+        ws.rhs.dot(&ws.sol)
+    }
+
+    /// Everything about a contact point moving at joint velocities `qdot` (rad/s or m/s) at
+    /// the cost of one Jacobian: position, velocity, speed, the contact direction (the
+    /// velocity's) and the reflected mass along it; no direction and no mass when the point is
+    /// at rest (speed ≤ [`REST_SPEED`]).
+    pub fn motion(
+        &mut self,
+        point: &ContactPoint,
+        qdot: &[f64],
+    ) -> Result<PointSample, RobotError> {
+        self.robot.check_point(point)?;
+        self.robot.check_vector("qdot", qdot, "rad/s or m/s")?;
+        self.robot.fill_point_jacobian(point, self.ws);
+        let position = point_world(self.ws, point);
+        let mut velocity = Vector3::zeros();
+        for (i, qd) in qdot.iter().enumerate() {
+            velocity += self.ws.jac.column(i) * *qd;
+        }
+        let speed = velocity.norm();
+        let (direction, reflected_mass) = if speed > REST_SPEED {
+            let u = Unit::new_unchecked(velocity / speed);
+            let inv = self.inverse_along(&u);
+            (
+                Some(u),
+                Some(if inv > 0.0 { 1.0 / inv } else { f64::INFINITY }),
+            )
+        } else {
+            (None, None)
+        };
+        Ok(PointSample {
+            position,
+            velocity,
+            speed,
+            direction,
+            reflected_mass,
+        })
     }
 
     /// The reflected mass m_u = 1 / (uᵀ J M⁻¹ Jᵀ u), kg, along `direction`; `f64::INFINITY`

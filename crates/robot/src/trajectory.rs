@@ -28,41 +28,19 @@
 
 use std::path::Path;
 
-use nalgebra::{Unit, Vector3};
-
 use crate::dynamics::{ContactPoint, Workspace};
 use crate::error::RobotError;
 use crate::model::{Robot, read_bounded};
-use crate::reflected::{Direction, JointModel, Posture};
+use crate::reflected::{JointModel, PointSample, Posture};
 
 /// The largest trajectory CSV read, in bytes.
 pub const MAX_CSV_BYTES: u64 = 64 * 1024 * 1024;
-
-/// Below this speed (m/s) a contact point is taken to be at rest: no direction, no mass.
-pub const REST_SPEED: f64 = 1e-9;
 
 /// A validated joint trajectory of one robot (degree-of-freedom order).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Trajectory {
     times: Vec<f64>,
     positions: Vec<Vec<f64>>,
-}
-
-/// One candidate contact point at one sample.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PointSample {
-    /// World position, m.
-    pub position: Vector3<f64>,
-    /// World velocity J q̇, m/s.
-    pub velocity: Vector3<f64>,
-    /// |velocity|, m/s.
-    pub speed: f64,
-    /// The contact direction (the velocity's direction); `None` when the point is at rest
-    /// (speed ≤ [`REST_SPEED`]).
-    pub direction: Option<Unit<Vector3<f64>>>,
-    /// The reflected mass along the direction, kg (`f64::INFINITY`: the arm cannot move the
-    /// point along it); `None` when the point is at rest.
-    pub reflected_mass: Option<f64>,
 }
 
 /// One sample of a trajectory with its contact points.
@@ -165,11 +143,7 @@ impl Trajectory {
             if cells.len() != columns.len() {
                 return Err(err(
                     line,
-                    format!(
-                        "{} columns, the header has {}",
-                        cells.len(),
-                        columns.len()
-                    ),
+                    format!("{} columns, the header has {}", cells.len(), columns.len()),
                 ));
             }
             let mut values = Vec::with_capacity(cells.len());
@@ -179,10 +153,7 @@ impl Trajectory {
                     _ => {
                         return Err(err(
                             line,
-                            format!(
-                                "column {:?}: {cell:?} is not a finite number",
-                                columns[k]
-                            ),
+                            format!("column {:?}: {cell:?} is not a finite number", columns[k]),
                         ));
                     }
                 }
@@ -195,9 +166,8 @@ impl Trajectory {
             positions.push(q);
             lines_of.push(line);
         }
-        Trajectory::validated(robot, times, positions, |s| lines_of[s]).map_err(|(s, problem)| {
-            err(if s < lines_of.len() { lines_of[s] } else { 0 }, problem)
-        })
+        Trajectory::validated(robot, times, positions, |s| lines_of[s])
+            .map_err(|(s, problem)| err(if s < lines_of.len() { lines_of[s] } else { 0 }, problem))
     }
 
     /// A trajectory from sampled times (s, strictly increasing, at least 3) and joint positions
@@ -210,7 +180,11 @@ impl Trajectory {
         let t = times.clone();
         Trajectory::validated(robot, times, positions, |s| s).map_err(|(s, problem)| {
             if s < t.len() {
-                RobotError::parameter(format!("trajectory sample {s}"), format!("t = {} s", t[s]), problem)
+                RobotError::parameter(
+                    format!("trajectory sample {s}"),
+                    format!("t = {} s", t[s]),
+                    problem,
+                )
             } else {
                 RobotError::parameter("trajectory samples", t.len(), problem)
             }
@@ -384,26 +358,10 @@ impl Trajectory {
         let mut out = Vec::with_capacity(self.len());
         for ((time, q), qdot) in self.times.iter().zip(&self.positions).zip(velocities) {
             let mut posture = Posture::new(robot, q, joint_model, &mut ws)?;
-            let mut samples = Vec::with_capacity(points.len());
-            for point in points {
-                let position = posture.position(point)?;
-                let velocity = posture.velocity(point, &qdot)?;
-                let speed = velocity.norm();
-                let (direction, reflected_mass) = if speed > REST_SPEED {
-                    let u = Unit::new_normalize(velocity);
-                    let m = posture.reflected_mass(point, Direction::Along(u.into_inner()))?;
-                    (Some(u), Some(m))
-                } else {
-                    (None, None)
-                };
-                samples.push(PointSample {
-                    position,
-                    velocity,
-                    speed,
-                    direction,
-                    reflected_mass,
-                });
-            }
+            let samples = points
+                .iter()
+                .map(|point| posture.motion(point, &qdot))
+                .collect::<Result<Vec<_>, _>>()?;
             out.push(Sample {
                 time: *time,
                 q: q.clone(),

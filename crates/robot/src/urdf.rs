@@ -297,7 +297,10 @@ impl Reader<'_> {
             )
         })?;
         let mut v = [0.0; 6];
-        for (k, attr) in ["ixx", "ixy", "ixz", "iyy", "iyz", "izz"].iter().enumerate() {
+        for (k, attr) in ["ixx", "ixy", "ixz", "iyy", "iyz", "izz"]
+            .iter()
+            .enumerate()
+        {
             v[k] = self.scalar(i, attr, element)?;
         }
         let inertia = Matrix3::new(v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5]);
@@ -350,9 +353,9 @@ impl Reader<'_> {
             ));
         }
         let link_of = |tag: &str| -> Result<String, RobotError> {
-            let n = self.only_child(node, tag, &element)?.ok_or_else(|| {
-                self.err(node, &element, format!("has no <{tag} link=\"…\"/>"))
-            })?;
+            let n = self
+                .only_child(node, tag, &element)?
+                .ok_or_else(|| self.err(node, &element, format!("has no <{tag} link=\"…\"/>")))?;
             let l = self.required_attr(n, "link", &element)?;
             Ok(l.to_string())
         };
@@ -395,7 +398,9 @@ impl Reader<'_> {
                     return Err(self.err(
                         l,
                         &element,
-                        format!("<limit lower=\"{lower}\" upper=\"{upper}\">: lower must be ≤ upper"),
+                        format!(
+                            "<limit lower=\"{lower}\" upper=\"{upper}\">: lower must be ≤ upper"
+                        ),
                     ));
                 }
                 (lower, upper)
@@ -585,7 +590,10 @@ mod tests {
     #[test]
     fn nesting_depth_skips_comments_and_quotes() {
         assert_eq!(nesting_depth("<a><b/><c x=\"/>\"><d></d></c></a>").0, 3);
-        assert_eq!(nesting_depth("<a><!-- <b><c> --><![CDATA[<e><f>]]><?p <g>?></a>").0, 1);
+        assert_eq!(
+            nesting_depth("<a><!-- <b><c> --><![CDATA[<e><f>]]><?p <g>?></a>").0,
+            1
+        );
         let deep = format!("{}{}", "<x>".repeat(300), "</x>".repeat(300));
         assert_eq!(nesting_depth(&deep), (MAX_XML_DEPTH + 1, 3 * MAX_XML_DEPTH));
     }

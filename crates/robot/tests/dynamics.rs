@@ -189,7 +189,12 @@ fn check_merge(merged: &Robot, unmerged: &Robot, q_merged: &[f64]) {
                 unmerged.joint_index(jb.name()).unwrap(),
             );
             let err = (m[(a, b)] - full[(ua, ub)]).abs() / m.amax();
-            assert!(err <= 1e-12, "M[{a}][{b}] {} vs {}", m[(a, b)], full[(ua, ub)]);
+            assert!(
+                err <= 1e-12,
+                "M[{a}][{b}] {} vs {}",
+                m[(a, b)],
+                full[(ua, ub)]
+            );
         }
     }
     assert!(
@@ -249,14 +254,22 @@ fn planar_two_link_arm_matches_the_textbook_mass_matrix() {
         let m11 = m1 * lc1 * lc1 + m2 * (l1 * l1 + lc2 * lc2 + 2.0 * l1 * lc2 * c2) + i1 + i2;
         let m12 = m2 * (lc2 * lc2 + l1 * lc2 * c2) + i2;
         let m22 = m2 * lc2 * lc2 + i2;
-        for (v, r) in [(m[(0, 0)], m11), (m[(0, 1)], m12), (m[(1, 0)], m12), (m[(1, 1)], m22)] {
+        for (v, r) in [
+            (m[(0, 0)], m11),
+            (m[(0, 1)], m12),
+            (m[(1, 0)], m12),
+            (m[(1, 1)], m22),
+        ] {
             assert!((v - r).abs() <= 1e-13 * m11, "{v} vs {r}");
         }
         // The tip's reflected mass in closed form: J = [[−l1 s1 − l2 s12, −l2 s12],
         // [l1 c1 + l2 c12, l2 c12]], M⁻¹ by the 2 × 2 adjugate.
         let (s1, c1) = q1.sin_cos();
         let (s12, c12) = (q1 + q2).sin_cos();
-        let j = [[-l1 * s1 - l2 * s12, -l2 * s12], [l1 * c1 + l2 * c12, l2 * c12]];
+        let j = [
+            [-l1 * s1 - l2 * s12, -l2 * s12],
+            [l1 * c1 + l2 * c12, l2 * c12],
+        ];
         let det = m11 * m22 - m12 * m12;
         let minv = [[m22 / det, -m12 / det], [-m12 / det, m11 / det]];
         for angle in [0.0, 0.7, 1.9, 3.0] {

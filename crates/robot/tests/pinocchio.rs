@@ -76,19 +76,27 @@ fn matches_pinocchio_on_real_arms_and_a_tree() {
                 for (b, x) in floats(row).iter().enumerate() {
                     let err = (m[(perm[a], perm[b])] - x).abs() / scale;
                     worst_mass_matrix = worst_mass_matrix.max(err);
-                    assert!(err <= 1e-10, "{path}: M[{a}][{b}] {} vs {x}", m[(perm[a], perm[b])]);
+                    assert!(
+                        err <= 1e-10,
+                        "{path}: M[{a}][{b}] {} vs {x}",
+                        m[(perm[a], perm[b])]
+                    );
                 }
             }
             for case in pose["cases"].as_array().unwrap() {
                 let p = floats(&case["point"]);
-                let cp = ContactPoint::new(&robot, case["link"].as_str().unwrap(), [p[0], p[1], p[2]])
-                    .unwrap();
+                let cp =
+                    ContactPoint::new(&robot, case["link"].as_str().unwrap(), [p[0], p[1], p[2]])
+                        .unwrap();
                 let u = Vector3::from_vec(floats(&case["direction"]));
                 let mut rigid = Posture::new(&robot, &q, JointModel::Rigid, &mut ws).unwrap();
                 let x = rigid.position(&cp).unwrap();
                 let x_ref = Vector3::from_vec(floats(&case["position"]));
                 worst_pos = worst_pos.max((x - x_ref).amax());
-                assert!((x - x_ref).amax() <= 1e-12, "{path}: position {x} vs {x_ref}");
+                assert!(
+                    (x - x_ref).amax() <= 1e-12,
+                    "{path}: position {x} vs {x_ref}"
+                );
                 let jac = rigid.jacobian(&cp).unwrap().clone();
                 let jac_scale = jac.amax().max(1e-3);
                 for (row, jr) in case["jacobian"].as_array().unwrap().iter().enumerate() {
@@ -106,15 +114,22 @@ fn matches_pinocchio_on_real_arms_and_a_tree() {
                     ),
                     (
                         "rigid along the velocity",
-                        rigid.reflected_mass(&cp, Direction::OfVelocity(&qdot)).unwrap(),
+                        rigid
+                            .reflected_mass(&cp, Direction::OfVelocity(&qdot))
+                            .unwrap(),
                         case["m_rigid_along_velocity"].as_f64().unwrap(),
                     ),
                     (
                         "with armature",
-                        Posture::new(&robot, &q, JointModel::RigidWithArmature(&armature), &mut ws)
-                            .unwrap()
-                            .reflected_mass(&cp, Direction::Along(u))
-                            .unwrap(),
+                        Posture::new(
+                            &robot,
+                            &q,
+                            JointModel::RigidWithArmature(&armature),
+                            &mut ws,
+                        )
+                        .unwrap()
+                        .reflected_mass(&cp, Direction::Along(u))
+                        .unwrap(),
                         case["m_armature"].as_f64().unwrap(),
                     ),
                 ];

@@ -31,14 +31,28 @@ fn a_single_link_at_its_centre_of_mass_along_its_motion_reflects_its_mass() {
     let mut ws = robot.workspace();
     for point in [[0.4, 0.0, 0.0], [1.0, -2.0, 0.3]] {
         let cp = ContactPoint::new(&robot, "arm", point).unwrap();
-        let m = reflected_mass(&robot, &[0.2], &cp, Direction::Along(Vector3::z()), JointModel::Rigid, &mut ws)
-            .unwrap();
+        let m = reflected_mass(
+            &robot,
+            &[0.2],
+            &cp,
+            Direction::Along(Vector3::z()),
+            JointModel::Rigid,
+            &mut ws,
+        )
+        .unwrap();
         assert!((m - 2.7).abs() <= 1e-14 * 2.7, "{m}");
         // Obliquely at angle θ to the axis: m / cos²θ.
         let th: f64 = 0.6;
         let u = Vector3::new(th.sin(), 0.0, th.cos());
-        let m = reflected_mass(&robot, &[0.2], &cp, Direction::Along(u), JointModel::Rigid, &mut ws)
-            .unwrap();
+        let m = reflected_mass(
+            &robot,
+            &[0.2],
+            &cp,
+            Direction::Along(u),
+            JointModel::Rigid,
+            &mut ws,
+        )
+        .unwrap();
         assert!((m - 2.7 / th.cos().powi(2)).abs() <= 1e-13 * m, "{m}");
     }
     // Revolute, a point mass: its mass at the centre of mass along the motion; with inertia
@@ -50,10 +64,20 @@ fn a_single_link_at_its_centre_of_mass_along_its_motion_reflects_its_mass() {
         let q: f64 = 0.5;
         let cp = ContactPoint::new(&robot, "arm", [d, 0.0, 0.0]).unwrap();
         let tangent = Vector3::new(-q.sin(), q.cos(), 0.0);
-        let value = reflected_mass(&robot, &[q], &cp, Direction::Along(tangent), JointModel::Rigid, &mut ws)
-            .unwrap();
+        let value = reflected_mass(
+            &robot,
+            &[q],
+            &cp,
+            Direction::Along(tangent),
+            JointModel::Rigid,
+            &mut ws,
+        )
+        .unwrap();
         let reference = (izz + m * r * r) / (d * d);
-        assert!((value - reference).abs() <= 1e-13 * reference, "{value} vs {reference}");
+        assert!(
+            (value - reference).abs() <= 1e-13 * reference,
+            "{value} vs {reference}"
+        );
     }
 }
 
@@ -64,14 +88,28 @@ fn walls_are_infinite() {
     // Radially and along the axis, the joint cannot move the point.
     let cp = ContactPoint::new(&robot, "arm", [0.8, 0.0, 0.0]).unwrap();
     for u in [Vector3::x(), Vector3::z()] {
-        let m = reflected_mass(&robot, &[0.0], &cp, Direction::Along(u), JointModel::Rigid, &mut ws)
-            .unwrap();
+        let m = reflected_mass(
+            &robot,
+            &[0.0],
+            &cp,
+            Direction::Along(u),
+            JointModel::Rigid,
+            &mut ws,
+        )
+        .unwrap();
         assert_eq!(m, f64::INFINITY);
     }
     // A point on the base never moves.
     let base = ContactPoint::new(&robot, "base", [0.1, 0.2, 0.3]).unwrap();
-    let m = reflected_mass(&robot, &[0.0], &base, Direction::Along(Vector3::y()), JointModel::Rigid, &mut ws)
-        .unwrap();
+    let m = reflected_mass(
+        &robot,
+        &[0.0],
+        &base,
+        Direction::Along(Vector3::y()),
+        JointModel::Rigid,
+        &mut ws,
+    )
+    .unwrap();
     assert_eq!(m, f64::INFINITY);
     // The UR5 stretched out (shoulder lift and elbow at 0, the wrists' offsets aside) is still
     // finite sideways.
@@ -79,8 +117,15 @@ fn walls_are_infinite() {
     let mut ws = ur5.workspace();
     let tool = ContactPoint::new(&ur5, "tool0", [0.0, 0.0, 0.0]).unwrap();
     let q = [0.0; 6];
-    let m = reflected_mass(&ur5, &q, &tool, Direction::Along(Vector3::y()), JointModel::Rigid, &mut ws)
-        .unwrap();
+    let m = reflected_mass(
+        &ur5,
+        &q,
+        &tool,
+        Direction::Along(Vector3::y()),
+        JointModel::Rigid,
+        &mut ws,
+    )
+    .unwrap();
     assert!(m.is_finite() && m > 0.0);
 }
 
@@ -102,7 +147,10 @@ fn reflected_mass_is_the_quadratic_form_of_the_inverse_operational_space_inertia
             let reference = 1.0 / (u.transpose() * lambda_inv * u)[(0, 0)];
             let mut p = Posture::new(&robot, &q, JointModel::Rigid, &mut ws).unwrap();
             let value = p.reflected_mass(&cp, Direction::Along(u)).unwrap();
-            assert!((value - reference).abs() <= 1e-10 * reference, "{value} vs {reference}");
+            assert!(
+                (value - reference).abs() <= 1e-10 * reference,
+                "{value} vs {reference}"
+            );
             // Invariant under u → −u, and under the speed of the motion it is taken along.
             let minus = p.reflected_mass(&cp, Direction::Along(-u)).unwrap();
             assert!((minus - value).abs() <= 1e-14 * value);
@@ -139,9 +187,17 @@ fn moving_the_base_rotates_the_direction_and_nothing_else() {
         for link in ["panda_link5", "panda_hand_tcp"] {
             let ca = ContactPoint::new(&a, link, [0.01, 0.02, 0.03]).unwrap();
             let cb = ContactPoint::new(&b, link, [0.01, 0.02, 0.03]).unwrap();
-            let ma = reflected_mass(&a, &q, &ca, Direction::Along(u), JointModel::Rigid, &mut wa).unwrap();
-            let mb = reflected_mass(&b, &q, &cb, Direction::Along(rot * u), JointModel::Rigid, &mut wb)
+            let ma = reflected_mass(&a, &q, &ca, Direction::Along(u), JointModel::Rigid, &mut wa)
                 .unwrap();
+            let mb = reflected_mass(
+                &b,
+                &q,
+                &cb,
+                Direction::Along(rot * u),
+                JointModel::Rigid,
+                &mut wb,
+            )
+            .unwrap();
             assert!((ma - mb).abs() <= 1e-12 * ma, "{link}: {ma} vs {mb}");
         }
     }
@@ -160,8 +216,24 @@ fn the_same_point_named_on_a_merged_link_gives_the_same_mass() {
         let xb = robot.point_position(&q, &hand, &mut ws).unwrap();
         assert!((xa - xb).amax() <= 1e-15);
         let u = Vector3::new(0.6, 0.0, 0.8);
-        let ma = reflected_mass(&robot, &q, &tcp, Direction::Along(u), JointModel::Rigid, &mut ws).unwrap();
-        let mb = reflected_mass(&robot, &q, &hand, Direction::Along(u), JointModel::Rigid, &mut ws).unwrap();
+        let ma = reflected_mass(
+            &robot,
+            &q,
+            &tcp,
+            Direction::Along(u),
+            JointModel::Rigid,
+            &mut ws,
+        )
+        .unwrap();
+        let mb = reflected_mass(
+            &robot,
+            &q,
+            &hand,
+            Direction::Along(u),
+            JointModel::Rigid,
+            &mut ws,
+        )
+        .unwrap();
         assert!((ma - mb).abs() <= 1e-13 * ma);
     }
 }
@@ -176,8 +248,24 @@ fn armature_adds_to_the_diagonal_and_elastic_joints_decouple_it() {
         let q = posture(&robot, seed);
         let d = vector(3, seed);
         let u = Vector3::new(d[0], d[1], d[2]).normalize();
-        let rigid = reflected_mass(&robot, &q, &tool, Direction::Along(u), JointModel::Rigid, &mut ws).unwrap();
-        let elastic = reflected_mass(&robot, &q, &tool, Direction::Along(u), JointModel::Elastic, &mut ws).unwrap();
+        let rigid = reflected_mass(
+            &robot,
+            &q,
+            &tool,
+            Direction::Along(u),
+            JointModel::Rigid,
+            &mut ws,
+        )
+        .unwrap();
+        let elastic = reflected_mass(
+            &robot,
+            &q,
+            &tool,
+            Direction::Along(u),
+            JointModel::Elastic,
+            &mut ws,
+        )
+        .unwrap();
         let geared = reflected_mass(
             &robot,
             &q,
@@ -195,7 +283,8 @@ fn armature_adds_to_the_diagonal_and_elastic_joints_decouple_it() {
             m[(i, i)] += a;
         }
         let j = robot.point_jacobian(&q, &tool, &mut ws).unwrap();
-        let reference = 1.0 / (u.transpose() * &j * m.try_inverse().unwrap() * j.transpose() * u)[(0, 0)];
+        let reference =
+            1.0 / (u.transpose() * &j * m.try_inverse().unwrap() * j.transpose() * u)[(0, 0)];
         assert!((geared - reference).abs() <= 1e-10 * reference);
         // Zero armature is the rigid arm.
         let zero = reflected_mass(
@@ -218,17 +307,45 @@ fn bad_arguments_are_refused_with_the_field_and_the_allowed_values() {
     let tool = ContactPoint::new(&robot, "tool0", [0.0, 0.0, 0.0]).unwrap();
     let q = [0.1; 6];
     let call = |q: &[f64], d: Direction, jm: JointModel, ws: &mut flexrig_robot::Workspace| {
-        reflected_mass(&robot, q, &tool, d, jm, ws).unwrap_err().to_string()
+        reflected_mass(&robot, q, &tool, d, jm, ws)
+            .unwrap_err()
+            .to_string()
     };
-    let e = call(&[0.1; 5], Direction::Along(Vector3::x()), JointModel::Rigid, &mut ws);
-    assert!(e.contains("the length of q = 5") && e.contains("6 moving joints"), "{e}");
+    let e = call(
+        &[0.1; 5],
+        Direction::Along(Vector3::x()),
+        JointModel::Rigid,
+        &mut ws,
+    );
+    assert!(
+        e.contains("the length of q = 5") && e.contains("6 moving joints"),
+        "{e}"
+    );
     let mut bad = q;
     bad[2] = f64::NAN;
-    let e = call(&bad, Direction::Along(Vector3::x()), JointModel::Rigid, &mut ws);
+    let e = call(
+        &bad,
+        Direction::Along(Vector3::x()),
+        JointModel::Rigid,
+        &mut ws,
+    );
     assert!(e.contains("q[2] (elbow_joint) = NaN"), "{e}");
-    let e = call(&q, Direction::Along(Vector3::new(1.0, 1.0, 0.0)), JointModel::Rigid, &mut ws);
-    assert!(e.contains("norm of direction") && e.contains("unit vector"), "{e}");
-    let e = call(&q, Direction::OfVelocity(&[0.0; 6]), JointModel::Rigid, &mut ws);
+    let e = call(
+        &q,
+        Direction::Along(Vector3::new(1.0, 1.0, 0.0)),
+        JointModel::Rigid,
+        &mut ws,
+    );
+    assert!(
+        e.contains("norm of direction") && e.contains("unit vector"),
+        "{e}"
+    );
+    let e = call(
+        &q,
+        Direction::OfVelocity(&[0.0; 6]),
+        JointModel::Rigid,
+        &mut ws,
+    );
     assert!(e.contains("does not move") && e.contains("tool0"), "{e}");
     let e = call(
         &q,
@@ -236,19 +353,44 @@ fn bad_arguments_are_refused_with_the_field_and_the_allowed_values() {
         JointModel::RigidWithArmature(&[0.1, 0.1, -0.1, 0.1, 0.1, 0.1]),
         &mut ws,
     );
-    assert!(e.contains("armature[2] (elbow_joint) = -0.1") && e.contains("≥ 0"), "{e}");
-    let e = ContactPoint::new(&robot, "hand", [0.0; 3]).unwrap_err().to_string();
-    assert!(e.contains("no link \"hand\"") && e.contains("wrist_3_link"), "{e}");
+    assert!(
+        e.contains("armature[2] (elbow_joint) = -0.1") && e.contains("≥ 0"),
+        "{e}"
+    );
+    let e = ContactPoint::new(&robot, "hand", [0.0; 3])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("no link \"hand\"") && e.contains("wrist_3_link"),
+        "{e}"
+    );
     let e = ContactPoint::new(&robot, "tool0", [0.0, f64::INFINITY, 0.0]).unwrap_err();
     assert!(matches!(e, RobotError::Parameter { .. }), "{e}");
     // A point of another robot, and a workspace of another robot.
     let panda = bundled("panda");
     let other = ContactPoint::new(&panda, "panda_link7", [0.0; 3]).unwrap();
-    assert!(reflected_mass(&robot, &q, &other, Direction::Along(Vector3::x()), JointModel::Rigid, &mut ws).is_err());
+    assert!(
+        reflected_mass(
+            &robot,
+            &q,
+            &other,
+            Direction::Along(Vector3::x()),
+            JointModel::Rigid,
+            &mut ws
+        )
+        .is_err()
+    );
     let mut pws = panda.workspace();
-    let e = reflected_mass(&robot, &q, &tool, Direction::Along(Vector3::x()), JointModel::Rigid, &mut pws)
-        .unwrap_err()
-        .to_string();
+    let e = reflected_mass(
+        &robot,
+        &q,
+        &tool,
+        Direction::Along(Vector3::x()),
+        JointModel::Rigid,
+        &mut pws,
+    )
+    .unwrap_err()
+    .to_string();
     assert!(e.contains("workspace"), "{e}");
 }
 
@@ -268,9 +410,19 @@ fn a_joint_that_moves_no_inertia_is_refused_by_name() {
     let robot = Robot::from_urdf_str(urdf, "degenerate.urdf").unwrap();
     let mut ws = robot.workspace();
     let cp = ContactPoint::new(&robot, "b", [0.0; 3]).unwrap();
-    let e = reflected_mass(&robot, &[0.0, 0.0], &cp, Direction::Along(Vector3::y()), JointModel::Rigid, &mut ws)
-        .unwrap_err();
-    assert!(matches!(&e, RobotError::NotPositiveDefinite { joint, .. } if joint == "spin"), "{e}");
+    let e = reflected_mass(
+        &robot,
+        &[0.0, 0.0],
+        &cp,
+        Direction::Along(Vector3::y()),
+        JointModel::Rigid,
+        &mut ws,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(&e, RobotError::NotPositiveDefinite { joint, .. } if joint == "spin"),
+        "{e}"
+    );
     // Armature on that joint makes it well posed again.
     let m = reflected_mass(
         &robot,

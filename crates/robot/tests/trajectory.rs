@@ -26,10 +26,19 @@ fn velocities_are_exact_for_quadratics_on_a_non_uniform_grid() {
     let times = vec![0.0, 0.1, 0.13, 0.3, 0.31, 0.5];
     let q = |t: f64| 0.3 - 1.7 * t + 4.2 * t * t;
     let qd = |t: f64| -1.7 + 8.4 * t;
-    let traj = Trajectory::new(&robot, times.clone(), times.iter().map(|&t| vec![q(t)]).collect())
-        .unwrap();
+    let traj = Trajectory::new(
+        &robot,
+        times.clone(),
+        times.iter().map(|&t| vec![q(t)]).collect(),
+    )
+    .unwrap();
     for (v, t) in traj.velocities().iter().zip(&times) {
-        assert!((v[0] - qd(*t)).abs() <= 1e-12, "t = {t}: {} vs {}", v[0], qd(*t));
+        assert!(
+            (v[0] - qd(*t)).abs() <= 1e-12,
+            "t = {t}: {} vs {}",
+            v[0],
+            qd(*t)
+        );
     }
 }
 
@@ -38,9 +47,12 @@ fn velocities_converge_at_second_order() {
     let robot = one_joint();
     let error = |n: usize| {
         let times: Vec<f64> = (0..=n).map(|k| k as f64 / n as f64).collect();
-        let traj =
-            Trajectory::new(&robot, times.clone(), times.iter().map(|t| vec![t.sin() * 2.0]).collect())
-                .unwrap();
+        let traj = Trajectory::new(
+            &robot,
+            times.clone(),
+            times.iter().map(|t| vec![t.sin() * 2.0]).collect(),
+        )
+        .unwrap();
         traj.velocities()
             .iter()
             .zip(&times)
@@ -55,7 +67,8 @@ fn velocities_converge_at_second_order() {
 #[test]
 fn speed_scaling_scales_velocities_and_keeps_the_reflected_mass() {
     let robot = bundled("panda");
-    let traj = Trajectory::from_csv_file(&robot, root().join("assets/robots/panda_swing.csv")).unwrap();
+    let traj =
+        Trajectory::from_csv_file(&robot, root().join("assets/robots/panda_swing.csv")).unwrap();
     let fast = traj.with_speed_scale(2.0).unwrap();
     let tcp = [ContactPoint::new(&robot, "panda_hand_tcp", [0.0; 3]).unwrap()];
     let a = traj.evaluate(&robot, &tcp, JointModel::Rigid).unwrap();
@@ -80,12 +93,29 @@ fn speed_scaling_scales_velocities_and_keeps_the_reflected_mass() {
 #[test]
 fn bundled_trajectories_evaluate_like_direct_calls() {
     for (arm, points) in [
-        ("ur5", vec![("tool0", [0.0, 0.0, 0.0]), ("forearm_link", [0.0, 0.0, 0.2]), ("wrist_2_link", [0.0, 0.05, 0.0])]),
-        ("panda", vec![("panda_hand_tcp", [0.0, 0.0, 0.0]), ("panda_link4", [0.0, 0.0, 0.0]), ("panda_link6", [0.05, 0.0, 0.0])]),
+        (
+            "ur5",
+            vec![
+                ("tool0", [0.0, 0.0, 0.0]),
+                ("forearm_link", [0.0, 0.0, 0.2]),
+                ("wrist_2_link", [0.0, 0.05, 0.0]),
+            ],
+        ),
+        (
+            "panda",
+            vec![
+                ("panda_hand_tcp", [0.0, 0.0, 0.0]),
+                ("panda_link4", [0.0, 0.0, 0.0]),
+                ("panda_link6", [0.05, 0.0, 0.0]),
+            ],
+        ),
     ] {
         let robot = bundled(arm);
-        let traj =
-            Trajectory::from_csv_file(&robot, root().join(format!("assets/robots/{arm}_swing.csv"))).unwrap();
+        let traj = Trajectory::from_csv_file(
+            &robot,
+            root().join(format!("assets/robots/{arm}_swing.csv")),
+        )
+        .unwrap();
         assert_eq!(traj.len(), 151);
         let cps: Vec<ContactPoint> = points
             .iter()
@@ -105,8 +135,15 @@ fn bundled_trajectories_evaluate_like_direct_calls() {
                 match (ps.direction, ps.reflected_mass) {
                     (Some(u), Some(m)) => {
                         moving += 1;
-                        let direct = reflected_mass(&robot, &s.q, cp, Direction::OfVelocity(&s.qdot), JointModel::Rigid, &mut ws)
-                            .unwrap();
+                        let direct = reflected_mass(
+                            &robot,
+                            &s.q,
+                            cp,
+                            Direction::OfVelocity(&s.qdot),
+                            JointModel::Rigid,
+                            &mut ws,
+                        )
+                        .unwrap();
                         assert!((m - direct).abs() <= 1e-12 * m, "{m} vs {direct}");
                         assert!((u.into_inner() - ps.velocity / ps.speed).amax() <= 1e-15);
                         assert!(m > 0.0 && m < robot.moving_mass() * 100.0, "{m}");
@@ -130,19 +167,41 @@ fn csv_err(text: &str) -> String {
 #[test]
 fn bad_csvs_are_refused_with_their_line() {
     let good = "# a comment\ntime_s,j\n0,0\n0.1,0.1\n\n0.2,0.2\n";
-    assert_eq!(Trajectory::from_csv_str(&one_joint(), good, "t.csv").unwrap().len(), 3);
+    assert_eq!(
+        Trajectory::from_csv_str(&one_joint(), good, "t.csv")
+            .unwrap()
+            .len(),
+        3
+    );
     let m = csv_err("time_s,j\n0,0\n0.1,0.1\n0.1,0.2\n");
-    assert!(m.contains("t.csv, line 4") && m.contains("does not increase") && m.contains("strictly"), "{m}");
+    assert!(
+        m.contains("t.csv, line 4") && m.contains("does not increase") && m.contains("strictly"),
+        "{m}"
+    );
     let m = csv_err("time_s,j\n0,0\n0.2,0.1\n0.1,0.2\n");
-    assert!(m.contains("line 4") && m.contains("does not increase"), "{m}");
+    assert!(
+        m.contains("line 4") && m.contains("does not increase"),
+        "{m}"
+    );
     let m = csv_err("time_s,j\n0,0\n0.1,0.1,3\n0.2,0.2\n");
-    assert!(m.contains("line 3") && m.contains("3 columns, the header has 2"), "{m}");
+    assert!(
+        m.contains("line 3") && m.contains("3 columns, the header has 2"),
+        "{m}"
+    );
     let m = csv_err("time_s,j\n0,0\n0.1,NaN\n0.2,0.2\n");
-    assert!(m.contains("line 3") && m.contains("column \"j\"") && m.contains("not a finite number"), "{m}");
+    assert!(
+        m.contains("line 3") && m.contains("column \"j\"") && m.contains("not a finite number"),
+        "{m}"
+    );
     let m = csv_err("time_s,j\n0,0\n0.1,abc\n0.2,0.2\n");
     assert!(m.contains("line 3") && m.contains("\"abc\""), "{m}");
     let m = csv_err("time_s,k\n0,0\n");
-    assert!(m.contains("line 1") && m.contains("column \"k\" is not a moving joint") && m.contains("are j"), "{m}");
+    assert!(
+        m.contains("line 1")
+            && m.contains("column \"k\" is not a moving joint")
+            && m.contains("are j"),
+        "{m}"
+    );
     let m = csv_err("time_s,arm\n0,0\n");
     assert!(m.contains("(it is a link name)"), "{m}");
     let m = csv_err("time_s,j,j\n0,0,0\n");
@@ -152,7 +211,12 @@ fn bad_csvs_are_refused_with_their_line() {
     let m = csv_err("t,j\n0,0\n");
     assert!(m.contains("first column must be \"time_s\""), "{m}");
     let m = csv_err("time_s,j\n0,0\n0.1,10.5\n0.2,0.2\n");
-    assert!(m.contains("line 3") && m.contains("outside its limits [-10, 10] rad") && m.contains("URDF line 5"), "{m}");
+    assert!(
+        m.contains("line 3")
+            && m.contains("outside its limits [-10, 10] rad")
+            && m.contains("URDF line 5"),
+        "{m}"
+    );
     let m = csv_err("time_s,j\n0,0\n0.1,0.1\n");
     assert!(m.contains("2 samples; at least 3"), "{m}");
     let m = csv_err("# only a comment\n");

@@ -62,13 +62,22 @@ fn unsupported_joints_are_refused_with_their_line() {
     let m = message(&robot_with(&format!(
         "{LINK_A}\n<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"a\"/>\n<limit lower=\"-1\" upper=\"1\"/>\n<mimic joint=\"k\"/></joint>"
     )));
-    assert!(m.contains("line 7") && m.contains("joint \"j\"") && m.contains("<mimic>"), "{m}");
+    assert!(
+        m.contains("line 7") && m.contains("joint \"j\"") && m.contains("<mimic>"),
+        "{m}"
+    );
     for kind in ["floating", "planar"] {
         let m = message(&robot_with(&format!(
             "{LINK_A}\n<joint name=\"free\" type=\"{kind}\"><parent link=\"base\"/><child link=\"a\"/></joint>"
         )));
-        assert!(m.contains("line 5") && m.contains("joint \"free\"") && m.contains(kind), "{m}");
-        assert!(m.contains("revolute, continuous, prismatic and fixed"), "{m}");
+        assert!(
+            m.contains("line 5") && m.contains("joint \"free\"") && m.contains(kind),
+            "{m}"
+        );
+        assert!(
+            m.contains("revolute, continuous, prismatic and fixed"),
+            "{m}"
+        );
     }
     let m = message(&robot_with(&format!(
         "{LINK_A}\n<joint name=\"j\" type=\"hinge\"><parent link=\"base\"/><child link=\"a\"/></joint>"
@@ -81,7 +90,10 @@ fn unsupported_joints_are_refused_with_their_line() {
     let m = message(&robot_with(&format!(
         "{LINK_A}\n<joint name=\"j\" type=\"prismatic\"><parent link=\"base\"/><child link=\"a\"/>\n<limit lower=\"1\" upper=\"-1\"/></joint>"
     )));
-    assert!(m.contains("line 6") && m.contains("lower must be ≤ upper"), "{m}");
+    assert!(
+        m.contains("line 6") && m.contains("lower must be ≤ upper"),
+        "{m}"
+    );
     let m = message(&robot_with(&format!(
         "{LINK_A}\n<joint name=\"j\" type=\"continuous\"><parent link=\"base\"/><child link=\"a\"/>\n<axis xyz=\"0 0 0\"/></joint>"
     )));
@@ -91,7 +103,9 @@ fn unsupported_joints_are_refused_with_their_line() {
 #[test]
 fn topology_errors_name_the_links_and_lines() {
     let joint = |name: &str, p: &str, c: &str| {
-        format!("<joint name=\"{name}\" type=\"fixed\"><parent link=\"{p}\"/><child link=\"{c}\"/></joint>")
+        format!(
+            "<joint name=\"{name}\" type=\"fixed\"><parent link=\"{p}\"/><child link=\"{c}\"/></joint>"
+        )
     };
     // Two parents: a closed loop.
     let m = message(&robot_with(&format!(
@@ -101,33 +115,57 @@ fn topology_errors_name_the_links_and_lines() {
         joint("j3", "b", "a")
     )));
     assert!(m.contains("line 8") && m.contains("joint \"j3\""), "{m}");
-    assert!(m.contains("already has the parent joint \"j1\" (line 6)") && m.contains("closed loops"), "{m}");
+    assert!(
+        m.contains("already has the parent joint \"j1\" (line 6)") && m.contains("closed loops"),
+        "{m}"
+    );
     // Unknown names.
-    let m = message(&robot_with(&format!("{LINK_A}\n{}", joint("j", "base", "hand"))));
-    assert!(m.contains("child link \"hand\" is not a <link>") && m.contains("line 5"), "{m}");
-    let m = message(&robot_with(&format!("{LINK_A}\n{}", joint("j", "bse", "a"))));
+    let m = message(&robot_with(&format!(
+        "{LINK_A}\n{}",
+        joint("j", "base", "hand")
+    )));
+    assert!(
+        m.contains("child link \"hand\" is not a <link>") && m.contains("line 5"),
+        "{m}"
+    );
+    let m = message(&robot_with(&format!(
+        "{LINK_A}\n{}",
+        joint("j", "bse", "a")
+    )));
     assert!(m.contains("parent link \"bse\""), "{m}");
     // Several roots.
     let m = message(&robot_with(&format!("{LINK_A}\n<link name=\"c\"/>")));
-    assert!(m.contains("3 root links") && m.contains("\"c\" (line 5)"), "{m}");
+    assert!(
+        m.contains("3 root links") && m.contains("\"c\" (line 5)"),
+        "{m}"
+    );
     // Cycles: all links in one, and one beside a proper root, and a self-loop.
     let m = message(&format!(
         "<robot name=\"r\">\n<link name=\"x\"/>\n<link name=\"y\"/>\n{}\n{}\n</robot>",
         joint("xy", "x", "y"),
         joint("yx", "y", "x")
     ));
-    assert!(m.contains("cycle") && m.contains("link \"x\"") && m.contains("line 2"), "{m}");
+    assert!(
+        m.contains("cycle") && m.contains("link \"x\"") && m.contains("line 2"),
+        "{m}"
+    );
     let m = message(&robot_with(&format!(
         "<link name=\"x\"/>\n<link name=\"y\"/>\n{}\n{}",
         joint("xy", "x", "y"),
         joint("yx", "y", "x")
     )));
-    assert!(m.contains("cannot be reached from the root link \"base\"") && m.contains("cycle"), "{m}");
+    assert!(
+        m.contains("cannot be reached from the root link \"base\"") && m.contains("cycle"),
+        "{m}"
+    );
     let m = message(&robot_with(&joint("self", "base", "base")));
     assert!(m.contains("to itself"), "{m}");
     // Duplicate names.
     let m = message(&robot_with(&format!("{LINK_A}\n<link name=\"base\"/>")));
-    assert!(m.contains("second link") && m.contains("line 2") && m.contains("line 5"), "{m}");
+    assert!(
+        m.contains("second link") && m.contains("line 2") && m.contains("line 5"),
+        "{m}"
+    );
     // No links; the wrong root element.
     assert!(message("<robot name=\"r\"/>").contains("has no <link>"));
     assert!(message("<sdf/>").contains("root element of a URDF must be <robot>"));
@@ -138,7 +176,10 @@ fn moving_links_without_mass_are_refused() {
     let m = message(&robot_with(
         "<link name=\"a\"/>\n<joint name=\"j\" type=\"continuous\"><parent link=\"base\"/><child link=\"a\"/></joint>",
     ));
-    assert!(m.contains("link \"a\"") && m.contains("line 3") && m.contains("has no <inertial>"), "{m}");
+    assert!(
+        m.contains("link \"a\"") && m.contains("line 3") && m.contains("has no <inertial>"),
+        "{m}"
+    );
     assert!(m.contains("joint \"j\" (line 4)"), "{m}");
     let m = message(&robot_with(
         "<link name=\"a\"><inertial><mass value=\"0\"/><inertia ixx=\"0\" ixy=\"0\" ixz=\"0\" iyy=\"0\" iyz=\"0\" izz=\"0\"/></inertial></link>\n<joint name=\"j\" type=\"continuous\"><parent link=\"base\"/><child link=\"a\"/></joint>",
@@ -148,7 +189,10 @@ fn moving_links_without_mass_are_refused() {
     let ok = robot_with(&format!(
         "<link name=\"carrier\"/>\n{LINK_A}\n<joint name=\"j\" type=\"continuous\"><parent link=\"base\"/><child link=\"carrier\"/></joint>\n<joint name=\"f\" type=\"fixed\"><parent link=\"carrier\"/><child link=\"a\"/></joint>"
     ));
-    assert_eq!(Robot::from_urdf_str(&ok, "ok.urdf").unwrap().moving_mass(), 1.0);
+    assert_eq!(
+        Robot::from_urdf_str(&ok, "ok.urdf").unwrap().moving_mass(),
+        1.0
+    );
 }
 
 #[test]
@@ -161,24 +205,59 @@ fn non_physical_numbers_are_refused() {
     };
     let good = ["0.01", "0", "0", "0.01", "0", "0.01"];
     let m = message(&robot_with(&inertial("-1", good, "")));
-    assert!(m.contains("line 4") && m.contains("mass value=\"-1\"") && m.contains("≥ 0 kg"), "{m}");
+    assert!(
+        m.contains("line 4") && m.contains("mass value=\"-1\"") && m.contains("≥ 0 kg"),
+        "{m}"
+    );
     for bad in ["NaN", "inf", "-infinity"] {
         let m = message(&robot_with(&inertial(bad, good, "")));
-        assert!(m.contains("not a finite number") && m.contains("link \"a\""), "{m}");
+        assert!(
+            m.contains("not a finite number") && m.contains("link \"a\""),
+            "{m}"
+        );
     }
-    let m = message(&robot_with(&inertial("1", ["0.01", "0", "0", "0.01", "0", "1e400"], "")));
-    assert!(m.contains("izz=\"1e400\"") && m.contains("not a finite number"), "{m}");
-    let m = message(&robot_with(&inertial("1", ["0.01", "0", "0", "0.01", "0", "abc"], "")));
+    let m = message(&robot_with(&inertial(
+        "1",
+        ["0.01", "0", "0", "0.01", "0", "1e400"],
+        "",
+    )));
+    assert!(
+        m.contains("izz=\"1e400\"") && m.contains("not a finite number"),
+        "{m}"
+    );
+    let m = message(&robot_with(&inertial(
+        "1",
+        ["0.01", "0", "0", "0.01", "0", "abc"],
+        "",
+    )));
     assert!(m.contains("not a number"), "{m}");
     // Not positive semi-definite (a product of inertia larger than the moments).
-    let m = message(&robot_with(&inertial("1", ["0.01", "0.05", "0", "0.01", "0", "0.01"], "")));
-    assert!(m.contains("line 5") && m.contains("not positive semi-definite"), "{m}");
+    let m = message(&robot_with(&inertial(
+        "1",
+        ["0.01", "0.05", "0", "0.01", "0", "0.01"],
+        "",
+    )));
+    assert!(
+        m.contains("line 5") && m.contains("not positive semi-definite"),
+        "{m}"
+    );
     // The triangle inequality: 0.01 + 0.01 < 0.05.
-    let m = message(&robot_with(&inertial("1", ["0.01", "0", "0", "0.01", "0", "0.05"], "")));
+    let m = message(&robot_with(&inertial(
+        "1",
+        ["0.01", "0", "0", "0.01", "0", "0.05"],
+        "",
+    )));
     assert!(m.contains("triangle inequality"), "{m}");
     // NaN in an origin; two numbers where three are needed.
-    let m = message(&robot_with(&inertial("1", good, "<origin xyz=\"0 nan 0\"/>")));
-    assert!(m.contains("xyz") && m.contains("not a finite number"), "{m}");
+    let m = message(&robot_with(&inertial(
+        "1",
+        good,
+        "<origin xyz=\"0 nan 0\"/>",
+    )));
+    assert!(
+        m.contains("xyz") && m.contains("not a finite number"),
+        "{m}"
+    );
     let m = message(&robot_with(&inertial("1", good, "<origin rpy=\"0 0\"/>")));
     assert!(m.contains("three numbers"), "{m}");
     // Missing pieces.
@@ -193,7 +272,10 @@ fn non_physical_numbers_are_refused() {
 #[test]
 fn hostile_files_fail_cleanly_in_bounded_memory() {
     // Not XML, and an entity bomb (DTDs are refused).
-    assert!(matches!(err("<robot><link name=\"a\"></robot>"), RobotError::Xml { line: 1, .. }));
+    assert!(matches!(
+        err("<robot><link name=\"a\"></robot>"),
+        RobotError::Xml { line: 1, .. }
+    ));
     let bomb = "<?xml version=\"1.0\"?><!DOCTYPE lolz [<!ENTITY lol \"lol\"><!ENTITY lol2 \"&lol;&lol;&lol;&lol;\">]><robot name=\"&lol2;\"/>";
     assert!(matches!(err(bomb), RobotError::Xml { .. }));
     // Deep nesting: a hundred thousand nested elements inside a link.
@@ -204,7 +286,10 @@ fn hostile_files_fail_cleanly_in_bounded_memory() {
         "</x>".repeat(depth)
     );
     let m = message(&deep);
-    assert!(m.contains("more than 256 deep") && m.contains("line 1"), "{m}");
+    assert!(
+        m.contains("more than 256 deep") && m.contains("line 1"),
+        "{m}"
+    );
     // Nesting up to the limit parses.
     let ok = format!(
         "<robot name=\"r\"><link name=\"base\">{}{}</link></robot>",
@@ -213,9 +298,15 @@ fn hostile_files_fail_cleanly_in_bounded_memory() {
     );
     assert_eq!(Robot::from_urdf_str(&ok, "ok.urdf").unwrap().dof(), 0);
     // Too many links.
-    let many: String = (0..=MAX_LINKS).map(|i| format!("<link name=\"l{i}\"/>\n")).collect();
+    let many: String = (0..=MAX_LINKS)
+        .map(|i| format!("<link name=\"l{i}\"/>\n"))
+        .collect();
     let m = message(&format!("<robot name=\"r\">\n{many}</robot>"));
-    assert!(m.contains(&format!("more than {MAX_LINKS} links")) && m.contains(&format!("line {}", MAX_LINKS + 2)), "{m}");
+    assert!(
+        m.contains(&format!("more than {MAX_LINKS} links"))
+            && m.contains(&format!("line {}", MAX_LINKS + 2)),
+        "{m}"
+    );
     // Too many XML tags.
     let tags = "<a/>".repeat(1_000_001);
     let m = message(&format!("<robot name=\"r\">{tags}</robot>"));
@@ -225,18 +316,33 @@ fn hostile_files_fail_cleanly_in_bounded_memory() {
     std::fs::create_dir_all(&dir).unwrap();
     let ten = dir.join("ten_mb.urdf");
     let comment = "x".repeat(10 * 1024 * 1024);
-    std::fs::write(&ten, format!("<robot name=\"r\"><!-- {comment} --><link name=\"base\"/></robot>")).unwrap();
+    std::fs::write(
+        &ten,
+        format!("<robot name=\"r\"><!-- {comment} --><link name=\"base\"/></robot>"),
+    )
+    .unwrap();
     assert_eq!(Robot::from_urdf_file(&ten).unwrap().dof(), 0);
     let big = dir.join("big.urdf");
     let f = std::fs::File::create(&big).unwrap();
     f.set_len(MAX_URDF_BYTES + 1).unwrap();
     let e = Robot::from_urdf_file(&big).unwrap_err();
     assert!(matches!(e, RobotError::FileTooLarge { .. }), "{e}");
-    assert!(e.to_string().contains(&format!("at most {MAX_URDF_BYTES} bytes")));
+    assert!(
+        e.to_string()
+            .contains(&format!("at most {MAX_URDF_BYTES} bytes"))
+    );
     let e = Robot::from_urdf_file(dir.join("missing.urdf")).unwrap_err();
-    assert!(matches!(e, RobotError::Io { .. }) && e.to_string().contains("missing.urdf"), "{e}");
+    assert!(
+        matches!(e, RobotError::Io { .. }) && e.to_string().contains("missing.urdf"),
+        "{e}"
+    );
     std::fs::write(&ten, [0xff, 0xfe, 0x00]).unwrap();
-    assert!(Robot::from_urdf_file(&ten).unwrap_err().to_string().contains("UTF-8"));
+    assert!(
+        Robot::from_urdf_file(&ten)
+            .unwrap_err()
+            .to_string()
+            .contains("UTF-8")
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
