@@ -90,11 +90,11 @@ pub struct Workspace {
     comp_h: Vec<Vector3<f64>>,
     comp_i: Vec<Matrix3<f64>>,
     pub(crate) mass: DMatrix<f64>,
-    /// Lower Cholesky factor of the (armature-augmented) mass matrix, when `factored`.
+    /// Lower Cholesky factor of the (armature-augmented) mass matrix (valid while a
+    /// [`crate::Posture`] borrows the workspace).
     pub(crate) chol: DMatrix<f64>,
     /// 1 / L_ii (the solves multiply instead of dividing).
     inv_diag: Vec<f64>,
-    pub(crate) factored: bool,
     pub(crate) jac: Matrix3xX<f64>,
     pub(crate) rhs: DVector<f64>,
     pub(crate) sol: DVector<f64>,
@@ -115,7 +115,6 @@ impl Workspace {
             mass: DMatrix::zeros(n, n),
             chol: DMatrix::zeros(n, n),
             inv_diag: vec![0.0; n],
-            factored: false,
             jac: Matrix3xX::zeros(n),
             rhs: DVector::zeros(n),
             sol: DVector::zeros(n),
@@ -154,7 +153,6 @@ impl Robot {
     pub fn forward_kinematics(&self, q: &[f64], ws: &mut Workspace) -> Result<(), RobotError> {
         ws.check(self)?;
         self.check_positions(q)?;
-        ws.factored = false;
         ws.poses[0] = Isometry3::identity();
         for (i, joint) in self.joints().iter().enumerate() {
             let b = i + 1;
@@ -328,7 +326,6 @@ impl Robot {
                 d -= ws.chol[(j, k)] * ws.chol[(j, k)];
             }
             if !(d > 1e-13 * scale) {
-                ws.factored = false;
                 return Err(RobotError::NotPositiveDefinite {
                     joint: self.joints()[j].name().to_string(),
                     pivot: d,
@@ -348,7 +345,6 @@ impl Robot {
                 ws.chol[(i, j)] = 0.0;
             }
         }
-        ws.factored = true;
         Ok(())
     }
 }
