@@ -59,5 +59,5 @@ pub use model::{Body, Joint, LinkFrame, Robot};
 pub use reflected::{
     Direction, JointModel, PointSample, Posture, REST_SPEED, WALL_TOLERANCE, reflected_mass,
 };
-pub use trajectory::{MAX_CSV_BYTES, Sample, Trajectory};
+pub use trajectory::{MAX_CSV_BYTES, MAX_SAMPLES, Sample, Trajectory};
 pub use urdf::{JointKind, MAX_JOINTS, MAX_LINKS, MAX_URDF_BYTES, MAX_XML_DEPTH, MAX_XML_TAGS};

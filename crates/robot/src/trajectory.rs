@@ -15,8 +15,9 @@
 //! exactly once, in any order; positions are rad for revolute and continuous joints, m for
 //! prismatic ones. Refused, with the line number: a wrong column count, a value that is not a
 //! finite number, time not strictly increasing, an unknown, fixed, duplicated or missing joint,
-//! fewer than 3 samples, and a position outside the joint's URDF limits (an **error**, not a
-//! warning: a trajectory outside the limits is not a motion of the arm the URDF describes).
+//! fewer than 3 or more than [`MAX_SAMPLES`] samples, files over [`MAX_CSV_BYTES`], and a
+//! position outside the joint's URDF limits (an **error**, not a warning: a trajectory outside
+//! the limits is not a motion of the arm the URDF describes).
 //!
 //! # Joint velocities
 //!
@@ -34,7 +35,10 @@ use crate::model::{Robot, read_bounded};
 use crate::reflected::{JointModel, PointSample, Posture};
 
 /// The largest trajectory CSV read, in bytes.
-pub const MAX_CSV_BYTES: u64 = 64 * 1024 * 1024;
+pub const MAX_CSV_BYTES: u64 = 16 * 1024 * 1024;
+/// The most samples a trajectory may have (bounded memory: 1 000 000 samples of a 7-joint arm
+/// hold about 100 MB).
+pub const MAX_SAMPLES: usize = 1_000_000;
 
 /// A validated joint trajectory of one robot (degree-of-freedom order).
 #[derive(Debug, Clone, PartialEq)]
@@ -139,6 +143,12 @@ impl Trajectory {
         let mut positions = Vec::new();
         let mut lines_of = Vec::new();
         for (line, row) in lines {
+            if times.len() == MAX_SAMPLES {
+                return Err(err(
+                    line,
+                    format!("more than {MAX_SAMPLES} samples; at most {MAX_SAMPLES} are read"),
+                ));
+            }
             let cells: Vec<&str> = row.split(',').map(str::trim).collect();
             if cells.len() != columns.len() {
                 return Err(err(
@@ -207,6 +217,12 @@ impl Trajectory {
                     times.len(),
                     positions.len()
                 ),
+            ));
+        }
+        if times.len() > MAX_SAMPLES {
+            return Err((
+                usize::MAX,
+                format!("{} samples; at most {MAX_SAMPLES} are allowed", times.len()),
             ));
         }
         if times.len() < 3 {

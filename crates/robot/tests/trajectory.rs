@@ -221,6 +221,17 @@ fn bad_csvs_are_refused_with_their_line() {
     assert!(m.contains("2 samples; at least 3"), "{m}");
     let m = csv_err("# only a comment\n");
     assert!(m.contains("no header"), "{m}");
+    let many = format!(
+        "time_s,j\n{}",
+        (0..=flexrig_robot::MAX_SAMPLES)
+            .map(|k| format!("{k},0\n"))
+            .collect::<String>()
+    );
+    let m = csv_err(&many);
+    assert!(
+        m.contains("line 1000002") && m.contains("more than 1000000 samples"),
+        "{m}"
+    );
     let e = Trajectory::from_csv_file(&one_joint(), root().join("no/such.csv")).unwrap_err();
     assert!(matches!(e, RobotError::Io { .. }));
     // In memory: the sample is named.
