@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
 
 use flexrig_contact::math::{Pose, Vector};
 use flexrig_rig::sensors::SensorSample;
-use flexrig_rig::{Frame, Recorder, RigError, RunSummary, Scene, Simulation};
+use flexrig_rig::{Frame, Recorder, RigError, RunSummary, Scene, Simulation, SwingSamples};
 use foxglove::Encode;
 use foxglove::messages::{
     ArrowPrimitive, Color, CubePrimitive, FrameTransform, FrameTransforms, JointState, JointStates,
@@ -204,6 +204,8 @@ pub struct McapRecorder<W: Write + Seek> {
     buffer: Vec<u8>,
     last_scene_ns: Option<u64>,
     last_scalar_ns: Option<u64>,
+    /// The last sensor sample written or chosen ahead ([`Recorder::wants_swing_sample`]) [ns].
+    last_chosen_ns: Option<u64>,
     geometry: flexrig_rig::geometry::RigGeometry,
     messages: u64,
     cancel: Option<CancelToken>,
@@ -434,6 +436,22 @@ impl<A: Recorder, B: Recorder + ?Sized> Recorder for Both<'_, A, B> {
             self.1.between(f)?;
         }
         Ok(())
+    }
+
+    /// The samples either wants (each filters what it gets, so a superset is harmless).
+    fn swing_samples(&self) -> SwingSamples {
+        match (self.0.swing_samples(), self.1.swing_samples()) {
+            (SwingSamples::Every, _) | (_, SwingSamples::Every) => SwingSamples::Every,
+            (SwingSamples::None, SwingSamples::None) => SwingSamples::None,
+            _ => SwingSamples::Chosen,
+        }
+    }
+
+    fn wants_swing_sample(&mut self, t: f64) -> bool {
+        // both are asked (each keeps count of what it chose)
+        let a = self.0.swing_samples() == SwingSamples::Chosen && self.0.wants_swing_sample(t);
+        let b = self.1.swing_samples() == SwingSamples::Chosen && self.1.wants_swing_sample(t);
+        a || b
     }
 }
 
@@ -700,6 +718,7 @@ impl<W: Write + Seek> McapRecorder<W> {
             buffer: Vec::with_capacity(1024),
             last_scene_ns: None,
             last_scalar_ns: None,
+            last_chosen_ns: None,
             geometry: flexrig_rig::geometry::RigGeometry::of(scene),
             messages: 0,
             cancel: None,
@@ -818,6 +837,7 @@ impl<W: Write + Seek> McapRecorder<W> {
                 continue;
             }
             self.last_scalar_ns = Some(ns);
+            self.last_chosen_ns = Some(ns);
             let ts = stamp(s.t);
             let c = self.channels;
             self.write(
@@ -1215,6 +1235,31 @@ impl<W: Write + Seek> Recorder for McapRecorder<W> {
         }
         self.write_scene_if_due(f, self.rates.scene_period_ns)
     }
+
+    /// Outside contact the sensor channels are decimated: a lean run computes only the swing
+    /// samples the decimation writes (every sample when every one is logged).
+    fn swing_samples(&self) -> SwingSamples {
+        if self.rates.scalar_period_ns == 0 {
+            SwingSamples::Every
+        } else {
+            SwingSamples::Chosen
+        }
+    }
+
+    /// The decimation of [`McapRecorder::write_samples`] ahead of the frame: the sample is
+    /// wanted when it is due after the last one written or chosen (the frame then writes
+    /// exactly the chosen ones, as it would pick them out of every sample).
+    fn wants_swing_sample(&mut self, t: f64) -> bool {
+        let ns = nanos(t);
+        if self
+            .last_chosen_ns
+            .is_some_and(|last| ns < last + self.rates.scalar_period_ns)
+        {
+            return false;
+        }
+        self.last_chosen_ns = Some(ns);
+        true
+    }
 }
 
 impl<W: Write + Seek> McapRecorder<W> {
@@ -1255,6 +1300,64 @@ mod tests {
             .filter(|m| m.channel.topic == "/scene")
             .map(|m| m.log_time as f64 * 1e-9)
             .collect()
+    }
+
+    /// Every message of a log (topic, times, sequence, bytes) of `scene`, sampled lean or in
+    /// full, at `rates`, with the summary and severity records: (messages, summary).
+    fn logged(scene: &Scene, lean: bool, rates: LogRates) -> (Vec<String>, RunSummary) {
+        let mut log = McapRecorder::new(Cursor::new(Vec::new()), scene, "")
+            .unwrap()
+            .with_rates(rates);
+        let sim = Simulation::new(scene, RunOptions::default()).unwrap();
+        let sim = if lean { sim.with_lean_samples() } else { sim };
+        let summary = sim.run(&mut log).unwrap();
+        log.write_summary(&summary).unwrap();
+        log.write_severity(&summary).unwrap();
+        let bytes = log.finish_into_inner().unwrap().into_inner();
+        let messages = mcap::MessageStream::new(&bytes)
+            .unwrap()
+            .map(|m| {
+                let m = m.unwrap();
+                format!(
+                    "{} {} {} {} {:?}",
+                    m.channel.topic, m.sequence, m.log_time, m.publish_time, m.data
+                )
+            })
+            .collect();
+        (messages, summary)
+    }
+
+    /// A lean run's log (the swing's samples computed only where the decimation writes them)
+    /// holds the full run's messages bit for bit, summary and severity included, on every
+    /// bundled test-bed scene; also when every step is logged.
+    #[test]
+    fn a_lean_runs_log_is_the_full_runs_bit_for_bit() {
+        for name in [
+            "cj_aluminium",
+            "cj_iron",
+            "cj_light_load",
+            "cl_aluminium",
+            "cl_iron",
+            "cl_light_load",
+            "rig_driven_cj",
+            "rig_driven_cl",
+        ] {
+            let scene = crate::scenes::bundled_scene(name, &[]).unwrap();
+            for rates in [LogRates::DECIMATED, LogRates::EVERY_STEP] {
+                let (full, full_summary) = logged(&scene, false, rates);
+                let (lean, lean_summary) = logged(&scene, true, rates);
+                assert_eq!(full.len(), lean.len(), "{name}");
+                for (a, b) in full.iter().zip(&lean) {
+                    assert_eq!(a, b, "{name}");
+                }
+                assert_eq!(
+                    serde_json::to_string(&full_summary).unwrap(),
+                    serde_json::to_string(&lean_summary).unwrap(),
+                    "{name}"
+                );
+                assert_eq!(full_summary.sample_count, lean_summary.sample_count);
+            }
+        }
     }
 
     #[test]

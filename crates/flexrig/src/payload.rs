@@ -231,7 +231,7 @@ fn log_three(
             let text = flexrig_rig::overrides::apply(base_text, &overrides)?;
             let path = dir.join(format!("payload_{design}_{p:.4}kg.mcap"));
             run_logged(
-                Simulation::new(&scene, RunOptions::default())?,
+                Simulation::new(&scene, RunOptions::default())?.with_lean_samples(),
                 &scene,
                 &LogTarget {
                     path: &path,

@@ -123,7 +123,9 @@ impl TestBedScene {
             &[Override::new("operator.start", start)],
             &Materials::bundled()?,
         )?;
-        Ok(Simulation::new(&scene, RunOptions::default())?.run(&mut NoRecorder)?)
+        Ok(Simulation::new(&scene, RunOptions::default())?
+            .with_lean_samples()
+            .run(&mut NoRecorder)?)
     }
 
     /// The first contact's peak force \[N\] at speed `v` [m/s] at contact (a release angle up to

@@ -1,4 +1,4 @@
-//! The spin-up beam benchmark (Kane, Ryan & Banerjee 1987): the corotational FE beam on a
+//! The spin-up beam benchmark (Simo & Vu-Quoc's 10 m beam, the one often credited to Kane, Ryan & Banerjee 1987): the corotational FE beam on a
 //! rotating clamp against the independent elastica reference (Ritz on the section angle,
 //! DOP853), the reference's own convergence, and the linear model's known failure.
 
@@ -6,7 +6,7 @@ use flexrig_impact::spin_up::{SpinUp, spin_up_fe, spin_up_linear, spin_up_refere
 
 #[test]
 fn the_reference_converges_in_its_modes() {
-    let spec = SpinUp::kane(6.0);
+    let spec = SpinUp::simo_vu_quoc(6.0);
     let r5 = spin_up_reference(&spec, 5, 1e-10).unwrap();
     let r6 = spin_up_reference(&spec, 6, 1e-10).unwrap();
     let r7 = spin_up_reference(&spec, 7, 1e-10).unwrap();
@@ -22,7 +22,7 @@ fn the_reference_converges_in_its_modes() {
 #[test]
 fn the_fe_beam_on_a_rotating_clamp_matches_the_reference() {
     for omega_s in [6.0, 4.0] {
-        let spec = SpinUp::kane(omega_s);
+        let spec = SpinUp::simo_vu_quoc(omega_s);
         let reference = spin_up_reference(&spec, 6, 1e-10).unwrap();
         let e16 = spin_up_fe(&spec, 16, 1e-3).unwrap().difference(&reference);
         let e32 = spin_up_fe(&spec, 32, 1e-3).unwrap().difference(&reference);
@@ -39,7 +39,7 @@ fn the_fe_beam_on_a_rotating_clamp_matches_the_reference() {
 
 #[test]
 fn the_linear_beam_in_the_rotating_frame_diverges_at_6_rad_per_s() {
-    let spec = SpinUp::kane(6.0);
+    let spec = SpinUp::simo_vu_quoc(6.0);
     let reference = spin_up_reference(&spec, 6, 1e-10).unwrap();
     let linear = spin_up_linear(&spec, 6, 1e-10).unwrap();
     let at = |s: &flexrig_impact::spin_up::SpinUpSeries, t: f64| {
@@ -59,19 +59,19 @@ fn the_linear_beam_in_the_rotating_frame_diverges_at_6_rad_per_s() {
 
 #[test]
 fn bad_spin_up_input_names_the_field() {
-    let mut spec = SpinUp::kane(6.0);
+    let mut spec = SpinUp::simo_vu_quoc(6.0);
     spec.omega_s = f64::NAN;
     let e = spin_up_reference(&spec, 6, 1e-10).unwrap_err().to_string();
     assert!(e.contains("omega_s"), "{e}");
-    let e = spin_up_reference(&SpinUp::kane(6.0), 1, 1e-10)
+    let e = spin_up_reference(&SpinUp::simo_vu_quoc(6.0), 1, 1e-10)
         .unwrap_err()
         .to_string();
     assert!(e.contains("modes"), "{e}");
-    let mut spec = SpinUp::kane(6.0);
+    let mut spec = SpinUp::simo_vu_quoc(6.0);
     spec.ei = -1.0;
     let e = spin_up_fe(&spec, 16, 1e-3).unwrap_err().to_string();
     assert!(e.contains("ei"), "{e}");
-    let e = spin_up_fe(&SpinUp::kane(6.0), 0, 1e-3)
+    let e = spin_up_fe(&SpinUp::simo_vu_quoc(6.0), 0, 1e-3)
         .unwrap_err()
         .to_string();
     assert!(e.contains("elements"), "{e}");
@@ -81,7 +81,7 @@ fn bad_spin_up_input_names_the_field() {
 fn the_fe_beam_converges_to_the_inextensible_reference_at_second_order() {
     // with EA × 1000 the FE beam is as inextensible as the reference: the 32- and 64-element
     // series extrapolated at second order (4 f₆₄ − f₃₂)/3 meet it
-    let mut spec = SpinUp::kane(6.0);
+    let mut spec = SpinUp::simo_vu_quoc(6.0);
     let reference = spin_up_reference(&spec, 7, 1e-11).unwrap();
     spec.ea *= 1e3;
     let f32 = spin_up_fe(&spec, 32, 1e-3).unwrap();

@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use flexrig_impact::spin_up::{
-    SpinUp, SpinUpSeries, spin_up_fe, spin_up_linear, spin_up_reference,
+    SpinUp, SpinUpSeries, spin_up_fe_until, spin_up_linear_until, spin_up_reference_until,
 };
 use serde::Serialize;
 
@@ -148,6 +148,70 @@ impl SpinUpOptions {
     }
 }
 
+/// The most reported times of a spin-up (`--duration` / `--sample-every` + 1): each is a stop of
+/// both integrators and a row of the CSV, JSON and figure.
+pub const MAX_REPORTED_TIMES: f64 = 100_000.0;
+
+/// The most FE work of a spin-up, in element steps (`--elements` × the time steps, the
+/// steps `--duration` / `--max-step` or more): about MAX_FE_SECONDS on one core of the project
+/// machine (measured: docs/driven.md).
+pub const MAX_FE_ELEMENT_STEPS: f64 = 2.0e7;
+
+impl SpinUpOptions {
+    /// The work the run will take, checked before it starts (errors name the flags): at most
+    /// [`MAX_REPORTED_TIMES`] reported times and [`MAX_FE_ELEMENT_STEPS`] FE element steps.
+    fn check_work(&self, spec: &SpinUp) -> Result<(), Error> {
+        use crate::output::display_number as n;
+        let times = (spec.t_end / spec.sample_every + 1e-9).floor() + 1.0;
+        if !(times <= MAX_REPORTED_TIMES) {
+            return Err(invalid(
+                "--sample-every",
+                n(spec.sample_every),
+                &format!(
+                    "at least {} s for a {} s run (at most {} reported times)",
+                    n(spec.t_end / (MAX_REPORTED_TIMES - 1.0)),
+                    n(spec.t_end),
+                    MAX_REPORTED_TIMES
+                ),
+            ));
+        }
+        let steps_per_sample = (spec.sample_every / self.max_step).ceil().max(1.0);
+        let steps = steps_per_sample * (times - 1.0);
+        let work = steps * self.elements as f64;
+        if !(work <= MAX_FE_ELEMENT_STEPS) {
+            let (arg, value, allowed) = if self.max_step < SpinUpOptions::LITERATURE.max_step {
+                (
+                    "--max-step",
+                    n(self.max_step),
+                    format!(
+                        "at least {} s with {} elements over {} s (the FE run's elements × steps \
+                         at most {:e})",
+                        n(spec.t_end * self.elements as f64 / MAX_FE_ELEMENT_STEPS),
+                        self.elements,
+                        n(spec.t_end),
+                        MAX_FE_ELEMENT_STEPS
+                    ),
+                )
+            } else {
+                (
+                    "--elements",
+                    self.elements.to_string(),
+                    format!(
+                        "at most {} with {} time steps over {} s (the FE run's elements × steps \
+                         at most {:e})",
+                        (MAX_FE_ELEMENT_STEPS / steps).floor().max(1.0),
+                        steps,
+                        n(spec.t_end),
+                        MAX_FE_ELEMENT_STEPS
+                    ),
+                )
+            };
+            return Err(invalid(arg, value, &allowed));
+        }
+        Ok(())
+    }
+}
+
 fn invalid(arg: &str, value: impl std::fmt::Display, allowed: &str) -> Error {
     Error::InvalidArgument {
         arg: arg.into(),
@@ -179,12 +243,19 @@ pub fn run_with_figures(
 ) -> Result<SpinUpResult, Error> {
     figures.validate()?;
     let spec = options.spec()?;
+    options.check_work(&spec)?;
+    // the files' places before the work
+    ensure_dir(out)?;
+    for name in ["spin_up.csv", "spin_up.json", "spin_up.svg"] {
+        crate::output::check_output_target(&out.join(name))?;
+    }
     check(cancel)?;
-    let reference = spin_up_reference(&spec, options.modes, RTOL)?;
+    let stop = cancel.flag();
+    let reference = spin_up_reference_until(&spec, options.modes, RTOL, &stop)?;
     check(cancel)?;
-    let fe = spin_up_fe(&spec, options.elements, options.max_step)?;
+    let fe = spin_up_fe_until(&spec, options.elements, options.max_step, &stop)?;
     check(cancel)?;
-    let linear = spin_up_linear(&spec, options.modes, RTOL)?;
+    let linear = spin_up_linear_until(&spec, options.modes, RTOL, &stop)?;
     check(cancel)?;
     let aligned = |s: &SpinUpSeries| s.t.len() == reference.t.len();
     if !(aligned(&fe) && aligned(&linear)) {
@@ -194,7 +265,6 @@ pub fn run_with_figures(
             advice: "report this as a bug".into(),
         });
     }
-    ensure_dir(out)?;
     let mut result = SpinUpResult {
         options: options.clone(),
         reference_max_m: reference.max_abs(),

@@ -1,0 +1,63 @@
+//! Where the spin-up benchmark's time goes, and what each setting costs against its error:
+//! the elastica reference by modes and tolerance, the FE beam by elements and step, each timed
+//! and compared with a converged reference (12 modes at rtol 1e-12 would take minutes; 8 modes
+//! at 1e-10 is the yardstick: 6 vs 7 modes differ by 7e-8 of the max, docs/driven.md).
+//!
+//! ```sh
+//! cargo run --release -p flexrig-impact --example spin_up_cost [omega_s] [case]
+//! ```
+//! `case`: `simo` (the 10 m beam, default) or `kane` (the 8 m aluminium beam).
+
+use std::time::Instant;
+
+use flexrig_impact::spin_up::{SpinUp, spin_up_fe, spin_up_linear, spin_up_reference};
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let omega: f64 = args.get(1).map_or(6.0, |a| a.parse().unwrap());
+    let spec = match args.get(2).map(String::as_str) {
+        Some("kane") => SpinUp::kane_ryan_banerjee(omega),
+        _ => SpinUp::simo_vu_quoc(omega),
+    };
+    let time = |f: &mut dyn FnMut()| {
+        let t0 = Instant::now();
+        f();
+        t0.elapsed().as_secs_f64()
+    };
+    let mut reference = None;
+    let s = time(&mut || reference = Some(spin_up_reference(&spec, 8, 1e-10).unwrap()));
+    let reference = reference.unwrap();
+    println!(
+        "yardstick: 8 modes rtol 1e-10: {s:.2} s, max {:.6} m",
+        reference.max_abs()
+    );
+    for modes in [3, 4, 5, 6, 7] {
+        for rtol in [1e-6, 1e-8, 1e-10] {
+            let mut r = None;
+            let s = time(&mut || r = Some(spin_up_reference(&spec, modes, rtol).unwrap()));
+            println!(
+                "reference {modes} modes rtol {rtol:e}: {s:.3} s, error {:.2e}",
+                r.unwrap().difference(&reference)
+            );
+        }
+    }
+    for modes in [2, 4, 7] {
+        let mut r = None;
+        let s = time(&mut || r = Some(spin_up_linear(&spec, modes, 1e-8).unwrap()));
+        let r = r.unwrap();
+        println!(
+            "linear {modes} modes rtol 1e-8: {s:.3} s, end {:.3e} m",
+            r.tip_deflection_m.last().unwrap()
+        );
+    }
+    for elements in [4, 8, 16, 32] {
+        for max_step in [1e-3, 5e-3, 1e-2, 2e-2] {
+            let mut r = None;
+            let s = time(&mut || r = Some(spin_up_fe(&spec, elements, max_step).unwrap()));
+            println!(
+                "FE {elements} elements step {max_step:e}: {s:.3} s, error {:.2e}",
+                r.unwrap().difference(&reference)
+            );
+        }
+    }
+}
