@@ -396,7 +396,56 @@ impl Quadrature {
     }
 }
 
+/// Buffers of [`Elastica::accelerations`], reused between calls (one run, one thread).
+#[derive(Default)]
+struct Scratch {
+    psi: Vec<f64>,
+    psid: Vec<f64>,
+    sin: Vec<f64>,
+    cos: Vec<f64>,
+    g: Vec<f64>,
+    rx: Vec<f64>,
+    ry: Vec<f64>,
+    vx: Vec<f64>,
+    vy: Vec<f64>,
+    cx: Vec<f64>,
+    cy: Vec<f64>,
+    ex: Vec<f64>,
+    ey: Vec<f64>,
+    tx: Vec<Vec<f64>>,
+    ty: Vec<Vec<f64>>,
+}
+
+impl Scratch {
+    fn resize(&mut self, nodes: usize, modes: usize) {
+        for v in [
+            &mut self.psi,
+            &mut self.psid,
+            &mut self.sin,
+            &mut self.cos,
+            &mut self.g,
+            &mut self.rx,
+            &mut self.ry,
+            &mut self.vx,
+            &mut self.vy,
+            &mut self.cx,
+            &mut self.cy,
+            &mut self.ex,
+            &mut self.ey,
+        ] {
+            v.resize(nodes, 0.0);
+        }
+        for t in [&mut self.tx, &mut self.ty] {
+            t.resize(modes, Vec::new());
+            for v in t.iter_mut() {
+                v.resize(nodes, 0.0);
+            }
+        }
+    }
+}
+
 struct Elastica {
+    scratch: std::cell::RefCell<Scratch>,
     spec: SpinUp,
     modes: usize,
     quad: Quadrature,
@@ -437,6 +486,7 @@ impl Elastica {
             quad.running(&phi[j], &mut big_phi[j]);
         }
         Elastica {
+            scratch: std::cell::RefCell::new(Scratch::default()),
             spec: *spec,
             modes,
             quad,
@@ -481,37 +531,44 @@ impl Elastica {
                 tip += self.quad.w[n] * psi;
             }
         } else {
-            let psi: Vec<f64> = (0..nodes)
-                .map(|n| (0..m).map(|j| q[j] * self.phi[j][n]).sum())
-                .collect();
-            let psid: Vec<f64> = (0..nodes)
-                .map(|n| (0..m).map(|j| qd[j] * self.phi[j][n]).sum())
-                .collect();
-            let (sin, cos): (Vec<f64>, Vec<f64>) = psi.iter().map(|p| p.sin_cos()).unzip();
-            let mut buf = vec![0.0; nodes];
-            let mut run = |g: Vec<f64>| {
-                self.quad.running(&g, &mut buf);
-                buf.clone()
+            // the same operations as before, into buffers reused between calls
+            let mut guard = self.scratch.borrow_mut();
+            let sc = &mut *guard;
+            sc.resize(nodes, m);
+            for n in 0..nodes {
+                sc.psi[n] = (0..m).map(|j| q[j] * self.phi[j][n]).sum();
+                sc.psid[n] = (0..m).map(|j| qd[j] * self.phi[j][n]).sum();
+                let (sn, cs) = sc.psi[n].sin_cos();
+                sc.sin[n] = sn;
+                sc.cos[n] = cs;
+            }
+            let quad = &self.quad;
+            let run = |g: &mut Vec<f64>, out: &mut Vec<f64>, f: &dyn Fn(usize) -> f64| {
+                for (n, x) in g.iter_mut().enumerate() {
+                    *x = f(n);
+                }
+                quad.running(g, out);
             };
-            let rx = run(cos.clone());
-            let ry = run(sin.clone());
-            let vx = run((0..nodes).map(|n| -sin[n] * psid[n]).collect());
-            let vy = run((0..nodes).map(|n| cos[n] * psid[n]).collect());
-            let cx = run((0..nodes).map(|n| -cos[n] * psid[n] * psid[n]).collect());
-            let cy = run((0..nodes).map(|n| -sin[n] * psid[n] * psid[n]).collect());
-            let tx: Vec<Vec<f64>> = (0..m)
-                .map(|i| run((0..nodes).map(|n| -sin[n] * self.phi[i][n]).collect()))
-                .collect();
-            let ty: Vec<Vec<f64>> = (0..m)
-                .map(|i| run((0..nodes).map(|n| cos[n] * self.phi[i][n]).collect()))
-                .collect();
+            let (sin, cos, psid) = (&sc.sin, &sc.cos, &sc.psid);
+            run(&mut sc.g, &mut sc.rx, &|n| cos[n]);
+            run(&mut sc.g, &mut sc.ry, &|n| sin[n]);
+            run(&mut sc.g, &mut sc.vx, &|n| -sin[n] * psid[n]);
+            run(&mut sc.g, &mut sc.vy, &|n| cos[n] * psid[n]);
+            run(&mut sc.g, &mut sc.cx, &|n| -cos[n] * psid[n] * psid[n]);
+            run(&mut sc.g, &mut sc.cy, &|n| -sin[n] * psid[n] * psid[n]);
+            for i in 0..m {
+                let phi = &self.phi[i];
+                run(&mut sc.g, &mut sc.tx[i], &|n| -sin[n] * phi[n]);
+                run(&mut sc.g, &mut sc.ty[i], &|n| cos[n] * phi[n]);
+            }
+            let (rx, ry, vx, vy, cx, cy) = (&sc.rx, &sc.ry, &sc.vx, &sc.vy, &sc.cx, &sc.cy);
+            let (tx, ty) = (&sc.tx, &sc.ty);
             // e = c + 2θ̇ J ṙ + θ̈ J r − θ̇² r, J(x, y) = (−y, x)
-            let ex: Vec<f64> = (0..nodes)
-                .map(|n| cx[n] - 2.0 * w * vy[n] - al * ry[n] - w * w * rx[n])
-                .collect();
-            let ey: Vec<f64> = (0..nodes)
-                .map(|n| cy[n] + 2.0 * w * vx[n] + al * rx[n] - w * w * ry[n])
-                .collect();
+            for n in 0..nodes {
+                sc.ex[n] = cx[n] - 2.0 * w * vy[n] - al * ry[n] - w * w * rx[n];
+                sc.ey[n] = cy[n] + 2.0 * w * vx[n] + al * rx[n] - w * w * ry[n];
+            }
+            let (ex, ey) = (&sc.ex, &sc.ey);
             for i in 0..m {
                 for j in i..m {
                     let v = rho_a
@@ -526,6 +583,7 @@ impl Elastica {
                         .map(|n| self.quad.w[n] * (tx[i][n] * ex[n] + ty[i][n] * ey[n]))
                         .sum::<f64>();
             }
+            let sin = &sc.sin;
             tip = (0..nodes).map(|n| self.quad.w[n] * sin[n]).sum();
         }
         let qv = DVector::from_column_slice(q);
