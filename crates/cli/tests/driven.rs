@@ -210,7 +210,7 @@ fn bad_flags_are_refused_naming_the_flag() {
 }
 
 /// The work is checked before it starts: a step of 1e-300 s, the documented largest element
-/// count at the default step, a sample spacing of 1e-9 s and an output "directory" that is a
+/// count at the default step, 200 001 reported times, a run of 1e6 s and an output "directory" that is a
 /// file are refused (exit 2, the flag named) rather than run for ever or for minutes (that the
 /// refusal comes before the work: the library's tests, with a cancelled token).
 #[test]
@@ -223,7 +223,11 @@ fn spin_up_checks_its_work_and_its_output_before_the_work() {
     for (args, flag) in [
         (vec!["spin-up", "--max-step", "1e-300", "--out", out_dir], "--max-step"),
         (vec!["spin-up", "--elements", "10000", "--out", out_dir], "--elements"),
-        (vec!["spin-up", "--sample-every", "1e-9", "--out", out_dir], "--sample-every"),
+        (
+            vec!["spin-up", "--sample-every", "1e-4", "--max-step", "1e-4", "--out", out_dir],
+            "--sample-every",
+        ),
+        (vec!["spin-up", "--duration", "1e6", "--sample-every", "100", "--out", out_dir], "--duration"),
         (vec!["spin-up", "--out", file.to_str().unwrap()], "--out"),
     ] {
         let out = flexrig(&args);
