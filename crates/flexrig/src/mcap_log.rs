@@ -1356,6 +1356,13 @@ mod tests {
                     "{name}"
                 );
                 assert_eq!(full_summary.sample_count, lean_summary.sample_count);
+                // the layout beside the log scales its plots by the samples around the contact
+                let w = crate::foxglove_layout::contact_window(&full_summary).unwrap();
+                assert_eq!(
+                    format!("{:?}", crate::foxglove_layout::plot_axes(&full_summary, w)),
+                    format!("{:?}", crate::foxglove_layout::plot_axes(&lean_summary, w)),
+                    "{name}"
+                );
             }
         }
     }

@@ -237,7 +237,8 @@ pub struct RunSummary {
     /// two samples.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub severity: Option<flexrig_safety::Severity>,
-    /// Sensor samples (empty for a lean run, [`Simulation::with_lean_samples`]).
+    /// Sensor samples; of a lean run ([`Simulation::with_lean_samples`]) those from the first
+    /// contact's onset minus its duration to its end plus its duration (the full run's there).
     #[serde(skip)]
     pub samples: Vec<SensorSample>,
     /// How many sensor samples the run took (`samples.len()` of a full run; a lean run
@@ -569,7 +570,8 @@ impl<'s> Simulation<'s> {
 
     /// Samples lean (see [`Sampler`]): the free swing's sensor samples are computed only when
     /// a recorder reads them ([`Recorder::swing_samples`]) or the severity needs them; the
-    /// summary's `samples` is then empty (its `sample_count` is the full run's) and every
+    /// summary's `samples` then holds those around the first contact only (its `sample_count`
+    /// is the full run's) and every
     /// other number of the summary — the severity's included — and every frame a recorder gets
     /// are the full run's, bit for bit. For a run whose samples nobody reads (a summary, a
     /// sweep row, a search) or that logs them at a lower rate.
@@ -1637,7 +1639,14 @@ impl<'s> Simulation<'s> {
         let dome = self.scene.file.robot.dome_radius_m;
         let (samples, sample_count, severity) = if self.sampler.is_lean() {
             let severity = crate::severity::of_sampler(&self.sampler, dome).ok();
-            (Vec::new(), self.sampler.taken(), severity)
+            // the first contact with its duration on either side (what a log's layout scales
+            // its plots by)
+            let end = first.duration_s.map_or(self.t, |d| first.onset_time_s + d);
+            let d = (end - first.onset_time_s).max(0.0);
+            let around = self
+                .sampler
+                .samples_between(first.onset_time_s - d, end + d);
+            (around, self.sampler.taken(), severity)
         } else {
             let samples = self.sampler.into_samples();
             let severity = crate::severity::of_samples(&samples, dome).ok();

@@ -294,6 +294,25 @@ impl Sampler {
         Some(span.sample(k as f64 * self.period))
     }
 
+    /// The samples with times in [`t_lo`, `t_hi`] \[s\] (and a few just outside), the deferred
+    /// ones computed: the full sampler's there.
+    pub fn samples_between(&self, t_lo: f64, t_hi: f64) -> Vec<SensorSample> {
+        if !self.lean {
+            return self
+                .samples
+                .iter()
+                .filter(|s| s.t >= t_lo && s.t <= t_hi)
+                .copied()
+                .collect();
+        }
+        if !(t_hi >= t_lo) {
+            return Vec::new();
+        }
+        let first = ((t_lo / self.period).floor().max(0.0) as u64).saturating_sub(1);
+        let last = ((t_hi / self.period).ceil().max(0.0) as u64 + 1).min(self.next_index);
+        (first..last).filter_map(|k| self.sample_at(k)).collect()
+    }
+
     /// Every sample of the run in order, the deferred ones computed: what the full sampler
     /// holds, bit for bit.
     pub fn materialize(&self) -> Vec<SensorSample> {
