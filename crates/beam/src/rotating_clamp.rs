@@ -66,6 +66,20 @@ pub fn run_rotating_clamp(
     sample_every: f64,
     options: &RotatingClampOptions,
 ) -> Result<Vec<HubFrameSample>, BeamError> {
+    let never = std::sync::atomic::AtomicBool::new(false);
+    run_rotating_clamp_until(model, hub, t_end, sample_every, options, &never)
+}
+
+/// [`run_rotating_clamp`], returning early (with the samples so far) once `stop` is set: the
+/// caller tells a stopped run from a finished one by the flag (looked at every step).
+pub fn run_rotating_clamp_until(
+    model: &BeamModel,
+    hub: &dyn Fn(f64) -> [f64; 3],
+    t_end: f64,
+    sample_every: f64,
+    options: &RotatingClampOptions,
+    stop: &std::sync::atomic::AtomicBool,
+) -> Result<Vec<HubFrameSample>, BeamError> {
     crate::dynamics::check_rotating_clamp(model)?;
     if !(t_end.is_finite() && t_end > 0.0) {
         return Err(BeamError::invalid("t_end", t_end, "a finite time > 0 s"));
@@ -160,6 +174,9 @@ pub fn run_rotating_clamp(
     let mut a1 = a.clone();
     let mut ahat1 = ahat.clone();
     for k in 1..=samples * steps_per_sample {
+        if stop.load(std::sync::atomic::Ordering::Relaxed) {
+            return Ok(out);
+        }
         let t1 = k as f64 * h;
         let root = hub(t1);
         if !root.iter().all(|x| x.is_finite()) {

@@ -78,8 +78,9 @@ pub enum Command {
     /// Safe-speed map: the permissible speed of the CJ and the CL design over two design
     /// parameters and their ratio, by the standard's formula, the energy method or simulation.
     SafetyMap(commands::safety_map::SafetyMapArgs),
-    /// The spin-up beam benchmark (Kane, Ryan & Banerjee 1987): tip deflection by FE, an
-    /// independent reference and the linear model.
+    /// The spin-up beam benchmark (Simo & Vu-Quoc's 10 m beam; `--case kane`: Kane, Ryan &
+    /// Banerjee's 8 m aluminium beam): tip deflection by FE, an independent reference and the
+    /// linear model.
     SpinUp(commands::spin_up::SpinUpArgs),
     /// One driven CJ or CL strike (motor, gear, controller) from a drive description or flags.
     Strike(commands::strike::StrikeArgs),

@@ -209,6 +209,80 @@ fn bad_flags_are_refused_naming_the_flag() {
     }
 }
 
+/// The work is checked before it starts: a step of 1e-300 s, the documented largest element
+/// count at the default step, 200 001 reported times, a run of 1e6 s and an output "directory" that is a
+/// file are refused (exit 2, the flag named) rather than run for ever or for minutes (that the
+/// refusal comes before the work: the library's tests, with a cancelled token).
+#[test]
+fn spin_up_checks_its_work_and_its_output_before_the_work() {
+    let dir = scratch_dir("spin-up-work");
+    let out_dir = dir.to_str().unwrap();
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("a_file");
+    std::fs::write(&file, "x").unwrap();
+    for (args, flag) in [
+        (vec!["spin-up", "--max-step", "1e-300", "--out", out_dir], "--max-step"),
+        (vec!["spin-up", "--elements", "10000", "--out", out_dir], "--elements"),
+        (
+            vec!["spin-up", "--sample-every", "1e-4", "--max-step", "1e-4", "--out", out_dir],
+            "--sample-every",
+        ),
+        (vec!["spin-up", "--duration", "1e6", "--sample-every", "100", "--out", out_dir], "--duration"),
+        (vec!["spin-up", "--out", file.to_str().unwrap()], "--out"),
+    ] {
+        let out = flexrig(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(flag), "{args:?}: {err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Every sample spacing works: these once stopped the reference with "the step size fell below
+/// the resolution of t" (a step capped at the spacing ending a rounding error short of a
+/// sample time), and the message called the reference an impact.
+#[test]
+fn spin_up_takes_any_sample_spacing() {
+    let dir = scratch_dir("spin-up-spacing");
+    for extra in [
+        vec!["--duration", "1", "--sample-every", "0.01", "--modes", "2"],
+        vec!["--duration", "1", "--sample-every", "0.005", "--modes", "4"],
+        vec!["--duration", "30", "--sample-every", "0.02", "--modes", "2", "--elements", "4"],
+    ] {
+        let mut args = vec!["spin-up", "--out", dir.to_str().unwrap(), "--json"];
+        args.extend(&extra);
+        let out = flexrig(&args);
+        assert!(
+            out.status.success(),
+            "{extra:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `--case kane`: Kane, Ryan & Banerjee's 8 m aluminium beam spun up to 4 rad/s, past its first
+/// bending frequency (2.91 rad/s): the FE beam follows the reference within 1 % of the max, the
+/// linear model runs away, and the heading names the source.
+#[test]
+fn spin_up_kane_case() {
+    let dir = scratch_dir("spin-up-kane");
+    let out = flexrig(&["spin-up", "--case", "kane", "--out", dir.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(text.contains("Kane, Ryan & Banerjee 1987") && text.contains("L = 8 m"), "{text}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("spin_up.json")).unwrap()).unwrap();
+    assert_eq!(v["options"]["length"].as_f64(), Some(8.0));
+    assert_eq!(v["options"]["omega_s"].as_f64(), Some(4.0));
+    let error = v["fe_error_of_max"].as_f64().unwrap();
+    assert!(error <= 1e-2, "{error}");
+    let max = v["reference_max_m"].as_f64().unwrap();
+    let linear = v["linear"].as_array().unwrap();
+    assert!(linear.last().unwrap().as_f64().unwrap().abs() > 1e3 * max);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// The test bed's link (CJ and CL): the peak does not depend on the drive (docs/driven.md: ratio
 /// 1.0000 from the ideal position source to the torque-free rotor), the prescribed drive is the
 /// test bed exactly (1e-6), and the same drive holding the robot still gives the driven peak

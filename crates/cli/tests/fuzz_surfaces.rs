@@ -1959,6 +1959,11 @@ fn ctrl_c_stops_every_long_command_with_130_and_whole_files() {
             vec!["payload", "--points", "1000", "--out", "payload"],
             "payload",
         ),
+        // the reference at 12 modes takes minutes: Ctrl-C stops it between two of its steps
+        (
+            vec!["spin-up", "--modes", "12", "--elements", "200", "--out", "spin"],
+            "spin",
+        ),
     ];
     for (args, out) in &cases {
         interrupt(args, &dir, &dir.join(out), 30, &mut failures);

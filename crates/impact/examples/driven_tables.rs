@@ -43,7 +43,7 @@ fn main() {
         );
     }
     for omega_s in [4.0, 6.0] {
-        let spec = SpinUp::kane(omega_s);
+        let spec = SpinUp::simo_vu_quoc(omega_s);
         let t0 = std::time::Instant::now();
         let r7 = spin_up_reference(&spec, 7, 1e-11).unwrap();
         let r6 = spin_up_reference(&spec, 6, 1e-10).unwrap();

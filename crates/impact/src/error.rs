@@ -33,6 +33,15 @@ pub enum ImpactError {
     /// The severity measures of a run's traces could not be computed.
     #[error(transparent)]
     Severity(#[from] flexrig_safety::SafetyError),
+    /// A time integration other than an impact's did not reach its end (e.g. the spin-up
+    /// reference).
+    #[error("the {what} did not finish: {reason}")]
+    Unfinished {
+        /// What was integrated, e.g. "spin-up reference".
+        what: &'static str,
+        /// What happened, and what to change.
+        reason: String,
+    },
     /// Stopped on request (Ctrl-C) before every case was computed.
     #[error("stopped on request before every case was computed")]
     Interrupted,
@@ -47,7 +56,9 @@ impl ImpactError {
             ImpactError::Lumped(e) => e.is_input_error(),
             ImpactError::Beam(e) => e.is_input_error(),
             ImpactError::Severity(e) => e.is_input_error(),
-            ImpactError::NotFinished { .. } | ImpactError::Interrupted => false,
+            ImpactError::NotFinished { .. }
+            | ImpactError::Unfinished { .. }
+            | ImpactError::Interrupted => false,
         }
     }
 

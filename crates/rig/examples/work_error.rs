@@ -45,8 +45,12 @@ fn scene_with(name: &str, swing: &str, contact_steps: usize, extra: &str) -> Sce
         .expect("a valid scene")
 }
 
+/// A run as `flexrig run` makes it (lean sampling: the swing's samples nobody reads are not
+/// computed; FULL_SAMPLES=1 computes every one, as before).
 fn run(s: &Scene) -> RunSummary {
+    let full = std::env::var_os("FULL_SAMPLES").is_some();
     Simulation::new(s, RunOptions::default())
+        .map(|sim| if full { sim } else { sim.with_lean_samples() })
         .and_then(|sim| sim.run(&mut NoRecorder))
         .expect("the run finishes")
 }

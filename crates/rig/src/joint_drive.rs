@@ -29,7 +29,6 @@ use flexrig_impact::drive::{Drive, DriveCommand, Gains, Profile, TorqueProfile};
 use serde::{Deserialize, Serialize};
 
 use crate::RigError;
-use crate::beam_link::HubLaw;
 use crate::hinge::HingeState;
 
 /// A motor on the robot joint, in the vocabulary of the driven scenes' `[drive]` and
@@ -483,5 +482,26 @@ impl JointDrive {
             motor_work_j,
             friction_dissipated_j,
         }
+    }
+}
+
+/// The drive's torque on a free hub over a step, affine in the hub's angle φ and rate φ̇ at
+/// the step's end (rig convention, about +z): τ = `moment` − `stiffness` φ − `damping` φ̇.
+/// The hub's root support takes the stiffness and the damping (with the friction) implicitly;
+/// the moment is the root node's nodal moment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HubLaw {
+    /// ∂τ/∂(−φ) [N·m/rad] (a position loop's K_p, plus K_i h/2 of its integral).
+    pub stiffness: f64,
+    /// ∂τ/∂(−φ̇) [N·m·s/rad] (the loop's K_d; the friction is added by the link).
+    pub damping: f64,
+    /// The rest [N·m].
+    pub moment: f64,
+}
+
+impl HubLaw {
+    /// The torque [N·m] at hub angle `angle` \[rad\] and rate `rate` [rad/s].
+    pub fn torque(&self, angle: f64, rate: f64) -> f64 {
+        self.moment - self.stiffness * angle - self.damping * rate
     }
 }

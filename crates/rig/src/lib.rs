@@ -44,7 +44,7 @@ pub use joint_drive::{DriveFrame, DriveSummary, JointDrive};
 pub use overrides::{Override, scene_from_table, scene_with_overrides};
 pub use run::{
     ContactEvent, Frame, Interruptible, NoRecorder, Recorder, RunOptions, RunSummary, Simulation,
-    StepOutcome, run_scene_text,
+    StepOutcome, SwingSamples, run_scene_text,
 };
 pub use scene::{
     BeamSolverSpec, ContactPolicy, Design, RobotDriveSpec, Scene, SceneFile, SwingPolicy,

@@ -94,13 +94,43 @@ pub trait Recorder {
     fn between(&mut self, _frame: &Frame<'_>) -> Result<(), RigError> {
         Ok(())
     }
+
+    /// Which sensor samples of the adaptive free swing the recorder reads from
+    /// [`Frame::samples`] when the run samples lean ([`Simulation::with_lean_samples`]; a full
+    /// run hands every sample whatever this says). The default: every sample.
+    fn swing_samples(&self) -> SwingSamples {
+        SwingSamples::Every
+    }
+
+    /// With [`SwingSamples::Chosen`]: whether the recorder wants the swing's sample at time `t`
+    /// \[s\] (asked in time order for each sample time of a free-swing step, before that step's
+    /// frame, which then carries the chosen samples).
+    fn wants_swing_sample(&mut self, _t: f64) -> bool {
+        true
+    }
+}
+
+/// Which sensor samples of the free swing a [`Recorder`] reads (a lean run computes only
+/// those; the contact's samples and those of Rapier's steps always come).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SwingSamples {
+    /// Every sample.
+    Every,
+    /// None.
+    None,
+    /// Those [`Recorder::wants_swing_sample`] asks for.
+    Chosen,
 }
 
 /// A recorder that keeps nothing.
 #[derive(Debug, Default, Clone, Copy)]
 pub struct NoRecorder;
 
-impl Recorder for NoRecorder {}
+impl Recorder for NoRecorder {
+    fn swing_samples(&self) -> SwingSamples {
+        SwingSamples::None
+    }
+}
 
 /// One contact of a run, from onset to separation.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -143,6 +173,10 @@ impl Recorder for Interruptible {
             return Err(RigError::Interrupted { t: frame.t });
         }
         Ok(())
+    }
+
+    fn swing_samples(&self) -> SwingSamples {
+        SwingSamples::None
     }
 }
 
@@ -203,9 +237,14 @@ pub struct RunSummary {
     /// two samples.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub severity: Option<flexrig_safety::Severity>,
-    /// Sensor samples.
+    /// Sensor samples; of a lean run ([`Simulation::with_lean_samples`]) those from the first
+    /// contact's onset minus its duration to its end plus its duration (the full run's there).
     #[serde(skip)]
     pub samples: Vec<SensorSample>,
+    /// How many sensor samples the run took (`samples.len()` of a full run; a lean run
+    /// computes most of them only on demand, its count is the same).
+    #[serde(skip)]
+    pub sample_count: usize,
     /// What the drive on the robot joint did (`robot.drive`): the motor's work, the friction,
     /// the largest joint torque, the link's speed at the onset.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -527,6 +566,20 @@ impl<'s> Simulation<'s> {
             sim.begin_contact_flight(y);
         }
         Ok(sim)
+    }
+
+    /// Samples lean (see [`Sampler`]): the free swing's sensor samples are computed only when
+    /// a recorder reads them ([`Recorder::swing_samples`]) or the severity needs them; the
+    /// summary's `samples` then holds those around the first contact only (its `sample_count`
+    /// is the full run's) and every
+    /// other number of the summary — the severity's included — and every frame a recorder gets
+    /// are the full run's, bit for bit. For a run whose samples nobody reads (a summary, a
+    /// sweep row, a search) or that logs them at a lower rate.
+    pub fn with_lean_samples(mut self) -> Self {
+        if self.sampler.count() == 0 {
+            self.sampler = Sampler::lean(self.scene.file.record.sample_rate_hz);
+        }
+        self
     }
 
     /// Simulated time \[s\].
@@ -1154,14 +1207,40 @@ impl<'s> Simulation<'s> {
         if let Some(period) = recorder.pose_period().filter(|p| p.is_finite() && *p > 0.0) {
             self.emit_between(recorder, &dense, (step.t_start, step.t_end), period)?;
         }
-        self.sampler.record_exact(step.t_start, step.t_end, |t| {
-            let y = if t == step.t_end {
-                step.y
-            } else {
-                dense.eval(t)
-            };
+        let (t_end, y_end) = (step.t_end, step.y);
+        let at = move |t: f64| {
+            let y = if t == t_end { y_end } else { dense.eval(t) };
             sensors.sample(&system, t, &y)
-        });
+        };
+        if self.sampler.is_lean() {
+            let bound = swing_accel_bound(&system, &sensors, &step.y);
+            match recorder.swing_samples() {
+                SwingSamples::None => {
+                    self.sampler
+                        .record_deferred(step.t_start, step.t_end, at, bound, None);
+                }
+                SwingSamples::Every => {
+                    self.sampler.record_deferred(
+                        step.t_start,
+                        step.t_end,
+                        at,
+                        bound,
+                        Some(&mut |_| true),
+                    );
+                }
+                SwingSamples::Chosen => {
+                    self.sampler.record_deferred(
+                        step.t_start,
+                        step.t_end,
+                        at,
+                        bound,
+                        Some(&mut |t| recorder.wants_swing_sample(t)),
+                    );
+                }
+            }
+        } else {
+            self.sampler.record_exact(step.t_start, step.t_end, at);
+        }
         // The new state, in Rapier too (synchronised: the next fixed step kicks half a step)
         // unless the contact is integrated adaptively too (then Rapier is not stepped).
         self.t = step.t_end;
@@ -1557,9 +1636,23 @@ impl<'s> Simulation<'s> {
                 ),
             });
         };
-        let samples = self.sampler.into_samples();
-        let severity =
-            crate::severity::of_samples(&samples, self.scene.file.robot.dome_radius_m).ok();
+        let dome = self.scene.file.robot.dome_radius_m;
+        let (samples, sample_count, severity) = if self.sampler.is_lean() {
+            let severity = crate::severity::of_sampler(&self.sampler, dome).ok();
+            // the first contact with its duration on either side (what a log's layout scales
+            // its plots by)
+            let end = first.duration_s.map_or(self.t, |d| first.onset_time_s + d);
+            let d = (end - first.onset_time_s).max(0.0);
+            let around = self
+                .sampler
+                .samples_between(first.onset_time_s - d, end + d);
+            (around, self.sampler.taken(), severity)
+        } else {
+            let samples = self.sampler.into_samples();
+            let severity = crate::severity::of_samples(&samples, dome).ok();
+            let n = samples.len();
+            (samples, n, severity)
+        };
         Ok(RunSummary {
             scene: self.scene.file.name.clone(),
             design: self.scene.file.robot.design,
@@ -1582,6 +1675,7 @@ impl<'s> Simulation<'s> {
             warnings: self.scene.warnings.clone(),
             severity,
             samples,
+            sample_count,
             drive: self.scene.drive.as_ref().map(|_| DriveSummary {
                 motor_work_j: self.stats.drive_work,
                 friction_dissipated_j: self.stats.drive_friction,
@@ -1593,6 +1687,28 @@ impl<'s> Simulation<'s> {
             }),
         })
     }
+}
+
+/// An upper bound of |operator accelerometer| \[m/s²\] over a free-swing step that ends in
+/// state `y`: out of contact the hinges' energy E (the operator's pendulum and the CJ link's
+/// spring) is conserved, so φ̇² ≤ 2E/I_O and 1 − cos φ ≤ E/(M g l_c), which bounds |sin φ| by
+/// s; then |l (cos φ φ̈ − sin φ φ̇²)| ≤ l s (ω₀² + φ̇²) with φ̈ = −ω₀² sin φ. 5 % above that for
+/// the integrator's error (rtol 1e-12) and the dense output's.
+fn swing_accel_bound(system: &FreeHinges, sensors: &FlightSensors, y: &[f64; DIM]) -> f64 {
+    let inertia = system.operator_inertia;
+    let w0 = system.gravity_moment / inertia;
+    let mut energy = 0.5 * inertia * y[1] * y[1] + system.gravity_moment * (1.0 - y[0].cos());
+    if let Some((j, k)) = system.robot {
+        energy += 0.5 * j * y[3] * y[3] + 0.5 * k * y[2] * y[2];
+    }
+    let cos_min = 1.0 - energy / system.gravity_moment;
+    // (plus 1e-6: the integrator's energy error near the turning points of a tiny swing)
+    let sin_max = if cos_min > 0.0 {
+        ((1.0 - cos_min * cos_min).sqrt() + 1e-6).min(1.0)
+    } else {
+        1.0
+    };
+    1.05 * sensors.arm_length * sin_max * (w0 + 2.0 * energy / inertia)
 }
 
 /// Vertex (t, f) of the parabola through three (t, f) points; the middle point if degenerate.

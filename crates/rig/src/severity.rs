@@ -12,15 +12,182 @@
 //! sample times; the contact area is the dome of the scene (`robot.dome_radius_m`) under
 //! [`ContactAreaModel::dome_models`] (Hertz sphere, thin layer).
 
-use flexrig_safety::{ContactAreaModel, ContactTraces, SafetyError, Severity, severity};
+use flexrig_safety::{
+    ContactAreaModel, ContactTraces, STANDARD_GRAVITY, SafetyError, Severity, severity,
+};
 
-use crate::sensors::SensorSample;
+use crate::sensors::{Sampler, SensorSample};
+
+/// The longest HIC window \[s\] (HIC36).
+const LONGEST_WINDOW: f64 = 0.036;
 
 /// Severity of the samples of one run (every contact; HIC over the whole trace), with the
-/// dome of radius `dome_radius_m` \[m\]. Computed over [`carrying`] the samples: the same
-/// measures as over every sample, without the work of a long approach at rest.
+/// dome of radius `dome_radius_m` \[m\].
+///
+/// Computed over the **contact stretches** ([`stretches`]: the samples with a force or an
+/// indentation, one sample more at each end, stretches closer than the longest HIC window
+/// joined) when that provably gives every measure of the whole trace ([`of_parts`]); over
+/// [`carrying`] the samples otherwise. The peaks, their times and the work sums are those of
+/// every sample exactly (outside the stretches force and indentation are exactly 0: they add
+/// exact zeros); the peak acceleration and HIC are the whole trace's maxima by the bound of
+/// [`of_parts`], computed on the stretches' samples alone — so a run that never computes its
+/// free swing's samples ([`of_sampler`]) gets the same numbers, bit for bit.
 pub fn of_samples(samples: &[SensorSample], dome_radius_m: f64) -> Result<Severity, SafetyError> {
-    let samples = carrying(samples);
+    let parts = stretches(samples.len(), |k| samples[k], samples.iter().map(is_live));
+    if !parts.is_empty() {
+        let inside = |k: usize| parts.iter().any(|r| r.contains(&k));
+        let outside = (0..samples.len())
+            .filter(|&k| !inside(k))
+            .fold(0.0f64, |m, k| m.max(samples[k].operator_accel_mps2.abs()));
+        let slices: Vec<&[SensorSample]> = parts.iter().map(|r| &samples[r.clone()]).collect();
+        if let Some(result) = of_parts(&slices, outside, dome_radius_m) {
+            return result;
+        }
+    }
+    of_every(carrying(samples), dome_radius_m)
+}
+
+/// [`of_samples`] of every sample a (lean) sampler took, computing only the deferred samples
+/// the contact stretches need: the same result, bit for bit. Outside the stretches the
+/// deferred samples' acceleration is bounded by their spans' bounds; when the bound does not
+/// settle it, every sample is computed.
+pub fn of_sampler(sampler: &Sampler, dome_radius_m: f64) -> Result<Severity, SafetyError> {
+    if !sampler.is_lean() || sampler.deferred().is_empty() {
+        let all = sampler.materialize();
+        return of_samples(&all, dome_radius_m);
+    }
+    let total = sampler.count() as usize;
+    // Every live sample is computed (a deferred span is a free swing: no force, no
+    // indentation); the live flags by index.
+    let mut live = vec![false; total];
+    for (k, s) in sampler.computed() {
+        if is_live(s) {
+            live[k as usize] = true;
+        }
+    }
+    // Below the count, an index without a sample (a step that skipped one) leaves the
+    // positions of the samples unknown without computing them all: the full computation.
+    let spans = sampler.deferred();
+    let in_span = |k: u64| spans.iter().any(|d| d.first <= k && k < d.end);
+    let covered = spans.iter().map(|d| d.end - d.first).sum::<u64>()
+        + sampler.computed().filter(|(k, _)| !in_span(*k)).count() as u64;
+    if covered != sampler.count() {
+        return of_samples(&sampler.materialize(), dome_radius_m);
+    }
+    let at = |k: usize| {
+        sampler
+            .sample_at(k as u64)
+            .expect("every index below the count holds a sample (checked)")
+    };
+    let parts = stretches(total, at, live.iter().copied());
+    if !parts.is_empty() {
+        let inside = |k: usize| parts.iter().any(|r| r.contains(&k));
+        let mut outside = 0.0f64;
+        for (k, s) in sampler.computed() {
+            if !inside(k as usize) {
+                outside = outside.max(s.operator_accel_mps2.abs());
+            }
+        }
+        for span in sampler.deferred() {
+            outside = outside.max(span.operator_accel_bound);
+        }
+        let owned: Vec<Vec<SensorSample>> =
+            parts.iter().map(|r| r.clone().map(at).collect()).collect();
+        let slices: Vec<&[SensorSample]> = owned.iter().map(Vec::as_slice).collect();
+        if let Some(result) = of_parts(&slices, outside, dome_radius_m) {
+            return result;
+        }
+    }
+    of_samples(&sampler.materialize(), dome_radius_m)
+}
+
+fn is_live(s: &SensorSample) -> bool {
+    s.force_n != 0.0 || s.indentation_m != 0.0
+}
+
+/// The contact stretches of `n` samples (`at` a sample by index, `live` whether each has a
+/// force or an indentation): each run of live samples with one sample more at each end, runs
+/// whose stretches are less than the longest HIC window apart (36 ms) joined with every sample
+/// between. Empty when no sample is live.
+pub fn stretches(
+    n: usize,
+    at: impl Fn(usize) -> SensorSample,
+    live: impl Iterator<Item = bool>,
+) -> Vec<std::ops::Range<usize>> {
+    let mut parts: Vec<std::ops::Range<usize>> = Vec::new();
+    let mut run: Option<(usize, usize)> = None;
+    let close = |parts: &mut Vec<std::ops::Range<usize>>, (a, b): (usize, usize)| {
+        let r = a.saturating_sub(1)..(b + 2).min(n);
+        match parts.last_mut() {
+            Some(last)
+                if r.start <= last.end
+                    || at(r.start).t - at(last.end - 1).t <= LONGEST_WINDOW * (1.0 + 1e-9) =>
+            {
+                last.end = r.end;
+            }
+            _ => parts.push(r),
+        }
+    };
+    for (k, l) in live.enumerate() {
+        run = match (run, l) {
+            (None, true) => Some((k, k)),
+            (Some((a, _)), true) => Some((a, k)),
+            (Some(r), false) => {
+                close(&mut parts, r);
+                None
+            }
+            (None, false) => None,
+        };
+    }
+    if let Some(r) = run {
+        close(&mut parts, r);
+    }
+    parts
+}
+
+/// The severity over the contact stretches `parts` (in time order, each with its end
+/// samples), when that is the whole trace's: `outside` \[m/s²\] bounds |acceleration| at every
+/// sample outside them. `None` when the bound does not settle it.
+///
+/// The parts are joined into one trace. Force, indentation and their sums are exact (zeros
+/// outside). The largest |acceleration| is the whole trace's when it is at least `outside`.
+/// HIC: with A = max(`outside`, the parts' end samples' |a|), a window with an end outside
+/// the parts (or between two of them, where the joined trace is a line between end samples)
+/// and mean acceleration m ≥ A/0.6 only gains by moving that end into the part
+/// (∂ ln HIC/∂t₁ = 1.5/Δ − 2.5 a(t₁)/I ≥ 0 while a(t₁) ≤ 0.6 m, and the mean does not drop on
+/// the way); one with m < A/0.6 has HIC < Δ_max (A/0.6)^2.5. So when the parts' HIC is at
+/// least that, it is the whole trace's (and parts more than Δ_max apart share no window).
+pub fn of_parts(
+    parts: &[&[SensorSample]],
+    outside: f64,
+    dome_radius_m: f64,
+) -> Option<Result<Severity, SafetyError>> {
+    let joined: Vec<SensorSample> = parts.iter().flat_map(|p| p.iter().copied()).collect();
+    let ends = parts
+        .iter()
+        .flat_map(|p| [p.first(), p.last()])
+        .flatten()
+        .fold(0.0f64, |m, s| m.max(s.operator_accel_mps2.abs()));
+    let bound = outside.max(ends);
+    let severity = match of_every(&joined, dome_radius_m) {
+        Ok(s) => s,
+        Err(e) => return Some(Err(e)),
+    };
+    if !(severity.peak_acceleration_mps2? >= outside) {
+        return None;
+    }
+    let a = bound / STANDARD_GRAVITY / 0.6;
+    for (hic, window) in [(&severity.hic15, 0.015), (&severity.hic36, LONGEST_WINDOW)] {
+        let floor = window * a * a * a.sqrt();
+        if !(hic.as_ref()?.hic > floor * (1.0 + 1e-9)) {
+            return None;
+        }
+    }
+    Some(Ok(severity))
+}
+
+/// flexrig-safety's severity of every one of `samples`.
+fn of_every(samples: &[SensorSample], dome_radius_m: f64) -> Result<Severity, SafetyError> {
     let column = |f: fn(&SensorSample) -> f64| samples.iter().map(f).collect::<Vec<f64>>();
     let times = column(|s| s.t);
     let force = column(|s| s.force_n);

@@ -148,6 +148,10 @@ pub fn half_sine_optimal_phase() -> f64 {
     phi
 }
 
+/// End segments below which the branch and bound visits cells one by one (each by
+/// [`Interpolant::cell_bound`]) rather than down the tree.
+const LEAF_BLOCK: usize = 16;
+
 struct Best {
     /// HIC² = I⁵/Δ³ of the best window so far.
     value: f64,
@@ -276,8 +280,18 @@ impl<'a> Interpolant<'a> {
         {
             return;
         }
-        if lo == hi {
-            self.search_cell(row.i, lo, row.max_dt, best);
+        if j_lo > row.i + 1
+            && !(self.ends_bound(row.i, j_lo, j_hi, a_max.range(j_lo, j_hi + 1)) > best.value)
+        {
+            return;
+        }
+        if hi - lo < LEAF_BLOCK {
+            // a few end segments: each cell by its own (tight) bound, in order
+            for j in j_lo..=j_hi {
+                if self.cell_bound(row.i, j) > best.value {
+                    self.search_cell(row.i, j, row.max_dt, best);
+                }
+            }
             return;
         }
         let mid = (lo + hi) / 2;
@@ -303,6 +317,60 @@ impl<'a> Interpolant<'a> {
         let shortest = self.t[j_lo] - self.t[i + 1];
         if shortest > 0.0 {
             bound = bound.min(i2 * i2 * integral / (shortest * shortest * shortest));
+        }
+        bound * (1.0 + 1e-9)
+    }
+
+    /// An upper bound of HIC² (times 1 + 1e-9) over the cell (t₁ in segment i, t₂ in segment
+    /// j), tight to second order in the segments' lengths: F(t_i + x) ≥ F_i + x min(a_i, a_{i+1})
+    /// and F(t_j + y) ≤ F_j + y max(a_j, a_{j+1}), so I ≤ Ĩ(x, y) = I₀₀ + A y − B x, linear,
+    /// with Δ = Δ₀₀ + y − x; along either coordinate Ĩ⁵/Δ³ = (c + A y)⁵/(d + y)³ has no interior
+    /// maximum where Ĩ > 0 (its one stationary point is a minimum), so the bound is the largest
+    /// of the four corners (0 where Ĩ ≤ 0). Infinite (no bound) when a window of the cell can
+    /// have Δ ≤ 0.
+    fn cell_bound(&self, i: usize, j: usize) -> f64 {
+        let (h_i, h_j) = (self.h(i), self.h(j));
+        let d00 = self.t[j] - self.t[i];
+        if !(d00 - h_i > 0.0) {
+            return f64::INFINITY;
+        }
+        let b = self.a[i].min(self.a[i + 1]);
+        let a = self.a[j].max(self.a[j + 1]);
+        let i00 = self.integral[j] - self.integral[i];
+        let mut bound = 0.0f64;
+        for (x, y) in [(0.0, 0.0), (0.0, h_j), (h_i, 0.0), (h_i, h_j)] {
+            let integral = i00 + a * y - b * x;
+            if integral > 0.0 {
+                let dt = d00 + y - x;
+                let i2 = integral * integral;
+                bound = bound.max(i2 * i2 * integral / (dt * dt * dt));
+            }
+        }
+        bound * (1.0 + 1e-9)
+    }
+
+    /// An upper bound of HIC² (times 1 + 1e-9) over the windows from segment i to the end
+    /// segments j_lo..=j_hi (j_lo > i + 1), `a_top` the largest sample over those: as
+    /// [`Interpolant::cell_bound`] with t₂ = t_{j_lo} + u anywhere in the block,
+    /// F(t₂) ≤ F_{j_lo} + a_top u, so I ≤ I₀ + a_top u − B x and Δ = Δ₀ + u − x: the largest
+    /// of the four corners u ∈ {0, t_{j_hi+1} − t_{j_lo}}, x ∈ {0, h_i}.
+    fn ends_bound(&self, i: usize, j_lo: usize, j_hi: usize, a_top: f64) -> f64 {
+        let h_i = self.h(i);
+        let span = self.t[j_hi + 1] - self.t[j_lo];
+        let d00 = self.t[j_lo] - self.t[i];
+        if !(d00 - h_i > 0.0) {
+            return f64::INFINITY;
+        }
+        let b = self.a[i].min(self.a[i + 1]);
+        let i00 = self.integral[j_lo] - self.integral[i];
+        let mut bound = 0.0f64;
+        for (x, u) in [(0.0, 0.0), (0.0, span), (h_i, 0.0), (h_i, span)] {
+            let integral = i00 + a_top * u - b * x;
+            if integral > 0.0 {
+                let dt = d00 + u - x;
+                let i2 = integral * integral;
+                bound = bound.max(i2 * i2 * integral / (dt * dt * dt));
+            }
         }
         bound * (1.0 + 1e-9)
     }

@@ -117,7 +117,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
             s.steps,
             s.contact_steps,
             s.contact_step_s,
-            s.samples.len()
+            s.sample_count
         ),
     )?;
     if let Some(d) = &s.drive {

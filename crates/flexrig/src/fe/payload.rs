@@ -235,7 +235,7 @@ fn log_three(
             let text = flexrig_rig::overrides::apply(base_text, &overrides)?;
             let path = dir.join(format!("payload_{design}_{p:.4}kg.mcap"));
             run_logged(
-                Simulation::new(&scene, RunOptions::default())?,
+                Simulation::new(&scene, RunOptions::default())?.with_lean_samples(),
                 &scene,
                 &LogTarget {
                     path: &path,
@@ -278,7 +278,7 @@ pub fn run(options: &PayloadOptions, cancel: &CancelToken) -> Result<PayloadResu
     let operator = format!(
         "{} operator, m_h = {} ({}): CJ and CL, release to separation",
         scene.file.operator.block_material.replace('_', " "),
-        crate::plots::grams(scene.block_mass_kg),
+        crate::testbed::fig9::grams(scene.block_mass_kg),
         options.scene
     );
     let svg =

@@ -5,7 +5,7 @@ use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
-use flexrig_rig::{Recorder, RigError, RunSummary, Scene, Simulation};
+use flexrig_rig::{Recorder, RigError, RunSummary, Scene, Simulation, SwingSamples};
 
 use crate::Error;
 use crate::log::mcap::{LogRates, McapRecorder};
@@ -66,6 +66,22 @@ impl<A: Recorder, B: Recorder + ?Sized> Recorder for Both<'_, A, B> {
             self.1.between(f)?;
         }
         Ok(())
+    }
+
+    /// The samples either wants (each filters what it gets, so a superset is harmless).
+    fn swing_samples(&self) -> SwingSamples {
+        match (self.0.swing_samples(), self.1.swing_samples()) {
+            (SwingSamples::Every, _) | (_, SwingSamples::Every) => SwingSamples::Every,
+            (SwingSamples::None, SwingSamples::None) => SwingSamples::None,
+            _ => SwingSamples::Chosen,
+        }
+    }
+
+    fn wants_swing_sample(&mut self, t: f64) -> bool {
+        // both are asked (each keeps count of what it chose)
+        let a = self.0.swing_samples() == SwingSamples::Chosen && self.0.wants_swing_sample(t);
+        let b = self.1.swing_samples() == SwingSamples::Chosen && self.1.wants_swing_sample(t);
+        a || b
     }
 }
 

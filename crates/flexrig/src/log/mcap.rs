@@ -19,7 +19,7 @@ use std::io::{Seek, Write};
 
 use flexrig_contact::math::{Pose, Vector};
 use flexrig_rig::sensors::SensorSample;
-use flexrig_rig::{Frame, Recorder, RigError, RunSummary, Scene};
+use flexrig_rig::{Frame, Recorder, RigError, RunSummary, Scene, SwingSamples};
 use foxglove::Encode;
 use foxglove::messages::{
     ArrowPrimitive, Color, CubePrimitive, FrameTransform, FrameTransforms, JointState, JointStates,
@@ -97,6 +97,8 @@ pub struct McapRecorder<W: Write + Seek> {
     buffer: Vec<u8>,
     last_scene_ns: Option<u64>,
     last_scalar_ns: Option<u64>,
+    /// The last sensor sample written or chosen ahead ([`Recorder::wants_swing_sample`]) [ns].
+    last_chosen_ns: Option<u64>,
     geometry: flexrig_rig::geometry::RigGeometry,
     messages: u64,
     cancel: Option<CancelToken>,
@@ -416,6 +418,7 @@ impl<W: Write + Seek> McapRecorder<W> {
             buffer: Vec::with_capacity(1024),
             last_scene_ns: None,
             last_scalar_ns: None,
+            last_chosen_ns: None,
             geometry: flexrig_rig::geometry::RigGeometry::of(scene),
             messages: 0,
             cancel: None,
@@ -534,6 +537,7 @@ impl<W: Write + Seek> McapRecorder<W> {
                 continue;
             }
             self.last_scalar_ns = Some(ns);
+            self.last_chosen_ns = Some(ns);
             let ts = stamp(s.t);
             let c = self.channels;
             self.write(
@@ -930,6 +934,31 @@ impl<W: Write + Seek> Recorder for McapRecorder<W> {
             return Err(RigError::Interrupted { t: f.t });
         }
         self.write_scene_if_due(f, self.rates.scene_period_ns)
+    }
+
+    /// Outside contact the sensor channels are decimated: a lean run computes only the swing
+    /// samples the decimation writes (every sample when every one is logged).
+    fn swing_samples(&self) -> SwingSamples {
+        if self.rates.scalar_period_ns == 0 {
+            SwingSamples::Every
+        } else {
+            SwingSamples::Chosen
+        }
+    }
+
+    /// The decimation of [`McapRecorder::write_samples`] ahead of the frame: the sample is
+    /// wanted when it is due after the last one written or chosen (the frame then writes
+    /// exactly the chosen ones, as it would pick them out of every sample).
+    fn wants_swing_sample(&mut self, t: f64) -> bool {
+        let ns = nanos(t);
+        if self
+            .last_chosen_ns
+            .is_some_and(|last| ns < last + self.rates.scalar_period_ns)
+        {
+            return false;
+        }
+        self.last_chosen_ns = Some(ns);
+        true
     }
 }
 

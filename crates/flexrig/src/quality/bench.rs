@@ -524,7 +524,15 @@ type RigVariant = (
     RunOptions,
 );
 
+/// A run as `flexrig run` makes it: lean sampling (the samples nobody reads not computed).
 fn run_scene(s: &Scene, options: RunOptions) -> Result<flexrig_rig::RunSummary, Error> {
+    Ok(Simulation::new(s, options)?
+        .with_lean_samples()
+        .run(&mut NoRecorder)?)
+}
+
+/// A run that computes every sensor sample (what every run did before lean sampling).
+fn run_scene_full(s: &Scene, options: RunOptions) -> Result<flexrig_rig::RunSummary, Error> {
     Ok(Simulation::new(s, options)?.run(&mut NoRecorder)?)
 }
 
@@ -536,7 +544,9 @@ fn run_logged(s: &Scene, rates: LogRates) -> Result<(flexrig_rig::RunSummary, us
             message: e.to_string(),
         })?
         .with_rates(rates);
-    let summary = Simulation::new(s, RunOptions::default())?.run(&mut log)?;
+    let summary = Simulation::new(s, RunOptions::default())?
+        .with_lean_samples()
+        .run(&mut log)?;
     let bytes = log.finish_into_inner().map_err(|e| Error::Plot {
         path: "memory".into(),
         message: e.to_string(),
@@ -675,8 +685,18 @@ fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
                 }
             }
         }
-        // Logging: decimated outside contact (the default) against every step.
+        // The bundled scene with every sensor sample computed (before lean sampling).
         let s = scene(name, &[])?;
+        let full = run_scene_full(&s, RunOptions::DEFAULT)?;
+        rows.push(Row {
+            model: "rig".into(),
+            method: format!("{name}: release to separation, every sensor sample computed"),
+            setting: "800 steps/contact".into(),
+            error: (full.peak_force_n / reference - 1.0).abs(),
+            seconds: median_seconds(samples, 1, || run_scene_full(&s, RunOptions::DEFAULT)),
+            evaluations: None,
+        });
+        // Logging: decimated outside contact (the default) against every step.
         for (label, rates) in [
             ("decimated outside contact", LogRates::DECIMATED),
             ("every step", LogRates::EVERY_STEP),
@@ -786,7 +806,7 @@ fn driven_test_bed(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
 /// cells from a map at modal tol 1e-8 and root tolerance 1e-10). Model `safety`: in the table
 /// and JSON, not plotted.
 fn safety_maps(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
-    use crate::safety::map::{
+    use crate::safety::point::map::{
         GAMMA_CJ, MapMethod, SafetyMapInput, SimulationSettings, parse_axis, safety_map,
     };
     let cancel = crate::CancelToken::new();
@@ -800,7 +820,7 @@ fn safety_maps(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
             m_r: Some(0.051),
             m_e: None,
             k_delta: None,
-            law: crate::safety::point::ContactLaw::Material("skinned_aluminium".into()),
+            law: crate::safety::point::point::ContactLaw::Material("skinned_aluminium".into()),
             area_model: None,
             x: parse_axis("--x", &format!("m-e=0.01:5:{points}:log"))?,
             y: parse_axis("--y", &format!("k-delta=10:1e7:{points}:log"))?,
@@ -813,12 +833,12 @@ fn safety_maps(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
     let map = safety_map(&lumped, Some(&model), &cancel)?;
     let mut error = 0.0_f64;
     for c in map.cells.iter().step_by(7) {
-        let single = crate::safety::point::safety(
-            &crate::safety::point::SafetyInput {
+        let single = crate::safety::point::point::safety(
+            &crate::safety::point::point::SafetyInput {
                 region: lumped.region.clone(),
                 area: None,
                 contact: lumped.contact,
-                m_eff: Some(crate::safety::point::RobotEffectiveMass::Prb {
+                m_eff: Some(crate::safety::point::point::RobotEffectiveMass::Prb {
                     gamma: GAMMA_CJ,
                     m_r: c.m_r_kg,
                     m_e: c.m_e_kg,
@@ -829,7 +849,7 @@ fn safety_maps(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
                 moving_mass: None,
                 payload: 0.0,
                 speed: None,
-                methods: vec![crate::safety::point::SafetyMethod::Energy],
+                methods: vec![crate::safety::point::point::SafetyMethod::Energy],
                 link: None,
                 simulation: None,
                 scene: None,

@@ -452,7 +452,7 @@ impl Sweep {
     ) -> Result<(RunSummary, crate::testbed::link::LinkQuantities), Error> {
         let scene = flexrig_rig::scene_from_table(&self.base, overrides, &self.materials)?;
         let link = crate::testbed::link::of_scene(&scene);
-        let simulation = Simulation::new(&scene, RunOptions::default())?;
+        let simulation = Simulation::new(&scene, RunOptions::default())?.with_lean_samples();
         let Some(dir) = &options.mcap_dir else {
             return Ok((
                 simulation.run(&mut Interruptible(options.cancel.flag()))?,

@@ -563,7 +563,7 @@ fn run_job(
         deformation_scale: crate::log::mcap::DEFAULT_DEFORMATION_SCALE,
     };
     let summary = run_logged(
-        Simulation::new(&scene, RunOptions::default())?,
+        Simulation::new(&scene, RunOptions::default())?.with_lean_samples(),
         &scene,
         &target,
     )?;

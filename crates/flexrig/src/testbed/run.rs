@@ -121,7 +121,8 @@ fn run_rig_text(
     let scene = scene_with_overrides(&text, overrides, &Materials::bundled()?)?;
     // the log records the scene as run
     let text = overrides::apply(&text, overrides)?;
-    let simulation = Simulation::new(&scene, RunOptions::default())?;
+    // nothing here reads the samples: the log takes its decimated ones, the summary counts them
+    let simulation = Simulation::new(&scene, RunOptions::default())?.with_lean_samples();
     let Some(out) = log.out else {
         return Ok(simulation.run(&mut Interruptible(cancel.flag()))?);
     };
@@ -167,7 +168,7 @@ pub fn summary_json(s: &RunSummary, link: &LinkQuantities) -> serde_json::Value 
     let mut value = serde_json::to_value(s).expect("a run summary serialises");
     if let Some(map) = value.as_object_mut() {
         map.retain(|_, v| !v.is_null());
-        map.insert("samples".into(), json!(s.samples.len()));
+        map.insert("samples".into(), json!(s.sample_count));
     }
     link.insert_into(&mut value);
     value
