@@ -591,6 +591,54 @@ fn folder_violations(
     out
 }
 
+/// The module names the library's root re-exports for users' code (`pub use testbed::run;`,
+/// `pub use safety::map as safety_map;`, …): lower-case names only (types such as `Error` are
+/// the shared items the root stands for).
+fn root_aliases(lib_rs: &Path) -> BTreeSet<String> {
+    let code = code(lib_rs);
+    let mut out = BTreeSet::new();
+    for stmt in code.split(';') {
+        let s = stmt.trim();
+        let Some(body) = s.strip_prefix("pub use ") else {
+            continue;
+        };
+        for path in expand_use(body) {
+            let name = match body.rsplit_once(" as ") {
+                Some((_, alias)) if !body.contains('{') => alias.trim().to_string(),
+                _ => path.last().cloned().unwrap_or_default(),
+            };
+            if name.chars().next().is_some_and(|c| c.is_lowercase()) {
+                out.insert(name);
+            }
+        }
+    }
+    out
+}
+
+/// Library files that name a module through the root's alias (`crate::run::…` for
+/// `crate::testbed::run::…`): the folder rules could not see where such a path leads.
+fn alias_uses(graph: &CrateGraph, aliases: &BTreeSet<String>) -> Vec<String> {
+    let mut out = Vec::new();
+    for (module, file) in &graph.modules {
+        if module.is_empty() {
+            continue;
+        }
+        for p in named_paths(&code(file)) {
+            if p.first().map(String::as_str) == Some("crate")
+                && p.get(1).is_some_and(|n| aliases.contains(n))
+            {
+                out.push(format!(
+                    "{} names `{}` through the root's alias `crate::{}`: use the folder's path",
+                    file.display(),
+                    p.join("::"),
+                    p[1]
+                ));
+            }
+        }
+    }
+    out
+}
+
 #[test]
 fn the_library_folders_import_one_way() {
     let (dir, rules) = folder_rules();
@@ -625,6 +673,13 @@ fn the_library_folders_import_one_way() {
         "imports against the folder rules:\n{}",
         bad.join("\n")
     );
+    let aliases = root_aliases(&dir.join("src/lib.rs"));
+    assert!(
+        aliases.contains("run") && aliases.contains("safety_map"),
+        "{aliases:?}"
+    );
+    let through_aliases = alias_uses(&graph, &aliases);
+    assert!(through_aliases.is_empty(), "{}", through_aliases.join("\n"));
 }
 
 /// A throw-away crate on disk for the checks' own tests.
@@ -729,5 +784,32 @@ fn the_check_finds_an_import_against_the_folder_rules() {
         "{}",
         bad[0]
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_check_finds_a_path_through_a_root_alias() {
+    let dir = scratch_crate(
+        "aliases",
+        &[
+            (
+                "lib.rs",
+                "pub mod low;\npub mod high;\npub use low::x as old_x;\npub use low::{x, Error};\n",
+            ),
+            ("low/mod.rs", "pub mod x;\n"),
+            ("low/x.rs", "pub struct Error;\n"),
+            ("high/mod.rs", "pub mod y;\n"),
+            (
+                "high/y.rs",
+                "use crate::old_x::Error;\nuse crate::Error as E;\nuse crate::low::x::Error as F;\n",
+            ),
+        ],
+    );
+    let graph = crate_graph(&dir);
+    let aliases = root_aliases(&dir.join("src/lib.rs"));
+    assert_eq!(aliases, ["old_x".to_string(), "x".to_string()].into());
+    let found = alias_uses(&graph, &aliases);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(found[0].contains("crate::old_x::Error"), "{}", found[0]);
     let _ = std::fs::remove_dir_all(&dir);
 }

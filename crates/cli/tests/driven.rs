@@ -221,13 +221,38 @@ fn spin_up_checks_its_work_and_its_output_before_the_work() {
     let file = dir.join("a_file");
     std::fs::write(&file, "x").unwrap();
     for (args, flag) in [
-        (vec!["spin-up", "--max-step", "1e-300", "--out", out_dir], "--max-step"),
-        (vec!["spin-up", "--elements", "10000", "--out", out_dir], "--elements"),
         (
-            vec!["spin-up", "--sample-every", "1e-4", "--max-step", "1e-4", "--out", out_dir],
+            vec!["spin-up", "--max-step", "1e-300", "--out", out_dir],
+            "--max-step",
+        ),
+        (
+            vec!["spin-up", "--elements", "10000", "--out", out_dir],
+            "--elements",
+        ),
+        (
+            vec![
+                "spin-up",
+                "--sample-every",
+                "1e-4",
+                "--max-step",
+                "1e-4",
+                "--out",
+                out_dir,
+            ],
             "--sample-every",
         ),
-        (vec!["spin-up", "--duration", "1e6", "--sample-every", "100", "--out", out_dir], "--duration"),
+        (
+            vec![
+                "spin-up",
+                "--duration",
+                "1e6",
+                "--sample-every",
+                "100",
+                "--out",
+                out_dir,
+            ],
+            "--duration",
+        ),
         (vec!["spin-up", "--out", file.to_str().unwrap()], "--out"),
     ] {
         let out = flexrig(&args);
@@ -247,7 +272,16 @@ fn spin_up_takes_any_sample_spacing() {
     for extra in [
         vec!["--duration", "1", "--sample-every", "0.01", "--modes", "2"],
         vec!["--duration", "1", "--sample-every", "0.005", "--modes", "4"],
-        vec!["--duration", "30", "--sample-every", "0.02", "--modes", "2", "--elements", "4"],
+        vec![
+            "--duration",
+            "30",
+            "--sample-every",
+            "0.02",
+            "--modes",
+            "2",
+            "--elements",
+            "4",
+        ],
     ] {
         let mut args = vec!["spin-up", "--out", dir.to_str().unwrap(), "--json"];
         args.extend(&extra);
@@ -269,8 +303,15 @@ fn spin_up_kane_case() {
     let dir = scratch_dir("spin-up-kane");
     let out = flexrig(&["spin-up", "--case", "kane", "--out", dir.to_str().unwrap()]);
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    assert!(text.contains("Kane, Ryan & Banerjee 1987") && text.contains("L = 8 m"), "{text}");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        text.contains("Kane, Ryan & Banerjee 1987") && text.contains("L = 8 m"),
+        "{text}"
+    );
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("spin_up.json")).unwrap()).unwrap();
     assert_eq!(v["options"]["length"].as_f64(), Some(8.0));

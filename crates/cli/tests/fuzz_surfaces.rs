@@ -1961,7 +1961,15 @@ fn ctrl_c_stops_every_long_command_with_130_and_whole_files() {
         ),
         // the reference at 12 modes takes minutes: Ctrl-C stops it between two of its steps
         (
-            vec!["spin-up", "--modes", "12", "--elements", "200", "--out", "spin"],
+            vec![
+                "spin-up",
+                "--modes",
+                "12",
+                "--elements",
+                "200",
+                "--out",
+                "spin",
+            ],
             "spin",
         ),
     ];

@@ -110,7 +110,8 @@ fn the_fe_beam_converges_to_the_inextensible_reference_at_second_order() {
 /// 1.8751² √(EI/(ρA L⁴)) = 3.80 and 2.91 rad/s, so both spin-ups (6 and 4 rad/s) pass them.
 #[test]
 fn the_named_beams_have_their_published_parameters() {
-    let first = |s: &SpinUp| 1.875_104_068_7_f64.powi(2) * (s.ei / (s.rho_a * s.length.powi(4))).sqrt();
+    let first =
+        |s: &SpinUp| 1.875_104_068_7_f64.powi(2) * (s.ei / (s.rho_a * s.length.powi(4))).sqrt();
     let simo = SpinUp::simo_vu_quoc(6.0);
     assert_eq!((simo.length, simo.ea, simo.ei), (10.0, 2.8e7, 1.4e4));
     assert!((simo.rho_a - 1.2).abs() < 1e-12);
@@ -133,7 +134,10 @@ fn kane_ryan_banerjee_beam_fe_follows_the_reference_and_the_linear_beam_fails() 
     let fe = spin_up_fe(&spec, 16, 1e-3).unwrap();
     let linear = spin_up_linear(&spec, 4, 1e-8).unwrap();
     let (modes, e16) = (r4.difference(&r5), fe.difference(&r5));
-    eprintln!("Kane: max {:.6} m; 4 vs 5 modes {modes:.2e}; FE 16 elements {e16:.2e}", r5.max_abs());
+    eprintln!(
+        "Kane: max {:.6} m; 4 vs 5 modes {modes:.2e}; FE 16 elements {e16:.2e}",
+        r5.max_abs()
+    );
     assert!(modes <= 1e-4 && e16 <= 1e-2, "{modes} {e16}");
     assert!(linear.tip_deflection_m.last().unwrap().abs() > 1e3 * r5.max_abs());
 }
@@ -160,20 +164,27 @@ fn any_sample_spacing_reaches_every_sample_time() {
         reason: "x".into(),
     }
     .to_string();
-    assert!(e.starts_with("the spin-up reference did not finish") && !e.contains("impact"), "{e}");
+    assert!(
+        e.starts_with("the spin-up reference did not finish") && !e.contains("impact"),
+        "{e}"
+    );
 }
 
 /// A set stop flag stops each solution at its next step with `Interrupted`.
 #[test]
 fn a_stop_flag_interrupts_each_solution() {
-    use flexrig_impact::spin_up::{spin_up_fe_until, spin_up_linear_until, spin_up_reference_until};
+    use flexrig_impact::spin_up::{
+        spin_up_fe_until, spin_up_linear_until, spin_up_reference_until,
+    };
     use std::sync::atomic::AtomicBool;
     let stop = AtomicBool::new(true);
     let spec = SpinUp::simo_vu_quoc(6.0);
     let interrupted = |r: Result<_, flexrig_impact::ImpactError>| {
         matches!(r, Err(flexrig_impact::ImpactError::Interrupted))
     };
-    assert!(interrupted(spin_up_reference_until(&spec, 12, 1e-12, &stop)));
+    assert!(interrupted(spin_up_reference_until(
+        &spec, 12, 1e-12, &stop
+    )));
     assert!(interrupted(spin_up_linear_until(&spec, 12, 1e-12, &stop)));
     assert!(interrupted(spin_up_fe_until(&spec, 1000, 1e-5, &stop)));
 }

@@ -161,16 +161,19 @@ impl Sampler {
             }
             let w = (t - a.t) / dt;
             let lerp = |x: f64, y: f64| x + (y - x) * w;
-            self.push(self.next_index - 1, SensorSample {
-                t,
-                operator_angle_rad: lerp(a.operator_angle, b.operator_angle),
-                robot_angle_rad: lerp(a.robot_angle, b.robot_angle),
-                link_tip_deflection_m: lerp(a.tip_deflection, b.tip_deflection),
-                operator_accel_mps2: operator_accel,
-                load_accel_mps2: load_accel,
-                force_n: lerp(a.force, b.force),
-                indentation_m: lerp(a.indentation, b.indentation),
-            });
+            self.push(
+                self.next_index - 1,
+                SensorSample {
+                    t,
+                    operator_angle_rad: lerp(a.operator_angle, b.operator_angle),
+                    robot_angle_rad: lerp(a.robot_angle, b.robot_angle),
+                    link_tip_deflection_m: lerp(a.tip_deflection, b.tip_deflection),
+                    operator_accel_mps2: operator_accel,
+                    load_accel_mps2: load_accel,
+                    force_n: lerp(a.force, b.force),
+                    indentation_m: lerp(a.indentation, b.indentation),
+                },
+            );
         }
     }
 
@@ -222,7 +225,9 @@ impl Sampler {
         let mut first = self.next_index;
         if time(first) < t_a {
             // jump close, then walk to the exact first index with time >= t_a
-            let guess = ((t_a / self.period).floor() as u64).saturating_sub(1).max(first);
+            let guess = ((t_a / self.period).floor() as u64)
+                .saturating_sub(1)
+                .max(first);
             first = guess;
             while time(first) < t_a {
                 first += 1;
@@ -230,7 +235,9 @@ impl Sampler {
         }
         let mut end = first;
         if time(end) <= t_b {
-            let guess = ((t_b / self.period).floor() as u64).saturating_sub(1).max(end);
+            let guess = ((t_b / self.period).floor() as u64)
+                .saturating_sub(1)
+                .max(end);
             end = guess;
             while time(end) <= t_b {
                 end += 1;

@@ -10,8 +10,7 @@ mod common;
 
 use flexrig_rig::severity::of_samples;
 use flexrig_rig::{
-    Frame, NoRecorder, Recorder, RigError, RunOptions, RunSummary, Scene, Simulation,
-    SwingSamples,
+    Frame, NoRecorder, Recorder, RigError, RunOptions, RunSummary, Scene, Simulation, SwingSamples,
 };
 
 /// The bundled test-bed scenes (not the driven scenes of flexrig-impact).
@@ -167,11 +166,20 @@ fn the_contact_stretches_give_the_whole_traces_severity() {
         .unwrap();
         let ours = of_samples(s, scene.file.robot.dome_radius_m).unwrap();
         assert_eq!(ours.peak_force_n, whole.peak_force_n, "{name}");
-        assert_eq!(ours.time_of_peak_force_s, whole.time_of_peak_force_s, "{name}");
+        assert_eq!(
+            ours.time_of_peak_force_s, whole.time_of_peak_force_s,
+            "{name}"
+        );
         assert_eq!(ours.pressure, whole.pressure, "{name}");
-        assert_eq!(ours.energy_transferred_j, whole.energy_transferred_j, "{name}");
+        assert_eq!(
+            ours.energy_transferred_j, whole.energy_transferred_j,
+            "{name}"
+        );
         assert_eq!(ours.contact_work_j, whole.contact_work_j, "{name}");
-        assert_eq!(ours.peak_acceleration_mps2, whole.peak_acceleration_mps2, "{name}");
+        assert_eq!(
+            ours.peak_acceleration_mps2, whole.peak_acceleration_mps2,
+            "{name}"
+        );
         for (x, y) in [(&ours.hic15, &whole.hic15), (&ours.hic36, &whole.hic36)] {
             let (x, y) = (x.unwrap(), y.unwrap());
             assert!((x.hic / y.hic - 1.0).abs() <= 1e-12, "{name}: {x:?} {y:?}");

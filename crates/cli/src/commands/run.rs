@@ -114,10 +114,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
         out,
         format!(
             "  steps               {} ({} in contact at {:.3e} s), {} sensor samples",
-            s.steps,
-            s.contact_steps,
-            s.contact_step_s,
-            s.sample_count
+            s.steps, s.contact_steps, s.contact_step_s, s.sample_count
         ),
     )?;
     if let Some(d) = &s.drive {

@@ -6,9 +6,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::driven::spin_up::{
-    SpinUpCase, SpinUpOptions, run_with_figures as run_spin_up,
-};
+use flexrig::driven::spin_up::{SpinUpCase, SpinUpOptions, run_with_figures as run_spin_up};
 use flexrig::{CancelToken, Error};
 
 use crate::print::{line, print_json};

@@ -232,7 +232,11 @@ impl SpinUpOptions {
     /// bounds DOP853's step; a right-hand side costs ∝ modes²).
     pub fn reference_work(spec: &SpinUp, modes: usize) -> f64 {
         let m = modes as f64;
-        spec.t_end * (spec.ei / (spec.rho_a * spec.length.powi(4))).sqrt() * (m - 0.5).powi(2) * m * m
+        spec.t_end
+            * (spec.ei / (spec.rho_a * spec.length.powi(4))).sqrt()
+            * (m - 0.5).powi(2)
+            * m
+            * m
     }
 
     /// The work the run will take, checked before it starts (errors name the flags): at most
@@ -475,22 +479,48 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let file = dir.join("a_file");
         std::fs::write(&file, "x").unwrap();
-        let refused = |options: &SpinUpOptions, out: &std::path::Path, flag: &str| {
-            match run(options, out, &cancelled) {
-                Err(Error::InvalidArgument { arg, .. }) => assert_eq!(arg, flag),
-                other => panic!("{flag}: {other:?}"),
-            }
+        let refused = |options: &SpinUpOptions, out: &std::path::Path, flag: &str| match run(
+            options, out, &cancelled,
+        ) {
+            Err(Error::InvalidArgument { arg, .. }) => assert_eq!(arg, flag),
+            other => panic!("{flag}: {other:?}"),
         };
         let d = SpinUpOptions::default();
         refused(&d, &file, "--out");
-        refused(&SpinUpOptions { max_step: 1e-300, ..d.clone() }, &dir, "--max-step");
-        refused(&SpinUpOptions { elements: 10_000, ..d.clone() }, &dir, "--elements");
         refused(
-            &SpinUpOptions { sample_every: 1e-4, max_step: 1e-4, ..d.clone() },
+            &SpinUpOptions {
+                max_step: 1e-300,
+                ..d.clone()
+            },
+            &dir,
+            "--max-step",
+        );
+        refused(
+            &SpinUpOptions {
+                elements: 10_000,
+                ..d.clone()
+            },
+            &dir,
+            "--elements",
+        );
+        refused(
+            &SpinUpOptions {
+                sample_every: 1e-4,
+                max_step: 1e-4,
+                ..d.clone()
+            },
             &dir,
             "--sample-every",
         );
-        refused(&SpinUpOptions { duration: Some(1e6), sample_every: 100.0, ..d.clone() }, &dir, "--duration");
+        refused(
+            &SpinUpOptions {
+                duration: Some(1e6),
+                sample_every: 100.0,
+                ..d.clone()
+            },
+            &dir,
+            "--duration",
+        );
         match run(&d, &dir, &cancelled) {
             Err(Error::Impact(flexrig_impact::ImpactError::Interrupted)) => {}
             other => panic!("{other:?}"),

@@ -278,7 +278,7 @@ pub fn run(options: &PayloadOptions, cancel: &CancelToken) -> Result<PayloadResu
     let operator = format!(
         "{} operator, m_h = {} ({}): CJ and CL, release to separation",
         scene.file.operator.block_material.replace('_', " "),
-        crate::testbed::fig9::grams(scene.block_mass_kg),
+        crate::plots::grams(scene.block_mass_kg),
         options.scene
     );
     let svg =

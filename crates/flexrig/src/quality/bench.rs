@@ -806,7 +806,7 @@ fn driven_test_bed(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
 /// cells from a map at modal tol 1e-8 and root tolerance 1e-10). Model `safety`: in the table
 /// and JSON, not plotted.
 fn safety_maps(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
-    use crate::safety::point::map::{
+    use crate::safety::map::{
         GAMMA_CJ, MapMethod, SafetyMapInput, SimulationSettings, parse_axis, safety_map,
     };
     let cancel = crate::CancelToken::new();
@@ -820,7 +820,7 @@ fn safety_maps(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
             m_r: Some(0.051),
             m_e: None,
             k_delta: None,
-            law: crate::safety::point::point::ContactLaw::Material("skinned_aluminium".into()),
+            law: crate::safety::point::ContactLaw::Material("skinned_aluminium".into()),
             area_model: None,
             x: parse_axis("--x", &format!("m-e=0.01:5:{points}:log"))?,
             y: parse_axis("--y", &format!("k-delta=10:1e7:{points}:log"))?,
@@ -833,12 +833,12 @@ fn safety_maps(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
     let map = safety_map(&lumped, Some(&model), &cancel)?;
     let mut error = 0.0_f64;
     for c in map.cells.iter().step_by(7) {
-        let single = crate::safety::point::point::safety(
-            &crate::safety::point::point::SafetyInput {
+        let single = crate::safety::point::safety(
+            &crate::safety::point::SafetyInput {
                 region: lumped.region.clone(),
                 area: None,
                 contact: lumped.contact,
-                m_eff: Some(crate::safety::point::point::RobotEffectiveMass::Prb {
+                m_eff: Some(crate::safety::point::RobotEffectiveMass::Prb {
                     gamma: GAMMA_CJ,
                     m_r: c.m_r_kg,
                     m_e: c.m_e_kg,
@@ -849,7 +849,7 @@ fn safety_maps(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
                 moving_mass: None,
                 payload: 0.0,
                 speed: None,
-                methods: vec![crate::safety::point::point::SafetyMethod::Energy],
+                methods: vec![crate::safety::point::SafetyMethod::Energy],
                 link: None,
                 simulation: None,
                 scene: None,

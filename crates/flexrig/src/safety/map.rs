@@ -11,7 +11,7 @@
 //!   m_R = m_eff; the CJ and CL differ only by m_eff.
 //! - **energy** (method b, lumped): the paper's energy balance ½μv² = U(f_max) (Eq. 13 with the
 //!   Hertz law and k_δ in series, Eq. 4–9), m_eff = m_e + γ m_r/3 (Eq. 5) with γ = 1 for the CJ
-//!   and γ = 2/3 for the CL. Every cell is [`crate::safety::point::point::safety`] at the cell's parameters,
+//!   and γ = 2/3 for the CL. Every cell is [`crate::safety::point::safety`] at the cell's parameters,
 //!   so it equals the single-point answer bit for bit.
 //! - **simulation** (method c): the speed at which the finite-element impact's peak force
 //!   reaches the limit (and the force at which the mean pressure reaches its limit), by a
@@ -39,15 +39,15 @@ use flexrig_safety::{BodyModel, ContactAreaModel, ContactKind, EnergyContact, Go
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::safety::point::point::{
+use crate::safety::point::{
     ContactLaw, MethodResult, RobotEffectiveMass, SafetyInput, SafetyMethod, Speed, Unbounded,
     safety,
 };
-pub use crate::safety::point::simulation::{
+pub use crate::safety::simulation::{
     CLAMPED_HUMAN_MASS, FE_RIGID_LINK_STIFFNESS, FeImpact, FeLink, FeRuns, GAMMA_CJ, GAMMA_CL,
     MapJoint, RootStep, SimulationSettings, fe_speeds, speed_at_ratio,
 };
-use crate::safety::point::simulation::{bad, display};
+use crate::safety::simulation::{bad, display};
 use crate::{CancelToken, Error};
 
 /// Most points along one axis.

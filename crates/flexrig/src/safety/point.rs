@@ -8,7 +8,7 @@
 //!   fitted Hertz law f = k_c δ_c^n, Eq. 4, in series with the link stiffness k_δ, Eq. 6–9;
 //!   [`flexrig_safety::EnergyContact`]);
 //! - **simulation**: the speed at which the finite-element impact the safe-speed maps use
-//!   reaches the limit ([`crate::safety::point::simulation::FeImpact`]: the CJ as a rigid link on its torsion
+//!   reaches the limit ([`crate::safety::simulation::FeImpact`]: the CJ as a rigid link on its torsion
 //!   spring by DOP853, the CL as the Euler–Bernoulli beam by its modes and the exact modal
 //!   integrator; held joint or free hub), by a bracket around the energy method's speed and the
 //!   Illinois root search on ln v to the settings' `root_rtol` (default 1e-6, below the 1e-4
@@ -32,9 +32,9 @@ pub use flexrig_safety::{BodyModel, ContactAreaModel, ContactKind, GoverningLimi
 use serde::{Deserialize, Serialize};
 
 use crate::Error;
-use crate::safety::point::scene::SafetyDesignScene;
+use crate::safety::scene::SafetyDesignScene;
 
-pub use crate::safety::point::simulation::{
+pub use crate::safety::simulation::{
     CLAMPED_HUMAN_MASS, FE_RIGID_LINK_STIFFNESS, FeImpact, FeLink, MapJoint, RootStep,
     SimulationSettings,
 };
@@ -124,10 +124,10 @@ pub struct SafetyInput {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub simulation: Option<SimulationSettings>,
     /// A scene as the design (`--scene`: a bundled scene's name or a scene file's path). A
-    /// driven scene ([`crate::safety::point::scene`]): the link, the skin's law and the contact kind
+    /// driven scene ([`crate::safety::scene`]): the link, the skin's law and the contact kind
     /// come from the scene (a wall: quasi-static; a free head or a neck: transient), and the
     /// simulation method searches the scene's commanded speed. A test-bed scene
-    /// ([`crate::safety::point::test_bed`]): the robot link and the operator block's law, transient
+    /// ([`crate::safety::test_bed`]): the robot link and the operator block's law, transient
     /// contact, and the simulation method searches the operator's speed at contact through its
     /// release angle. Absent: the design of the other fields.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -247,7 +247,7 @@ pub struct SafetyReport {
     pub methods: Vec<MethodResult>,
     /// The driven scene's simulation (absent without `--scene` or the simulation method).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub scene: Option<crate::safety::point::simulation::SceneSimulation>,
+    pub scene: Option<crate::safety::simulation::SceneSimulation>,
 }
 
 fn bad(arg: &str, value: impl ToString, allowed: &str) -> Error {
@@ -411,7 +411,7 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
     let scene = input
         .scene
         .as_deref()
-        .map(crate::safety::point::scene::load_any)
+        .map(crate::safety::scene::load_any)
         .transpose()?;
     let derived;
     let input = match &scene {
@@ -468,15 +468,15 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
 /// model is given. The design flags are refused beside a scene (the scene is the design).
 fn scene_input(
     input: &SafetyInput,
-    sc: &crate::safety::point::scene::SafetyScene,
+    sc: &crate::safety::scene::SafetyScene,
 ) -> Result<SafetyInput, Error> {
     let strike = &sc.scene.strike;
     let (gamma, link) = match strike.design {
         crate::driven::strike::StrikeDesign::Cj => {
-            (crate::safety::point::simulation::GAMMA_CJ, FeLink::CompliantJoint)
+            (crate::safety::simulation::GAMMA_CJ, FeLink::CompliantJoint)
         }
         crate::driven::strike::StrikeDesign::Cl => {
-            (crate::safety::point::simulation::GAMMA_CL, FeLink::CompliantLink)
+            (crate::safety::simulation::GAMMA_CL, FeLink::CompliantLink)
         }
     };
     let hertz = strike.person.contact;
@@ -525,14 +525,14 @@ fn any_scene_input(input: &SafetyInput, sc: &SafetyDesignScene) -> Result<Safety
 /// scene's dome unless an area model is given.
 fn test_bed_input(
     input: &SafetyInput,
-    tb: &crate::safety::point::test_bed::TestBedScene,
+    tb: &crate::safety::test_bed::TestBedScene,
 ) -> Result<SafetyInput, Error> {
     let (gamma, link) = match tb.design() {
         crate::driven::strike::StrikeDesign::Cj => {
-            (crate::safety::point::simulation::GAMMA_CJ, FeLink::CompliantJoint)
+            (crate::safety::simulation::GAMMA_CJ, FeLink::CompliantJoint)
         }
         crate::driven::strike::StrikeDesign::Cl => {
-            (crate::safety::point::simulation::GAMMA_CL, FeLink::CompliantLink)
+            (crate::safety::simulation::GAMMA_CL, FeLink::CompliantLink)
         }
     };
     let quantities = crate::testbed::link::of_scene(&tb.scene);
@@ -600,22 +600,22 @@ fn refuse_design_flags(input: &SafetyInput, derived: &SafetyInput) -> Result<(),
 /// `input` itself without a scene: what the methods compute with, as a report lists it.
 pub fn design_input(input: &SafetyInput) -> Result<SafetyInput, Error> {
     match &input.scene {
-        Some(given) => any_scene_input(input, &crate::safety::point::scene::load_any(given)?),
+        Some(given) => any_scene_input(input, &crate::safety::scene::load_any(given)?),
         None => Ok(input.clone()),
     }
 }
 
-/// The simulation method on the driven scene `sc` ([`crate::safety::point::scene::simulate`]): the
+/// The simulation method on the driven scene `sc` ([`crate::safety::scene::simulate`]): the
 /// searches start at the energy method's speeds; the verdict runs the scene at the judged speed.
 fn scene_method(
     s: &Setup,
     input: &SafetyInput,
-    sc: &crate::safety::point::scene::SafetyScene,
-) -> Result<(MethodResult, crate::safety::point::simulation::SceneSimulation), Error> {
+    sc: &crate::safety::scene::SafetyScene,
+) -> Result<(MethodResult, crate::safety::simulation::SceneSimulation), Error> {
     let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
     let contact = energy_contact(s)?;
     let guess = contact.permissible_speed(s.limits)?;
-    let sim = crate::safety::point::scene::simulate(
+    let sim = crate::safety::scene::simulate(
         sc,
         &s.limits,
         &contact,
@@ -624,11 +624,11 @@ fn scene_method(
         &settings,
     )?;
     scene_method_result(s, input.speed, contact.reduced_mass(), sim, |v| {
-        crate::safety::point::scene::peak_force(sc, v, &settings)
+        crate::safety::scene::peak_force(sc, v, &settings)
     })
 }
 
-/// The simulation method on the test-bed scene `tb` ([`crate::safety::point::test_bed::simulate`]):
+/// The simulation method on the test-bed scene `tb` ([`crate::safety::test_bed::simulate`]):
 /// the searches start at the energy method's speeds for the operator's pendulum (the struck
 /// mass J/l² in place of the region's m_H, and the link as a free mass: the contact is short
 /// against the link's own period, so its spring hardly acts); the verdict runs the scene at the
@@ -636,8 +636,8 @@ fn scene_method(
 fn test_bed_method(
     s: &Setup,
     input: &SafetyInput,
-    tb: &crate::safety::point::test_bed::TestBedScene,
-) -> Result<(MethodResult, crate::safety::point::simulation::SceneSimulation), Error> {
+    tb: &crate::safety::test_bed::TestBedScene,
+) -> Result<(MethodResult, crate::safety::simulation::SceneSimulation), Error> {
     let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
     let contact = EnergyContact::new(
         tb.operator_mass(),
@@ -647,7 +647,7 @@ fn test_bed_method(
         s.area_model,
     )?;
     let guess = contact.permissible_speed(s.limits)?;
-    let sim = crate::safety::point::test_bed::simulate(
+    let sim = crate::safety::test_bed::simulate(
         tb,
         &s.limits,
         &contact,
@@ -667,9 +667,9 @@ fn scene_method_result(
     s: &Setup,
     speed: Option<f64>,
     reduced_mass: f64,
-    sim: crate::safety::point::simulation::SceneSimulation,
+    sim: crate::safety::simulation::SceneSimulation,
     peak_at: impl FnOnce(f64) -> Result<f64, Error>,
-) -> Result<(MethodResult, crate::safety::point::simulation::SceneSimulation), Error> {
+) -> Result<(MethodResult, crate::safety::simulation::SceneSimulation), Error> {
     let p = PermissibleSpeed::from_parts(
         sim.by_force_mps,
         sim.by_pressure_mps,
@@ -764,7 +764,7 @@ fn energy(s: &Setup, speed: Option<f64>) -> Result<MethodResult, Error> {
 }
 
 /// The finite-element impact of the simulation method for `s` and `input`.
-fn fe_impact(s: &Setup, input: &SafetyInput) -> Result<crate::safety::point::simulation::FeImpact, Error> {
+fn fe_impact(s: &Setup, input: &SafetyInput) -> Result<crate::safety::simulation::FeImpact, Error> {
     let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
     settings.validate()?;
     let (gamma, m_r, m_e) = match input.m_eff {
@@ -780,8 +780,8 @@ fn fe_impact(s: &Setup, input: &SafetyInput) -> Result<crate::safety::point::sim
     };
     let link = match input.link {
         Some(link) => link,
-        None if gamma == crate::safety::point::simulation::GAMMA_CJ => FeLink::CompliantJoint,
-        None if (gamma - crate::safety::point::simulation::GAMMA_CL).abs() < 1e-12 => {
+        None if gamma == crate::safety::simulation::GAMMA_CJ => FeLink::CompliantJoint,
+        None if (gamma - crate::safety::simulation::GAMMA_CL).abs() < 1e-12 => {
             FeLink::CompliantLink
         }
         None => {
@@ -815,7 +815,7 @@ fn fe_impact(s: &Setup, input: &SafetyInput) -> Result<crate::safety::point::sim
              rigid link)",
         ));
     }
-    Ok(crate::safety::point::simulation::FeImpact {
+    Ok(crate::safety::simulation::FeImpact {
         m_h: match s.region.human_mass(s.kind) {
             m if m.is_finite() => m,
             _ => CLAMPED_HUMAN_MASS,
@@ -849,7 +849,7 @@ fn simulation_traced(
     let contact = energy_contact(s)?;
     let guess = contact.permissible_speed(s.limits)?;
     let stop = std::sync::atomic::AtomicBool::new(false);
-    let (by_force, by_pressure, _) = crate::safety::point::simulation::fe_speeds(
+    let (by_force, by_pressure, _) = crate::safety::simulation::fe_speeds(
         &impact,
         &s.limits,
         &contact,
@@ -890,7 +890,7 @@ pub fn simulation_trace(
     (
         MethodResult,
         Vec<RootStep>,
-        crate::safety::point::simulation::FeImpact,
+        crate::safety::simulation::FeImpact,
     ),
     Error,
 > {
@@ -927,10 +927,10 @@ pub fn simulated_peak_forces(
     };
     if let Some(given) = &input.scene {
         let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
-        return match crate::safety::point::scene::load_any(given)? {
+        return match crate::safety::scene::load_any(given)? {
             SafetyDesignScene::Driven(sc) => speeds
                 .iter()
-                .map(|&v| Ok((v, crate::safety::point::scene::peak_force(&sc, v, &settings)?)))
+                .map(|&v| Ok((v, crate::safety::scene::peak_force(&sc, v, &settings)?)))
                 .collect(),
             SafetyDesignScene::TestBed(tb) => {
                 let reach = tb.max_speed();

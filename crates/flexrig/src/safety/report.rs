@@ -19,8 +19,8 @@ use flexrig_safety::{
 };
 
 use crate::Error;
-use crate::safety::point::map::RootStep;
-use crate::safety::point::point::{
+use crate::safety::map::RootStep;
+use crate::safety::point::{
     ContactLaw, FeLink, MapJoint, MethodResult, RobotEffectiveMass, SafetyInput, SafetyMethod,
     SafetyReport, safety, simulated_peak_forces, simulation_trace as traced_simulation,
 };
@@ -91,7 +91,7 @@ pub fn report_document(
             &bundled
         }
     };
-    let input = &crate::safety::point::point::design_input(input)?;
+    let input = &crate::safety::point::design_input(input)?;
     let r = safety(input, Some(model))?;
     let region = model.region(&r.region)?;
     let area = region.area(&r.area)?;
@@ -644,7 +644,7 @@ fn simulation_trace(
          energy method's {} m/s and found by the Illinois false position on ln v until the \
          bracket is narrower than {:e} (relative). Both tolerances lie below the 1e-4 the \
          result is quoted to.",
-        if fe.m_h >= crate::safety::point::point::CLAMPED_HUMAN_MASS {
+        if fe.m_h >= crate::safety::point::CLAMPED_HUMAN_MASS {
             format!("{} kg (clamped body)", g(fe.m_h))
         } else {
             format!("{} kg", n(fe.m_h))
@@ -701,7 +701,7 @@ fn simulation_trace(
 /// Method c on a driven scene: the scene, the search's every evaluation and the result.
 fn scene_trace(
     d: &mut Document,
-    sc: &crate::safety::point::simulation::SceneSimulation,
+    sc: &crate::safety::simulation::SceneSimulation,
     r: &SafetyReport,
     m: &MethodResult,
 ) {
@@ -796,7 +796,7 @@ fn scene_trace(
 /// Method c on a test-bed scene: the scene, the search's every evaluation and the result.
 fn test_bed_trace(
     d: &mut Document,
-    sc: &crate::safety::point::simulation::SceneSimulation,
+    sc: &crate::safety::simulation::SceneSimulation,
     r: &SafetyReport,
     m: &MethodResult,
     angle: f64,

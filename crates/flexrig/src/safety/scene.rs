@@ -11,7 +11,7 @@
 //! `tol` in the contact and 10 × `tol` before it), and the speed at which the first contact's
 //! peak force reaches the region's force limit (or the force at which the mean pressure of the
 //! contact-area model reaches the pressure limit) is found by the Illinois root search on ln v
-//! to `root_rtol` ([`crate::safety::point::simulation::speed_at_ratio`]).
+//! to `root_rtol` ([`crate::safety::simulation::speed_at_ratio`]).
 //!
 //! The contact kind follows the scene's support: a head against a wall is clamped
 //! (quasi-static limits, ISO/TS 15066:2016 Table A.2's quasi-static values), a free head or a
@@ -28,7 +28,7 @@ use flexrig_safety::{ContactKind, EnergyContact, Limits, PressureCrossing};
 use crate::Error;
 use crate::driven::scene::{DrivenScene, note_text};
 use crate::driven::strike::StrikeDesign;
-use crate::safety::point::simulation::{SceneSimulation, SimulationSettings, speed_at_ratio};
+use crate::safety::simulation::{SceneSimulation, SimulationSettings, speed_at_ratio};
 
 /// A driven scene loaded for the safety verdict.
 #[derive(Debug, Clone)]
@@ -45,8 +45,8 @@ pub enum SafetyDesignScene {
     /// A driven scene: its commanded speed is searched.
     Driven(Box<SafetyScene>),
     /// A test-bed scene: the operator's speed at contact is searched
-    /// ([`crate::safety::point::test_bed`]).
-    TestBed(Box<crate::safety::point::test_bed::TestBedScene>),
+    /// ([`crate::safety::test_bed`]).
+    TestBed(Box<crate::safety::test_bed::TestBedScene>),
 }
 
 /// Resolves and parses `given` (`--scene`: a bundled scene's name or a scene file's path): a
@@ -57,7 +57,7 @@ pub fn load_any(given: &str) -> Result<SafetyDesignScene, Error> {
         return Ok(SafetyDesignScene::Driven(Box::new(load(given)?)));
     }
     Ok(SafetyDesignScene::TestBed(Box::new(
-        crate::safety::point::test_bed::TestBedScene::parse(&source.origin, &source.text)?,
+        crate::safety::test_bed::TestBedScene::parse(&source.origin, &source.text)?,
     )))
 }
 

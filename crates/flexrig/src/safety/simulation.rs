@@ -1,6 +1,6 @@
 //! The simulation method's finite-element impact and its root search on the speed, shared by
-//! `flexrig safety --method simulation` ([`crate::safety::point::point`]) and the simulated safe-speed maps
-//! ([`crate::safety::point::map`]): the first contact of a body region (mass m_h, the skin's Hertz law
+//! `flexrig safety --method simulation` ([`crate::safety::point`]) and the simulated safe-speed maps
+//! ([`crate::safety::map`]): the first contact of a body region (mass m_h, the skin's Hertz law
 //! f = k_c δ^n, Eq. 4) with the tip of a link of mass m_r, payload m_e and lateral stiffness
 //! k_δ (Eq. 1–3), the CJ as a rigid link on its torsion spring k_θr = k_δL² (DOP853,
 //! [`flexrig_impact::cj`]), the CL as the Euler–Bernoulli beam on a mesh graded towards the

@@ -9,7 +9,7 @@
 //! ½ J ω_b² = M g l_c (1 − cos θ₀), so 1 − cos θ₀ = J v²/(2 M g l_c l²). Each speed is one whole
 //! rig run (the swing, the contact to the scene's stop) by flexrig-rig, and the speed at which
 //! the first contact's peak force reaches the region's force limit is found by the same Illinois
-//! root search on ln v as a driven scene's ([`crate::safety::point::simulation::speed_at_ratio`]).
+//! root search on ln v as a driven scene's ([`crate::safety::simulation::speed_at_ratio`]).
 //!
 //! The release angle is bounded by 170° (the scene's own bound): the largest speed the test bed
 //! can reach. When the peak force there is still below the limit, the search reports that speed
@@ -25,8 +25,8 @@ use flexrig_safety::{EnergyContact, Limits, PressureCrossing};
 
 use crate::Error;
 use crate::driven::strike::StrikeDesign;
-use crate::safety::point::simulation::SceneSimulation;
-use crate::safety::point::simulation::{RootStep, SimulationSettings, speed_at_ratio};
+use crate::safety::simulation::SceneSimulation;
+use crate::safety::simulation::{RootStep, SimulationSettings, speed_at_ratio};
 
 /// The largest release angle of the test bed \[deg\] (`operator.start.release_angle_deg`).
 pub const MAX_RELEASE_ANGLE_DEG: f64 = 170.0;

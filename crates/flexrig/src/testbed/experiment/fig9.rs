@@ -56,7 +56,7 @@ fn compact_mass(kg: f64) -> String {
     if kg >= 1.0 {
         format!("{} kg", (kg * 1e3).round() / 1e3)
     } else {
-        crate::testbed::fig9::grams(kg)
+        crate::plots::grams(kg)
     }
 }
 
@@ -95,7 +95,7 @@ fn operator_category(groups: &[GroupStats], case: &'static str) -> Option<Catego
     let op = operator_of(groups, case)?;
     Some(Category {
         name: material(&op.block_material),
-        detail: format!("m_h = {}", crate::testbed::fig9::grams(op.block_mass_kg)),
+        detail: format!("m_h = {}", crate::plots::grams(op.block_mass_kg)),
         compact: format!("m_h = {}", compact_mass(op.block_mass_kg)),
         key: case,
     })
@@ -150,11 +150,11 @@ pub fn fig9_svg(
             .collect();
         let bed_title = format!(
             "(a) {}",
-            payload_label(groups, &["aluminium", "iron"], crate::testbed::fig9::grams)
+            payload_label(groups, &["aluminium", "iron"], crate::plots::grams)
         );
         let light_title = format!(
             "(b) {}",
-            payload_label(groups, &["light_load"], crate::testbed::fig9::grams)
+            payload_label(groups, &["light_load"], crate::plots::grams)
         );
         let axis = ForceAxis { top: y_top, step };
         draw_bars(&bed, &bed_title, &test_bed, groups, axis, true)?;
@@ -413,7 +413,7 @@ fn ratio_category(groups: &[GroupStats], case: &'static str) -> Option<Category>
     let op = operator_of(groups, case)?;
     Some(Category {
         name: material(&op.block_material),
-        detail: payload_label(groups, &[case], crate::testbed::fig9::grams),
+        detail: payload_label(groups, &[case], crate::plots::grams),
         compact: payload_label(groups, &[case], compact_mass),
         key: case,
     })
@@ -579,8 +579,8 @@ mod tests {
         assert_eq!(ci_label(Some(0.0123), 5), "± 0.01");
         assert_eq!(ci_label(Some(0.0041), 5), "± 0.004");
         assert_eq!(ci_label(None, 1), "1 pair, no CI");
-        assert_eq!(crate::testbed::fig9::grams(0.412), "412 g");
-        assert_eq!(crate::testbed::fig9::grams(1.0), "1000 g");
-        assert_eq!(crate::testbed::fig9::grams(0.0051), "5.1 g");
+        assert_eq!(crate::plots::grams(0.412), "412 g");
+        assert_eq!(crate::plots::grams(1.0), "1000 g");
+        assert_eq!(crate::plots::grams(0.0051), "5.1 g");
     }
 }
