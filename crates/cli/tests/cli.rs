@@ -315,7 +315,8 @@ fn experiment_reports_the_papers_comparison() {
     let text = flexrig::plots::inspect::texts(&svg).join("\n");
     for label in [
         "(a) m_e = 412 g",
-        "Bars: mean of 3 runs ± 95 % CI.",
+        // panel (b), the light load, is one run: the note says which panel is a mean
+        "Bars: (a) mean of 3 runs ± 95 % CI; (b) one run, no confidence interval.",
         "(b) m_e = 100 g",
         "1 pair, no CI",
         "(c) CL/CJ, paired by repeat",
@@ -325,7 +326,7 @@ fn experiment_reports_the_papers_comparison() {
         "m_h = 4008 g",
     ] {
         assert!(
-            text.contains(label),
+            text.contains(label) || text.replace('\n', " ").contains(label),
             "{label} missing from fig9.svg:\n{text}"
         );
     }
@@ -494,7 +495,9 @@ fn one_repeat_gives_no_interval() {
     let svg = std::fs::read_to_string(dir.join("fig9.svg")).unwrap();
     let text = flexrig::plots::inspect::texts(&svg).join("\n");
     assert!(
-        text.contains("One run per bar: no confidence interval.") && text.contains("1 pair, no CI"),
+        text.replace('\n', " ")
+            .contains("Bars: one run, no confidence interval.")
+            && text.contains("1 pair, no CI"),
         "{text}"
     );
     let out = flexrig(&["experiment", "--repeats", "1", "--out", out_dir]);
