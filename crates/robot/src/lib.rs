@@ -18,6 +18,9 @@
 //!   second-order finite differences, and for each sample and contact point the position,
 //!   velocity, contact direction and reflected mass ([`Trajectory::evaluate`]).
 //!
+//! - [`canonical`]: problems with closed-form references (the planar two-link arm), shared by
+//!   tests, benches and validation.
+//!
 //! Units are SI: m, kg, s, rad; inertias kg·m².
 //!
 //! ```
@@ -44,6 +47,7 @@
 //! # Ok::<(), flexrig_robot::RobotError>(())
 //! ```
 
+pub mod canonical;
 mod dynamics;
 mod error;
 mod inertia;

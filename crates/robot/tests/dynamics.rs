@@ -227,60 +227,28 @@ fn fixed_joint_merging_equals_the_unmerged_chain() {
 }
 
 /// Spong, Hutchinson, Vidyasagar, *Robot Modeling and Control* (2006), §7.3.3: the planar
-/// elbow arm. Link k has length l_k, mass m_k, centre of mass at l_ck along it, inertia I_k about
-/// the axis through the centre of mass normal to the plane.
+/// elbow arm's mass matrix and its tip's reflected mass in closed form
+/// (`flexrig_robot::canonical::PlanarTwoLink`: the textbook formulas and a 2 × 2 adjugate).
 #[test]
 fn planar_two_link_arm_matches_the_textbook_mass_matrix() {
-    let (l1, l2, lc1, lc2, m1, m2, i1, i2) = (0.7, 0.5, 0.31, 0.22, 3.2, 1.9, 0.11, 0.043);
-    let urdf = format!(
-        r#"<robot name="planar">
-  <link name="base"/>
-  <link name="link1"><inertial><origin xyz="{lc1} 0 0"/><mass value="{m1}"/>
-    <inertia ixx="0.01" ixy="0" ixz="0" iyy="{i1}" iyz="0" izz="{i1}"/></inertial></link>
-  <link name="link2"><inertial><origin xyz="{lc2} 0 0"/><mass value="{m2}"/>
-    <inertia ixx="0.01" ixy="0" ixz="0" iyy="{i2}" iyz="0" izz="{i2}"/></inertial></link>
-  <joint name="shoulder" type="continuous"><parent link="base"/><child link="link1"/>
-    <axis xyz="0 0 1"/></joint>
-  <joint name="elbow" type="continuous"><parent link="link1"/><child link="link2"/>
-    <origin xyz="{l1} 0 0"/><axis xyz="0 0 1"/></joint>
-</robot>"#
-    );
-    let robot = Robot::from_urdf_str(&urdf, "planar.urdf").unwrap();
+    let arm = flexrig_robot::canonical::PlanarTwoLink::example();
+    let robot = arm.robot().unwrap();
     let mut ws = robot.workspace();
-    let tip = ContactPoint::new(&robot, "link2", [l2, 0.0, 0.0]).unwrap();
+    let tip = ContactPoint::new(&robot, "link2", [arm.l2, 0.0, 0.0]).unwrap();
     for (q1, q2) in [(0.0, 0.0), (0.3, 1.1), (-1.2, 2.5), (2.0, -0.4)] {
         let m = robot.mass_matrix(&[q1, q2], &mut ws).unwrap();
-        let c2: f64 = f64::cos(q2);
-        let m11 = m1 * lc1 * lc1 + m2 * (l1 * l1 + lc2 * lc2 + 2.0 * l1 * lc2 * c2) + i1 + i2;
-        let m12 = m2 * (lc2 * lc2 + l1 * lc2 * c2) + i2;
-        let m22 = m2 * lc2 * lc2 + i2;
-        for (v, r) in [
-            (m[(0, 0)], m11),
-            (m[(0, 1)], m12),
-            (m[(1, 0)], m12),
-            (m[(1, 1)], m22),
-        ] {
-            assert!((v - r).abs() <= 1e-13 * m11, "{v} vs {r}");
+        let r = arm.mass_matrix([q1, q2]);
+        for a in 0..2 {
+            for b in 0..2 {
+                assert!(
+                    (m[(a, b)] - r[a][b]).abs() <= 1e-13 * r[0][0],
+                    "{m} vs {r:?}"
+                );
+            }
         }
-        // The tip's reflected mass in closed form: J = [[−l1 s1 − l2 s12, −l2 s12],
-        // [l1 c1 + l2 c12, l2 c12]], M⁻¹ by the 2 × 2 adjugate.
-        let (s1, c1) = q1.sin_cos();
-        let (s12, c12) = (q1 + q2).sin_cos();
-        let j = [
-            [-l1 * s1 - l2 * s12, -l2 * s12],
-            [l1 * c1 + l2 * c12, l2 * c12],
-        ];
-        let det = m11 * m22 - m12 * m12;
-        let minv = [[m22 / det, -m12 / det], [-m12 / det, m11 / det]];
-        for angle in [0.0, 0.7, 1.9, 3.0] {
-            let u = [f64::cos(angle), f64::sin(angle)];
-            let g = [
-                j[0][0] * u[0] + j[1][0] * u[1],
-                j[0][1] * u[0] + j[1][1] * u[1],
-            ];
-            let inv = g[0] * (minv[0][0] * g[0] + minv[0][1] * g[1])
-                + g[1] * (minv[1][0] * g[0] + minv[1][1] * g[1]);
-            let reference = 1.0 / inv;
+        for angle in [0.0f64, 0.7, 1.9, 3.0] {
+            let u = [angle.cos(), angle.sin()];
+            let reference = arm.tip_reflected_mass([q1, q2], u);
             let value = flexrig_robot::reflected_mass(
                 &robot,
                 &[q1, q2],
@@ -290,7 +258,7 @@ fn planar_two_link_arm_matches_the_textbook_mass_matrix() {
                 &mut ws,
             )
             .unwrap();
-            if inv == 0.0 {
+            if reference.is_infinite() {
                 // Stretched out along x and struck along x: a wall.
                 assert_eq!((q1, q2, angle), (0.0, 0.0, 0.0));
                 assert_eq!(value, f64::INFINITY);
