@@ -11,6 +11,10 @@
 //! a symbolic/permutation overhead that dominates at the sizes the rig uses (≈ 100 DOFs, 20 µs
 //! per step budget), hence this small dedicated kernel; dense/sparse faer is used for the
 //! eigenproblem ([`crate::modal`]).
+//!
+//! **One file, one concept** (about 800 lines before its tests): the band matrix and its three
+//! factorisations with their solves, which share the storage layout and the bounds that choose
+//! between them.
 
 use crate::BeamError;
 

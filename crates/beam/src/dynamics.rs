@@ -23,6 +23,10 @@
 //! h changes every step (tested). The linear model needs one solve per step (started from
 //! Δq = 0, which keeps round-off independent of h ≫ T) and reuses the factorisation while h is
 //! unchanged. A failed step (Newton, singular or non-finite) leaves the [`State`] unchanged.
+//!
+//! **One file, one concept** (about 1 500 lines): the generalized-α integrator — its parameters,
+//! state and workspace, the predictor, the Newton loop and its stopping test, and the step with a
+//! moving root, which share the step's private bookkeeping.
 
 use crate::BeamError;
 use crate::assembly::{JacobianWeights, Kinematic, assemble, band_for, kinetic_and_strain_energy};

@@ -4,6 +4,10 @@
 //! large Rapier steps in the swing and lands on the onset), resolves the contact on its own time
 //! scale, and the stop condition of the scene. How the contact force is exchanged within a step
 //! (second order; implicit for the compliant link) is in [`crate::coupling`].
+//!
+//! **One file, one concept** (about 1 750 lines before its tests): the run loop of a `Simulation` —
+//! its step pipeline, step policy, events and stop condition share the simulation's private state;
+//! the adaptive contact's side of it lives in `run/adaptive_contact`.
 
 use flexrig_contact::math::{Pose, Vector};
 use flexrig_contact::{
