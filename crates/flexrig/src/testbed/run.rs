@@ -121,10 +121,13 @@ fn run_rig_text(
     let scene = scene_with_overrides(&text, overrides, &Materials::bundled()?)?;
     // the log records the scene as run
     let text = overrides::apply(&text, overrides)?;
-    // nothing here reads the samples: the log takes its decimated ones, the summary counts them
-    let simulation = Simulation::new(&scene, RunOptions::default())?.with_lean_samples();
+    // without a log nothing reads the samples (the summary counts them): a lean run; a logged
+    // run samples in full, as Python's `run(out=…)` does, so the two logs stay byte for byte equal
+    let simulation = Simulation::new(&scene, RunOptions::default())?;
     let Some(out) = log.out else {
-        return Ok(simulation.run(&mut Interruptible(cancel.flag()))?);
+        return Ok(simulation
+            .with_lean_samples()
+            .run(&mut Interruptible(cancel.flag()))?);
     };
     run_logged(
         simulation,
