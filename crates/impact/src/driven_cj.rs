@@ -618,28 +618,11 @@ pub fn run_driven_cj(
             if let Some(ts) = saturation_at {
                 notes.push(DriveNote::TorqueLimitReached { first_s: ts });
             }
-            if let Some(c) = commanded
-                && y_on[WD] < 0.99 * c
-            {
-                notes.push(DriveNote::SpeedBelowCommand {
-                    commanded_mps: c,
-                    actual_mps: y_on[WD],
-                });
+            if let Some(c) = commanded {
+                notes.extend(DriveNote::arrival(c, y_on[WD]));
             }
-            // the link's vibration about its quasi-static (drive-loaded) deflection at the onset
-            let rotor_acc = match system.source {
-                Source::Prescribed(_) => system.command(t_on).expect("a profile").2,
-                _ => system.rhs(t_on, &y)[RD],
-            };
-            let omega = (system.k / system.m_tip).sqrt();
-            let quasi_static = -system.m_tip * rotor_acc / system.k;
-            let amplitude =
-                ((deflection - quasi_static).powi(2) + ((y[WD] - rd_on) / omega).powi(2)).sqrt();
-            if amplitude > 1e-2 * peak.0 / system.k {
-                notes.push(DriveNote::NotSettled {
-                    amplitude_m: amplitude,
-                });
-            }
+            // the tip's vibration speed relative to the hub's line: L (φ̇_l − φ̇_m)
+            notes.extend(DriveNote::vibration(y_on[WD] - rd_on, approach));
             let outcome = DrivenOutcome {
                 contact: ContactEvent {
                     onset_s: t_on,

@@ -1263,13 +1263,8 @@ pub fn run_driven_cl(
     if let Some(ts) = saturation_at {
         notes.push(DriveNote::TorqueLimitReached { first_s: ts });
     }
-    if let Some(c) = commanded
-        && tip_speed_on < 0.99 * c
-    {
-        notes.push(DriveNote::SpeedBelowCommand {
-            commanded_mps: c,
-            actual_mps: tip_speed_on,
-        });
+    if let Some(c) = commanded {
+        notes.extend(DriveNote::arrival(c, tip_speed_on));
     }
     crate::driven_cj::finite(DrivenOutcome {
         contact: ContactEvent {

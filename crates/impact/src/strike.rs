@@ -80,7 +80,7 @@ pub struct EnergyBalance {
     pub residual_j: f64,
 }
 
-/// Something the drive did that the reader should know.
+/// Something the drive did that the reader should know (its `Display` says it in words).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case", tag = "note")]
 pub enum DriveNote {
@@ -90,20 +90,91 @@ pub enum DriveNote {
         /// First time at the limit \[s\].
         first_s: f64,
     },
-    /// The link arrived slower than commanded (by more than 1 %): the drive could not hold the
-    /// speed.
-    SpeedBelowCommand {
-        /// Commanded tip speed at the onset [m/s].
+    /// The link arrived faster or slower than commanded, by more than
+    /// [`DriveNote::ARRIVAL_TOLERANCE`] of the commanded tip speed.
+    ArrivalOffCommand {
+        /// Commanded tip speed L ω_cmd at the onset [m/s].
         commanded_mps: f64,
-        /// The tip's actual speed at the onset [m/s].
+        /// The link's actual speed towards the person at the onset [m/s] (the dome's, or the
+        /// tip's along its path).
         actual_mps: f64,
     },
-    /// The link still vibrates from the drive's ramp at the onset: the deflection's oscillating
-    /// part exceeds 1 % of the static deflection of the contact's peak force.
-    NotSettled {
-        /// Amplitude of the tip's vibration about its drive-loaded shape \[m\].
-        amplitude_m: f64,
+    /// The link still vibrated at the onset: the tip's speed relative to the hub's line (its
+    /// vibration, CL: the beam's bending; CJ: L (φ̇_l − φ̇_m)) exceeded
+    /// [`DriveNote::VIBRATION_THRESHOLD`] of the approach speed, so the impact speed depends
+    /// on the vibration's phase at the onset. The rule fires for soft and stiff links alike.
+    StillVibrating {
+        /// The tip's vibration speed at the onset [m/s] (positive towards the person).
+        vibration_speed_mps: f64,
+        /// The approach speed at the onset [m/s].
+        approach_speed_mps: f64,
     },
+}
+
+impl DriveNote {
+    /// Relative deviation of the arrival speed from the command that earns a note (1 %).
+    pub const ARRIVAL_TOLERANCE: f64 = 0.01;
+    /// The tip's vibration speed over the approach speed that earns a note (2 %: the impact
+    /// speed, and with it the peak force, then depends by as much on when the link arrives).
+    pub const VIBRATION_THRESHOLD: f64 = 0.02;
+
+    /// The arrival note, if `actual` [m/s] is off `commanded` [m/s] by more than the tolerance.
+    pub fn arrival(commanded: f64, actual: f64) -> Option<DriveNote> {
+        ((actual - commanded).abs() > DriveNote::ARRIVAL_TOLERANCE * commanded.abs()).then_some(
+            DriveNote::ArrivalOffCommand {
+                commanded_mps: commanded,
+                actual_mps: actual,
+            },
+        )
+    }
+
+    /// The vibration note, if the tip's `vibration` speed [m/s] exceeds the threshold of the
+    /// `approach` speed [m/s].
+    pub fn vibration(vibration: f64, approach: f64) -> Option<DriveNote> {
+        (vibration.abs() > DriveNote::VIBRATION_THRESHOLD * approach.abs()).then_some(
+            DriveNote::StillVibrating {
+                vibration_speed_mps: vibration,
+                approach_speed_mps: approach,
+            },
+        )
+    }
+}
+
+impl std::fmt::Display for DriveNote {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            DriveNote::TorqueLimitReached { first_s } => write!(
+                f,
+                "the controller's torque reached its limit at {first_s:.6} s: the commanded \
+                 motion was not followed from then on"
+            ),
+            DriveNote::ArrivalOffCommand {
+                commanded_mps,
+                actual_mps,
+            } => write!(
+                f,
+                "the link arrived at {actual_mps:.6} m/s, {} than the commanded \
+                 {commanded_mps:.6} m/s ({:+.2} %)",
+                if actual_mps > commanded_mps {
+                    "faster"
+                } else {
+                    "slower"
+                },
+                100.0 * (actual_mps / commanded_mps - 1.0)
+            ),
+            DriveNote::StillVibrating {
+                vibration_speed_mps,
+                approach_speed_mps,
+            } => write!(
+                f,
+                "the link still vibrated when it arrived: its tip moved at {:.4} m/s relative \
+                 to the hub's line, {:.1} % of the approach speed {approach_speed_mps:.6} m/s \
+                 (the impact depends on the vibration's phase)",
+                vibration_speed_mps,
+                100.0 * (vibration_speed_mps / approach_speed_mps).abs()
+            ),
+        }
+    }
 }
 
 /// The result of a driven strike (first contact, from onset to separation).
