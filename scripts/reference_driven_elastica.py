@@ -42,6 +42,12 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
+try:  # the same equations compiled (the chain's fast modes make N = 64 take ~1e6 evaluations)
+    from numba import njit
+except ImportError:  # pragma: no cover - plain Python, slower
+    def njit(*args, **kwargs):
+        return (lambda f: f) if not (len(args) == 1 and callable(args[0])) else args[0]
+
 # The test bed's link (paper §VI: m_r = 51 g, k_theta_r = 1.2334 N m/rad; L from Eq. 3 with
 # E = 1.5 GPa, rho = 905 kg/m^3), the 412 g payload, the skinned-aluminium dome (R = 71.5 mm,
 # standoff 30 mm: centre 41.5 mm behind the link's axis), Hertz k = 7.359e7 N/m^n, n = 1.961
@@ -101,6 +107,78 @@ def placement(case):
     return prof(case["profile"][2] + case["settle"])[0]
 
 
+@njit(cache=True)
+def _gap(psi, psi_t, l, d_c, e0, e1, rs):
+    """Indentation with the head at rest, its gradient in the rod angles and in psi_t."""
+    n = psi.shape[0]
+    px = 0.0
+    py = 0.0
+    grad = np.empty(n)
+    for i in range(n):
+        c, s = math.cos(psi[i]), math.sin(psi[i])
+        px += l * c
+        py += l * s
+        grad[i] = l * (-e0 * s + e1 * c)
+    cx = px + d_c * math.sin(psi_t)
+    cy = py - d_c * math.cos(psi_t)
+    delta = e0 * cx + e1 * cy + rs
+    grad_t = d_c * (e0 * math.cos(psi_t) + e1 * math.sin(psi_t))
+    return delta, grad, grad_t
+
+
+@njit(cache=True)
+def _tip_section(psi, xh, l, d_c, e0, e1, rs, k_t, kc, nc):
+    """The massless tip section's angle: k_t (psi_t - psi_N) + f d(delta)/d(psi_t) = 0."""
+    pt = psi[-1]
+    d0, _, _ = _gap(psi, pt, l, d_c, e0, e1, rs)
+    if d0 - xh <= 0.0:
+        return pt
+    for _ in range(60):
+        dl, _, gt = _gap(psi, pt, l, d_c, e0, e1, rs)
+        dl -= xh
+        f = kc * dl**nc if dl > 0.0 else 0.0
+        df = nc * f / dl if dl > 0.0 else 0.0
+        r = k_t * (pt - psi[-1]) + f * gt
+        dgt = d_c * (-e0 * math.sin(pt) + e1 * math.cos(pt))
+        step = r / (k_t + df * gt * gt + f * dgt)
+        pt -= step
+        if abs(step) <= 1e-16 * (1.0 + abs(pt)):
+            break
+    return pt
+
+
+@njit(cache=True)
+def _accel(psi, psid, theta, xh, contact, cj, A, k0, k, k_t, l, d_c, e0, e1, rs, kc, nc):
+    """The rods' angular accelerations and the contact force."""
+    n = psi.shape[0]
+    Q = np.zeros(n)
+    Q[0] -= k0 * (psi[0] - theta)
+    for j in range(n - 1):
+        d = psi[j + 1] - psi[j]
+        Q[j] += k * d
+        Q[j + 1] -= k * d
+    f = 0.0
+    if contact:
+        pt = psi[-1] if cj else _tip_section(psi, xh, l, d_c, e0, e1, rs, k_t, kc, nc)
+        dl, g, gt = _gap(psi, pt, l, d_c, e0, e1, rs)
+        dl -= xh
+        f = kc * dl**nc if dl > 0.0 else 0.0
+        for i in range(n):
+            Q[i] -= f * g[i]
+        if cj:
+            Q[n - 1] -= f * gt
+        else:
+            Q[n - 1] += k_t * (pt - psi[-1])
+    M = np.empty((n, n))
+    rhs = Q.copy()
+    for i in range(n):
+        for j in range(n):
+            dpsi = psi[i] - psi[j]
+            M[i, j] = A[i, j] * math.cos(dpsi)
+            rhs[i] -= A[i, j] * math.sin(dpsi) * psid[j] * psid[j]
+    return np.linalg.solve(M, rhs), f
+
+
 class Chain:
     """N-rod Hencky chain (design cl) or one rigid rod on a torsion spring (design cj)."""
 
@@ -117,6 +195,7 @@ class Chain:
         A = m * (N - big) + m / 2 + m_e
         A[np.diag_indices(N)] = m * (N - idx) + m / 3 + m_e
         self.A = A * self.l**2
+        self.k_t = 0.0
         if self.cj:
             self.k0, self.k = LINK["k_delta"] * L**2, 0.0
         else:
@@ -191,40 +270,17 @@ class Chain:
     def rhs(self, t, y, contact):
         psi, xh, th, psid, xhd, thd = self.split(y)
         theta, _ = self.hub(t, th, thd)
-        N = self.N
-        # springs
-        Q = np.zeros(N)
-        Q[0] -= self.k0 * (psi[0] - theta)
-        if N > 1:
-            d = np.diff(psi)
-            Q[:-1] += self.k * d
-            Q[1:] -= self.k * d
-        f = 0.0
-        if contact:
-            pt = self.tip_section(psi, xh)
-            dl, g, gt = self.delta_and_grad(psi, pt)
-            dl -= xh
-            f = self.force(dl)
-            Q -= f * g
-            if self.cj:
-                Q[-1] -= f * gt
-            else:
-                Q[-1] += self.k_t * (pt - psi[-1])
-        diff = psi[:, None] - psi[None, :]
-        M = self.A * np.cos(diff)
-        rhs = Q - (self.A * np.sin(diff)) @ (psid**2)
-        psidd = np.linalg.solve(M, rhs)
+        psidd, f = _accel(psi, psid, theta, xh, contact, self.cj, self.A, self.k0, self.k,
+                          self.k_t, self.l, self.d_c, self.e[0], self.e[1], self.d_c,
+                          CONTACT["k"], CONTACT["n"])
         xhdd = f / M_HEAD
-        out = [psid, [xhd]]
         if self.ctrl:
             a, w, _ = self.prof(t)
             tau = self.ctrl["kp"] * (a - th) + self.ctrl["kd"] * (w - thd)
             tau = max(-self.tau_max, min(self.tau_max, tau))
             thdd = (tau - self.c_hub * thd + self.k0 * (psi[0] - th)) / self.j_hub
-            out = [psid, [xhd], [thd], psidd, [xhdd], [thdd]]
-        else:
-            out = [psid, [xhd], psidd, [xhdd]]
-        return np.concatenate(out)
+            return np.concatenate([psid, [xhd], [thd], psidd, [xhdd], [thdd]])
+        return np.concatenate([psid, [xhd], psidd, [xhdd]])
 
     def delta(self, y):
         psi, xh, _, _, _, _ = self.split(y)

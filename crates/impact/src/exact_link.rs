@@ -116,7 +116,7 @@ impl ExactSettings {
     /// dome (converged to ≤ 1e-5 in peak, time of peak and duration on the bundled cases:
     /// crates/impact/tests/exact_link.rs).
     pub const DEFAULT: ExactSettings = ExactSettings {
-        elements: 16,
+        elements: 64,
         dome: Dome::TEST_BED,
         approach_steps: 2000,
         contact_steps: 1000,
@@ -254,8 +254,6 @@ struct ContactState {
     rate: f64,
     x_h: f64,
     v_h: f64,
-    /// The law's elastic part f(δ, 0) \[N\].
-    f_elastic: f64,
     /// The law's damping part f(δ, δ̇) − f(δ, 0) \[N\] (0 for an elastic law).
     f_damping: f64,
 }
@@ -291,7 +289,6 @@ impl DomeLoad<'_> {
                 rate: r0,
                 x_h: hs.x_b,
                 v_h: hs.v_b,
-                f_elastic: 0.0,
                 f_damping: 0.0,
             };
             return (st, g, 0.0, 0.0, 1.0);
@@ -340,7 +337,6 @@ impl DomeLoad<'_> {
             x_h: hs.x_b + hs.b * f,
             v_h: hs.v_b + hs.c * f,
             // the law's damping part at the same (δ, δ̇): exactly 0 for an elastic law
-            f_elastic: if d > 0.0 { self.law.force(d, 0.0) } else { 0.0 },
             f_damping: if d > 0.0 {
                 self.law.force(d, r) - self.law.force(d, 0.0)
             } else {

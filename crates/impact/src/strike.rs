@@ -182,7 +182,9 @@ impl std::fmt::Display for DriveNote {
 pub struct DrivenOutcome {
     /// The contact: onset, time of the peak and the duration, times from the drive's start.
     pub contact: ContactEvent,
-    /// Relative approach speed δ̇ at the onset [m/s].
+    /// Relative approach speed δ̇ at the onset [m/s] (serialised as `impact_velocity_mps`, the
+    /// test-bed run's name).
+    #[serde(rename = "impact_velocity_mps")]
     pub approach_speed_mps: f64,
     /// The commanded tip speed L ω_cmd at the onset [m/s] (`None` for an open-loop torque).
     pub commanded_tip_speed_mps: Option<f64>,
@@ -195,11 +197,18 @@ pub struct DrivenOutcome {
     pub peak_joint_torque_nm: f64,
     /// The energy balance over the contact.
     pub energy: EnergyBalance,
-    /// Relative approach speed at the separation (negative: parting) [m/s].
+    /// Relative approach speed at the separation (negative: parting) [m/s]; serialised as the
+    /// parting speed `separation_velocity_mps` (positive), the test-bed run's name.
+    #[serde(
+        rename = "separation_velocity_mps",
+        serialize_with = "crate::setup::negated"
+    )]
     pub separation_rate_mps: f64,
     /// What the drive did.
     pub notes: Vec<DriveNote>,
-    /// Right-hand-side evaluations (CJ) or steps (CL).
+    /// Right-hand-side evaluations (CJ) or steps (CL) (serialised as `steps`, the test-bed
+    /// run's name).
+    #[serde(rename = "steps")]
     pub work: usize,
     /// The motion sampled at the integrator's steps, at most one sample per `trace_every` of
     /// the settings, the onset and the separation included (empty without `trace_every`).
