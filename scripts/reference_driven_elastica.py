@@ -268,11 +268,16 @@ class Chain:
         return CONTACT["k"] * delta ** CONTACT["n"] if delta > 0 else 0.0
 
     def rhs(self, t, y, contact):
+        if not np.all(np.isfinite(y)):
+            return np.full(len(y), np.nan)  # a trial stage that overflowed: the step is rejected
         psi, xh, th, psid, xhd, thd = self.split(y)
         theta, _ = self.hub(t, th, thd)
-        psidd, f = _accel(psi, psid, theta, xh, contact, self.cj, self.A, self.k0, self.k,
-                          self.k_t, self.l, self.d_c, self.e[0], self.e[1], self.d_c,
-                          CONTACT["k"], CONTACT["n"])
+        try:
+            psidd, f = _accel(psi, psid, theta, xh, contact, self.cj, self.A, self.k0, self.k,
+                              self.k_t, self.l, self.d_c, self.e[0], self.e[1], self.d_c,
+                              CONTACT["k"], CONTACT["n"])
+        except np.linalg.LinAlgError:  # an overflowing trial stage: the step is rejected
+            return np.full(len(y), np.nan)
         xhdd = f / M_HEAD
         if self.ctrl:
             a, w, _ = self.prof(t)
@@ -382,6 +387,10 @@ def richardson(ns, rows):
     return out
 
 
+# results per (case, N) kept between runs (N = 64 takes minutes per case)
+CACHE = "/tmp/driven_elastica_cache.json"
+
+
 def main():
     ns = [int(a) for a in sys.argv[1:]] or [16, 32, 64]
     fixture = dict(
@@ -390,11 +399,24 @@ def main():
         link=LINK, dome=DOME, contact=CONTACT, m_head=M_HEAD, tip_speed_mps=V_TIP,
         cases=[],
     )
+    cache = {}
+    try:
+        with open(CACHE) as fh:
+            cache = json.load(fh)
+    except OSError:
+        pass
     for case in CASES:
         rows = []
         for n in ([1] if case["design"] == "cj" else ns):
             t = time.time()
-            r = run(case, n)
+            key = f"{case['name']}/{n}"
+            if key in cache:
+                r = cache[key]
+            else:
+                r = {k: (float(v) if not isinstance(v, int) else v) for k, v in run(case, n).items()}
+                cache[key] = r
+                with open(CACHE, "w") as fh:
+                    json.dump(cache, fh, indent=1)
             r["rods"] = n
             rows.append(r)
             print(case["name"], n, {k: r[k] for k in KEYS}, f"{time.time()-t:.1f}s", flush=True)

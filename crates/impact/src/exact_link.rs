@@ -44,7 +44,7 @@
 //! damping and the impact work are integrated by the trapezoidal rule over the contact.
 
 use flexrig_beam::{
-    BeamModel, BeamSpec, GeneralizedAlpha, Kinematics, NodalLoads, NodeForce, NodeLoad,
+    BeamModel, BeamSpec, GeneralizedAlpha, Kinematics, NewtonMethod, NodalLoads, NodeForce, NodeLoad,
     PointMass, RootSupport, Section, State, Workspace,
 };
 use flexrig_contact::ContactLaw;
@@ -99,12 +99,16 @@ pub struct ExactSettings {
     pub elements: usize,
     /// The dome.
     pub dome: Dome,
-    /// Steps per period of the link's first bending mode before the contact, 20..=1e6.
+    /// Steps before the contact per the longer of the link's first bending period and the
+    /// drive's shortest time scale (ramp, loop period, arrival), 20..=1e6.
     pub approach_steps: usize,
     /// Steps over the expected contact duration (the head against the payload alone), 20..=1e6.
     pub contact_steps: usize,
     /// EA L²/EI of the beam (≥ 1e3; [`AXIAL_SLENDERNESS`] by default).
     pub axial_slenderness: f64,
+    /// How the beam's Newton iterates (flexrig-beam's [`NewtonMethod`]: full Newton by default;
+    /// modified Newton keeps the iteration matrix while it contracts).
+    pub newton: NewtonMethod,
     /// Most steps in all.
     pub max_steps: usize,
     /// `Some(dt)`: sample the motion at the steps, at most every dt \[s\].
@@ -112,17 +116,31 @@ pub struct ExactSettings {
 }
 
 impl ExactSettings {
-    /// 16 elements, 2000 steps per period before the contact and 1000 over it, the test bed's
-    /// dome (converged to ≤ 1e-5 in peak, time of peak and duration on the bundled cases:
-    /// crates/impact/tests/exact_link.rs).
+    /// 96 elements, 4000 steps per period before the contact and 1000 over it, modified Newton,
+    /// the test bed's dome: converged to ≤ 1e-5 in peak, duration and onset (time of peak
+    /// ≤ 2e-5 of the duration in the bent case) against 2× the elements and 4× the steps
+    /// (crates/impact/tests/exact_link.rs). About 0.3 s per strike of the test-bed link on one
+    /// core; [`ExactSettings::FAST`] is 20× cheaper at 3e-4.
     pub const DEFAULT: ExactSettings = ExactSettings {
-        elements: 64,
+        elements: 96,
         dome: Dome::TEST_BED,
-        approach_steps: 2000,
+        approach_steps: 4000,
         contact_steps: 1000,
         axial_slenderness: AXIAL_SLENDERNESS,
+        newton: NewtonMethod::Modified,
         max_steps: 10_000_000,
         trace_every: None,
+    };
+
+    /// 16 elements, 1000 steps per period before the contact and 400 over it: within 3e-4 of
+    /// [`ExactSettings::DEFAULT`] in peak, time of peak and duration on the test bed's cases
+    /// (the corotational mesh dominates: 2.4e-4 at 16 elements, 1.1e-4 at 24, 5.6e-5 at 32, as
+    /// h²), for sweeps; the bench's case.
+    pub const FAST: ExactSettings = ExactSettings {
+        elements: 16,
+        approach_steps: 1000,
+        contact_steps: 400,
+        ..ExactSettings::DEFAULT
     };
 
     fn validate(&self) -> Result<(), ImpactError> {
@@ -739,13 +757,16 @@ impl Solver<'_> {
         self.step(h, contact)
     }
 
-    /// From `from` (δ < 0 there when `rising`, > 0 otherwise) the step length in (0, h] at which
-    /// δ = 0, by the Illinois method; leaves the solver there.
+    /// From `from` the step length in (0, h] at which `what` (of the contact's state) is 0,
+    /// given its values `d0` there and `dh` after the whole step (of opposite signs), by the
+    /// Illinois method; leaves the solver there.
     fn locate(
         &mut self,
         from: &Snapshot,
         (d0, h, dh): (f64, f64, f64),
         contact: bool,
+        what: fn(&ContactState) -> f64,
+        scale: f64,
     ) -> Result<ContactState, ImpactError> {
         let (mut a, mut fa, mut b, mut fb) = (0.0, d0, h, dh);
         let mut side = 0;
@@ -754,9 +775,9 @@ impl Solver<'_> {
             let x = b - fb * (b - a) / (fb - fa);
             let x = if x > a && x < b { x } else { 0.5 * (a + b) };
             let cs = self.retake(from, x, contact)?;
-            let fx = cs.delta;
+            let fx = what(&cs);
             best = Some(cs);
-            if fx.abs() <= 1e-15 * self.geometry.length || (b - a) <= 1e-15 * h.max(1e-300) {
+            if fx.abs() <= 1e-15 * scale || (b - a) <= 1e-15 * h.max(1e-300) {
                 break;
             }
             if (fx > 0.0) == (fb > 0.0) {
@@ -843,8 +864,16 @@ pub fn run_exact_cl(
         HeadSupport::Neck { stiffness, damping } => (strike.person.m_h, stiffness, damping, false),
         HeadSupport::Wall => (f64::INFINITY, 0.0, 0.0, true),
     };
-    let state = State::in_rigid_rotation(&model, [angle0, rate0, accel0], 0.0, &loads)?;
-    let ga = GeneralizedAlpha::new(1.0)?.with_newton(30, 1e-12)?;
+    let steady = strike.drive.profile().is_some_and(|p| p.is_steady())
+        || matches!(strike.drive.command(), DriveCommand::OpenLoop { .. });
+    let state = if steady {
+        State::in_steady_rotation(&model, [angle0, rate0], 0.0, &loads)?
+    } else {
+        State::in_rigid_rotation(&model, [angle0, rate0, accel0], 0.0, &loads)?
+    };
+    let ga = GeneralizedAlpha::new(1.0)?
+        .with_newton(30, 1e-12)?
+        .with_newton_method(settings.newton);
     let law0 = strike.person.damping.law(strike.person.contact, 1.0)?;
     let mut s = Solver {
         ws: Workspace::new(&model),
@@ -890,7 +919,11 @@ pub fn run_exact_cl(
         };
         s.set_law(law)?;
         s.law_used = Some(law);
-        s.state = State::in_rigid_rotation(&s.model, [angle0, rate0, 0.0], 0.0, &s.loads)?;
+        s.state = if steady {
+            State::in_steady_rotation(&s.model, [angle0, rate0], 0.0, &s.loads)?
+        } else {
+            State::in_rigid_rotation(&s.model, [angle0, rate0, 0.0], 0.0, &s.loads)?
+        };
     }
     let mut tracer = Tracer::new(settings.trace_every);
     let (mut cs, ..) = {
@@ -913,8 +946,31 @@ pub fn run_exact_cl(
         ));
     }
     tracer.offer(0.0, true, || s.sample(&cs));
-    // the approach
-    let h_a = std::f64::consts::TAU / first_frequency(&link) / settings.approach_steps as f64;
+    // the approach: approach_steps per the longer of the link's first period and the drive's
+    // shortest time scale (a ramp, the loop's period with the rigid link, the arrival), so a
+    // soft link's ringing and a stiff link's drive are both resolved
+    let period = std::f64::consts::TAU / first_frequency(&link);
+    let j_link = j_rotor + (link.m_r / 3.0 + link.m_e) * l * l;
+    let mut drive_scale = strike.horizon_s;
+    if let Some(p) = strike.drive.profile()
+        && !p.is_steady()
+    {
+        drive_scale = drive_scale.min(p.ramp_end());
+    }
+    if let Hub::Controller { kp, .. } = hub
+        && kp > 0.0
+    {
+        drive_scale = drive_scale.min(std::f64::consts::TAU * (j_link / kp).sqrt());
+    }
+    let speed_scale = strike
+        .drive
+        .profile()
+        .map_or(strike.drive.initial_speed(), |p| p.final_speed())
+        .abs();
+    if speed_scale > 0.0 {
+        drive_scale = drive_scale.min((phi_c - angle0).abs().max(1e-3) / speed_scale);
+    }
+    let h_a = period.max(drive_scale) / settings.approach_steps as f64;
     let mut corners = strike.drive.breakpoints();
     corners.sort_by(f64::total_cmp);
     let mut steps = 0usize;
@@ -949,7 +1005,7 @@ pub fn run_exact_cl(
         let next = s.step(h, false)?;
         steps += 1;
         if next.delta > 0.0 {
-            cs = s.locate(&from, (d0, h, next.delta), false)?;
+            cs = s.locate(&from, (d0, h, next.delta), false, |c| c.delta, l)?;
             steps += 1;
             break;
         }
@@ -983,6 +1039,9 @@ pub fn run_exact_cl(
     let mut samples: Vec<(f64, f64)> = vec![(t_on, 0.0)];
     let mut peak = (0.0_f64, t_on);
     let mut peak_torque = torque_on.abs();
+    // an elastic law (no damping part at the onset's rate): the peak is at δ̇ = 0
+    let elastic = s.law.damping(1e-3 * delta_max, v) == 0.0;
+    let mut located_peak: Option<(f64, f64)> = None;
     loop {
         if steps >= settings.max_steps {
             return Err(ImpactError::NotFinished {
@@ -991,14 +1050,19 @@ pub fn run_exact_cl(
             });
         }
         let from = s.snapshot();
-        let d0 = cs.delta;
+        let (d0, rate0) = (cs.delta, cs.rate);
         let t0 = s.state.t;
         let mut next = s.step(h_c, true)?;
         steps += 1;
         let finished = next.delta <= 0.0 && s.state.t > t_on + 0.05 * t_c;
         if finished {
-            next = s.locate(&from, (d0.max(1e-300), h_c, next.delta), true)?;
+            next = s.locate(&from, (d0.max(1e-300), h_c, next.delta), true, |c| c.delta, l)?;
             steps += 1;
+        } else if elastic && located_peak.is_none() && rate0 > 0.0 && next.rate <= 0.0 {
+            // an elastic law peaks where δ̇ = 0: located on the motion, not interpolated
+            next = s.locate(&from, (rate0, h_c, next.rate), true, |c| c.rate, v)?;
+            steps += 1;
+            located_peak = Some((next.f, s.state.t));
         }
         cs = next;
         let tau = s.joint_torque();
@@ -1027,6 +1091,11 @@ pub fn run_exact_cl(
         if finished {
             break;
         }
+    }
+    if let Some(p) = located_peak
+        && p.0 >= peak.0
+    {
+        peak = p;
     }
     if peak.0 == 0.0 {
         // a single-step contact: the largest sample
