@@ -323,7 +323,7 @@ pub fn run_driven_cj(
 pub fn run_exact_cj(
     strike: &DrivenStrike,
     settings: &CjSettings,
-    dome: &crate::exact_link::Dome,
+    dome: &crate::drive::Dome,
 ) -> Result<DrivenOutcome, ImpactError> {
     dome.validate()?;
     run_cj(strike, settings, Some(dome.centre_offset()))

@@ -51,7 +51,8 @@ use flexrig_contact::ContactLaw;
 use serde::{Deserialize, Serialize};
 
 use crate::ImpactError;
-use crate::drive::{DriveCommand, HeadSupport, Profile, TorqueProfile, positive};
+use crate::drive::{DriveCommand, HeadSupport, Profile, TorqueProfile};
+use crate::driven_cj::{CjSettings, run_exact_cj};
 use crate::setup::{ContactEvent, hertz_time_integral};
 use crate::strike::{DriveNote, DrivenOutcome, DrivenStrike, EnergyBalance, TraceSample, Tracer};
 
@@ -60,37 +61,7 @@ use crate::strike::{DriveNote, DrivenOutcome, DrivenStrike, EnergyBalance, Trace
 /// the strike (≤ f/EA ≈ 4e-4 at 100 N) changes its peak by less than 1e-6.
 pub const AXIAL_SLENDERNESS: f64 = 2.05e5;
 
-/// The dome rigid with the link's tip section (the rig's `dome_radius_m`, `dome_standoff_m`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Dome {
-    /// Sphere radius R \[m\], > 0.
-    pub radius_m: f64,
-    /// How far the dome's apex sits ahead of the link's axis, towards the person, s \[m\]
-    /// (0 < s ≤ 2R; the centre sits R − s behind the axis).
-    pub standoff_m: f64,
-}
-
-impl Dome {
-    /// The test bed's skinned-aluminium dome (§III-B): R = 71.5 mm, apex 30 mm ahead of the
-    /// axis (its centre 41.5 mm behind it), as in the bundled rig scenes.
-    pub const TEST_BED: Dome = Dome {
-        radius_m: 0.0715,
-        standoff_m: 0.030,
-    };
-
-    /// Checks the fields; the error names them.
-    pub fn validate(&self) -> Result<(), ImpactError> {
-        positive("dome.radius_m", self.radius_m, 10.0, "m")?;
-        positive("dome.standoff_m", self.standoff_m, 2.0 * self.radius_m, "m")?;
-        Ok(())
-    }
-
-    /// The centre's distance behind the axis d_c = R − s \[m\].
-    pub fn centre_offset(&self) -> f64 {
-        self.radius_m - self.standoff_m
-    }
-}
+pub use crate::drive::Dome;
 
 /// How the exact link is solved.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -1121,7 +1092,7 @@ pub fn run_exact_cl(
         notes.extend(DriveNote::arrival(c, dome_speed));
     }
     notes.extend(DriveNote::vibration(vibration, approach));
-    crate::driven_cj::finite(DrivenOutcome {
+    finite(DrivenOutcome {
         contact: ContactEvent {
             onset_s: t_on,
             peak_force_n: peak.0,
@@ -1153,4 +1124,41 @@ fn vertex(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> (f64, f64) {
     let slope = d0 + curvature * h0;
     let tau = (-slope / (2.0 * curvature)).clamp(-h0, h1);
     (b.0 + tau, b.1 + slope * tau + curvature * tau * tau)
+}
+
+/// The outcome if every number is finite.
+fn finite(o: DrivenOutcome) -> Result<DrivenOutcome, ImpactError> {
+    let values = [
+        o.contact.peak_force_n,
+        o.contact.time_of_peak_s,
+        o.contact.duration_s,
+        o.pre_impact_deflection_m,
+        o.energy.residual_j,
+        o.separation_rate_mps,
+        o.peak_joint_torque_nm,
+    ];
+    if values.iter().all(|v| v.is_finite()) {
+        Ok(o)
+    } else {
+        Err(ImpactError::NotFinished {
+            design: "exact driven CL",
+            reason: "the integration lost finiteness".into(),
+        })
+    }
+}
+
+impl DrivenStrike {
+    /// The CL strike by the default model: the geometrically exact link
+    /// ([`run_exact_cl`] at [`ExactSettings::DEFAULT`], the test bed's dome). The linear modal
+    /// link ([`crate::driven_cl::run_driven_cl`]) stays as the faster option; its error against
+    /// this one is in its rustdoc.
+    pub fn run_cl(&self) -> Result<DrivenOutcome, ImpactError> {
+        run_exact_cl(self, &ExactSettings::DEFAULT)
+    }
+
+    /// The CJ strike by the default model: the rigid link on its torsion spring with the exact
+    /// dome geometry ([`run_exact_cj`] at [`CjSettings::DEFAULT`], the test bed's dome).
+    pub fn run_cj(&self) -> Result<DrivenOutcome, ImpactError> {
+        run_exact_cj(self, &CjSettings::DEFAULT, &Dome::TEST_BED)
+    }
 }

@@ -194,6 +194,59 @@ fn default_settings_are_converged() {
     }
 }
 
+/// The bundled driven CL scenes (assets/drives/cl_free_head.toml, cl_wall.toml: the Fig. 6
+/// stiff link, m_r = 10 kg, L = 1 m, k_δ = 1e8 N/m, m_e = 0.1 kg, a PD loop with a 1 N·m
+/// limit ramping to 2 rad/s in 0.5 s, the person 0.3 s after the ramp, Hertz 1e8, n = 2) at the
+/// default settings against 2× the elements and 4× the steps: 1e-5.
+#[test]
+fn bundled_scenes_are_converged() {
+    let fine = ExactSettings {
+        elements: 2 * ExactSettings::DEFAULT.elements,
+        approach_steps: 4 * ExactSettings::DEFAULT.approach_steps,
+        contact_steps: 4 * ExactSettings::DEFAULT.contact_steps,
+        ..ExactSettings::DEFAULT
+    };
+    for support in [HeadSupport::Free, HeadSupport::Wall] {
+        let strike = DrivenStrike {
+            link: LinkParams {
+                m_r: 10.0,
+                length: 1.0,
+                k_delta: 1e8,
+                m_e: 0.1,
+            },
+            drive: Drive::controller(
+                Motor::new(1e-4, 50.0, 1e-5).unwrap(),
+                Profile::SmoothRamp {
+                    speed: 2.0,
+                    ramp_time: 0.5,
+                },
+                Gains::position_pd(500.0, 40.0),
+                Some(1.0),
+            )
+            .unwrap(),
+            person: Person {
+                m_h: 4.0,
+                support,
+                contact: Hertz::new(1e8, 2.0).unwrap(),
+                damping: DampingSpec::NONE,
+                speed: 0.0,
+            },
+            placement: Placement::AfterRamp { settle: 0.3 },
+            horizon_s: 5.0,
+        };
+        let a = run_exact_cl(&strike, &ExactSettings::DEFAULT).unwrap();
+        let b = run_exact_cl(&strike, &fine).unwrap();
+        let e = errors(&a, reference_of(&b));
+        println!(
+            "{support:?}: peak {:.6} N, {:?}, notes {:?}",
+            a.contact.peak_force_n,
+            e,
+            a.notes.iter().map(|n| n.to_string()).collect::<Vec<_>>()
+        );
+        assert!(e.iter().all(|e| *e <= 1e-5), "{support:?}: {e:?}");
+    }
+}
+
 /// The energy balance through the contact closes to 1e-6 of the impact energy, and an undamped,
 /// frictionless strike reports exactly 0 dissipated; with friction, a neck damper and a
 /// Hunt–Crossley contact the dissipation is positive and the balance still closes.
