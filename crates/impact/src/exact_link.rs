@@ -48,7 +48,7 @@ use flexrig_beam::{
     PointMass, RootSupport, Section, State, Workspace,
 };
 use flexrig_contact::ContactLaw;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 use crate::ImpactError;
 use crate::drive::{DriveCommand, HeadSupport, Profile, TorqueProfile};
