@@ -36,6 +36,7 @@ interpreter: bash scripts/python-env.sh)
 """
 import json
 import math
+import os
 import sys
 import time
 
@@ -418,8 +419,8 @@ def main():
             key = f"{case['name']}/{n}"
             if key in cache:
                 r = cache[key]
-            elif n > case.get("most_rods", 1 << 30):
-                continue
+            elif n > case.get("most_rods", 1 << 30) or os.environ.get("REFERENCE_CACHED_ONLY"):
+                continue  # REFERENCE_CACHED_ONLY=1: write the fixture from the runs made so far
             else:
                 r = {k: (float(v) if not isinstance(v, int) else v) for k, v in run(case, n).items()}
                 cache[key] = r
@@ -428,18 +429,30 @@ def main():
             r["rods"] = n
             rows.append(r)
             print(case["name"], n, {k: r[k] for k in KEYS}, f"{time.time()-t:.1f}s", flush=True)
-        if case["design"] == "cj":
-            best = rows[0]
+        if case["design"] == "cj" or len(rows) == 1:
+            best = rows[0]  # one mesh: no extrapolation (its uncertainty is stated as unknown)
         else:
             done = [n for n in ns if f"{case['name']}/{n}" in cache]
             best = richardson(done, [cache[f"{case['name']}/{n}"] for n in done])
-        if case["design"] == "cl":
+        if case["design"] == "cl" and len(rows) > 1:
             last = rows[-1]
             spread = {k: abs(last[k] - best[k]) for k in KEYS}
             print("  extrapolated", best, "\n  |N=%d - extrapolated|" % last["rods"], spread)
         entry = {k: v for k, v in case.items()}
         entry["reference"] = {k: best[k] for k in KEYS}
         entry["rods_used"] = [r["rods"] for r in rows]
+        # the extrapolation's own uncertainty: three meshes, its distance from the two-point
+        # (second-order) value of the finest two; two meshes, |x2 - x1|/3
+        if case["design"] == "cj":
+            entry["uncertainty"] = {k: 0.0 for k in KEYS}
+        elif len(rows) == 1:
+            entry["uncertainty"] = None
+        else:
+            two = {k: rows[-1][k] + (rows[-1][k] - rows[-2][k]) / 3.0 for k in KEYS}
+            entry["uncertainty"] = {
+                k: abs(best[k] - two[k]) if len(rows) >= 3 else abs(rows[-1][k] - rows[-2][k]) / 3.0
+                for k in KEYS
+            }
         entry["placement_angle_rad"] = rows[0]["placement_angle_rad"]
         entry["by_rods"] = rows
         fixture["cases"].append(entry)
