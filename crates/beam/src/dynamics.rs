@@ -335,6 +335,57 @@ impl State {
         State::with_free_accelerations(model, t0, (q, v, a), loads)
     }
 
+    /// The link in steady rotation about its root at t = `t0` \[s\]: turned by `angle` \[rad\]
+    /// at the constant `rate` [rad/s] and stretched by its centrifugal tension, so that a
+    /// steady start does not ring axially. The tension of a bar of mass per length ρA with
+    /// point masses m_j at x_j, N(x) = ω² [ρA (L² − x²)/2 + Σ_{x_j ≥ x} m_j x_j], stretches it by
+    /// u(x) = ∫₀ˣ N/EA (the elements' axial equilibrium to O(ω² h²); what is left rings at the
+    /// ω⁴/ω_axial² level). Corotational elements only, as [`State::in_rigid_rotation`].
+    pub fn in_steady_rotation(
+        model: &BeamModel,
+        [angle, rate]: [f64; 2],
+        t0: f64,
+        loads: &NodalLoads,
+    ) -> Result<Self, BeamError> {
+        let mut state = State::in_rigid_rotation(model, [angle, rate, 0.0], t0, loads)?;
+        let section = model.section();
+        let (rho_a, ea, l) = (section.rho_a(), section.ea(), model.length());
+        let w2 = rate * rate;
+        let tension = |x: f64| {
+            let points: f64 = model
+                .spec()
+                .point_masses
+                .iter()
+                .map(|pm| (pm.node, pm.mass))
+                .filter(|(node, _)| model.node_x(*node) >= x)
+                .map(|(node, m)| m * model.node_x(node))
+                .sum();
+            w2 * (0.5 * rho_a * (l * l - x * x) + points)
+        };
+        let (sin, cos) = angle.sin_cos();
+        let mut stretch = 0.0;
+        for i in 0..model.n_nodes() {
+            if i > 0 {
+                // Simpson over the element
+                let (a, b) = (model.node_x(i - 1), model.node_x(i));
+                let mid = tension(0.5 * (a + b));
+                stretch += (b - a) / 6.0 * (tension(a) + 4.0 * mid + tension(b)) / ea;
+            }
+            let r = model.node_x(i) + stretch;
+            let x = model.node_x(i);
+            let q = &mut state.q[3 * i..3 * i + 2];
+            q[0] = r * cos - x;
+            q[1] = r * sin;
+            let v = &mut state.v[3 * i..3 * i + 2];
+            v[0] = -r * sin * rate;
+            v[1] = r * cos * rate;
+        }
+        let nfix = model.n_fixed();
+        let mut a = state.a.clone();
+        a[nfix..].fill(0.0);
+        State::with_free_accelerations(model, t0, (state.q, state.v, a), loads)
+    }
+
     /// The state at `t0` \[s\] with displacements and velocities `q`, `v` and the constrained
     /// entries of `a` given (prescribed root accelerations; the free entries are overwritten):
     /// the free accelerations solve M(q) q̈ = F − f_int − f_damp − g with the constrained

@@ -101,7 +101,7 @@ fn strike_json_fields_are_present_finite_and_balanced() {
         let v = json(&["strike", drive_file(name).to_str().unwrap(), "--json"]);
         let peak = finite(&v, "/outcome/contact/peak_force_n");
         assert!(peak > 0.0, "{name}: peak {peak}");
-        let onset = finite(&v, "/outcome/contact/onset_s");
+        let onset = finite(&v, "/outcome/contact/onset_time_s");
         let t_peak = finite(&v, "/outcome/contact/time_of_peak_s");
         let duration = finite(&v, "/outcome/contact/duration_s");
         assert!(
@@ -109,11 +109,11 @@ fn strike_json_fields_are_present_finite_and_balanced() {
             "{name}: {v}"
         );
         for p in [
-            "/outcome/approach_speed_mps",
+            "/outcome/impact_velocity_mps",
             "/outcome/pre_impact_deflection_m",
             "/outcome/joint_torque_at_onset_nm",
             "/outcome/peak_joint_torque_nm",
-            "/outcome/separation_rate_mps",
+            "/outcome/separation_velocity_mps",
             "/outcome/energy/motor_work_j",
             "/outcome/energy/dissipated_j",
             "/outcome/energy/mechanical_change_j",

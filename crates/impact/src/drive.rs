@@ -676,6 +676,38 @@ impl Person {
     }
 }
 
+/// The dome rigid with the link's tip section (the rig's `dome_radius_m`, `dome_standoff_m`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Dome {
+    /// Sphere radius R \[m\], > 0.
+    pub radius_m: f64,
+    /// How far the dome's apex sits ahead of the link's axis, towards the person, s \[m\]
+    /// (0 < s ≤ 2R; the centre sits R − s behind the axis).
+    pub standoff_m: f64,
+}
+
+impl Dome {
+    /// The test bed's skinned-aluminium dome (§III-B): R = 71.5 mm, apex 30 mm ahead of the
+    /// axis (its centre 41.5 mm behind it), as in the bundled rig scenes.
+    pub const TEST_BED: Dome = Dome {
+        radius_m: 0.0715,
+        standoff_m: 0.030,
+    };
+
+    /// Checks the fields; the error names them.
+    pub fn validate(&self) -> Result<(), ImpactError> {
+        positive("dome.radius_m", self.radius_m, 10.0, "m")?;
+        positive("dome.standoff_m", self.standoff_m, 2.0 * self.radius_m, "m")?;
+        Ok(())
+    }
+
+    /// The centre's distance behind the axis d_c = R − s \[m\].
+    pub fn centre_offset(&self) -> f64 {
+        self.radius_m - self.standoff_m
+    }
+}
+
 /// Where the person stands.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", tag = "placement", deny_unknown_fields)]

@@ -77,6 +77,9 @@ struct DrivenCj<'a> {
     /// Positions are measured from this point of the path \[m\].
     shift: f64,
     law: Option<&'a dyn ContactLaw>,
+    /// The dome's centre offset d_c = R − s behind the link's axis \[m\] for the exact
+    /// contact geometry, or `None`: the arc coordinate (δ = w − x_h).
+    dome_offset: Option<f64>,
     /// A time inside the current integration segment: the drive's command is evaluated on its
     /// branch there (a pulse's end, a trapezoid's corner lie on segment ends).
     branch: Cell<f64>,
@@ -167,17 +170,42 @@ impl DrivenCj<'_> {
         (t > t0 + 8.0 * f64::EPSILON * t1 && t < t1).then_some(t)
     }
 
+    /// The indentation δ \[m\], its rate δ̇ [m/s], the lever λ = ∂δ/∂w and its rate λ̇ \[1/s\].
+    /// Exact geometry (module docs of [`crate::exact_link`]): with u = φ_l − φ_c =
+    /// (w − x_rest)/L the link's turn past the placement and X = x_h − x_rest the head's
+    /// displacement along the face normal, δ = L sin u + d_c (1 − cos u) − X,
+    /// λ = cos u + (d_c/L) sin u; the arc coordinate: δ = w − x_h, λ = 1.
+    fn contact_kinematics(&self, y: &Y) -> (f64, f64, f64, f64) {
+        match self.dome_offset {
+            None => (y[W] - y[XH], y[WD] - y[VH], 1.0, 0.0),
+            Some(d_c) => {
+                let u = (y[W] - self.x_rest) / self.l;
+                let (s, c) = u.sin_cos();
+                let lever = c + d_c / self.l * s;
+                let lever_rate = (-s + d_c / self.l * c) * y[WD] / self.l;
+                let delta = self.l * s + d_c * (1.0 - c) - (y[XH] - self.x_rest);
+                (delta, lever * y[WD] - y[VH], lever, lever_rate)
+            }
+        }
+    }
+
+    /// The indentation δ \[m\] (negative: the gap).
+    fn gap(&self, y: &Y) -> f64 {
+        self.contact_kinematics(y).0
+    }
+
     fn force(&self, y: &Y) -> f64 {
-        self.law
-            .map_or(0.0, |law| law.force(y[W] - y[XH], y[WD] - y[VH]))
+        let (delta, rate, ..) = self.contact_kinematics(y);
+        self.law.map_or(0.0, |law| law.force(delta, rate))
     }
 
     /// ḟ along the motion.
     fn force_rate(&self, t: f64, y: &Y) -> f64 {
         let Some(law) = self.law else { return 0.0 };
-        let (delta, rate) = (y[W] - y[XH], y[WD] - y[VH]);
+        let (delta, rate, lever, lever_rate) = self.contact_kinematics(y);
         let dy = self.rhs(t, y);
-        law.stiffness(delta, rate) * rate + law.damping(delta, rate) * (dy[WD] - dy[VH])
+        let accel = lever * dy[WD] + lever_rate * y[WD] - dy[VH];
+        law.stiffness(delta, rate) * rate + law.damping(delta, rate) * accel
     }
 
     fn sample(&self, t: f64, y: &Y) -> TraceSample {
@@ -187,7 +215,7 @@ impl DrivenCj<'_> {
             hub_angle_rad: (r + self.shift) / self.l,
             hub_speed_rad_s: rd / self.l,
             tip_deflection_m: y[W] - r,
-            indentation_m: y[W] - y[XH],
+            indentation_m: self.gap(y),
             force_n: self.force(y),
             joint_torque_nm: self.drive_force(t, y).0 * self.l,
             head_position_m: y[XH] + self.shift,
@@ -204,7 +232,7 @@ impl DrivenCj<'_> {
         let neck = y[XH] - self.x_rest;
         let contact = self
             .law
-            .map_or(0.0, |law| law.elastic_energy((y[W] - y[XH]).max(0.0)));
+            .map_or(0.0, |law| law.elastic_energy(self.gap(y).max(0.0)));
         let head = if self.inv_m_h > 0.0 {
             0.5 * self.m_h * y[VH] * y[VH]
         } else {
@@ -233,7 +261,7 @@ impl OdeSystem<DIM> for DrivenCj<'_> {
             ),
             Source::OpenLoop { .. } => ((drive - self.c_rotor * rd - spring) / self.m_rotor, 0.0),
         };
-        let (delta, rate) = (y[W] - y[XH], y[WD] - y[VH]);
+        let (delta, rate, lever, _) = self.contact_kinematics(y);
         let damping_power = match self.law {
             Some(law) => (f - law.elastic().force(delta, 0.0)) * rate,
             None => 0.0,
@@ -242,7 +270,7 @@ impl OdeSystem<DIM> for DrivenCj<'_> {
         dy[XH] = y[VH];
         dy[VH] = head_acc;
         dy[W] = y[WD];
-        dy[WD] = (spring - f) / self.m_tip;
+        dy[WD] = (spring - f * lever) / self.m_tip;
         if !matches!(self.source, Source::Prescribed(_)) {
             dy[R] = y[RD];
             dy[RD] = rotor_acc;
@@ -281,6 +309,30 @@ impl CjSettings {
 pub fn run_driven_cj(
     strike: &DrivenStrike,
     settings: &CjSettings,
+) -> Result<DrivenOutcome, ImpactError> {
+    run_cj(strike, settings, None)
+}
+
+/// The driven CJ with the exact contact geometry of `dome` (the default model,
+/// [`crate::DrivenStrike::run_cj`]): the rigid link's rotation was always exact; here the dome
+/// is a sphere rigid with the link (its centre d_c = R − s behind the axis) against the face's
+/// plane, so the indentation is δ = L sin u + d_c (1 − cos u) − X (u the link's turn past the
+/// placement, X the head's displacement along the face normal) and the force acts on the link
+/// through the lever λ = ∂δ/∂(L φ_l) = cos u + (d_c/L) sin u (its moment about the joint
+/// included), where [`run_driven_cj`] measures δ along the tip's path (u ≪ 1).
+pub fn run_exact_cj(
+    strike: &DrivenStrike,
+    settings: &CjSettings,
+    dome: &crate::drive::Dome,
+) -> Result<DrivenOutcome, ImpactError> {
+    dome.validate()?;
+    run_cj(strike, settings, Some(dome.centre_offset()))
+}
+
+fn run_cj(
+    strike: &DrivenStrike,
+    settings: &CjSettings,
+    dome_offset: Option<f64>,
 ) -> Result<DrivenOutcome, ImpactError> {
     strike.validate()?;
     if !(settings.rtol.is_finite() && (1e-14..=1e-3).contains(&settings.rtol)) {
@@ -328,6 +380,7 @@ pub fn run_driven_cj(
         source,
         shift: 0.0,
         law: None,
+        dome_offset,
         branch: Cell::new(0.0),
     };
     // ---- t = 0 ----
@@ -367,7 +420,6 @@ pub fn run_driven_cj(
         .max(strike.person.speed)
         .max(1e-6);
     let e_ref = 0.5 * system.m_tip * v_ref * v_ref;
-    let gap = |y: &Y| y[W] - y[XH];
     let mut notes = Vec::new();
     let mut saturation_at: Option<f64> = None;
     if let Some(dt) = settings.trace_every
@@ -378,9 +430,9 @@ pub fn run_driven_cj(
     let mut tracer = Tracer::new(settings.trace_every);
     tracer.offer(0.0, true, || system.sample(0.0, &y0));
     let mut work = 0;
-    let (t_on, y_on) = if gap(&y0) == 0.0 && y0[WD] - y0[VH] > 0.0 {
+    let (t_on, y_on) = if system.gap(&y0) == 0.0 && y0[WD] - y0[VH] > 0.0 {
         (0.0, y0)
-    } else if gap(&y0) > 0.0 {
+    } else if system.gap(&y0) > 0.0 {
         return Err(ImpactError::invalid(
             "placement",
             format!("{} rad", x_contact / l),
@@ -421,7 +473,7 @@ pub fn run_driven_cj(
             // the limit's corner: restart the integrator there (it keeps its order)
             if let Some(t_sw) = system.saturation_switch(&mut ode, (t0, t1), (&ya, &yb)) {
                 let y_sw = ode.restep_to(&system, t_sw);
-                if gap(&y_sw) < 0.0 {
+                if system.gap(&y_sw) < 0.0 {
                     work += ode.stats().rhs_evals;
                     if saturation_at.is_none()
                         && system.saturation_margin(t1, &yb).unwrap_or(0.0) > 0.0
@@ -432,20 +484,20 @@ pub fn run_driven_cj(
                     continue;
                 }
             }
-            if gap(&yb) < 0.0 {
+            if system.gap(&yb) < 0.0 {
                 tracer.offer(t1, false, || system.sample(t1, &yb));
             }
             if saturation_at.is_none() && system.drive_force(t1, &yb).1 {
                 saturation_at = Some(t1);
             }
-            if gap(&ya) < 0.0 && gap(&yb) >= 0.0 {
+            if system.gap(&ya) < 0.0 && system.gap(&yb) >= 0.0 {
                 let dense = ode.dense_output(&system);
                 let t = find_root(
-                    |t| gap(&dense.eval(t)),
+                    |t| system.gap(&dense.eval(t)),
                     t0,
-                    gap(&ya),
+                    system.gap(&ya),
                     t1,
-                    gap(&yb),
+                    system.gap(&yb),
                     4.0 * f64::EPSILON * t1.max(1e-300),
                 );
                 let y = if t < t1 {
@@ -462,7 +514,7 @@ pub fn run_driven_cj(
                     "the link did not reach the person within horizon_s = {} s (gap {:.6e} m, \
                      joint speed {speed:.6e} rad/s at the end)",
                     strike.horizon_s,
-                    -gap(&yb),
+                    -system.gap(&yb),
                 );
                 if let Some(ts) = saturation_at {
                     reason.push_str(&format!(
@@ -477,7 +529,7 @@ pub fn run_driven_cj(
         }
     };
     // ---- the contact, positions from the contact point ----
-    let approach = y_on[WD] - y_on[VH];
+    let approach = system.contact_kinematics(&y_on).1;
     if !(approach > 0.0) {
         return Err(ImpactError::NotFinished {
             design: "driven CJ",
@@ -536,7 +588,7 @@ pub fn run_driven_cj(
         let (ya, yb) = (*ode.y_old(), *ode.y());
         if let Some(t_sw) = system.saturation_switch(&mut ode, (t0, t1), (&ya, &yb)) {
             let y_sw = ode.restep_to(&system, t_sw);
-            if gap(&y_sw) > 0.0 && force_rate(t0, &ya) * force_rate(t_sw, &y_sw) > 0.0 {
+            if system.gap(&y_sw) > 0.0 && force_rate(t0, &ya) * force_rate(t_sw, &y_sw) > 0.0 {
                 work += ode.stats().rhs_evals;
                 if saturation_at.is_none() && system.saturation_margin(t1, &yb).unwrap_or(0.0) > 0.0
                 {
@@ -557,7 +609,7 @@ pub fn run_driven_cj(
             let dense = ode.dense_output(&system);
             while due < t1 {
                 let yd = dense.eval(due);
-                if gap(&yd) <= 0.0 {
+                if system.gap(&yd) <= 0.0 {
                     break;
                 }
                 tracer.offer(due, true, || system.sample(due, &yd));
@@ -567,7 +619,7 @@ pub fn run_driven_cj(
                 };
             }
         }
-        if gap(&yb) > 0.0 {
+        if system.gap(&yb) > 0.0 {
             tracer.offer(t1, false, || system.sample(t1, &yb));
         }
         if sat && saturation_at.is_none() {
@@ -588,14 +640,14 @@ pub fn run_driven_cj(
                 peak = (f, t);
             }
         }
-        if gap(&yb) <= 0.0 && t1 > t_on {
+        if system.gap(&yb) <= 0.0 && t1 > t_on {
             let dense = ode.dense_output(&system);
             let t_sep = find_root(
-                |t| gap(&dense.eval(t)),
+                |t| system.gap(&dense.eval(t)),
                 t0,
-                gap(&ya),
+                system.gap(&ya),
                 t1,
-                gap(&yb),
+                system.gap(&yb),
                 4.0 * f64::EPSILON * t1,
             );
             let y_sep = if t_sep < t1 {
@@ -618,28 +670,11 @@ pub fn run_driven_cj(
             if let Some(ts) = saturation_at {
                 notes.push(DriveNote::TorqueLimitReached { first_s: ts });
             }
-            if let Some(c) = commanded
-                && y_on[WD] < 0.99 * c
-            {
-                notes.push(DriveNote::SpeedBelowCommand {
-                    commanded_mps: c,
-                    actual_mps: y_on[WD],
-                });
+            if let Some(c) = commanded {
+                notes.extend(DriveNote::arrival(c, y_on[WD]));
             }
-            // the link's vibration about its quasi-static (drive-loaded) deflection at the onset
-            let rotor_acc = match system.source {
-                Source::Prescribed(_) => system.command(t_on).expect("a profile").2,
-                _ => system.rhs(t_on, &y)[RD],
-            };
-            let omega = (system.k / system.m_tip).sqrt();
-            let quasi_static = -system.m_tip * rotor_acc / system.k;
-            let amplitude =
-                ((deflection - quasi_static).powi(2) + ((y[WD] - rd_on) / omega).powi(2)).sqrt();
-            if amplitude > 1e-2 * peak.0 / system.k {
-                notes.push(DriveNote::NotSettled {
-                    amplitude_m: amplitude,
-                });
-            }
+            // the tip's vibration speed relative to the hub's line: L (φ̇_l − φ̇_m)
+            notes.extend(DriveNote::vibration(y_on[WD] - rd_on, approach));
             let outcome = DrivenOutcome {
                 contact: ContactEvent {
                     onset_s: t_on,
@@ -653,7 +688,7 @@ pub fn run_driven_cj(
                 joint_torque_at_onset_nm: torque_on * l,
                 peak_joint_torque_nm: peak_torque,
                 energy,
-                separation_rate_mps: y_sep[WD] - y_sep[VH],
+                separation_rate_mps: system.contact_kinematics(&y_sep).1,
                 notes,
                 work,
                 trace: tracer.samples,

@@ -803,7 +803,15 @@ fn rigid_shape(lengths: &[f64], with_hub: bool) -> Vec<f64> {
     out
 }
 
-/// Runs the driven CL strike from the drive's start to the separation of the first contact.
+/// Runs the driven CL strike from the drive's start to the separation of the first contact,
+/// with the **linear** link and the contact along the tip's path — the faster option. Its
+/// error against the geometrically exact link ([`crate::exact_link::run_exact_cl`], the
+/// default, [`DrivenStrike::run_cl`]) on the test bed's link (51 g, 0.338 m, 412 g payload,
+/// free 4 kg head, tip speed 1 m/s commanded): peak force 1.1e-3 low on a steady approach,
+/// 1.4e-2 high after a 1 s ramp that leaves the link ringing, 2.5e-2 high after a 0.5 s ramp
+/// that bends it by 0.11 m, 1.5e-2 under a PD loop; contact duration 0.8 %, 1.2 %, 9 % and
+/// 1.3 % (crates/impact/tests/exact_link.rs `linear_model_error`). It misses the centrifugal
+/// stiffening, the large deflection and the dome's moment on the tip section.
 pub fn run_driven_cl(
     strike: &DrivenStrike,
     settings: &ClDriveSettings,
@@ -1267,13 +1275,8 @@ pub fn run_driven_cl(
     if let Some(ts) = saturation_at {
         notes.push(DriveNote::TorqueLimitReached { first_s: ts });
     }
-    if let Some(c) = commanded
-        && tip_speed_on < 0.99 * c
-    {
-        notes.push(DriveNote::SpeedBelowCommand {
-            commanded_mps: c,
-            actual_mps: tip_speed_on,
-        });
+    if let Some(c) = commanded {
+        notes.extend(DriveNote::arrival(c, tip_speed_on));
     }
     crate::driven_cj::finite(DrivenOutcome {
         contact: ContactEvent {

@@ -25,6 +25,7 @@ pub mod driven_cj;
 pub mod driven_cl;
 mod error;
 pub mod eta;
+pub mod exact_link;
 pub mod graded;
 pub mod horizon;
 pub mod hub_modes;

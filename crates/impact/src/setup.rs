@@ -233,7 +233,8 @@ fn in_range(field: &str, value: f64, lo: f64, hi: f64) -> Result<(), ImpactError
 /// One contact of a run.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct ContactEvent {
-    /// Onset time \[s\].
+    /// Onset time \[s\] (serialised as `onset_time_s`, the test-bed run's name).
+    #[serde(rename = "onset_time_s")]
     pub onset_s: f64,
     /// Peak force \[N\].
     pub peak_force_n: f64,
@@ -270,13 +271,25 @@ pub struct ImpactOutcome {
     pub overall: ContactEvent,
     /// How the run ended.
     pub ended: RunEnd,
-    /// Relative approach speed at the last separation (negative: the bodies part) \[m/s\].
+    /// Relative approach speed at the last separation (negative: the bodies part) \[m/s\];
+    /// serialised as the parting speed `separation_velocity_mps` (positive: the bodies part),
+    /// the test-bed run's name.
+    #[serde(
+        rename = "separation_velocity_mps",
+        serialize_with = "crate::setup::negated"
+    )]
     pub separation_rate_mps: f64,
     /// Mechanical energy at onset and at the end \[J\] (undamped contact: equal up to the
     /// integration error).
     pub energy_j: (f64, f64),
-    /// Time steps taken (CL) or right-hand-side evaluations (CJ).
+    /// Time steps taken (CL) or right-hand-side evaluations (CJ) (serialised as `steps`).
+    #[serde(rename = "steps")]
     pub work: usize,
+}
+
+/// Serialises −x (a closing rate as a parting speed).
+pub(crate) fn negated<S: serde::Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_f64(-x)
 }
 
 impl ImpactOutcome {

@@ -33,8 +33,8 @@ def test_strike_equals_the_cli_json_bit_for_bit(cli, name):
     got = flexrig.strike(DRIVES / name)
     for key in ("contact", "energy"):
         assert got[key] == expected[key], key
-    for key in ("approach_speed_mps", "pre_impact_deflection_m", "joint_torque_at_onset_nm",
-                "peak_joint_torque_nm", "separation_rate_mps", "work"):
+    for key in ("impact_velocity_mps", "pre_impact_deflection_m", "joint_torque_at_onset_nm",
+                "peak_joint_torque_nm", "separation_velocity_mps", "steps"):
         assert got[key] == expected[key], key
     assert got["energy"]["residual_j"] <= 1e-6 * got["energy"]["impact_energy_j"]
 

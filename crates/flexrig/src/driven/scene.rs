@@ -437,23 +437,7 @@ pub struct DrivenRun {
 
 /// The drive's note in words.
 pub fn note_text(note: &DriveNote) -> String {
-    match note {
-        DriveNote::TorqueLimitReached { first_s } => format!(
-            "the controller's torque reached its limit at {first_s:.6} s: the commanded motion \
-             was not followed from then on"
-        ),
-        DriveNote::SpeedBelowCommand {
-            commanded_mps,
-            actual_mps,
-        } => format!(
-            "the link arrived at {actual_mps:.6} m/s, slower than the commanded \
-             {commanded_mps:.6} m/s"
-        ),
-        DriveNote::NotSettled { amplitude_m } => format!(
-            "the link still vibrated from the drive's ramp at the onset (amplitude \
-             {amplitude_m:.3e} m)"
-        ),
-    }
+    note.to_string()
 }
 
 /// Runs a driven scene (the strike with its trace at the scene's sample rate).

@@ -746,8 +746,8 @@ def strike(
     """One driven CJ or CL strike, as ``flexrig strike``: from a drive description ``file`` (a
     path to TOML, see assets/drives/) or from the keyword arguments (the command's flags; their
     defaults are assets/drives/cl_free_head.toml). Returns the outcome as a dict (``contact``:
-    onset_s, peak_force_n, time_of_peak_s, duration_s; approach speed, pre-impact deflection,
-    joint torques, ``energy``, ``notes``, ``work``) and, with ``trace_every`` [s], ``trace``: a
+    onset_time_s, peak_force_n, time_of_peak_s, duration_s; approach speed, pre-impact deflection,
+    joint torques, ``energy``, ``notes``, ``steps``) and, with ``trace_every`` [s], ``trace``: a
     DataFrame of the motion (columns :data:`STRIKE_TRACE_COLUMNS`; written as strike_trace.csv
     into ``out`` if given). A bad field raises :class:`InputError` naming it
     (``drive.motor.gear_ratio``).
