@@ -40,6 +40,17 @@ impl DrivenStrike {
         self.person.validate()?;
         positive("horizon_s", self.horizon_s, 1e6, "s")?;
         let angle = self.placement.angle(&self.drive)?;
+        if let Some(profile) = self.drive.profile()
+            && profile.final_speed() < 0.0
+        {
+            // the models put the person on the positive side of the link
+            return Err(ImpactError::invalid(
+                "drive.command.profile.speed",
+                profile.final_speed(),
+                "a joint speed ≥ 0 rad/s (the person stands on the positive side of the link: \
+                 for the other direction mirror the scene, the numbers are the same)",
+            ));
+        }
         if let Some(profile) = self.drive.profile() {
             // the commanded motion must pass the person within the horizon
             let reach = profile.at(self.horizon_s).0;
@@ -123,7 +134,13 @@ impl DrivenStrike {
         let k_delta = self.link.k_delta;
         let indent = |k: f64, v: f64| peak_indentation(mu, v, k, n, k_delta).0;
         // a Hertz contact lasts about 3 δ_max/v (π δ_max/v for n = 1, 2.94 δ_max/v for 3/2)
-        let duration = |k: f64, v: f64| 3.0 * peak_indentation(mu, v, k, n, k_delta).1 / v;
+        let duration = |k: f64, v: f64| {
+            if v > 0.0 {
+                3.0 * peak_indentation(mu, v, k, n, k_delta).1 / v
+            } else {
+                f64::INFINITY
+            }
+        };
         let horizon = self.horizon_s;
         let (lo, hi) = (
             MIN_INDENTATION_OF_LENGTH * length,
