@@ -514,10 +514,11 @@ impl Tracer {
             if self.samples.last().is_some_and(|last| last.t >= t) {
                 self.samples.pop();
             }
-            self.samples.push(sample());
-            if self.samples.len() > MAX_TRACE_SAMPLES {
+            // thinned before the push, so the vector never grows past its budget's capacity
+            if self.samples.len() >= MAX_TRACE_SAMPLES {
                 self.thin();
             }
+            self.samples.push(sample());
         }
     }
 
@@ -536,5 +537,5 @@ impl Tracer {
     }
 }
 
-/// Most trace samples a strike keeps (80 B each: 80 MB); beyond, the trace is thinned.
-pub const MAX_TRACE_SAMPLES: usize = 1 << 20;
+/// Most trace samples a strike keeps (80 B each: 670 MB); beyond, the trace is thinned.
+pub const MAX_TRACE_SAMPLES: usize = 1 << 23;

@@ -19,8 +19,9 @@ use flexrig_impact::{DrivenOutcome, DrivenStrike, LinkParams, TraceSample};
 use serde::{Deserialize, Serialize};
 
 use super::{check, num};
-/// Most trace samples a strike keeps in memory (flexrig-impact thins beyond).
-const MAX_SAMPLES: f64 = flexrig_impact::strike::MAX_TRACE_SAMPLES as f64;
+/// Most trace samples over the wait (a driven scene's `horizon_s` × `record.sample_rate_hz`
+/// budget; flexrig-impact thins a trace beyond its own cap).
+use super::scene::MAX_SAMPLES;
 use crate::shared::output::{ensure_dir, positive_arg, read_text, write_atomic};
 use crate::{CancelToken, Error};
 
@@ -364,15 +365,15 @@ pub fn run(
         .transpose()?;
     if let Some(every) = trace_every {
         // the samples over the wait and a contact as long (checked to fit in the horizon)
-        let samples = 2.0 * description.horizon_s / every;
+        let samples = description.horizon_s / every;
         if !(samples <= MAX_SAMPLES) {
             return Err(Error::InvalidArgument {
                 arg: "--trace-every".into(),
                 value: flexrig_contact::validate::display(every),
                 allowed: format!(
                     "at least {} s: the trace keeps one sample per interval over the wait of \
-                     horizon_s = {} s and the contact (up to {} samples in memory)",
-                    flexrig_contact::validate::display(2.0 * description.horizon_s / MAX_SAMPLES),
+                     {} s (at most {} samples)",
+                    flexrig_contact::validate::display(description.horizon_s / MAX_SAMPLES),
                     flexrig_contact::validate::display(description.horizon_s),
                     flexrig_contact::validate::display(MAX_SAMPLES)
                 ),
