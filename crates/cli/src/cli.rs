@@ -29,6 +29,20 @@ pub struct Cli {
     pub command: Option<Command>,
 }
 
+impl Cli {
+    /// Parses the process's arguments as [`Cli::try_parse`] does, except that every command
+    /// takes a negative number as a flag's value (`--speed -1` reaches the range check and its
+    /// message instead of clap's "unexpected argument '-1'").
+    pub fn try_parse_args() -> Result<Cli, clap::Error> {
+        use clap::{CommandFactory, FromArgMatches};
+        fn negatives(c: clap::Command) -> clap::Command {
+            c.allow_negative_numbers(true).mut_subcommands(negatives)
+        }
+        let matches = negatives(Cli::command()).try_get_matches()?;
+        Cli::from_arg_matches(&matches)
+    }
+}
+
 /// The `flexrig` commands.
 #[derive(Debug, Subcommand)]
 pub enum Command {

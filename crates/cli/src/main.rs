@@ -1,9 +1,7 @@
 //! `flexrig`: see `flexrig --help`.
 
-use clap::Parser;
-
 fn main() {
-    let cli = match flexrig_cli::cli::Cli::try_parse() {
+    let cli = match flexrig_cli::cli::Cli::try_parse_args() {
         Ok(cli) => cli,
         Err(err) => {
             let args: Vec<String> = std::env::args().collect();

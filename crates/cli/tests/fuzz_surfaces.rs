@@ -2136,3 +2136,112 @@ fn the_stiffest_adams_damping_over_the_thinnest_depth_answers_in_seconds() {
     }
     report("adams_bound", 1, &failures);
 }
+
+// ---------------------------------------------------------------------------------------------
+// The driven surfaces: strike flags, traces, role-switch flags
+
+/// A Rust Debug value in a message: `Name { field: … }` (a word, ` { `, then `field:`), or an
+/// escaped character `\u{…}` the user did not type.
+fn debug_text(text: &str) -> Option<String> {
+    for (i, _) in text.match_indices(" { ") {
+        let before = text[..i].chars().last().unwrap_or(' ');
+        let after: String = text[i + 3..]
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect();
+        if before.is_alphanumeric() && !after.is_empty() && text[i + 3 + after.len()..].starts_with(':')
+        {
+            return Some(shorten(&text[i.saturating_sub(30)..], 80));
+        }
+    }
+    text.find("\\u{").map(|i| shorten(&text[i..], 40))
+}
+
+/// `flexrig strike` with hostile flags (1–3 per case, a fixed seed, a case budget): every case
+/// ends with exit 0 and a finished answer, or exit 2 naming the flag, never a panic, an abort,
+/// a hang, a null in the JSON or Debug text. The contact's resolvability couples the speed,
+/// the contact law and the masses, so a refusal may name `--speed` or `--k-c` for a drawn mass.
+#[test]
+fn strike_and_role_switch_hostile_flags() {
+    let mut failures = Vec::new();
+    let mut cases = 0;
+    let mut numbers = hostile_numbers();
+    numbers.retain(|s| s.len() < 1000);
+    numbers.extend(strings(&["95.5", "1e-20", "1e40", "1e-6", "600", "1e15", "0.1", "3"]));
+    let scalar = [
+        "--m-r",
+        "--length",
+        "--k-delta",
+        "--m-e",
+        "--rotor-inertia",
+        "--gear-ratio",
+        "--friction",
+        "--speed",
+        "--ramp-time",
+        "--kp",
+        "--kd",
+        "--torque-limit",
+        "--m-h",
+        "--k-c",
+        "--n",
+        "--settle",
+        "--horizon",
+        "--trace-every",
+    ];
+    let mut flags: Vec<(&str, Vec<String>)> = scalar.iter().map(|f| (*f, numbers.clone())).collect();
+    flags.push(("--design", strings(&["cj", "cl", "cx", "", "CJ"])));
+    flags.push(("--support", strings(&["free", "wall", "neck", ""])));
+    let dir = scratch("strike_fuzz");
+    let mut rng = Rng(0x5EED_0035);
+    for case in 0..48 {
+        let case_dir = dir.join(format!("c{case}"));
+        std::fs::create_dir_all(&case_dir).unwrap();
+        let base: &[&str] = if case % 2 == 0 {
+            &["strike", "--json"]
+        } else {
+            &["strike"]
+        };
+        let (mut args, mut drawn) = draw(&mut rng, base, &borrow(&flags), None);
+        if args.iter().any(|a| a.starts_with("--trace-every")) {
+            args.push("--out=o".into());
+        }
+        drawn.extend(strings(&["--speed", "--k-c"]));
+        let names: Vec<&str> = drawn.iter().map(String::as_str).collect();
+        let expect = Expect {
+            allow_1: false,
+            names: &names,
+        };
+        let o = attack(&args, &case_dir, Some(&case_dir), &expect, &mut failures);
+        if let Some(d) = debug_text(&format!("{}\n{}", o.stdout, o.stderr)) {
+            failures.push(format!("{}\n  -> Debug text: {d}", o.line));
+        }
+        cases += 1;
+    }
+    // role-switch: the kappa list and the scalar flags, on the test bed's cases only
+    let mut kappas = hostile_lists();
+    kappas.retain(|s| s.len() < 200_000);
+    kappas.extend(strings(&["1,1", "1e7", "1,2,3,4,5,6,7,8,9,10,11,12,13", "1e-7"]));
+    let role: Vec<(&str, Vec<String>)> = vec![
+        ("--kappa", kappas),
+        ("--rotor-ratio", numbers.clone()),
+        ("--damping-ratio", numbers.clone()),
+    ];
+    for case in 0..12 {
+        let case_dir = dir.join(format!("r{case}"));
+        std::fs::create_dir_all(&case_dir).unwrap();
+        let (mut args, drawn) = draw(&mut rng, &["role-switch", "--no-fig6"], &borrow(&role), None);
+        args.push("--out=o".into());
+        let names: Vec<&str> = drawn.iter().map(String::as_str).collect();
+        let expect = Expect {
+            allow_1: false,
+            names: &names,
+        };
+        let o = attack(&args, &case_dir, Some(&case_dir), &expect, &mut failures);
+        if let Some(d) = debug_text(&format!("{}\n{}", o.stdout, o.stderr)) {
+            failures.push(format!("{}\n  -> Debug text: {d}", o.line));
+        }
+        cases += 1;
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    report("strike_and_role_switch_hostile_flags", cases, &failures);
+}

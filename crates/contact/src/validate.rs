@@ -6,12 +6,26 @@ use crate::ContactError;
 
 /// A number as an error message should quote it: plain for ordinary magnitudes, in exponent
 /// form for very small or large ones (1e-300 must not print as 300 digits).
+///
+/// This is the one formatter of numbers in messages: the shortest text that reads back to the
+/// value when that is short (what a user typed comes back as typed), else rounded to 6
+/// significant digits (a derived 22.297073617089197 reads 22.2971).
 pub fn display(value: f64) -> String {
     let a = value.abs();
-    if a != 0.0 && a.is_finite() && !(1e-4..1e6).contains(&a) {
+    let exact = if a != 0.0 && a.is_finite() && !(1e-4..1e6).contains(&a) {
         format!("{value:e}")
     } else {
         format!("{value}")
+    };
+    if exact.len() <= 12 {
+        return exact;
+    }
+    let rounded: f64 = format!("{value:.5e}").parse().unwrap_or(value);
+    let a = rounded.abs();
+    if a != 0.0 && !(1e-4..1e6).contains(&a) {
+        format!("{rounded:e}")
+    } else {
+        format!("{rounded}")
     }
 }
 

@@ -66,7 +66,24 @@ impl Motor {
                 "must lie in (0, 1e6]",
             ));
         }
-        non_negative("drive.motor.friction", self.friction, 1e9, "N·m·s/rad")
+        non_negative("drive.motor.friction", self.friction, 1e9, "N·m·s/rad")?;
+        // the joint sees J_m N²: the free hub's range [1e-12, 1e12] kg·m² (or no rotor at all)
+        let reflected = self.reflected_inertia();
+        if self.rotor_inertia > 0.0 && !(1e-12..=1e12).contains(&reflected) {
+            let n2 = self.gear_ratio * self.gear_ratio;
+            return Err(ImpactError::invalid(
+                "drive.motor.rotor_inertia",
+                self.rotor_inertia,
+                format!(
+                    "0, or an inertia the joint sees (times gear_ratio² = {}) within \
+                     [1e-12, 1e12] kg·m²: [{}, {}] kg·m² at this gear",
+                    flexrig_contact::validate::display(n2),
+                    flexrig_contact::validate::display(1e-12 / n2),
+                    flexrig_contact::validate::display(1e12 / n2)
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// The rotor's inertia seen at the joint, J_m N² [kg·m²].

@@ -22,6 +22,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::ImpactError;
 use crate::drive::{Drive, Person, Placement, positive};
+
 use crate::setup::{ContactEvent, LinkParams};
 
 /// A driven robot link striking a person.
@@ -47,6 +48,17 @@ impl DrivenStrike {
         self.person.validate()?;
         positive("horizon_s", self.horizon_s, 1e6, "s")?;
         let angle = self.placement.angle(&self.drive)?;
+        if let Some(profile) = self.drive.profile()
+            && profile.final_speed() < 0.0
+        {
+            // the models put the person on the positive side of the link
+            return Err(ImpactError::invalid(
+                "drive.command.profile.speed",
+                profile.final_speed(),
+                "a joint speed ≥ 0 rad/s (the person stands on the positive side of the link: \
+                 for the other direction mirror the scene, the numbers are the same)",
+            ));
+        }
         if let Some(profile) = self.drive.profile() {
             // the commanded motion must pass the person within the horizon
             let reach = profile.at(self.horizon_s).0;
@@ -68,8 +80,316 @@ impl DrivenStrike {
                 ));
             }
         }
-        Ok(())
+        self.check_contact_range(angle)?;
+        self.check_loop_stability()
     }
+
+    /// The contact law's range: the test bed's k_c ∈ [1e-3, 1e20] N/mⁿ and n ∈ [0.5, 10]
+    /// (below n = 0.5 the law's stiffness dδ/df → ∞ at first touch and the integrators' energy
+    /// balance breaks down), then what the integrators resolve: the peak indentation the link
+    /// would make at its commanded arrival speed (estimated by energy, ½ μ v² = f²/(2k_δ) +
+    /// f δ_c/(n+1), μ from the head and the rigid link's tip mass) must lie between
+    /// [`MIN_INDENTATION_OF_LENGTH`] and [`MAX_INDENTATION_OF_LENGTH`] of the link's length:
+    /// below, the indentation drowns in the rounding of the tip's position (a peak of 0 N and a
+    /// tip passing through); above, the contact law and the linear link no longer hold (contacts
+    /// of 1e96 s). An open-loop torque has no commanded speed: its arrival is not estimated.
+    fn check_contact_range(&self, angle: f64) -> Result<(), ImpactError> {
+        let (k, n) = (self.person.contact.k(), self.person.contact.n());
+        if !(k.is_finite() && (CONTACT_K.0..=CONTACT_K.1).contains(&k)) {
+            return Err(ImpactError::invalid(
+                "person.contact.k",
+                k,
+                format!(
+                    "must lie in [{:e}, {:e}] N/m^n (the test bed's range)",
+                    CONTACT_K.0, CONTACT_K.1
+                ),
+            ));
+        }
+        if !(n.is_finite() && (CONTACT_N.0..=CONTACT_N.1).contains(&n)) {
+            return Err(ImpactError::invalid(
+                "person.contact.n",
+                n,
+                format!(
+                    "must lie in [{}, {}] (below 0.5 the contact's stiffness is infinite at \
+                     first touch and the energy balance is lost)",
+                    CONTACT_N.0, CONTACT_N.1
+                ),
+            ));
+        }
+        let Some(profile) = self.drive.profile() else {
+            return Ok(());
+        };
+        let omega = arrival_speed(profile, angle, self.horizon_s);
+        let length = self.link.length;
+        let tip_speed = omega.abs() * length + self.person.speed;
+        if !(tip_speed <= MAX_APPROACH_SPEED) {
+            return Err(ImpactError::invalid(
+                "drive.command.profile.speed",
+                profile.final_speed(),
+                format!(
+                    "a joint speed whose tip speed |speed| × link.length ({} m) + person.speed \
+                     stays within {} m/s (here {} m/s), i.e. |speed| ≤ {} rad/s",
+                    flexrig_contact::validate::display(length),
+                    MAX_APPROACH_SPEED,
+                    flexrig_contact::validate::display(tip_speed),
+                    flexrig_contact::validate::display(
+                        (MAX_APPROACH_SPEED - self.person.speed) / length
+                    ),
+                ),
+            ));
+        }
+        let mu = self.reduced_mass();
+        let k_delta = self.link.k_delta;
+        let indent = |k: f64, v: f64| peak_indentation(mu, v, k, n, k_delta).0;
+        // a Hertz contact lasts about 3 δ_max/v (π δ_max/v for n = 1, 2.94 δ_max/v for 3/2)
+        let duration = |k: f64, v: f64| {
+            if v > 0.0 {
+                3.0 * peak_indentation(mu, v, k, n, k_delta).1 / v
+            } else {
+                f64::INFINITY
+            }
+        };
+        let horizon = self.horizon_s;
+        let (lo, hi) = (
+            MIN_INDENTATION_OF_LENGTH * length,
+            MAX_INDENTATION_OF_LENGTH * length,
+        );
+        let delta = indent(k, tip_speed);
+        let lasts = duration(k, tip_speed);
+        if delta >= lo && delta <= hi && lasts <= horizon {
+            return Ok(());
+        }
+        if let Placement::Angle { angle: at } = self.placement
+            && omega.abs() < 0.5 * profile.final_speed().abs()
+            && (delta < lo || lasts > horizon)
+        {
+            let start = profile.at(0.0).0;
+            return Err(ImpactError::invalid(
+                "placement.angle",
+                at,
+                format!(
+                    "an angle the commanded motion reaches moving: there it turns at {} rad/s, \
+                     too slow to make a contact the integrators resolve (the tip would indent \
+                     the skin by {} m, over about {} s); place the person beyond the start angle {} rad by more \
+                     than the ramp's first instants, or use placement = \"after_ramp\"",
+                    flexrig_contact::validate::display(omega),
+                    flexrig_contact::validate::display(delta),
+                    flexrig_contact::validate::display(lasts),
+                    flexrig_contact::validate::display(start),
+                ),
+            ));
+        }
+        let speed = profile.final_speed();
+        if (delta < lo || lasts > horizon) && delta <= hi && k <= DEFAULT_SCALE_K {
+            // a physical contact law: the speed is too small
+            let fits = |v: f64| indent(k, v) >= lo && duration(k, v) <= horizon;
+            let v_min = solve_log(fits, 1e-300, MAX_APPROACH_SPEED);
+            let w_min = (v_min - self.person.speed).max(0.0) / length;
+            return Err(ImpactError::invalid(
+                "drive.command.profile.speed",
+                speed,
+                format!(
+                    "a joint speed whose tip arrives fast enough to make a contact the \
+                     integrators resolve within horizon_s = {} s: at {} m/s the tip would indent \
+                     the skin by {} m over about {} s (at least {:e} of the link's length, within \
+                     the horizon); |speed| ≥ {} rad/s for this contact law",
+                    flexrig_contact::validate::display(horizon),
+                    flexrig_contact::validate::display(tip_speed),
+                    flexrig_contact::validate::display(delta),
+                    flexrig_contact::validate::display(lasts),
+                    MIN_INDENTATION_OF_LENGTH,
+                    flexrig_contact::validate::display(w_min),
+                ),
+            ));
+        }
+        // the contact law does not suit the speed: name k with the range that does
+        // deeper and longer with a softer law: k_min from the upper bounds, k_max from the lower
+        let deep_enough = |k: f64| indent(k, tip_speed) >= lo;
+        let short_enough = |k: f64| indent(k, tip_speed) <= hi && duration(k, tip_speed) <= horizon;
+        let k_max = if deep_enough(CONTACT_K.1) {
+            CONTACT_K.1
+        } else {
+            solve_log(deep_enough, CONTACT_K.0, CONTACT_K.1)
+        };
+        let k_min = if short_enough(CONTACT_K.0) {
+            CONTACT_K.0
+        } else {
+            solve_log(short_enough, CONTACT_K.0, CONTACT_K.1)
+        };
+        let why = if delta < lo {
+            format!(
+                "the tip, arriving at {} m/s, would indent the skin by {} m, below {:e} of the \
+                 link's length, which the integrators do not resolve",
+                flexrig_contact::validate::display(tip_speed),
+                flexrig_contact::validate::display(delta),
+                MIN_INDENTATION_OF_LENGTH
+            )
+        } else if delta > hi {
+            format!(
+                "the tip, arriving at {} m/s, would indent the skin by {} m, more than {} of \
+                 the link's length, where the contact law and the linear link no longer hold",
+                flexrig_contact::validate::display(tip_speed),
+                flexrig_contact::validate::display(delta),
+                MAX_INDENTATION_OF_LENGTH
+            )
+        } else {
+            format!(
+                "the tip, arriving at {} m/s, would stay in the skin for about {} s, longer than \
+                 horizon_s = {} s",
+                flexrig_contact::validate::display(tip_speed),
+                flexrig_contact::validate::display(lasts),
+                flexrig_contact::validate::display(horizon)
+            )
+        };
+        if k_min > k_max {
+            return Err(ImpactError::invalid(
+                "person.contact.k",
+                k,
+                format!("{why}; no k in the test bed's range suits this speed and link"),
+            ));
+        }
+        Err(ImpactError::invalid(
+            "person.contact.k",
+            k,
+            format!(
+                "{why}; for this speed and link k must lie in [{}, {}] N/m^n",
+                flexrig_contact::validate::display(k_min),
+                flexrig_contact::validate::display(k_max)
+            ),
+        ))
+    }
+
+    /// The reduced mass of the head and the rigid link's tip mass m_e + m_r/3 \[kg\] (against a
+    /// wall, the link's alone).
+    fn reduced_mass(&self) -> f64 {
+        let m_link = self.link.cj_tip_mass();
+        if self.person.support == crate::drive::HeadSupport::Wall {
+            m_link
+        } else {
+            m_link * self.person.m_h / (m_link + self.person.m_h)
+        }
+    }
+
+    /// A controller whose linear loop on the rigid joint is unstable is refused: with the
+    /// joint-side inertia J = J_m N² + (m_r/3 + m_e) L² and friction c = c_m N², the loop's
+    /// characteristic polynomial J s³ + (k_d + c) s² + k_p s + k_i is stable only when
+    /// (k_d + c) k_p > J k_i (Routh–Hurwitz). An unstable loop grows until the torque limit
+    /// clips it, and the peak then depends on the phase of that growth at the onset (peaks
+    /// jumping 3× between the CJ and the CL).
+    fn check_loop_stability(&self) -> Result<(), ImpactError> {
+        let crate::drive::DriveCommand::Controller { gains, .. } = self.drive.command() else {
+            return Ok(());
+        };
+        if gains.ki == 0.0 {
+            return Ok(());
+        }
+        let motor = self.drive.motor();
+        let j = motor.reflected_inertia() + self.link.cj_tip_mass() * self.link.length.powi(2);
+        let damping = gains.kd + motor.reflected_friction();
+        let ki_max = damping * gains.kp / j;
+        if gains.ki < ki_max {
+            return Ok(());
+        }
+        Err(ImpactError::invalid(
+            "drive.command.gains.ki",
+            gains.ki,
+            format!(
+                "a loop that is stable on the joint: with kp = {} and kd = {} on the joint's \
+                 inertia {} kg·m² (rotor and link) the loop is unstable unless \
+                 ki < (kd + friction) kp / J = {} N·m/(rad·s) (Routh–Hurwitz); raise kp or kd, \
+                 or lower ki",
+                flexrig_contact::validate::display(gains.kp),
+                flexrig_contact::validate::display(gains.kd),
+                flexrig_contact::validate::display(j),
+                flexrig_contact::validate::display(ki_max)
+            ),
+        ))
+    }
+}
+
+/// The Hertz stiffness range \[N/mⁿ\] (the test bed's, flexrig-rig's `limits::CONTACT_K`).
+pub const CONTACT_K: (f64, f64) = (1e-3, 1e20);
+/// The Hertz exponent range of a driven strike.
+pub const CONTACT_N: (f64, f64) = (0.5, 10.0);
+/// Fastest approach \[m/s\] (the free-mass impact's v0 range).
+pub const MAX_APPROACH_SPEED: f64 = 1e3;
+/// Smallest peak indentation the integrators resolve, as a fraction of the link's length: the
+/// tip's position is O(L) and carries ~1e-16 L of rounding; 1e-10 L keeps six digits.
+pub const MIN_INDENTATION_OF_LENGTH: f64 = 1e-10;
+/// Largest peak indentation, as a fraction of the link's length.
+pub const MAX_INDENTATION_OF_LENGTH: f64 = 0.5;
+/// Stiffnesses up to this are contact laws of tissue and materials (the paper's 1e7–1e8): a
+/// contact too shallow to resolve with such a law is blamed on the speed, above it on k.
+const DEFAULT_SCALE_K: f64 = 1e12;
+
+/// The joint speed [rad/s] the commanded profile has where it reaches `angle` (bisection over
+/// [0, horizon]; the profile turns one way, so its angle is monotone).
+fn arrival_speed(profile: &crate::drive::Profile, angle: f64, horizon: f64) -> f64 {
+    let start = profile.at(0.0).0;
+    if angle == start {
+        return profile.at(0.0).1;
+    }
+    let ahead = |t: f64| {
+        let a = profile.at(t).0;
+        if angle > start { a >= angle } else { a <= angle }
+    };
+    if !ahead(horizon) {
+        return profile.at(horizon).1;
+    }
+    let (mut lo, mut hi) = (0.0, horizon);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if ahead(mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    profile.at(hi).1
+}
+
+/// The peak total indentation \[m\] of a Hertz contact f = k δ_cⁿ in series with the link's
+/// spring k_δ, struck by a reduced mass μ at speed v, from the energy ½ μ v² = f²/(2k_δ) +
+/// f δ_c/(n+1) (exact for any n, docs/theory.md); the contact's own share δ_c is what the
+/// integrators must resolve: (δ_c, δ_c + f/k_δ) are returned.
+fn peak_indentation(mu: f64, v: f64, k: f64, n: f64, k_delta: f64) -> (f64, f64) {
+    let energy = 0.5 * mu * v * v;
+    if !(energy > 0.0) {
+        return (0.0, 0.0);
+    }
+    let dc = |f: f64| (f / k).powf(1.0 / n);
+    let u = |f: f64| f * f / (2.0 * k_delta) + f * dc(f) / (n + 1.0);
+    // bisection on log f over the whole double range
+    let (mut lo, mut hi) = (-700.0_f64, 700.0_f64);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if u(mid.exp()) < energy {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let f = hi.exp();
+    (dc(f), dc(f) + f / k_delta)
+}
+
+/// The boundary of a monotone predicate over [lo, hi] on a log scale (`ok(lo)` and `!ok(hi)`
+/// or the reverse; an end if it does not change).
+fn solve_log(ok: impl Fn(f64) -> bool, lo: f64, hi: f64) -> f64 {
+    let (mut a, mut b) = (lo.ln(), hi.ln());
+    let at_lo = ok(lo);
+    if at_lo == ok(hi) {
+        return if at_lo { hi } else { lo };
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (a + b);
+        if ok(mid.exp()) == at_lo {
+            a = mid;
+        } else {
+            b = mid;
+        }
+    }
+    (0.5 * (a + b)).exp()
 }
 
 /// The energy balance over the contact, from its onset to the separation \[J\].
@@ -282,7 +602,28 @@ impl Tracer {
             if self.samples.last().is_some_and(|last| last.t >= t) {
                 self.samples.pop();
             }
+            // thinned before the push, so the vector never grows past its budget's capacity
+            if self.samples.len() >= MAX_TRACE_SAMPLES {
+                self.thin();
+            }
             self.samples.push(sample());
         }
     }
+
+    /// Halves the samples kept (every other one, the last kept) and doubles the interval: a
+    /// contact that lasts far longer than foreseen keeps a bounded trace (at most
+    /// [`MAX_TRACE_SAMPLES`]) at a coarser rate instead of growing without bound.
+    fn thin(&mut self) {
+        let last = self.samples.len() - 1;
+        let mut i = 0;
+        self.samples.retain(|_| {
+            let keep = i % 2 == 0 || i == last;
+            i += 1;
+            keep
+        });
+        self.every = self.every.map(|e| 2.0 * e);
+    }
 }
+
+/// Most trace samples a strike keeps (80 B each: 670 MB); beyond, the trace is thinned.
+pub const MAX_TRACE_SAMPLES: usize = 1 << 23;

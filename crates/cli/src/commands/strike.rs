@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use flexrig::driven::drive::HeadSupport;
+use flexrig::driven::scene::note_text;
 use flexrig::driven::strike::{
     StrikeDescription, StrikeDesign, StrikeFlags, StrikeOptions, run as run_strike,
 };
@@ -213,6 +214,14 @@ impl StrikeArgs {
 /// Runs `flexrig strike`.
 pub fn run(args: &StrikeArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     let description = args.description()?;
+    let speed_name = if args.file.is_some() {
+        "drive.command.profile.speed"
+    } else {
+        "--speed"
+    };
+    for w in description.warnings(speed_name) {
+        eprintln!("warning: {w}");
+    }
     let r = run_strike(
         &description,
         &StrikeOptions {
@@ -272,7 +281,7 @@ pub fn run(args: &StrikeArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resu
         ),
     )?;
     for note in &o.notes {
-        line(out, format!("  note: {note:?}"))?;
+        line(out, format!("  note: {}", note_text(note)))?;
     }
     if let Some(path) = &r.trace_csv {
         line(out, format!("Wrote {}", path.display()))?;

@@ -14,7 +14,7 @@ use flexrig_impact::role_switch::{
 
 use super::{check, num};
 use crate::plots::{Curve, CurveAxes, CurvePanel, FigureOptions, curves_svg, write_figure};
-use crate::shared::output::{ensure_dir, non_negative_arg, positive_arg, write_atomic};
+use crate::shared::output::{display_number, ensure_dir, range_arg, write_atomic};
 use crate::{CancelToken, Error};
 
 /// The drive levels and the cases.
@@ -102,13 +102,54 @@ pub fn run_with_figures(
     })
 }
 
+/// Most PD stiffnesses a table takes (`--kappa`).
+pub const MAX_KAPPAS: usize = 12;
+/// The range of a PD stiffness κ = K_p/k_θr: from a loop 1e6 times softer than the link's
+/// spring to one 1e6 times stiffer (the ideal position source, always in the table, is the
+/// limit beyond).
+pub const KAPPA: (f64, f64) = (1e-6, 1e6);
+/// The range of the rotor ratio J_R/(m_r L²/3).
+pub const ROTOR_RATIO: (f64, f64) = (1e-6, 1e6);
+/// Largest damping ratio of the PD loops.
+pub const MAX_DAMPING_RATIO: f64 = 1e3;
+
 fn settings(options: &RoleSwitchOptions) -> Result<RoleSettings, Error> {
     let mut settings = RoleSettings::standard();
-    settings.rotor_ratio = positive_arg("--rotor-ratio", options.rotor_ratio)?;
-    settings.damping_ratio = non_negative_arg("--damping-ratio", options.damping_ratio)?;
+    // J_R = ratio · m_r L²/3 must lie in the free hub's [1e-12, 1e12] kg·m² for every case's
+    // link (the Fig. 6 and test-bed links lie within 1e-3..1e2 kg·m²): checked before the work
+    settings.rotor_ratio = range_arg(
+        "--rotor-ratio",
+        options.rotor_ratio,
+        ROTOR_RATIO.0,
+        ROTOR_RATIO.1,
+        "",
+    )?;
+    settings.damping_ratio = range_arg(
+        "--damping-ratio",
+        options.damping_ratio,
+        0.0,
+        MAX_DAMPING_RATIO,
+        "",
+    )?;
+    if options.kappas.len() > MAX_KAPPAS {
+        return Err(Error::InvalidArgument {
+            arg: "--kappa".into(),
+            value: format!("{} values", options.kappas.len()),
+            allowed: format!(
+                "at most {MAX_KAPPAS} values (each adds a driven run to every case of the table)"
+            ),
+        });
+    }
     let mut levels = vec![DriveLevel::Prescribed];
     for (i, &kappa) in options.kappas.iter().enumerate() {
-        positive_arg(&format!("--kappa[{i}]"), kappa)?;
+        range_arg(&format!("--kappa[{i}]"), kappa, KAPPA.0, KAPPA.1, "")?;
+        if let Some(j) = options.kappas[..i].iter().position(|&k| k == kappa) {
+            return Err(Error::InvalidArgument {
+                arg: format!("--kappa[{i}]"),
+                value: display_number(kappa),
+                allowed: format!("a value not given before (it repeats --kappa[{j}])"),
+            });
+        }
         levels.push(DriveLevel::Pd { kappa });
     }
     levels.push(DriveLevel::TorqueFree);

@@ -19,6 +19,9 @@ use flexrig_impact::{DrivenOutcome, DrivenStrike, LinkParams, TraceSample};
 use serde::{Deserialize, Serialize};
 
 use super::{check, num};
+/// Most trace samples over the wait (a driven scene's `horizon_s` × `record.sample_rate_hz`
+/// budget; flexrig-impact thins a trace beyond its own cap).
+use super::scene::MAX_SAMPLES;
 use crate::shared::output::{ensure_dir, positive_arg, read_text, write_atomic};
 use crate::{CancelToken, Error};
 
@@ -73,11 +76,39 @@ impl StrikeDescription {
         }
     }
 
+    /// What looks wrong though it is allowed: a commanded tip speed beyond any robot arm's
+    /// (10 m/s) reads like degrees per second typed for radians per second. `speed_name`
+    /// names the speed as the user gave it (`--speed`, `drive.command.profile.speed`).
+    pub fn warnings(&self, speed_name: &str) -> Vec<String> {
+        let mut out = Vec::new();
+        if let Some(profile) = self.drive.profile() {
+            let w = profile.final_speed();
+            let tip = w.abs() * self.link.length;
+            if tip > PLAUSIBLE_TIP_SPEED {
+                out.push(format!(
+                    "{speed_name} = {} rad/s moves the tip at {} m/s, faster than robot arms \
+                     go (up to about {} m/s); if {} was meant in degrees per second, it is {} \
+                     rad/s",
+                    flexrig_contact::validate::display(w),
+                    flexrig_contact::validate::display(tip),
+                    PLAUSIBLE_TIP_SPEED,
+                    flexrig_contact::validate::display(w),
+                    flexrig_contact::validate::display(w.to_radians())
+                ));
+            }
+        }
+        out
+    }
+
     /// Reads, parses and checks the file at `path`.
     pub fn read(path: &Path) -> Result<StrikeDescription, Error> {
         StrikeDescription::parse(&read_text(path)?, &path.display().to_string())
     }
 }
+
+/// The fastest plausible tip speed of a robot arm \[m/s\] (industrial arms reach a few m/s;
+/// ISO/TS 15066's transient contacts are studied below 2.5 m/s).
+pub const PLAUSIBLE_TIP_SPEED: f64 = 10.0;
 
 /// A strike described by a few numbers instead of a file: the flags of `flexrig strike` and the
 /// keyword arguments of its Python twin. A position PD controller drives the joint on a smooth
@@ -155,11 +186,65 @@ impl StrikeFlags {
     /// The drive description these numbers make, checked; an error names the flag
     /// (`--k-c/--n`) or the description's field (`drive.motor.gear_ratio`).
     pub fn description(&self) -> Result<StrikeDescription, Error> {
-        let contact = Hertz::new(self.k_c, self.n).map_err(|e| Error::InvalidArgument {
-            arg: "--k-c/--n".into(),
-            value: format!("{} / {}", self.k_c, self.n),
-            allowed: e.to_string(),
-        })?;
+        self.checked_description().map_err(|e| self.named_by_flag(e))
+    }
+
+    /// The flag of a description's field, and the value the user gave it.
+    fn flag_of(&self, field: &str) -> Option<(&'static str, f64)> {
+        let leaf = field.rsplit('.').next().unwrap_or(field);
+        Some(match leaf {
+            "m_r" => ("--m-r", self.m_r),
+            "length" => ("--length", self.length),
+            "k_delta" => ("--k-delta", self.k_delta),
+            "m_e" => ("--m-e", self.m_e),
+            "rotor_inertia" => ("--rotor-inertia", self.rotor_inertia),
+            "gear_ratio" => ("--gear-ratio", self.gear_ratio),
+            "friction" => ("--friction", self.friction),
+            "speed" if field.starts_with("drive") => ("--speed", self.speed),
+            "ramp_time" => ("--ramp-time", self.ramp_time),
+            "kp" => ("--kp", self.kp),
+            "kd" => ("--kd", self.kd),
+            "torque_limit" => ("--torque-limit", self.torque_limit),
+            "m_h" => ("--m-h", self.m_h),
+            "k" | "k_c" if !field.starts_with("drive") => ("--k-c", self.k_c),
+            "n" if !field.starts_with("drive") => ("--n", self.n),
+            "settle" => ("--settle", self.settle),
+            "horizon_s" => ("--horizon", self.horizon),
+            _ => return None,
+        })
+    }
+
+    /// The error with the description's field replaced by the flag the user typed, and its
+    /// value by the flag's value (the fields' own words would name a file the user never saw).
+    fn named_by_flag(&self, e: Error) -> Error {
+        use flexrig_impact::ImpactError;
+        let (field, allowed) = match &e {
+            Error::Impact(ImpactError::InvalidParameter { field, allowed, .. }) => {
+                (field.clone(), allowed.clone())
+            }
+            Error::Impact(ImpactError::Contact(flexrig_contact::ContactError::InvalidParameter {
+                field,
+                allowed,
+                ..
+            }))
+            | Error::Contact(flexrig_contact::ContactError::InvalidParameter {
+                field, allowed, ..
+            }) => (field.clone(), allowed.clone()),
+            Error::InvalidArgument { arg, allowed, .. } => (arg.clone(), allowed.clone()),
+            _ => return e,
+        };
+        let Some((flag, value)) = self.flag_of(&field) else {
+            return e;
+        };
+        Error::InvalidArgument {
+            arg: flag.into(),
+            value: flexrig_contact::validate::display(value),
+            allowed: rename_fields(&allowed),
+        }
+    }
+
+    fn checked_description(&self) -> Result<StrikeDescription, Error> {
+        let contact = Hertz::named(self.k_c, self.n, "person.contact.k", "person.contact.n")?;
         let motor = Motor::new(self.rotor_inertia, self.gear_ratio, self.friction)?;
         let drive = Drive::controller(
             motor,
@@ -194,6 +279,27 @@ impl StrikeFlags {
         d.strike().validate()?;
         Ok(d)
     }
+}
+
+/// An explanation written in the description's words, in the flags' words.
+fn rename_fields(text: &str) -> String {
+    const WORDS: &[(&str, &str)] = &[
+        ("drive.command.profile.speed", "--speed"),
+        ("drive.command.gains.kp", "--kp"),
+        ("drive.command.gains.kd", "--kd"),
+        ("drive.motor.rotor_inertia", "--rotor-inertia"),
+        ("person.contact.k", "--k-c"),
+        ("person.contact.n", "--n"),
+        ("person.speed", "the person's speed (0)"),
+        ("link.length", "--length"),
+        ("horizon_s", "--horizon"),
+        ("gear_ratio²", "--gear-ratio²"),
+    ];
+    let mut out = text.to_string();
+    for (from, to) in WORDS {
+        out = out.replace(from, to);
+    }
+    out
 }
 
 impl StrikeDesign {
@@ -241,7 +347,8 @@ pub struct StrikeResult {
     pub design: StrikeDesign,
     /// The integrator's result.
     pub outcome: DrivenOutcome,
-    /// strike_trace.csv, if written.
+    /// strike_trace.csv, if written (absent from the JSON otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub trace_csv: Option<PathBuf>,
 }
 
@@ -256,6 +363,23 @@ pub fn run(
         .trace_every
         .map(|t| positive_arg("--trace-every", t))
         .transpose()?;
+    if let Some(every) = trace_every {
+        // the samples over the wait and a contact as long (checked to fit in the horizon)
+        let samples = description.horizon_s / every;
+        if !(samples <= MAX_SAMPLES) {
+            return Err(Error::InvalidArgument {
+                arg: "--trace-every".into(),
+                value: flexrig_contact::validate::display(every),
+                allowed: format!(
+                    "at least {} s: the trace keeps one sample per interval over the wait of \
+                     {} s (at most {} samples)",
+                    flexrig_contact::validate::display(description.horizon_s / MAX_SAMPLES),
+                    flexrig_contact::validate::display(description.horizon_s),
+                    flexrig_contact::validate::display(MAX_SAMPLES)
+                ),
+            });
+        }
+    }
     check(cancel)?;
     let strike = description.strike();
     let outcome = match description.design {
@@ -335,7 +459,7 @@ mod tests {
             ..StrikeFlags::DEFAULT
         };
         let e = bad.description().unwrap_err().to_string();
-        assert!(e.contains("--k-c/--n"), "{e}");
+        assert!(e.contains("--n = -1"), "{e}");
         let e = StrikeDesign::parse("--design", "cx")
             .unwrap_err()
             .to_string();
