@@ -175,7 +175,8 @@ impl Speed {
 pub struct SpeedVerdict {
     /// The judged relative speed [m/s].
     pub speed_mps: f64,
-    /// True when the speed does not exceed the permissible speed.
+    /// True when the speed does not exceed the permissible speed and no predicted peak (force or
+    /// pressure) exceeds its limit.
     pub pass: bool,
     /// Predicted peak force \[N\].
     pub peak_force_n: f64,
@@ -861,7 +862,9 @@ fn simulation_traced(
     let p = PermissibleSpeed::from_parts(by_force, by_pressure, contact.reduced_mass(), s.limits);
     let verdict = match input.speed {
         Some(v) if v > 0.0 => {
-            let force = impact.prepare(guess.by_force)?.peak(v, &stop)?;
+            let force = impact
+                .prepare(crate::safety::simulation::MODES_SPEED)?
+                .peak(v, &stop)?;
             Some(Verdict::new(
                 v,
                 p,
@@ -948,7 +951,8 @@ pub fn simulated_peak_forces(
     let Some(&first) = speeds.first() else {
         return Ok(Vec::new());
     };
-    let mut runs = impact.prepare(first)?;
+    let _ = first;
+    let mut runs = impact.prepare(crate::safety::simulation::MODES_SPEED)?;
     speeds
         .iter()
         .map(|&v| Ok((v, runs.peak(v, &stop)?)))
