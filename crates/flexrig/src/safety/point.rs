@@ -188,6 +188,10 @@ pub struct SpeedVerdict {
     /// 1 − peak pressure / pressure limit (absent without a pressure assessment).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pressure_margin: Option<f64>,
+    /// The simulation method: the contact that holds the peak at this speed, its time, and how
+    /// many contacts there were until the bodies parted for good (absent for the formulas).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub governing_contact: Option<crate::safety::simulation::SimulatedPeak>,
 }
 
 /// The permissible speed by one method.
@@ -212,6 +216,10 @@ pub struct MethodResult {
     /// The verdict at the requested speed (absent without `--speed`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub verdict: Option<SpeedVerdict>,
+    /// The simulation method of a link design: the contact that reaches the limit at the
+    /// permissible speed (its number, 1 = the first, and time) and the contacts of that impact.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub governing_contact: Option<crate::safety::simulation::SimulatedPeak>,
 }
 
 /// The answer: the limits applied and each method's permissible speed.
@@ -717,7 +725,9 @@ fn from_permissible(
             peak_pressure_pa: v.peak_pressure,
             force_margin: v.force_margin,
             pressure_margin: v.pressure_margin,
+            governing_contact: None,
         }),
+        governing_contact: None,
     }
 }
 
@@ -860,11 +870,13 @@ fn simulation_traced(
         trace,
     )?;
     let p = PermissibleSpeed::from_parts(by_force, by_pressure, contact.reduced_mass(), s.limits);
+    let mut runs = impact.prepare(crate::safety::simulation::MODES_SPEED)?;
+    let mut at_speed = None;
     let verdict = match input.speed {
         Some(v) if v > 0.0 => {
-            let force = impact
-                .prepare(crate::safety::simulation::MODES_SPEED)?
-                .peak(v, &stop)?;
+            let peak = runs.impact_at(v, &stop)?;
+            at_speed = Some(peak);
+            let force = peak.peak_force_n;
             Some(Verdict::new(
                 v,
                 p,
@@ -875,12 +887,14 @@ fn simulation_traced(
         Some(v) => Some(Verdict::new(v, p, 0.0, s.limits.pressure.map(|_| 0.0))),
         None => None,
     };
-    Ok(from_permissible(
-        SafetyMethod::Simulation,
-        s.m_eff,
-        &p,
-        verdict,
-    ))
+    let mut m = from_permissible(SafetyMethod::Simulation, s.m_eff, &p, verdict);
+    if let Some(v) = m.verdict.as_mut() {
+        v.governing_contact = at_speed;
+    }
+    if p.v_max.is_finite() && p.v_max > 0.0 {
+        m.governing_contact = Some(runs.impact_at(p.v_max, &stop)?);
+    }
+    Ok(m)
 }
 
 /// The simulation method of `input` with its force search traced: the method's result (the
