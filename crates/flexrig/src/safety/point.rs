@@ -201,6 +201,11 @@ pub struct MethodResult {
     pub method: SafetyMethod,
     /// Robot mass the method uses \[kg\] (m_R for the standard, m_eff otherwise).
     pub robot_mass_kg: f64,
+    /// Human mass the method uses \[kg\]: the body region's m_H (a driven scene's struck head
+    /// takes it too), the test bed's operator pendulum J/l² for its simulation; absent for a
+    /// clamped body (m_H = ∞).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub human_mass_kg: Option<f64>,
     /// Reduced mass μ \[kg\].
     pub reduced_mass_kg: f64,
     /// v_max = min(by force, by pressure) [m/s].
@@ -444,11 +449,18 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
                 m
             }
             (SafetyMethod::Simulation, Some(SafetyDesignScene::TestBed(tb))) => {
-                let (m, sim) = test_bed_method(&s, input, tb)?;
+                let (mut m, sim) = test_bed_method(&s, input, tb)?;
                 scene_simulation = Some(sim);
+                // the test bed strikes its operator's pendulum, not the region's person
+                m.human_mass_kg = Some(tb.operator_mass());
                 m
             }
         });
+        if let Some(last) = methods.last_mut()
+            && last.human_mass_kg.is_none()
+        {
+            last.human_mass_kg = Some(s.region.human_mass(s.kind)).filter(|m| m.is_finite());
+        }
     }
     Ok(SafetyReport {
         region: s.region.key().to_string(),
@@ -624,6 +636,8 @@ fn scene_method(
     let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
     let contact = energy_contact(s)?;
     let guess = contact.permissible_speed(s.limits)?;
+    let judged = judged_scene(sc, s);
+    let sc = &judged;
     let sim = crate::safety::scene::simulate(
         sc,
         &s.limits,
@@ -635,6 +649,22 @@ fn scene_method(
     scene_method_result(s, input.speed, contact.reduced_mass(), sim, |v| {
         crate::safety::scene::peak_force(sc, v, &settings)
     })
+}
+
+/// The driven scene `sc` with the region's person: a free head or a head on a neck (transient
+/// contact) takes the body region's mass m_H of the body model, so that the simulation judges
+/// the same person as the standard and the energy method (a head against a wall is clamped:
+/// the region's m_H is infinite and the scene's own mass is kept, ignored against the wall).
+fn judged_scene(
+    sc: &crate::safety::scene::SafetyScene,
+    s: &Setup,
+) -> crate::safety::scene::SafetyScene {
+    let mut judged = sc.clone();
+    let m_h = s.region.human_mass(s.kind);
+    if s.kind == ContactKind::Transient && m_h.is_finite() {
+        judged.scene.strike.person.m_h = m_h;
+    }
+    judged
 }
 
 /// The simulation method on the test-bed scene `tb` ([`crate::safety::test_bed::simulate`]):
@@ -713,6 +743,7 @@ fn from_permissible(
     MethodResult {
         method,
         robot_mass_kg: robot_mass,
+        human_mass_kg: None,
         reduced_mass_kg: p.reduced_mass,
         v_max_mps: Speed::from_f64(p.v_max),
         by_force_mps: Speed::from_f64(p.by_force),
@@ -945,10 +976,14 @@ pub fn simulated_peak_forces(
     if let Some(given) = &input.scene {
         let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
         return match crate::safety::scene::load_any(given)? {
-            SafetyDesignScene::Driven(sc) => speeds
-                .iter()
-                .map(|&v| Ok((v, crate::safety::scene::peak_force(&sc, v, &settings)?)))
-                .collect(),
+            SafetyDesignScene::Driven(sc) => {
+                let s = setup(&scene_input(input, &sc)?, model)?;
+                let sc = judged_scene(&sc, &s);
+                speeds
+                    .iter()
+                    .map(|&v| Ok((v, crate::safety::scene::peak_force(&sc, v, &settings)?)))
+                    .collect()
+            }
             SafetyDesignScene::TestBed(tb) => {
                 let reach = tb.max_speed();
                 speeds
