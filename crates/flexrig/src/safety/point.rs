@@ -919,6 +919,7 @@ fn simulation_traced(
         None => None,
     };
     let mut m = from_permissible(SafetyMethod::Simulation, s.m_eff, &p, verdict);
+    m.human_mass_kg = Some(s.region.human_mass(s.kind)).filter(|m| m.is_finite());
     if let Some(v) = m.verdict.as_mut() {
         v.governing_contact = at_speed;
     }
