@@ -61,7 +61,8 @@ impl PermissibleSpeed {
 pub struct Verdict {
     /// The relative speed judged [m/s].
     pub speed: f64,
-    /// True when the speed does not exceed the permissible speed.
+    /// True when the speed does not exceed the permissible speed and no predicted peak (force
+    /// or pressure) exceeds its limit.
     pub pass: bool,
     /// v_max − v [m/s] (negative on failure).
     pub speed_margin: f64,
@@ -88,9 +89,15 @@ impl Verdict {
         peak_pressure: Option<f64>,
     ) -> Self {
         let limits = permissible.limits;
+        // a verdict never passes a peak it shows above its limit, whatever the permissible speed
+        let force_ok = peak_force <= limits.force;
+        let pressure_ok = match (peak_pressure, limits.pressure) {
+            (Some(p), Some(lim)) => p <= lim,
+            _ => true,
+        };
         Verdict {
             speed,
-            pass: speed <= permissible.v_max,
+            pass: speed <= permissible.v_max && force_ok && pressure_ok,
             speed_margin: permissible.v_max - speed,
             peak_force,
             peak_pressure,

@@ -382,6 +382,24 @@ fn print_method(out: &mut dyn Write, m: &MethodResult) -> Result<(), Error> {
                 v.force_margin
             ),
         )?;
+        if let Some(c) = &v.governing_contact {
+            line(out, format!("    {}", contact_words(c)))?;
+        }
+    }
+    if let Some(c) = &m.governing_contact {
+        line(out, format!("  at v_max: {}", contact_words(c)))?;
     }
     Ok(())
+}
+
+/// Which contact holds the peak of a simulated impact, in words.
+fn contact_words(c: &flexrig::safety::simulation::SimulatedPeak) -> String {
+    format!(
+        "peak {:.3} N in contact {} of {} at {:.4} ms (the bodies part for good at {:.4} ms)",
+        c.peak_force_n,
+        c.contact,
+        c.contacts,
+        c.time_of_peak_s * 1e3,
+        c.parted_at_s * 1e3
+    )
 }

@@ -175,7 +175,8 @@ impl Speed {
 pub struct SpeedVerdict {
     /// The judged relative speed [m/s].
     pub speed_mps: f64,
-    /// True when the speed does not exceed the permissible speed.
+    /// True when the speed does not exceed the permissible speed and no predicted peak (force or
+    /// pressure) exceeds its limit.
     pub pass: bool,
     /// Predicted peak force \[N\].
     pub peak_force_n: f64,
@@ -187,6 +188,10 @@ pub struct SpeedVerdict {
     /// 1 − peak pressure / pressure limit (absent without a pressure assessment).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pressure_margin: Option<f64>,
+    /// The simulation method: the contact that holds the peak at this speed, its time, and how
+    /// many contacts there were until the bodies parted for good (absent for the formulas).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub governing_contact: Option<crate::safety::simulation::SimulatedPeak>,
 }
 
 /// The permissible speed by one method.
@@ -196,6 +201,11 @@ pub struct MethodResult {
     pub method: SafetyMethod,
     /// Robot mass the method uses \[kg\] (m_R for the standard, m_eff otherwise).
     pub robot_mass_kg: f64,
+    /// Human mass the method uses \[kg\]: the body region's m_H (a driven scene's struck head
+    /// takes it too), the test bed's operator pendulum J/l² for its simulation; absent for a
+    /// clamped body (m_H = ∞).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub human_mass_kg: Option<f64>,
     /// Reduced mass μ \[kg\].
     pub reduced_mass_kg: f64,
     /// v_max = min(by force, by pressure) [m/s].
@@ -211,6 +221,10 @@ pub struct MethodResult {
     /// The verdict at the requested speed (absent without `--speed`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub verdict: Option<SpeedVerdict>,
+    /// The simulation method of a link design: the contact that reaches the limit at the
+    /// permissible speed (its number, 1 = the first, and time) and the contacts of that impact.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub governing_contact: Option<crate::safety::simulation::SimulatedPeak>,
 }
 
 /// The answer: the limits applied and each method's permissible speed.
@@ -435,11 +449,18 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
                 m
             }
             (SafetyMethod::Simulation, Some(SafetyDesignScene::TestBed(tb))) => {
-                let (m, sim) = test_bed_method(&s, input, tb)?;
+                let (mut m, sim) = test_bed_method(&s, input, tb)?;
                 scene_simulation = Some(sim);
+                // the test bed strikes its operator's pendulum, not the region's person
+                m.human_mass_kg = Some(tb.operator_mass());
                 m
             }
         });
+        if let Some(last) = methods.last_mut()
+            && last.human_mass_kg.is_none()
+        {
+            last.human_mass_kg = Some(s.region.human_mass(s.kind)).filter(|m| m.is_finite());
+        }
     }
     Ok(SafetyReport {
         region: s.region.key().to_string(),
@@ -615,6 +636,8 @@ fn scene_method(
     let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
     let contact = energy_contact(s)?;
     let guess = contact.permissible_speed(s.limits)?;
+    let judged = judged_scene(sc, s);
+    let sc = &judged;
     let sim = crate::safety::scene::simulate(
         sc,
         &s.limits,
@@ -626,6 +649,22 @@ fn scene_method(
     scene_method_result(s, input.speed, contact.reduced_mass(), sim, |v| {
         crate::safety::scene::peak_force(sc, v, &settings)
     })
+}
+
+/// The driven scene `sc` with the region's person: a free head or a head on a neck (transient
+/// contact) takes the body region's mass m_H of the body model, so that the simulation judges
+/// the same person as the standard and the energy method (a head against a wall is clamped:
+/// the region's m_H is infinite and the scene's own mass is kept, ignored against the wall).
+fn judged_scene(
+    sc: &crate::safety::scene::SafetyScene,
+    s: &Setup,
+) -> crate::safety::scene::SafetyScene {
+    let mut judged = sc.clone();
+    let m_h = s.region.human_mass(s.kind);
+    if s.kind == ContactKind::Transient && m_h.is_finite() {
+        judged.scene.strike.person.m_h = m_h;
+    }
+    judged
 }
 
 /// The simulation method on the test-bed scene `tb` ([`crate::safety::test_bed::simulate`]):
@@ -704,6 +743,7 @@ fn from_permissible(
     MethodResult {
         method,
         robot_mass_kg: robot_mass,
+        human_mass_kg: None,
         reduced_mass_kg: p.reduced_mass,
         v_max_mps: Speed::from_f64(p.v_max),
         by_force_mps: Speed::from_f64(p.by_force),
@@ -716,7 +756,9 @@ fn from_permissible(
             peak_pressure_pa: v.peak_pressure,
             force_margin: v.force_margin,
             pressure_margin: v.pressure_margin,
+            governing_contact: None,
         }),
+        governing_contact: None,
     }
 }
 
@@ -859,9 +901,13 @@ fn simulation_traced(
         trace,
     )?;
     let p = PermissibleSpeed::from_parts(by_force, by_pressure, contact.reduced_mass(), s.limits);
+    let mut runs = impact.prepare(crate::safety::simulation::MODES_SPEED)?;
+    let mut at_speed = None;
     let verdict = match input.speed {
         Some(v) if v > 0.0 => {
-            let force = impact.prepare(guess.by_force)?.peak(v, &stop)?;
+            let peak = runs.impact_at(v, &stop)?;
+            at_speed = Some(peak);
+            let force = peak.peak_force_n;
             Some(Verdict::new(
                 v,
                 p,
@@ -872,12 +918,15 @@ fn simulation_traced(
         Some(v) => Some(Verdict::new(v, p, 0.0, s.limits.pressure.map(|_| 0.0))),
         None => None,
     };
-    Ok(from_permissible(
-        SafetyMethod::Simulation,
-        s.m_eff,
-        &p,
-        verdict,
-    ))
+    let mut m = from_permissible(SafetyMethod::Simulation, s.m_eff, &p, verdict);
+    m.human_mass_kg = Some(s.region.human_mass(s.kind)).filter(|m| m.is_finite());
+    if let Some(v) = m.verdict.as_mut() {
+        v.governing_contact = at_speed;
+    }
+    if p.v_max.is_finite() && p.v_max > 0.0 {
+        m.governing_contact = Some(runs.impact_at(p.v_max, &stop)?);
+    }
+    Ok(m)
 }
 
 /// The simulation method of `input` with its force search traced: the method's result (the
@@ -928,10 +977,14 @@ pub fn simulated_peak_forces(
     if let Some(given) = &input.scene {
         let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
         return match crate::safety::scene::load_any(given)? {
-            SafetyDesignScene::Driven(sc) => speeds
-                .iter()
-                .map(|&v| Ok((v, crate::safety::scene::peak_force(&sc, v, &settings)?)))
-                .collect(),
+            SafetyDesignScene::Driven(sc) => {
+                let s = setup(&scene_input(input, &sc)?, model)?;
+                let sc = judged_scene(&sc, &s);
+                speeds
+                    .iter()
+                    .map(|&v| Ok((v, crate::safety::scene::peak_force(&sc, v, &settings)?)))
+                    .collect()
+            }
             SafetyDesignScene::TestBed(tb) => {
                 let reach = tb.max_speed();
                 speeds
@@ -948,7 +1001,8 @@ pub fn simulated_peak_forces(
     let Some(&first) = speeds.first() else {
         return Ok(Vec::new());
     };
-    let mut runs = impact.prepare(first)?;
+    let _ = first;
+    let mut runs = impact.prepare(crate::safety::simulation::MODES_SPEED)?;
     speeds
         .iter()
         .map(|&v| Ok((v, runs.peak(v, &stop)?)))

@@ -1,12 +1,14 @@
-//! The simulation method's finite-element impact and its root search on the speed, shared by
+//! The simulation method's finite-element impact and its search on the speed, shared by
 //! `flexrig safety --method simulation` ([`crate::safety::point`]) and the simulated safe-speed maps
-//! ([`crate::safety::map`]): the first contact of a body region (mass m_h, the skin's Hertz law
+//! ([`crate::safety::map`]): every contact, until the bodies part for good, of a body region (mass m_h, the skin's Hertz law
 //! f = k_c δ^n, Eq. 4) with the tip of a link of mass m_r, payload m_e and lateral stiffness
 //! k_δ (Eq. 1–3), the CJ as a rigid link on its torsion spring k_θr = k_δL² (DOP853,
-//! [`flexrig_impact::cj`]), the CL as the Euler–Bernoulli beam on a mesh graded towards the
-//! tip, by its modes and the exact modal integrator ([`flexrig_impact::cl_modal`]); and the
-//! bracket and Illinois false position on ln v that finds the speed at which the peak reaches a
-//! limit ([`speed_at_ratio`]).
+//! [`flexrig_impact::chain::Chain::cj`]), the CL as the Euler–Bernoulli beam on a mesh graded
+//! towards the tip, both by their modes and the exact modal integrator
+//! ([`flexrig_impact::cl_modal`]); the largest peak over the contacts ([`FeRuns::impact_at`]);
+//! and the scan from below with a refinement that finds the smallest speed at which it reaches
+//! a limit ([`smallest_speed_at`]). The scenes' searches still use the bracket around a guess
+//! ([`speed_at_ratio`]).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -14,7 +16,8 @@ use flexrig_contact::{DampingSpec, Hertz};
 use flexrig_impact::cl_modal::run_on_modes;
 use flexrig_impact::graded::{GradedMesh, cl_tip_modes};
 use flexrig_impact::modal_run::ModalOptions;
-use flexrig_impact::{FreeMassImpact, ImpactError, Joint, LinkParams};
+use flexrig_impact::chain::Chain;
+use flexrig_impact::{FreeMassImpact, ImpactError, Joint, LinkParams, RunEnd};
 use flexrig_safety::{EnergyContact, PressureCrossing};
 use serde::{Deserialize, Serialize};
 
@@ -189,8 +192,9 @@ impl FeImpact {
         let reference = self.setup_at(guess);
         reference.validate()?;
         let modes = match self.link {
-            FeLink::CompliantLink => Some(cl_tip_modes(&reference, &GradedMesh::DEFAULT)?),
-            FeLink::CompliantJoint => None,
+            FeLink::CompliantLink => cl_tip_modes(&reference, &GradedMesh::DEFAULT)?,
+            // the rigid link on its spring (and the rotor behind it with a free hub)
+            FeLink::CompliantJoint => Chain::cj(&reference).tip_modes(&reference, 0.0)?,
         };
         Ok(FeRuns {
             impact: *self,
@@ -201,14 +205,40 @@ impl FeImpact {
     }
 }
 
-/// A prepared [`FeImpact`]: the first-contact peak force at any speed.
+/// A prepared [`FeImpact`]: every contact of the impact at any speed, until the bodies part
+/// for good.
 #[derive(Debug, Clone)]
 pub struct FeRuns {
     impact: FeImpact,
-    modes: Option<flexrig_impact::tip_modes::TipModes>,
+    modes: flexrig_impact::tip_modes::TipModes,
     guess: f64,
     /// Impacts run so far.
     pub runs: usize,
+}
+
+/// The stopping rule of every simulated impact: the run follows contact after contact and ends
+/// when the bodies have **parted for good** — their rigid motions carry them apart and the gap is
+/// larger than the most the link's vibrating tip can ever reach (the sum over the flexible modes
+/// of |gain| × amplitude, a bound from the modes' energy, not a guess). The window below only
+/// guards against a run that never parts; reaching it is an error, not a verdict.
+pub const PARTING_GUARD_S: f64 = 1e6;
+
+/// Most integration steps of one simulated impact (contacts and free flights together).
+pub const MAX_IMPACT_STEPS: usize = 20_000_000;
+
+/// The largest contact of one simulated impact (all contacts until the bodies part for good).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SimulatedPeak {
+    /// The largest peak force over every contact \[N\].
+    pub peak_force_n: f64,
+    /// The number of the contact that holds it (1 = the first contact).
+    pub contact: usize,
+    /// The time of that peak from the first onset \[s\].
+    pub time_of_peak_s: f64,
+    /// How many contacts the impact had before the bodies parted for good.
+    pub contacts: usize,
+    /// When the bodies parted for good, from the first onset \[s\].
+    pub parted_at_s: f64,
 }
 
 impl FeRuns {
@@ -217,62 +247,199 @@ impl FeRuns {
         self.guess
     }
 
-    /// The first-contact peak force \[N\] at speed `v` [m/s].
+    /// The largest peak force \[N\] over every contact at speed `v` [m/s].
     pub fn peak(&mut self, v: f64, stop: &AtomicBool) -> Result<f64, Error> {
+        Ok(self.impact_at(v, stop)?.peak_force_n)
+    }
+
+    /// Every contact at speed `v` [m/s] until the bodies part for good, and the largest.
+    pub fn impact_at(&mut self, v: f64, stop: &AtomicBool) -> Result<SimulatedPeak, Error> {
         if stop.load(Ordering::Relaxed) {
             return Err(Error::Impact(ImpactError::Interrupted));
         }
         self.runs += 1;
         let settings = &self.impact.settings;
         let setup = self.impact.setup_at(v);
-        Ok(match &self.modes {
-            None => flexrig_impact::cj::run_cj(&setup, settings.cj_rtol)?,
-            Some(m) => {
-                let mut m = m.clone();
-                // the free hub's initial modal rates are linear in v (a held joint's are 0)
-                let scale = v / self.guess;
-                m.rates.iter_mut().for_each(|r| *r *= scale);
-                let options = ModalOptions {
-                    tol: settings.tol,
-                    ..ModalOptions::DEFAULT
-                };
-                run_on_modes(&setup, &m, &options)?
+        let mut m = self.modes.clone();
+        // the free hub's initial modal rates are linear in v (a held joint's are 0)
+        let scale = v / self.guess;
+        m.rates.iter_mut().for_each(|r| *r *= scale);
+        let options = ModalOptions {
+            tol: settings.tol,
+            window_s: Some(PARTING_GUARD_S),
+            max_steps: MAX_IMPACT_STEPS,
+        };
+        let outcome = run_on_modes(&setup, &m, &options)?;
+        let parted_at_s = match outcome.ended {
+            RunEnd::PartedForGood(t) => t,
+            RunEnd::Window(t) | RunEnd::StepBudget(t) => {
+                return Err(Error::NonFinite {
+                    what: format!("simulated impact at {} m/s", display(v)),
+                    value: format!(
+                        "the bodies had not parted for good after {} contacts ({} s)",
+                        outcome.contacts.len(),
+                        display(t)
+                    ),
+                    advice: "a body that keeps meeting the link has no last contact to judge; \
+                             check the masses and stiffnesses"
+                        .into(),
+                });
             }
-        }
-        .first
-        .peak_force_n)
+            RunEnd::FirstSeparation => outcome.first.duration_s,
+        };
+        let (index, top) = outcome
+            .contacts
+            .iter()
+            .enumerate()
+            .fold((0, outcome.first), |(i, best), (j, c)| {
+                if c.peak_force_n > best.peak_force_n {
+                    (j, *c)
+                } else {
+                    (i, best)
+                }
+            });
+        Ok(SimulatedPeak {
+            peak_force_n: top.peak_force_n,
+            contact: index + 1,
+            time_of_peak_s: top.time_of_peak_s,
+            contacts: outcome.contacts.len(),
+            parted_at_s,
+        })
+    }
+
+    /// The speed [m/s] below which no contact can reach the force `f` \[N\], from energy: a
+    /// contact stores U_c(f) = f δ_c/(n + 1), δ_c = (f/k_c)^{1/n}, which cannot exceed the
+    /// mechanical energy of the relative motion, ½ m v² (held joint: m = m_h, the ground frame;
+    /// free hub: the reduced mass of m_h and the robot's tip-equivalent mass, the frame of the
+    /// centre of mass). A bound for every contact, not only the first.
+    pub fn energy_floor(&self, f: f64) -> f64 {
+        let i = &self.impact;
+        let n = i.hertz.n();
+        let u = f * (f / i.hertz.k()).powf(1.0 / n) / (n + 1.0);
+        let m = match i.settings.joint {
+            MapJoint::Held => i.m_h,
+            MapJoint::FreeHub { rotor_inertia } => {
+                let l = i.settings.length;
+                let robot = i.m_e + i.m_r / 3.0 + rotor_inertia / (l * l);
+                i.m_h * robot / (i.m_h + robot)
+            }
+        };
+        (2.0 * u / m).sqrt()
     }
 }
 
-/// The simulated speeds of one design: by force (the peak reaches `limits.force`) and by
-/// pressure (the peak reaches the force f_p at which the mean pressure of `energy`'s area model
-/// reaches the pressure limit), root searches started at the lumped speeds `guess_force` and
-/// `guess_pressure`; the force search's evaluations go to `trace`. Returns (by force, by
-/// pressure, impacts run).
+/// The ratio of two neighbouring speeds of the scan from below ([`smallest_speed_at`]):
+/// 2^{1/16} (4.4 %).
+pub const SCAN_RATIO: f64 = 1.044_273_782_427_413_8;
+
+/// The fastest speed the scan looks at [m/s]: a limit not reached below it is reported as
+/// never reached (unlimited).
+pub const SCAN_TOP_MPS: f64 = 1e3;
+
+/// The smallest speed [m/s] at which the largest contact force of `runs` reaches `force` \[N\]:
+/// a scan from below on the grid v_k = v_0 q^k (q = [`SCAN_RATIO`]) from the energy floor v_0
+/// ([`FeRuns::energy_floor`], below which no contact can reach `force`) to the first speed at
+/// which it is reached, then the Illinois false position on ln v between that speed and the one
+/// before (relative width `rtol`). +∞ when no speed up to [`SCAN_TOP_MPS`] reaches it. Each
+/// evaluation goes to `trace` when given.
+pub fn smallest_speed_at(
+    runs: &mut FeRuns,
+    force: f64,
+    rtol: f64,
+    stop: &AtomicBool,
+    mut trace: Option<&mut Vec<RootStep>>,
+) -> Result<f64, Error> {
+    let floor = runs.energy_floor(force);
+    if !(floor.is_finite() && floor > 0.0) {
+        return Err(Error::NonFinite {
+            what: "simulated speed at the limit".into(),
+            value: display(floor),
+            advice: "use moderate masses, stiffnesses and limits".into(),
+        });
+    }
+    let mut ratio = |v: f64, trace: &mut Option<&mut Vec<RootStep>>| -> Result<f64, Error> {
+        let r = runs.peak(v, stop)? / force;
+        if let Some(t) = trace.as_deref_mut() {
+            t.push(RootStep {
+                speed_mps: v,
+                ratio: r,
+            });
+        }
+        Ok(r)
+    };
+    let mut below = floor;
+    let mut r_below = ratio(below, &mut trace)?;
+    if r_below >= 1.0 {
+        // the bound is reached at the floor itself (a rigid link): the crossing is there
+        return Ok(floor);
+    }
+    let (above, r_above) = loop {
+        let next = below * SCAN_RATIO;
+        if next > SCAN_TOP_MPS {
+            return Ok(f64::INFINITY);
+        }
+        let r = ratio(next, &mut trace)?;
+        if r >= 1.0 {
+            break (next, r);
+        }
+        below = next;
+        r_below = r;
+    };
+    // Illinois false position on ln v, g = ln(ratio), g(below) < 0 ≤ g(above)
+    let (mut a, mut b) = (below.ln(), above.ln());
+    let mut ga = r_below.ln();
+    let mut gb = r_above.ln();
+    let mut side = 0;
+    for _ in 0..200 {
+        if (b - a).abs() < rtol || gb == 0.0 {
+            break;
+        }
+        let x = if gb.is_finite() && ga.is_finite() && gb != ga {
+            (a * gb - b * ga) / (gb - ga)
+        } else {
+            0.5 * (a + b)
+        };
+        let gx = ratio(x.exp(), &mut trace)?.ln();
+        if gx >= 0.0 {
+            b = x;
+            gb = gx;
+            if side == 1 {
+                ga /= 2.0;
+            }
+            side = 1;
+        } else {
+            a = x;
+            ga = gx;
+            if side == -1 {
+                gb /= 2.0;
+            }
+            side = -1;
+        }
+    }
+    Ok(b.exp())
+}
+
+/// The simulated speeds of one design: by force (the largest contact reaches `limits.force`)
+/// and by pressure (it reaches the force f_p at which the mean pressure of `energy`'s area
+/// model reaches the pressure limit), each the smallest such speed ([`smallest_speed_at`]); the
+/// force search's evaluations go to `trace`. Returns (by force, by pressure, impacts run). The
+/// lumped guesses are kept for the callers' signatures; the scan starts at the energy floor.
 pub fn fe_speeds(
     impact: &FeImpact,
     limits: &flexrig_safety::Limits,
     energy: &EnergyContact,
-    guess_force: f64,
+    _guess_force: f64,
     guess_pressure: Option<f64>,
     stop: &AtomicBool,
     trace: Option<&mut Vec<RootStep>>,
 ) -> Result<(f64, Option<f64>, usize), Error> {
-    let mut runs = impact.prepare(guess_force)?;
-    let guess = runs.guess();
-    let force = limits.force;
+    let mut runs = impact.prepare(MODES_SPEED)?;
     let root_rtol = impact.settings.root_rtol;
-    let by_force = speed_at_ratio(
-        guess,
-        root_rtol,
-        &mut |v| Ok(runs.peak(v, stop)? / force),
-        trace,
-    )?;
+    let by_force = smallest_speed_at(&mut runs, limits.force, root_rtol, stop, trace)?;
     let by_pressure = match (limits.pressure, guess_pressure) {
-        (Some(p), Some(vb)) => Some(match energy.force_at_pressure(p) {
+        (Some(p), Some(_)) => Some(match energy.force_at_pressure(p) {
             Some(PressureCrossing::AtForce(f)) => {
-                let g = vb.clamp(1e-5, 1e2);
-                speed_at_ratio(g, root_rtol, &mut |v| Ok(runs.peak(v, stop)? / f), None)?
+                smallest_speed_at(&mut runs, f, root_rtol, stop, None)?
             }
             Some(PressureCrossing::Always) => 0.0,
             Some(PressureCrossing::Never) | None => f64::INFINITY,
@@ -281,6 +448,10 @@ pub fn fe_speeds(
     };
     Ok((by_force, by_pressure, runs.runs))
 }
+
+/// The speed [m/s] at which the link's modes are solved once per design (the free hub's modal
+/// rates are scaled from it exactly, so every caller gets the same runs bit for bit).
+pub const MODES_SPEED: f64 = 1.0;
 
 /// One evaluation of a root search on the speed.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
