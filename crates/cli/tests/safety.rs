@@ -147,6 +147,8 @@ fn energy_and_simulation_reduce_to_the_standard_with_n_1_and_a_rigid_link() {
                 "free-hub",
                 "--rotor-inertia",
                 "0.5",
+                "--length",
+                "1",
                 "--moving-mass",
                 "3",
                 "--payload",

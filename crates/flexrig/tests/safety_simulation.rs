@@ -36,6 +36,7 @@ fn input(region: &str, contact: ContactKind, link: FeLink, joint: MapJoint) -> S
         link: Some(link),
         simulation: Some(SimulationSettings {
             joint,
+            length: Some(1.0),
             ..SimulationSettings::DEFAULT
         }),
         scene: None,

@@ -305,6 +305,15 @@ impl Integrator<'_> {
 
     /// A step of length h with f₁ = 0 (free flight, or the last step of a contact).
     fn step_unloaded(&self, s: &Motion, h: f64) -> Motion {
+        if h == 0.0 {
+            // a step of no length (an onset located at the step's start, e.g. a tip that
+            // re-engages the instant it separates): the residual spring's rate R (f₁ − f₀)/h
+            // below would be 0/0
+            return Motion {
+                f: 0.0,
+                ..s.clone()
+            };
+        }
         let k = StepCoefficients::new(self.modes, h);
         let p = self.predict(s, &k);
         self.finish(p, &k, 0.0, s.t + h)
@@ -465,6 +474,15 @@ fn run_modes_inner(
             steps += 1;
             let k = cache.get(modes, level);
             let next = int.step(&s, k);
+            if !(next.t > s.t && next.f.is_finite() && next.delta_dot.is_finite()) {
+                return Err(ImpactError::NotFinished {
+                    design: "modal",
+                    reason: format!(
+                        "the contact step at t = {:.6e} s lost finiteness or did not advance",
+                        s.t
+                    ),
+                });
+            }
             // reject a step whose force bends far more than the tolerance allows
             if let Some(&(t_a, f_a)) = samples.len().checked_sub(2).map(|i| &samples[i])
                 && level > -200
@@ -638,9 +656,23 @@ fn separation_step(int: &Integrator<'_>, s: &Motion, h: f64) -> f64 {
 }
 
 /// The motion at the onset of contact inside a free jump of length `jump` from `s`.
+///
+/// A flight that starts on the surface (δ = 0: the bodies have just separated) has the trivial
+/// root at its start; the onset sought is the next one, after the gap's dip below zero, which a
+/// probe 1e-9 of the jump in finds. A gap already closing at the probe is a contact that never
+/// opened: its onset is the probe, so the run advances.
 fn onset_in(int: &Integrator<'_>, s: &Motion, jump: f64) -> Motion {
     let gap = |h: f64| int.step_unloaded(s, h).delta;
-    let h_on = illinois(gap, 0.0, s.delta, jump, gap(jump), 1e-13 * jump);
+    let (mut a, mut ga) = (0.0, s.delta);
+    if ga >= 0.0 {
+        a = 1e-9 * jump;
+        ga = gap(a);
+    }
+    let h_on = if ga >= 0.0 {
+        a
+    } else {
+        illinois(gap, a, ga, jump, gap(jump), 1e-13 * jump)
+    };
     let mut at = int.step_unloaded(s, h_on);
     at.delta = 0.0;
     at

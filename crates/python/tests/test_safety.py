@@ -34,6 +34,20 @@ def test_safety_equals_the_cli_json(cli, kwargs, flags):
     assert flexrig.safety(**kwargs) == cli.json("safety", *flags)
 
 
+def test_the_overall_verdict_is_the_most_restrictive_method_and_a_free_hub_needs_its_length():
+    # the light-payload hand of the re-contact reference (scripts/reference_recontact.py):
+    # permissible 1.5825554 m/s by every contact; at 2 m/s the simulation alone fails
+    r = flexrig.safety("hands_and_fingers", m_r=0.051, m_e=0.01, k_delta=2e4, k_c=7.359e7,
+                       n=2.0, link="cj", speed=2.0)
+    assert [m["method"] for m in r["methods"]] == ["standard", "energy", "simulation"]
+    o = r["overall"]
+    assert o["method"] == "simulation" and o["pass"] is False and o["failed_by"] == ["simulation"]
+    assert abs(o["v_max_mps"] / 1.582555402403759 - 1.0) < 1e-4
+    with pytest.raises(flexrig.InputError, match="--length"):
+        flexrig.safety("chest", m_r=2.0, m_e=1.0, link="cj", joint="free_hub", rotor_inertia=0.1,
+                       method="simulation")
+
+
 def test_transient_head_contact_is_refused_with_the_clause():
     with pytest.raises(flexrig.InputError, match="5.5.5.4"):
         flexrig.safety("face", m_eff=5.0)

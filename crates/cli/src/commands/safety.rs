@@ -72,9 +72,11 @@ pub struct SafetyArgs {
     /// Rotor inertia J_R of the free hub [kg·m²] (with --joint free-hub).
     #[arg(long = "rotor-inertia", value_name = "KG_M2")]
     pub rotor_inertia: Option<f64>,
-    /// Link length L [m] of the simulated link (the impact depends on m_r and k_δ only).
-    #[arg(long, value_name = "M", default_value_t = 1.0)]
-    pub length: f64,
+    /// Link length L [m] of the simulated link: required with --joint free-hub (the rotor's
+    /// inertia acts at the contact as J_R/L²); with a held joint the impact depends on m_r and
+    /// k_δ only and the length is not needed.
+    #[arg(long, value_name = "M")]
+    pub length: Option<f64>,
     /// Tolerance of the simulated CL's modal integrator (1e-10 to 1e-3).
     #[arg(long, value_name = "TOL", default_value = "1e-6")]
     pub tol: f64,
@@ -112,7 +114,9 @@ pub struct SafetyArgs {
         conflicts_with_all = ["m_eff", "m_r", "m_e", "gamma", "link", "k_delta", "k_c", "n", "material", "contact"]
     )]
     pub scene: Option<String>,
-    /// Methods, comma-separated (default: standard,energy; with --scene all three).
+    /// Methods, comma-separated (default: all three whenever the design is known — a scene, or
+    /// --m-r --m-e with --link or --gamma 1 or 2/3 — else standard,energy). The overall verdict
+    /// is the most restrictive of the methods run.
     #[arg(long, value_enum, value_delimiter = ',')]
     pub method: Vec<MethodArg>,
     /// Print JSON instead of text.
@@ -183,17 +187,9 @@ impl SafetyArgs {
         })
     }
 
-    /// `--method`, or its default: standard and energy, and the simulation with `--scene`.
+    /// `--method` as given (empty: the library's default, [`flexrig::safety::default_methods`]).
     fn methods(&self) -> Vec<MethodArg> {
-        match (self.method.is_empty(), &self.scene) {
-            (false, _) => self.method.clone(),
-            (true, None) => vec![MethodArg::Standard, MethodArg::Energy],
-            (true, Some(_)) => vec![
-                MethodArg::Standard,
-                MethodArg::Energy,
-                MethodArg::Simulation,
-            ],
-        }
+        self.method.clone()
     }
 }
 
@@ -237,6 +233,10 @@ fn speed(s: &Speed) -> String {
 }
 
 fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
+    for w in &r.warnings {
+        eprintln!("warning: {w}");
+    }
+    print_overall(out, &r.overall)?;
     line(
         out,
         format!("body region        {} ({})", r.region_name, r.region),
@@ -286,12 +286,17 @@ fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
         line(
             out,
             format!(
-                "scene              {} ({}, {} link, head {}): commanded tip speed {} m/s \
+                "scene              {} ({}, {} link, the {} {}): commanded tip speed {} m/s \
                  as written",
                 sc.name,
                 sc.scene,
                 format!("{:?}", sc.design).to_uppercase(),
-                sc.support,
+                r.region_name.to_lowercase(),
+                match sc.support {
+                    "wall" => "against a wall",
+                    "neck" => "on a neck",
+                    _ => "free",
+                },
                 sc.scene_tip_speed_mps
             ),
         )?;
@@ -311,6 +316,46 @@ fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
         for note in &sc.notes {
             line(out, format!("  note: {note}"))?;
         }
+    }
+    Ok(())
+}
+
+/// The overall verdict first: the governing method, its speed, and the verdict at the speed.
+fn print_overall(
+    out: &mut dyn Write,
+    o: &flexrig::safety::overall::OverallVerdict,
+) -> Result<(), Error> {
+    use flexrig::safety::overall::method_name;
+    line(
+        out,
+        format!(
+            "permissible speed  {}, governed by {} ({} limit)",
+            match o.v_max_mps {
+                Speed::Finite(v) => format!("{v:.6} m/s"),
+                Speed::Unlimited(_) => "unlimited".into(),
+            },
+            method_name(o.method),
+            format!("{:?}", o.governing).to_lowercase()
+        ),
+    )?;
+    line(out, format!("                   {}", o.reason))?;
+    if let Some(pass) = o.pass {
+        let verdict = if pass {
+            "pass by every method".to_string()
+        } else {
+            format!(
+                "FAIL (failed by {})",
+                o.failed_by
+                    .iter()
+                    .map(|m| method_name(*m))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
+        let at = o
+            .speed_mps
+            .map_or(String::new(), |v| format!(" at {v} m/s"));
+        line(out, format!("verdict{at:<12}{verdict}"))?;
     }
     Ok(())
 }

@@ -67,9 +67,10 @@ pub struct SafetyMapArgs {
     /// only).
     #[arg(long = "k-delta", value_name = "N_PER_M")]
     pub k_delta: Option<f64>,
-    /// Link length L [m]: converts an EI axis to k_δ = 3EI/L³ and sets the simulated beam.
-    #[arg(long, value_name = "M", default_value_t = 1.0)]
-    pub length: f64,
+    /// Link length L [m]: required with an ei axis (k_δ = 3EI/L³) and with --joint free-hub
+    /// (the rotor's inertia acts at the contact as J_R/L²); not needed otherwise.
+    #[arg(long, value_name = "M")]
+    pub length: Option<f64>,
     /// The contact law and the contact-area model.
     #[command(flatten)]
     pub law: super::safety_args::ContactLawArgs,

@@ -545,7 +545,7 @@ impl Shared<'_> {
                 MapParameter::LinkMass => d.m_r = v,
                 MapParameter::LinkStiffness => d.k_delta = Some(v),
                 MapParameter::BendingStiffness => {
-                    d.k_delta = Some(3.0 * v / i.simulation.length.powi(3));
+                    d.k_delta = Some(3.0 * v / i.simulation.length().powi(3));
                 }
                 MapParameter::ContactStiffness => {
                     d.law = ContactLaw::Hertz {
@@ -687,6 +687,13 @@ pub fn safety_map(
     input.simulation.validate()?;
     let axes = [input.x.parameter, input.y.parameter];
     let on_axis = |p: MapParameter| axes.contains(&p);
+    if on_axis(MapParameter::BendingStiffness) && input.simulation.length.is_none() {
+        return Err(bad(
+            "--length",
+            "(missing)",
+            "give the link's length with an ei axis: the stiffness at the tip is k_δ = 3EI/L³",
+        ));
+    }
     if !on_axis(MapParameter::LinkMass) {
         match input.m_r {
             Some(v) => MapParameter::LinkMass.check("--m-r", v)?,

@@ -9,10 +9,13 @@
 //! May use: `shared`, `plots`, `log`, `lumped`, `driven`, `testbed`.
 
 pub mod map;
+pub mod overall;
 pub mod point;
+pub mod question;
 pub mod report;
 pub mod scene;
 pub mod simulation;
 pub mod test_bed;
 
+pub use overall::{OverallVerdict, default_methods};
 pub use point::*;

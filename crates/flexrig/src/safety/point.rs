@@ -29,9 +29,13 @@ use flexrig_safety::{
     StandardContact, Verdict,
 };
 pub use flexrig_safety::{BodyModel, ContactAreaModel, ContactKind, GoverningLimit};
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 use crate::Error;
+pub use crate::safety::question::{
+    ContactLaw, MethodResult, RobotEffectiveMass, SafetyInput, SafetyMethod, Speed, SpeedVerdict,
+    Unbounded,
+};
 use crate::safety::scene::SafetyDesignScene;
 
 pub use crate::safety::simulation::{
@@ -39,197 +43,15 @@ pub use crate::safety::simulation::{
     SimulationSettings,
 };
 
-/// Which permissible-speed method to evaluate.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SafetyMethod {
-    /// The standard's formula (Annex A, Eq. A.1–A.6).
-    Standard,
-    /// The paper's lumped energy balance (Eq. 13 generalised).
-    Energy,
-    /// The time-integrated lumped impact with a root search on the speed.
-    Simulation,
-}
-
-/// The effective robot mass at the contact for the energy and simulation methods.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum RobotEffectiveMass {
-    /// m_eff \[kg\] as given (`--m-eff`).
-    Given(f64),
-    /// m_eff = m_e + γ m_r/3 (paper Eq. 5): γ ∈ (0, 1] (`--gamma`), link mass m_r \[kg\]
-    /// (`--m-r`), end mass m_e \[kg\] (`--m-e`).
-    Prb {
-        /// PRB characteristic radius γ.
-        gamma: f64,
-        /// Link mass m_r \[kg\].
-        m_r: f64,
-        /// End mass (payload) m_e \[kg\].
-        m_e: f64,
-    },
-}
-
-/// The skin's contact law for the energy and simulation methods.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ContactLaw {
-    /// The body region's own linear spring: n = 1, k_c = K of Table A.3 (the standard's model).
-    BodySpring,
-    /// f = k_c δ_c^n: k_c \[N/m^n\] (`--k-c`), n (`--n`).
-    Hertz {
-        /// Stiffness k_c \[N/m^n\].
-        k_c: f64,
-        /// Exponent n.
-        n: f64,
-    },
-    /// A material of the bundled materials file (`--material`, e.g. `skinned_aluminium`).
-    Material(String),
-}
-
-/// One permissible-speed question, SI units throughout.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct SafetyInput {
-    /// Body region key of the body model (`--region`, e.g. `chest`).
-    pub region: String,
-    /// A specific area of the region for the pressure limit (`--area`, e.g. `Sternum`); absent:
-    /// the region's most sensitive area (lowest pressure limit).
-    pub area: Option<String>,
-    /// Transient or quasi-static (clamping) contact (`--contact`).
-    pub contact: ContactKind,
-    /// Effective robot mass for the energy and simulation methods (absent: the standard's m_R).
-    pub m_eff: Option<RobotEffectiveMass>,
-    /// Link (or joint) lateral stiffness k_δ \[N/m\] (`--k-delta`); absent: a rigid link.
-    pub k_delta: Option<f64>,
-    /// The skin's contact law (`--k-c --n`, `--material`; default the body spring).
-    pub law: ContactLaw,
-    /// The contact-area model for pressure (`--area-model`, `--radius`, `--contact-area`);
-    /// absent: the Hertz sphere of the bundled dome with `--material`, else pressure not assessed.
-    pub area_model: Option<ContactAreaModel>,
-    /// The robot's total moving mass M \[kg\] (`--moving-mass`) for m_R = M/2 + m_L (Eq. A.4);
-    /// absent: m_R = m_eff.
-    pub moving_mass: Option<f64>,
-    /// Payload m_L \[kg\] (`--payload`, default 0).
-    pub payload: f64,
-    /// Relative speed to judge \[m/s\] (`--speed`); absent: no verdict.
-    pub speed: Option<f64>,
-    /// Methods to evaluate (`--method`).
-    pub methods: Vec<SafetyMethod>,
-    /// The simulation method's finite-element link (`--link cj|cl`); absent: the CJ for γ = 1,
-    /// the CL for γ = 2/3.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub link: Option<FeLink>,
-    /// The simulation method's joint, link length and tolerances (`--joint`,
-    /// `--rotor-inertia`, `--length`, `--tol`, `--cj-rtol`, `--root-rtol`); absent:
-    /// [`SimulationSettings::DEFAULT`] (held joint).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub simulation: Option<SimulationSettings>,
-    /// A scene as the design (`--scene`: a bundled scene's name or a scene file's path). A
-    /// driven scene ([`crate::safety::scene`]): the link, the skin's law and the contact kind
-    /// come from the scene (a wall: quasi-static; a free head or a neck: transient), and the
-    /// simulation method searches the scene's commanded speed. A test-bed scene
-    /// ([`crate::safety::test_bed`]): the robot link and the operator block's law, transient
-    /// contact, and the simulation method searches the operator's speed at contact through its
-    /// release angle. Absent: the design of the other fields.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub scene: Option<String>,
-}
-
-/// A speed that may be unbounded (serialises as a number or the word `"unlimited"`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-#[serde(untagged)]
-pub enum Speed {
-    /// A finite speed [m/s].
-    Finite(f64),
-    /// No limit: the quantity never reaches its limit.
-    Unlimited(Unbounded),
-}
-
-/// The word of an unbounded speed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Unbounded {
-    /// `"unlimited"`.
-    Unlimited,
-}
-
-impl Speed {
-    fn from_f64(v: f64) -> Self {
-        if v.is_finite() {
-            Speed::Finite(v)
-        } else {
-            Speed::Unlimited(Unbounded::Unlimited)
-        }
-    }
-
-    /// The speed [m/s] (+∞ when unlimited).
-    pub fn value(&self) -> f64 {
-        match self {
-            Speed::Finite(v) => *v,
-            Speed::Unlimited(_) => f64::INFINITY,
-        }
-    }
-}
-
-/// Pass/fail at the requested speed by one method.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct SpeedVerdict {
-    /// The judged relative speed [m/s].
-    pub speed_mps: f64,
-    /// True when the speed does not exceed the permissible speed and no predicted peak (force or
-    /// pressure) exceeds its limit.
-    pub pass: bool,
-    /// Predicted peak force \[N\].
-    pub peak_force_n: f64,
-    /// Predicted peak mean pressure \[Pa\] (absent without an area model).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub peak_pressure_pa: Option<f64>,
-    /// 1 − peak force / force limit (negative when exceeded).
-    pub force_margin: f64,
-    /// 1 − peak pressure / pressure limit (absent without a pressure assessment).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub pressure_margin: Option<f64>,
-    /// The simulation method: the contact that holds the peak at this speed, its time, and how
-    /// many contacts there were until the bodies parted for good (absent for the formulas).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub governing_contact: Option<crate::safety::simulation::SimulatedPeak>,
-}
-
-/// The permissible speed by one method.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct MethodResult {
-    /// The method.
-    pub method: SafetyMethod,
-    /// Robot mass the method uses \[kg\] (m_R for the standard, m_eff otherwise).
-    pub robot_mass_kg: f64,
-    /// Human mass the method uses \[kg\]: the body region's m_H (a driven scene's struck head
-    /// takes it too), the test bed's operator pendulum J/l² for its simulation; absent for a
-    /// clamped body (m_H = ∞).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub human_mass_kg: Option<f64>,
-    /// Reduced mass μ \[kg\].
-    pub reduced_mass_kg: f64,
-    /// v_max = min(by force, by pressure) [m/s].
-    pub v_max_mps: Speed,
-    /// The speed at which the peak force reaches the force limit [m/s].
-    pub by_force_mps: Speed,
-    /// The speed at which the peak pressure reaches the pressure limit [m/s] (absent when the
-    /// pressure is not assessed by this method).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub by_pressure_mps: Option<Speed>,
-    /// The limit that sets v_max.
-    pub governing: GoverningLimit,
-    /// The verdict at the requested speed (absent without `--speed`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub verdict: Option<SpeedVerdict>,
-    /// The simulation method of a link design: the contact that reaches the limit at the
-    /// permissible speed (its number, 1 = the first, and time) and the contacts of that impact.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub governing_contact: Option<crate::safety::simulation::SimulatedPeak>,
-}
-
 /// The answer: the limits applied and each method's permissible speed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SafetyReport {
+    /// The overall verdict: the most restrictive of the methods run, named
+    /// ([`crate::safety::overall`]).
+    pub overall: crate::safety::overall::OverallVerdict,
+    /// What a method's answer rests on that the design violates, in words (empty: nothing).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
     /// Body region key.
     pub region: String,
     /// Body region name.
@@ -435,7 +257,23 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
         }
         None => input,
     };
-    let s = setup(input, model)?;
+    let defaulted;
+    let input = if input.methods.is_empty() {
+        defaulted = SafetyInput {
+            methods: crate::safety::overall::default_methods(input),
+            ..input.clone()
+        };
+        &defaulted
+    } else {
+        input
+    };
+    let mut s = setup(input, model)?;
+    if input.moving_mass.is_none()
+        && let Some(SafetyDesignScene::Driven(sc)) = &scene
+        && let Some(m) = rigid_joint_tip_mass(sc)
+    {
+        s.standard_robot_mass = m;
+    }
     let mut methods = Vec::with_capacity(input.methods.len());
     let mut scene_simulation = None;
     for &m in &input.methods {
@@ -462,7 +300,31 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
             last.human_mass_kg = Some(s.region.human_mass(s.kind)).filter(|m| m.is_finite());
         }
     }
+    let overall = crate::safety::overall::overall(&methods).ok_or_else(|| {
+        bad(
+            "--method",
+            "(none)",
+            "give at least one of standard, energy, simulation",
+        )
+    })?;
+    let warnings = methods
+        .iter()
+        .filter(|m| m.method == SafetyMethod::Energy)
+        .filter_map(|m| {
+            crate::safety::overall::energy_travel_warning(
+                m,
+                s.limits.force,
+                match s.link {
+                    LinkStiffness::Finite(k) => Some(k),
+                    LinkStiffness::Rigid => None,
+                },
+                input.simulation.and_then(|sim| sim.length),
+            )
+        })
+        .collect();
     Ok(SafetyReport {
+        overall,
+        warnings,
         region: s.region.key().to_string(),
         region_name: s.region.name().to_string(),
         area: s.area.name().to_string(),
@@ -481,6 +343,26 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
         methods,
         scene: scene_simulation,
     })
+}
+
+/// The standard's m_R of a driven scene whose joint is rigid (the CL: the compliance is in the
+/// link): the robot as one rigid body turning about its joint, seen at the tip, m_e + m_r/3 +
+/// J_m N²/L² — the payload, the link's inertia about the joint and the motor's rotor through the
+/// gear (ISO/TS 15066:2016 Eq. A.4 asks for the robot's moving mass; a rigid joint moves the rotor
+/// with the link). `None` for the CJ, whose joint spring decouples the rotor (m_R = m_eff).
+fn rigid_joint_tip_mass(sc: &crate::safety::scene::SafetyScene) -> Option<f64> {
+    let strike = &sc.scene.strike;
+    match strike.design {
+        crate::driven::strike::StrikeDesign::Cj => None,
+        crate::driven::strike::StrikeDesign::Cl => {
+            let l = strike.link.length;
+            Some(
+                strike.link.m_e
+                    + strike.link.m_r / 3.0
+                    + strike.drive.motor().reflected_inertia() / (l * l),
+            )
+        }
+    }
 }
 
 /// The input with the design of the driven scene `sc`: its link (m_eff = m_e + γ m_r/3 with
@@ -522,7 +404,7 @@ fn scene_input(
         area_model: Some(area_model),
         link: Some(link),
         simulation: Some(SimulationSettings {
-            length: strike.link.length,
+            length: Some(strike.link.length),
             ..input.simulation.unwrap_or(SimulationSettings::DEFAULT)
         }),
         ..input.clone()
@@ -579,7 +461,7 @@ fn test_bed_input(
         area_model: Some(area_model),
         link: Some(link),
         simulation: Some(SimulationSettings {
-            length: robot.length_m,
+            length: Some(robot.length_m),
             ..input.simulation.unwrap_or(SimulationSettings::DEFAULT)
         }),
         ..input.clone()
@@ -918,7 +800,15 @@ fn simulation_traced(
         Some(v) => Some(Verdict::new(v, p, 0.0, s.limits.pressure.map(|_| 0.0))),
         None => None,
     };
-    let mut m = from_permissible(SafetyMethod::Simulation, s.m_eff, &p, verdict);
+    // the simulated robot's rigid-body mass at the tip: the payload, the link about its joint
+    // and, with a free hub, the rotor through the length (a held joint: the link alone moves)
+    let robot = impact.m_e
+        + impact.m_r / 3.0
+        + match impact.settings.joint {
+            MapJoint::Held => 0.0,
+            MapJoint::FreeHub { rotor_inertia } => rotor_inertia / impact.settings.length().powi(2),
+        };
+    let mut m = from_permissible(SafetyMethod::Simulation, robot, &p, verdict);
     m.human_mass_kg = Some(s.region.human_mass(s.kind)).filter(|m| m.is_finite());
     if let Some(v) = m.verdict.as_mut() {
         v.governing_contact = at_speed;

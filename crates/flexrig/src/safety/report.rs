@@ -137,7 +137,8 @@ pub fn report_document(
         d.push(Block::Figure(
             file.into(),
             "Peak force against the relative speed by each method, with the force limit; the \
-             permissible speed is where a curve meets the limit."
+             permissible speed is where a curve first meets the limit (the force axis ends at \
+             three times the limit)."
                 .into(),
         ));
     }
@@ -155,6 +156,30 @@ fn contact_words(k: ContactKind) -> &'static str {
 
 fn verdict(d: &mut Document, input: &SafetyInput, r: &SafetyReport) {
     d.push(Block::Heading(2, "Verdict".into()));
+    let o = &r.overall;
+    let judged = match (o.speed_mps, o.pass) {
+        (Some(v), Some(true)) => format!(" At {} m/s the design passes by every method.", n(v)),
+        (Some(v), Some(false)) => format!(
+            " At {} m/s the design FAILS (failed by {}).",
+            n(v),
+            o.failed_by
+                .iter()
+                .map(|m| crate::safety::overall::method_name(*m))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        _ => String::new(),
+    };
+    d.push(Block::Paragraph(format!(
+        "Overall: the permissible speed is {} m/s, governed by {} ({}): {}.{judged}",
+        g(o.v_max_mps.value()),
+        crate::safety::overall::method_name(o.method),
+        governing(o.governing),
+        o.reason
+    )));
+    for w in &r.warnings {
+        d.push(Block::Paragraph(format!("Warning: {w}.")));
+    }
     let mut rows = Vec::new();
     for m in &r.methods {
         let (at, pass) = match &m.verdict {
@@ -209,7 +234,32 @@ fn verdict(d: &mut Document, input: &SafetyInput, r: &SafetyReport) {
 fn inputs(d: &mut Document, input: &SafetyInput, r: &SafetyReport) {
     d.push(Block::Heading(2, "Inputs".into()));
     let mut rows: Vec<Vec<String>> = Vec::new();
-    let mut row = |q: &str, v: String, flag: &str| rows.push(vec![q.into(), v, flag.into()]);
+    // with a scene the design is the scene's, not the user's flags: the source column says so
+    let scene_source = input.scene.as_ref().map(|sc| format!("the scene {sc}"));
+    let design_flags = [
+        "--m-eff",
+        "--m-r",
+        "--m-e",
+        "--gamma",
+        "--k-delta",
+        "--k-c --n / --material",
+        "--contact",
+    ];
+    let mut row = |q: &str, v: String, flag: &str| {
+        let source = match &scene_source {
+            Some(sc) if design_flags.contains(&flag) => sc.clone(),
+            _ => flag.into(),
+        };
+        rows.push(vec![q.into(), v, source])
+    };
+    if let Some(given) = &input.scene
+        && let Ok(crate::safety::scene::SafetyDesignScene::Driven(sc)) =
+            crate::safety::scene::load_any(given)
+    {
+        for (q, v) in drive_rows(&sc) {
+            row(q, v, "the scene's [drive]");
+        }
+    }
     row(
         "body region",
         format!("{} ({})", r.region_name, r.region),
@@ -284,9 +334,64 @@ fn inputs(d: &mut Document, input: &SafetyInput, r: &SafetyReport) {
         "--method",
     );
     d.push(Block::Table(
-        vec!["quantity".into(), "value".into(), "flag".into()],
+        vec!["quantity".into(), "value".into(), "given by".into()],
         rows,
     ));
+}
+
+/// The driven scene's drive as the report lists it: the motor, the command and its profile.
+fn drive_rows(sc: &crate::safety::scene::SafetyScene) -> Vec<(&'static str, String)> {
+    use flexrig_impact::drive::{DriveCommand, Profile};
+    let drive = &sc.scene.strike.drive;
+    let m = drive.motor();
+    let profile = |p: &Profile| match *p {
+        Profile::Steady { speed } => format!("steady joint speed {} rad/s", g(speed)),
+        Profile::SmoothRamp { speed, ramp_time } => {
+            format!("smooth ramp to {} rad/s in {} s", g(speed), g(ramp_time))
+        }
+        Profile::Trapezoid {
+            speed,
+            acceleration,
+        } => format!(
+            "trapezoid to {} rad/s at {} rad/s²",
+            g(speed),
+            g(acceleration)
+        ),
+        Profile::SpinUp { speed, time } => {
+            format!("spin-up to {} rad/s in {} s", g(speed), g(time))
+        }
+    };
+    let command = match drive.command() {
+        DriveCommand::Trajectory { profile: p } => {
+            format!("the joint follows a prescribed trajectory: {}", profile(p))
+        }
+        DriveCommand::Controller {
+            profile: p,
+            gains,
+            torque_limit,
+        } => format!(
+            "a PID controller (k_p = {} N·m/rad, k_d = {} N·m·s/rad, k_i = {} N·m/(rad·s)){} \
+             following {}",
+            g(gains.kp),
+            g(gains.kd),
+            g(gains.ki),
+            torque_limit.map_or(String::new(), |t| format!(", torque limit {} N·m", g(t))),
+            profile(p)
+        ),
+        DriveCommand::OpenLoop { .. } => "an open-loop motor torque".into(),
+    };
+    vec![
+        (
+            "motor",
+            format!(
+                "rotor J_m = {} kg·m², gear ratio N = {}, friction c_m = {} N·m·s/rad",
+                g(m.rotor_inertia),
+                g(m.gear_ratio),
+                g(m.friction)
+            ),
+        ),
+        ("drive command", command),
+    ]
 }
 
 fn area_words(a: Option<&ContactAreaModel>) -> String {
@@ -613,14 +718,14 @@ fn simulation_trace(
     let (traced, trace, fe) = traced_simulation(input, model)?;
     let v = traced.by_force_mps.value();
     let f = r.force_limit_n;
-    let guess = trace.first().map_or(v, |s| s.speed_mps * 1.01);
     let settings = fe.settings;
     let link = match fe.link {
         FeLink::CompliantJoint => format!(
             "the compliant joint: a rigid link on the torsion spring k_θr = k_δL² \
-             (k_δ = {} N/m), integrated by DOP853 at relative tolerance {:e}",
+             (k_δ = {} N/m), by its mode and the exact modal integrator (force-hold tolerance \
+             {:e})",
             g(fe.k_delta),
-            settings.cj_rtol
+            settings.tol
         ),
         FeLink::CompliantLink => format!(
             "the compliant link: the Euler–Bernoulli beam of lateral tip stiffness k_δ = {} N/m \
@@ -633,17 +738,22 @@ fn simulation_trace(
     let joint = match settings.joint {
         MapJoint::Held => "held (driven at constant speed; the body region arrives at v)".into(),
         MapJoint::FreeHub { rotor_inertia } => format!(
-            "a free hub with rotor inertia J_R = {} kg·m² (the robot moves at v into the body)",
-            g(rotor_inertia)
+            "a free hub with rotor inertia J_R = {} kg·m² on a link of length L = {} m, acting \
+             at the contact as J_R/L² (the robot moves at v into the body)",
+            g(rotor_inertia),
+            g(settings.length())
         ),
     };
     d.push(Block::Paragraph(format!(
-        "The first contact of a body of mass m_h = {} with the tip payload m_e = {} kg of a link \
-         of mass m_r = {} kg and length {} m is simulated: {link}; joint {joint}. The speed at \
-         which the peak force reaches F_max = {} N is bracketed by factors of 2 around the \
-         energy method's {} m/s and found by the Illinois false position on ln v until the \
-         bracket is narrower than {:e} (relative). Both tolerances lie below the 1e-4 the \
-         result is quoted to.",
+        "Every contact of a body of mass m_h = {} with the tip payload m_e = {} kg of a link of \
+         mass m_r = {} kg is simulated until the bodies part for good (their rigid motions carry \
+         them apart by more than the vibrating link can reach): {link}; joint {joint}. The \
+         permissible speed is the smallest speed at which the largest contact force reaches \
+         F_max = {} N: a scan upward in steps of 4.4 % from the energy floor (the speed below \
+         which no contact can store the energy of that force) to the first speed that reaches \
+         it, then the Illinois false position on ln v between the last two speeds of the scan \
+         until they are closer than {:e} (relative). The rows below are the scan and the \
+         refinement ({} evaluations).",
         if fe.m_h >= crate::safety::point::CLAMPED_HUMAN_MASS {
             format!("{} kg (clamped body)", g(fe.m_h))
         } else {
@@ -651,10 +761,9 @@ fn simulation_trace(
         },
         g(fe.m_e),
         g(fe.m_r),
-        g(settings.length),
         n(f),
-        g(guess),
-        settings.root_rtol
+        settings.root_rtol,
+        trace.len(),
     )));
     let rows = trace
         .iter()
@@ -914,6 +1023,7 @@ pub fn figure_svg(
                 simulated_peak_forces(input, model, &sampled)?
             }
         };
+        let points = framed(&points, FIGURE_FORCE_FRAME * r.force_limit_n);
         curves.push(Curve {
             label: format!(
                 "{} (v_max = {} m/s)",
@@ -950,6 +1060,34 @@ pub fn figure_svg(
         path: PathBuf::from("figure"),
         message,
     })
+}
+
+/// The report figure's force axis ends at this multiple of the force limit, so that every
+/// method's crossing of the limit is seen (a curve that leaves the frame ends at its edge).
+pub const FIGURE_FORCE_FRAME: f64 = 3.0;
+
+/// `points` (speed, force) within forces ≤ `cap`: a run of points above the cap is cut at the
+/// cap's crossing (linear in the segment), so a curve leaves the frame at its edge and comes back
+/// where it returns; a point alone above the cap is dropped.
+fn framed(points: &[(f64, f64)], cap: f64) -> Vec<(f64, f64)> {
+    let mut out = Vec::with_capacity(points.len());
+    for (i, &(v, f)) in points.iter().enumerate() {
+        if f <= cap {
+            if i > 0 && points[i - 1].1 > cap {
+                out.push(crossing(points[i - 1], (v, f), cap));
+            }
+            out.push((v, f));
+        } else if i > 0 && points[i - 1].1 <= cap {
+            out.push(crossing(points[i - 1], (v, f), cap));
+        }
+    }
+    out
+}
+
+/// Where the segment from `a` to `b` crosses the force `cap`.
+fn crossing(a: (f64, f64), b: (f64, f64), cap: f64) -> (f64, f64) {
+    let t = (cap - a.1) / (b.1 - a.1);
+    (a.0 + t * (b.0 - a.0), cap)
 }
 
 /// The report's format, from the file's extension.
@@ -999,7 +1137,7 @@ pub fn write_report(
     let figure = figure_svg(input, model, &r)?;
     let text = match format {
         ReportFormat::Markdown => doc.markdown(),
-        ReportFormat::Html => doc.html(),
+        ReportFormat::Html => doc.html_with(&[(&figure_name, &figure)]),
     };
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty());
     if let Some(dir) = dir {

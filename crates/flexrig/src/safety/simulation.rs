@@ -13,10 +13,10 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use flexrig_contact::{DampingSpec, Hertz};
+use flexrig_impact::chain::Chain;
 use flexrig_impact::cl_modal::run_on_modes;
 use flexrig_impact::graded::{GradedMesh, cl_tip_modes};
 use flexrig_impact::modal_run::ModalOptions;
-use flexrig_impact::chain::Chain;
 use flexrig_impact::{FreeMassImpact, ImpactError, Joint, LinkParams, RunEnd};
 use flexrig_safety::{EnergyContact, PressureCrossing};
 use serde::{Deserialize, Serialize};
@@ -62,9 +62,13 @@ pub enum MapJoint {
 pub struct SimulationSettings {
     /// The joint during the impact.
     pub joint: MapJoint,
-    /// Link length L \[m\] (the transverse impact of an Euler–Bernoulli beam depends on m_r and
-    /// k_δ only; L sets EI = k_δL³/3).
-    pub length: f64,
+    /// Link length L \[m\] (`--length`). With a held joint the transverse impact of the link
+    /// depends on m_r and k_δ only (L sets EI = k_δL³/3 and cancels), so it may be absent
+    /// ([`Self::length`] then takes 1 m); a free hub needs it, since the rotor's inertia J_R acts
+    /// at the contact as J_R/L² ([`Self::validate`] refuses a free hub without it), and so does
+    /// a map over EI (k_δ = 3EI/L³).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub length: Option<f64>,
     /// Tolerance of the CL's modal integrator (relative deviation of the force's linear hold).
     pub tol: f64,
     /// Relative tolerance of the CJ's DOP853 integration.
@@ -74,11 +78,11 @@ pub struct SimulationSettings {
 }
 
 impl SimulationSettings {
-    /// Held joint, L = 1 m, modal tol 1e-6, CJ rtol 1e-10, root 1e-6: each speed converged well
+    /// Held joint, no length (it cancels with a held joint), modal tol 1e-6, CJ rtol 1e-10, root 1e-6: each speed converged well
     /// below 1e-4 relative (tested against tol 1e-8, root 1e-10).
     pub const DEFAULT: SimulationSettings = SimulationSettings {
         joint: MapJoint::Held,
-        length: 1.0,
+        length: None,
         tol: 1e-6,
         cj_rtol: 1e-10,
         root_rtol: 1e-6,
@@ -95,12 +99,19 @@ impl SimulationSettings {
                 "must lie in [1e-12, 1e12] kg·m²",
             ));
         }
-        if !(self.length.is_finite() && (1e-3..=1e3).contains(&self.length)) {
-            return Err(bad(
-                "--length",
-                display(self.length),
-                "must lie in [1e-3, 1e3] m",
-            ));
+        match self.length {
+            Some(l) if !(l.is_finite() && (1e-3..=1e3).contains(&l)) => {
+                return Err(bad("--length", display(l), "must lie in [1e-3, 1e3] m"));
+            }
+            None if matches!(self.joint, MapJoint::FreeHub { .. }) => {
+                return Err(bad(
+                    "--length",
+                    "(missing)",
+                    "give the link's length with --joint free-hub: the rotor's inertia J_R acts \
+                     at the contact as J_R/L², so the answer depends on it",
+                ));
+            }
+            _ => {}
         }
         if !(self.tol.is_finite() && (1e-10..=1e-3).contains(&self.tol)) {
             return Err(bad("--tol", display(self.tol), "must lie in [1e-10, 1e-3]"));
@@ -120,6 +131,12 @@ impl SimulationSettings {
             ));
         }
         Ok(())
+    }
+
+    /// The link length L \[m\] the impact is simulated with: the given one, else 1 m (a held
+    /// joint, where it cancels).
+    pub fn length(&self) -> f64 {
+        self.length.unwrap_or(1.0)
     }
 
     /// The joint of the finite-element impact.
@@ -175,7 +192,7 @@ impl FeImpact {
             v0: v,
             link: LinkParams {
                 m_r: self.m_r,
-                length: self.settings.length,
+                length: self.settings.length(),
                 k_delta: self.k_delta,
                 m_e: self.m_e,
             },
@@ -287,17 +304,18 @@ impl FeRuns {
             }
             RunEnd::FirstSeparation => outcome.first.duration_s,
         };
-        let (index, top) = outcome
-            .contacts
-            .iter()
-            .enumerate()
-            .fold((0, outcome.first), |(i, best), (j, c)| {
-                if c.peak_force_n > best.peak_force_n {
-                    (j, *c)
-                } else {
-                    (i, best)
-                }
-            });
+        let (index, top) =
+            outcome
+                .contacts
+                .iter()
+                .enumerate()
+                .fold((0, outcome.first), |(i, best), (j, c)| {
+                    if c.peak_force_n > best.peak_force_n {
+                        (j, *c)
+                    } else {
+                        (i, best)
+                    }
+                });
         Ok(SimulatedPeak {
             peak_force_n: top.peak_force_n,
             contact: index + 1,
@@ -319,7 +337,7 @@ impl FeRuns {
         let m = match i.settings.joint {
             MapJoint::Held => i.m_h,
             MapJoint::FreeHub { rotor_inertia } => {
-                let l = i.settings.length;
+                let l = i.settings.length();
                 let robot = i.m_e + i.m_r / 3.0 + rotor_inertia / (l * l);
                 i.m_h * robot / (i.m_h + robot)
             }

@@ -65,7 +65,7 @@ def safety(
     link: Optional[str] = None,
     joint: str = "held",
     rotor_inertia: Optional[float] = None,
-    length: float = 1.0,
+    length: Optional[float] = None,
     tol: float = 1e-6,
     root_rtol: float = 1e-6,
 ) -> Dict[str, Any]:
@@ -73,7 +73,8 @@ def safety(
     (``"standard"``), the paper's energy method (``"energy"``) and the simulated finite-element
     impact of the safe-speed maps (``"simulation"``: ``link`` ``"cj"`` or ``"cl"``, default from
     ``gamma`` 1 or 2/3; ``joint`` ``"held"`` or ``"free_hub"`` with ``rotor_inertia`` in kg·m²;
-    ``length`` in m; ``tol`` of the CL's modal integrator; ``root_rtol`` of the root search on
+    ``length`` in m (required with a free hub: the rotor acts at the contact as J_R/L²);
+    ``tol`` of the CL's modal integrator; ``root_rtol`` of the root search on
     the speed): the dict of ``flexrig safety --json`` with the same numbers.
 
     Masses in kg (``m_eff``, or ``m_r``, ``m_e`` and ``gamma`` for m_eff = m_e + γ m_r/3;
@@ -88,7 +89,9 @@ def safety(
     file with a ``[drive]`` section) is the design instead of the mass, stiffness and contact-law
     keywords: the simulation method then searches the scene's commanded tip speed, a wall is
     quasi-static contact and a free head transient (``contact`` is not given with a scene), and
-    ``method`` defaults to all three (without a scene: standard and energy). A test-bed scene
+    ``method`` defaults to all three whenever the design is known (a scene, or ``m_r``, ``m_e``
+    with ``link`` or ``gamma`` 1 or 2/3), else standard and energy; ``result["overall"]`` is the
+    most restrictive of them, named. A test-bed scene
     (``"cj_aluminium"``, ``"cl_iron"``, …) is transient contact with the operator's block; the
     simulation method searches the operator's speed at contact through its release angle (up
     to 170°): ``result["scene"]`` then has ``release_angle_at_root_deg`` and ``limit_reached``
@@ -113,7 +116,7 @@ def safety(
     law = _contact_law(k_c, n, material)
     model = _area_model(area_model, radius, contact_area)
     if method is None:
-        method = ("standard", "energy", "simulation") if scene is not None else ("standard", "energy")
+        method = ()
     methods = [method] if isinstance(method, str) else list(method)
     methods = [m for part in methods for m in part.split(",")]
     data = {
@@ -199,7 +202,7 @@ def safety_map(
     m_r: Optional[float] = None,
     m_e: Optional[float] = None,
     k_delta: Optional[float] = None,
-    length: float = 1.0,
+    length: Optional[float] = None,
     k_c: Optional[float] = None,
     n: Optional[float] = None,
     material: Optional[str] = None,

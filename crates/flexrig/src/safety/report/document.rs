@@ -87,6 +87,12 @@ impl Document {
 
     /// The report as one HTML page (inline style; the figure linked beside it).
     pub fn html(&self) -> String {
+        self.html_with(&[])
+    }
+
+    /// The report as one self-contained HTML page: each figure named in `inline` (file name,
+    /// SVG text) is embedded in the page; any other is linked.
+    pub fn html_with(&self, inline: &[(&str, &str)]) -> String {
         let mut s = String::from(
             "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
              <title>Permissible speed report</title>\n<style>\n\
@@ -94,9 +100,9 @@ impl Document {
              padding:0 1em;line-height:1.4;color:#111}\n\
              table{border-collapse:collapse;margin:0.5em 0 1em}\n\
              th,td{border:1px solid #999;padding:0.2em 0.5em;text-align:left;vertical-align:top}\n\
-             th{background:#eee}\npre{background:#f6f6f6;padding:0.6em;overflow-x:auto}\n\
+             th{background:#eee}\npre{background:#f6f6f6;padding:0.6em;white-space:pre-wrap}\n\
              blockquote{border-left:4px solid #c00;margin:1em 0;padding:0.3em 1em;background:#fff4f4}\n\
-             img{max-width:100%}\n@media print{body{max-width:none}}\n</style>\n</head>\n<body>\n",
+             img,svg{max-width:100%;height:auto}\n@media print{body{max-width:none}}\n</style>\n</head>\n<body>\n",
         );
         for b in &self.blocks {
             match b {
@@ -127,12 +133,19 @@ impl Document {
                     }
                     s.push_str("</pre>\n");
                 }
-                Block::Figure(file, caption) => s.push_str(&format!(
-                    "<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
-                    html_escape(file),
-                    html_escape(caption),
-                    html_escape(caption)
-                )),
+                Block::Figure(file, caption) => match inline.iter().find(|(f, _)| f == file) {
+                    Some((_, svg)) => s.push_str(&format!(
+                        "<figure>{}<figcaption>{}</figcaption></figure>\n",
+                        svg_body(svg),
+                        html_escape(caption)
+                    )),
+                    None => s.push_str(&format!(
+                        "<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
+                        html_escape(file),
+                        html_escape(caption),
+                        html_escape(caption)
+                    )),
+                },
                 Block::Caveat(text) => s.push_str(&format!(
                     "<blockquote><p><strong>Caveat.</strong> {}</p></blockquote>\n",
                     html_escape(text)
@@ -142,4 +155,10 @@ impl Document {
         s.push_str("</body>\n</html>\n");
         s
     }
+}
+
+/// An SVG document's `<svg …>…</svg>` element, for embedding in HTML (the XML declaration and
+/// anything before the element dropped).
+fn svg_body(svg: &str) -> &str {
+    svg.find("<svg").map_or(svg, |i| &svg[i..])
 }
