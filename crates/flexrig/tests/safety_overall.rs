@@ -206,3 +206,22 @@ fn a_tip_that_re_engages_as_it_separates_is_followed_to_the_end() {
     assert!(p.parted_at_s > 0.0 && p.parted_at_s < 1.0, "{p:?}");
     assert!(p.peak_force_n.is_finite() && p.peak_force_n > 0.0, "{p:?}");
 }
+
+/// The report runs the default methods as `flexrig safety` does (no `--method` given) and leads
+/// with the overall verdict.
+#[test]
+fn a_report_without_methods_runs_the_default_ones_and_leads_with_the_overall_verdict() {
+    let dir = std::env::temp_dir().join(format!("flexrig-overall-{}", std::process::id()));
+    let path = dir.join("hand.md");
+    let (r, files) =
+        flexrig::safety::report::write_report(&hand(Vec::new(), Some(2.0)), None, &path).unwrap();
+    assert_eq!(r.methods.len(), 3);
+    let text = std::fs::read_to_string(&path).unwrap();
+    let verdict = text.find("Overall: the permissible speed is").unwrap();
+    assert!(verdict < text.find("## Inputs").unwrap());
+    assert!(text[verdict..].contains("FAILS (failed by the simulation)"));
+    for f in files {
+        std::fs::remove_file(f).unwrap();
+    }
+    std::fs::remove_dir(&dir).unwrap();
+}

@@ -201,13 +201,6 @@ fn setup<'a>(input: &SafetyInput, model: &'a BodyModel) -> Result<Setup<'a>, Err
     {
         return Err(bad("--speed", v, "must lie in [0, 1000] m/s"));
     }
-    if input.methods.is_empty() {
-        return Err(bad(
-            "--method",
-            "(none)",
-            "give at least one of standard, energy, simulation",
-        ));
-    }
     Ok(Setup {
         region,
         area,

@@ -1026,7 +1026,7 @@ pub fn figure_svg(
         let points = framed(&points, FIGURE_FORCE_FRAME * r.force_limit_n);
         curves.push(Curve {
             label: format!(
-                "{} (v_max = {} m/s)",
+                "{}: permissible {} m/s",
                 method_name(m.method),
                 g(m.v_max_mps.value())
             ),
@@ -1035,7 +1035,7 @@ pub fn figure_svg(
         });
     }
     curves.push(Curve {
-        label: format!("force limit F_max = {} N", n(r.force_limit_n)),
+        label: format!("force limit {} N", n(r.force_limit_n)),
         points: vec![(a, r.force_limit_n), (b, r.force_limit_n)],
         limit: None,
     });
