@@ -357,3 +357,39 @@ fn the_report_is_written_as_markdown_and_html_with_trace_figure_and_caveat() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("--report"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The one-column figure (three panels stacked in 3.5 in) fits a journal page's column: at most
+/// 9 in tall, its text at least 8 pt (the panels are flattened rather than the text shrunk).
+#[test]
+fn the_one_column_map_fits_a_page_column() {
+    let dir = tmp("one_column");
+    let d = dir.to_str().unwrap();
+    ok(&[
+        "safety-map",
+        "--region",
+        "hands_and_fingers",
+        "--material",
+        "skinned_aluminium",
+        "--m-r",
+        "0.051",
+        "--x",
+        "m-e=0.01:5:4:log",
+        "--y",
+        "k-delta=10:1e7:4:log",
+        "--size",
+        "1",
+        "--format",
+        "svg",
+        "--out",
+        d,
+    ]);
+    let svg = std::fs::read_to_string(dir.join("safety_map.svg")).unwrap();
+    let inches = |attr: &str| -> f64 {
+        let at = svg.find(&format!("{attr}=\"")).unwrap() + attr.len() + 2;
+        let end = svg[at..].find("in\"").unwrap();
+        svg[at..at + end].parse().unwrap()
+    };
+    assert_eq!(inches("width"), 3.5);
+    let h = inches("height");
+    assert!(h <= 9.0 && h > 6.0, "height {h} in");
+}

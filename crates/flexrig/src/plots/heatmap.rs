@@ -73,6 +73,11 @@ pub enum ColorScale {
 const MIN_PANEL_W: f64 = 240.0;
 /// Height of a panel over its width (without its legend rows).
 const PANEL_ASPECT: f64 = 0.85;
+/// Tallest figure \[pt\]: 9 in, what a journal page's column takes; panels stacked in one column
+/// are flattened to fit (down to [`MIN_CHART_H`]).
+const MAX_HEIGHT_PT: f64 = 648.0;
+/// Flattest chart \[pt\] a panel is drawn with.
+const MIN_CHART_H: f64 = 120.0;
 /// Height of one row of a named category axis along y \[pt\].
 const CATEGORY_ROW: f64 = 14.0;
 /// Room under a panel's legend, before the next row of panels \[pt\].
@@ -185,6 +190,28 @@ pub fn heatmaps_svg_named(
     let chart_h = match names.y {
         Some(n) => CATEGORY_ROW * n.len() as f64 + 60.0,
         None => panel_w * PANEL_ASPECT,
+    };
+    // the title's lines are counted first: a stack of panels is flattened so that the figure
+    // stays within a journal page's column (MAX_HEIGHT_PT)
+    let title_lines: usize = figure_title
+        .iter()
+        .enumerate()
+        .map(|(i, line)| {
+            super::wrap(
+                line,
+                width_pt - 8.0,
+                if i == 0 { TITLE_PT } else { LABEL_PT },
+            )
+            .len()
+        })
+        .sum();
+    let header_pt = (HEADER_LINE as usize * title_lines + 4) as f64;
+    let legend_pt = (LEGEND * legend + ROW_GAP) as f64;
+    let chart_h = match names.y {
+        Some(_) => chart_h,
+        None => chart_h
+            .min(((MAX_HEIGHT_PT - header_pt) / rows as f64 - legend_pt).floor())
+            .max(MIN_CHART_H),
     };
     let panel_h = chart_h.round() as u32 + (LEGEND * legend + ROW_GAP) as u32;
     // the title's first line in black, the others in grey, each broken to the width
