@@ -331,3 +331,37 @@ fn a_test_bed_scene_searches_the_operators_speed_and_refuses_the_head() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("5.5.5.4"));
 }
+
+/// A mistyped region is named before any other input is asked for, and grams typed for
+/// kilograms are warned about in text (standard error) and JSON alike, with the conversion.
+#[test]
+fn an_unknown_region_comes_first_and_unit_slips_are_warned_about() {
+    let out = flexrig(&["safety", "--region", "chset", "--m-r", "1", "--m-e", "1"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("chset") && err.contains("chest"), "{err}");
+    let args = [
+        "safety",
+        "--region",
+        "chest",
+        "--m-r",
+        "1200",
+        "--m-e",
+        "2000",
+        "--gamma",
+        "1",
+        "--method",
+        "standard,energy",
+    ];
+    let out = flexrig(&args);
+    assert_eq!(out.status.code(), Some(0));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("warning: --m-r = 1200 kg") && err.contains("2000 g is 2 kg"),
+        "{err}"
+    );
+    let v = json(&args[1..]);
+    let w = v["warnings"].as_array().unwrap();
+    assert_eq!(w.len(), 2, "{w:?}");
+    assert!(w[0].as_str().unwrap().contains("1200 g is 1.2 kg"));
+}

@@ -198,6 +198,7 @@ pub use flexrig::safety::load_body_model;
 /// Runs `flexrig safety`.
 pub fn run(args: &SafetyArgs, out: &mut dyn Write) -> Result<(), Error> {
     let model = load_body_model(args.body_model.as_deref())?;
+    flexrig::safety::check_region(&args.region, model.as_ref())?;
     let input = args.input()?;
     let (report, written) = match &args.report {
         Some(path) => {

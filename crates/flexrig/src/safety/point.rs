@@ -237,6 +237,7 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
             &bundled
         }
     };
+    let given = input;
     let scene = input
         .scene
         .as_deref()
@@ -300,21 +301,23 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
             "give at least one of standard, energy, simulation",
         )
     })?;
-    let warnings = methods
-        .iter()
-        .filter(|m| m.method == SafetyMethod::Energy)
-        .filter_map(|m| {
-            crate::safety::overall::energy_travel_warning(
-                m,
-                s.limits.force,
-                match s.link {
-                    LinkStiffness::Finite(k) => Some(k),
-                    LinkStiffness::Rigid => None,
-                },
-                input.simulation.and_then(|sim| sim.length),
-            )
-        })
-        .collect();
+    let mut warnings = typed_warnings(given);
+    warnings.extend(
+        methods
+            .iter()
+            .filter(|m| m.method == SafetyMethod::Energy)
+            .filter_map(|m| {
+                crate::safety::overall::energy_travel_warning(
+                    m,
+                    s.limits.force,
+                    match s.link {
+                        LinkStiffness::Finite(k) => Some(k),
+                        LinkStiffness::Rigid => None,
+                    },
+                    input.simulation.and_then(|sim| sim.length),
+                )
+            }),
+    );
     Ok(SafetyReport {
         overall,
         warnings,
@@ -336,6 +339,46 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
         methods,
         scene: scene_simulation,
     })
+}
+
+/// Checks that `region` is a region of `model` (the bundled ISO/TS 15066:2016 table when `None`):
+/// a front's first check, so that a mistyped region is named (with its nearest key) before any
+/// other input is asked for.
+pub fn check_region(region: &str, model: Option<&BodyModel>) -> Result<(), Error> {
+    match model {
+        Some(m) => m.region(region).map(|_| ()),
+        None => BodyModel::iso_ts_15066_2016()?.region(region).map(|_| ()),
+    }
+    .map_err(Error::from)
+}
+
+/// The plausibility warnings of the masses, length and speed the user typed
+/// ([`crate::shared::plausibility`]; a scene's own values are the scene's warnings).
+fn typed_warnings(input: &SafetyInput) -> Vec<String> {
+    use crate::shared::plausibility::{length, mass, speed};
+    let mut masses = vec![
+        ("--moving-mass", input.moving_mass),
+        ("--payload", Some(input.payload)),
+    ];
+    match input.m_eff {
+        Some(RobotEffectiveMass::Given(m)) => masses.push(("--m-eff", Some(m))),
+        Some(RobotEffectiveMass::Prb { m_r, m_e, .. }) => {
+            masses.extend([("--m-r", Some(m_r)), ("--m-e", Some(m_e))]);
+        }
+        None => {}
+    }
+    masses
+        .into_iter()
+        .filter_map(|(flag, m)| m.and_then(|m| mass(flag, m)))
+        .chain(
+            input
+                .simulation
+                .and_then(|s| s.length)
+                .filter(|_| input.scene.is_none())
+                .and_then(|l| length("--length", l)),
+        )
+        .chain(input.speed.and_then(|v| speed("--speed", v)))
+        .collect()
 }
 
 /// The standard's m_R of a driven scene whose joint is rigid (the CL: the compliance is in the
