@@ -740,6 +740,9 @@ def strike(
     n: float = 2.0,
     settle: float = 0.3,
     horizon: float = 5.0,
+    dome_radius: float = 0.0715,
+    dome_standoff: float = 0.030,
+    link_model: str = "exact",
     trace_every: Optional[float] = None,
     out: Optional[Union[str, "os.PathLike[str]"]] = None,
 ) -> Dict[str, Any]:
@@ -765,7 +768,8 @@ def strike(
         r = _flexrig.strike_flags(
             design, support, float(m_r), float(length), float(k_delta), float(m_e), float(rotor_inertia),
             float(gear_ratio), float(friction), float(speed), float(ramp_time), float(kp), float(kd),
-            float(torque_limit), float(m_h), float(k_c), float(n), float(settle), float(horizon), every, directory,
+            float(torque_limit), float(m_h), float(k_c), float(n), float(settle), float(horizon),
+            float(dome_radius), float(dome_standoff), link_model, every, directory,
         )
     outcome = dict(r["outcome"])
     trace = outcome.pop("trace")
