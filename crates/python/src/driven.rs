@@ -215,7 +215,7 @@ pub fn spin_up_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
 /// (rows as a list of dicts, csv path, the figures' paths).
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (out, kappa, rotor_ratio, damping_ratio, fig6, size, format, dpi))]
+#[pyo3(signature = (out, kappa, rotor_ratio, damping_ratio, fig6, size, format, dpi, link_model))]
 pub fn role_switch<'py>(
     py: Python<'py>,
     out: PathBuf,
@@ -226,12 +226,14 @@ pub fn role_switch<'py>(
     size: &str,
     format: Vec<String>,
     dpi: f64,
+    link_model: &str,
 ) -> PyResult<(Bound<'py, PyAny>, PathBuf, Vec<PathBuf>)> {
     let options = RoleSwitchOptions {
         kappas: kappa,
         rotor_ratio,
         damping_ratio,
         fig6,
+        link_model: LinkModel::parse("--link-model", link_model).map_err(flag_error)?,
     };
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
     let cancel = CancelToken::new();

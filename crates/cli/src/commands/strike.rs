@@ -188,6 +188,16 @@ pub struct StrikeArgs {
     pub json: bool,
 }
 
+impl LinkModelArg {
+    /// The library's model.
+    pub fn model(self) -> LinkModel {
+        match self {
+            LinkModelArg::Exact => LinkModel::Exact,
+            LinkModelArg::Linear => LinkModel::Linear,
+        }
+    }
+}
+
 impl DesignArg {
     fn of(design: StrikeDesign) -> Self {
         match design {
@@ -231,10 +241,7 @@ impl StrikeArgs {
             horizon: self.horizon,
             dome_radius: self.dome_radius,
             dome_standoff: self.dome_standoff,
-            link_model: match self.link_model {
-                LinkModelArg::Exact => LinkModel::Exact,
-                LinkModelArg::Linear => LinkModel::Linear,
-            },
+            link_model: self.link_model.model(),
         }
         .description()
     }
