@@ -10,8 +10,10 @@
 //! linear 5.05). The corotational element is chosen over the ANCF element although ANCF
 //! converges faster per element in large static deflection (docs/performance-beam.md): only the
 //! corotational beam has the rotating clamp ([`GeneralizedAlpha::step_with_root`]) and the hub
-//! root, and the strike's error is set by the step, not the mesh (16 elements: peak within
-//! 1e-5 of 64).
+//! root. Its mesh error falls as 1/N² when the link bends far (the test bed's link bent by a
+//! third of its length: 2.2e-4 in peak at 16 elements, 4.4e-5 at 32) and as 1/N⁴ in small
+//! deflection (a stiff link: 4 elements within 2e-7 of 32), so the mesh is checked per strike
+//! ([`ExactSettings::mesh_tolerance`]): a stiff link stops at 4 elements, a bent one at 64–128.
 //!
 //! **The hub.** A prescribed trajectory turns the clamped root (rotating clamp); the motor's
 //! joint torque is the root's reaction plus J_m N² θ̈ + c_m N² θ̇. A controller or an
@@ -36,7 +38,8 @@
 //! ([`flexrig_beam::NodeLoad`]); the head by the same trapezoidal rule, solved with the force
 //! inside the node load (its position is affine in f over the step), so beam, contact and head
 //! advance as one implicit system. Before the contact the step is [`ExactSettings::approach_steps`]
-//! per period of the link's first mode (landing on the drive's corners); the onset is located by
+//! per the drive's shortest time scale or a tenth of the link's first period, whichever is
+//! longer (landing on the drive's corners); the onset is located by
 //! the secant method on the step length (the gap of the contact-free step from the last state);
 //! the contact is taken in [`ExactSettings::contact_steps`] steps per the expected contact
 //! duration, the separation located the same way; the peak is the vertex of the parabola
@@ -44,8 +47,8 @@
 //! damping and the impact work are integrated by the trapezoidal rule over the contact.
 
 use flexrig_beam::{
-    BeamModel, BeamSpec, GeneralizedAlpha, Kinematics, NewtonMethod, NodalLoads, NodeForce, NodeLoad,
-    PointMass, RootSupport, Section, State, Workspace,
+    BeamModel, BeamSpec, GeneralizedAlpha, Kinematics, NewtonMethod, NodalLoads, NodeForce,
+    NodeLoad, PointMass, RootSupport, Section, State, Workspace,
 };
 use flexrig_contact::ContactLaw;
 use serde::Serialize;
@@ -143,8 +146,7 @@ impl ExactSettings {
                 return Err(ImpactError::invalid(field, v, "must lie in [20, 1e6]"));
             }
         }
-        if !(self.axial_slenderness.is_finite() && (1e3..=1e12).contains(&self.axial_slenderness))
-        {
+        if !(self.axial_slenderness.is_finite() && (1e3..=1e12).contains(&self.axial_slenderness)) {
             return Err(ImpactError::invalid(
                 "axial_slenderness",
                 self.axial_slenderness,
@@ -285,12 +287,7 @@ impl DomeLoad<'_> {
     fn solve(&self, q: [f64; 3], v: [f64; 3]) -> (ContactState, [f64; 3], f64, f64, f64) {
         let (depth, g, rate_g) = self.geometry.gap(q, v);
         let hs = self.head;
-        let at = |f: f64| {
-            (
-                depth - hs.x_b - hs.b * f,
-                rate_g - hs.v_b - hs.c * f,
-            )
-        };
+        let at = |f: f64| (depth - hs.x_b - hs.b * f, rate_g - hs.v_b - hs.c * f);
         let (d0, r0) = at(0.0);
         if !self.active || d0 <= 0.0 {
             let st = ContactState {
@@ -553,10 +550,7 @@ impl<'a> Solver<'a> {
     fn step_on_branch(&mut self, h: f64, contact: bool) -> Result<ContactState, ImpactError> {
         let t1 = self.state.t + h;
         let start = self.snapshot();
-        let mut saturated: Option<f64> = self
-            .law_used
-            .filter(|l| l.saturated)
-            .map(|l| l.moment);
+        let mut saturated: Option<f64> = self.law_used.filter(|l| l.saturated).map(|l| l.moment);
         for attempt in 0..3 {
             let cs = self.try_step(h, contact, t1, saturated)?;
             let Some((tau, limit)) = self.controller_torque() else {
@@ -620,13 +614,13 @@ impl<'a> Solver<'a> {
                 )?
             }
             _ => self.ga.step_with(
-                    &self.model,
-                    &mut self.state,
-                    &mut self.ws,
-                    h,
-                    &self.loads,
-                    Some(&mut load),
-                )?,
+                &self.model,
+                &mut self.state,
+                &mut self.ws,
+                h,
+                &self.loads,
+                Some(&mut load),
+            )?,
         };
         if report.substeps > 1 {
             return Err(ImpactError::NotFinished {
@@ -744,7 +738,12 @@ impl Solver<'_> {
     }
 
     /// Retakes the step from `from` with length `h` and returns the contact's state.
-    fn retake(&mut self, from: &Snapshot, h: f64, contact: bool) -> Result<ContactState, ImpactError> {
+    fn retake(
+        &mut self,
+        from: &Snapshot,
+        h: f64,
+        contact: bool,
+    ) -> Result<ContactState, ImpactError> {
         self.restore(from);
         self.step(h, contact)
     }
@@ -887,7 +886,8 @@ fn run_on_mesh(
     let link = strike.link;
     let l = link.length;
     let ei = link.ei();
-    let section = Section::from_stiffness(settings.axial_slenderness * ei / (l * l), ei, link.rho_a())?;
+    let section =
+        Section::from_stiffness(settings.axial_slenderness * ei / (l * l), ei, link.rho_a())?;
     let mut spec = BeamSpec::cantilever(l, section, settings.elements, Kinematics::Corotational);
     if link.m_e > 0.0 {
         spec.point_masses.push(PointMass {
@@ -1061,7 +1061,10 @@ fn run_on_mesh(
         if steps >= settings.max_steps {
             return Err(ImpactError::NotFinished {
                 design: "exact driven CL",
-                reason: format!("max_steps = {} ran out before the onset", settings.max_steps),
+                reason: format!(
+                    "max_steps = {} ran out before the onset",
+                    settings.max_steps
+                ),
             });
         }
         let t = s.state.t;
@@ -1089,7 +1092,10 @@ fn run_on_mesh(
     let t_on = s.state.t;
     let approach = cs.rate;
     let dome_speed = cs.rate + cs.v_h;
-    s.law = strike.person.damping.law(strike.person.contact, approach.max(1e-9))?;
+    s.law = strike
+        .person
+        .damping
+        .law(strike.person.contact, approach.max(1e-9))?;
     let (deflection, vibration) = s.tip_deflection();
     let torque_on = s.joint_torque();
     let commanded = strike.drive.profile().map(|p| l * p.at(t_on).1);
@@ -1129,7 +1135,13 @@ fn run_on_mesh(
         steps += 1;
         let finished = next.delta <= 0.0 && s.state.t > t_on + 0.05 * t_c;
         if finished {
-            next = s.locate(&from, (d0.max(1e-300), h_c, next.delta), true, |c| c.delta, l)?;
+            next = s.locate(
+                &from,
+                (d0.max(1e-300), h_c, next.delta),
+                true,
+                |c| c.delta,
+                l,
+            )?;
             steps += 1;
         } else if elastic && located_peak.is_none() && rate0 > 0.0 && next.rate <= 0.0 {
             // an elastic law peaks where δ̇ = 0: located on the motion, not interpolated

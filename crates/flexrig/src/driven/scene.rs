@@ -14,9 +14,7 @@
 //! ([`DrivenTraces`]: commanded and actual joint angle and speed, motor torque, the spring's or
 //! the beam root's moment, tip deflection, contact force, indentation).
 
-use flexrig_impact::drive::{
-    Dome, Drive, DriveCommand, DriveSpec, HeadSupport, Person, Placement,
-};
+use flexrig_impact::drive::{Dome, Drive, DriveCommand, DriveSpec, HeadSupport, Person, Placement};
 use flexrig_impact::{DriveNote, DrivenOutcome, ImpactError, LinkParams};
 use flexrig_rig::{Override, RigError, overrides};
 use serde::{Deserialize, Serialize};
