@@ -1,10 +1,11 @@
 //! Driven scenes: a scene file with a `[drive]` section is a driven robot striking a person
 //! (docs/scenes.md, "Driven scenes"). Its fields are those of a strike description
 //! ([`super::strike::StrikeDescription`]: `design`, `horizon_s`, `[link]`, `[drive]`,
-//! `[person]`, `[placement]`) plus the scene's `name`, `description` and
-//! `[record] sample_rate_hz`; `flexrig run`, `flexrig sweep` and Python's `flexrig.run` run it
-//! with flexrig-impact's driven solvers (the CJ by DOP853, the CL by the exact modal integrator
-//! of the FE beam clamped to the hub), not with the Rapier pendulum rig. Overrides (`--set
+//! `[person]`, `[placement]`, optional `[dome]` and `link_model`) plus the scene's `name`,
+//! `description` and `[record] sample_rate_hz`; `flexrig run`, `flexrig sweep` and Python's
+//! `flexrig.run` run it with flexrig-impact's driven solvers by the scene's link model and dome
+//! ([`StrikeDescription::solve`]: exact by default, the CJ by DOP853 with the dome's geometry,
+//! the CL as the corotational beam on the driven hub), not with the Rapier pendulum rig. Overrides (`--set
 //! drive.command.profile.speed=3`) are applied to the text before it is parsed, so an overridden
 //! value is checked like one in the file; every error names the scene's field path, the value
 //! and what is allowed.
