@@ -30,12 +30,12 @@ use flexrig_impact::exact_link::{ExactSettings, run_exact_cl};
 use flexrig_impact::{DrivenOutcome, DrivenStrike, LinkParams, TraceSample};
 use serde::{Deserialize, Serialize};
 
-/// Most trace samples over the wait (a driven scene's `horizon_s` × `record.sample_rate_hz`
-/// budget; flexrig-impact thins a trace beyond its own cap).
-use super::scene::MAX_SAMPLES;
 use super::{check, num};
 use crate::shared::output::{ensure_dir, positive_arg, read_text, write_atomic};
 use crate::{CancelToken, Error};
+/// Most trace samples over the wait (a driven scene's `horizon_s` × `record.sample_rate_hz`
+/// budget; flexrig-impact thins a trace beyond its own cap).
+use flexrig_rig::limits::MAX_SAMPLES;
 
 /// The link design.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
