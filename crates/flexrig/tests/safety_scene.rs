@@ -35,11 +35,14 @@ fn input(scene: &str, region: &str, methods: Vec<SafetyMethod>) -> SafetyInput {
 
 /// A driven CJ held at constant speed (an ideal position source in steady motion) with a link
 /// 4e5 times stiffer than the contact, into a free chest of Table A.3's m_H = 40 kg on its
-/// body spring K = 25 N/mm (n = 1).
+/// body spring K = 25 N/mm (n = 1). The linear link model: the contact along the tip's path,
+/// the closed form's one dimension (the exact model's dome, turning with the link over the
+/// contact, moves the speed by 3.9e-4).
 const HELD_CJ_CHEST: &str = r#"
 name = "held_cj_chest"
 design = "cj"
 horizon_s = 20.0
+link_model = "linear"
 [link]
 m_r = 1.0
 length = 1.0

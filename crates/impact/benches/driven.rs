@@ -75,6 +75,11 @@ fn test_bed_ramp() -> DrivenStrike {
 }
 
 fn bench(c: &mut Criterion) {
+    // the bundled scene (assets/drives/cl_free_head.toml) by the default model
+    let s = ramp(1e8);
+    c.bench_function("exact_cl_bundled_free_head_from_rest", |b| {
+        b.iter(|| run_exact_cl(black_box(&s), &ExactSettings::DEFAULT).unwrap())
+    });
     let s = test_bed_ramp();
     c.bench_function("exact_cl_test_bed_from_rest_fast", |b| {
         b.iter(|| run_exact_cl(black_box(&s), &ExactSettings::FAST).unwrap())

@@ -1,5 +1,6 @@
 //! Prints the tables of docs/driven.md: the role-switch verdict and the spin-up benchmark.
-//! `cargo run --release -p flexrig-impact --example driven_tables`
+//! `cargo run --release -p flexrig-impact --example driven_tables` (`-- role`: the role-switch
+//! table alone)
 use flexrig_impact::role_switch::{
     DriveLevel, RoleSettings, fig6_cases, role_switch_table, test_bed_cases,
 };
@@ -41,6 +42,9 @@ fn main() {
             r0.f_test_bed_n,
             ratios.join(" | ")
         );
+    }
+    if std::env::args().nth(1).as_deref() == Some("role") {
+        return;
     }
     for omega_s in [4.0, 6.0] {
         let spec = SpinUp::simo_vu_quoc(omega_s);

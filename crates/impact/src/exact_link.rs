@@ -10,8 +10,10 @@
 //! linear 5.05). The corotational element is chosen over the ANCF element although ANCF
 //! converges faster per element in large static deflection (docs/performance-beam.md): only the
 //! corotational beam has the rotating clamp ([`GeneralizedAlpha::step_with_root`]) and the hub
-//! root, and the strike's error is set by the step, not the mesh (16 elements: peak within
-//! 1e-5 of 64).
+//! root. Its mesh error falls as 1/N² when the link bends far (the test bed's link bent by a
+//! third of its length: 2.2e-4 in peak at 16 elements, 4.4e-5 at 32) and as 1/N⁴ in small
+//! deflection (a stiff link: 4 elements within 2e-7 of 32), so the mesh is checked per strike
+//! ([`ExactSettings::mesh_tolerance`]): a stiff link stops at 4 elements, a bent one at 64–128.
 //!
 //! **The hub.** A prescribed trajectory turns the clamped root (rotating clamp); the motor's
 //! joint torque is the root's reaction plus J_m N² θ̈ + c_m N² θ̇. A controller or an
@@ -36,7 +38,8 @@
 //! ([`flexrig_beam::NodeLoad`]); the head by the same trapezoidal rule, solved with the force
 //! inside the node load (its position is affine in f over the step), so beam, contact and head
 //! advance as one implicit system. Before the contact the step is [`ExactSettings::approach_steps`]
-//! per period of the link's first mode (landing on the drive's corners); the onset is located by
+//! per the drive's shortest time scale or a tenth of the link's first period, whichever is
+//! longer (landing on the drive's corners); the onset is located by
 //! the secant method on the step length (the gap of the contact-free step from the last state);
 //! the contact is taken in [`ExactSettings::contact_steps`] steps per the expected contact
 //! duration, the separation located the same way; the peak is the vertex of the parabola
@@ -66,12 +69,14 @@ pub use crate::drive::Dome;
 /// How the exact link is solved.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct ExactSettings {
-    /// Corotational elements along the link, 2..=512.
+    /// Corotational elements along the link, 2..=512 (with a
+    /// [`ExactSettings::mesh_tolerance`], the first mesh of the check).
     pub elements: usize,
     /// The dome.
     pub dome: Dome,
-    /// Steps before the contact per the longer of the link's first bending period and the
-    /// drive's shortest time scale (ramp, loop period, arrival), 20..=1e6.
+    /// Steps before the contact per the drive's shortest time scale (ramp, loop period,
+    /// arrival) or per a tenth of the link's first bending period if that is longer,
+    /// 20..=1e6.
     pub approach_steps: usize,
     /// Steps over the expected contact duration (the head against the payload alone), 20..=1e6.
     pub contact_steps: usize,
@@ -80,37 +85,47 @@ pub struct ExactSettings {
     /// How the beam's Newton iterates (flexrig-beam's [`NewtonMethod`]: full Newton by default;
     /// modified Newton keeps the iteration matrix while it contracts).
     pub newton: NewtonMethod,
-    /// Most steps in all.
+    /// `Some(tol)`: the mesh is checked: the strike is solved on `elements`, 2×, 4×, …
+    /// elements until two successive meshes N and 2N differ by at most 3 tol (relative: peak,
+    /// time of peak after the onset against the duration, duration, onset), the 2N solution's
+    /// mesh error then being at most tol (the corotational beam converges as 1/N² or faster:
+    /// 1/N² when the link bends far, 1/N⁴ in small deflection); at most 512 elements. `None`:
+    /// `elements` as they are. In [1e-9, 1e-2].
+    pub mesh_tolerance: Option<f64>,
+    /// Most steps in all (of each mesh).
     pub max_steps: usize,
     /// `Some(dt)`: sample the motion at the steps, at most every dt \[s\].
     pub trace_every: Option<f64>,
 }
 
 impl ExactSettings {
-    /// 96 elements, 4000 steps per period before the contact and 1000 over it, modified Newton,
-    /// the test bed's dome: converged to ≤ 1e-5 in peak, duration and onset (time of peak
-    /// ≤ 2e-5 of the duration in the bent case) against 2× the elements and 4× the steps
-    /// (crates/impact/tests/exact_link.rs). About 0.3 s per strike of the test-bed link on one
-    /// core; [`ExactSettings::FAST`] is 20× cheaper at 3e-4.
+    /// The mesh checked from 4 elements up ([`ExactSettings::mesh_tolerance`] 5e-6), 500 steps
+    /// per period before the contact and 400 over it, modified Newton, the test bed's dome:
+    /// converged to ≤ 1e-5 in peak, time of peak, duration and onset against 2× the elements and
+    /// 4× the steps on the bundled driven scenes and the test bed's cases
+    /// (crates/impact/tests/exact_link.rs). A stiff link (the bundled scenes) stops at 8
+    /// elements: about 15 ms per strike from rest on one core; a link bent by a third of its
+    /// length needs 128 (docs/performance.md).
     pub const DEFAULT: ExactSettings = ExactSettings {
-        elements: 96,
+        elements: 2,
         dome: Dome::TEST_BED,
-        approach_steps: 4000,
-        contact_steps: 1000,
+        approach_steps: 1000,
+        contact_steps: 400,
         axial_slenderness: AXIAL_SLENDERNESS,
         newton: NewtonMethod::Modified,
+        mesh_tolerance: Some(5e-6),
         max_steps: 10_000_000,
         trace_every: None,
     };
 
-    /// 16 elements, 1000 steps per period before the contact and 400 over it: within 3e-4 of
-    /// [`ExactSettings::DEFAULT`] in peak, time of peak and duration on the test bed's cases
-    /// (the corotational mesh dominates: 2.4e-4 at 16 elements, 1.1e-4 at 24, 5.6e-5 at 32, as
-    /// h²), for sweeps; the bench's case.
+    /// 8 elements, unchecked, 250 steps per period before the contact and 200 over it: within
+    /// 2e-5 of converged on the bundled (stiff-link) scenes, but up to 1e-3 on a link bent by a
+    /// third of its length (the mesh; 3e-5 on a link bent by 1 %), for quick looks.
     pub const FAST: ExactSettings = ExactSettings {
-        elements: 16,
-        approach_steps: 1000,
-        contact_steps: 400,
+        elements: 8,
+        approach_steps: 250,
+        contact_steps: 200,
+        mesh_tolerance: None,
         ..ExactSettings::DEFAULT
     };
 
@@ -136,6 +151,15 @@ impl ExactSettings {
                 "axial_slenderness",
                 self.axial_slenderness,
                 "must lie in [1e3, 1e12]",
+            ));
+        }
+        if let Some(tol) = self.mesh_tolerance
+            && !(tol.is_finite() && (1e-9..=1e-2).contains(&tol))
+        {
+            return Err(ImpactError::invalid(
+                "mesh_tolerance",
+                tol,
+                "must lie in [1e-9, 1e-2]",
             ));
         }
         if !(100..=100_000_000).contains(&self.max_steps) {
@@ -774,13 +798,91 @@ fn first_frequency(link: &crate::LinkParams) -> f64 {
 }
 
 /// Runs the exact driven CL strike from the drive's start to the separation of the first
-/// contact.
+/// contact (on the mesh [`ExactSettings::mesh_tolerance`] asks for: see
+/// [`run_exact_cl_meshed`]).
 pub fn run_exact_cl(
     strike: &DrivenStrike,
     settings: &ExactSettings,
 ) -> Result<DrivenOutcome, ImpactError> {
+    run_exact_cl_meshed(strike, settings).map(|(o, _)| o)
+}
+
+/// Largest relative change between the strikes on two meshes: peak force, time of peak after
+/// the onset (against the duration), duration, onset.
+fn mesh_change(a: &DrivenOutcome, b: &DrivenOutcome) -> f64 {
+    let (x, y) = (&a.contact, &b.contact);
+    let rel = |p: f64, q: f64| (p - q).abs() / q.abs().max(f64::MIN_POSITIVE);
+    [
+        rel(x.peak_force_n, y.peak_force_n),
+        ((x.time_of_peak_s - x.onset_s) - (y.time_of_peak_s - y.onset_s)).abs()
+            / y.duration_s.max(f64::MIN_POSITIVE),
+        rel(x.duration_s, y.duration_s),
+        rel(x.onset_s, y.onset_s),
+    ]
+    .into_iter()
+    .fold(0.0, f64::max)
+}
+
+/// [`run_exact_cl`] and the number of elements of the mesh it was solved on. With a
+/// [`ExactSettings::mesh_tolerance`] the strike is solved on `elements`, 2×, 4×, … elements
+/// until two successive meshes agree to 3 tol (Richardson's estimate for a 1/N² error: the
+/// finer mesh is then within tol); the finer one's outcome is returned, its `work` the steps of
+/// every mesh.
+pub fn run_exact_cl_meshed(
+    strike: &DrivenStrike,
+    settings: &ExactSettings,
+) -> Result<(DrivenOutcome, usize), ImpactError> {
     strike.validate()?;
     settings.validate()?;
+    let Some(tol) = settings.mesh_tolerance else {
+        return Ok((run_on_mesh(strike, settings)?, settings.elements));
+    };
+    let mut n = settings.elements;
+    let mut coarse = run_on_mesh(
+        strike,
+        &ExactSettings {
+            trace_every: None,
+            ..*settings
+        },
+    )?;
+    let mut work = coarse.work;
+    let mut change = f64::INFINITY;
+    loop {
+        let m = 2 * n;
+        if m > 512 {
+            return Err(ImpactError::NotFinished {
+                design: "exact driven CL",
+                reason: format!(
+                    "the link's mesh did not converge to {tol:e} by 512 elements ({n} and {} \
+                     elements differ by {change:.2e})",
+                    n / 2
+                ),
+            });
+        }
+        let mut fine = run_on_mesh(
+            strike,
+            &ExactSettings {
+                elements: m,
+                ..*settings
+            },
+        )?;
+        work += fine.work;
+        change = mesh_change(&coarse, &fine);
+        if change <= 3.0 * tol {
+            fine.work = work;
+            return Ok((fine, m));
+        }
+        fine.trace.clear();
+        coarse = fine;
+        n = m;
+    }
+}
+
+/// The strike on `settings.elements` elements.
+fn run_on_mesh(
+    strike: &DrivenStrike,
+    settings: &ExactSettings,
+) -> Result<DrivenOutcome, ImpactError> {
     let link = strike.link;
     let l = link.length;
     let ei = link.ei();
@@ -914,9 +1016,12 @@ pub fn run_exact_cl(
         ));
     }
     tracer.offer(0.0, true, || s.sample(&cs));
-    // the approach: approach_steps per the longer of the link's first period and the drive's
-    // shortest time scale (a ramp, the loop's period with the rigid link, the arrival), so a
-    // soft link's ringing and a stiff link's drive are both resolved
+    // the approach: approach_steps per the drive's shortest time scale (a ramp, the loop's
+    // period with the rigid link, the arrival) or per a tenth of the link's first period if
+    // that is longer: the drive's motion and a soft link's ringing (its period longer than the
+    // drive's scale) are resolved, a stiff link's fast, small ringing is not chased (measured:
+    // the test bed's link bent by a 0.5 s ramp, per 0.5 s instead of per its 1.24 s period,
+    // 1000 steps: 2e-5 instead of 6e-5 in peak)
     let period = std::f64::consts::TAU / first_frequency(&link);
     let j_link = j_rotor + (link.m_r / 3.0 + link.m_e) * l * l;
     let mut drive_scale = strike.horizon_s;
@@ -938,7 +1043,7 @@ pub fn run_exact_cl(
     if speed_scale > 0.0 {
         drive_scale = drive_scale.min((phi_c - angle0).abs().max(1e-3) / speed_scale);
     }
-    let h_a = period.max(drive_scale) / settings.approach_steps as f64;
+    let h_a = drive_scale.max(0.1 * period) / settings.approach_steps as f64;
     let mut corners = strike.drive.breakpoints();
     corners.sort_by(f64::total_cmp);
     let mut steps = 0usize;

@@ -27,8 +27,9 @@ use flexrig_contact::{DampingSpec, Hertz};
 
 use crate::ImpactError;
 use crate::drive::{Drive, Gains, HeadSupport, Motor, Person, Placement, Profile};
-use crate::driven_cj::{CjSettings, run_driven_cj};
+use crate::driven_cj::{CjSettings, run_driven_cj, run_exact_cj};
 use crate::driven_cl::{ClDriveSettings, run_driven_cl};
+use crate::exact_link::{ExactSettings, run_exact_cl};
 use crate::setup::LinkParams;
 use crate::strike::DrivenStrike;
 
@@ -81,14 +82,19 @@ pub struct RoleSettings {
     pub damping_ratio: f64,
     /// The drive levels, stiffest first.
     pub levels: Vec<DriveLevel>,
-    /// The CL's settings.
+    /// `Some`: the geometrically exact link (the default; the CL by these settings, the CJ
+    /// with their dome); `None`: the linear option (the modal CL by `cl`, the arc-coordinate
+    /// CJ).
+    pub exact: Option<ExactSettings>,
+    /// The linear CL's settings.
     pub cl: ClDriveSettings,
     /// The CJ's settings.
     pub cj: CjSettings,
 }
 
 impl RoleSettings {
-    /// ρ = 1, ζ = 0.7, prescribed, κ = 1e4, 1e2, 1, 1e-2, torque-free.
+    /// ρ = 1, ζ = 0.7, prescribed, κ = 1e4, 1e2, 1, 1e-2, torque-free; the exact link at its
+    /// default settings with the test bed's dome.
     pub fn standard() -> RoleSettings {
         RoleSettings {
             rotor_ratio: 1.0,
@@ -101,6 +107,7 @@ impl RoleSettings {
                 DriveLevel::Pd { kappa: 1e-2 },
                 DriveLevel::TorqueFree,
             ],
+            exact: Some(ExactSettings::DEFAULT),
             cl: ClDriveSettings::DEFAULT,
             cj: CjSettings::DEFAULT,
         }
@@ -231,9 +238,11 @@ fn peak(
         placement: Placement::Angle { angle: 0.0 },
         horizon_s: 1.0,
     };
-    let out = match design {
-        Design::Cj => run_driven_cj(&strike, &settings.cj)?,
-        Design::Cl => run_driven_cl(&strike, &settings.cl)?,
+    let out = match (design, &settings.exact) {
+        (Design::Cj, Some(exact)) => run_exact_cj(&strike, &settings.cj, &exact.dome)?,
+        (Design::Cl, Some(exact)) => run_exact_cl(&strike, exact)?,
+        (Design::Cj, None) => run_driven_cj(&strike, &settings.cj)?,
+        (Design::Cl, None) => run_driven_cl(&strike, &settings.cl)?,
     };
     Ok(out.contact.peak_force_n)
 }

@@ -7,7 +7,8 @@ use std::path::PathBuf;
 use flexrig::driven::role_switch::{RoleSwitchOptions, run_with_figures as run_role_switch};
 use flexrig::driven::spin_up::{SpinUpOptions, run_with_figures as run_spin_up};
 use flexrig::driven::strike::{
-    StrikeDescription, StrikeDesign, StrikeFlags, StrikeOptions, parse_support, run as run_strike,
+    LinkModel, StrikeDescription, StrikeDesign, StrikeFlags, StrikeOptions, parse_support,
+    run as run_strike,
 };
 use flexrig::{CancelToken, Error, fronts};
 use flexrig_impact::ImpactError;
@@ -101,7 +102,7 @@ pub fn strike<'py>(
 /// serialised `StrikeResult` (a dict). Errors name the keyword argument.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (design, support, m_r, length, k_delta, m_e, rotor_inertia, gear_ratio, friction, speed, ramp_time, kp, kd, torque_limit, m_h, k_c, n, settle, horizon, trace_every, out))]
+#[pyo3(signature = (design, support, m_r, length, k_delta, m_e, rotor_inertia, gear_ratio, friction, speed, ramp_time, kp, kd, torque_limit, m_h, k_c, n, settle, horizon, dome_radius, dome_standoff, link_model, trace_every, out))]
 pub fn strike_flags<'py>(
     py: Python<'py>,
     design: &str,
@@ -123,6 +124,9 @@ pub fn strike_flags<'py>(
     n: f64,
     settle: f64,
     horizon: f64,
+    dome_radius: f64,
+    dome_standoff: f64,
+    link_model: &str,
     trace_every: Option<f64>,
     out: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyAny>> {
@@ -146,6 +150,9 @@ pub fn strike_flags<'py>(
         n,
         settle,
         horizon,
+        dome_radius,
+        dome_standoff,
+        link_model: LinkModel::parse("--link-model", link_model).map_err(flag_error)?,
     };
     let description = flags.description().map_err(|e| match e {
         Error::InvalidArgument { .. } => flag_error(e),
@@ -185,6 +192,11 @@ pub fn strike_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
         "gear_ratio": d.gear_ratio, "friction": d.friction, "speed": d.speed,
         "ramp_time": d.ramp_time, "kp": d.kp, "kd": d.kd, "torque_limit": d.torque_limit,
         "m_h": d.m_h, "k_c": d.k_c, "n": d.n, "settle": d.settle, "horizon": d.horizon,
+        "dome_radius": d.dome_radius, "dome_standoff": d.dome_standoff,
+        "link_model": match d.link_model {
+            LinkModel::Exact => "exact",
+            LinkModel::Linear => "linear",
+        },
     });
     json_to_py(py, &v)
 }
@@ -203,7 +215,7 @@ pub fn spin_up_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
 /// (rows as a list of dicts, csv path, the figures' paths).
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (out, kappa, rotor_ratio, damping_ratio, fig6, size, format, dpi))]
+#[pyo3(signature = (out, kappa, rotor_ratio, damping_ratio, fig6, size, format, dpi, link_model))]
 pub fn role_switch<'py>(
     py: Python<'py>,
     out: PathBuf,
@@ -214,12 +226,14 @@ pub fn role_switch<'py>(
     size: &str,
     format: Vec<String>,
     dpi: f64,
+    link_model: &str,
 ) -> PyResult<(Bound<'py, PyAny>, PathBuf, Vec<PathBuf>)> {
     let options = RoleSwitchOptions {
         kappas: kappa,
         rotor_ratio,
         damping_ratio,
         fig6,
+        link_model: LinkModel::parse("--link-model", link_model).map_err(flag_error)?,
     };
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
     let cancel = CancelToken::new();

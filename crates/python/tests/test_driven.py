@@ -76,9 +76,13 @@ def test_role_switch_equals_the_cli_csv_bit_for_bit(cli, tmp_path):
             assert list(df[column]) == [r[column] for r in rows], column
         else:
             assert np.array_equal(df[column].to_numpy(), np.array([float(r[column]) for r in rows])), column
-    # the test bed's link: the drive does not matter (docs/driven.md), prescribed exactly 1
-    assert np.all(np.abs(df.ratio - 1.0) <= 1e-3)
-    assert np.all(np.abs(df.ratio[df.drive == "prescribed"] - 1.0) <= 1e-6)
+    # the test bed's link by the exact link: the drive does not matter (docs/driven.md: every
+    # drive's ratio the prescribed one's), the driven link turning through the contact within
+    # 4e-3 of the rig's struck link (CL 0.9965-0.9971)
+    assert np.all(np.abs(df.ratio - 1.0) <= 4e-3)
+    for (_, _), group in df.groupby(["case", "design"], sort=False):
+        prescribed = group.ratio[group.drive == "prescribed"].iloc[0]
+        assert np.all(np.abs(group.ratio / prescribed - 1.0) <= 1e-6)
 
 
 @pytest.mark.parametrize(

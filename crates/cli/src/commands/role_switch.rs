@@ -35,6 +35,11 @@ pub struct RoleSwitchArgs {
     /// Only the test bed's cases (leave out the Fig. 6 cases).
     #[arg(long)]
     pub no_fig6: bool,
+    /// The link's model: exact (the link bends and turns geometrically exactly; the whole table
+    /// takes minutes) or linear (seconds; every ratio within 4.3e-3 of the exact one,
+    /// docs/driven.md).
+    #[arg(long, value_enum, default_value_t = super::strike::LinkModelArg::Exact)]
+    pub link_model: super::strike::LinkModelArg,
     /// Print JSON instead of the table.
     #[arg(long)]
     pub json: bool,
@@ -50,6 +55,7 @@ pub fn run(args: &RoleSwitchArgs, out: &mut dyn Write, cancel: &CancelToken) -> 
         rotor_ratio: args.rotor_ratio,
         damping_ratio: args.damping_ratio,
         fig6: !args.no_fig6,
+        link_model: args.link_model.model(),
     };
     let r = run_table(&options, &args.out, &args.figure.options()?, cancel)?;
     if args.json {

@@ -29,6 +29,9 @@ pub struct RoleSwitchOptions {
     pub damping_ratio: f64,
     /// Include the Fig. 6 cases (n = 1 and 2) besides the test bed's (`--no-fig6` clears it).
     pub fig6: bool,
+    /// The link's model (`--link-model`; exact: the whole table in about 2.5 min on 2 cores;
+    /// linear: 8 s, every ratio within 4.3e-3 of the exact one, docs/driven.md).
+    pub link_model: super::strike::LinkModel,
 }
 
 impl Default for RoleSwitchOptions {
@@ -38,6 +41,7 @@ impl Default for RoleSwitchOptions {
             rotor_ratio: 1.0,
             damping_ratio: 0.7,
             fig6: true,
+            link_model: super::strike::LinkModel::Exact,
         }
     }
 }
@@ -115,6 +119,9 @@ pub const MAX_DAMPING_RATIO: f64 = 1e3;
 
 fn settings(options: &RoleSwitchOptions) -> Result<RoleSettings, Error> {
     let mut settings = RoleSettings::standard();
+    if options.link_model == super::strike::LinkModel::Linear {
+        settings.exact = None;
+    }
     // J_R = ratio · m_r L²/3 must lie in the free hub's [1e-12, 1e12] kg·m² for every case's
     // link (the Fig. 6 and test-bed links lie within 1e-3..1e2 kg·m²): checked before the work
     settings.rotor_ratio = range_arg(

@@ -1,10 +1,11 @@
 //! Driven scenes: a scene file with a `[drive]` section is a driven robot striking a person
 //! (docs/scenes.md, "Driven scenes"). Its fields are those of a strike description
 //! ([`super::strike::StrikeDescription`]: `design`, `horizon_s`, `[link]`, `[drive]`,
-//! `[person]`, `[placement]`) plus the scene's `name`, `description` and
-//! `[record] sample_rate_hz`; `flexrig run`, `flexrig sweep` and Python's `flexrig.run` run it
-//! with flexrig-impact's driven solvers (the CJ by DOP853, the CL by the exact modal integrator
-//! of the FE beam clamped to the hub), not with the Rapier pendulum rig. Overrides (`--set
+//! `[person]`, `[placement]`, optional `[dome]` and `link_model`) plus the scene's `name`,
+//! `description` and `[record] sample_rate_hz`; `flexrig run`, `flexrig sweep` and Python's
+//! `flexrig.run` run it with flexrig-impact's driven solvers by the scene's link model and dome
+//! ([`StrikeDescription::solve`]: exact by default, the CJ by DOP853 with the dome's geometry,
+//! the CL as the corotational beam on the driven hub), not with the Rapier pendulum rig. Overrides (`--set
 //! drive.command.profile.speed=3`) are applied to the text before it is parsed, so an overridden
 //! value is checked like one in the file; every error names the scene's field path, the value
 //! and what is allowed.
@@ -14,12 +15,12 @@
 //! ([`DrivenTraces`]: commanded and actual joint angle and speed, motor torque, the spring's or
 //! the beam root's moment, tip deflection, contact force, indentation).
 
-use flexrig_impact::drive::{Drive, DriveCommand, DriveSpec, HeadSupport, Person, Placement};
+use flexrig_impact::drive::{Dome, Drive, DriveCommand, DriveSpec, HeadSupport, Person, Placement};
 use flexrig_impact::{DriveNote, DrivenOutcome, ImpactError, LinkParams};
 use flexrig_rig::{Override, RigError, overrides};
 use serde::{Deserialize, Serialize};
 
-use super::strike::{StrikeDescription, StrikeDesign, StrikeOptions};
+use super::strike::{LinkModel, StrikeDescription, StrikeDesign, StrikeOptions};
 use crate::{CancelToken, Error};
 
 /// The sample rate of a driven scene's trace when `[record]` does not give one \[Hz\].
@@ -65,6 +66,10 @@ struct DrivenSceneFile {
     drive: DriveSpec,
     person: Person,
     placement: Placement,
+    #[serde(default)]
+    link_model: LinkModel,
+    #[serde(default = "super::strike::test_bed_dome")]
+    dome: Dome,
 }
 
 /// A validated driven scene.
@@ -153,8 +158,11 @@ impl DrivenScene {
             drive,
             person: file.person,
             placement: file.placement,
+            link_model: file.link_model,
+            dome: file.dome,
         };
         strike.strike().validate().map_err(scene_error)?;
+        strike.dome.validate().map_err(scene_error)?;
         let sample_rate_hz = match file.record {
             Some(r) => {
                 let (lo, hi) = SAMPLE_RATE_RANGE;
@@ -492,7 +500,7 @@ pub fn run(scene: &DrivenScene, cancel: &CancelToken) -> Result<DrivenRun, Error
             &traces.indentation_m,
             head_moves.then_some(traces.head_acceleration_mps2.as_slice()),
             (c.onset_s, end),
-            crate::shared::severity::paper_dome_radius_m()?,
+            s.dome.radius_m,
         )?)
     } else {
         None
@@ -810,6 +818,9 @@ mod tests {
 name = "held_cj_linear"
 design = "cj"
 horizon_s = 1.0
+# the contact along the tip's path (the half-sine's 1-D model; the exact model's dome turns
+# with the link by 0.04 rad over the pulse)
+link_model = "linear"
 [link]
 m_r = 1.0
 length = 1.0

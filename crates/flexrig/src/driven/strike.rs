@@ -5,16 +5,28 @@
 //! balance, notes) and optionally writes the motion sampled along the run as a CSV.
 //!
 //! The description holds flexrig-impact's [`DrivenStrike`] fields (`horizon_s`, `[link]`,
-//! `[drive]`, `[person]`, `[placement]`) and the `design` (`"cj"` or `"cl"`); every field is checked, and
-//! an error names it as written in the file (`drive.motor.gear_ratio`, `person.m_h`, …).
+//! `[drive]`, `[person]`, `[placement]`), the `design` (`"cj"` or `"cl"`), the dome on the
+//! link's tip (`[dome]`: `radius_m`, `standoff_m`; absent: the test bed's) and the link's model
+//! (`link_model`: `"exact"`, the default, or `"linear"`); every field is checked, and an error
+//! names it as written in the file (`drive.motor.gear_ratio`, `person.m_h`, …).
+//!
+//! **The models.** `exact` (the default): the CL link is flexrig-impact's geometrically exact
+//! corotational beam on the driven hub ([`run_exact_cl`], its mesh checked to 5e-6), the CJ link
+//! the rigid link on its spring with the dome's exact geometry ([`run_exact_cj`]), both with the
+//! description's dome. `linear`: the linear modal CL ([`run_driven_cl`]) and the
+//! arc-coordinate CJ ([`run_driven_cj`]), the contact along the tip's path, no dome: faster,
+//! within 1.1e-4 of the exact peak on the bundled stiff-link drives but 1.1e-3 to 2.5e-2 off in
+//! the peak and up to 9 % in the contact's duration on the test bed's soft link turning at
+//! 3 rad/s (docs/driven.md, "The linear option's error").
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use flexrig_contact::{DampingSpec, Hertz};
-use flexrig_impact::drive::{Drive, Gains, HeadSupport, Motor, Person, Placement, Profile};
-use flexrig_impact::driven_cj::{CjSettings, run_driven_cj};
+use flexrig_impact::drive::{Dome, Drive, Gains, HeadSupport, Motor, Person, Placement, Profile};
+use flexrig_impact::driven_cj::{CjSettings, run_driven_cj, run_exact_cj};
 use flexrig_impact::driven_cl::{ClDriveSettings, run_driven_cl};
+use flexrig_impact::exact_link::{ExactSettings, run_exact_cl};
 use flexrig_impact::{DrivenOutcome, DrivenStrike, LinkParams, TraceSample};
 use serde::{Deserialize, Serialize};
 
@@ -35,12 +47,48 @@ pub enum StrikeDesign {
     Cl,
 }
 
+/// How the link is modelled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LinkModel {
+    /// Geometrically exact, with the dome (the default): the CL link a corotational beam on the
+    /// driven hub, the CJ link rigid on its spring.
+    #[default]
+    Exact,
+    /// The faster linear option: the linear modal CL beam, the CJ in the tip's arc coordinate,
+    /// the contact along the tip's path (its error against the exact model: the module's doc).
+    Linear,
+}
+
+impl LinkModel {
+    /// `exact` or `linear` as the model; an error names `flag`.
+    pub fn parse(flag: &str, word: &str) -> Result<LinkModel, Error> {
+        match word {
+            "exact" => Ok(LinkModel::Exact),
+            "linear" => Ok(LinkModel::Linear),
+            _ => Err(Error::InvalidArgument {
+                arg: flag.into(),
+                value: word.into(),
+                allowed: "one of exact, linear".into(),
+            }),
+        }
+    }
+}
+
+/// The test bed's dome, a description's dome when it gives none.
+pub fn test_bed_dome() -> Dome {
+    Dome::TEST_BED
+}
+
 /// A drive description: the design and the strike.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StrikeDescription {
     /// CJ or CL.
     pub design: StrikeDesign,
+    /// The link's model (`link_model`; absent: exact).
+    #[serde(default)]
+    pub link_model: LinkModel,
     /// Longest time to wait for the link to arrive \[s\].
     pub horizon_s: f64,
     /// The link (m_r, length, k_delta, m_e).
@@ -51,6 +99,10 @@ pub struct StrikeDescription {
     pub person: Person,
     /// Where the person stands (`[placement]`).
     pub placement: Placement,
+    /// The dome on the link's tip (`[dome]`: `radius_m`, `standoff_m`; absent: the test bed's,
+    /// R = 71.5 mm with its apex 30 mm ahead of the link's axis).
+    #[serde(default = "test_bed_dome")]
+    pub dome: Dome,
 }
 
 impl StrikeDescription {
@@ -61,8 +113,46 @@ impl StrikeDescription {
             value: "(drive description)".into(),
             allowed: e.message().trim().to_string(),
         })?;
-        d.strike().validate()?;
+        d.validate()?;
         Ok(d)
+    }
+
+    /// Checks every field (the strike's and the dome's).
+    pub fn validate(&self) -> Result<(), Error> {
+        self.strike().validate()?;
+        self.dome.validate()?;
+        Ok(())
+    }
+
+    /// Solves the strike by the description's link model with the description's dome,
+    /// sampling the motion every `trace_every` seconds if given (the integrators' default
+    /// settings otherwise: [`ExactSettings::DEFAULT`], [`CjSettings::DEFAULT`],
+    /// [`ClDriveSettings::DEFAULT`]).
+    pub fn solve(&self, trace_every: Option<f64>) -> Result<DrivenOutcome, Error> {
+        let strike = self.strike();
+        let cj = CjSettings {
+            trace_every,
+            ..CjSettings::DEFAULT
+        };
+        Ok(match (self.design, self.link_model) {
+            (StrikeDesign::Cl, LinkModel::Exact) => run_exact_cl(
+                &strike,
+                &ExactSettings {
+                    trace_every,
+                    dome: self.dome,
+                    ..ExactSettings::DEFAULT
+                },
+            )?,
+            (StrikeDesign::Cj, LinkModel::Exact) => run_exact_cj(&strike, &cj, &self.dome)?,
+            (StrikeDesign::Cl, LinkModel::Linear) => run_driven_cl(
+                &strike,
+                &ClDriveSettings {
+                    trace_every,
+                    ..ClDriveSettings::DEFAULT
+                },
+            )?,
+            (StrikeDesign::Cj, LinkModel::Linear) => run_driven_cj(&strike, &cj)?,
+        })
     }
 
     /// The physics crate's set-up.
@@ -156,6 +246,12 @@ pub struct StrikeFlags {
     pub settle: f64,
     /// Longest wait for the link to arrive \[s\] (`--horizon`).
     pub horizon: f64,
+    /// The dome's radius R \[m\] (`--dome-radius`).
+    pub dome_radius: f64,
+    /// How far the dome's apex sits ahead of the link's axis \[m\] (`--dome-standoff`).
+    pub dome_standoff: f64,
+    /// The link's model (`--link-model`).
+    pub link_model: LinkModel,
 }
 
 impl StrikeFlags {
@@ -181,6 +277,9 @@ impl StrikeFlags {
         n: 2.0,
         settle: 0.3,
         horizon: 5.0,
+        dome_radius: Dome::TEST_BED.radius_m,
+        dome_standoff: Dome::TEST_BED.standoff_m,
+        link_model: LinkModel::Exact,
     };
 
     /// The drive description these numbers make, checked; an error names the flag
@@ -211,6 +310,8 @@ impl StrikeFlags {
             "n" if !field.starts_with("drive") => ("--n", self.n),
             "settle" => ("--settle", self.settle),
             "horizon_s" => ("--horizon", self.horizon),
+            "radius_m" => ("--dome-radius", self.dome_radius),
+            "standoff_m" => ("--dome-standoff", self.dome_standoff),
             _ => return None,
         })
     }
@@ -258,6 +359,11 @@ impl StrikeFlags {
         )?;
         let d = StrikeDescription {
             design: self.design,
+            link_model: self.link_model,
+            dome: Dome {
+                radius_m: self.dome_radius,
+                standoff_m: self.dome_standoff,
+            },
             horizon_s: self.horizon,
             link: LinkParams {
                 m_r: self.m_r,
@@ -277,7 +383,7 @@ impl StrikeFlags {
                 settle: self.settle,
             },
         };
-        d.strike().validate()?;
+        d.validate()?;
         Ok(d)
     }
 }
@@ -295,6 +401,8 @@ fn rename_fields(text: &str) -> String {
         ("link.length", "--length"),
         ("horizon_s", "--horizon"),
         ("gear_ratio²", "--gear-ratio²"),
+        ("dome.radius_m", "--dome-radius"),
+        ("dome.standoff_m", "--dome-standoff"),
     ];
     let mut out = text.to_string();
     for (from, to) in WORDS {
@@ -353,8 +461,8 @@ pub struct StrikeResult {
     pub trace_csv: Option<PathBuf>,
 }
 
-/// Runs the strike (the default integrator settings of flexrig-impact: CJ DOP853 rtol 1e-10, CL
-/// tol 1e-6 on the graded mesh up to L/48).
+/// Runs the strike by the description's link model and dome
+/// ([`StrikeDescription::solve`]).
 pub fn run(
     description: &StrikeDescription,
     options: &StrikeOptions,
@@ -382,23 +490,7 @@ pub fn run(
         }
     }
     check(cancel)?;
-    let strike = description.strike();
-    let outcome = match description.design {
-        StrikeDesign::Cj => run_driven_cj(
-            &strike,
-            &CjSettings {
-                trace_every,
-                ..CjSettings::DEFAULT
-            },
-        )?,
-        StrikeDesign::Cl => run_driven_cl(
-            &strike,
-            &ClDriveSettings {
-                trace_every,
-                ..ClDriveSettings::DEFAULT
-            },
-        )?,
-    };
+    let outcome = description.solve(trace_every)?;
     check(cancel)?;
     let trace_csv = match (&options.out, trace_every) {
         (Some(dir), Some(_)) => {

@@ -719,41 +719,63 @@ fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
 }
 
 /// A driven CL strike (assets/drives/cl_free_head.toml: PD ramp to 2 rad/s, contact 0.3 s after,
-/// stiff link, free 4 kg head), from the drive's start to the separation, the eigen-solve
-/// included; error of the peak against the same run at tol 1e-8, approach 1e-7 (docs/driven.md:
-/// converged to ≤ 2e-6 there). Model `driven`: in the table and JSON, not plotted.
+/// stiff link, free 4 kg head), from the drive's start to the separation: the exact link (the
+/// default model) at its default settings (the mesh check included) and fast settings, error of
+/// the peak against the exact link on 2× the checked mesh with 4× the steps (docs/driven.md:
+/// converged to ≤ 2e-6 there); the linear option at tol 1e-6 against the same reference (its
+/// model error). Model `driven`: in the table and JSON, not plotted.
 fn driven(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
     use flexrig_impact::driven_cl::{ClDriveSettings, run_driven_cl};
+    use flexrig_impact::exact_link::{ExactSettings, run_exact_cl, run_exact_cl_meshed};
     let description = crate::driven::strike::StrikeDescription::parse(
         include_str!("../../../../assets/drives/cl_free_head.toml"),
         "assets/drives/cl_free_head.toml",
     )?;
     let strike = description.strike();
-    let fine = ClDriveSettings {
-        tol: 1e-8,
-        approach_tol: 1e-7,
-        ..ClDriveSettings::DEFAULT
+    let default = ExactSettings {
+        dome: description.dome,
+        ..ExactSettings::DEFAULT
     };
-    let reference = run_driven_cl(&strike, &fine)?.contact.peak_force_n;
-    let tols: &[f64] = if quick { &[1e-6] } else { &[1e-4, 1e-6] };
-    for &tol in tols {
-        let settings = ClDriveSettings {
-            tol,
-            approach_tol: 10.0 * tol,
-            ..ClDriveSettings::DEFAULT
-        };
-        let outcome = run_driven_cl(&strike, &settings)?;
+    let (_, elements) = run_exact_cl_meshed(&strike, &default)?;
+    let fine = ExactSettings {
+        elements: 2 * elements,
+        approach_steps: 4 * default.approach_steps,
+        contact_steps: 4 * default.contact_steps,
+        mesh_tolerance: None,
+        ..default
+    };
+    let reference = run_exact_cl(&strike, &fine)?.contact.peak_force_n;
+    let samples = if quick { 3 } else { 5 };
+    let fast = ExactSettings {
+        dome: description.dome,
+        ..ExactSettings::FAST
+    };
+    for (label, settings) in [
+        ("default (mesh checked)", default),
+        ("fast (8 elements)", fast),
+    ] {
+        let outcome = run_exact_cl(&strike, &settings)?;
         rows.push(Row {
             model: "driven".into(),
-            method: "driven CL strike (cl_free_head.toml), drive start to separation".into(),
-            setting: format!("tol {tol:.0e}, approach {:.0e}", 10.0 * tol),
+            method: "driven CL strike, exact link (cl_free_head.toml), drive start to separation"
+                .into(),
+            setting: label.into(),
             error: (outcome.contact.peak_force_n - reference).abs() / reference,
-            seconds: median_seconds(if quick { 3 } else { 5 }, 1, || {
-                run_driven_cl(&strike, &settings)
-            }),
+            seconds: median_seconds(samples, 1, || run_exact_cl(&strike, &settings)),
             evaluations: Some(outcome.work),
         });
     }
+    let settings = ClDriveSettings::DEFAULT;
+    let outcome = run_driven_cl(&strike, &settings)?;
+    rows.push(Row {
+        model: "driven".into(),
+        method: "driven CL strike, linear option (cl_free_head.toml), drive start to separation"
+            .into(),
+        setting: "tol 1e-6, approach 1e-5".into(),
+        error: (outcome.contact.peak_force_n - reference).abs() / reference,
+        seconds: median_seconds(samples, 1, || run_driven_cl(&strike, &settings)),
+        evaluations: Some(outcome.work),
+    });
     driven_test_bed(rows, quick)
 }
 

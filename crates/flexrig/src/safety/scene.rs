@@ -7,8 +7,10 @@
 //! the commanded joint speed ω_c of the profile (`drive.command.profile.speed`), quoted as the
 //! commanded tip speed v = L ω_c; the whole driven strike (the ramp, the settling, the approach
 //! and the contact with the drive's torque acting) is simulated at each speed by flexrig-impact's
-//! driven solvers (the CJ by DOP853 at `cj_rtol`, the CL by the exact modal integrator at
-//! `tol` in the contact and 10 × `tol` before it), and the speed at which the first contact's
+//! driven solvers by the scene's link model with the scene's dome (exact, the default: the CJ
+//! by DOP853 at `cj_rtol`, the CL as the corotational beam at its default settings; the linear
+//! option: the CL by the exact modal integrator at `tol` in the contact and 10 × `tol` before
+//! it), and the speed at which the first contact's
 //! peak force reaches the region's force limit (or the force at which the mean pressure of the
 //! contact-area model reaches the pressure limit) is found by the Illinois root search on ln v
 //! to `root_rtol` ([`crate::safety::simulation::speed_at_ratio`]).
@@ -20,14 +22,15 @@
 //! any run.
 
 use flexrig_impact::drive::{Drive, DriveCommand, HeadSupport, Profile};
-use flexrig_impact::driven_cj::{CjSettings, run_driven_cj};
+use flexrig_impact::driven_cj::{CjSettings, run_driven_cj, run_exact_cj};
 use flexrig_impact::driven_cl::{ClDriveSettings, run_driven_cl};
+use flexrig_impact::exact_link::{ExactSettings, run_exact_cl};
 use flexrig_impact::{DrivenOutcome, DrivenStrike};
 use flexrig_safety::{ContactKind, EnergyContact, Limits, PressureCrossing};
 
 use crate::Error;
 use crate::driven::scene::{DrivenScene, note_text};
-use crate::driven::strike::StrikeDesign;
+use crate::driven::strike::{LinkModel, StrikeDesign};
 use crate::safety::simulation::{SceneSimulation, SimulationSettings, speed_at_ratio};
 
 /// A driven scene loaded for the safety verdict.
@@ -146,19 +149,36 @@ impl SafetyScene {
         Ok(strike)
     }
 
-    /// The driven strike at commanded tip speed `v` [m/s] with the run tolerances of
-    /// `settings` (`cj_rtol` for the CJ; `tol` in the CL's contact, 10 × `tol` before it).
+    /// The driven strike at commanded tip speed `v` [m/s] by the scene's link model and dome,
+    /// with the run tolerances of `settings` (`cj_rtol` for the CJ; the linear CL: `tol` in the
+    /// contact, 10 × `tol` before it).
     pub fn run_at(&self, v: f64, settings: &SimulationSettings) -> Result<DrivenOutcome, Error> {
         let strike = self.strike_at(v)?;
-        Ok(match self.scene.strike.design {
-            StrikeDesign::Cj => run_driven_cj(
+        let d = &self.scene.strike;
+        Ok(match (d.design, d.link_model) {
+            (StrikeDesign::Cj, LinkModel::Exact) => run_exact_cj(
+                &strike,
+                &CjSettings {
+                    rtol: settings.cj_rtol,
+                    ..CjSettings::DEFAULT
+                },
+                &d.dome,
+            )?,
+            (StrikeDesign::Cl, LinkModel::Exact) => run_exact_cl(
+                &strike,
+                &ExactSettings {
+                    dome: d.dome,
+                    ..ExactSettings::DEFAULT
+                },
+            )?,
+            (StrikeDesign::Cj, LinkModel::Linear) => run_driven_cj(
                 &strike,
                 &CjSettings {
                     rtol: settings.cj_rtol,
                     ..CjSettings::DEFAULT
                 },
             )?,
-            StrikeDesign::Cl => run_driven_cl(
+            (StrikeDesign::Cl, LinkModel::Linear) => run_driven_cl(
                 &strike,
                 &ClDriveSettings {
                     tol: settings.tol,

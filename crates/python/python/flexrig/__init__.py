@@ -740,6 +740,9 @@ def strike(
     n: float = 2.0,
     settle: float = 0.3,
     horizon: float = 5.0,
+    dome_radius: float = 0.0715,
+    dome_standoff: float = 0.030,
+    link_model: str = "exact",
     trace_every: Optional[float] = None,
     out: Optional[Union[str, "os.PathLike[str]"]] = None,
 ) -> Dict[str, Any]:
@@ -749,7 +752,11 @@ def strike(
     onset_time_s, peak_force_n, time_of_peak_s, duration_s; approach speed, pre-impact deflection,
     joint torques, ``energy``, ``notes``, ``steps``) and, with ``trace_every`` [s], ``trace``: a
     DataFrame of the motion (columns :data:`STRIKE_TRACE_COLUMNS`; written as strike_trace.csv
-    into ``out`` if given). A bad field raises :class:`InputError` naming it
+    into ``out`` if given). ``link_model`` "exact" (the default: the link bends and turns
+    geometrically exactly, the dome of ``dome_radius`` [m] with its apex ``dome_standoff`` [m]
+    ahead of the link's axis in the contact) or "linear" (faster: within 1.1e-4 of the exact
+    peak on the default stiff link, up to 2.5 % off in the peak and 9 % in the duration on a
+    soft link that bends). A bad field raises :class:`InputError` naming it
     (``drive.motor.gear_ratio``).
     """
     import pandas as pd
@@ -765,7 +772,8 @@ def strike(
         r = _flexrig.strike_flags(
             design, support, float(m_r), float(length), float(k_delta), float(m_e), float(rotor_inertia),
             float(gear_ratio), float(friction), float(speed), float(ramp_time), float(kp), float(kd),
-            float(torque_limit), float(m_h), float(k_c), float(n), float(settle), float(horizon), every, directory,
+            float(torque_limit), float(m_h), float(k_c), float(n), float(settle), float(horizon),
+            float(dome_radius), float(dome_standoff), link_model, every, directory,
         )
     outcome = dict(r["outcome"])
     trace = outcome.pop("trace")
@@ -785,6 +793,7 @@ def role_switch(
     rotor_ratio: float = 1.0,
     damping_ratio: float = 0.7,
     no_fig6: bool = False,
+    link_model: str = "exact",
     out: Optional[Union[str, "os.PathLike[str]"]] = None,
     size: Union[str, int] = "2",
     format: Union[str, Sequence[str]] = ("svg",),
@@ -795,8 +804,10 @@ def role_switch(
     torque_free), ``kappa`` (K_p/k_θr; inf for the ideal position source, 0 torque-free),
     ``f_test_bed_n``, ``f_driven_n``, ``ratio``, ``f_switched_same_drive_n``. Keyword arguments
     are the command's flags (``size``, ``format``, ``dpi``: the figure's printed width, formats
-    and PNG resolution, as ``--size``, ``--format``, ``--dpi``); with ``out`` the CSV and the
-    figure are written there (``df.attrs``: ``csv``, ``svg``, ``figures``).
+    and PNG resolution, as ``--size``, ``--format``, ``--dpi``; ``link_model`` "exact", the
+    default, or "linear": seconds instead of minutes, every ratio within 4.3e-3 of the exact
+    one); with ``out`` the CSV and the figure are written there (``df.attrs``: ``csv``,
+    ``svg``, ``figures``).
     """
     import pandas as pd
 
@@ -807,7 +818,7 @@ def role_switch(
     try:
         rows, csv, figures = _flexrig.role_switch(
             directory, [float(k) for k in np.atleast_1d(kappa)], float(rotor_ratio),
-            float(damping_ratio), not no_fig6, size, formats, dpi,
+            float(damping_ratio), not no_fig6, size, formats, dpi, link_model,
         )
     finally:
         if tmp is not None:

@@ -147,7 +147,8 @@ def strike_flags(
     design: str, support: str, m_r: float, length: float, k_delta: float, m_e: float,
     rotor_inertia: float, gear_ratio: float, friction: float, speed: float, ramp_time: float,
     kp: float, kd: float, torque_limit: float, m_h: float, k_c: float, n: float, settle: float,
-    horizon: float, trace_every: Optional[float], out: Optional[_Path],
+    horizon: float, dome_radius: float, dome_standoff: float, link_model: str,
+    trace_every: Optional[float], out: Optional[_Path],
 ) -> Dict[str, Any]:
     """``flexrig strike --json`` from the flags' numbers (SI units; errors name the keyword)."""
 
