@@ -821,28 +821,20 @@ fn scene_trace(
         2,
         "Method c: simulation (the driven scene and a root search on its commanded speed)".into(),
     ));
-    let design = match sc.design {
-        crate::driven::strike::StrikeDesign::Cj => {
-            "the compliant joint (a rigid link on its torsion spring, integrated by DOP853 at \
-             relative tolerance"
-        }
-        crate::driven::strike::StrikeDesign::Cl => {
-            "the compliant link (the Euler–Bernoulli beam clamped to the hub, by its modes and \
-             the exact modal integrator at force-hold tolerance"
-        }
-    };
     let f = r.force_limit_n;
     d.push(Block::Paragraph(format!(
         "The driven scene {} ({}) is simulated whole at each commanded speed: the drive's ramp, \
-         the approach and the first contact with the drive acting, for {design} {:e}); the head \
-         is {}, so the contact is {}. The commanded tip speed L ω_c (the scene as written: {} \
-         m/s) at which the first contact's peak force reaches F_max = {} N is bracketed by \
-         factors of 2 around the energy method's speed and found by the Illinois false \
-         position on ln v until the bracket is narrower than {:e} (relative). Both tolerances \
-         lie below the 1e-4 the result is quoted to.",
+         the approach and the contact with the drive acting, for {}; the struck body ({}, {} kg) \
+         is {}, so the contact is {}. The driven strike ends when the bodies first separate: a \
+         later contact of the driven link is not simulated yet. The commanded tip speed L ω_c \
+         (the scene as written: {} m/s) at which the peak force reaches F_max = {} N is \
+         bracketed by factors of 2 around the energy method's speed and found by the Illinois \
+         false position on ln v until the bracket is narrower than {:e} (relative).",
         sc.name,
         sc.scene,
-        sc.run_tol,
+        sc.link_model,
+        r.region_name.to_lowercase(),
+        r.human_mass_kg.map_or("clamped".into(), n),
         match sc.support {
             "wall" => "backed by a wall (clamped)",
             "neck" => "on a neck",
@@ -877,11 +869,14 @@ fn scene_trace(
     ));
     let mut eqs = vec![format!(
         "v_F = {} m/s commanded (the link arrives at {} m/s; peak force {} N) after {} \
-             driven runs",
+             driven runs: the {} of the force search above, {} for the pressure limit and the \
+             run at the root",
         g(sc.by_force_mps),
         g(sc.approach_speed_at_root_mps),
         g(sc.peak_force_at_root_n),
-        sc.runs
+        sc.runs,
+        sc.force_search.len(),
+        sc.runs.saturating_sub(sc.force_search.len())
     )];
     if let Some(vp) = m.by_pressure_mps {
         eqs.push(format!(

@@ -278,9 +278,44 @@ pub fn simulate(
             StrikeDesign::Cl => settings.tol,
         },
         root_rtol: settings.root_rtol,
+        link_model: link_model_words(s, settings),
         release_angle_at_root_deg: None,
         limit_reached: true,
     })
+}
+
+/// How the driven strike of `s` simulates its link, in words (the report's method c).
+fn link_model_words(
+    s: &crate::driven::strike::StrikeDescription,
+    settings: &SimulationSettings,
+) -> String {
+    let dome = format!(
+        "the scene's dome of radius {} m, its apex {} m ahead of the link's axis",
+        flexrig_contact::validate::display(s.dome.radius_m),
+        flexrig_contact::validate::display(s.dome.standoff_m)
+    );
+    match (s.design, s.link_model) {
+        (StrikeDesign::Cj, LinkModel::Exact) => format!(
+            "the compliant joint: the rigid link on its torsion spring turning with the hub, \
+             {dome}, by DOP853 at relative tolerance {:e}",
+            settings.cj_rtol
+        ),
+        (StrikeDesign::Cl, LinkModel::Exact) => format!(
+            "the compliant link: the geometrically exact (corotational) beam clamped to the \
+             driven hub, its mesh doubled until two meshes agree, {dome}"
+        ),
+        (StrikeDesign::Cj, LinkModel::Linear) => format!(
+            "the compliant joint: the rigid link on its torsion spring, the contact along the \
+             tip's path (the linear option), by DOP853 at relative tolerance {:e}",
+            settings.cj_rtol
+        ),
+        (StrikeDesign::Cl, LinkModel::Linear) => format!(
+            "the compliant link: the linear Euler–Bernoulli beam by its modes and the exact \
+             modal integrator at force-hold tolerance {:e}, the contact along the tip's path \
+             (the linear option)",
+            settings.tol
+        ),
+    }
 }
 
 /// A search's starting speed within [1e-4, 50] m/s.

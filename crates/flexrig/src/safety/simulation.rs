@@ -584,6 +584,8 @@ pub struct SceneSimulation {
     /// The run tolerance: DOP853's relative tolerance (CJ) or the modal integrator's (CL); a test
     /// bed: the rig's contact step \[s\].
     pub run_tol: f64,
+    /// How each run simulates the link, in words (the model and its accuracy setting).
+    pub link_model: String,
     /// The root search's relative tolerance on the speed.
     pub root_rtol: f64,
     /// A test-bed scene: the operator's release angle \[deg\] of the run at the force root (the

@@ -266,6 +266,14 @@ pub fn simulate(
         runs,
         run_tol: at_root.contact_step_s,
         root_rtol: settings.root_rtol,
+        link_model: format!(
+            "the test bed's rig ({} link) with its contact step {} s",
+            match tb.design() {
+                StrikeDesign::Cj => "CJ",
+                StrikeDesign::Cl => "CL",
+            },
+            flexrig_contact::validate::display(at_root.contact_step_s)
+        ),
         release_angle_at_root_deg: Some(angle),
         limit_reached: by_force.is_some(),
     })
