@@ -32,22 +32,44 @@ fn refused(args: &[&str], words: &[&str]) {
 
 #[test]
 fn driven_contact_k_outside_the_test_beds_range_is_refused_not_a_silent_zero_peak() {
-    refused(&["strike", "--k-c", "1e40"], &["--k-c = 1e40", "[1e-3, 1e20]"]);
-    refused(&["strike", "--k-c", "1e-300"], &["--k-c = 1e-300", "[1e-3, 1e20]"]);
-    refused(&["strike", "--k-c", "1e-3"], &["--k-c = 0.001", "would indent"]);
     refused(
-        &["run", "driven_cl_free_head", "--set", "person.contact.k=1e40"],
+        &["strike", "--k-c", "1e40"],
+        &["--k-c = 1e40", "[1e-3, 1e20]"],
+    );
+    refused(
+        &["strike", "--k-c", "1e-300"],
+        &["--k-c = 1e-300", "[1e-3, 1e20]"],
+    );
+    refused(
+        &["strike", "--k-c", "1e-3"],
+        &["--k-c = 0.001", "would indent"],
+    );
+    refused(
+        &[
+            "run",
+            "driven_cl_free_head",
+            "--set",
+            "person.contact.k=1e40",
+        ],
         &["person.contact.k", "1e40"],
     );
 }
 
 #[test]
 fn a_speed_too_small_to_make_a_contact_is_refused_not_a_panic() {
-    refused(&["strike", "--speed", "1e-20"], &["--speed = 1e-20", "rad/s"]);
+    refused(
+        &["strike", "--speed", "1e-20"],
+        &["--speed = 1e-20", "rad/s"],
+    );
     refused(&["strike", "--speed", "1e-300"], &["--speed = 1e-300"]);
     refused(&["strike", "--speed", "0"], &["--speed = 0"]);
     refused(
-        &["run", "driven_cj_free_head", "--set", "drive.command.profile.speed=1e-300"],
+        &[
+            "run",
+            "driven_cj_free_head",
+            "--set",
+            "drive.command.profile.speed=1e-300",
+        ],
         &["drive.command.profile.speed"],
     );
 }
@@ -60,8 +82,14 @@ fn a_negative_number_reaches_the_range_check() {
 
 #[test]
 fn strike_errors_name_the_flag_and_the_typed_value() {
-    refused(&["strike", "--length", "600"], &["--speed = 2", "--length", "1000 m/s"]);
-    refused(&["strike", "--rotor-inertia", "5e-324"], &["--rotor-inertia = 5e-324"]);
+    refused(
+        &["strike", "--length", "600"],
+        &["--speed = 2", "--length", "1000 m/s"],
+    );
+    refused(
+        &["strike", "--rotor-inertia", "5e-324"],
+        &["--rotor-inertia = 5e-324"],
+    );
     refused(&["strike", "--n", "1e300"], &["--n = 1e300"]);
     refused(&["strike", "--n", "0.1"], &["--n = 0.1", "[0.5, 10]"]);
 }
@@ -69,7 +97,12 @@ fn strike_errors_name_the_flag_and_the_typed_value() {
 #[test]
 fn an_unstable_integral_gain_is_refused() {
     refused(
-        &["run", "driven_cl_free_head", "--set", "drive.command.gains.ki=1e11"],
+        &[
+            "run",
+            "driven_cl_free_head",
+            "--set",
+            "drive.command.gains.ki=1e11",
+        ],
         &["drive.command.gains.ki", "1e11", "Routh"],
     );
 }
@@ -95,8 +128,17 @@ fn strike_notes_are_words_and_the_json_has_no_null() {
 
 #[test]
 fn role_switch_kappas_are_bounded_and_distinct_before_the_work() {
-    refused(&["role-switch", "--kappa", "1,1"], &["--kappa[1] = 1", "repeats"]);
+    refused(
+        &["role-switch", "--kappa", "1,1"],
+        &["--kappa[1] = 1", "repeats"],
+    );
     let many = vec!["1"; 13].join(",");
-    refused(&["role-switch", "--kappa", &many], &["--kappa", "at most 12"]);
-    refused(&["role-switch", "--rotor-ratio", "1e-12"], &["--rotor-ratio = 1e-12"]);
+    refused(
+        &["role-switch", "--kappa", &many],
+        &["--kappa", "at most 12"],
+    );
+    refused(
+        &["role-switch", "--rotor-ratio", "1e-12"],
+        &["--rotor-ratio = 1e-12"],
+    );
 }

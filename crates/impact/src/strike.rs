@@ -331,7 +331,11 @@ fn arrival_speed(profile: &crate::drive::Profile, angle: f64, horizon: f64) -> f
     }
     let ahead = |t: f64| {
         let a = profile.at(t).0;
-        if angle > start { a >= angle } else { a <= angle }
+        if angle > start {
+            a >= angle
+        } else {
+            a <= angle
+        }
     };
     if !ahead(horizon) {
         return profile.at(horizon).1;

@@ -493,6 +493,7 @@ pub fn run(scene: &DrivenScene, cancel: &CancelToken) -> Result<DrivenRun, Error
             head_moves.then_some(traces.head_acceleration_mps2.as_slice()),
             (c.onset_s, end),
             crate::shared::severity::paper_dome_radius_m()?,
+            hertz.n(),
         )?)
     } else {
         None

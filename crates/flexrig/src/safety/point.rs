@@ -188,6 +188,11 @@ pub struct SpeedVerdict {
     /// 1 − peak pressure / pressure limit (absent without a pressure assessment).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pressure_margin: Option<f64>,
+    /// The energy transferred to the body at the peak force \[J\]: what the method's contact law
+    /// stores there, k δ^{n+1}/(n+1) at δ = (F/k)^{1/n} (the standard: its body spring,
+    /// F²/(2K) = ½ μ v², Eq. A.1–A.2; the energy and simulation methods: the skin's Hertz law,
+    /// the link's own share left out).
+    pub energy_transferred_j: f64,
     /// The simulation method: the contact that holds the peak at this speed, its time, and how
     /// many contacts there were until the bodies parted for good (absent for the formulas).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -218,6 +223,15 @@ pub struct MethodResult {
     pub by_pressure_mps: Option<Speed>,
     /// The limit that sets v_max.
     pub governing: GoverningLimit,
+    /// Whether this method judged the pressure: false without a contact geometry (no area
+    /// model, or the standard's formula without a fixed area); then only the force is judged
+    /// and the text says "pressure not assessed" in place of a governing limit.
+    pub pressure_assessed: bool,
+    /// The energy transferred to the body at v_max \[J\] (the method's contact law at the peak
+    /// force there: the force limit, or the force at which the pressure limit is reached;
+    /// absent when v_max is unlimited).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy_transferred_at_v_max_j: Option<f64>,
     /// The verdict at the requested speed (absent without `--speed`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub verdict: Option<SpeedVerdict>,
@@ -262,6 +276,9 @@ pub struct SafetyReport {
     /// The driven scene's simulation (absent without `--scene` or the simulation method).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub scene: Option<crate::safety::simulation::SceneSimulation>,
+    /// What is valid but looks like a mistake (e.g. an implausible contact area).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<crate::safety::measured::Warning>,
 }
 
 fn bad(arg: &str, value: impl ToString, allowed: &str) -> Error {
@@ -370,6 +387,19 @@ fn setup<'a>(input: &SafetyInput, model: &'a BodyModel) -> Result<Setup<'a>, Err
     if let Some(a) = &area_model {
         a.validate()
             .map_err(|e| bad("--area-model", format!("{a:?}"), &e.to_string()))?;
+        if !matches!(a, ContactAreaModel::Fixed { .. }) && hertz.n() <= 1.0 {
+            return Err(bad(
+                "--area-model",
+                format!("{a:?}"),
+                &format!(
+                    "a dome's area model needs a contact law with n > 1: a linear contact \
+                     (n = {}) is a spring without a contact geometry, its dome pressure k/(πR) \
+                     would not depend on the force; give --k-c and --n of the skin (or \
+                     --material), or a fixed area (--contact-area, e.g. 1cm2)",
+                    hertz.n()
+                ),
+            ));
+        }
     }
     if area_model.is_none() {
         limits.pressure = None;
@@ -462,7 +492,15 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
             last.human_mass_kg = Some(s.region.human_mass(s.kind)).filter(|m| m.is_finite());
         }
     }
+    for m in &mut methods {
+        transferred_energy(&s, m)?;
+    }
     Ok(SafetyReport {
+        warnings: crate::safety::measured::area_warnings(
+            s.area_model.as_ref(),
+            "--contact-area",
+            "--radius",
+        ),
         region: s.region.key().to_string(),
         region_name: s.region.name().to_string(),
         area: s.area.name().to_string(),
@@ -483,6 +521,37 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
     })
 }
 
+/// Fills in the energy transferred to the body by method `m` at its verdict's peak force and at
+/// v_max ([`crate::safety::measured::contact_energy_at_force`]): the standard's body spring
+/// (n = 1, k = K) for the standard, the skin's law for the others.
+fn transferred_energy(s: &Setup, m: &mut MethodResult) -> Result<(), Error> {
+    let (law, area) = match m.method {
+        SafetyMethod::Standard => (
+            Hertz::new(s.region.spring_constant(), 1.0)?,
+            s.area_model
+                .filter(|a| matches!(a, ContactAreaModel::Fixed { .. })),
+        ),
+        _ => (s.hertz, s.area_model),
+    };
+    let energy = |f: f64| crate::safety::measured::contact_energy_at_force(&law, f);
+    if let Some(v) = m.verdict.as_mut() {
+        v.energy_transferred_j = energy(v.peak_force_n);
+    }
+    let force = match (m.v_max_mps, m.governing, s.limits.pressure) {
+        (Speed::Unlimited(_), ..) => None,
+        (_, GoverningLimit::Pressure, Some(p)) => {
+            let contact = EnergyContact::new(1.0, 1.0, law, LinkStiffness::Rigid, area)?;
+            match contact.force_at_pressure(p) {
+                Some(flexrig_safety::PressureCrossing::AtForce(f)) => Some(f),
+                _ => None,
+            }
+        }
+        _ => Some(s.limits.force),
+    };
+    m.energy_transferred_at_v_max_j = force.map(energy);
+    Ok(())
+}
+
 /// The input with the design of the driven scene `sc`: its link (m_eff = m_e + γ m_r/3 with
 /// γ = 1 for the CJ and 2/3 for the CL, paper Eq. 5; k_δ; length), its skin's Hertz law, the
 /// contact kind of its support, and the Hertz-sphere area of the paper's dome unless an area
@@ -501,11 +570,13 @@ fn scene_input(
         }
     };
     let hertz = strike.person.contact;
+    // the paper's dome by default, for a skin with a contact geometry (n > 1)
     let area_model = match input.area_model {
-        Some(a) => a,
-        None => ContactAreaModel::HertzSphere {
+        Some(a) => Some(a),
+        None if hertz.n() > 1.0 => Some(ContactAreaModel::HertzSphere {
             radius_m: crate::shared::severity::paper_dome_radius_m()?,
-        },
+        }),
+        None => None,
     };
     let derived = SafetyInput {
         contact: sc.contact_kind(),
@@ -519,7 +590,7 @@ fn scene_input(
             k_c: hertz.k(),
             n: hertz.n(),
         },
-        area_model: Some(area_model),
+        area_model,
         link: Some(link),
         simulation: Some(SimulationSettings {
             length: strike.link.length,
@@ -558,11 +629,13 @@ fn test_bed_input(
     };
     let quantities = crate::testbed::link::of_scene(&tb.scene);
     let robot = &tb.scene.file.robot;
+    // the scene's dome by default, for a skin with a contact geometry (n > 1)
     let area_model = match input.area_model {
-        Some(a) => a,
-        None => ContactAreaModel::HertzSphere {
+        Some(a) => Some(a),
+        None if tb.scene.hertz.n() > 1.0 => Some(ContactAreaModel::HertzSphere {
             radius_m: robot.dome_radius_m,
-        },
+        }),
+        None => None,
     };
     let derived = SafetyInput {
         contact: ContactKind::Transient,
@@ -576,7 +649,7 @@ fn test_bed_input(
             k_c: tb.scene.hertz.k(),
             n: tb.scene.hertz.n(),
         },
-        area_model: Some(area_model),
+        area_model,
         link: Some(link),
         simulation: Some(SimulationSettings {
             length: robot.length_m,
@@ -749,6 +822,8 @@ fn from_permissible(
         by_force_mps: Speed::from_f64(p.by_force),
         by_pressure_mps: p.by_pressure.map(Speed::from_f64),
         governing: p.governing,
+        pressure_assessed: p.by_pressure.is_some(),
+        energy_transferred_at_v_max_j: None,
         verdict: verdict.map(|v| SpeedVerdict {
             speed_mps: v.speed,
             pass: v.pass,
@@ -756,6 +831,7 @@ fn from_permissible(
             peak_pressure_pa: v.peak_pressure,
             force_margin: v.force_margin,
             pressure_margin: v.pressure_margin,
+            energy_transferred_j: 0.0,
             governing_contact: None,
         }),
         governing_contact: None,
