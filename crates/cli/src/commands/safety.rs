@@ -215,7 +215,17 @@ pub use flexrig::safety::load_body_model;
 pub fn run(args: &SafetyArgs, out: &mut dyn Write) -> Result<(), Error> {
     let model = load_body_model(args.body_model.as_deref())?;
     if let Some(trace) = &args.trace {
-        return super::safety_trace::run(args, trace, model.as_ref(), out);
+        let input = flexrig::safety::measured::TraceInput {
+            trace: trace.clone(),
+            region: args.region.clone(),
+            area: args.area.clone(),
+            contact: match args.contact {
+                ContactArg::Transient => ContactKind::Transient,
+                ContactArg::QuasiStatic => ContactKind::QuasiStatic,
+            },
+            area_model: args.law.area_model()?,
+        };
+        return super::safety_trace::run(&input, model.as_ref(), args.json, out);
     }
     let input = args.input()?;
     let (report, written) = match &args.report {

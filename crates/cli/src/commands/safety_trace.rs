@@ -2,42 +2,26 @@
 //! region's limits, see [`flexrig::safety::measured`].
 
 use std::io::Write;
-use std::path::Path;
 
 use flexrig::Error;
 use flexrig::safety::measured::{EnergyBasis, MeasuredReport, TraceInput, judge_trace};
 use flexrig::safety::{BodyModel, ContactAreaModel, ContactKind};
 
-use super::safety::SafetyArgs;
-use super::safety_args::ContactArg;
 use crate::print::{line, print_json};
 
-/// The library's input of `flexrig safety --trace FILE`.
-pub fn input(args: &SafetyArgs, trace: &Path) -> Result<TraceInput, Error> {
-    Ok(TraceInput {
-        trace: trace.to_path_buf(),
-        region: args.region.clone(),
-        area: args.area.clone(),
-        contact: match args.contact {
-            ContactArg::Transient => ContactKind::Transient,
-            ContactArg::QuasiStatic => ContactKind::QuasiStatic,
-        },
-        area_model: args.law.area_model()?,
-    })
-}
-
-/// Runs `flexrig safety --trace FILE`.
+/// Runs `flexrig safety --trace FILE` on the library's `input` (built from the flags by
+/// `flexrig safety`): JSON with `json`, else text.
 pub fn run(
-    args: &SafetyArgs,
-    trace: &Path,
+    input: &TraceInput,
     model: Option<&BodyModel>,
+    json: bool,
     out: &mut dyn Write,
 ) -> Result<(), Error> {
-    let report = judge_trace(&input(args, trace)?, model)?;
+    let report = judge_trace(input, model)?;
     for w in &report.warnings {
         eprintln!("warning: {w}");
     }
-    if args.json {
+    if json {
         let value = serde_json::to_value(&report).expect("the report serialises");
         return print_json(out, &value);
     }

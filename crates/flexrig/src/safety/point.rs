@@ -1029,7 +1029,8 @@ pub fn simulation_trace(
     };
     let s = setup(input, model)?;
     let mut trace = Vec::new();
-    let m = simulation_traced(&s, input, Some(&mut trace))?;
+    let mut m = simulation_traced(&s, input, Some(&mut trace))?;
+    transferred_energy(&s, &mut m)?;
     Ok((m, trace, fe_impact(&s, input)?))
 }
 
