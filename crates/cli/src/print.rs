@@ -101,6 +101,13 @@ pub fn print_severity(
             s.peak_force_n, s.time_of_peak_force_s
         ),
     )?;
+    if s.pressure.is_empty() {
+        line(
+            out,
+            "    peak pressure       not assessed (a linear contact law, n ≤ 1, has no contact \
+             geometry)",
+        )?;
+    }
     for p in &s.pressure {
         let name = match p.area_model {
             ContactAreaModel::HertzSphere { .. } => "Hertz sphere",

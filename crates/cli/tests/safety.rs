@@ -66,7 +66,7 @@ fn standard_formula_matches_hand_arithmetic_for_the_chest() {
         "--area-model",
         "fixed",
         "--contact-area",
-        "1e-4",
+        "1cm2",
     ];
     let v = json(&base);
     let s = method(&v, "standard");
@@ -234,7 +234,7 @@ fn transient_head_contact_is_refused_with_the_clause() {
 
 #[test]
 fn bad_input_exits_2_naming_the_flag() {
-    let cases: [(&[&str], &str); 8] = [
+    let cases: [(&[&str], &str); 12] = [
         (&["--region", "chest", "--m-eff", "-1"], "--m-eff"),
         (
             &["--region", "chest", "--m-eff", "5", "--k-delta", "0"],
@@ -257,6 +257,33 @@ fn bad_input_exits_2_naming_the_flag() {
         (
             &["--region", "chest", "--m-eff", "5", "--area-model", "fixed"],
             "--contact-area",
+        ),
+        // an area without its unit: 1 m² or 1 cm²?
+        (
+            &["--region", "chest", "--m-eff", "5", "--contact-area", "1"],
+            "--contact-area",
+        ),
+        // a linear contact (the body spring, n = 1) has no dome
+        (
+            &["--region", "chest", "--m-eff", "5", "--radius", "0.05"],
+            "--area-model",
+        ),
+        (
+            &[
+                "--region",
+                "chest",
+                "--m-eff",
+                "5",
+                "--radius",
+                "0.05",
+                "--contact-area",
+                "1cm2",
+            ],
+            "--area-model",
+        ),
+        (
+            &["--region", "chest", "--trace", "no/such/trace.csv"],
+            "no/such/trace.csv",
         ),
     ];
     for (args, flag) in cases {
@@ -363,5 +390,132 @@ fn an_unknown_region_comes_first_and_unit_slips_are_warned_about() {
     let v = json(&args[1..]);
     let w = v["warnings"].as_array().unwrap();
     assert_eq!(w.len(), 2, "{w:?}");
-    assert!(w[0].as_str().unwrap().contains("1200 g is 1.2 kg"));
+    assert_eq!(w[0]["field"], "--m-r");
+    assert!(w[0]["message"].as_str().unwrap().contains("1200 g is 1.2 kg"));
+
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("flexrig-cli-trace-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Areas with their unit: `1cm2`, `1e-4m2` and `100mm2` give the same answer bit for bit; an
+/// implausible area is warned about on stderr and in the JSON; without a contact geometry each
+/// method says "pressure not assessed" instead of a governing limit.
+#[test]
+fn areas_carry_their_unit_and_pressure_not_assessed_is_said() {
+    let base = ["--region", "chest", "--m-eff", "3", "--speed", "0.5"];
+    let with = |area: &str| {
+        let mut args = base.to_vec();
+        args.extend(["--contact-area", area]);
+        json(&args)
+    };
+    let cm2 = with("1cm2");
+    assert_eq!(cm2, with("1e-4m2"));
+    assert_eq!(cm2["area_model"]["area_m2"], 1e-4);
+    let mm2 = with("100mm2");
+    assert!(rel(num(&mm2["area_model"]["area_m2"]), 1e-4) < 1e-15);
+    assert!(method(&cm2, "standard")["pressure_assessed"] == true);
+    assert!(cm2.get("warnings").is_none());
+    let mut args = vec!["safety"];
+    args.extend(base);
+    args.extend(["--contact-area", "1m2"]);
+    let out = flexrig(&args);
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("warning: --contact-area") && err.contains("10000 cm²"),
+        "{err}"
+    );
+    assert_eq!(with("1m2")["warnings"][0]["field"], "--contact-area");
+    // no geometry: force only
+    let mut args = vec!["safety"];
+    args.extend(base);
+    let out = flexrig(&args);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("force only") && text.contains("pressure not assessed"),
+        "{text}"
+    );
+    let v = json(&base);
+    assert!(method(&v, "energy")["pressure_assessed"] == false);
+    // the transferred energy at the judged speed: ½ μ v² for the standard (Eq. A.2)
+    let mu = 1.0 / (1.0 / 40.0 + 1.0 / 3.0);
+    let e = num(&method(&v, "standard")["verdict"]["energy_transferred_j"]);
+    assert!(rel(e, 0.5 * mu * 0.25) < 1e-12, "{e}");
+}
+
+/// `flexrig safety --trace FILE`: the text and the JSON agree; a measured pulse over the limit
+/// is FAIL, within it pass; a bad CSV exits 2 naming the line; design flags are refused.
+#[test]
+fn a_measured_trace_is_judged_and_a_bad_one_refused_by_line() {
+    let dir = scratch("judge");
+    let path = dir.join("pulse.csv");
+    let pulse = |f0: f64| {
+        let mut text = String::from("t [ms], F [N], a [m/s^2], delta [mm]\n");
+        for i in 0..=200 {
+            let s = (std::f64::consts::PI * i as f64 / 200.0).sin();
+            text.push_str(&format!(
+                "{}, {}, {}, {}\n",
+                0.05 * i as f64,
+                f0 * s,
+                100.0 * s,
+                s
+            ));
+        }
+        text
+    };
+    let p = path.to_str().unwrap();
+    let args = [
+        "safety",
+        "--trace",
+        p,
+        "--region",
+        "hands_and_fingers",
+        "--contact-area",
+        "2cm2",
+    ];
+    for (f0, pass) in [(270.0, true), (290.0, false)] {
+        std::fs::write(&path, pulse(f0)).unwrap();
+        let v = json(&args[1..]);
+        assert_eq!(v["verdict"]["pass"], pass, "{v}");
+        assert!(rel(num(&v["severity"]["peak_force_n"]), f0) < 1e-12);
+        // ∫ f dδ over the loading of a straight line f = F0 δ/D: F0 D/2
+        assert!(rel(num(&v["severity"]["energy_transferred_j"]), 0.5 * f0 * 1e-3) < 1e-12);
+        let out = flexrig(&args);
+        assert!(out.status.success());
+        let text = String::from_utf8_lossy(&out.stdout);
+        let verdict = if pass {
+            "verdict            pass"
+        } else {
+            "verdict            FAIL"
+        };
+        assert!(text.contains(verdict), "{text}");
+        assert!(
+            text.contains(&format!("peak force         {f0:.3} N")),
+            "{text}"
+        );
+        assert!(text.contains("HIC15"), "{text}");
+    }
+    // a bad line
+    std::fs::write(&path, "t [s], F [N]\n0, 1\n0.001, 2\n0.001, 3\n").unwrap();
+    let out = flexrig(&args);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--trace") && err.contains("line 4") && err.contains("line 3"),
+        "{err}"
+    );
+    // a header without units
+    std::fs::write(&path, "time, force\n0, 1\n0.001, 2\n").unwrap();
+    let out = flexrig(&args);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("line 1"));
+    // a design flag beside a trace
+    let mut with_design = args.to_vec();
+    with_design.extend(["--m-eff", "3"]);
+    let out = flexrig(&with_design);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--m-eff"));
+    let _ = std::fs::remove_dir_all(&dir);
 }

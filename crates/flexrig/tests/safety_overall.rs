@@ -173,7 +173,8 @@ fn the_energy_method_warns_when_its_speed_needs_a_deflection_longer_than_the_lin
     let deflection = r.force_limit_n / k;
     assert!(deflection > 0.338, "{deflection}");
     assert_eq!(r.warnings.len(), 1, "{:?}", r.warnings);
-    let w = &r.warnings[0];
+    let w = &r.warnings[0].message;
+    assert_eq!(r.warnings[0].field, "--k-delta");
     assert!(
         w.contains("energy method") && w.contains(&flexrig_contact::validate::display(deflection)),
         "{w}"

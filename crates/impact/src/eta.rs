@@ -292,8 +292,8 @@ pub fn peaks_and_severity(
                 cj.first.peak_force_n,
                 cl.first.peak_force_n,
                 Some(PairSeverity {
-                    cj: cj_trace.severity(setup.m_h, radius)?,
-                    cl: cl_trace.severity(setup.m_h, radius)?,
+                    cj: cj_trace.severity(setup.m_h, radius, setup.contact.n())?,
+                    cl: cl_trace.severity(setup.m_h, radius, setup.contact.n())?,
                 }),
             ))
         }

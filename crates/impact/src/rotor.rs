@@ -100,8 +100,8 @@ pub fn rotor_point_until(
                 cj.first.peak_force_n,
                 cl.first.peak_force_n,
                 Some(PairSeverity {
-                    cj: cj_trace.severity(setup.m_h, radius)?,
-                    cl: cl_trace.severity(setup.m_h, radius)?,
+                    cj: cj_trace.severity(setup.m_h, radius, setup.contact.n())?,
+                    cl: cl_trace.severity(setup.m_h, radius, setup.contact.n())?,
                 }),
             )
         }

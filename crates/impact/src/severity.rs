@@ -57,9 +57,10 @@ impl ContactTrace {
     }
 
     /// The severity of this contact with a free head of mass `m_h` \[kg\] (acceleration f/m_h),
-    /// pressure under both dome models of radius `dome_radius_m` \[m\]
-    /// ([`ContactAreaModel::dome_models`]).
-    pub fn severity(&self, m_h: f64, dome_radius_m: f64) -> Result<Severity, ImpactError> {
+    /// pressure under both dome models of radius `dome_radius_m` \[m\] for a contact law of
+    /// exponent `n` > 1, none for n ≤ 1 (a spring without a contact geometry:
+    /// [`ContactAreaModel::dome_models_for_exponent`]).
+    pub fn severity(&self, m_h: f64, dome_radius_m: f64, n: f64) -> Result<Severity, ImpactError> {
         let bounded;
         let trace = if self.times.len() > MAX_SEVERITY_SAMPLES + 1 {
             bounded = self.on_uniform_grid(MAX_SEVERITY_SAMPLES);
@@ -75,7 +76,7 @@ impl ContactTrace {
                 indentation: &trace.indentation,
                 head_acceleration: Some(&acceleration),
             },
-            &ContactAreaModel::dome_models(dome_radius_m),
+            &ContactAreaModel::dome_models_for_exponent(dome_radius_m, n),
         )?)
     }
 }
@@ -146,7 +147,7 @@ mod tests {
         let grid = trace.on_uniform_grid(MAX_SEVERITY_SAMPLES);
         assert!(grid.times.len() <= MAX_SEVERITY_SAMPLES + 3);
         assert!(grid.times.windows(2).all(|w| w[1] > w[0]));
-        let s = trace.severity(m_h, 0.0715).unwrap();
+        let s = trace.severity(m_h, 0.0715, 2.0).unwrap();
         let sampled_peak = trace.force.iter().cloned().fold(0.0, f64::max);
         assert_eq!(s.peak_force_n, sampled_peak);
         for (window, got) in [(HicWindow::Hic15, &s.hic15), (HicWindow::Hic36, &s.hic36)] {

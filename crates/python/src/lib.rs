@@ -210,6 +210,8 @@ fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tools::bench, m)?)?;
     m.add_function(wrap_pyfunction!(safety::safety_json, m)?)?;
     m.add_function(wrap_pyfunction!(safety::safety_map_json, m)?)?;
+    m.add_function(wrap_pyfunction!(safety::safety_trace_json, m)?)?;
+    m.add_function(wrap_pyfunction!(safety::parse_area, m)?)?;
     m.add_function(wrap_pyfunction!(driven::spin_up, m)?)?;
     m.add_function(wrap_pyfunction!(driven::strike, m)?)?;
     m.add_function(wrap_pyfunction!(driven::strike_flags, m)?)?;

@@ -64,3 +64,34 @@ pub fn safety_map_json(
     serde_json::to_string(&map)
         .map_err(|e| input_error("input", format!("the map does not serialise: {e}")))
 }
+
+/// The report of `flexrig safety --trace FILE --json` ([`flexrig::safety::measured::judge_trace`])
+/// for a [`flexrig::safety::measured::TraceInput`] given as JSON (the Python wrapper
+/// `flexrig.safety(region, trace=…)` builds it), with the body model of the TOML text
+/// `body_model_toml` or the bundled ISO/TS 15066:2016 table.
+#[pyfunction]
+#[pyo3(signature = (input_json, body_model_toml=None))]
+pub fn safety_trace_json(
+    py: Python<'_>,
+    input_json: &str,
+    body_model_toml: Option<&str>,
+) -> PyResult<String> {
+    let input: flexrig::safety::measured::TraceInput = serde_json::from_str(input_json)
+        .map_err(|e| input_error("input", format!("invalid trace input: {e}")))?;
+    let model = body_model_toml
+        .map(BodyModel::from_toml_str)
+        .transpose()
+        .map_err(|e| to_py(Error::from(e)))?;
+    let report = py
+        .detach(|| flexrig::safety::measured::judge_trace(&input, model.as_ref()))
+        .map_err(crate::flag_error)?;
+    serde_json::to_string(&report)
+        .map_err(|e| input_error("input", format!("the report does not serialise: {e}")))
+}
+
+/// An area with its unit (`"1cm2"`, `"1e-4m2"`, `"100mm2"`) in m², as `--contact-area` reads
+/// it ([`flexrig::safety::measured::parse_area`]); a bare number is refused.
+#[pyfunction]
+pub fn parse_area(text: &str) -> PyResult<f64> {
+    flexrig::safety::measured::parse_area("--contact-area", text).map_err(crate::flag_error)
+}

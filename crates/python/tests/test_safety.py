@@ -9,7 +9,7 @@ CASES = [
         dict(region="chest", area="Sternum", moving_mass=20.0, payload=1.0, area_model="fixed",
              contact_area=1e-4, method="standard,energy", speed=0.3),
         ["--region", "chest", "--area", "Sternum", "--moving-mass", "20", "--payload", "1",
-         "--area-model", "fixed", "--contact-area", "1e-4", "--method", "standard,energy",
+         "--area-model", "fixed", "--contact-area", "1e-4m2", "--method", "standard,energy",
          "--speed", "0.3"],
     ),
     (
@@ -21,10 +21,14 @@ CASES = [
          "--method", "standard,energy,simulation", "--speed", "1.5"],
     ),
     (
-        dict(region="abdomen", contact="quasi_static", m_eff=3.0, k_c=1e4, n=1.0,
+        dict(region="abdomen", contact="quasi_static", m_eff=3.0, k_c=1e6, n=1.5,
              area_model="hertz_sphere", radius=0.05),
-        ["--region", "abdomen", "--contact", "quasi-static", "--m-eff", "3", "--k-c", "1e4",
-         "--n", "1", "--area-model", "hertz-sphere", "--radius", "0.05"],
+        ["--region", "abdomen", "--contact", "quasi-static", "--m-eff", "3", "--k-c", "1e6",
+         "--n", "1.5", "--area-model", "hertz-sphere", "--radius", "0.05"],
+    ),
+    (
+        dict(region="chest", m_eff=3.0, contact_area="2cm2", speed=0.5),
+        ["--region", "chest", "--m-eff", "3", "--contact-area", "2cm2", "--speed", "0.5"],
     ),
 ]
 
@@ -131,3 +135,48 @@ def test_safety_map_over_body_regions_equals_the_cli_map(cli, tmp_path):
         assert a.get("cj") == b.get("cj") and a.get("error") == b.get("error")
     assert got["v_max_cj_mps"].shape == (3, 2)
     assert len(got["errors"]) == 2  # the face: transient contact not permitted
+
+
+def _pulse(path, f0=250.0):
+    """A half-sine pulse of f0 N over 10 ms with its acceleration (g) and indentation (mm)."""
+    import math
+
+    lines = ["t [ms], F [N], a [g], delta [mm]"]
+    for i in range(401):
+        x = math.sin(math.pi * i / 400)
+        lines.append(f"{10 * i / 400!r}, {f0 * x!r}, {40 * x!r}, {2 * x!r}")
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def test_a_measured_trace_equals_the_cli_json(cli, tmp_path):
+    path = _pulse(tmp_path / "pulse.csv")
+    expected = cli.json("safety", "--trace", path, "--region", "chest", "--contact-area", "2cm2")
+    assert flexrig.safety("chest", trace=path, contact_area="2cm2") == expected
+    assert flexrig.safety("chest", trace=str(path), contact_area=2e-4) == expected
+    assert expected["verdict"]["pass"] is True
+    assert expected["severity"]["energy_transferred_from"] == "force_and_indentation"
+    # without an area: pressure not assessed
+    bare = flexrig.safety("chest", trace=path)
+    assert bare["verdict"]["pressure_assessed"] is False and "pressure_margin" not in bare["verdict"]
+
+
+def test_a_measured_trace_refuses_design_keywords_and_bad_lines(tmp_path):
+    path = _pulse(tmp_path / "pulse.csv")
+    with pytest.raises(flexrig.InputError) as e:
+        flexrig.safety("chest", trace=path, m_eff=3.0)
+    assert e.value.field == "m_eff"
+    bad = tmp_path / "bad.csv"
+    bad.write_text("t [s], F [N]\n0, 1\n0.001, oops\n")
+    with pytest.raises(flexrig.InputError, match="line 3") as e:
+        flexrig.safety("chest", trace=bad)
+    assert e.value.field == "trace"
+
+
+def test_an_area_without_its_unit_is_refused_and_an_implausible_one_warned_about():
+    with pytest.raises(flexrig.InputError) as e:
+        flexrig.safety("chest", m_eff=3.0, contact_area="1")
+    assert e.value.field == "contact_area"
+    with pytest.warns(flexrig.PlausibilityWarning, match="contact_area"):
+        r = flexrig.safety("chest", m_eff=3.0, contact_area=1.0)
+    assert r["warnings"][0]["field"] == "--contact-area"

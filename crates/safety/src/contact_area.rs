@@ -52,6 +52,19 @@ impl ContactAreaModel {
         ]
     }
 
+    /// The dome models ([`ContactAreaModel::dome_models`]) for a contact law f = k δ^n of
+    /// exponent `n`: both for n > 1, none for n ≤ 1. A law with n ≤ 1 is a spring, not a dome
+    /// pressed into skin: it has no contact geometry, and its Hertz-sphere mean pressure
+    /// k δ^{n−1}/(πR) would not vanish with the force (k/(πR) at every force for n = 1), so no
+    /// pressure is reported.
+    pub fn dome_models_for_exponent(radius_m: f64, n: f64) -> Vec<ContactAreaModel> {
+        if n > 1.0 {
+            Self::dome_models(radius_m).to_vec()
+        } else {
+            Vec::new()
+        }
+    }
+
     /// Checks the parameter (names `radius_m` or `area_m2`).
     pub fn validate(&self) -> Result<(), SafetyError> {
         match *self {

@@ -19,6 +19,7 @@ pub mod run;
 pub mod safety;
 pub mod safety_args;
 pub mod safety_map;
+pub mod safety_trace;
 pub mod scenes;
 pub mod spin_up;
 pub mod strike;

@@ -122,6 +122,18 @@ pub struct SafetyArgs {
     /// Print JSON instead of text.
     #[arg(long)]
     pub json: bool,
+    /// A measured impact to judge instead of a design: a CSV file with a header naming each
+    /// column with its unit — time and force, optionally the struck body's acceleration and
+    /// the indentation (e.g. `t [s], F [N], a [m/s^2], delta [mm]`, or flexrig's `t_s,
+    /// force_n, head_acceleration_mps2, indentation_m`; docs/safety.md) — and one sample per
+    /// line: its peak force, pressure (with an area model), transferred energy, HIC15/HIC36
+    /// and the verdict against the region's limits.
+    #[arg(
+        long,
+        value_name = "FILE.csv",
+        conflicts_with_all = ["m_eff", "m_r", "m_e", "gamma", "link", "k_delta", "k_c", "n", "material", "scene", "method", "speed", "moving_mass", "report", "rotor_inertia"]
+    )]
+    pub trace: Option<PathBuf>,
     /// Also write a report for a risk assessment: FILE.md (Markdown) or FILE.html (HTML), with
     /// the inputs, every limit and its source, each method's calculation trace, a figure
     /// (FILE_peak_force.svg beside it), the verdict and the ISO/PAS 5672 caveat.
@@ -199,6 +211,19 @@ pub use flexrig::safety::load_body_model;
 pub fn run(args: &SafetyArgs, out: &mut dyn Write) -> Result<(), Error> {
     let model = load_body_model(args.body_model.as_deref())?;
     flexrig::safety::check_region(&args.region, model.as_ref())?;
+    if let Some(trace) = &args.trace {
+        let input = flexrig::safety::measured::TraceInput {
+            trace: trace.clone(),
+            region: args.region.clone(),
+            area: args.area.clone(),
+            contact: match args.contact {
+                ContactArg::Transient => ContactKind::Transient,
+                ContactArg::QuasiStatic => ContactKind::QuasiStatic,
+            },
+            area_model: args.law.area_model()?,
+        };
+        return super::safety_trace::run(&input, model.as_ref(), args.json, out);
+    }
     let input = args.input()?;
     let (report, written) = match &args.report {
         Some(path) => {
@@ -207,6 +232,9 @@ pub fn run(args: &SafetyArgs, out: &mut dyn Write) -> Result<(), Error> {
         }
         None => (safety(&input, model.as_ref())?, Vec::new()),
     };
+    for w in &report.warnings {
+        eprintln!("warning: {w}");
+    }
     if args.json {
         let mut value = serde_json::to_value(&report).expect("the report serialises");
         if !written.is_empty() {
@@ -234,9 +262,6 @@ fn speed(s: &Speed) -> String {
 }
 
 fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
-    for w in &r.warnings {
-        eprintln!("warning: {w}");
-    }
     print_overall(out, &r.overall)?;
     line(
         out,
@@ -405,6 +430,12 @@ fn print_test_bed(
 
 fn print_method(out: &mut dyn Write, m: &MethodResult) -> Result<(), Error> {
     let by_p = m.by_pressure_mps.as_ref().map_or("—".into(), speed);
+    // without a pressure assessment no limit "governs": only the force was judged
+    let governs = if m.pressure_assessed {
+        format!("{:?}", m.governing).to_lowercase()
+    } else {
+        "force only".into()
+    };
     line(
         out,
         format!(
@@ -414,9 +445,15 @@ fn print_method(out: &mut dyn Write, m: &MethodResult) -> Result<(), Error> {
             speed(&m.v_max_mps),
             speed(&m.by_force_mps),
             by_p,
-            format!("{:?}", m.governing).to_lowercase()
+            governs
         ),
     )?;
+    if !m.pressure_assessed {
+        line(
+            out,
+            format!("  pressure not assessed: {}", not_assessed_reason(m)),
+        )?;
+    }
     if let Some(v) = &m.verdict {
         line(
             out,
@@ -436,6 +473,20 @@ fn print_method(out: &mut dyn Write, m: &MethodResult) -> Result<(), Error> {
         line(out, format!("  at v_max: {}", contact_words(c)))?;
     }
     Ok(())
+}
+
+/// Why a method did not judge the pressure.
+fn not_assessed_reason(m: &MethodResult) -> &'static str {
+    match m.method {
+        flexrig::safety::SafetyMethod::Standard => {
+            "the standard's formula judges a pressure over a fixed area only (Eq. A.6; \
+             --contact-area, e.g. 1cm2)"
+        }
+        _ => {
+            "no contact geometry (give --radius of the dome, --contact-area, or --material \
+             with its dome)"
+        }
+    }
 }
 
 /// Which contact holds the peak of a simulated impact, in words.

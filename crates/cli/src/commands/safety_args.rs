@@ -47,16 +47,18 @@ pub struct ContactLawArgs {
     /// gives the default Hertz-sphere area.
     #[arg(long, value_name = "NAME")]
     pub material: Option<String>,
-    /// Contact-area model for pressure (default: hertz-sphere on the material's dome with
-    /// --material, else pressure is not assessed).
+    /// Contact-area model for pressure (default: hertz-sphere with --radius, fixed with
+    /// --contact-area, else the design's dome: a scene's, or the material's with --material;
+    /// without any, pressure is not assessed). A dome's models need a contact law with n > 1.
     #[arg(long = "area-model", value_enum)]
     pub area_model: Option<AreaModelArg>,
-    /// Sphere radius R [m] of the hertz-sphere and thin-layer area models.
+    /// Dome radius R [m] of the hertz-sphere and thin-layer area models (alone: hertz-sphere).
     #[arg(long, value_name = "M")]
     pub radius: Option<f64>,
-    /// Contact area [m²] of the fixed area model.
-    #[arg(long = "contact-area", value_name = "M2")]
-    pub contact_area: Option<f64>,
+    /// Contact area of the fixed area model (alone: fixed), with its unit: 1cm2 (the unit of
+    /// the standard's pressures), 1e-4m2 or 100mm2; a bare number is refused.
+    #[arg(long = "contact-area", value_name = "AREA")]
+    pub contact_area: Option<String>,
 }
 
 impl ContactLawArgs {
@@ -69,10 +71,38 @@ impl ContactLawArgs {
         }
     }
 
-    /// The contact-area model of `--area-model` with the dimension it needs.
+    /// The contact-area model of `--area-model` with the dimension it needs; without
+    /// `--area-model`, the Hertz sphere of `--radius` or the fixed `--contact-area`.
     pub fn area_model(&self) -> Result<Option<ContactAreaModel>, Error> {
+        let area = self
+            .contact_area
+            .as_deref()
+            .map(|a| flexrig::safety::measured::parse_area("--contact-area", a))
+            .transpose()?;
+        let unused = |flag: &str, model: &str| Error::InvalidArgument {
+            arg: flag.into(),
+            value: "(given)".into(),
+            allowed: format!("--area-model {model} does not use it: leave it out"),
+        };
         Ok(match self.area_model {
-            None => None,
+            None => match (self.radius, area) {
+                (Some(_), Some(_)) => {
+                    return Err(missing(
+                        "--area-model",
+                        "--radius and --contact-area together need --area-model to say which \
+                         model (hertz-sphere, thin-layer or fixed)",
+                    ));
+                }
+                (Some(radius_m), None) => Some(ContactAreaModel::HertzSphere { radius_m }),
+                (None, Some(area_m2)) => Some(ContactAreaModel::Fixed { area_m2 }),
+                (None, None) => None,
+            },
+            Some(AreaModelArg::HertzSphere | AreaModelArg::ThinLayer) if area.is_some() => {
+                return Err(unused("--contact-area", "hertz-sphere or thin-layer"));
+            }
+            Some(AreaModelArg::Fixed) if self.radius.is_some() => {
+                return Err(unused("--radius", "fixed"));
+            }
             Some(AreaModelArg::HertzSphere) => Some(ContactAreaModel::HertzSphere {
                 radius_m: self.radius.ok_or_else(|| {
                     missing("--radius", "--area-model hertz-sphere needs --radius")
@@ -84,8 +114,11 @@ impl ContactLawArgs {
                     .ok_or_else(|| missing("--radius", "--area-model thin-layer needs --radius"))?,
             }),
             Some(AreaModelArg::Fixed) => Some(ContactAreaModel::Fixed {
-                area_m2: self.contact_area.ok_or_else(|| {
-                    missing("--contact-area", "--area-model fixed needs --contact-area")
+                area_m2: area.ok_or_else(|| {
+                    missing(
+                        "--contact-area",
+                        "--area-model fixed needs --contact-area (e.g. 1cm2)",
+                    )
                 })?,
             }),
         })

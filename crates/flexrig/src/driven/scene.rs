@@ -501,6 +501,7 @@ pub fn run(scene: &DrivenScene, cancel: &CancelToken) -> Result<DrivenRun, Error
             head_moves.then_some(traces.head_acceleration_mps2.as_slice()),
             (c.onset_s, end),
             s.dome.radius_m,
+            hertz.n(),
         )?)
     } else {
         None

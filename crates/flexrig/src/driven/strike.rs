@@ -508,8 +508,9 @@ pub fn run(
     })
 }
 
-/// The trace's CSV header (SI units in the names).
-pub const TRACE_HEADER: &str = "t_s,hub_angle_rad,hub_speed_rad_s,tip_deflection_m,indentation_m,force_n,joint_torque_nm,head_position_m";
+/// The trace's CSV header (SI units in the names; `flexrig safety --trace` reads it as it is:
+/// time, force, indentation and the head's acceleration).
+pub const TRACE_HEADER: &str = "t_s,hub_angle_rad,hub_speed_rad_s,tip_deflection_m,indentation_m,force_n,joint_torque_nm,head_position_m,head_acceleration_mps2";
 
 /// One row per trace sample, each number in its shortest exact form.
 pub fn trace_text(trace: &[TraceSample]) -> String {
@@ -517,7 +518,7 @@ pub fn trace_text(trace: &[TraceSample]) -> String {
     for s in trace {
         let _ = writeln!(
             text,
-            "{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{}",
             num(s.t),
             num(s.hub_angle_rad),
             num(s.hub_speed_rad_s),
@@ -525,7 +526,8 @@ pub fn trace_text(trace: &[TraceSample]) -> String {
             num(s.indentation_m),
             num(s.force_n),
             num(s.joint_torque_nm),
-            num(s.head_position_m)
+            num(s.head_position_m),
+            num(s.head_acceleration_mps2)
         );
     }
     text

@@ -736,6 +736,18 @@ pub fn safety_map(
     let area_model = input
         .area_model
         .or(material_radius.map(|r| ContactAreaModel::HertzSphere { radius_m: r }));
+    if let Some(a) = &area_model
+        && !matches!(a, ContactAreaModel::Fixed { .. })
+        && base.n() <= 1.0
+    {
+        return Err(bad(
+            "--area-model",
+            format!("{a:?}"),
+            "a dome's area model needs a contact law with n > 1: a linear contact is a spring \
+             without a contact geometry; give --k-c and --n of the skin (or --material), or a \
+             fixed area (--contact-area, e.g. 1cm2)",
+        ));
+    }
     let shared = Shared {
         input,
         model,

@@ -4,11 +4,12 @@
 //! the simulated impact of a link design and its root search for the permissible speed
 //! ([`simulation`]); a scene as the design — a driven scene ([`scene`]) or a test-bed scene
 //! ([`test_bed`]); the safe-speed maps over two design axes ([`map`]); and the report for a risk
-//! assessment ([`report`]).
+//! assessment ([`report`]); a measured impact's severity and verdict ([`measured`]).
 //!
 //! May use: `shared`, `plots`, `log`, `lumped`, `driven`, `testbed`.
 
 pub mod map;
+pub mod measured;
 pub mod overall;
 pub mod point;
 pub mod question;

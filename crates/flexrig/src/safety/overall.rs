@@ -152,7 +152,7 @@ pub fn energy_travel_warning(
     force: f64,
     k_delta: Option<f64>,
     length: Option<f64>,
-) -> Option<String> {
+) -> Option<crate::shared::plausibility::Warning> {
     let k = k_delta?;
     let deflection = force / k;
     let (travel, what) = match length {
@@ -162,8 +162,9 @@ pub fn energy_travel_warning(
             format!("{} m, a plausible travel", display(PLAUSIBLE_TRAVEL_M)),
         ),
     };
-    (deflection > travel && energy.v_max_mps.value().is_finite()).then(|| {
-        format!(
+    (deflection > travel && energy.v_max_mps.value().is_finite()).then(|| crate::shared::plausibility::Warning {
+        field: "--k-delta".into(),
+        message: format!(
             "the energy method's {} m/s needs the link to deflect F/k_δ = {} m at the {} N limit, \
              more than {what}: it assumes a linear link that bends that far — do not rely on it{}",
             display(energy.v_max_mps.value()),
@@ -174,7 +175,7 @@ pub fn energy_travel_warning(
             } else {
                 " (run the simulation method for this design)"
             }
-        )
+        ),
     })
 }
 

@@ -49,9 +49,6 @@ pub struct SafetyReport {
     /// The overall verdict: the most restrictive of the methods run, named
     /// ([`crate::safety::overall`]).
     pub overall: crate::safety::overall::OverallVerdict,
-    /// What a method's answer rests on that the design violates, in words (empty: nothing).
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub warnings: Vec<String>,
     /// Body region key.
     pub region: String,
     /// Body region name.
@@ -84,6 +81,10 @@ pub struct SafetyReport {
     /// The driven scene's simulation (absent without `--scene` or the simulation method).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub scene: Option<crate::safety::simulation::SceneSimulation>,
+    /// What is valid but looks like a mistake (a unit slip, an implausible contact area) or what
+    /// a method's answer rests on that the design violates, each with the field it is about.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<crate::safety::measured::Warning>,
 }
 
 fn bad(arg: &str, value: impl ToString, allowed: &str) -> Error {
@@ -192,6 +193,19 @@ fn setup<'a>(input: &SafetyInput, model: &'a BodyModel) -> Result<Setup<'a>, Err
     if let Some(a) = &area_model {
         a.validate()
             .map_err(|e| bad("--area-model", format!("{a:?}"), &e.to_string()))?;
+        if !matches!(a, ContactAreaModel::Fixed { .. }) && hertz.n() <= 1.0 {
+            return Err(bad(
+                "--area-model",
+                format!("{a:?}"),
+                &format!(
+                    "a dome's area model needs a contact law with n > 1: a linear contact \
+                     (n = {}) is a spring without a contact geometry, its dome pressure k/(πR) \
+                     would not depend on the force; give --k-c and --n of the skin (or \
+                     --material), or a fixed area (--contact-area, e.g. 1cm2)",
+                    hertz.n()
+                ),
+            ));
+        }
     }
     if area_model.is_none() {
         limits.pressure = None;
@@ -301,7 +315,15 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
             "give at least one of standard, energy, simulation",
         )
     })?;
+    for m in &mut methods {
+        transferred_energy(&s, m)?;
+    }
     let mut warnings = typed_warnings(given);
+    warnings.extend(crate::safety::measured::area_warnings(
+        s.area_model.as_ref(),
+        "--contact-area",
+        "--radius",
+    ));
     warnings.extend(
         methods
             .iter()
@@ -354,7 +376,7 @@ pub fn check_region(region: &str, model: Option<&BodyModel>) -> Result<(), Error
 
 /// The plausibility warnings of the masses, length and speed the user typed
 /// ([`crate::shared::plausibility`]; a scene's own values are the scene's warnings).
-fn typed_warnings(input: &SafetyInput) -> Vec<String> {
+fn typed_warnings(input: &SafetyInput) -> Vec<crate::safety::measured::Warning> {
     use crate::shared::plausibility::{length, mass, speed};
     let mut masses = vec![
         ("--moving-mass", input.moving_mass),
@@ -401,6 +423,37 @@ fn rigid_joint_tip_mass(sc: &crate::safety::scene::SafetyScene) -> Option<f64> {
     }
 }
 
+/// Fills in the energy transferred to the body by method `m` at its verdict's peak force and at
+/// v_max ([`crate::safety::measured::contact_energy_at_force`]): the standard's body spring
+/// (n = 1, k = K) for the standard, the skin's law for the others.
+fn transferred_energy(s: &Setup, m: &mut MethodResult) -> Result<(), Error> {
+    let (law, area) = match m.method {
+        SafetyMethod::Standard => (
+            Hertz::new(s.region.spring_constant(), 1.0)?,
+            s.area_model
+                .filter(|a| matches!(a, ContactAreaModel::Fixed { .. })),
+        ),
+        _ => (s.hertz, s.area_model),
+    };
+    let energy = |f: f64| crate::safety::measured::contact_energy_at_force(&law, f);
+    if let Some(v) = m.verdict.as_mut() {
+        v.energy_transferred_j = energy(v.peak_force_n);
+    }
+    let force = match (m.v_max_mps, m.governing, s.limits.pressure) {
+        (Speed::Unlimited(_), ..) => None,
+        (_, GoverningLimit::Pressure, Some(p)) => {
+            let contact = EnergyContact::new(1.0, 1.0, law, LinkStiffness::Rigid, area)?;
+            match contact.force_at_pressure(p) {
+                Some(flexrig_safety::PressureCrossing::AtForce(f)) => Some(f),
+                _ => None,
+            }
+        }
+        _ => Some(s.limits.force),
+    };
+    m.energy_transferred_at_v_max_j = force.map(energy);
+    Ok(())
+}
+
 /// The input with the design of the driven scene `sc`: its link (m_eff = m_e + γ m_r/3 with
 /// γ = 1 for the CJ and 2/3 for the CL, paper Eq. 5; k_δ; length), its skin's Hertz law, the
 /// contact kind of its support, and the Hertz-sphere area of the paper's dome unless an area
@@ -419,11 +472,13 @@ fn scene_input(
         }
     };
     let hertz = strike.person.contact;
+    // the paper's dome by default, for a skin with a contact geometry (n > 1)
     let area_model = match input.area_model {
-        Some(a) => a,
-        None => ContactAreaModel::HertzSphere {
+        Some(a) => Some(a),
+        None if hertz.n() > 1.0 => Some(ContactAreaModel::HertzSphere {
             radius_m: crate::shared::severity::paper_dome_radius_m()?,
-        },
+        }),
+        None => None,
     };
     let derived = SafetyInput {
         contact: sc.contact_kind(),
@@ -437,7 +492,7 @@ fn scene_input(
             k_c: hertz.k(),
             n: hertz.n(),
         },
-        area_model: Some(area_model),
+        area_model,
         link: Some(link),
         simulation: Some(SimulationSettings {
             length: Some(strike.link.length),
@@ -476,11 +531,13 @@ fn test_bed_input(
     };
     let quantities = crate::testbed::link::of_scene(&tb.scene);
     let robot = &tb.scene.file.robot;
+    // the scene's dome by default, for a skin with a contact geometry (n > 1)
     let area_model = match input.area_model {
-        Some(a) => a,
-        None => ContactAreaModel::HertzSphere {
+        Some(a) => Some(a),
+        None if tb.scene.hertz.n() > 1.0 => Some(ContactAreaModel::HertzSphere {
             radius_m: robot.dome_radius_m,
-        },
+        }),
+        None => None,
     };
     let derived = SafetyInput {
         contact: ContactKind::Transient,
@@ -494,7 +551,7 @@ fn test_bed_input(
             k_c: tb.scene.hertz.k(),
             n: tb.scene.hertz.n(),
         },
-        area_model: Some(area_model),
+        area_model,
         link: Some(link),
         simulation: Some(SimulationSettings {
             length: Some(robot.length_m),
@@ -667,6 +724,8 @@ fn from_permissible(
         by_force_mps: Speed::from_f64(p.by_force),
         by_pressure_mps: p.by_pressure.map(Speed::from_f64),
         governing: p.governing,
+        pressure_assessed: p.by_pressure.is_some(),
+        energy_transferred_at_v_max_j: None,
         verdict: verdict.map(|v| SpeedVerdict {
             speed_mps: v.speed,
             pass: v.pass,
@@ -674,6 +733,7 @@ fn from_permissible(
             peak_pressure_pa: v.peak_pressure,
             force_margin: v.force_margin,
             pressure_margin: v.pressure_margin,
+            energy_transferred_j: 0.0,
             governing_contact: None,
         }),
         governing_contact: None,
@@ -879,7 +939,8 @@ pub fn simulation_trace(
     };
     let s = setup(input, model)?;
     let mut trace = Vec::new();
-    let m = simulation_traced(&s, input, Some(&mut trace))?;
+    let mut m = simulation_traced(&s, input, Some(&mut trace))?;
+    transferred_energy(&s, &mut m)?;
     Ok((m, trace, fe_impact(&s, input)?))
 }
 

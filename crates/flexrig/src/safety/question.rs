@@ -158,6 +158,11 @@ pub struct SpeedVerdict {
     /// 1 − peak pressure / pressure limit (absent without a pressure assessment).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pressure_margin: Option<f64>,
+    /// The energy transferred to the body at the peak force \[J\]: what the method's contact law
+    /// stores there, k δ^{n+1}/(n+1) at δ = (F/k)^{1/n} (the standard: its body spring,
+    /// F²/(2K) = ½ μ v², Eq. A.1–A.2; the energy and simulation methods: the skin's Hertz law,
+    /// the link's own share left out).
+    pub energy_transferred_j: f64,
     /// The simulation method: the contact that holds the peak at this speed, its time, and how
     /// many contacts there were until the bodies parted for good (absent for the formulas).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -191,6 +196,15 @@ pub struct MethodResult {
     pub by_pressure_mps: Option<Speed>,
     /// The limit that sets v_max.
     pub governing: GoverningLimit,
+    /// Whether this method judged the pressure: false without a contact geometry (no area
+    /// model, or the standard's formula without a fixed area); then only the force is judged
+    /// and the text says "pressure not assessed" in place of a governing limit.
+    pub pressure_assessed: bool,
+    /// The energy transferred to the body at v_max \[J\] (the method's contact law at the peak
+    /// force there: the force limit, or the force at which the pressure limit is reached;
+    /// absent when v_max is unlimited).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy_transferred_at_v_max_j: Option<f64>,
     /// The verdict at the requested speed (absent without `--speed`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub verdict: Option<SpeedVerdict>,

@@ -6,6 +6,14 @@
 //! their JSON.
 
 use flexrig_contact::validate::display;
+pub use flexrig_rig::plausibility::Warning;
+
+fn warning(flag: &str, message: String) -> Warning {
+    Warning {
+        field: flag.to_string(),
+        message,
+    }
+}
 
 /// The heaviest plausible mass \[kg\] of a robot's link, payload or moving parts near a person:
 /// collaborative arms move at most a few tens of kilograms (ISO/TS 15066:2016 Annex A's
@@ -21,41 +29,50 @@ pub const PLAUSIBLE_SPEED_MPS: f64 = 10.0;
 
 /// A warning for the mass `kg` given as `flag`, when it is heavier than
 /// [`PLAUSIBLE_MASS_KG`] (with its value in grams read as kilograms).
-pub fn mass(flag: &str, kg: f64) -> Option<String> {
+pub fn mass(flag: &str, kg: f64) -> Option<Warning> {
     (kg.is_finite() && kg > PLAUSIBLE_MASS_KG).then(|| {
-        format!(
-            "{flag} = {} kg is heavier than a robot near a person moves (up to about {} kg); if \
+        warning(
+            flag,
+            format!(
+                "{} kg is heavier than a robot near a person moves (up to about {} kg); if \
              grams were meant, {} g is {} kg",
-            display(kg),
-            display(PLAUSIBLE_MASS_KG),
-            display(kg),
-            display(kg / 1000.0)
+                display(kg),
+                display(PLAUSIBLE_MASS_KG),
+                display(kg),
+                display(kg / 1000.0)
+            ),
         )
     })
 }
 
 /// A warning for the length `m` given as `flag`, when it is longer than [`PLAUSIBLE_LENGTH_M`].
-pub fn length(flag: &str, m: f64) -> Option<String> {
+pub fn length(flag: &str, m: f64) -> Option<Warning> {
     (m.is_finite() && m > PLAUSIBLE_LENGTH_M).then(|| {
-        format!(
-            "{flag} = {} m is longer than a robot's link (up to about {} m); if millimetres were \
+        warning(
+            flag,
+            format!(
+                "{} m is longer than a robot's link (up to about {} m); if millimetres were \
              meant, {} mm is {} m",
-            display(m),
-            display(PLAUSIBLE_LENGTH_M),
-            display(m),
-            display(m / 1000.0)
+                display(m),
+                display(PLAUSIBLE_LENGTH_M),
+                display(m),
+                display(m / 1000.0)
+            ),
         )
     })
 }
 
 /// A warning for the relative speed `mps` given as `flag`, when it is faster than
 /// [`PLAUSIBLE_SPEED_MPS`].
-pub fn speed(flag: &str, mps: f64) -> Option<String> {
+pub fn speed(flag: &str, mps: f64) -> Option<Warning> {
     (mps.is_finite() && mps > PLAUSIBLE_SPEED_MPS).then(|| {
-        format!(
-            "{flag} = {} m/s is faster than robot arms move near people (up to about {} m/s)",
-            display(mps),
-            display(PLAUSIBLE_SPEED_MPS)
+        warning(
+            flag,
+            format!(
+                "{} m/s is faster than robot arms move near people (up to about {} m/s)",
+                display(mps),
+                display(PLAUSIBLE_SPEED_MPS)
+            ),
         )
     })
 }
@@ -72,7 +89,7 @@ mod tests {
             "{w}"
         );
         assert!(mass("--m-r", 200.0).is_none() && mass("--m-e", 0.412).is_none());
-        let w = length("--length", 600.0).unwrap();
+        let w = length("--length", 600.0).unwrap().message;
         assert!(w.contains("600 mm is 0.6 m"), "{w}");
         assert!(length("--length", 0.338).is_none());
         assert!(speed("--speed", 57.3).is_some() && speed("--speed", 2.5).is_none());

@@ -14,7 +14,8 @@
 //!   dense output sampled uniformly ([`LUMPED_TRACE_SAMPLES`] intervals over the contact); the
 //!   struck body is the head of mass m_h, its acceleration f/m_h.
 //!
-//! Pressure is reported under both dome contact-area models
+//! Pressure is reported, for a skin's law with a contact geometry (n > 1), under both dome
+//! contact-area models
 //! ([`ContactAreaModel::dome_models`]: Hertz sphere A = πRδ, the default; thin layer on a rigid
 //! backing A = π(2Rδ − δ²)); HIC15/HIC36 are exact for the piecewise-linear interpolant of the
 //! samples ([`HIC_METHOD`]).
@@ -45,7 +46,8 @@ pub fn paper_dome_radius_m() -> Result<f64, Error> {
 /// Severity of the lumped impact `model` (from contact to separation): integrated at relative
 /// tolerance `rtol` with `formulation`, its dense output sampled every contact duration /
 /// [`LUMPED_TRACE_SAMPLES`]; head acceleration f/m_h; contact area of a dome of radius
-/// `dome_radius_m` \[m\] under both models.
+/// `dome_radius_m` \[m\] under both models when the contact law has a geometry (n > 1; a
+/// linear contact reports no pressure, [`ContactAreaModel::dome_models_for_exponent`]).
 pub fn of_lumped(
     model: &ImpactModel,
     rtol: f64,
@@ -75,7 +77,7 @@ pub fn of_lumped(
             indentation: &indentation,
             head_acceleration: Some(&acceleration),
         },
-        &ContactAreaModel::dome_models(dome_radius_m),
+        &ContactAreaModel::dome_models_for_exponent(dome_radius_m, model.spring().contact().n()),
     )?)
 }
 
@@ -83,8 +85,9 @@ pub fn of_lumped(
 /// `indentation` \[m\] and the head's acceleration \[m/s²\] (`None`: a head against a wall,
 /// which does not move: no acceleration, no HIC), the samples with t in
 /// [`onset_s`, `end_s`] (the trace holds the onset and the separation); contact area of a dome
-/// of radius `dome_radius_m` \[m\] under both models. A negative indentation (round-off at
-/// the onset and the separation) counts as 0.
+/// of radius `dome_radius_m` \[m\] under both models for a skin's law of exponent `n` > 1 (none
+/// for n ≤ 1: [`ContactAreaModel::dome_models_for_exponent`]). A negative indentation
+/// (round-off at the onset and the separation) counts as 0.
 pub fn of_driven(
     times: &[f64],
     force: &[f64],
@@ -92,6 +95,7 @@ pub fn of_driven(
     head_acceleration: Option<&[f64]>,
     (onset_s, end_s): (f64, f64),
     dome_radius_m: f64,
+    n: f64,
 ) -> Result<Severity, Error> {
     let inside: Vec<usize> = (0..times.len())
         .filter(|&i| times[i] >= onset_s && times[i] <= end_s)
@@ -108,7 +112,7 @@ pub fn of_driven(
             indentation: &d,
             head_acceleration: a.as_deref(),
         },
-        &ContactAreaModel::dome_models(dome_radius_m),
+        &ContactAreaModel::dome_models_for_exponent(dome_radius_m, n),
     )?)
 }
 

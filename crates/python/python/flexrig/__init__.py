@@ -709,12 +709,12 @@ def spin_up(
 #: The columns of a strike's trace (strike_trace.csv).
 STRIKE_TRACE_COLUMNS: Tuple[str, ...] = (
     "t_s", "hub_angle_rad", "hub_speed_rad_s", "tip_deflection_m", "indentation_m", "force_n",
-    "joint_torque_nm", "head_position_m",
+    "joint_torque_nm", "head_position_m", "head_acceleration_mps2",
 )
 
 _TRACE_KEYS = (
     "t", "hub_angle_rad", "hub_speed_rad_s", "tip_deflection_m", "indentation_m", "force_n",
-    "joint_torque_nm", "head_position_m",
+    "joint_torque_nm", "head_position_m", "head_acceleration_mps2",
 )
 
 

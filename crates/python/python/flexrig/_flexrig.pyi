@@ -162,6 +162,14 @@ def safety_json(input_json: str, body_model_toml: Optional[str] = None) -> str:
     """The report of ``flexrig safety --json`` for a safety input given as JSON (see
     ``flexrig.safety``)."""
 
+def safety_trace_json(input_json: str, body_model_toml: Optional[str] = None) -> str:
+    """The report of ``flexrig safety --trace FILE --json`` for a trace input given as JSON (see
+    ``flexrig.safety`` with ``trace``)."""
+
+def parse_area(text: str) -> float:
+    """An area with its unit (``"1cm2"``, ``"1e-4m2"``, ``"100mm2"``) in m², as
+    ``--contact-area`` reads it; a bare number is refused."""
+
 def safety_map_json(input_json: str, body_model_toml: Optional[str] = None) -> str:
     """The safe-speed map of ``flexrig safety-map`` (its safety_map.json) for a map input given
     as JSON; an axis may be ``{"text": "PARAM=START:STOP:COUNT[:log]"}`` (see

@@ -24,19 +24,46 @@ def _contact_law(k_c: Optional[float], n: Optional[float], material: Optional[st
     return "body_spring"
 
 
-def _area_model(area_model: Optional[str], radius: Optional[float], contact_area: Optional[float]) -> Optional[Dict[str, Any]]:
-    """The contact-area model of ``area_model`` with the ``radius`` or ``contact_area`` it needs."""
+def _area_m2(contact_area: Union[None, float, str]) -> Optional[float]:
+    """``contact_area`` in m²: a number is m² (SI, as every keyword), a string carries its unit
+    (``"1cm2"``, ``"1e-4m2"``, ``"100mm2"``, read as ``--contact-area`` reads it)."""
+    if contact_area is None:
+        return None
+    if isinstance(contact_area, str):
+        return _flexrig.parse_area(contact_area)
+    if isinstance(contact_area, bool) or not isinstance(contact_area, (int, float)):
+        raise _input_error("contact_area", f"invalid argument contact_area = {contact_area!r}: a number (m²) or a string with its unit such as '1cm2'")
+    return float(contact_area)
+
+
+def _area_model(
+    area_model: Optional[str], radius: Optional[float], contact_area: Union[None, float, str]
+) -> Optional[Dict[str, Any]]:
+    """The contact-area model of ``area_model`` with the ``radius`` or ``contact_area`` it needs;
+    without ``area_model``, the Hertz sphere of ``radius`` or the fixed ``contact_area`` (as the
+    command line)."""
+    area = _area_m2(contact_area)
     if area_model is None:
+        if radius is not None and area is not None:
+            raise _input_error("area_model", "radius and contact_area together need area_model to say which model")
+        if radius is not None:
+            return {"model": "hertz_sphere", "radius_m": radius}
+        if area is not None:
+            return {"model": "fixed", "area_m2": area}
         return None
     kind = area_model.replace("-", "_")
+    if kind in ("hertz_sphere", "thin_layer") and area is not None:
+        raise _input_error("contact_area", f"area_model {area_model} does not use contact_area: leave it out")
+    if kind == "fixed" and radius is not None:
+        raise _input_error("radius", "area_model fixed does not use radius: leave it out")
     if kind in ("hertz_sphere", "thin_layer"):
         if radius is None:
             raise _input_error("radius", f"area_model {area_model} needs radius (m)")
         return {"model": kind, "radius_m": radius}
     if kind == "fixed":
-        if contact_area is None:
-            raise _input_error("contact_area", "area_model fixed needs contact_area (m²)")
-        return {"model": "fixed", "area_m2": contact_area}
+        if area is None:
+            raise _input_error("contact_area", "area_model fixed needs contact_area (m², or a string with its unit such as '1cm2')")
+        return {"model": "fixed", "area_m2": area}
     raise _input_error("area_model", f"unknown area_model {area_model!r}: hertz_sphere, thin_layer or fixed")
 
 
@@ -56,7 +83,7 @@ def safety(
     material: Optional[str] = None,
     area_model: Optional[str] = None,
     radius: Optional[float] = None,
-    contact_area: Optional[float] = None,
+    contact_area: Union[None, float, str] = None,
     moving_mass: Optional[float] = None,
     payload: float = 0.0,
     speed: Optional[float] = None,
@@ -68,6 +95,7 @@ def safety(
     length: Optional[float] = None,
     tol: float = 1e-6,
     root_rtol: float = 1e-6,
+    trace: Optional[Union[str, "os.PathLike[str]"]] = None,
 ) -> Dict[str, Any]:
     """The permissible speed of a design near ``region`` by the standard's formula
     (``"standard"``), the paper's energy method (``"energy"``) and the simulated finite-element
@@ -96,7 +124,27 @@ def safety(
     simulation method searches the operator's speed at contact through its release angle (up
     to 170°): ``result["scene"]`` then has ``release_angle_at_root_deg`` and ``limit_reached``
     (false: the limit is not reached on the test bed, and the speed is the largest it reaches).
+
+    ``contact_area`` is in m² as a number, or a string with its unit (``"1cm2"``, ``"1e-4m2"``);
+    ``radius`` alone means the Hertz sphere, ``contact_area`` alone the fixed area. An implausible
+    area (above 100 cm², below 0.01 cm²) is listed under ``"warnings"`` and warned about
+    (:class:`PlausibilityWarning`).
+
+    ``trace`` (the path of a CSV file: a header naming each column with its unit, e.g.
+    ``t [s], F [N], a [m/s^2], delta [mm]``, docs/safety.md) judges a **measured impact**
+    instead of a design, as ``flexrig safety --trace FILE --json``: its severity (peak force,
+    pressure with ``area_model``/``radius``/``contact_area``, transferred energy, HIC15/HIC36)
+    and the verdict against ``region``'s limits (with ``area``, ``contact``, ``body_model``; the
+    design keywords are then refused).
     """
+    if trace is not None:
+        return _safety_trace(
+            trace, region, area=area, contact=contact, area_model=area_model, radius=radius,
+            contact_area=contact_area, body_model=body_model,
+            design=dict(scene=scene, m_eff=m_eff, m_r=m_r, m_e=m_e, gamma=gamma, k_delta=k_delta, k_c=k_c, n=n,
+                        material=material, moving_mass=moving_mass, speed=speed, method=method, link=link,
+                        rotor_inertia=rotor_inertia),
+        )
     if scene is not None and contact is not None:
         raise _input_error("contact", "contact comes from the scene's support (a wall: quasi_static, a free head: transient)")
     if contact is None:
@@ -142,11 +190,60 @@ def safety(
     }
     if scene is not None:
         data["scene"] = os.fspath(scene)
-    text = None
-    if body_model is not None:
-        with open(body_model, encoding="utf-8") as f:
-            text = f.read()
-    return json.loads(_flexrig.safety_json(json.dumps(data, allow_nan=True), text))
+    report = json.loads(_flexrig.safety_json(json.dumps(data, allow_nan=True), _body_model_text(body_model)))
+    _warn(report)
+    return report
+
+
+def _body_model_text(body_model: Optional[Union[str, "os.PathLike[str]"]]) -> Optional[str]:
+    """The TOML text of the body-model file, or None for the bundled table."""
+    if body_model is None:
+        return None
+    with open(body_model, encoding="utf-8") as f:
+        return f.read()
+
+
+def _warn(report: Dict[str, Any]) -> None:
+    """Each of the report's warnings as a :class:`PlausibilityWarning`, the flags written as the
+    keyword arguments."""
+    import re
+    import warnings
+
+    from . import PlausibilityWarning
+
+    def keyword(text: str) -> str:
+        return re.sub(r"--([a-z][a-z-]*)", lambda m: m.group(1).replace("-", "_"), text)
+
+    for w in report.get("warnings", ()):
+        warnings.warn(f"{keyword(w['field'])}: {keyword(w['message'])}", PlausibilityWarning, stacklevel=3)
+
+
+def _safety_trace(
+    trace: Union[str, "os.PathLike[str]"],
+    region: str,
+    *,
+    area: Optional[str],
+    contact: Optional[str],
+    area_model: Optional[str],
+    radius: Optional[float],
+    contact_area: Union[None, float, str],
+    body_model: Optional[Union[str, "os.PathLike[str]"]],
+    design: Dict[str, Any],
+) -> Dict[str, Any]:
+    """``flexrig safety --trace FILE --json``: the measured impact of ``trace`` judged."""
+    for name, value in design.items():
+        if value is not None:
+            raise _input_error(name, f"{name} describes a design: leave it out with trace (a measured impact)")
+    data = {
+        "trace": os.fspath(trace),
+        "region": region,
+        "area": area,
+        "contact": (contact or "transient").replace("-", "_"),
+        "area_model": _area_model(area_model, radius, contact_area),
+    }
+    report = json.loads(_flexrig.safety_trace_json(json.dumps(data, allow_nan=True), _body_model_text(body_model)))
+    _warn(report)
+    return report
 
 
 def _joint(joint: str, rotor_inertia: Optional[float]) -> Any:
