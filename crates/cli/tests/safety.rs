@@ -384,14 +384,20 @@ fn an_unknown_region_comes_first_and_unit_slips_are_warned_about() {
     assert_eq!(out.status.code(), Some(0));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
-        err.contains("warning: --m-r = 1200 kg") && err.contains("2000 g is 2 kg"),
+        err.contains("warning: --m-r: 1200 kg") && err.contains("2000 g is 2 kg"),
         "{err}"
     );
     let v = json(&args[1..]);
     let w = v["warnings"].as_array().unwrap();
     assert_eq!(w.len(), 2, "{w:?}");
     assert_eq!(w[0]["field"], "--m-r");
-    assert!(w[0]["message"].as_str().unwrap().contains("1200 g is 1.2 kg"));
+    assert!(
+        w[0]["message"]
+            .as_str()
+            .unwrap()
+            .contains("1200 g is 1.2 kg")
+    );
+}
 
 fn scratch(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("flexrig-cli-trace-{}-{name}", std::process::id()));
