@@ -83,9 +83,9 @@ mod tests {
 
     #[test]
     fn slips_are_named_with_their_conversion_and_plausible_values_pass() {
-        let w = mass("--m-r", 1200.0).unwrap();
+        let w = mass("--m-r", 1200.0).unwrap().to_string();
         assert!(
-            w.contains("--m-r = 1200 kg") && w.contains("1200 g is 1.2 kg"),
+            w.contains("--m-r: 1200 kg") && w.contains("1200 g is 1.2 kg"),
             "{w}"
         );
         assert!(mass("--m-r", 200.0).is_none() && mass("--m-e", 0.412).is_none());
