@@ -168,8 +168,13 @@ impl SpinUpOptions {
         let i = positive_arg("--second-moment", self.second_moment)?;
         let rho = positive_arg("--density", self.density)?;
         let t_s = positive_arg("--t-s", self.t_s)?;
-        if !self.omega_s.is_finite() {
-            return Err(invalid("--omega-s", self.omega_s, "a finite speed"));
+        if !(self.omega_s.is_finite() && self.omega_s != 0.0) {
+            return Err(invalid(
+                "--omega-s",
+                flexrig_contact::validate::display(self.omega_s),
+                "a finite speed other than 0 rad/s (at 0 the beam stays at rest: there is no \
+                 deflection to compare)",
+            ));
         }
         let t_end = match self.duration {
             Some(d) => positive_arg("--duration", d)?,
@@ -180,7 +185,10 @@ impl SpinUpOptions {
             return Err(invalid(
                 "--sample-every",
                 sample_every,
-                &format!("at most the duration, {t_end} s"),
+                &format!(
+                    "at most the duration, {} s",
+                    flexrig_contact::validate::display(t_end)
+                ),
             ));
         }
         if !(1..=10_000).contains(&self.elements) {
@@ -312,7 +320,7 @@ impl SpinUpOptions {
 fn invalid(arg: &str, value: impl std::fmt::Display, allowed: &str) -> Error {
     Error::InvalidArgument {
         arg: arg.into(),
-        value: value.to_string(),
+        value: crate::shared::output::value_text(value),
         allowed: allowed.into(),
     }
 }

@@ -208,7 +208,7 @@ impl StrikeFlags {
             "m_h" => ("--m-h", self.m_h),
             "k" | "k_c" if !field.starts_with("drive") => ("--k-c", self.k_c),
             "n" if !field.starts_with("drive") => ("--n", self.n),
-            "settle" => ("--settle", self.settle),
+            "settle" | "placement" => ("--settle", self.settle),
             "horizon_s" => ("--horizon", self.horizon),
             _ => return None,
         })
@@ -288,6 +288,9 @@ fn rename_fields(text: &str) -> String {
         ("drive.command.gains.kp", "--kp"),
         ("drive.command.gains.kd", "--kd"),
         ("drive.motor.rotor_inertia", "--rotor-inertia"),
+        ("drive.command.torque_limit", "--torque-limit"),
+        ("placement.settle", "--settle"),
+        ("link.m_r", "--m-r"),
         ("person.contact.k", "--k-c"),
         ("person.contact.n", "--n"),
         ("person.speed", "the person's speed (0)"),
