@@ -129,7 +129,7 @@ pub fn run_cancellable(cli: &Cli, out: &mut dyn Write, cancel: &CancelToken) -> 
         Some(Command::Beam(cmd)) => commands::beam::run(cmd, out),
         Some(Command::Prb(args)) => commands::prb::run(args, out),
         Some(Command::Validate(args)) => commands::validate::run(args, out),
-        Some(Command::Bench(args)) => commands::bench::run(args, out),
+        Some(Command::Bench(args)) => commands::bench::run(args, out, cancel),
         Some(Command::Safety(args)) => commands::safety::run(args, out, cancel),
         Some(Command::SafetyMap(args)) => commands::safety_map::run(args, out, cancel),
         Some(Command::SpinUp(args)) => commands::spin_up::run(args, out, cancel),
@@ -154,7 +154,11 @@ pub fn list_hint(err: &clap::Error, args: &[String]) -> Option<String> {
         })?;
         let flag = match args[i].split_once('=') {
             Some((f, _)) if f.starts_with("--") => f,
-            _ => args[..i].iter().rev().find(|a| a.starts_with("--"))?.as_str(),
+            _ => args[..i]
+                .iter()
+                .rev()
+                .find(|a| a.starts_with("--"))?
+                .as_str(),
         };
         return Some(format!(
             "tip: the list {flag} {list} has an empty item: remove the stray comma"

@@ -2149,7 +2149,9 @@ fn debug_text(text: &str) -> Option<String> {
             .chars()
             .take_while(|c| c.is_alphanumeric() || *c == '_')
             .collect();
-        if before.is_alphanumeric() && !after.is_empty() && text[i + 3 + after.len()..].starts_with(':')
+        if before.is_alphanumeric()
+            && !after.is_empty()
+            && text[i + 3 + after.len()..].starts_with(':')
         {
             return Some(shorten(&text[i.saturating_sub(30)..], 80));
         }
@@ -2167,7 +2169,9 @@ fn strike_and_role_switch_hostile_flags() {
     let mut cases = 0;
     let mut numbers = hostile_numbers();
     numbers.retain(|s| s.len() < 1000);
-    numbers.extend(strings(&["95.5", "1e-20", "1e40", "1e-6", "600", "1e15", "0.1", "3"]));
+    numbers.extend(strings(&[
+        "95.5", "1e-20", "1e40", "1e-6", "600", "1e15", "0.1", "3",
+    ]));
     let scalar = [
         "--m-r",
         "--length",
@@ -2188,7 +2192,8 @@ fn strike_and_role_switch_hostile_flags() {
         "--horizon",
         "--trace-every",
     ];
-    let mut flags: Vec<(&str, Vec<String>)> = scalar.iter().map(|f| (*f, numbers.clone())).collect();
+    let mut flags: Vec<(&str, Vec<String>)> =
+        scalar.iter().map(|f| (*f, numbers.clone())).collect();
     flags.push(("--design", strings(&["cj", "cl", "cx", "", "CJ"])));
     flags.push(("--support", strings(&["free", "wall", "neck", ""])));
     let dir = scratch("strike_fuzz");
@@ -2220,7 +2225,12 @@ fn strike_and_role_switch_hostile_flags() {
     // role-switch: the kappa list and the scalar flags, on the test bed's cases only
     let mut kappas = hostile_lists();
     kappas.retain(|s| s.len() < 200_000);
-    kappas.extend(strings(&["1,1", "1e7", "1,2,3,4,5,6,7,8,9,10,11,12,13", "1e-7"]));
+    kappas.extend(strings(&[
+        "1,1",
+        "1e7",
+        "1,2,3,4,5,6,7,8,9,10,11,12,13",
+        "1e-7",
+    ]));
     let role: Vec<(&str, Vec<String>)> = vec![
         ("--kappa", kappas),
         ("--rotor-ratio", numbers.clone()),
@@ -2229,7 +2239,12 @@ fn strike_and_role_switch_hostile_flags() {
     for case in 0..12 {
         let case_dir = dir.join(format!("r{case}"));
         std::fs::create_dir_all(&case_dir).unwrap();
-        let (mut args, drawn) = draw(&mut rng, &["role-switch", "--no-fig6"], &borrow(&role), None);
+        let (mut args, drawn) = draw(
+            &mut rng,
+            &["role-switch", "--no-fig6"],
+            &borrow(&role),
+            None,
+        );
         args.push("--out=o".into());
         let names: Vec<&str> = drawn.iter().map(String::as_str).collect();
         let expect = Expect {

@@ -101,8 +101,8 @@ impl DrivenStrike {
             }
         }
         self.check_payload()?;
-        self.check_reachable(angle)?;
         self.check_contact_range(angle)?;
+        self.check_reachable(angle)?;
         self.check_loop_stability()
     }
 
@@ -325,8 +325,7 @@ impl DrivenStrike {
     /// run never beats); a person farther away is never reached (the run would wait out the
     /// horizon and fail).
     fn check_reachable(&self, angle: f64) -> Result<(), ImpactError> {
-        let (Some(profile), limit) = (self.drive.profile(), self.drive.joint_torque_limit())
-        else {
+        let (Some(profile), limit) = (self.drive.profile(), self.drive.joint_torque_limit()) else {
             return Ok(());
         };
         if !limit.is_finite() {
@@ -415,7 +414,11 @@ fn arrival_speed(profile: &crate::drive::Profile, angle: f64, horizon: f64) -> f
     }
     let ahead = |t: f64| {
         let a = profile.at(t).0;
-        if angle > start { a >= angle } else { a <= angle }
+        if angle > start {
+            a >= angle
+        } else {
+            a <= angle
+        }
     };
     if !ahead(horizon) {
         return profile.at(horizon).1;

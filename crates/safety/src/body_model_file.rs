@@ -99,8 +99,11 @@ impl Ctx {
         let v = value.ok_or_else(|| {
             self.missing(
                 field,
-                &flexrig_contact::validate::interval_in(unit, lo, hi)
-                    .replacen("must lie in", "a number in", 1),
+                &flexrig_contact::validate::interval_in(unit, lo, hi).replacen(
+                    "must lie in",
+                    "a number in",
+                    1,
+                ),
             )
         })?;
         self.check_positive(field, v)
@@ -197,7 +200,9 @@ fn line_of(source: &str, offset: usize) -> usize {
 pub(crate) fn quoted(text: &str) -> String {
     let mut s = String::from("\"");
     for c in text.chars().take(MAX_NAME_CHARS + 1) {
-        if c.is_control() || matches!(c, '\u{200b}'..='\u{200f}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}' | '\u{feff}') {
+        if c.is_control()
+            || matches!(c, '\u{200b}'..='\u{200f}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}' | '\u{feff}')
+        {
             s.push_str(&format!("U+{:04X}", c as u32));
         } else {
             s.push(c);

@@ -6,11 +6,11 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use flexrig::{CancelToken, Error};
 use flexrig::safety::{
     ContactAreaModel, ContactKind, FeLink, MethodResult, RobotEffectiveMass, SafetyInput,
     SafetyMethod, SafetyReport, SimulationSettings, Speed, safety_cancellable,
 };
+use flexrig::{CancelToken, Error};
 
 use super::safety_args::{ContactArg, ContactLawArgs, map_joint, missing};
 use crate::print::{line, print_json};
@@ -207,13 +207,9 @@ pub fn run(args: &SafetyArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resu
     let model = load_body_model(args.body_model.as_deref())?;
     let input = args.input()?;
     let (report, written) = match &args.report {
-        Some(path) => flexrig::safety::report::write_report(
-            &input,
-            model.as_ref(),
-            path,
-            args.force,
-            cancel,
-        )?,
+        Some(path) => {
+            flexrig::safety::report::write_report(&input, model.as_ref(), path, args.force, cancel)?
+        }
         None => (
             safety_cancellable(&input, model.as_ref(), cancel)?,
             Vec::new(),

@@ -18,10 +18,10 @@ use flexrig_impact::driven_cl::{ClDriveSettings, run_driven_cl};
 use flexrig_impact::{DrivenOutcome, DrivenStrike, LinkParams, TraceSample};
 use serde::{Deserialize, Serialize};
 
-use super::{check, num};
 /// Most trace samples over the wait (a driven scene's `horizon_s` × `record.sample_rate_hz`
 /// budget; flexrig-impact thins a trace beyond its own cap).
 use super::scene::MAX_SAMPLES;
+use super::{check, num};
 use crate::shared::output::{ensure_dir, positive_arg, read_text, write_atomic};
 use crate::{CancelToken, Error};
 
@@ -186,7 +186,8 @@ impl StrikeFlags {
     /// The drive description these numbers make, checked; an error names the flag
     /// (`--k-c/--n`) or the description's field (`drive.motor.gear_ratio`).
     pub fn description(&self) -> Result<StrikeDescription, Error> {
-        self.checked_description().map_err(|e| self.named_by_flag(e))
+        self.checked_description()
+            .map_err(|e| self.named_by_flag(e))
     }
 
     /// The flag of a description's field, and the value the user gave it.
@@ -222,13 +223,13 @@ impl StrikeFlags {
             Error::Impact(ImpactError::InvalidParameter { field, allowed, .. }) => {
                 (field.clone(), allowed.clone())
             }
-            Error::Impact(ImpactError::Contact(flexrig_contact::ContactError::InvalidParameter {
+            Error::Impact(ImpactError::Contact(
+                flexrig_contact::ContactError::InvalidParameter { field, allowed, .. },
+            ))
+            | Error::Contact(flexrig_contact::ContactError::InvalidParameter {
                 field,
                 allowed,
                 ..
-            }))
-            | Error::Contact(flexrig_contact::ContactError::InvalidParameter {
-                field, allowed, ..
             }) => (field.clone(), allowed.clone()),
             Error::InvalidArgument { arg, allowed, .. } => (arg.clone(), allowed.clone()),
             _ => return e,

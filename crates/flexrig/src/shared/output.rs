@@ -97,7 +97,12 @@ fn utf8_text(path: &Path, bytes: Vec<u8>) -> Result<String, Error> {
         let at = e.utf8_error().valid_up_to();
         let bytes = e.as_bytes();
         let line = bytes[..at].iter().filter(|&&b| b == b'\n').count() + 1;
-        let column = at - bytes[..at].iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1) + 1;
+        let column = at
+            - bytes[..at]
+                .iter()
+                .rposition(|&b| b == b'\n')
+                .map_or(0, |i| i + 1)
+            + 1;
         Error::Read {
             path: path.to_path_buf(),
             source: std::io::Error::other(format!(
@@ -132,9 +137,7 @@ pub fn read_text_bounded(path: &Path, max_bytes: u64, expected: &str) -> Result<
     if bytes.len() as u64 > max_bytes {
         return Err(Error::Read {
             path: path.to_path_buf(),
-            source: std::io::Error::other(format!(
-                "longer than {max_bytes} bytes ({expected})"
-            )),
+            source: std::io::Error::other(format!("longer than {max_bytes} bytes ({expected})")),
         });
     }
     utf8_text(path, bytes)

@@ -78,9 +78,7 @@ impl Document {
                         url_path(file)
                     ));
                 }
-                Block::Caveat(text) => {
-                    s.push_str(&format!("> **Caveat.** {}\n\n", md_text(text)))
-                }
+                Block::Caveat(text) => s.push_str(&format!("> **Caveat.** {}\n\n", md_text(text))),
             }
         }
         s

@@ -65,14 +65,20 @@ mod tests {
     #[test]
     fn user_text_cannot_forge_markdown_structure() {
         assert_eq!(md_text("Chest\n# Forged"), "Chest # Forged");
-        assert_eq!(md_text("<script>x</script>"), "&lt;script&gt;x&lt;/script&gt;");
+        assert_eq!(
+            md_text("<script>x</script>"),
+            "&lt;script&gt;x&lt;/script&gt;"
+        );
         assert_eq!(md_cell("a|b\n|c"), "a\\|b \\|c");
         assert_eq!(md_code_line("x\n```\ny"), "x `\u{200b}`` y");
     }
 
     #[test]
     fn links_are_percent_encoded_byte_by_byte() {
-        assert_eq!(url_path("my report_peak force.svg"), "my%20report_peak%20force.svg");
+        assert_eq!(
+            url_path("my report_peak force.svg"),
+            "my%20report_peak%20force.svg"
+        );
         assert_eq!(url_path("a#b?(c).svg"), "a%23b%3F%28c%29.svg");
         // U+00E9 is C3 A9 in UTF-8 (RFC 3629)
         assert_eq!(url_path("é.svg"), "%C3%A9.svg");
