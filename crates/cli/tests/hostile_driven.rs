@@ -265,3 +265,54 @@ fn a_list_with_a_stray_comma_gets_a_tip() {
         "{err}"
     );
 }
+
+/// The largest speed a spin-up refusal states, rad/s.
+fn stated_most(err: &str) -> f64 {
+    err.split("at most ")
+        .nth(1)
+        .and_then(|s| s.split_whitespace().next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no largest speed in {err}"))
+}
+
+#[test]
+fn a_spin_up_the_integrators_cannot_finish_is_answered_up_front_and_the_stated_range_runs() {
+    // the FE step turns the hub by ω h: 100 rad/s × 5 ms = 0.5 rad, over the 0.08 that converges
+    let (code, _, err) = flexrig(&["spin-up", "--omega-s", "100", "--out", "o"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--omega-s = 100") && err.contains("--max-step"),
+        "{err}"
+    );
+    assert_eq!(stated_most(&err), 0.08 / 5e-3, "{err}");
+    // with a fine step the linear model's growth e^∫√(ω²−ω₁²)dt bounds it: refused up front,
+    // and the largest speed stated runs to the end
+    let (code, _, err) = flexrig(&[
+        "spin-up",
+        "--omega-s",
+        "60",
+        "--max-step",
+        "1e-3",
+        "--out",
+        "o",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--omega-s = 60") && err.contains("first bending frequency"),
+        "{err}"
+    );
+    let most = stated_most(&err);
+    assert!(most > 16.0 && most < 60.0, "{err}");
+    let w = format!("{most}");
+    let (code, _, err) = flexrig(&[
+        "spin-up",
+        "--omega-s",
+        &w,
+        "--max-step",
+        "1e-3",
+        "--out",
+        "o",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "at the stated largest speed {w}: {err}");
+}

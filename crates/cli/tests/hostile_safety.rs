@@ -352,3 +352,24 @@ fn the_markdown_report_escapes_user_text_and_encodes_the_figure_link() {
     assert!(md.contains("(my%20report%231_peak_force.svg)"), "{md}");
     assert!(dir.join("my report#1_peak_force.svg").exists());
 }
+
+#[test]
+fn a_region_axis_naming_a_region_twice_is_refused() {
+    let dir = scratch("regions_twice");
+    refused_in(
+        &dir,
+        &[
+            "safety-map",
+            "--x",
+            "region=chest,Chest",
+            "--m-r",
+            "0.5",
+            "--m-e",
+            "0.1",
+            "--out",
+            "o",
+        ],
+        &["--x = chest,Chest", "item 2 names chest again"],
+    );
+    assert!(!dir.join("o").exists());
+}

@@ -20,10 +20,12 @@ use flexrig_safety::{
 
 use crate::Error;
 use crate::safety::map::RootStep;
+#[cfg(test)]
+use crate::safety::point::simulation_trace as traced_simulation;
 use crate::safety::point::{
     ContactLaw, FeLink, MapJoint, MethodResult, RobotEffectiveMass, SafetyInput, SafetyMethod,
     SafetyReport, safety_cancellable, simulated_peak_forces_until,
-    simulation_trace_until as traced_simulation,
+    simulation_trace_until as traced_simulation_until,
 };
 
 mod document;
@@ -624,7 +626,7 @@ fn simulation_trace(
         2,
         "Method c: simulation (the finite-element impact and a root search)".into(),
     ));
-    let (traced, trace, fe) = traced_simulation(input, model, stop)?;
+    let (traced, trace, fe) = traced_simulation_until(input, model, stop)?;
     let v = traced.by_force_mps.value();
     let f = r.force_limit_n;
     let guess = trace.first().map_or(v, |s| s.speed_mps * 1.01);
