@@ -71,8 +71,9 @@ impl DrivenStrike {
                     "horizon_s",
                     self.horizon_s,
                     format!(
-                        "at least the ramp's time + placement.settle = {} s (the person stands \
-                         where the commanded motion is placement.settle after the ramp)",
+                        "at least drive.command.profile.ramp_time + placement.settle = {} s (the \
+                         person stands where the commanded motion is placement.settle after the \
+                         ramp)",
                         flexrig_contact::validate::display(at)
                     ),
                 ));

@@ -36,7 +36,9 @@ fn body_model(text: &str) -> PyResult<BodyModel> {
             "body_model",
             format!(
                 "invalid argument body_model: {}",
-                why.strip_prefix("body-model file: ").unwrap_or(&why)
+                flexrig_rig::format_message::plain(
+                    why.strip_prefix("body-model file: ").unwrap_or(&why)
+                )
             ),
         )
     })

@@ -205,7 +205,7 @@ impl SpinUpOptions {
         if max_step > sample_every {
             return Err(invalid("--max-step", max_step, "at most --sample-every"));
         }
-        Ok(SpinUp {
+        let spec = SpinUp {
             length: positive_arg("--length", self.length)?,
             ea: e * a,
             ei: e * i,
@@ -214,7 +214,58 @@ impl SpinUpOptions {
             t_s,
             t_end,
             sample_every,
-        })
+        };
+        spec.validate().map_err(|err| self.by_flag(err))?;
+        Ok(spec)
+    }
+
+    /// A range error of the model's field in the flags' words: the flag and the value typed,
+    /// and for a product of flags (EA, EI, ρA) the other factor and the product.
+    fn by_flag(&self, err: flexrig_impact::ImpactError) -> Error {
+        use crate::shared::output::display_number as n;
+        let flexrig_impact::ImpactError::InvalidParameter { field, allowed, .. } = &err else {
+            return err.into();
+        };
+        let product =
+            |flag: &str, v: f64, other: &str, w: f64, what: &str| Error::InvalidArgument {
+                arg: flag.into(),
+                value: n(v),
+                allowed: format!("with {other} = {}, {what} = {} {allowed}", n(w), n(v * w)),
+            };
+        let single = |flag: &str, v: f64| Error::InvalidArgument {
+            arg: flag.into(),
+            value: n(v),
+            allowed: allowed.clone(),
+        };
+        match field.as_str() {
+            "length" => single("--length", self.length),
+            "omega_s" => single("--omega-s", self.omega_s),
+            "t_s" => single("--t-s", self.t_s),
+            "t_end" => single("--duration", self.duration.unwrap_or(self.t_s + 5.0)),
+            "sample_every" => single("--sample-every", self.sample_every),
+            "ea" => product(
+                "--youngs-modulus",
+                self.youngs_modulus,
+                "--area",
+                self.area,
+                "the axial stiffness E·A",
+            ),
+            "ei" => product(
+                "--youngs-modulus",
+                self.youngs_modulus,
+                "--second-moment",
+                self.second_moment,
+                "the bending stiffness E·I",
+            ),
+            "rho_a" => product(
+                "--density",
+                self.density,
+                "--area",
+                self.area,
+                "the mass per length ρ·A",
+            ),
+            _ => err.into(),
+        }
     }
 }
 

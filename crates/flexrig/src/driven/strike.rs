@@ -56,10 +56,25 @@ pub struct StrikeDescription {
 impl StrikeDescription {
     /// Parses and checks a description; `source` (the file's path) names it in errors.
     pub fn parse(text: &str, source: &str) -> Result<StrikeDescription, Error> {
-        let d: StrikeDescription = toml::from_str(text).map_err(|e| Error::InvalidArgument {
-            arg: source.into(),
-            value: "(drive description)".into(),
-            allowed: e.message().trim().to_string(),
+        let d: StrikeDescription = toml::from_str(text).map_err(|e| {
+            // the line of the offending value, and serde's Rust terms in the file's words
+            let at = e
+                .span()
+                .map(|r| {
+                    format!(
+                        "line {}: ",
+                        text[..r.start.min(text.len())].matches('\n').count() + 1
+                    )
+                })
+                .unwrap_or_default();
+            Error::InvalidArgument {
+                arg: source.into(),
+                value: "(drive description)".into(),
+                allowed: format!(
+                    "{at}{}",
+                    flexrig_rig::format_message::plain(e.message().trim())
+                ),
+            }
         })?;
         d.strike().validate()?;
         Ok(d)
@@ -286,6 +301,7 @@ impl StrikeFlags {
 fn rename_fields(text: &str) -> String {
     const WORDS: &[(&str, &str)] = &[
         ("drive.command.profile.speed", "--speed"),
+        ("drive.command.profile.ramp_time", "--ramp-time"),
         ("drive.command.gains.kp", "--kp"),
         ("drive.command.gains.kd", "--kd"),
         ("drive.motor.rotor_inertia", "--rotor-inertia"),

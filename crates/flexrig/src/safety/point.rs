@@ -294,9 +294,20 @@ struct Setup<'a> {
 }
 
 fn setup<'a>(input: &SafetyInput, model: &'a BodyModel) -> Result<Setup<'a>, Error> {
-    let region = model.region(&input.region)?;
+    // an unknown name is the flag's fault: the error names it
+    let named = |flag: &str, e: flexrig_safety::SafetyError| match e {
+        flexrig_safety::SafetyError::Unknown { what, name, known } => Error::InvalidArgument {
+            arg: flag.into(),
+            value: flexrig_safety::quoted_name(&name),
+            allowed: format!("a {what} of the body model: {known}"),
+        },
+        other => other.into(),
+    };
+    let region = model
+        .region(&input.region)
+        .map_err(|e| named("--region", e))?;
     let area = match &input.area {
-        Some(name) => region.area(name)?,
+        Some(name) => region.area(name).map_err(|e| named("--area", e))?,
         None => region.most_sensitive_area(),
     };
     let kind = input.contact;
@@ -408,7 +419,16 @@ pub fn load_body_model(path: Option<&std::path::Path>) -> Result<Option<BodyMode
             p,
             MAX_BODY_MODEL_BYTES,
             "a body-model table is expected; the bundled one is about 10 kB",
-        )?;
+        )
+        .map_err(|e| match e {
+            // a file that cannot be read is the flag's fault: the error names it
+            Error::Read { path, source } => Error::InvalidArgument {
+                arg: "--body-model".into(),
+                value: path.display().to_string(),
+                allowed: format!("a readable body-model file ({source})"),
+            },
+            other => other,
+        })?;
         body_model_from_text(&text, &p.display().to_string())
     })
     .transpose()
@@ -425,10 +445,9 @@ pub fn body_model_from_text(text: &str, file: &str) -> Result<BodyModel, Error> 
         Error::InvalidArgument {
             arg: "--body-model".into(),
             value: file.to_string(),
-            allowed: why
-                .strip_prefix("body-model file: ")
-                .unwrap_or(&why)
-                .to_string(),
+            allowed: flexrig_rig::format_message::plain(
+                why.strip_prefix("body-model file: ").unwrap_or(&why),
+            ),
         }
     })
 }
