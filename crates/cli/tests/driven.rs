@@ -195,10 +195,7 @@ fn bad_flags_are_refused_naming_the_flag() {
     for (args, flag) in [
         (vec!["spin-up", "--elements", "0"], "--elements"),
         (vec!["spin-up", "--density=-1"], "--density"),
-        (
-            vec!["strike", "--gear-ratio", "0"],
-            "drive.motor.gear_ratio",
-        ),
+        (vec!["strike", "--gear-ratio", "0"], "--gear-ratio = 0"),
         (vec!["strike", "--trace-every", "0"], "--trace-every"),
         (vec!["role-switch", "--kappa", "1,-2"], "--kappa[1]"),
     ] {

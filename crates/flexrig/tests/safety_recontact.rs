@@ -64,11 +64,7 @@ fn with_recontact_the_permissible_speed_matches_an_independent_computation() {
         assert!(err < 1e-3, "{link}: {v} m/s against {expected} ({err:e})");
         let at = m.governing_contact.expect("the contact at the limit");
         let reach = (at.peak_force_n / limit - 1.0).abs();
-        assert!(
-            reach < 1e-4,
-            "{link}: {} N at v_max ({reach:e})",
-            at.peak_force_n
-        );
+        assert!(reach < 1e-4, "{link}: {} N at v_max ({reach:e})", at.peak_force_n);
     }
 }
 
@@ -100,11 +96,7 @@ fn every_contact_is_followed_and_the_verdict_fails_on_any_contact_over_the_limit
                 "{link} at {speed}: {} N against {largest} ({err:e})",
                 c.peak_force_n
             );
-            assert_eq!(
-                c.contact,
-                index + 1,
-                "{link} at {speed}: the governing contact"
-            );
+            assert_eq!(c.contact, index + 1, "{link} at {speed}: the governing contact");
             assert_eq!(c.contacts, peaks.len(), "{link} at {speed}: contacts");
             assert_eq!(v.pass, largest <= limit, "{link} at {speed}");
             assert!(!v.pass || v.peak_force_n <= limit);

@@ -40,14 +40,8 @@ fn main() {
         placement: Placement::AfterRamp { settle },
         horizon_s: 5.0,
     };
-    for (case, s) in [
-        ("0.5 s ramp (bent)", strike(0.5, 0.1)),
-        ("1 s ramp (rings)", strike(1.0, 0.15)),
-    ] {
-        for (name, settings) in [
-            ("FAST", ExactSettings::FAST),
-            ("DEFAULT", ExactSettings::DEFAULT),
-        ] {
+    for (case, s) in [("0.5 s ramp (bent)", strike(0.5, 0.1)), ("1 s ramp (rings)", strike(1.0, 0.15))] {
+        for (name, settings) in [("FAST", ExactSettings::FAST), ("DEFAULT", ExactSettings::DEFAULT)] {
             let repeats = if name == "FAST" { 20 } else { 3 };
             let t0 = cpu_ns();
             let mut steps = 0;

@@ -44,8 +44,8 @@
 //! damping and the impact work are integrated by the trapezoidal rule over the contact.
 
 use flexrig_beam::{
-    BeamModel, BeamSpec, GeneralizedAlpha, Kinematics, NewtonMethod, NodalLoads, NodeForce,
-    NodeLoad, PointMass, RootSupport, Section, State, Workspace,
+    BeamModel, BeamSpec, GeneralizedAlpha, Kinematics, NewtonMethod, NodalLoads, NodeForce, NodeLoad,
+    PointMass, RootSupport, Section, State, Workspace,
 };
 use flexrig_contact::ContactLaw;
 use serde::Serialize;
@@ -131,7 +131,8 @@ impl ExactSettings {
                 return Err(ImpactError::invalid(field, v, "must lie in [20, 1e6]"));
             }
         }
-        if !(self.axial_slenderness.is_finite() && (1e3..=1e12).contains(&self.axial_slenderness)) {
+        if !(self.axial_slenderness.is_finite() && (1e3..=1e12).contains(&self.axial_slenderness))
+        {
             return Err(ImpactError::invalid(
                 "axial_slenderness",
                 self.axial_slenderness,
@@ -263,7 +264,12 @@ impl DomeLoad<'_> {
     fn solve(&self, q: [f64; 3], v: [f64; 3]) -> (ContactState, [f64; 3], f64, f64, f64) {
         let (depth, g, rate_g) = self.geometry.gap(q, v);
         let hs = self.head;
-        let at = |f: f64| (depth - hs.x_b - hs.b * f, rate_g - hs.v_b - hs.c * f);
+        let at = |f: f64| {
+            (
+                depth - hs.x_b - hs.b * f,
+                rate_g - hs.v_b - hs.c * f,
+            )
+        };
         let (d0, r0) = at(0.0);
         if !self.active || d0 <= 0.0 {
             let st = ContactState {
@@ -526,7 +532,10 @@ impl<'a> Solver<'a> {
     fn step_on_branch(&mut self, h: f64, contact: bool) -> Result<ContactState, ImpactError> {
         let t1 = self.state.t + h;
         let start = self.snapshot();
-        let mut saturated: Option<f64> = self.law_used.filter(|l| l.saturated).map(|l| l.moment);
+        let mut saturated: Option<f64> = self
+            .law_used
+            .filter(|l| l.saturated)
+            .map(|l| l.moment);
         for attempt in 0..3 {
             let cs = self.try_step(h, contact, t1, saturated)?;
             let Some((tau, limit)) = self.controller_torque() else {
@@ -590,13 +599,13 @@ impl<'a> Solver<'a> {
                 )?
             }
             _ => self.ga.step_with(
-                &self.model,
-                &mut self.state,
-                &mut self.ws,
-                h,
-                &self.loads,
-                Some(&mut load),
-            )?,
+                    &self.model,
+                    &mut self.state,
+                    &mut self.ws,
+                    h,
+                    &self.loads,
+                    Some(&mut load),
+                )?,
         };
         if report.substeps > 1 {
             return Err(ImpactError::NotFinished {
@@ -714,12 +723,7 @@ impl Solver<'_> {
     }
 
     /// Retakes the step from `from` with length `h` and returns the contact's state.
-    fn retake(
-        &mut self,
-        from: &Snapshot,
-        h: f64,
-        contact: bool,
-    ) -> Result<ContactState, ImpactError> {
+    fn retake(&mut self, from: &Snapshot, h: f64, contact: bool) -> Result<ContactState, ImpactError> {
         self.restore(from);
         self.step(h, contact)
     }
@@ -784,8 +788,7 @@ pub fn run_exact_cl(
     let link = strike.link;
     let l = link.length;
     let ei = link.ei();
-    let section =
-        Section::from_stiffness(settings.axial_slenderness * ei / (l * l), ei, link.rho_a())?;
+    let section = Section::from_stiffness(settings.axial_slenderness * ei / (l * l), ei, link.rho_a())?;
     let mut spec = BeamSpec::cantilever(l, section, settings.elements, Kinematics::Corotational);
     if link.m_e > 0.0 {
         spec.point_masses.push(PointMass {
@@ -956,10 +959,7 @@ pub fn run_exact_cl(
         if steps >= settings.max_steps {
             return Err(ImpactError::NotFinished {
                 design: "exact driven CL",
-                reason: format!(
-                    "max_steps = {} ran out before the onset",
-                    settings.max_steps
-                ),
+                reason: format!("max_steps = {} ran out before the onset", settings.max_steps),
             });
         }
         let t = s.state.t;
@@ -987,10 +987,7 @@ pub fn run_exact_cl(
     let t_on = s.state.t;
     let approach = cs.rate;
     let dome_speed = cs.rate + cs.v_h;
-    s.law = strike
-        .person
-        .damping
-        .law(strike.person.contact, approach.max(1e-9))?;
+    s.law = strike.person.damping.law(strike.person.contact, approach.max(1e-9))?;
     let (deflection, vibration) = s.tip_deflection();
     let torque_on = s.joint_torque();
     let commanded = strike.drive.profile().map(|p| l * p.at(t_on).1);
@@ -1030,13 +1027,7 @@ pub fn run_exact_cl(
         steps += 1;
         let finished = next.delta <= 0.0 && s.state.t > t_on + 0.05 * t_c;
         if finished {
-            next = s.locate(
-                &from,
-                (d0.max(1e-300), h_c, next.delta),
-                true,
-                |c| c.delta,
-                l,
-            )?;
+            next = s.locate(&from, (d0.max(1e-300), h_c, next.delta), true, |c| c.delta, l)?;
             steps += 1;
         } else if elastic && located_peak.is_none() && rate0 > 0.0 && next.rate <= 0.0 {
             // an elastic law peaks where δ̇ = 0: located on the motion, not interpolated

@@ -347,7 +347,7 @@ impl DrivenStrike {
             "drive.command.torque_limit",
             limit / motor.gear_ratio,
             format!(
-                "a motor torque that can turn the joint's inertia {} kg·m² (rotor through the \
+                "a torque limit that can turn the joint's inertia {} kg·m² (rotor through the \
                  gear, and link) through the {} rad to the person within horizon_s = {} s: \
                  at least {} N·m (or a lighter drive.motor.rotor_inertia, or a longer horizon_s)",
                 flexrig_contact::validate::display(j),

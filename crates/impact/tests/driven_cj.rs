@@ -658,10 +658,12 @@ fn a_torque_limit_that_cannot_hold_the_speed_is_reported_or_an_error() {
             .iter()
             .any(|n| matches!(n, DriveNote::TorqueLimitReached { .. }))
     );
-    assert!(out.notes.iter().any(
-        |n| matches!(n, DriveNote::ArrivalOffCommand { actual_mps, commanded_mps }
-                if actual_mps < commanded_mps)
-    ));
+    assert!(
+        out.notes
+            .iter()
+            .any(|n| matches!(n, DriveNote::ArrivalOffCommand { actual_mps, commanded_mps }
+                if actual_mps < commanded_mps))
+    );
     assert!(out.contact.peak_force_n.is_finite() && out.contact.peak_force_n > 0.0);
     // far: it never gets there; the error says why
     let err = run_driven_cj(&strike(1.0, 3.0), &CjSettings::DEFAULT).unwrap_err();

@@ -5,9 +5,9 @@
 
 use flexrig_contact::{DampingSpec, Hertz};
 use flexrig_impact::drive::{Drive, Gains, HeadSupport, Motor, Person, Placement, Profile};
+use flexrig_impact::exact_link::{ExactSettings, run_exact_cl};
 use flexrig_impact::driven_cj::{CjSettings, run_exact_cj};
 use flexrig_impact::exact_link::Dome;
-use flexrig_impact::exact_link::{ExactSettings, run_exact_cl};
 use flexrig_impact::{DriveNote, DrivenOutcome, DrivenStrike, LinkParams};
 
 const L: f64 = 0.33802;
@@ -84,6 +84,7 @@ fn case(name: &str) -> DrivenStrike {
     }
 }
 
+
 /// The exact CL's settings in the reference's limit: an inextensible link (the bar chain's
 /// rods do not stretch; EA L²/EI = 1e8, the effect of a finite EA being ∝ 1/EA).
 fn inextensible(base: ExactSettings) -> ExactSettings {
@@ -155,23 +156,13 @@ fn agrees_with_the_elastica_reference() {
         if name == "pd_ramp" {
             let v: serde_json::Value =
                 serde_json::from_str(include_str!("data/driven_elastica.json")).unwrap();
-            let c = v["cases"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .find(|c| c["name"] == name)
-                .unwrap();
+            let c = v["cases"].as_array().unwrap().iter().find(|c| c["name"] == name).unwrap();
             let r = &c["reference"];
             let f = |k: &str| r[k].as_f64().unwrap();
             let o = run_exact_cl(&case(name), &inextensible(ExactSettings::DEFAULT)).unwrap();
             let e = errors(
                 &o,
-                (
-                    f("peak_force_n"),
-                    f("time_of_peak_s"),
-                    f("duration_s"),
-                    f("onset_time_s"),
-                ),
+                (f("peak_force_n"), f("time_of_peak_s"), f("duration_s"), f("onset_time_s")),
             );
             println!("{name} (16 rods, not extrapolated): errors {e:?}");
             continue;
@@ -179,21 +170,12 @@ fn agrees_with_the_elastica_reference() {
         let (r, meshes, uncertainty) = reference(name);
         let o = run_exact_cl(&case(name), &inextensible(ExactSettings::DEFAULT)).unwrap();
         let e = errors(&o, r);
-        println!(
-            "{name}: errors {e:?}, reference from {meshes} meshes, its uncertainty {uncertainty:?}"
-        );
+        println!("{name}: errors {e:?}, reference from {meshes} meshes, its uncertainty {uncertainty:?}");
         // the floor where the reference is extrapolated from three meshes (16, 32, 64 rods);
         // from two, within its own stated uncertainty (|x₃₂ − x₁₆|/3) or the floor
         for i in 0..4 {
-            let allowed = if meshes >= 3 {
-                1e-4
-            } else {
-                1e-4_f64.max(uncertainty[i])
-            };
-            assert!(
-                e[i] <= allowed,
-                "{name}: {e:?} against {allowed:e} (entry {i})"
-            );
+            let allowed = if meshes >= 3 { 1e-4 } else { 1e-4_f64.max(uncertainty[i]) };
+            assert!(e[i] <= allowed, "{name}: {e:?} against {allowed:e} (entry {i})");
         }
     }
     let c = case("cj_short_ramp");
@@ -220,11 +202,7 @@ fn default_settings_are_converged() {
         let e = errors(&a, reference_of(&b));
         println!("{name}: {e:?}");
         // the bent case's time of peak converges slowest (the corotational mesh, h²)
-        let t_peak = if name == "short_ramp_bent" {
-            2e-5
-        } else {
-            1e-5
-        };
+        let t_peak = if name == "short_ramp_bent" { 2e-5 } else { 1e-5 };
         assert!(
             e[0] <= 1e-5 && e[1] <= t_peak && e[2] <= 1e-5 && e[3] <= 1e-5,
             "{name}: {e:?}"
@@ -295,10 +273,7 @@ fn energy_balance_through_the_contact() {
         let e = o.energy;
         println!("{name}: {e:?}");
         assert_eq!(e.dissipated_j, 0.0, "{name}");
-        assert!(
-            e.residual_j.abs() <= 1e-6 * e.impact_energy_j,
-            "{name}: {e:?}"
-        );
+        assert!(e.residual_j.abs() <= 1e-6 * e.impact_energy_j, "{name}: {e:?}");
     }
     let mut c = case("pd_ramp");
     c.drive = Drive::controller(
@@ -330,10 +305,10 @@ fn energy_balance_through_the_contact() {
 fn notes_tell_in_words() {
     let o = run_exact_cl(&case("short_ramp_bent"), &ExactSettings::DEFAULT).unwrap();
     assert!(
-        o.notes.iter().any(
-            |n| matches!(n, DriveNote::ArrivalOffCommand { actual_mps, commanded_mps }
-                if actual_mps > commanded_mps)
-        ),
+        o.notes
+            .iter()
+            .any(|n| matches!(n, DriveNote::ArrivalOffCommand { actual_mps, commanded_mps }
+                if actual_mps > commanded_mps)),
         "{:?}",
         o.notes
     );

@@ -18,12 +18,13 @@ use flexrig_impact::driven_cl::{ClDriveSettings, run_driven_cl};
 use flexrig_impact::{DrivenOutcome, DrivenStrike, LinkParams, TraceSample};
 use serde::{Deserialize, Serialize};
 
-/// Most trace samples over the wait (a driven scene's `horizon_s` × `record.sample_rate_hz`
-/// budget; flexrig-impact thins a trace beyond its own cap).
-use super::scene::MAX_SAMPLES;
+// Most trace samples over the wait (a driven scene's `horizon_s` × `record.sample_rate_hz`
+// budget, the rig's, as the scene's `MAX_SAMPLES`; taken from the rig so that this file and the
+// scene's do not import each other); flexrig-impact thins a trace beyond its own cap.
 use super::{check, num};
 use crate::shared::output::{ensure_dir, positive_arg, read_text, write_atomic};
 use crate::{CancelToken, Error};
+use flexrig_rig::limits::MAX_SAMPLES;
 
 /// The link design.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

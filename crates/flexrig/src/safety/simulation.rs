@@ -13,10 +13,10 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use flexrig_contact::{DampingSpec, Hertz};
-use flexrig_impact::chain::Chain;
 use flexrig_impact::cl_modal::run_on_modes;
 use flexrig_impact::graded::{GradedMesh, cl_tip_modes};
 use flexrig_impact::modal_run::ModalOptions;
+use flexrig_impact::chain::Chain;
 use flexrig_impact::{FreeMassImpact, ImpactError, Joint, LinkParams, RunEnd};
 use flexrig_safety::{EnergyContact, PressureCrossing};
 use serde::{Deserialize, Serialize};
@@ -296,18 +296,17 @@ impl FeRuns {
             }
             RunEnd::FirstSeparation => outcome.first.duration_s,
         };
-        let (index, top) =
-            outcome
-                .contacts
-                .iter()
-                .enumerate()
-                .fold((0, outcome.first), |(i, best), (j, c)| {
-                    if c.peak_force_n > best.peak_force_n {
-                        (j, *c)
-                    } else {
-                        (i, best)
-                    }
-                });
+        let (index, top) = outcome
+            .contacts
+            .iter()
+            .enumerate()
+            .fold((0, outcome.first), |(i, best), (j, c)| {
+                if c.peak_force_n > best.peak_force_n {
+                    (j, *c)
+                } else {
+                    (i, best)
+                }
+            });
         Ok(SimulatedPeak {
             peak_force_n: top.peak_force_n,
             contact: index + 1,
