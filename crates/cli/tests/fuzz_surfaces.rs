@@ -2377,7 +2377,7 @@ fn hostile_body_model(rng: &mut Rng, bundled: &str) -> Vec<u8> {
             while !text.is_char_boundary(cut_at) {
                 cut_at -= 1;
             }
-            return text[..cut_at].as_bytes().to_vec();
+            return text.as_bytes()[..cut_at].to_vec();
         }
         _ => {
             let mut bytes = edited.join("\n").into_bytes();
