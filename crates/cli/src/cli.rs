@@ -129,8 +129,8 @@ pub fn run_cancellable(cli: &Cli, out: &mut dyn Write, cancel: &CancelToken) -> 
         Some(Command::Beam(cmd)) => commands::beam::run(cmd, out),
         Some(Command::Prb(args)) => commands::prb::run(args, out),
         Some(Command::Validate(args)) => commands::validate::run(args, out),
-        Some(Command::Bench(args)) => commands::bench::run(args, out),
-        Some(Command::Safety(args)) => commands::safety::run(args, out),
+        Some(Command::Bench(args)) => commands::bench::run(args, out, cancel),
+        Some(Command::Safety(args)) => commands::safety::run(args, out, cancel),
         Some(Command::SafetyMap(args)) => commands::safety_map::run(args, out, cancel),
         Some(Command::SpinUp(args)) => commands::spin_up::run(args, out, cancel),
         Some(Command::Strike(args)) => commands::strike::run(args, out, cancel),
@@ -144,6 +144,26 @@ pub fn run_cancellable(cli: &Cli, out: &mut dyn Write, cancel: &CancelToken) -> 
 /// arguments (the program name first, as `std::env::args`).
 pub fn list_hint(err: &clap::Error, args: &[String]) -> Option<String> {
     use clap::error::{ContextKind, ContextValue, ErrorKind};
+    if err.kind() == ErrorKind::InvalidValue {
+        // `--method standard,`: clap sees an empty item after the comma
+        let (i, list) = args.iter().enumerate().skip(1).find_map(|(i, a)| {
+            let value = a.split_once('=').map_or(a.as_str(), |(_, v)| v);
+            let empty_item = value.contains(',')
+                && (value.starts_with(',') || value.ends_with(',') || value.contains(",,"));
+            empty_item.then_some((i, value))
+        })?;
+        let flag = match args[i].split_once('=') {
+            Some((f, _)) if f.starts_with("--") => f,
+            _ => args[..i]
+                .iter()
+                .rev()
+                .find(|a| a.starts_with("--"))?
+                .as_str(),
+        };
+        return Some(format!(
+            "tip: the list {flag} {list} has an empty item: remove the stray comma"
+        ));
+    }
     if err.kind() != ErrorKind::UnknownArgument {
         return None;
     }

@@ -195,7 +195,7 @@ fn bad_flags_are_refused_naming_the_flag() {
     for (args, flag) in [
         (vec!["spin-up", "--elements", "0"], "--elements"),
         (vec!["spin-up", "--density=-1"], "--density"),
-        (vec!["strike", "--gear-ratio", "0"], "--gear-ratio"),
+        (vec!["strike", "--gear-ratio", "0"], "--gear-ratio = 0"),
         (vec!["strike", "--dome-radius", "-1"], "--dome-radius"),
         (vec!["strike", "--dome-standoff", "1"], "--dome-standoff"),
         (vec!["strike", "--link-model", "modal"], "--link-model"),

@@ -107,7 +107,11 @@ fn bad_driven_values_exit_2_naming_the_field() {
             "at least",
         ),
         ("placement.settle=-1", "placement.settle", "[0, 1e6]"),
-        ("horizon_s=0.1", "placement", "reaches within horizon_s"),
+        (
+            "horizon_s=0.1",
+            "horizon_s = 0.1",
+            "ramp_time + placement.settle = 0.8 s",
+        ),
         (
             "drive.motor.gear_ratio=fast",
             "drive.motor.gear_ratio",

@@ -2260,3 +2260,416 @@ fn strike_and_role_switch_hostile_flags() {
     let _ = std::fs::remove_dir_all(&dir);
     report("strike_and_role_switch_hostile_flags", cases, &failures);
 }
+
+/// A drive description's value lines (`key = value`) that the drive fuzzer rewrites, and the
+/// words (the field's key) an exit-2 message may name for it.
+fn drive_value_lines(text: &str) -> Vec<(usize, String)> {
+    text.lines()
+        .enumerate()
+        .filter_map(|(i, l)| {
+            let (key, _) = l.split_once(" = ")?;
+            let key = key.trim();
+            (!key.starts_with('#') && !key.is_empty()).then(|| (i, key.to_string()))
+        })
+        .collect()
+}
+
+/// A hostile TOML value for a drive or body-model field: numbers that parse and do not, words,
+/// tables, arrays, strings with control characters.
+fn hostile_toml_value(rng: &mut Rng) -> String {
+    match rng.below(10) {
+        0 => "nan".into(),
+        1 => "inf".into(),
+        2 => "-inf".into(),
+        3 => "\"x\\u0000y\"".into(),
+        4 => "\"a\\nb\"".into(),
+        5 => "{ a = 1 }".into(),
+        6 => "[1, 2]".into(),
+        7 => "\"\"".into(),
+        _ => [
+            "0",
+            "-0.0",
+            "-1.0",
+            "1e-300",
+            "5e-324",
+            "1e300",
+            "1.7976931348623157e308",
+            "1e-20",
+            "1e40",
+            "0.1",
+            "95.5",
+            "1e15",
+            "true",
+            "\"cl\"",
+            "\"cj\"",
+            "\"wall\"",
+            "\"neck\"",
+            "\"spin_up\"",
+            "\"open_loop\"",
+            "\"trajectory\"",
+            "\"angle\"",
+        ][rng.below(21)]
+        .into(),
+    }
+}
+
+/// The body model mutated one way: a limit or constant set to a hostile value, an area's name
+/// repeated, a name with a control or format character, a key that breaks tables, the file cut
+/// short, or a byte that is not UTF-8.
+fn hostile_body_model(rng: &mut Rng, bundled: &str) -> Vec<u8> {
+    let lines: Vec<&str> = bundled.lines().collect();
+    let fields: Vec<usize> = lines
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| !l.trim_start().starts_with('#') && l.contains(" = "))
+        .map(|(i, _)| i)
+        .collect();
+    let mut edited: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+    match rng.below(7) {
+        0 | 1 => {
+            let i = *rng.pick(&fields);
+            let key = edited[i].split(" = ").next().unwrap().to_string();
+            edited[i] = format!("{key} = {}", hostile_toml_value(rng));
+        }
+        2 => {
+            // a second area named like an earlier one of its region, in another case
+            let names: Vec<usize> = fields
+                .iter()
+                .copied()
+                .filter(|&i| {
+                    edited[i].trim_start().starts_with("name = ") && edited[i].starts_with("  ")
+                })
+                .collect();
+            let i = *rng.pick(&names);
+            if let Some(&j) = names.iter().find(|&&j| j > i && j < i + 8) {
+                edited[j] = edited[i].to_uppercase().replace("NAME =", "name =");
+            }
+        }
+        3 => {
+            let i = *rng.pick(&fields);
+            if edited[i].trim_start().starts_with("name = ") {
+                edited[i] = edited[i].replacen("\"", "\"\\u202e\\t", 1);
+            } else {
+                edited[i] = format!("{}\n# {}", edited[i], "\u{feff}");
+            }
+        }
+        4 => {
+            let keys: Vec<usize> = fields
+                .iter()
+                .copied()
+                .filter(|&i| edited[i].starts_with("key = "))
+                .collect();
+            let i = *rng.pick(&keys);
+            let bad = [
+                "\"a,b\"",
+                "\"a\\nb\"",
+                "\"a\\\"b\"",
+                "\"\"",
+                "\"chest\"",
+                "\"Chest\"",
+            ];
+            edited[i] = format!("key = {}", rng.pick(&bad));
+        }
+        5 => {
+            let text = edited.join("\n");
+            let cut = rng.below(text.len());
+            let mut cut_at = cut;
+            while !text.is_char_boundary(cut_at) {
+                cut_at -= 1;
+            }
+            return text.as_bytes()[..cut_at].to_vec();
+        }
+        _ => {
+            let mut bytes = edited.join("\n").into_bytes();
+            let at = rng.below(bytes.len());
+            bytes[at] = 0xFF;
+            return bytes;
+        }
+    }
+    let mut text = edited.join("\n");
+    text.push('\n');
+    text.into_bytes()
+}
+
+/// The surfaces added since the last round, with a fixed seed: `safety` flags (the methods,
+/// scenes and reports included), user body models (for `safety` and `safety-map`), `spin-up`
+/// flags and drive descriptions for `strike FILE` with one field made hostile. Every case ends
+/// with exit 0 and a finished answer, or exit 2 naming the flag or field; never a panic, an
+/// abort, a hang, a null or NaN in the JSON, Debug text, a 300-digit number or a torn file.
+#[test]
+fn safety_body_models_spin_up_and_drive_files_hostile() {
+    let mut failures = Vec::new();
+    let mut cases = 0;
+    let dir = scratch("new_surfaces");
+    let mut rng = Rng(0x5EED_0036);
+    let mut numbers = hostile_numbers();
+    numbers.retain(|s| s.len() < 1000);
+    numbers.extend(strings(&["1e-20", "1e40", "95.5", "0.5", "2"]));
+    let check = |o: &Outcome, failures: &mut Vec<String>| {
+        if let Some(d) = debug_text(&format!("{}\n{}", o.stdout, o.stderr)) {
+            failures.push(format!("{}\n  -> Debug text: {d}", o.line));
+        }
+    };
+
+    // safety: flags, methods, scenes and report paths
+    let mut words = strings(&[
+        "chest",
+        "Chest",
+        "hands_and_fingers",
+        "face",
+        "",
+        "chest,abdomen",
+        "Sternum",
+        "\u{202e}x",
+    ]);
+    words.push("y".repeat(5000));
+    let methods = strings(&[
+        "standard,",
+        ",",
+        "standard,standard",
+        "simulation",
+        "energy,simulation",
+        "",
+        "Standard",
+        "standard,,energy",
+    ]);
+    let scenes = strings(&[
+        "driven_cj_free_head",
+        "driven_cl_wall",
+        "cj_aluminium",
+        "nope",
+        "",
+        "/dev/null",
+        ".",
+    ]);
+    let reports = strings(&[
+        "r.md",
+        "r.html",
+        "r.txt",
+        "my report#1.md",
+        "sub/dir/r.md",
+        ".",
+        "/dev/null",
+        "file.txt/r.md",
+        "r.MD",
+    ]);
+    let mut flags: Vec<(&str, Vec<String>)> = [
+        "--speed",
+        "--k-c",
+        "--n",
+        "--k-delta",
+        "--payload",
+        "--moving-mass",
+        "--length",
+        "--tol",
+        "--root-rtol",
+        "--radius",
+        "--contact-area",
+        "--m-eff",
+    ]
+    .iter()
+    .map(|f| (*f, numbers.clone()))
+    .collect();
+    flags.push(("--region", words.clone()));
+    flags.push(("--area", words));
+    flags.push(("--method", methods));
+    flags.push(("--scene", scenes));
+    flags.push(("--report", reports));
+    flags.push((
+        "--area-model",
+        strings(&["hertz-sphere", "thin-layer", "fixed", "", "x"]),
+    ));
+    flags.push((
+        "--contact",
+        strings(&["transient", "quasi-static", "", "clamped"]),
+    ));
+    for case in 0..36 {
+        let case_dir = dir.join(format!("s{case}"));
+        std::fs::create_dir_all(&case_dir).unwrap();
+        std::fs::write(case_dir.join("file.txt"), "not a directory\n").unwrap();
+        let base: &[&str] = if case % 2 == 0 {
+            &["safety", "--region", "chest", "--m-eff", "3", "--json"]
+        } else {
+            &["safety", "--region", "chest", "--m-eff", "3"]
+        };
+        let (mut args, mut drawn) = draw(&mut rng, base, &borrow(&flags), None);
+        if args.iter().any(|a| a.starts_with("--scene")) {
+            // a scene is the design: the mass flag conflicts with it
+            args.retain_flag_removed("--m-eff");
+        }
+        // the contact law and area models come with their partners
+        drawn.extend(strings(&[
+            "--m-eff",
+            "--speed",
+            "--n",
+            "--k-c",
+            "--radius",
+            "--contact-area",
+            "--area-model",
+            "--gamma",
+        ]));
+        let names: Vec<&str> = drawn.iter().map(String::as_str).collect();
+        let expect = Expect {
+            allow_1: false,
+            names: &names,
+        };
+        let o = attack(&args, &case_dir, Some(&case_dir), &expect, &mut failures);
+        check(&o, &mut failures);
+        cases += 1;
+    }
+
+    // body models, for safety and for the map over every region
+    let bundled = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/safety/iso_ts_15066_2016.toml"),
+    )
+    .unwrap();
+    for case in 0..24 {
+        let case_dir = dir.join(format!("b{case}"));
+        std::fs::create_dir_all(&case_dir).unwrap();
+        std::fs::write(
+            case_dir.join("m.toml"),
+            hostile_body_model(&mut rng, &bundled),
+        )
+        .unwrap();
+        let args: Vec<String> = if case % 3 == 2 {
+            strings(&[
+                "safety-map",
+                "--x",
+                "region=all",
+                "--y",
+                "k-delta=1e3:1e6:2:log",
+                "--m-r",
+                "0.5",
+                "--m-e",
+                "0.1",
+                "--method",
+                "energy",
+                "--body-model",
+                "m.toml",
+                "--out",
+                "o",
+                "--json",
+            ])
+        } else {
+            strings(&[
+                "safety",
+                "--region",
+                "chest",
+                "--m-eff",
+                "3",
+                "--speed",
+                "0.5",
+                "--body-model",
+                "m.toml",
+                "--json",
+            ])
+        };
+        let expect = Expect {
+            allow_1: false,
+            names: &["--body-model", "--region", "--area", "--x"],
+        };
+        let o = attack(&args, &case_dir, Some(&case_dir), &expect, &mut failures);
+        check(&o, &mut failures);
+        cases += 1;
+    }
+
+    // spin-up flags, on a short, coarse run
+    let spin: Vec<(&str, Vec<String>)> = [
+        "--omega-s",
+        "--t-s",
+        "--duration",
+        "--elements",
+        "--max-step",
+        "--sample-every",
+        "--modes",
+        "--length",
+        "--area",
+        "--second-moment",
+        "--youngs-modulus",
+        "--density",
+    ]
+    .iter()
+    .map(|f| (*f, numbers.clone()))
+    .collect();
+    for case in 0..16 {
+        let case_dir = dir.join(format!("u{case}"));
+        std::fs::create_dir_all(&case_dir).unwrap();
+        let base = [
+            "spin-up",
+            "--t-s",
+            "2",
+            "--duration",
+            "3",
+            "--elements",
+            "4",
+            "--out",
+            "o",
+            "--json",
+        ];
+        let (args, drawn) = draw(&mut rng, &base, &borrow(&spin), None);
+        let names: Vec<&str> = drawn.iter().map(String::as_str).collect();
+        let expect = Expect {
+            allow_1: false,
+            names: &names,
+        };
+        let o = attack(&args, &case_dir, Some(&case_dir), &expect, &mut failures);
+        check(&o, &mut failures);
+        cases += 1;
+    }
+
+    // drive descriptions with one field made hostile
+    let drive = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/drives/cl_free_head.toml"),
+    )
+    .unwrap();
+    let fields = drive_value_lines(&drive);
+    for case in 0..30 {
+        let case_dir = dir.join(format!("d{case}"));
+        std::fs::create_dir_all(&case_dir).unwrap();
+        let (line, key) = rng.pick(&fields).clone();
+        let value = hostile_toml_value(&mut rng);
+        let text: Vec<String> = drive
+            .lines()
+            .enumerate()
+            .map(|(i, l)| {
+                if i == line {
+                    format!("{key} = {value}")
+                } else {
+                    l.to_string()
+                }
+            })
+            .collect();
+        std::fs::write(case_dir.join("d.toml"), text.join("\n") + "\n").unwrap();
+        let mut args = strings(&["strike", "d.toml"]);
+        if case % 2 == 0 {
+            args.push("--json".into());
+        }
+        // the field's key, or the table it sits in, or a field it makes unreachable
+        let mut names = vec![key.clone()];
+        names.extend(strings(&[
+            "d.toml",
+            "speed",
+            "horizon_s",
+            "placement",
+            "person.contact",
+            "torque_limit",
+            "m_e",
+            "link.",
+            "drive.",
+        ]));
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let expect = Expect {
+            allow_1: false,
+            names: &names,
+        };
+        let o = attack(&args, &case_dir, Some(&case_dir), &expect, &mut failures);
+        check(&o, &mut failures);
+        cases += 1;
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    report(
+        "safety_body_models_spin_up_and_drive_files_hostile",
+        cases,
+        &failures,
+    );
+}

@@ -309,7 +309,8 @@ fn the_report_is_written_as_markdown_and_html_with_trace_figure_and_caveat() {
     for name in ["r.md", "r.html"] {
         let path = dir.join(name);
         let mut args = base.to_vec();
-        args.extend(["--report", path.to_str().unwrap()]);
+        // the second report replaces the first one's figure beside it: --force
+        args.extend(["--report", path.to_str().unwrap(), "--force"]);
         let text = ok(&args);
         assert!(text.contains("wrote"), "{text}");
         let report = std::fs::read_to_string(&path).unwrap();

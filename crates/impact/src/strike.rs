@@ -59,6 +59,26 @@ impl DrivenStrike {
                  for the other direction mirror the scene, the numbers are the same)",
             ));
         }
+        if let (Some(profile), Placement::AfterRamp { settle }) =
+            (self.drive.profile(), self.placement)
+        {
+            // the person stands where the command is `settle` after the ramp: that moment must
+            // come within the horizon (the error names the horizon, the one field it depends
+            // on that is not the placement itself)
+            let at = profile.ramp_end() + settle;
+            if !(at <= self.horizon_s) {
+                return Err(ImpactError::invalid(
+                    "horizon_s",
+                    self.horizon_s,
+                    format!(
+                        "at least drive.command.profile.ramp_time + placement.settle = {} s (the \
+                         person stands where the commanded motion is placement.settle after the \
+                         ramp)",
+                        flexrig_contact::validate::display(at)
+                    ),
+                ));
+            }
+        }
         if let Some(profile) = self.drive.profile() {
             // the commanded motion must pass the person within the horizon
             let reach = profile.at(self.horizon_s).0;
@@ -71,16 +91,19 @@ impl DrivenStrike {
             if !passes {
                 return Err(ImpactError::invalid(
                     "placement",
-                    format!("{angle} rad"),
+                    format!("{} rad", flexrig_contact::validate::display(angle)),
                     format!(
                         "an angle the commanded trajectory reaches within horizon_s = {} s \
-                         (it reaches {reach:.6} rad)",
-                        self.horizon_s
+                         (it reaches {} rad)",
+                        flexrig_contact::validate::display(self.horizon_s),
+                        flexrig_contact::validate::display(reach)
                     ),
                 ));
             }
         }
+        self.check_payload()?;
         self.check_contact_range(angle)?;
+        self.check_reachable(angle)?;
         self.check_loop_stability()
     }
 
@@ -276,6 +299,65 @@ impl DrivenStrike {
     /// (k_d + c) k_p > J k_i (Routh–Hurwitz). An unstable loop grows until the torque limit
     /// clips it, and the peak then depends on the phase of that growth at the onset (peaks
     /// jumping 3× between the CJ and the CL).
+    /// A payload is 0 or at least [`MIN_PAYLOAD_OF_LINK`] of the link's mass: a lighter one
+    /// changes the peak by less than a millionth (measured: 1e-6 of m_r moves the test bed's
+    /// peak by 1e-7), while a payload of 1e-15 kg on the compliant link makes a tip of no inertia
+    /// whose contact the integrator cannot step through (the step budget runs out).
+    fn check_payload(&self) -> Result<(), ImpactError> {
+        let (m_e, m_r) = (self.link.m_e, self.link.m_r);
+        if m_e == 0.0 || m_e >= MIN_PAYLOAD_OF_LINK * m_r {
+            return Ok(());
+        }
+        Err(ImpactError::invalid(
+            "link.m_e",
+            m_e,
+            format!(
+                "0 (no payload) or at least {:e} of link.m_r, i.e. ≥ {} kg: a lighter payload \
+                 changes nothing but the integrators' round-off",
+                MIN_PAYLOAD_OF_LINK,
+                flexrig_contact::validate::display(MIN_PAYLOAD_OF_LINK * m_r)
+            ),
+        ))
+    }
+
+    /// The drive can bring the link to the person within the horizon: with the whole joint
+    /// torque limit N τ_max on the joint's rigid inertia J = J_m N² + m_r L²/3 + m_e L² and no
+    /// friction, the link turns at most ω₀ T + ½ (N τ_max / J) T² in the horizon T (a bound the
+    /// run never beats); a person farther away is never reached (the run would wait out the
+    /// horizon and fail).
+    fn check_reachable(&self, angle: f64) -> Result<(), ImpactError> {
+        let (Some(profile), limit) = (self.drive.profile(), self.drive.joint_torque_limit()) else {
+            return Ok(());
+        };
+        if !limit.is_finite() {
+            return Ok(());
+        }
+        let motor = self.drive.motor();
+        let l = self.link.length;
+        let j = motor.reflected_inertia() + (self.link.m_r / 3.0 + self.link.m_e) * l * l;
+        let (start, omega0) = (profile.at(0.0).0, profile.at(0.0).1.abs());
+        let travel = (angle - start).abs();
+        let t = self.horizon_s;
+        let reach = omega0 * t + 0.5 * limit / j * t * t;
+        if reach >= travel {
+            return Ok(());
+        }
+        let needed = 2.0 * j * (travel - omega0 * t) / (t * t) / motor.gear_ratio;
+        Err(ImpactError::invalid(
+            "drive.command.torque_limit",
+            limit / motor.gear_ratio,
+            format!(
+                "a torque limit that can turn the joint's inertia {} kg·m² (rotor through the \
+                 gear, and link) through the {} rad to the person within horizon_s = {} s: \
+                 at least {} N·m (or a lighter drive.motor.rotor_inertia, or a longer horizon_s)",
+                flexrig_contact::validate::display(j),
+                flexrig_contact::validate::display(travel),
+                flexrig_contact::validate::display(t),
+                flexrig_contact::validate::display(needed)
+            ),
+        ))
+    }
+
     fn check_loop_stability(&self) -> Result<(), ImpactError> {
         let crate::drive::DriveCommand::Controller { gains, .. } = self.drive.command() else {
             return Ok(());
@@ -307,6 +389,8 @@ impl DrivenStrike {
     }
 }
 
+/// Smallest non-zero payload, as a fraction of the link's mass (see `check_payload`).
+pub const MIN_PAYLOAD_OF_LINK: f64 = 1e-6;
 /// The Hertz stiffness range \[N/mⁿ\] (the test bed's, flexrig-rig's `limits::CONTACT_K`).
 pub const CONTACT_K: (f64, f64) = (1e-3, 1e20);
 /// The Hertz exponent range of a driven strike.

@@ -24,6 +24,8 @@ fn py_error(e: Error) -> PyErr {
         Error::Impact(ImpactError::InvalidParameter { field, .. }) => {
             input_error(field, e.to_string())
         }
+        // the command's flags (`--omega-s`) written as the keyword arguments (`omega_s`)
+        Error::InvalidArgument { .. } => flag_error(e),
         _ => to_py(e),
     }
 }

@@ -1,8 +1,7 @@
 //! The permissible speed near a body region ([`flexrig::safety`]): the input and the report
 //! cross as JSON, so the Python result holds exactly the numbers of `flexrig safety --json`.
 
-use flexrig::Error;
-use flexrig::safety::{BodyModel, SafetyInput, safety};
+use flexrig::safety::{BodyModel, SafetyInput, safety_cancellable};
 use pyo3::prelude::*;
 
 use crate::{input_error, to_py};
@@ -19,15 +18,30 @@ pub fn safety_json(
 ) -> PyResult<String> {
     let input: SafetyInput = serde_json::from_str(input_json)
         .map_err(|e| input_error("input", format!("invalid safety input: {e}")))?;
-    let model = body_model_toml
-        .map(BodyModel::from_toml_str)
-        .transpose()
-        .map_err(|e| to_py(Error::from(e)))?;
-    let report = py
-        .detach(|| safety(&input, model.as_ref()))
-        .map_err(to_py)?;
+    let model = body_model_toml.map(body_model).transpose()?;
+    let cancel = flexrig::CancelToken::new();
+    let report = crate::detached(py, &cancel, || {
+        safety_cancellable(&input, model.as_ref(), &cancel)
+    })?
+    .map_err(to_py)?;
     serde_json::to_string(&report)
         .map_err(|e| input_error("input", format!("the report does not serialise: {e}")))
+}
+
+/// The body model of the TOML `text` of the keyword argument `body_model` (an error names it).
+fn body_model(text: &str) -> PyResult<BodyModel> {
+    BodyModel::from_toml_str(text).map_err(|e| {
+        let why = e.to_string();
+        input_error(
+            "body_model",
+            format!(
+                "invalid argument body_model: {}",
+                flexrig_rig::format_message::plain(
+                    why.strip_prefix("body-model file: ").unwrap_or(&why)
+                )
+            ),
+        )
+    })
 }
 
 /// The safe-speed map of [`flexrig::safety::map::safety_map`] as JSON (what `flexrig safety-map`
@@ -52,10 +66,7 @@ pub fn safety_map_json(
     }
     let input: flexrig::safety::map::SafetyMapInput = serde_json::from_value(value)
         .map_err(|e| input_error("input", format!("invalid safety map input: {e}")))?;
-    let model = body_model_toml
-        .map(BodyModel::from_toml_str)
-        .transpose()
-        .map_err(|e| to_py(Error::from(e)))?;
+    let model = body_model_toml.map(body_model).transpose()?;
     let cancel = flexrig::CancelToken::new();
     let map = crate::detached(py, &cancel, || {
         flexrig::safety::map::safety_map(&input, model.as_ref(), &cancel)
@@ -81,7 +92,7 @@ pub fn safety_trace_json(
     let model = body_model_toml
         .map(BodyModel::from_toml_str)
         .transpose()
-        .map_err(|e| to_py(Error::from(e)))?;
+        .map_err(|e| to_py(flexrig::Error::from(e)))?;
     let report = py
         .detach(|| flexrig::safety::measured::judge_trace(&input, model.as_ref()))
         .map_err(crate::flag_error)?;

@@ -168,8 +168,10 @@ pub fn bench<'py>(
     dpi: f64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
-    let r = py
-        .detach(|| flexrig::quality::bench::run(quick, &out, &figures))
-        .map_err(flag_error)?;
+    let cancel = flexrig::CancelToken::new();
+    let r = crate::detached(py, &cancel, || {
+        flexrig::quality::bench::run_cancellable(quick, &out, &figures, &cancel)
+    })?
+    .map_err(flag_error)?;
     json_to_py(py, &fronts::bench_report(&r))
 }

@@ -281,6 +281,51 @@ pub fn first_impact_estimate(scene: &Scene) -> ImpactEstimate {
     }
 }
 
+/// The finest mesh whose mass matrix double precision factorises: the consistent mass of an
+/// Euler–Bernoulli element gives the tip's rotation a pivot of about ρA l³/210 (l = L/N, the
+/// element's length; measured: the bundled cl_light_load factorises at N = 3000 and not at
+/// 3200, where ρA l³/210 crosses the factorisation's 1e-14 of the largest entry, the payload),
+/// while the largest entry is the payload (or 312 ρA l/420 without one). Half that threshold's
+/// mesh size is kept as a margin: ρA l³/210 ≥ 2e-14 × max(payload, 312 ρA l/420).
+pub fn beam_elements_conditioned(rho_a: f64, length: f64, payload: f64) -> usize {
+    let fits = |n: usize| {
+        let l = length / n as f64;
+        rho_a * l.powi(3) / 210.0 >= 2e-14 * payload.max(312.0 * rho_a * l / 420.0)
+    };
+    let (mut lo, mut hi) = (1usize, BEAM_ELEMENTS.1);
+    if fits(hi) {
+        return hi;
+    }
+    while hi - lo > 1 {
+        let mid = (lo + hi) / 2;
+        if fits(mid) { lo = mid } else { hi = mid }
+    }
+    lo
+}
+
+/// Refuses a mesh finer than [`beam_elements_conditioned`] (its mass matrix is singular in
+/// double precision), naming the largest that works.
+pub fn check_beam_mass_conditioning(
+    elements: usize,
+    rho_a: f64,
+    length: f64,
+    payload: f64,
+) -> Result<(), RigError> {
+    let most = beam_elements_conditioned(rho_a, length, payload);
+    if elements <= most {
+        return Ok(());
+    }
+    Err(invalid(
+        "robot.beam_elements",
+        elements,
+        &format!(
+            "at most {most} for this link and payload: finer elements make the tip's rotational \
+             inertia (ρA l³/210 for an element of length l) vanish beside the payload's mass in \
+             double precision, and the mass matrix becomes singular"
+        ),
+    ))
+}
+
 /// Checks the mesh limit of the chosen beam solver.
 pub fn check_beam_mesh(elements: usize, beam: BeamSolverSpec) -> Result<(), RigError> {
     check_count("robot.beam_elements", elements, BEAM_ELEMENTS)?;

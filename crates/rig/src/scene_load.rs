@@ -108,6 +108,12 @@ impl Scene {
         limits::SIZE.check("robot.dome_radius_m", r.dome_radius_m)?;
         limits::SIZE.check("robot.dome_standoff_m", r.dome_standoff_m)?;
         limits::check_beam_mesh(r.beam_elements, file.solver.beam)?;
+        limits::check_beam_mass_conditioning(
+            r.beam_elements,
+            r.density_kg_m3 * r.width_m * r.thickness_m,
+            r.length_m,
+            r.payload_kg,
+        )?;
         let link_mass_kg = r.density_kg_m3 * r.width_m * r.thickness_m * r.length_m;
         let link_ei = r.youngs_modulus_pa * r.width_m * r.thickness_m.powi(3) / 12.0;
         let torsion_spring = match r.torsion_spring_nm_per_rad.and_then(|k| k.value()) {

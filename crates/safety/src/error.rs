@@ -35,7 +35,10 @@ pub enum SafetyError {
         allowed: String,
     },
     /// A body region or area name is not in the model.
-    #[error("unknown {what} {name:?}: known are {known}")]
+    #[error(
+        "unknown {what} {}: known are {known}",
+        crate::body_model_file::quoted(name)
+    )]
     Unknown {
         /// `body region` or `body area`.
         what: &'static str,

@@ -54,6 +54,12 @@ pub use contact_area::{ContactAreaModel, peak_pressure};
 pub use energy::{loading_work, peak_force, relative_kinetic_energy, spring_energy_at_force};
 pub use energy_method::{EnergyContact, LinkStiffness, PressureCrossing, speed_map};
 pub use error::SafetyError;
+
+/// A name as a message quotes it: in double quotes, control and invisible format characters
+/// written as their code point (U+202E), never as Rust escapes; at most 120 characters.
+pub fn quoted_name(name: &str) -> String {
+    body_model_file::quoted(name)
+}
 pub use hic::{
     HicResult, HicWindow, STANDARD_GRAVITY, half_sine_optimal_phase, hic, hic_half_sine,
 };

@@ -5,7 +5,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::Error;
+use flexrig::{CancelToken, Error};
 
 use crate::print::{line, print_json};
 
@@ -27,8 +27,13 @@ pub struct BenchArgs {
 }
 
 /// Runs `flexrig bench`.
-pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), Error> {
-    let report = flexrig::quality::bench::run(args.quick, &args.out, &args.figure.options()?)?;
+pub fn run(args: &BenchArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
+    let report = flexrig::quality::bench::run_cancellable(
+        args.quick,
+        &args.out,
+        &args.figure.options()?,
+        cancel,
+    )?;
     let (rows, files, peer_ratio) = (
         &report.rows,
         &report.plots,

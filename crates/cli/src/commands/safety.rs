@@ -6,11 +6,11 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use flexrig::Error;
 use flexrig::safety::{
     ContactAreaModel, ContactKind, FeLink, MethodResult, RobotEffectiveMass, SafetyInput,
-    SafetyMethod, SafetyReport, SimulationSettings, Speed, safety,
+    SafetyMethod, SafetyReport, SimulationSettings, Speed, safety_cancellable,
 };
+use flexrig::{CancelToken, Error};
 
 use super::safety_args::{ContactArg, ContactLawArgs, map_joint, missing};
 use crate::print::{line, print_json};
@@ -139,6 +139,9 @@ pub struct SafetyArgs {
     /// (FILE_peak_force.svg beside it), the verdict and the ISO/PAS 5672 caveat.
     #[arg(long, value_name = "FILE")]
     pub report: Option<PathBuf>,
+    /// Overwrite an existing report and its figure.
+    #[arg(long, requires = "report")]
+    pub force: bool,
 }
 
 impl SafetyArgs {
@@ -208,7 +211,7 @@ impl SafetyArgs {
 pub use flexrig::safety::load_body_model;
 
 /// Runs `flexrig safety`.
-pub fn run(args: &SafetyArgs, out: &mut dyn Write) -> Result<(), Error> {
+pub fn run(args: &SafetyArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     let model = load_body_model(args.body_model.as_deref())?;
     flexrig::safety::check_region(&args.region, model.as_ref())?;
     if let Some(trace) = &args.trace {
@@ -227,10 +230,12 @@ pub fn run(args: &SafetyArgs, out: &mut dyn Write) -> Result<(), Error> {
     let input = args.input()?;
     let (report, written) = match &args.report {
         Some(path) => {
-            let (r, files) = flexrig::safety::report::write_report(&input, model.as_ref(), path)?;
-            (r, files)
+            flexrig::safety::report::write_report(&input, model.as_ref(), path, args.force, cancel)?
         }
-        None => (safety(&input, model.as_ref())?, Vec::new()),
+        None => (
+            safety_cancellable(&input, model.as_ref(), cancel)?,
+            Vec::new(),
+        ),
     };
     for w in &report.warnings {
         eprintln!("warning: {w}");
@@ -256,9 +261,24 @@ pub fn run(args: &SafetyArgs, out: &mut dyn Write) -> Result<(), Error> {
 
 fn speed(s: &Speed) -> String {
     match s {
-        Speed::Finite(v) => format!("{v:.6}"),
+        Speed::Finite(v) => fixed(*v, 6),
         Speed::Unlimited(_) => "unlimited".into(),
     }
+}
+
+/// `v` with `digits` decimals for ordinary magnitudes, in the one formatter's exponent form
+/// outside them (never hundreds of digits).
+fn fixed(v: f64, digits: usize) -> String {
+    if v == 0.0 || (1e-3..1e9).contains(&v.abs()) {
+        format!("{v:.digits$}")
+    } else {
+        n(v)
+    }
+}
+
+/// A number as the messages write it (the one formatter: 1e300, not 301 digits).
+fn n(v: f64) -> String {
+    flexrig::shared::output::display_number(v)
 }
 
 fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
@@ -277,20 +297,20 @@ fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
         out,
         format!(
             "limits             force {} N, pressure {} N/cm²",
-            r.force_limit_n,
-            r.pressure_limit_pa / 1e4
+            n(r.force_limit_n),
+            n(r.pressure_limit_pa / 1e4)
         ),
     )?;
     let area = match &r.area_model {
         Some(ContactAreaModel::HertzSphere { radius_m }) => {
-            format!("Hertz sphere, A = π R δ, R = {} mm", radius_m * 1e3)
+            format!("Hertz sphere, A = π R δ, R = {} mm", n(radius_m * 1e3))
         }
         Some(ContactAreaModel::ThinLayer { radius_m }) => format!(
             "thin layer on a rigid backing, A = π(2Rδ − δ²), R = {} mm",
-            radius_m * 1e3
+            n(radius_m * 1e3)
         ),
         Some(ContactAreaModel::Fixed { area_m2 }) => {
-            format!("fixed area, A = {} cm²", area_m2 * 1e4)
+            format!("fixed area, A = {} cm²", n(area_m2 * 1e4))
         }
         None => "none (pressure not assessed)".into(),
     };
@@ -323,7 +343,7 @@ fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
                     "neck" => "on a neck",
                     _ => "free",
                 },
-                sc.scene_tip_speed_mps
+                n(sc.scene_tip_speed_mps)
             ),
         )?;
         line(
@@ -400,7 +420,7 @@ fn print_test_bed(
             sc.name,
             sc.scene,
             format!("{:?}", sc.design).to_uppercase(),
-            sc.scene_tip_speed_mps
+            n(sc.scene_tip_speed_mps)
         ),
     )?;
     line(
@@ -439,9 +459,9 @@ fn print_method(out: &mut dyn Write, m: &MethodResult) -> Result<(), Error> {
     line(
         out,
         format!(
-            "{:<11} {:>12.6} {:>12} {:>12} {:>12} {:>9}",
+            "{:<11} {:>12} {:>12} {:>12} {:>12} {:>9}",
             format!("{:?}", m.method).to_lowercase(),
-            m.robot_mass_kg,
+            fixed(m.robot_mass_kg, 6),
             speed(&m.v_max_mps),
             speed(&m.by_force_mps),
             by_p,
@@ -458,11 +478,11 @@ fn print_method(out: &mut dyn Write, m: &MethodResult) -> Result<(), Error> {
         line(
             out,
             format!(
-                "  at {} m/s: {} (peak force {:.3} N, force margin {:.4})",
-                v.speed_mps,
+                "  at {} m/s: {} (peak force {} N, force margin {})",
+                n(v.speed_mps),
                 if v.pass { "pass" } else { "FAIL" },
-                v.peak_force_n,
-                v.force_margin
+                fixed(v.peak_force_n, 3),
+                fixed(v.force_margin, 4)
             ),
         )?;
         if let Some(c) = &v.governing_contact {

@@ -168,8 +168,13 @@ impl SpinUpOptions {
         let i = positive_arg("--second-moment", self.second_moment)?;
         let rho = positive_arg("--density", self.density)?;
         let t_s = positive_arg("--t-s", self.t_s)?;
-        if !self.omega_s.is_finite() {
-            return Err(invalid("--omega-s", self.omega_s, "a finite speed"));
+        if !(self.omega_s.is_finite() && self.omega_s != 0.0) {
+            return Err(invalid(
+                "--omega-s",
+                flexrig_contact::validate::display(self.omega_s),
+                "a finite speed other than 0 rad/s (at 0 the beam stays at rest: there is no \
+                 deflection to compare)",
+            ));
         }
         let t_end = match self.duration {
             Some(d) => positive_arg("--duration", d)?,
@@ -180,7 +185,10 @@ impl SpinUpOptions {
             return Err(invalid(
                 "--sample-every",
                 sample_every,
-                &format!("at most the duration, {t_end} s"),
+                &format!(
+                    "at most the duration, {} s",
+                    flexrig_contact::validate::display(t_end)
+                ),
             ));
         }
         if !(1..=10_000).contains(&self.elements) {
@@ -197,7 +205,7 @@ impl SpinUpOptions {
         if max_step > sample_every {
             return Err(invalid("--max-step", max_step, "at most --sample-every"));
         }
-        Ok(SpinUp {
+        let spec = SpinUp {
             length: positive_arg("--length", self.length)?,
             ea: e * a,
             ei: e * i,
@@ -206,7 +214,58 @@ impl SpinUpOptions {
             t_s,
             t_end,
             sample_every,
-        })
+        };
+        spec.validate().map_err(|err| self.by_flag(err))?;
+        Ok(spec)
+    }
+
+    /// A range error of the model's field in the flags' words: the flag and the value typed,
+    /// and for a product of flags (EA, EI, ρA) the other factor and the product.
+    fn by_flag(&self, err: flexrig_impact::ImpactError) -> Error {
+        use crate::shared::output::display_number as n;
+        let flexrig_impact::ImpactError::InvalidParameter { field, allowed, .. } = &err else {
+            return err.into();
+        };
+        let product =
+            |flag: &str, v: f64, other: &str, w: f64, what: &str| Error::InvalidArgument {
+                arg: flag.into(),
+                value: n(v),
+                allowed: format!("with {other} = {}, {what} = {} {allowed}", n(w), n(v * w)),
+            };
+        let single = |flag: &str, v: f64| Error::InvalidArgument {
+            arg: flag.into(),
+            value: n(v),
+            allowed: allowed.clone(),
+        };
+        match field.as_str() {
+            "length" => single("--length", self.length),
+            "omega_s" => single("--omega-s", self.omega_s),
+            "t_s" => single("--t-s", self.t_s),
+            "t_end" => single("--duration", self.duration.unwrap_or(self.t_s + 5.0)),
+            "sample_every" => single("--sample-every", self.sample_every),
+            "ea" => product(
+                "--youngs-modulus",
+                self.youngs_modulus,
+                "--area",
+                self.area,
+                "the axial stiffness E·A",
+            ),
+            "ei" => product(
+                "--youngs-modulus",
+                self.youngs_modulus,
+                "--second-moment",
+                self.second_moment,
+                "the bending stiffness E·I",
+            ),
+            "rho_a" => product(
+                "--density",
+                self.density,
+                "--area",
+                self.area,
+                "the mass per length ρ·A",
+            ),
+            _ => err.into(),
+        }
     }
 }
 
@@ -309,10 +368,88 @@ impl SpinUpOptions {
     }
 }
 
+/// Largest hub rotation per FE time step \[rad\], |ω_s| × `--max-step`: the corotational step's
+/// Newton iteration converges at 0.075 rad and not at 0.1 on both literature beams (measured:
+/// Simo & Vu-Quoc and Kane at 15 and 20 rad/s with the 5 ms step, and at 20 rad/s with 1 ms).
+pub const MAX_ROTATION_PER_STEP: f64 = 0.08;
+
+/// Largest growth exponent of the linear rotating-frame beam: above its first bending
+/// frequency ω₁ it has no centrifugal stiffening and its first mode grows as
+/// exp ∫ √(ω² − ω₁²) dt; past e^650 (1e282) it leaves double precision before its end
+/// (measured: Simo & Vu-Quoc's beam at 60 rad/s reaches e^706 and the run fails at 19.26 s).
+pub const MAX_LINEAR_GROWTH: f64 = 650.0;
+
+/// ∫₀^t_end √(max(ω(t)² − ω₁², 0)) dt of the spin-up ω(t) to `omega_s` in `t_s` (the trapezoid
+/// rule on 4 000 intervals: the integrand is smooth but for the kink where ω crosses ω₁).
+fn linear_growth(omega_s: f64, t_s: f64, t_end: f64, omega_1: f64) -> f64 {
+    let n = 4000;
+    let h = t_end / n as f64;
+    let f = |t: f64| {
+        let w = flexrig_impact::drive::spin_up(omega_s.abs(), t_s, t).1;
+        (w * w - omega_1 * omega_1).max(0.0).sqrt()
+    };
+    (0..n)
+        .map(|i| 0.5 * h * (f(i as f64 * h) + f((i + 1) as f64 * h)))
+        .sum()
+}
+
+impl SpinUpOptions {
+    /// What the integrators can solve, checked before the work: the FE step's rotation
+    /// ([`MAX_ROTATION_PER_STEP`]) and the linear model's growth ([`MAX_LINEAR_GROWTH`]); the
+    /// errors name `--omega-s` with the largest speed that works, or `--max-step`.
+    fn check_solvable(&self, spec: &SpinUp) -> Result<(), Error> {
+        use crate::shared::output::display_number as n;
+        let omega = spec.omega_s.abs();
+        if omega * self.max_step > MAX_ROTATION_PER_STEP {
+            return Err(invalid(
+                "--omega-s",
+                n(spec.omega_s),
+                &format!(
+                    "at most {} rad/s in magnitude with --max-step = {} s: the FE step turns the \
+                     hub by |ω_s| × the step, at most {MAX_ROTATION_PER_STEP} rad for its Newton \
+                     iteration to converge (or a smaller --max-step: at most {} s)",
+                    n(MAX_ROTATION_PER_STEP / self.max_step),
+                    n(self.max_step),
+                    n(MAX_ROTATION_PER_STEP / omega)
+                ),
+            ));
+        }
+        // the cantilever's first bending frequency, (β₁L)² √(EI/(ρA L⁴)), β₁L = 1.8751040687
+        let omega_1 =
+            1.875_104_068_7_f64.powi(2) * (spec.ei / (spec.rho_a * spec.length.powi(4))).sqrt();
+        let growth = |w: f64| linear_growth(w, spec.t_s, spec.t_end, omega_1);
+        if growth(omega) <= MAX_LINEAR_GROWTH {
+            return Ok(());
+        }
+        let (mut lo, mut hi) = (omega_1, omega);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if growth(mid) <= MAX_LINEAR_GROWTH {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        Err(invalid(
+            "--omega-s",
+            n(spec.omega_s),
+            &format!(
+                "at most {} rad/s in magnitude over this {} s run: above the beam's first bending \
+                 frequency ω₁ = {} rad/s the linear rotating-frame beam (no stiffening) grows as \
+                 exp ∫√(ω² − ω₁²) dt and leaves double precision past e^{MAX_LINEAR_GROWTH} (or a \
+                 shorter --duration)",
+                n((lo * 1e3).floor() / 1e3),
+                n(spec.t_end),
+                n(omega_1)
+            ),
+        ))
+    }
+}
+
 fn invalid(arg: &str, value: impl std::fmt::Display, allowed: &str) -> Error {
     Error::InvalidArgument {
         arg: arg.into(),
-        value: value.to_string(),
+        value: crate::shared::output::value_text(value),
         allowed: allowed.into(),
     }
 }
@@ -342,6 +479,7 @@ pub fn run_with_figures(
     figures.validate()?;
     let spec = options.spec()?;
     options.check_work(&spec)?;
+    options.check_solvable(&spec)?;
     // the files' places before the work
     ensure_dir(out)?;
     for name in ["spin_up.csv", "spin_up.json", "spin_up.svg"] {

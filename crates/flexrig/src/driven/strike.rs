@@ -30,11 +30,12 @@ use flexrig_impact::exact_link::{ExactSettings, run_exact_cl};
 use flexrig_impact::{DrivenOutcome, DrivenStrike, LinkParams, TraceSample};
 use serde::{Deserialize, Serialize};
 
+// Most trace samples over the wait (a driven scene's `horizon_s` × `record.sample_rate_hz`
+// budget, the rig's, as the scene's `MAX_SAMPLES`; taken from the rig so that this file and the
+// scene's do not import each other); flexrig-impact thins a trace beyond its own cap.
 use super::{check, num};
 use crate::shared::output::{ensure_dir, positive_arg, read_text, write_atomic};
 use crate::{CancelToken, Error};
-/// Most trace samples over the wait (a driven scene's `horizon_s` × `record.sample_rate_hz`
-/// budget; flexrig-impact thins a trace beyond its own cap).
 use flexrig_rig::limits::MAX_SAMPLES;
 
 /// The link design.
@@ -108,10 +109,25 @@ pub struct StrikeDescription {
 impl StrikeDescription {
     /// Parses and checks a description; `source` (the file's path) names it in errors.
     pub fn parse(text: &str, source: &str) -> Result<StrikeDescription, Error> {
-        let d: StrikeDescription = toml::from_str(text).map_err(|e| Error::InvalidArgument {
-            arg: source.into(),
-            value: "(drive description)".into(),
-            allowed: e.message().trim().to_string(),
+        let d: StrikeDescription = toml::from_str(text).map_err(|e| {
+            // the line of the offending value, and serde's Rust terms in the file's words
+            let at = e
+                .span()
+                .map(|r| {
+                    format!(
+                        "line {}: ",
+                        text[..r.start.min(text.len())].matches('\n').count() + 1
+                    )
+                })
+                .unwrap_or_default();
+            Error::InvalidArgument {
+                arg: source.into(),
+                value: "(drive description)".into(),
+                allowed: format!(
+                    "{at}{}",
+                    flexrig_rig::format_message::plain(e.message().trim())
+                ),
+            }
         })?;
         d.validate()?;
         Ok(d)
@@ -308,7 +324,7 @@ impl StrikeFlags {
             "m_h" => ("--m-h", self.m_h),
             "k" | "k_c" if !field.starts_with("drive") => ("--k-c", self.k_c),
             "n" if !field.starts_with("drive") => ("--n", self.n),
-            "settle" => ("--settle", self.settle),
+            "settle" | "placement" => ("--settle", self.settle),
             "horizon_s" => ("--horizon", self.horizon),
             "radius_m" => ("--dome-radius", self.dome_radius),
             "standoff_m" => ("--dome-standoff", self.dome_standoff),
@@ -392,9 +408,13 @@ impl StrikeFlags {
 fn rename_fields(text: &str) -> String {
     const WORDS: &[(&str, &str)] = &[
         ("drive.command.profile.speed", "--speed"),
+        ("drive.command.profile.ramp_time", "--ramp-time"),
         ("drive.command.gains.kp", "--kp"),
         ("drive.command.gains.kd", "--kd"),
         ("drive.motor.rotor_inertia", "--rotor-inertia"),
+        ("drive.command.torque_limit", "--torque-limit"),
+        ("placement.settle", "--settle"),
+        ("link.m_r", "--m-r"),
         ("person.contact.k", "--k-c"),
         ("person.contact.n", "--n"),
         ("person.speed", "the person's speed (0)"),

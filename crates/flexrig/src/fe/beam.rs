@@ -69,7 +69,7 @@ pub struct BeamInput {
 fn invalid(arg: &str, value: impl ToString, allowed: &str) -> Error {
     Error::InvalidArgument {
         arg: arg.into(),
-        value: value.to_string(),
+        value: crate::shared::output::value_text(value),
         allowed: allowed.into(),
     }
 }
@@ -295,6 +295,16 @@ impl TipLoad {
 /// Solves the beam under the tip load.
 pub fn statics(beam: &BeamInput, load: &TipLoad) -> Result<TipDisplacement, Error> {
     load.validate()?;
+    if beam.root.name() == "pinned" && beam.k_theta == 0.0 {
+        // a free hinge: the stiffness matrix has the rigid rotation in its null space
+        return Err(invalid(
+            "--k-theta",
+            0.0,
+            "a torsion spring > 0 N·m/rad for a static solve: a pinned root without one is a \
+             free hinge, the beam turns about it as a mechanism and has no static equilibrium \
+             under a tip load (or use --root clamped)",
+        ));
+    }
     let model = beam.model(load.kinematics)?;
     let tip = model.tip_node();
     let mut loads = NodalLoads::zeros(&model);

@@ -23,7 +23,7 @@ use crate::shared::output::positive_arg;
 fn invalid(arg: &str, value: impl ToString, allowed: impl Into<String>) -> Error {
     Error::InvalidArgument {
         arg: arg.into(),
-        value: value.to_string(),
+        value: crate::shared::output::value_text(value),
         allowed: allowed.into(),
     }
 }

@@ -102,15 +102,38 @@ pub fn run(
     out: &Path,
     figures: &crate::plots::FigureOptions,
 ) -> Result<BenchReport, Error> {
+    run_cancellable(quick, out, figures, &crate::CancelToken::new())
+}
+
+/// [`run`], stopped between its studies once `cancel` is set (nothing is written then: the
+/// plots are drawn at the end).
+pub fn run_cancellable(
+    quick: bool,
+    out: &Path,
+    figures: &crate::plots::FigureOptions,
+    cancel: &crate::CancelToken,
+) -> Result<BenchReport, Error> {
     figures.validate()?;
+    let stop = || -> Result<(), Error> {
+        if cancel.is_cancelled() {
+            return Err(Error::Impact(flexrig_impact::ImpactError::Interrupted));
+        }
+        Ok(())
+    };
     let mut rows = Vec::new();
     lumped(&mut rows, quick)?;
+    stop()?;
     let python = peer_python();
     let peer_ratio = peer(&mut rows, quick, &python)?;
+    stop()?;
     beam(&mut rows, quick)?;
-    rig(&mut rows, quick)?;
+    stop()?;
+    rig(&mut rows, quick, cancel)?;
+    stop()?;
     driven(&mut rows, quick)?;
-    safety_maps(&mut rows, quick)?;
+    stop()?;
+    safety_maps(&mut rows, quick, cancel)?;
+    stop()?;
     ensure_dir(out)?;
     let mut files = Vec::new();
     for (model, title, y_desc, share_y) in PLOTS {
@@ -554,7 +577,7 @@ fn run_logged(s: &Scene, rates: LogRates) -> Result<(flexrig_rig::RunSummary, us
     Ok((summary, bytes.into_inner().len()))
 }
 
-fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
+fn rig(rows: &mut Vec<Row>, quick: bool, cancel: &crate::CancelToken) -> Result<(), Error> {
     let steps: &[usize] = if quick {
         &[50, 200, 800]
     } else {
@@ -573,6 +596,9 @@ fn rig(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
         .peak_force_n;
         let cl = name.starts_with("cl");
         for &n in steps {
+            if cancel.is_cancelled() {
+                return Err(Error::Impact(flexrig_impact::ImpactError::Interrupted));
+            }
             let from_contact = ("from = \"release\"", "from = \"contact\"".to_string());
             let to_peak = ("at = \"separation\"", "at = \"peak\"".to_string());
             let slow_sensors = (
@@ -827,11 +853,10 @@ fn driven_test_bed(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
 /// simulation (FE CJ and modal CL; error: the largest relative difference of the four corner
 /// cells from a map at modal tol 1e-8 and root tolerance 1e-10). Model `safety`: in the table
 /// and JSON, not plotted.
-fn safety_maps(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
+fn safety_maps(rows: &mut Vec<Row>, quick: bool, cancel: &crate::CancelToken) -> Result<(), Error> {
     use crate::safety::map::{
         GAMMA_CJ, MapMethod, SafetyMapInput, SimulationSettings, parse_axis, safety_map,
     };
-    let cancel = crate::CancelToken::new();
     let model = flexrig_safety::BodyModel::iso_ts_15066_2016()?;
     let points = if quick { 10 } else { 30 };
     let input = |method: MapMethod, points: usize| -> Result<SafetyMapInput, Error> {
@@ -852,7 +877,7 @@ fn safety_maps(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
         })
     };
     let lumped = input(MapMethod::Energy, points)?;
-    let map = safety_map(&lumped, Some(&model), &cancel)?;
+    let map = safety_map(&lumped, Some(&model), cancel)?;
     let mut error = 0.0_f64;
     for c in map.cells.iter().step_by(7) {
         let single = crate::safety::point::safety(
@@ -890,13 +915,13 @@ fn safety_maps(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
         setting: "exact (closed form)".into(),
         error,
         seconds: median_seconds(if quick { 3 } else { 5 }, 1, || {
-            safety_map(&lumped, Some(&model), &cancel)
+            safety_map(&lumped, Some(&model), cancel)
         }),
         evaluations: None,
     });
     let simulated = input(MapMethod::Simulation, points)?;
     let start = Instant::now();
-    let map = safety_map(&simulated, Some(&model), &cancel)?;
+    let map = safety_map(&simulated, Some(&model), cancel)?;
     let seconds = start.elapsed().as_secs_f64();
     let mut corners = input(MapMethod::Simulation, 2)?;
     corners.simulation = SimulationSettings {
@@ -904,7 +929,7 @@ fn safety_maps(rows: &mut Vec<Row>, quick: bool) -> Result<(), Error> {
         root_rtol: 1e-10,
         ..SimulationSettings::DEFAULT
     };
-    let fine = safety_map(&corners, Some(&model), &cancel)?;
+    let fine = safety_map(&corners, Some(&model), cancel)?;
     let n = points;
     let mut error = 0.0_f64;
     for (i, &at) in [0, n - 1, n * (n - 1), n * n - 1].iter().enumerate() {

@@ -214,6 +214,23 @@ impl MapAxis {
                 })
                 .collect::<Result<_, _>>()?
         };
+        // a region named twice (by its key and its name, or in another case) would be two
+        // columns of one region
+        if let Some((i, key)) = keys
+            .iter()
+            .enumerate()
+            .find(|(i, k)| keys[..*i].contains(k))
+        {
+            return Err(bad(
+                flag,
+                self.names.join(","),
+                &format!(
+                    "each body region once: item {} names {key} again (a region is found by its \
+                     key or its name, ignoring case)",
+                    i + 1
+                ),
+            ));
+        }
         let axis = MapAxis::regions(&keys);
         axis.validate(flag)?;
         Ok(axis)

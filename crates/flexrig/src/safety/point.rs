@@ -90,7 +90,7 @@ pub struct SafetyReport {
 fn bad(arg: &str, value: impl ToString, allowed: &str) -> Error {
     Error::InvalidArgument {
         arg: arg.into(),
-        value: value.to_string(),
+        value: crate::shared::output::value_text(value),
         allowed: allowed.into(),
     }
 }
@@ -117,9 +117,20 @@ struct Setup<'a> {
 }
 
 fn setup<'a>(input: &SafetyInput, model: &'a BodyModel) -> Result<Setup<'a>, Error> {
-    let region = model.region(&input.region)?;
+    // an unknown name is the flag's fault: the error names it
+    let named = |flag: &str, e: flexrig_safety::SafetyError| match e {
+        flexrig_safety::SafetyError::Unknown { what, name, known } => Error::InvalidArgument {
+            arg: flag.into(),
+            value: flexrig_safety::quoted_name(&name),
+            allowed: format!("a {what} of the body model: {known}"),
+        },
+        other => other.into(),
+    };
+    let region = model
+        .region(&input.region)
+        .map_err(|e| named("--region", e))?;
     let area = match &input.area {
-        Some(name) => region.area(name)?,
+        Some(name) => region.area(name).map_err(|e| named("--area", e))?,
         None => region.most_sensitive_area(),
     };
     let kind = input.contact;
@@ -233,16 +244,58 @@ fn setup<'a>(input: &SafetyInput, model: &'a BodyModel) -> Result<Setup<'a>, Err
 /// unreadable file is a read error naming it, a bad table names the region and field.
 pub fn load_body_model(path: Option<&std::path::Path>) -> Result<Option<BodyModel>, Error> {
     path.map(|p| {
-        Ok(BodyModel::from_toml_str(
-            &crate::shared::output::read_text(p)?,
-        )?)
+        let text = crate::shared::output::read_text_bounded(
+            p,
+            MAX_BODY_MODEL_BYTES,
+            "a body-model table is expected; the bundled one is about 10 kB",
+        )
+        .map_err(|e| match e {
+            // a file that cannot be read is the flag's fault: the error names it
+            Error::Read { path, source } => Error::InvalidArgument {
+                arg: "--body-model".into(),
+                value: path.display().to_string(),
+                allowed: format!("a readable body-model file ({source})"),
+            },
+            other => other,
+        })?;
+        body_model_from_text(&text, &p.display().to_string())
     })
     .transpose()
+}
+
+/// Largest body-model file read, bytes (the bundled table is about 10 kB).
+pub const MAX_BODY_MODEL_BYTES: u64 = 1 << 20;
+
+/// The body model of the TOML `text` read from `file` (its name as the user gave it); an error
+/// names `--body-model` and the file, then the region, field and line.
+pub fn body_model_from_text(text: &str, file: &str) -> Result<BodyModel, Error> {
+    BodyModel::from_toml_str(text).map_err(|e| {
+        let why = e.to_string();
+        Error::InvalidArgument {
+            arg: "--body-model".into(),
+            value: file.to_string(),
+            allowed: flexrig_rig::format_message::plain(
+                why.strip_prefix("body-model file: ").unwrap_or(&why),
+            ),
+        }
+    })
 }
 
 /// The permissible speed of `input` by each requested method, with the ISO/TS 15066:2016 body
 /// model, or `model` when given (a user's table).
 pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyReport, Error> {
+    safety_cancellable(input, model, &crate::CancelToken::new())
+}
+
+/// [`safety`], stopped between the simulation method's runs once `cancel` is set (an error of
+/// kind [`crate::ErrorKind::Interrupted`], exit code 130).
+pub fn safety_cancellable(
+    input: &SafetyInput,
+    model: Option<&BodyModel>,
+    cancel: &crate::CancelToken,
+) -> Result<SafetyReport, Error> {
+    let stop = cancel.flag();
+    let stop: &std::sync::atomic::AtomicBool = &stop;
     let bundled;
     let model = match model {
         Some(m) => m,
@@ -288,14 +341,14 @@ pub fn safety(input: &SafetyInput, model: Option<&BodyModel>) -> Result<SafetyRe
         methods.push(match (m, &scene) {
             (SafetyMethod::Standard, _) => standard(&s, input.speed)?,
             (SafetyMethod::Energy, _) => energy(&s, input.speed)?,
-            (SafetyMethod::Simulation, None) => simulation(&s, input)?,
+            (SafetyMethod::Simulation, None) => simulation_traced(&s, input, None, stop)?,
             (SafetyMethod::Simulation, Some(SafetyDesignScene::Driven(sc))) => {
-                let (m, sim) = scene_method(&s, input, sc)?;
+                let (m, sim) = scene_method(&s, input, sc, stop)?;
                 scene_simulation = Some(sim);
                 m
             }
             (SafetyMethod::Simulation, Some(SafetyDesignScene::TestBed(tb))) => {
-                let (mut m, sim) = test_bed_method(&s, input, tb)?;
+                let (mut m, sim) = test_bed_method(&s, input, tb, stop)?;
                 scene_simulation = Some(sim);
                 // the test bed strikes its operator's pendulum, not the region's person
                 m.human_mass_kg = Some(tb.operator_mass());
@@ -607,6 +660,7 @@ fn scene_method(
     s: &Setup,
     input: &SafetyInput,
     sc: &crate::safety::scene::SafetyScene,
+    stop: &std::sync::atomic::AtomicBool,
 ) -> Result<(MethodResult, crate::safety::simulation::SceneSimulation), Error> {
     let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
     let contact = energy_contact(s)?;
@@ -620,8 +674,10 @@ fn scene_method(
         guess.by_force,
         guess.by_pressure,
         &settings,
+        stop,
     )?;
     scene_method_result(s, input.speed, contact.reduced_mass(), sim, |v| {
+        crate::safety::simulation::check_stop(stop)?;
         crate::safety::scene::peak_force(sc, v, &settings)
     })
 }
@@ -651,6 +707,7 @@ fn test_bed_method(
     s: &Setup,
     input: &SafetyInput,
     tb: &crate::safety::test_bed::TestBedScene,
+    stop: &std::sync::atomic::AtomicBool,
 ) -> Result<(MethodResult, crate::safety::simulation::SceneSimulation), Error> {
     let settings = input.simulation.unwrap_or(SimulationSettings::DEFAULT);
     let contact = EnergyContact::new(
@@ -668,8 +725,10 @@ fn test_bed_method(
         guess.by_force,
         guess.by_pressure,
         &settings,
+        stop,
     )?;
     scene_method_result(s, input.speed, contact.reduced_mass(), sim, |v| {
+        crate::safety::simulation::check_stop(stop)?;
         tb.peak_force(v)
     })
 }
@@ -856,26 +915,22 @@ fn pressure_at_force(s: &Setup, f: f64) -> Option<f64> {
         .map(|a| a.mean_pressure(f, (f / s.hertz.k()).powf(1.0 / s.hertz.n())))
 }
 
-fn simulation(s: &Setup, input: &SafetyInput) -> Result<MethodResult, Error> {
-    simulation_traced(s, input, None)
-}
-
 fn simulation_traced(
     s: &Setup,
     input: &SafetyInput,
     trace: Option<&mut Vec<RootStep>>,
+    stop: &std::sync::atomic::AtomicBool,
 ) -> Result<MethodResult, Error> {
     let impact = fe_impact(s, input)?;
     let contact = energy_contact(s)?;
     let guess = contact.permissible_speed(s.limits)?;
-    let stop = std::sync::atomic::AtomicBool::new(false);
     let (by_force, by_pressure, _) = crate::safety::simulation::fe_speeds(
         &impact,
         &s.limits,
         &contact,
         guess.by_force,
         guess.by_pressure,
-        &stop,
+        stop,
         trace,
     )?;
     let p = PermissibleSpeed::from_parts(by_force, by_pressure, contact.reduced_mass(), s.limits);
@@ -883,7 +938,7 @@ fn simulation_traced(
     let mut at_speed = None;
     let verdict = match input.speed {
         Some(v) if v > 0.0 => {
-            let peak = runs.impact_at(v, &stop)?;
+            let peak = runs.impact_at(v, stop)?;
             at_speed = Some(peak);
             let force = peak.peak_force_n;
             Some(Verdict::new(
@@ -910,7 +965,7 @@ fn simulation_traced(
         v.governing_contact = at_speed;
     }
     if p.v_max.is_finite() && p.v_max > 0.0 {
-        m.governing_contact = Some(runs.impact_at(p.v_max, &stop)?);
+        m.governing_contact = Some(runs.impact_at(p.v_max, stop)?);
     }
     Ok(m)
 }
@@ -929,6 +984,22 @@ pub fn simulation_trace(
     ),
     Error,
 > {
+    simulation_trace_until(input, model, &std::sync::atomic::AtomicBool::new(false))
+}
+
+/// [`simulation_trace`], stopped between its runs once `stop` is set.
+pub fn simulation_trace_until(
+    input: &SafetyInput,
+    model: Option<&BodyModel>,
+    stop: &std::sync::atomic::AtomicBool,
+) -> Result<
+    (
+        MethodResult,
+        Vec<RootStep>,
+        crate::safety::simulation::FeImpact,
+    ),
+    Error,
+> {
     let bundled;
     let model = match model {
         Some(m) => m,
@@ -939,7 +1010,7 @@ pub fn simulation_trace(
     };
     let s = setup(input, model)?;
     let mut trace = Vec::new();
-    let mut m = simulation_traced(&s, input, Some(&mut trace))?;
+    let mut m = simulation_traced(&s, input, Some(&mut trace), stop)?;
     transferred_energy(&s, &mut m)?;
     Ok((m, trace, fe_impact(&s, input)?))
 }
@@ -953,6 +1024,22 @@ pub fn simulated_peak_forces(
     model: Option<&BodyModel>,
     speeds: &[f64],
 ) -> Result<Vec<(f64, f64)>, Error> {
+    simulated_peak_forces_until(
+        input,
+        model,
+        speeds,
+        &std::sync::atomic::AtomicBool::new(false),
+    )
+}
+
+/// [`simulated_peak_forces`], stopped between its runs once `stop` is set.
+pub fn simulated_peak_forces_until(
+    input: &SafetyInput,
+    model: Option<&BodyModel>,
+    speeds: &[f64],
+    stop: &std::sync::atomic::AtomicBool,
+) -> Result<Vec<(f64, f64)>, Error> {
+    use crate::safety::simulation::check_stop;
     let bundled;
     let model = match model {
         Some(m) => m,
@@ -969,7 +1056,10 @@ pub fn simulated_peak_forces(
                 let sc = judged_scene(&sc, &s);
                 speeds
                     .iter()
-                    .map(|&v| Ok((v, crate::safety::scene::peak_force(&sc, v, &settings)?)))
+                    .map(|&v| {
+                        check_stop(stop)?;
+                        Ok((v, crate::safety::scene::peak_force(&sc, v, &settings)?))
+                    })
                     .collect()
             }
             SafetyDesignScene::TestBed(tb) => {
@@ -977,14 +1067,16 @@ pub fn simulated_peak_forces(
                 speeds
                     .iter()
                     .filter(|&&v| v <= reach)
-                    .map(|&v| Ok((v, tb.peak_force(v)?)))
+                    .map(|&v| {
+                        check_stop(stop)?;
+                        Ok((v, tb.peak_force(v)?))
+                    })
                     .collect()
             }
         };
     }
     let s = setup(input, model)?;
     let impact = fe_impact(&s, input)?;
-    let stop = std::sync::atomic::AtomicBool::new(false);
     let Some(&first) = speeds.first() else {
         return Ok(Vec::new());
     };
@@ -992,6 +1084,6 @@ pub fn simulated_peak_forces(
     let mut runs = impact.prepare(crate::safety::simulation::MODES_SPEED)?;
     speeds
         .iter()
-        .map(|&v| Ok((v, runs.peak(v, &stop)?)))
+        .map(|&v| Ok((v, runs.peak(v, stop)?)))
         .collect()
 }

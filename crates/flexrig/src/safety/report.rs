@@ -20,12 +20,16 @@ use flexrig_safety::{
 
 use crate::Error;
 use crate::safety::map::RootStep;
+#[cfg(test)]
+use crate::safety::point::simulation_trace as traced_simulation;
 use crate::safety::point::{
     ContactLaw, FeLink, MapJoint, MethodResult, RobotEffectiveMass, SafetyInput, SafetyMethod,
-    SafetyReport, safety, simulated_peak_forces, simulation_trace as traced_simulation,
+    SafetyReport, safety_cancellable, simulated_peak_forces_until,
+    simulation_trace_until as traced_simulation_until,
 };
 
 mod document;
+mod escape;
 pub use document::{Block, Document};
 
 /// The caveat every report carries (ISO/PAS 5672:2023 and the standard itself).
@@ -83,6 +87,17 @@ pub fn report_document(
     model: Option<&BodyModel>,
     figure: Option<&str>,
 ) -> Result<(SafetyReport, Document, Vec<RootStep>), Error> {
+    report_document_until(input, model, figure, &crate::CancelToken::new())
+}
+
+/// [`report_document`], stopped between the simulation's runs once `cancel` is set.
+pub fn report_document_until(
+    input: &SafetyInput,
+    model: Option<&BodyModel>,
+    figure: Option<&str>,
+    cancel: &crate::CancelToken,
+) -> Result<(SafetyReport, Document, Vec<RootStep>), Error> {
+    let stop = cancel.flag();
     let bundled;
     let model = match model {
         Some(m) => m,
@@ -92,7 +107,7 @@ pub fn report_document(
         }
     };
     let input = &crate::safety::point::design_input(input)?;
-    let r = safety(input, Some(model))?;
+    let r = safety_cancellable(input, Some(model), cancel)?;
     let region = model.region(&r.region)?;
     let area = region.area(&r.area)?;
     let mut d = Document::default();
@@ -128,7 +143,7 @@ pub fn report_document(
                     scene_trace(&mut d, sc, &r, m);
                     trace = sc.force_search.clone();
                 }
-                None => trace = simulation_trace(&mut d, input, Some(model), &r, m)?,
+                None => trace = simulation_trace(&mut d, input, Some(model), &r, m, &stop)?,
             },
         }
     }
@@ -710,12 +725,13 @@ fn simulation_trace(
     model: Option<&BodyModel>,
     r: &SafetyReport,
     m: &MethodResult,
+    stop: &std::sync::atomic::AtomicBool,
 ) -> Result<Vec<RootStep>, Error> {
     d.push(Block::Heading(
         2,
         "Method c: simulation (the finite-element impact and a root search)".into(),
     ));
-    let (traced, trace, fe) = traced_simulation(input, model)?;
+    let (traced, trace, fe) = traced_simulation_until(input, model, stop)?;
     let v = traced.by_force_mps.value();
     let f = r.force_limit_n;
     let settings = fe.settings;
@@ -978,6 +994,16 @@ pub fn figure_svg(
     model: Option<&BodyModel>,
     r: &SafetyReport,
 ) -> Result<String, Error> {
+    figure_svg_until(input, model, r, &crate::CancelToken::new())
+}
+
+/// [`figure_svg`], stopped between the simulation's runs once `cancel` is set.
+pub fn figure_svg_until(
+    input: &SafetyInput,
+    model: Option<&BodyModel>,
+    r: &SafetyReport,
+    cancel: &crate::CancelToken,
+) -> Result<String, Error> {
     use crate::plots::{Curve, CurvePanel, log_x_curves_svg};
     let top = r
         .methods
@@ -1015,7 +1041,7 @@ pub fn figure_svg(
             }
             SafetyMethod::Simulation => {
                 let sampled: Vec<f64> = speeds.iter().step_by(4).copied().collect();
-                simulated_peak_forces(input, model, &sampled)?
+                simulated_peak_forces_until(input, model, &sampled, &cancel.flag())?
             }
         };
         let points = framed(&points, FIGURE_FORCE_FRAME * r.force_limit_n);
@@ -1116,10 +1142,15 @@ impl ReportFormat {
 
 /// Writes the report of `input` to `path` (Markdown or HTML by its extension) and its figure
 /// beside it (`<stem>_peak_force.svg`), atomically; returns the safety report and the files.
+/// Neither file replaces an existing one unless `force` (`--force`), and both places are checked
+/// before the work (an error naming `--report`); the simulation stops between its runs once
+/// `cancel` is set.
 pub fn write_report(
     input: &SafetyInput,
     model: Option<&BodyModel>,
     path: &Path,
+    force: bool,
+    cancel: &crate::CancelToken,
 ) -> Result<(SafetyReport, Vec<PathBuf>), Error> {
     let format = ReportFormat::of(path)?;
     let stem = path
@@ -1128,20 +1159,57 @@ pub fn write_report(
         .unwrap_or("report")
         .to_string();
     let figure_name = format!("{stem}_peak_force.svg");
-    let (r, doc, _) = report_document(input, model, Some(&figure_name))?;
-    let figure = figure_svg(input, model, &r)?;
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty());
+    let figure_path = dir.map_or(PathBuf::from(&figure_name), |d| d.join(&figure_name));
+    // both places are checked before the work: nothing is written when either is refused
+    for target in [path, figure_path.as_path()] {
+        check_report_target(target, force)?;
+    }
+    if let Some(dir) = dir {
+        crate::shared::output::ensure_dir(dir).map_err(as_report_error)?;
+    }
+    let (r, doc, _) = report_document_until(input, model, Some(&figure_name), cancel)?;
+    let figure = figure_svg_until(input, model, &r, cancel)?;
     let text = match format {
         ReportFormat::Markdown => doc.markdown(),
         ReportFormat::Html => doc.html_with(&[(&figure_name, &figure)]),
     };
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty());
-    if let Some(dir) = dir {
-        crate::shared::output::ensure_dir(dir)?;
-    }
-    let figure_path = dir.map_or(PathBuf::from(&figure_name), |d| d.join(&figure_name));
-    crate::shared::output::write_atomic(&figure_path, figure.as_bytes())?;
-    crate::shared::output::write_atomic(path, text.as_bytes())?;
+    crate::shared::output::write_atomic(&figure_path, figure.as_bytes())
+        .map_err(as_report_error)?;
+    crate::shared::output::write_atomic(path, text.as_bytes()).map_err(as_report_error)?;
     Ok((r, vec![path.to_path_buf(), figure_path]))
+}
+
+/// A report's file (or its figure): a regular file or nothing, and not an existing file
+/// without `force`; the error names `--report`.
+fn check_report_target(target: &Path, force: bool) -> Result<(), Error> {
+    crate::shared::output::check_output_target(target).map_err(as_report_error)?;
+    if !force && target.exists() {
+        return Err(Error::InvalidArgument {
+            arg: "--report".into(),
+            value: target.display().to_string(),
+            allowed: "a file that does not exist yet, nor the report's figure beside it (or add \
+                      --force to overwrite both)"
+                .into(),
+        });
+    }
+    Ok(())
+}
+
+/// An output error of the report, naming `--report` in place of `--out`.
+fn as_report_error(e: Error) -> Error {
+    match e {
+        Error::InvalidArgument {
+            arg,
+            value,
+            allowed,
+        } if arg == "--out" => Error::InvalidArgument {
+            arg: "--report".into(),
+            value,
+            allowed,
+        },
+        other => other,
+    }
 }
 
 #[cfg(test)]

@@ -225,10 +225,12 @@ pub fn simulate(
     guess_force: f64,
     guess_pressure: Option<f64>,
     settings: &SimulationSettings,
+    stop: &std::sync::atomic::AtomicBool,
 ) -> Result<SceneSimulation, Error> {
     settings.validate()?;
     let mut runs = 0usize;
     let mut peak = |v: f64| -> Result<f64, Error> {
+        crate::safety::simulation::check_stop(stop)?;
         runs += 1;
         peak_force(scene, v, settings)
     };

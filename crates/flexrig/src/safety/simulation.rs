@@ -27,9 +27,18 @@ use crate::driven::strike::StrikeDesign;
 pub(crate) fn bad(arg: &str, value: impl ToString, allowed: &str) -> Error {
     Error::InvalidArgument {
         arg: arg.into(),
-        value: value.to_string(),
+        value: crate::shared::output::value_text(value),
         allowed: allowed.into(),
     }
+}
+
+/// Stops a search between its runs once `stop` is set ([`ImpactError::Interrupted`], exit code
+/// 130).
+pub(crate) fn check_stop(stop: &AtomicBool) -> Result<(), Error> {
+    if stop.load(std::sync::atomic::Ordering::Relaxed) {
+        return Err(Error::Impact(flexrig_impact::ImpactError::Interrupted));
+    }
+    Ok(())
 }
 
 pub(crate) fn display(v: f64) -> String {

@@ -49,6 +49,16 @@ pub fn check_output_target(path: &Path) -> Result<(), Error> {
 /// small or large ones (1e300, not 301 digits).
 pub use flexrig_contact::validate::display as display_number;
 
+/// A value as a message quotes it: a number written by Rust's `{}` (which prints 1e300 with 301
+/// digits) through [`display_number`], any other text as it is.
+pub fn value_text(value: impl ToString) -> String {
+    let text = value.to_string();
+    match text.parse::<f64>() {
+        Ok(v) if text.len() > 12 => display_number(v),
+        _ => text,
+    }
+}
+
 /// Writes `bytes` to `path` atomically: a half-written file is never left at `path`; a path
 /// that is not a regular file is refused ([`check_output_target`]).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
@@ -73,15 +83,45 @@ pub(crate) fn temporary_sibling(path: &Path) -> PathBuf {
 
 /// Reads an input text file; an error names the file (exit code 2).
 pub fn read_text(path: &Path) -> Result<String, Error> {
-    std::fs::read_to_string(path).map_err(|source| Error::Read {
+    let bytes = std::fs::read(path).map_err(|source| Error::Read {
         path: path.to_path_buf(),
         source,
+    })?;
+    utf8_text(path, bytes)
+}
+
+/// `bytes` of `path` as text; bytes that are not UTF-8 are an error naming the file, the line,
+/// the byte offset and the byte.
+fn utf8_text(path: &Path, bytes: Vec<u8>) -> Result<String, Error> {
+    String::from_utf8(bytes).map_err(|e| {
+        let at = e.utf8_error().valid_up_to();
+        let bytes = e.as_bytes();
+        let line = bytes[..at].iter().filter(|&&b| b == b'\n').count() + 1;
+        let column = at
+            - bytes[..at]
+                .iter()
+                .rposition(|&b| b == b'\n')
+                .map_or(0, |i| i + 1)
+            + 1;
+        Error::Read {
+            path: path.to_path_buf(),
+            source: std::io::Error::other(format!(
+                "not UTF-8 text: line {line}, column {column} (byte offset {at}) holds the byte \
+                 0x{:02X}; save the file as UTF-8",
+                bytes[at]
+            )),
+        }
     })
 }
 
 /// Reads a text file of at most `max_bytes` (a value list, not a stream: `/dev/zero` or a huge
 /// file is refused once the bound is passed, without reading the rest); an error names the file.
 pub fn read_text_limited(path: &Path, max_bytes: u64) -> Result<String, Error> {
+    read_text_bounded(path, max_bytes, "a list of values is expected")
+}
+
+/// [`read_text_limited`] for a file that is `expected` (said in the error when it is too long).
+pub fn read_text_bounded(path: &Path, max_bytes: u64, expected: &str) -> Result<String, Error> {
     use std::io::Read;
     let file = std::fs::File::open(path).map_err(|source| Error::Read {
         path: path.to_path_buf(),
@@ -97,18 +137,10 @@ pub fn read_text_limited(path: &Path, max_bytes: u64) -> Result<String, Error> {
     if bytes.len() as u64 > max_bytes {
         return Err(Error::Read {
             path: path.to_path_buf(),
-            source: std::io::Error::other(format!(
-                "longer than {max_bytes} bytes (a list of values is expected)"
-            )),
+            source: std::io::Error::other(format!("longer than {max_bytes} bytes ({expected})")),
         });
     }
-    String::from_utf8(bytes).map_err(|e| Error::Read {
-        path: path.to_path_buf(),
-        source: std::io::Error::other(format!(
-            "not UTF-8 text (byte {} is not valid)",
-            e.utf8_error().valid_up_to()
-        )),
-    })
+    utf8_text(path, bytes)
 }
 
 /// A command-line number that must be finite and > 0 (the error names the flag).

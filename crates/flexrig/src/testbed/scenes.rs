@@ -234,6 +234,13 @@ pub fn resolve(arg: &str, path: &Path) -> Result<SceneSource, Error> {
             ),
         });
     }
+    if path.is_dir() {
+        return Err(Error::InvalidArgument {
+            arg: arg.into(),
+            value: path.display().to_string(),
+            allowed: "is a directory: give a scene file, or the name of a bundled scene".into(),
+        });
+    }
     let text = crate::shared::output::read_text(path)?;
     Ok(SceneSource {
         text,

@@ -67,7 +67,7 @@ from ._commands import (
     prb,
     validate,
 )
-from ._checks import _check_count, _input_error
+from ._checks import _check_count, _count, _input_error, _number
 from ._commands import impact_report as _impact_report
 from ._safety import safety, safety_map
 from ._flexrig import (
@@ -689,10 +689,12 @@ def spin_up(
     directory, tmp = _out_dir(out)
     try:
         r = _flexrig.spin_up(
-            directory, float(length), float(area), float(second_moment), float(youngs_modulus),
-            float(density), float(t_s), float(omega_s), int(elements),
-            None if duration is None else float(duration), float(sample_every), float(max_step),
-            int(modes), size, formats, dpi,
+            directory, _number("length", length), _number("area", area),
+            _number("second_moment", second_moment), _number("youngs_modulus", youngs_modulus),
+            _number("density", density), _number("t_s", t_s), _number("omega_s", omega_s),
+            _count("elements", elements), _number("duration", duration, True),
+            _number("sample_every", sample_every), _number("max_step", max_step),
+            _count("modes", modes), size, formats, dpi,
         )
     finally:
         if tmp is not None:

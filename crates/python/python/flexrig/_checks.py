@@ -26,6 +26,15 @@ def _number(name: str, value: Any, optional: bool = False) -> Optional[float]:
     return float(value)
 
 
+def _finite(name: str, value: Any, optional: bool = True) -> Optional[float]:
+    """A number that must be finite (NaN and ±inf refused naming the argument, as the command
+    line refuses them naming the flag)."""
+    v = _number(name, value, optional)
+    if v is not None and not np.isfinite(v):
+        raise _input_error(name, f"invalid argument {name} = {v!r}: must be a finite number")
+    return v
+
+
 def _count(name: str, value: Any, optional: bool = False) -> Optional[int]:
     if value is None and optional:
         return None

@@ -8,7 +8,48 @@ import os
 from typing import Any, Dict, Optional, Sequence, Union
 
 from . import _flexrig
-from ._checks import _input_error
+from ._checks import _finite, _input_error, _word
+
+#: Largest body-model file read, bytes (the command line's bound; the bundled table is about 10 kB).
+_MAX_BODY_MODEL_BYTES = 1 << 20
+
+
+def _body_model_text(body_model: Any) -> Optional[str]:
+    """The TOML text of the ``body_model`` file, read up to the command line's bound (a device
+    such as /dev/zero or a huge file is refused without reading it all)."""
+    if body_model is None:
+        return None
+    with open(body_model, "rb") as f:
+        data = f.read(_MAX_BODY_MODEL_BYTES + 1)
+    if len(data) > _MAX_BODY_MODEL_BYTES:
+        raise _input_error(
+            "body_model",
+            f"invalid argument body_model = {os.fspath(body_model)!r}: longer than "
+            f"{_MAX_BODY_MODEL_BYTES} bytes (a body-model table is expected; the bundled one is "
+            "about 10 kB)",
+        )
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        line = data[: e.start].count(b"\n") + 1
+        raise _input_error(
+            "body_model",
+            f"invalid argument body_model = {os.fspath(body_model)!r}: not UTF-8 text (line "
+            f"{line}, byte offset {e.start})",
+        ) from None
+
+
+def _methods(method: Any) -> list:
+    """The methods as a list of words (a str with commas, or a sequence of str)."""
+    items = [method] if isinstance(method, str) else method
+    try:
+        items = list(items)
+    except TypeError:
+        raise _input_error("method", f"invalid argument method = {method!r}: a str such as 'standard,energy' or a list of str") from None
+    words = [m for part in items for m in _word("method", part).split(",")]
+    if any(not w.strip() for w in words):
+        raise _input_error("method", f"invalid argument method = {method!r}: an empty item in the list (a stray comma)")
+    return words
 
 
 def _contact_law(k_c: Optional[float], n: Optional[float], material: Optional[str]) -> Any:
@@ -137,6 +178,14 @@ def safety(
     and the verdict against ``region``'s limits (with ``area``, ``contact``, ``body_model``; the
     design keywords are then refused).
     """
+    _word("region", region)
+    for name, value in (
+        ("m_eff", m_eff), ("m_r", m_r), ("m_e", m_e), ("gamma", gamma), ("k_delta", k_delta),
+        ("k_c", k_c), ("n", n), ("radius", radius), ("contact_area", contact_area),
+        ("moving_mass", moving_mass), ("payload", payload), ("speed", speed),
+        ("rotor_inertia", rotor_inertia), ("length", length), ("tol", tol), ("root_rtol", root_rtol),
+    ):
+        _finite(name, value)
     if trace is not None:
         return _safety_trace(
             trace, region, area=area, contact=contact, area_model=area_model, radius=radius,
@@ -165,8 +214,7 @@ def safety(
     model = _area_model(area_model, radius, contact_area)
     if method is None:
         method = ()
-    methods = [method] if isinstance(method, str) else list(method)
-    methods = [m for part in methods for m in part.split(",")]
+    methods = _methods(method)
     data = {
         "region": region,
         "area": area,
@@ -190,17 +238,9 @@ def safety(
     }
     if scene is not None:
         data["scene"] = os.fspath(scene)
-    report = json.loads(_flexrig.safety_json(json.dumps(data, allow_nan=True), _body_model_text(body_model)))
+    report = json.loads(_flexrig.safety_json(json.dumps(data, allow_nan=False), _body_model_text(body_model)))
     _warn(report)
     return report
-
-
-def _body_model_text(body_model: Optional[Union[str, "os.PathLike[str]"]]) -> Optional[str]:
-    """The TOML text of the body-model file, or None for the bundled table."""
-    if body_model is None:
-        return None
-    with open(body_model, encoding="utf-8") as f:
-        return f.read()
 
 
 def _warn(report: Dict[str, Any]) -> None:
@@ -241,7 +281,7 @@ def _safety_trace(
         "contact": (contact or "transient").replace("-", "_"),
         "area_model": _area_model(area_model, radius, contact_area),
     }
-    report = json.loads(_flexrig.safety_trace_json(json.dumps(data, allow_nan=True), _body_model_text(body_model)))
+    report = json.loads(_flexrig.safety_trace_json(json.dumps(data, allow_nan=False), _body_model_text(body_model)))
     _warn(report)
     return report
 
@@ -286,7 +326,11 @@ def _axis(field: str, axis: Any) -> Dict[str, Any]:
         return {"text": "region=" + ",".join(names)}
     if key not in _MAP_PARAMETERS:
         raise _input_error(field, f"{field}: the parameter must be one of {', '.join(_MAP_PARAMETERS)}, not {name!r}")
-    return {"parameter": _MAP_PARAMETERS[key], "values": [float(v) for v in values]}
+    try:
+        items = list(values)
+    except TypeError:
+        raise _input_error(field, f"{field}: the values must be a sequence of numbers, not {values!r}") from None
+    return {"parameter": _MAP_PARAMETERS[key], "values": [_finite(field, v, False) for v in items]}
 
 
 def safety_map(
@@ -336,6 +380,15 @@ def safety_map(
     """
     import numpy as np
 
+    if region is not None:
+        _word("region", region)
+    _word("method", method)
+    for name, value in (
+        ("m_r", m_r), ("m_e", m_e), ("k_delta", k_delta), ("length", length), ("k_c", k_c),
+        ("n", n), ("radius", radius), ("contact_area", contact_area),
+        ("rotor_inertia", rotor_inertia), ("tol", tol), ("root_rtol", root_rtol), ("speed", speed),
+    ):
+        _finite(name, value)
     law = _contact_law(k_c, n, material)
     model = _area_model(area_model, radius, contact_area)
     joint_data = _joint(joint, rotor_inertia)
@@ -360,11 +413,8 @@ def safety_map(
         },
         "speed": speed,
     }
-    text = None
-    if body_model is not None:
-        with open(body_model, encoding="utf-8") as f:
-            text = f.read()
-    result = json.loads(_flexrig.safety_map_json(json.dumps(data, allow_nan=True), text))
+    text = _body_model_text(body_model)
+    result = json.loads(_flexrig.safety_map_json(json.dumps(data, allow_nan=False), text))
     xs = np.asarray(result["input"]["x"]["values"], dtype=float)
     ys = np.asarray(result["input"]["y"]["values"], dtype=float)
     shape = (len(ys), len(xs))

@@ -25,16 +25,7 @@ pub struct Document {
     pub blocks: Vec<Block>,
 }
 
-pub(crate) fn md_cell(s: &str) -> String {
-    s.replace('|', "\\|")
-}
-
-pub(crate) fn html_escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
+pub(crate) use super::escape::{html_escape, md_cell, md_code_line, md_text, url_path};
 
 impl Document {
     pub(crate) fn push(&mut self, b: Block) {
@@ -47,9 +38,13 @@ impl Document {
         for b in &self.blocks {
             match b {
                 Block::Heading(level, text) => {
-                    s.push_str(&format!("{} {text}\n\n", "#".repeat(*level as usize)));
+                    s.push_str(&format!(
+                        "{} {}\n\n",
+                        "#".repeat(*level as usize),
+                        md_text(text)
+                    ));
                 }
-                Block::Paragraph(text) => s.push_str(&format!("{text}\n\n")),
+                Block::Paragraph(text) => s.push_str(&format!("{}\n\n", md_text(text))),
                 Block::Table(head, rows) => {
                     let line = |cells: &[String]| {
                         format!(
@@ -71,15 +66,19 @@ impl Document {
                 Block::Equations(lines) => {
                     s.push_str("```text\n");
                     for l in lines {
-                        s.push_str(l);
+                        s.push_str(&md_code_line(l));
                         s.push('\n');
                     }
                     s.push_str("```\n\n");
                 }
                 Block::Figure(file, caption) => {
-                    s.push_str(&format!("![{caption}]({file})\n\n*{caption}*\n\n"));
+                    let caption = md_text(caption).replace(['[', ']'], "");
+                    s.push_str(&format!(
+                        "![{caption}]({})\n\n*{caption}*\n\n",
+                        url_path(file)
+                    ));
                 }
-                Block::Caveat(text) => s.push_str(&format!("> **Caveat.** {text}\n\n")),
+                Block::Caveat(text) => s.push_str(&format!("> **Caveat.** {}\n\n", md_text(text))),
             }
         }
         s
@@ -141,7 +140,7 @@ impl Document {
                     )),
                     None => s.push_str(&format!(
                         "<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
-                        html_escape(file),
+                        html_escape(&url_path(file)),
                         html_escape(caption),
                         html_escape(caption)
                     )),
