@@ -214,8 +214,14 @@ fn a_tip_that_re_engages_as_it_separates_is_followed_to_the_end() {
 fn a_report_without_methods_runs_the_default_ones_and_leads_with_the_overall_verdict() {
     let dir = std::env::temp_dir().join(format!("flexrig-overall-{}", std::process::id()));
     let path = dir.join("hand.md");
-    let (r, files) =
-        flexrig::safety::report::write_report(&hand(Vec::new(), Some(2.0)), None, &path).unwrap();
+    let (r, files) = flexrig::safety::report::write_report(
+        &hand(Vec::new(), Some(2.0)),
+        None,
+        &path,
+        false,
+        &flexrig::CancelToken::new(),
+    )
+    .unwrap();
     assert_eq!(r.methods.len(), 3);
     let text = std::fs::read_to_string(&path).unwrap();
     let verdict = text.find("Overall: the permissible speed is").unwrap();
