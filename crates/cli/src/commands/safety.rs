@@ -398,10 +398,12 @@ fn print_overall(
                     .join(", ")
             )
         };
-        let at = o
-            .speed_mps
-            .map_or(String::new(), |v| format!(" at {v} m/s"));
-        line(out, format!("verdict{at:<12}{verdict}"))?;
+        let head = format!(
+            "verdict{}",
+            o.speed_mps
+                .map_or(String::new(), |v| format!(" at {} m/s", n(v)))
+        );
+        line(out, format!("{head:<18} {verdict}"))?;
     }
     Ok(())
 }

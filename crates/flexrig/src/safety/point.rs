@@ -202,8 +202,19 @@ fn setup<'a>(input: &SafetyInput, model: &'a BodyModel) -> Result<Setup<'a>, Err
         .area_model
         .or(material_radius.map(|r| ContactAreaModel::HertzSphere { radius_m: r }));
     if let Some(a) = &area_model {
-        a.validate()
-            .map_err(|e| bad("--area-model", format!("{a:?}"), &e.to_string()))?;
+        a.validate().map_err(|e| match a {
+            ContactAreaModel::HertzSphere { radius_m }
+            | ContactAreaModel::ThinLayer { radius_m } => bad(
+                "--radius",
+                flexrig_contact::validate::display(*radius_m),
+                &e.to_string(),
+            ),
+            ContactAreaModel::Fixed { area_m2 } => bad(
+                "--contact-area",
+                flexrig_contact::validate::display(*area_m2),
+                &e.to_string(),
+            ),
+        })?;
         if !matches!(a, ContactAreaModel::Fixed { .. }) && hertz.n() <= 1.0 {
             return Err(bad(
                 "--area-model",
@@ -420,11 +431,25 @@ pub fn safety_cancellable(
 /// a front's first check, so that a mistyped region is named (with its nearest key) before any
 /// other input is asked for.
 pub fn check_region(region: &str, model: Option<&BodyModel>) -> Result<(), Error> {
-    match model {
-        Some(m) => m.region(region).map(|_| ()),
-        None => BodyModel::iso_ts_15066_2016()?.region(region).map(|_| ()),
+    let bundled;
+    let model = match model {
+        Some(m) => m,
+        None => {
+            bundled = BodyModel::iso_ts_15066_2016()?;
+            &bundled
+        }
+    };
+    match model.region(region) {
+        Ok(_) => Ok(()),
+        Err(flexrig_safety::SafetyError::Unknown { what, name, known }) => {
+            Err(Error::InvalidArgument {
+                arg: "--region".into(),
+                value: flexrig_safety::quoted_name(&name),
+                allowed: format!("a {what} of the body model: {known}"),
+            })
+        }
+        Err(other) => Err(other.into()),
     }
-    .map_err(Error::from)
 }
 
 /// The plausibility warnings of the masses, length and speed the user typed
