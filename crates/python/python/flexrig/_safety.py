@@ -181,11 +181,14 @@ def safety(
     _word("region", region)
     for name, value in (
         ("m_eff", m_eff), ("m_r", m_r), ("m_e", m_e), ("gamma", gamma), ("k_delta", k_delta),
-        ("k_c", k_c), ("n", n), ("radius", radius), ("contact_area", contact_area),
+        ("k_c", k_c), ("n", n), ("radius", radius),
         ("moving_mass", moving_mass), ("payload", payload), ("speed", speed),
         ("rotor_inertia", rotor_inertia), ("length", length), ("tol", tol), ("root_rtol", root_rtol),
     ):
         _finite(name, value)
+    if not isinstance(contact_area, str):
+        # a number in m²; a string carries its unit ("2cm2") and is read by the library
+        _finite("contact_area", contact_area)
     if trace is not None:
         return _safety_trace(
             trace, region, area=area, contact=contact, area_model=area_model, radius=radius,
