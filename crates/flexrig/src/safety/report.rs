@@ -781,27 +781,7 @@ fn simulation_trace(
         settings.root_rtol,
         trace.len(),
     )));
-    let rows = trace
-        .iter()
-        .enumerate()
-        .map(|(i, s)| {
-            vec![
-                (i + 1).to_string(),
-                format!("{:.12}", s.speed_mps),
-                format!("{:.9}", s.ratio * f),
-                format!("{:+.3e}", s.ratio - 1.0),
-            ]
-        })
-        .collect();
-    d.push(Block::Table(
-        vec![
-            "iteration".into(),
-            "speed v [m/s]".into(),
-            "simulated peak force [N]".into(),
-            "peak/F_max − 1".into(),
-        ],
-        rows,
-    ));
+    d.push(search_table(&trace, f, "speed v [m/s]"));
     let mut eqs = vec![format!(
         "v_F = {} m/s after {} simulated impacts (the method's result: {} m/s)",
         g(v),
@@ -861,27 +841,10 @@ fn scene_trace(
         n(f),
         sc.root_rtol
     )));
-    let rows = sc
-        .force_search
-        .iter()
-        .enumerate()
-        .map(|(i, s)| {
-            vec![
-                (i + 1).to_string(),
-                format!("{:.12}", s.speed_mps),
-                format!("{:.9}", s.ratio * f),
-                format!("{:+.3e}", s.ratio - 1.0),
-            ]
-        })
-        .collect();
-    d.push(Block::Table(
-        vec![
-            "iteration".into(),
-            "commanded tip speed [m/s]".into(),
-            "simulated peak force [N]".into(),
-            "peak/F_max − 1".into(),
-        ],
-        rows,
+    d.push(search_table(
+        &sc.force_search,
+        f,
+        "commanded tip speed [m/s]",
     ));
     let mut eqs = vec![format!(
         "v_F = {} m/s commanded (the link arrives at {} m/s; peak force {} N) after {} \
@@ -945,27 +908,10 @@ fn test_bed_trace(
         n(f),
         sc.root_rtol
     )));
-    let rows = sc
-        .force_search
-        .iter()
-        .enumerate()
-        .map(|(i, s)| {
-            vec![
-                (i + 1).to_string(),
-                format!("{:.12}", s.speed_mps),
-                format!("{:.9}", s.ratio * f),
-                format!("{:+.3e}", s.ratio - 1.0),
-            ]
-        })
-        .collect();
-    d.push(Block::Table(
-        vec![
-            "iteration".into(),
-            "operator speed at contact [m/s]".into(),
-            "simulated peak force [N]".into(),
-            "peak/F_max − 1".into(),
-        ],
-        rows,
+    d.push(search_table(
+        &sc.force_search,
+        f,
+        "operator speed at contact [m/s]",
     ));
     let mut eqs = vec![format!(
         "v_F {} {} m/s (released from {}°; the run's impact speed {} m/s; peak force {} N) \
@@ -1081,6 +1027,32 @@ pub fn figure_svg_until(
         path: PathBuf::from("figure"),
         message,
     })
+}
+
+/// The table of a root search's evaluations: each speed (its column named `speed_column`), the
+/// simulated peak force and its distance from the force limit `f` \[N\].
+fn search_table(steps: &[RootStep], f: f64, speed_column: &str) -> Block {
+    let rows = steps
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            vec![
+                (i + 1).to_string(),
+                format!("{:.12}", s.speed_mps),
+                format!("{:.9}", s.ratio * f),
+                format!("{:+.3e}", s.ratio - 1.0),
+            ]
+        })
+        .collect();
+    Block::Table(
+        vec![
+            "iteration".into(),
+            speed_column.into(),
+            "simulated peak force [N]".into(),
+            "peak/F_max − 1".into(),
+        ],
+        rows,
+    )
 }
 
 /// The report figure's force axis ends at this multiple of the force limit, so that every
