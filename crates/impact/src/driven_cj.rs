@@ -21,13 +21,14 @@
 //! [`crate::cj`].
 
 use std::cell::Cell;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use flexrig_contact::ContactLaw;
 use flexrig_lumped::ode::dop853::{Dop853, Dop853Options, OdeSystem, find_root};
 
 use crate::ImpactError;
 use crate::drive::{DriveCommand, HeadSupport, Profile, TorqueProfile};
-use crate::setup::{ContactEvent, hertz_time_integral};
+use crate::setup::{ContactEvent, RunEnd, hertz_time_integral};
 use crate::strike::{DriveNote, DrivenOutcome, DrivenStrike, EnergyBalance, TraceSample, Tracer};
 
 const DIM: usize = 11;
@@ -76,7 +77,7 @@ struct DrivenCj<'a> {
     source: Source<'a>,
     /// Positions are measured from this point of the path \[m\].
     shift: f64,
-    law: Option<&'a dyn ContactLaw>,
+    law: Option<Box<dyn ContactLaw>>,
     /// The dome's centre offset d_c = R − s behind the link's axis \[m\] for the exact
     /// contact geometry, or `None`: the arc coordinate (δ = w − x_h).
     dome_offset: Option<f64>,
@@ -194,14 +195,34 @@ impl DrivenCj<'_> {
         self.contact_kinematics(y).0
     }
 
+    /// The bodies have parted for good: with the exact geometry, a free head (no neck, no wall)
+    /// moving away (Ẋ ≥ 0, nothing acts on it any more) beyond the farthest the dome can ever
+    /// reach along the face normal, max over u of L sin u + d_c (1 − cos u) = √(L² + d_c²) + d_c
+    /// (the hub does not move; the link is rigid). Along the tip's path (the linear option) the
+    /// path has no end: `false`, the run goes on to the window.
+    fn parted_for_good(&self, y: &Y) -> bool {
+        let Some(d_c) = self.dome_offset else {
+            return false;
+        };
+        if self.inv_m_h == 0.0 || self.k_n != 0.0 || self.c_n != 0.0 {
+            return false;
+        }
+        let reach = self.l.hypot(d_c) + d_c;
+        y[VH] >= 0.0 && y[XH] - self.x_rest > reach
+    }
+
     fn force(&self, y: &Y) -> f64 {
         let (delta, rate, ..) = self.contact_kinematics(y);
-        self.law.map_or(0.0, |law| law.force(delta, rate))
+        self.law
+            .as_deref()
+            .map_or(0.0, |law| law.force(delta, rate))
     }
 
     /// ḟ along the motion.
     fn force_rate(&self, t: f64, y: &Y) -> f64 {
-        let Some(law) = self.law else { return 0.0 };
+        let Some(law) = self.law.as_deref() else {
+            return 0.0;
+        };
         let (delta, rate, lever, lever_rate) = self.contact_kinematics(y);
         let dy = self.rhs(t, y);
         let accel = lever * dy[WD] + lever_rate * y[WD] - dy[VH];
@@ -232,6 +253,7 @@ impl DrivenCj<'_> {
         let neck = y[XH] - self.x_rest;
         let contact = self
             .law
+            .as_deref()
             .map_or(0.0, |law| law.elastic_energy(self.gap(y).max(0.0)));
         let head = if self.inv_m_h > 0.0 {
             0.5 * self.m_h * y[VH] * y[VH]
@@ -262,7 +284,7 @@ impl OdeSystem<DIM> for DrivenCj<'_> {
             Source::OpenLoop { .. } => ((drive - self.c_rotor * rd - spring) / self.m_rotor, 0.0),
         };
         let (delta, rate, lever, _) = self.contact_kinematics(y);
-        let damping_power = match self.law {
+        let damping_power = match self.law.as_deref() {
             Some(law) => (f - law.elastic().force(delta, 0.0)) * rate,
             None => 0.0,
         };
@@ -293,6 +315,10 @@ pub struct CjSettings {
     pub max_steps: usize,
     /// `Some(dt)`: sample the motion at the integrator's steps, at most every dt \[s\].
     pub trace_every: Option<f64>,
+    /// Follow every contact after the first, the drive acting, until the bodies part for good
+    /// or the strike's window (`horizon_s` from the drive's start) closes; `false`: the run
+    /// ends at the first separation.
+    pub every_contact: bool,
 }
 
 impl CjSettings {
@@ -301,6 +327,7 @@ impl CjSettings {
         rtol: 1e-10,
         max_steps: 10_000_000,
         trace_every: None,
+        every_contact: false,
     };
 }
 
@@ -310,7 +337,17 @@ pub fn run_driven_cj(
     strike: &DrivenStrike,
     settings: &CjSettings,
 ) -> Result<DrivenOutcome, ImpactError> {
-    run_cj(strike, settings, None)
+    run_cj(strike, settings, None, &AtomicBool::new(false))
+}
+
+/// [`run_driven_cj`], stopping with [`ImpactError::Interrupted`] within a step once `stop` is
+/// set.
+pub fn run_driven_cj_until(
+    strike: &DrivenStrike,
+    settings: &CjSettings,
+    stop: &AtomicBool,
+) -> Result<DrivenOutcome, ImpactError> {
+    run_cj(strike, settings, None, stop)
 }
 
 /// The driven CJ with the exact contact geometry of `dome` (the default model,
@@ -325,14 +362,26 @@ pub fn run_exact_cj(
     settings: &CjSettings,
     dome: &crate::drive::Dome,
 ) -> Result<DrivenOutcome, ImpactError> {
+    run_exact_cj_until(strike, settings, dome, &AtomicBool::new(false))
+}
+
+/// [`run_exact_cj`], stopping with [`ImpactError::Interrupted`] within a step once `stop` is
+/// set.
+pub fn run_exact_cj_until(
+    strike: &DrivenStrike,
+    settings: &CjSettings,
+    dome: &crate::drive::Dome,
+    stop: &AtomicBool,
+) -> Result<DrivenOutcome, ImpactError> {
     dome.validate()?;
-    run_cj(strike, settings, Some(dome.centre_offset()))
+    run_cj(strike, settings, Some(dome.centre_offset()), stop)
 }
 
 fn run_cj(
     strike: &DrivenStrike,
     settings: &CjSettings,
     dome_offset: Option<f64>,
+    stop: &AtomicBool,
 ) -> Result<DrivenOutcome, ImpactError> {
     strike.validate()?;
     if !(settings.rtol.is_finite() && (1e-14..=1e-3).contains(&settings.rtol)) {
@@ -341,6 +390,11 @@ fn run_cj(
             settings.rtol,
             "must lie in [1e-14, 1e-3]",
         ));
+    }
+    if let Some(dt) = settings.trace_every
+        && !(dt.is_finite() && dt > 0.0)
+    {
+        return Err(ImpactError::invalid("trace_every", dt, "a time > 0 s"));
     }
     let link = strike.link;
     let l = link.length;
@@ -420,16 +474,29 @@ fn run_cj(
         .max(strike.person.speed)
         .max(1e-6);
     let e_ref = 0.5 * system.m_tip * v_ref * v_ref;
-    let mut notes = Vec::new();
-    let mut saturation_at: Option<f64> = None;
-    if let Some(dt) = settings.trace_every
-        && !(dt.is_finite() && dt > 0.0)
-    {
-        return Err(ImpactError::invalid("trace_every", dt, "a time > 0 s"));
-    }
-    let mut tracer = Tracer::new(settings.trace_every);
-    tracer.offer(0.0, true, || system.sample(0.0, &y0));
-    let mut work = 0;
+    let free_options = opts(
+        settings.rtol,
+        l,
+        v_ref,
+        period,
+        e_ref,
+        None,
+        (strike.horizon_s / 50.0).min(period / 4.0),
+    );
+    let mut run = Run {
+        breaks: {
+            let mut b = strike.drive.breakpoints();
+            b.push(strike.horizon_s);
+            b
+        },
+        horizon: strike.horizon_s,
+        tracer: Tracer::new(settings.trace_every),
+        saturation_at: None,
+        work: 0,
+        stop,
+        last_free: y0,
+    };
+    run.tracer.offer(0.0, true, || system.sample(0.0, &y0));
     let (t_on, y_on) = if system.gap(&y0) == 0.0 && y0[WD] - y0[VH] > 0.0 {
         (0.0, y0)
     } else if system.gap(&y0) > 0.0 {
@@ -439,76 +506,10 @@ fn run_cj(
             "a person the link has not yet reached at t = 0",
         ));
     } else {
-        let options = opts(
-            settings.rtol,
-            l,
-            v_ref,
-            period,
-            e_ref,
-            None,
-            (strike.horizon_s / 50.0).min(period / 4.0),
-        );
-        let mut ode = Dop853::new(&system, 0.0, y0, options);
-        let mut breaks = strike.drive.breakpoints();
-        breaks.push(strike.horizon_s);
-        loop {
-            let stop = breaks
-                .iter()
-                .copied()
-                .filter(|b| *b > ode.t())
-                .fold(strike.horizon_s, f64::min);
-            let last = breaks
-                .iter()
-                .copied()
-                .filter(|b| *b <= ode.t())
-                .fold(0.0, f64::max);
-            system.branch.set(0.5 * (last + stop));
-            ode.step_until(&system, stop)
-                .map_err(|e| ImpactError::NotFinished {
-                    design: "driven CJ",
-                    reason: format!("the approach failed: {e}"),
-                })?;
-            let (t0, t1) = (ode.t_old(), ode.t());
-            let (ya, yb) = (*ode.y_old(), *ode.y());
-            // the limit's corner: restart the integrator there (it keeps its order)
-            if let Some(t_sw) = system.saturation_switch(&mut ode, (t0, t1), (&ya, &yb)) {
-                let y_sw = ode.restep_to(&system, t_sw);
-                if system.gap(&y_sw) < 0.0 {
-                    work += ode.stats().rhs_evals;
-                    if saturation_at.is_none()
-                        && system.saturation_margin(t1, &yb).unwrap_or(0.0) > 0.0
-                    {
-                        saturation_at = Some(t_sw);
-                    }
-                    ode = Dop853::new(&system, t_sw, y_sw, options);
-                    continue;
-                }
-            }
-            if system.gap(&yb) < 0.0 {
-                tracer.offer(t1, false, || system.sample(t1, &yb));
-            }
-            if saturation_at.is_none() && system.drive_force(t1, &yb).1 {
-                saturation_at = Some(t1);
-            }
-            if system.gap(&ya) < 0.0 && system.gap(&yb) >= 0.0 {
-                let dense = ode.dense_output(&system);
-                let t = find_root(
-                    |t| system.gap(&dense.eval(t)),
-                    t0,
-                    system.gap(&ya),
-                    t1,
-                    system.gap(&yb),
-                    4.0 * f64::EPSILON * t1.max(1e-300),
-                );
-                let y = if t < t1 {
-                    ode.restep_to(&system, t)
-                } else {
-                    yb
-                };
-                work += ode.stats().rhs_evals;
-                break (t, y);
-            }
-            if t1 >= strike.horizon_s {
+        match run.free_flight(&system, 0.0, y0, free_options, false)? {
+            Flight::Onset(t, y) => (t, y),
+            Flight::Parted(..) | Flight::Window(..) => {
+                let yb = run.last_free;
                 let speed = yb[WD] / l;
                 let mut reason = format!(
                     "the link did not reach the person within horizon_s = {} s (gap {:.6e} m, \
@@ -516,7 +517,7 @@ fn run_cj(
                     strike.horizon_s,
                     -system.gap(&yb),
                 );
-                if let Some(ts) = saturation_at {
+                if let Some(ts) = run.saturation_at {
                     reason.push_str(&format!(
                         "; the torque limit was reached at {ts:.6e} s and cannot hold the speed"
                     ));
@@ -528,7 +529,7 @@ fn run_cj(
             }
         }
     };
-    // ---- the contact, positions from the contact point ----
+    // ---- the first contact, positions from the contact point ----
     let approach = system.contact_kinematics(&y_on).1;
     if !(approach > 0.0) {
         return Err(ImpactError::NotFinished {
@@ -536,13 +537,9 @@ fn run_cj(
             reason: format!("the link touched the person without approaching (δ̇ = {approach})"),
         });
     }
-    let law = strike.person.damping.law(strike.person.contact, approach)?;
     let shift = y_on[XH];
     system.shift = shift;
-    // the contact lies within one segment (a corner inside it is crossed by step control)
-    system.branch.set(t_on);
     system.x_rest -= shift;
-    system.law = Some(&*law);
     let mut y = y_on;
     y[XH] = 0.0;
     y[W] -= shift;
@@ -552,148 +549,385 @@ fn run_cj(
     for i in [WORK, FRICTION, DAMPING, IMPACT] {
         y[i] = 0.0;
     }
-    let m_struck = if inv_m_h > 0.0 {
-        system.m_tip * strike.person.m_h / (system.m_tip + strike.person.m_h)
-    } else {
-        system.m_tip
-    };
-    let (kc, nc) = (strike.person.contact.k(), strike.person.contact.n());
-    let d_max = ((nc + 1.0) * m_struck * approach * approach / (2.0 * kc)).powf(1.0 / (nc + 1.0));
-    let t_c = 2.0 * d_max / approach * hertz_time_integral(nc);
-    let x_c = approach * t_c;
     let (torque_on, _) = system.drive_force(t_on, &y);
     let (r_on, rd_on) = system.rotor(t_on, &y);
     let deflection = y[W] - r_on;
-    let e0 = system.mechanical_energy(t_on, &y);
-    let options = opts(
-        settings.rtol,
-        x_c,
-        approach,
-        t_c,
-        0.5 * m_struck * approach * approach,
-        Some(t_c * 1e-3),
-        t_c * 0.5,
-    );
-    tracer.offer(t_on, true, || system.sample(t_on, &y));
-    let mut ode = Dop853::new(&system, t_on, y, options);
-    let mut peak = (0.0_f64, t_on);
-    let mut peak_torque = torque_on.abs() * l;
-    let force_rate = |t: f64, y: &Y| system.force_rate(t, y);
-    loop {
-        ode.step(&system).map_err(|e| ImpactError::NotFinished {
+    let first = run.contact(&mut system, strike, t_on, y, (settings.rtol, &opts))?;
+    let e0 = first.energy_at_onset;
+    let y_sep = first.y_end;
+    let e1 = system.mechanical_energy(first.t_end, &y_sep);
+    let dissipated = y_sep[FRICTION] + y_sep[DAMPING];
+    let energy = EnergyBalance {
+        impact_energy_j: y_sep[IMPACT],
+        motor_work_j: y_sep[WORK],
+        dissipated_j: dissipated,
+        mechanical_change_j: e1 - e0,
+        residual_j: y_sep[WORK] - dissipated - (e1 - e0),
+    };
+    let separation_rate = system.contact_kinematics(&y_sep).1;
+    let mut peak_torque = first.peak_torque.max(torque_on.abs() * l);
+    let mut contacts = vec![first.event];
+    // ---- every later contact, until the bodies part for good or the window closes ----
+    let ended = if first.window_closed {
+        RunEnd::Window(strike.horizon_s)
+    } else if !settings.every_contact {
+        RunEnd::FirstSeparation
+    } else {
+        let (mut t, mut y) = (first.t_end, y_sep);
+        loop {
+            match run.free_flight(&system, t, y, free_options, true)? {
+                Flight::Parted(tp) => break RunEnd::PartedForGood(tp),
+                Flight::Window(tw) => break RunEnd::Window(tw),
+                Flight::Onset(t_next, y_next) => {
+                    let c =
+                        run.contact(&mut system, strike, t_next, y_next, (settings.rtol, &opts))?;
+                    peak_torque = peak_torque.max(c.peak_torque);
+                    contacts.push(c.event);
+                    if c.window_closed {
+                        break RunEnd::Window(strike.horizon_s);
+                    }
+                    (t, y) = (c.t_end, c.y_end);
+                }
+            }
+        }
+    };
+    let mut notes = Vec::new();
+    let commanded = system.command(t_on).map(|c| c.1);
+    if let Some(ts) = run.saturation_at {
+        notes.push(DriveNote::TorqueLimitReached { first_s: ts });
+    }
+    if let Some(c) = commanded {
+        notes.extend(DriveNote::arrival(c, y_on[WD]));
+    }
+    // the tip's vibration speed relative to the hub's line: L (φ̇_l − φ̇_m)
+    notes.extend(DriveNote::vibration(y_on[WD] - rd_on, approach));
+    let outcome = DrivenOutcome {
+        contact: contacts[0],
+        approach_speed_mps: approach,
+        commanded_tip_speed_mps: commanded,
+        pre_impact_deflection_m: deflection,
+        joint_torque_at_onset_nm: torque_on * l,
+        peak_joint_torque_nm: peak_torque,
+        energy,
+        separation_rate_mps: separation_rate,
+        notes,
+        work: run.work,
+        trace: run.tracer.samples,
+        contacts,
+        ended,
+    };
+    finite(outcome)
+}
+
+/// How a free flight of the driven CJ ended.
+enum Flight {
+    /// The next contact's onset (time, state there).
+    Onset(f64, Y),
+    /// The bodies parted for good at this time \[s\] ([`DrivenCj::parted_for_good`]).
+    Parted(f64),
+    /// The window (the strike's `horizon_s`) closed at this time \[s\].
+    Window(f64),
+}
+
+/// One contact of the driven CJ, from its onset to its separation (or the window's end).
+struct ContactRun {
+    event: ContactEvent,
+    t_end: f64,
+    y_end: Y,
+    /// The mechanical energy at the onset \[J\].
+    energy_at_onset: f64,
+    /// Largest |τ_j| in the contact \[N·m\].
+    peak_torque: f64,
+    /// The contact was still on when the window closed.
+    window_closed: bool,
+}
+
+/// What the phases of one driven CJ run share: the drive's corners, the window, the trace,
+/// the first saturation, the work done, the stop flag.
+struct Run<'s> {
+    breaks: Vec<f64>,
+    horizon: f64,
+    tracer: Tracer,
+    saturation_at: Option<f64>,
+    work: usize,
+    stop: &'s AtomicBool,
+    /// The state where the last free flight that found no onset ended.
+    last_free: Y,
+}
+
+impl Run<'_> {
+    /// The drive's segment around `t`: sets the branch on which the command is evaluated (the
+    /// segment's middle) and returns the segment's end (a corner of the command or the window).
+    fn segment(&self, system: &DrivenCj<'_>, t: f64) -> f64 {
+        let end = self
+            .breaks
+            .iter()
+            .copied()
+            .filter(|b| *b > t)
+            .fold(self.horizon, f64::min);
+        let start = self
+            .breaks
+            .iter()
+            .copied()
+            .filter(|b| *b <= t)
+            .fold(0.0, f64::max);
+        system.branch.set(0.5 * (start + end));
+        end
+    }
+
+    fn check_stop(&self) -> Result<(), ImpactError> {
+        if self.stop.load(Ordering::Relaxed) {
+            return Err(ImpactError::Interrupted);
+        }
+        Ok(())
+    }
+
+    /// Integrates the motion without contact from (`t`, `y`) to the next onset (the gap closing,
+    /// located on the dense output and the state there recomputed by one step of the method),
+    /// the bodies parting for good (`later`: after a contact), or the window's end.
+    fn free_flight(
+        &mut self,
+        system: &DrivenCj<'_>,
+        t: f64,
+        y: Y,
+        options: Dop853Options<DIM>,
+        later: bool,
+    ) -> Result<Flight, ImpactError> {
+        let failed = |e| ImpactError::NotFinished {
+            design: "driven CJ",
+            reason: if later {
+                format!("the motion between contacts failed: {e}")
+            } else {
+                format!("the approach failed: {e}")
+            },
+        };
+        let mut ode = Dop853::new(system, t, y, options);
+        loop {
+            self.check_stop()?;
+            let end = self.segment(system, ode.t());
+            ode.step_until(system, end).map_err(failed)?;
+            let (t0, t1) = (ode.t_old(), ode.t());
+            let (ya, yb) = (*ode.y_old(), *ode.y());
+            // the limit's corner: restart the integrator there (it keeps its order)
+            if let Some(t_sw) = system.saturation_switch(&mut ode, (t0, t1), (&ya, &yb)) {
+                let y_sw = ode.restep_to(system, t_sw);
+                if system.gap(&y_sw) < 0.0 {
+                    self.work += ode.stats().rhs_evals;
+                    if self.saturation_at.is_none()
+                        && system.saturation_margin(t1, &yb).unwrap_or(0.0) > 0.0
+                    {
+                        self.saturation_at = Some(t_sw);
+                    }
+                    ode = Dop853::new(system, t_sw, y_sw, options);
+                    continue;
+                }
+            }
+            if system.gap(&yb) < 0.0 {
+                self.tracer.offer(t1, false, || system.sample(t1, &yb));
+            }
+            if self.saturation_at.is_none() && system.drive_force(t1, &yb).1 {
+                self.saturation_at = Some(t1);
+            }
+            if system.gap(&ya) < 0.0 && system.gap(&yb) >= 0.0 {
+                let dense = ode.dense_output(system);
+                let t = find_root(
+                    |t| system.gap(&dense.eval(t)),
+                    t0,
+                    system.gap(&ya),
+                    t1,
+                    system.gap(&yb),
+                    4.0 * f64::EPSILON * t1.max(1e-300),
+                );
+                let y = if t < t1 { ode.restep_to(system, t) } else { yb };
+                self.work += ode.stats().rhs_evals;
+                return Ok(Flight::Onset(t, y));
+            }
+            if later && system.parted_for_good(&yb) {
+                self.work += ode.stats().rhs_evals;
+                self.tracer.offer(t1, true, || system.sample(t1, &yb));
+                return Ok(Flight::Parted(t1));
+            }
+            if t1 >= self.horizon {
+                self.work += ode.stats().rhs_evals;
+                self.last_free = yb;
+                if later {
+                    self.tracer.offer(t1, true, || system.sample(t1, &yb));
+                }
+                return Ok(Flight::Window(t1));
+            }
+        }
+    }
+
+    /// One contact from its onset (`t_on`, `y`) to the separation, or to the window's end if it
+    /// lasts that long (the drive pressing the person): the contact law made for this onset's
+    /// approach speed, the peaks where ḟ changes sign.
+    #[allow(clippy::type_complexity)]
+    fn contact(
+        &mut self,
+        system: &mut DrivenCj<'_>,
+        strike: &DrivenStrike,
+        t_on: f64,
+        y: Y,
+        (rtol, opts): (
+            f64,
+            &dyn Fn(f64, f64, f64, f64, f64, Option<f64>, f64) -> Dop853Options<DIM>,
+        ),
+    ) -> Result<ContactRun, ImpactError> {
+        let approach = system.contact_kinematics(&y).1;
+        if !(approach > 0.0) {
+            return Err(ImpactError::NotFinished {
+                design: "driven CJ",
+                reason: format!("the link touched the person without approaching (δ̇ = {approach})"),
+            });
+        }
+        system.law = Some(strike.person.damping.law(strike.person.contact, approach)?);
+        let m_struck = if system.inv_m_h > 0.0 {
+            system.m_tip * strike.person.m_h / (system.m_tip + strike.person.m_h)
+        } else {
+            system.m_tip
+        };
+        let (kc, nc) = (strike.person.contact.k(), strike.person.contact.n());
+        let d_max =
+            ((nc + 1.0) * m_struck * approach * approach / (2.0 * kc)).powf(1.0 / (nc + 1.0));
+        let t_c = 2.0 * d_max / approach * hertz_time_integral(nc);
+        let x_c = approach * t_c;
+        let e0 = system.mechanical_energy(t_on, &y);
+        let options = opts(
+            rtol,
+            x_c,
+            approach,
+            t_c,
+            0.5 * m_struck * approach * approach,
+            Some(t_c * 1e-3),
+            t_c * 0.5,
+        );
+        self.tracer.offer(t_on, true, || system.sample(t_on, &y));
+        let system = &*system;
+        let mut ode = Dop853::new(system, t_on, y, options);
+        let mut peak = (0.0_f64, t_on);
+        let mut peak_torque = 0.0_f64;
+        let force_rate = |t: f64, y: &Y| system.force_rate(t, y);
+        let failed = |e| ImpactError::NotFinished {
             design: "driven CJ",
             reason: format!("the contact failed: {e}"),
-        })?;
-        let (t0, t1) = (ode.t_old(), ode.t());
-        let (ya, yb) = (*ode.y_old(), *ode.y());
-        if let Some(t_sw) = system.saturation_switch(&mut ode, (t0, t1), (&ya, &yb)) {
-            let y_sw = ode.restep_to(&system, t_sw);
-            if system.gap(&y_sw) > 0.0 && force_rate(t0, &ya) * force_rate(t_sw, &y_sw) > 0.0 {
-                work += ode.stats().rhs_evals;
-                if saturation_at.is_none() && system.saturation_margin(t1, &yb).unwrap_or(0.0) > 0.0
-                {
-                    saturation_at = Some(t_sw);
+        };
+        loop {
+            self.check_stop()?;
+            let end = self.segment(system, ode.t());
+            ode.step_until(system, end).map_err(failed)?;
+            let (t0, t1) = (ode.t_old(), ode.t());
+            let (ya, yb) = (*ode.y_old(), *ode.y());
+            if let Some(t_sw) = system.saturation_switch(&mut ode, (t0, t1), (&ya, &yb)) {
+                let y_sw = ode.restep_to(system, t_sw);
+                if system.gap(&y_sw) > 0.0 && force_rate(t0, &ya) * force_rate(t_sw, &y_sw) > 0.0 {
+                    self.work += ode.stats().rhs_evals;
+                    if self.saturation_at.is_none()
+                        && system.saturation_margin(t1, &yb).unwrap_or(0.0) > 0.0
+                    {
+                        self.saturation_at = Some(t_sw);
+                    }
+                    ode = Dop853::new(system, t_sw, y_sw, options);
+                    continue;
                 }
-                ode = Dop853::new(&system, t_sw, y_sw, options);
-                continue;
             }
-        }
-        let (fd, sat) = system.drive_force(t1, &yb);
-        peak_torque = peak_torque.max(fd.abs() * l);
-        // a step longer than the trace's interval: the samples between its ends from the
-        // method's 7th-order interpolant (the contact's force and the head's acceleration at
-        // the trace's rate, for the severity; the integration itself is unchanged)
-        if let Some(mut due) = tracer.next_due()
-            && due < t1
-        {
-            let dense = ode.dense_output(&system);
-            while due < t1 {
-                let yd = dense.eval(due);
-                if system.gap(&yd) <= 0.0 {
-                    break;
+            let (fd, sat) = system.drive_force(t1, &yb);
+            peak_torque = peak_torque.max(fd.abs() * system.l);
+            // a step longer than the trace's interval: the samples between its ends from the
+            // method's 7th-order interpolant (the contact's force and the head's acceleration
+            // at the trace's rate, for the severity; the integration itself is unchanged)
+            if let Some(mut due) = self.tracer.next_due()
+                && due < t1
+            {
+                let dense = ode.dense_output(system);
+                while due < t1 {
+                    let yd = dense.eval(due);
+                    if system.gap(&yd) <= 0.0 {
+                        break;
+                    }
+                    self.tracer.offer(due, true, || system.sample(due, &yd));
+                    due = match self.tracer.next_due() {
+                        Some(next) if next > due => next,
+                        _ => break,
+                    };
                 }
-                tracer.offer(due, true, || system.sample(due, &yd));
-                due = match tracer.next_due() {
-                    Some(next) if next > due => next,
-                    _ => break,
+            }
+            if system.gap(&yb) > 0.0 {
+                self.tracer.offer(t1, false, || system.sample(t1, &yb));
+            }
+            if sat && self.saturation_at.is_none() {
+                self.saturation_at = Some(t1);
+            }
+            if force_rate(t0, &ya) > 0.0 && force_rate(t1, &yb) <= 0.0 {
+                let dense = ode.dense_output(system);
+                let t = find_root(
+                    |t| force_rate(t, &dense.eval(t)),
+                    t0,
+                    force_rate(t0, &ya),
+                    t1,
+                    force_rate(t1, &yb),
+                    4.0 * f64::EPSILON * t1,
+                );
+                let f = system.force(&ode.restep_to(system, t));
+                if f > peak.0 {
+                    peak = (f, t);
+                }
+            }
+            let separated = system.gap(&yb) <= 0.0 && t1 > t_on;
+            if !separated && t1 >= self.horizon {
+                // the window closed with the contact on (the drive pressing the person): the
+                // force there counts as well
+                let f = system.force(&yb);
+                if f > peak.0 {
+                    peak = (f, t1);
+                }
+                self.work += ode.stats().rhs_evals;
+                self.tracer.offer(t1, true, || system.sample(t1, &yb));
+                return Ok(ContactRun {
+                    event: ContactEvent {
+                        onset_s: t_on,
+                        peak_force_n: peak.0,
+                        time_of_peak_s: peak.1,
+                        duration_s: t1 - t_on,
+                    },
+                    t_end: t1,
+                    y_end: yb,
+                    energy_at_onset: e0,
+                    peak_torque,
+                    window_closed: true,
+                });
+            }
+            if separated {
+                let dense = ode.dense_output(system);
+                let t_sep = find_root(
+                    |t| system.gap(&dense.eval(t)),
+                    t0,
+                    system.gap(&ya),
+                    t1,
+                    system.gap(&yb),
+                    4.0 * f64::EPSILON * t1,
+                );
+                let y_sep = if t_sep < t1 {
+                    ode.restep_to(system, t_sep)
+                } else {
+                    yb
                 };
+                self.work += ode.stats().rhs_evals;
+                self.tracer
+                    .offer(t_sep, true, || system.sample(t_sep, &y_sep));
+                return Ok(ContactRun {
+                    event: ContactEvent {
+                        onset_s: t_on,
+                        peak_force_n: peak.0,
+                        time_of_peak_s: peak.1,
+                        duration_s: t_sep - t_on,
+                    },
+                    t_end: t_sep,
+                    y_end: y_sep,
+                    energy_at_onset: e0,
+                    peak_torque,
+                    window_closed: false,
+                });
             }
-        }
-        if system.gap(&yb) > 0.0 {
-            tracer.offer(t1, false, || system.sample(t1, &yb));
-        }
-        if sat && saturation_at.is_none() {
-            saturation_at = Some(t1);
-        }
-        if force_rate(t0, &ya) > 0.0 && force_rate(t1, &yb) <= 0.0 {
-            let dense = ode.dense_output(&system);
-            let t = find_root(
-                |t| force_rate(t, &dense.eval(t)),
-                t0,
-                force_rate(t0, &ya),
-                t1,
-                force_rate(t1, &yb),
-                4.0 * f64::EPSILON * t1,
-            );
-            let f = system.force(&ode.restep_to(&system, t));
-            if f > peak.0 {
-                peak = (f, t);
-            }
-        }
-        if system.gap(&yb) <= 0.0 && t1 > t_on {
-            let dense = ode.dense_output(&system);
-            let t_sep = find_root(
-                |t| system.gap(&dense.eval(t)),
-                t0,
-                system.gap(&ya),
-                t1,
-                system.gap(&yb),
-                4.0 * f64::EPSILON * t1,
-            );
-            let y_sep = if t_sep < t1 {
-                ode.restep_to(&system, t_sep)
-            } else {
-                yb
-            };
-            work += ode.stats().rhs_evals;
-            tracer.offer(t_sep, true, || system.sample(t_sep, &y_sep));
-            let e1 = system.mechanical_energy(t_sep, &y_sep);
-            let dissipated = y_sep[FRICTION] + y_sep[DAMPING];
-            let energy = EnergyBalance {
-                impact_energy_j: y_sep[IMPACT],
-                motor_work_j: y_sep[WORK],
-                dissipated_j: dissipated,
-                mechanical_change_j: e1 - e0,
-                residual_j: y_sep[WORK] - dissipated - (e1 - e0),
-            };
-            let commanded = system.command(t_on).map(|c| c.1);
-            if let Some(ts) = saturation_at {
-                notes.push(DriveNote::TorqueLimitReached { first_s: ts });
-            }
-            if let Some(c) = commanded {
-                notes.extend(DriveNote::arrival(c, y_on[WD]));
-            }
-            // the tip's vibration speed relative to the hub's line: L (φ̇_l − φ̇_m)
-            notes.extend(DriveNote::vibration(y_on[WD] - rd_on, approach));
-            let outcome = DrivenOutcome {
-                contact: ContactEvent {
-                    onset_s: t_on,
-                    peak_force_n: peak.0,
-                    time_of_peak_s: peak.1,
-                    duration_s: t_sep - t_on,
-                },
-                approach_speed_mps: approach,
-                commanded_tip_speed_mps: commanded,
-                pre_impact_deflection_m: deflection,
-                joint_torque_at_onset_nm: torque_on * l,
-                peak_joint_torque_nm: peak_torque,
-                energy,
-                separation_rate_mps: system.contact_kinematics(&y_sep).1,
-                notes,
-                work,
-                trace: tracer.samples,
-            };
-            return finite(outcome);
         }
     }
 }

@@ -1278,7 +1278,7 @@ pub fn run_driven_cl(
     if let Some(c) = commanded {
         notes.extend(DriveNote::arrival(c, tip_speed_on));
     }
-    crate::driven_cj::finite(DrivenOutcome {
+    let mut outcome = DrivenOutcome {
         contact: ContactEvent {
             onset_s: t_on,
             peak_force_n: peak.0,
@@ -1295,7 +1295,11 @@ pub fn run_driven_cl(
         notes,
         work: steps,
         trace: tracer.samples,
-    })
+        contacts: Vec::new(),
+        ended: crate::RunEnd::FirstSeparation,
+    };
+    outcome.contacts.push(outcome.contact);
+    crate::driven_cj::finite(outcome)
 }
 
 /// Vertex (t, f) of the parabola through three samples, kept within [a, c].

@@ -1206,7 +1206,7 @@ fn run_on_mesh(
         notes.extend(DriveNote::arrival(c, dome_speed));
     }
     notes.extend(DriveNote::vibration(vibration, approach));
-    finite(DrivenOutcome {
+    let mut outcome = DrivenOutcome {
         contact: ContactEvent {
             onset_s: t_on,
             peak_force_n: peak.0,
@@ -1223,7 +1223,11 @@ fn run_on_mesh(
         notes,
         work: steps,
         trace: tracer.samples,
-    })
+        contacts: Vec::new(),
+        ended: crate::RunEnd::FirstSeparation,
+    };
+    outcome.contacts.push(outcome.contact);
+    finite(outcome)
 }
 
 /// Vertex (t, f) of the parabola through three samples, kept within [a, c].

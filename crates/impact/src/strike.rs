@@ -629,6 +629,31 @@ pub struct DrivenOutcome {
     /// The motion sampled at the integrator's steps, at most one sample per `trace_every` of
     /// the settings, the onset and the separation included (empty without `trace_every`).
     pub trace: Vec<TraceSample>,
+    /// Every contact of the run in order, the first (`contact`) included: the first alone
+    /// unless the settings ask for every contact.
+    pub contacts: Vec<ContactEvent>,
+    /// How the run ended: at the first separation, the bodies parted for good, or the window
+    /// (`horizon_s`) closed — with a contact still on if the last one lasts to it.
+    pub ended: crate::RunEnd,
+}
+
+impl DrivenOutcome {
+    /// The contact with the largest peak force (the first of equal ones) and its number
+    /// (1 = the first contact).
+    pub fn largest_contact(&self) -> (usize, ContactEvent) {
+        let (index, largest) =
+            self.contacts
+                .iter()
+                .enumerate()
+                .fold((0, self.contact), |(i, best), (j, c)| {
+                    if c.peak_force_n > best.peak_force_n {
+                        (j, *c)
+                    } else {
+                        (i, best)
+                    }
+                });
+        (index + 1, largest)
+    }
 }
 
 /// One sample of a driven strike's motion (for logs and figures).

@@ -703,7 +703,7 @@ fn scene_method(
     )?;
     scene_method_result(s, input.speed, contact.reduced_mass(), sim, |v| {
         crate::safety::simulation::check_stop(stop)?;
-        crate::safety::scene::peak_force(sc, v, &settings)
+        crate::safety::scene::peak_force(sc, v, &settings, stop)
     })
 }
 
@@ -1083,7 +1083,10 @@ pub fn simulated_peak_forces_until(
                     .iter()
                     .map(|&v| {
                         check_stop(stop)?;
-                        Ok((v, crate::safety::scene::peak_force(&sc, v, &settings)?))
+                        Ok((
+                            v,
+                            crate::safety::scene::peak_force(&sc, v, &settings, stop)?,
+                        ))
                     })
                     .collect()
             }

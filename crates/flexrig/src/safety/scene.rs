@@ -22,7 +22,7 @@
 //! any run.
 
 use flexrig_impact::drive::{Drive, DriveCommand, HeadSupport, Profile};
-use flexrig_impact::driven_cj::{CjSettings, run_driven_cj, run_exact_cj};
+use flexrig_impact::driven_cj::{CjSettings, run_driven_cj_until, run_exact_cj_until};
 use flexrig_impact::driven_cl::{ClDriveSettings, run_driven_cl};
 use flexrig_impact::exact_link::{ExactSettings, run_exact_cl};
 use flexrig_impact::{DrivenOutcome, DrivenStrike};
@@ -31,7 +31,9 @@ use flexrig_safety::{ContactKind, EnergyContact, Limits, PressureCrossing};
 use crate::Error;
 use crate::driven::scene::{DrivenScene, note_text};
 use crate::driven::strike::{LinkModel, StrikeDesign};
-use crate::safety::simulation::{SceneSimulation, SimulationSettings, speed_at_ratio};
+use crate::safety::simulation::{
+    ContactsAtRoot, RootStep, Scan, SceneSimulation, SimulationSettings, refine, scan_up,
+};
 
 /// A driven scene loaded for the safety verdict.
 #[derive(Debug, Clone)]
@@ -108,6 +110,12 @@ impl SafetyScene {
         self.scene.strike.link.length
     }
 
+    /// Whether the runs follow every contact (the CJ) or the first one only (the CL's
+    /// integrators end at the first separation; the verdict says so).
+    pub fn every_contact(&self) -> bool {
+        self.scene.strike.design == StrikeDesign::Cj
+    }
+
     /// The commanded tip speed L ω_c of the scene as written [m/s].
     pub fn commanded_tip_speed(&self) -> f64 {
         let omega = self
@@ -151,18 +159,29 @@ impl SafetyScene {
 
     /// The driven strike at commanded tip speed `v` [m/s] by the scene's link model and dome,
     /// with the run tolerances of `settings` (`cj_rtol` for the CJ; the linear CL: `tol` in the
-    /// contact, 10 × `tol` before it).
-    pub fn run_at(&self, v: f64, settings: &SimulationSettings) -> Result<DrivenOutcome, Error> {
+    /// contact, 10 × `tol` before it). The CJ follows every contact until the bodies part for
+    /// good or the scene's window (`horizon_s`) closes, the drive keeping its command throughout
+    /// (no reaction to the collision); the CL runs to the first separation
+    /// ([`Self::every_contact`]).
+    pub fn run_at(
+        &self,
+        v: f64,
+        settings: &SimulationSettings,
+        stop: &std::sync::atomic::AtomicBool,
+    ) -> Result<DrivenOutcome, Error> {
+        crate::safety::simulation::check_stop(stop)?;
         let strike = self.strike_at(v)?;
         let d = &self.scene.strike;
         Ok(match (d.design, d.link_model) {
-            (StrikeDesign::Cj, LinkModel::Exact) => run_exact_cj(
+            (StrikeDesign::Cj, LinkModel::Exact) => run_exact_cj_until(
                 &strike,
                 &CjSettings {
                     rtol: settings.cj_rtol,
+                    every_contact: true,
                     ..CjSettings::DEFAULT
                 },
                 &d.dome,
+                stop,
             )?,
             (StrikeDesign::Cl, LinkModel::Exact) => run_exact_cl(
                 &strike,
@@ -171,12 +190,14 @@ impl SafetyScene {
                     ..ExactSettings::DEFAULT
                 },
             )?,
-            (StrikeDesign::Cj, LinkModel::Linear) => run_driven_cj(
+            (StrikeDesign::Cj, LinkModel::Linear) => run_driven_cj_until(
                 &strike,
                 &CjSettings {
                     rtol: settings.cj_rtol,
+                    every_contact: true,
                     ..CjSettings::DEFAULT
                 },
+                stop,
             )?,
             (StrikeDesign::Cl, LinkModel::Linear) => run_driven_cl(
                 &strike,
@@ -206,18 +227,122 @@ fn with_speed(profile: Profile, omega: f64) -> Profile {
     }
 }
 
-/// The first contact's peak force \[N\] of `scene` at commanded tip speed `v` [m/s].
+/// The largest peak force \[N\] over the contacts of `scene` at commanded tip speed `v` [m/s]
+/// ([`SafetyScene::run_at`]).
 pub fn peak_force(
     scene: &SafetyScene,
     v: f64,
     settings: &SimulationSettings,
+    stop: &std::sync::atomic::AtomicBool,
 ) -> Result<f64, Error> {
-    Ok(scene.run_at(v, settings)?.contact.peak_force_n)
+    Ok(scene
+        .run_at(v, settings, stop)?
+        .largest_contact()
+        .1
+        .peak_force_n)
+}
+
+/// The largest peak force at each speed run so far: the force and the pressure scans walk the
+/// same grid, so the second reuses the first's runs (the same speed gives the same run bit for
+/// bit).
+#[derive(Debug, Default)]
+struct Peaks {
+    known: std::collections::HashMap<u64, f64>,
+    runs: usize,
+}
+
+impl Peaks {
+    fn at(&mut self, v: f64, run: impl FnOnce(f64) -> Result<f64, Error>) -> Result<f64, Error> {
+        if let Some(p) = self.known.get(&v.to_bits()) {
+            return Ok(*p);
+        }
+        let p = run(v)?;
+        self.runs += 1;
+        self.known.insert(v.to_bits(), p);
+        Ok(p)
+    }
+}
+
+/// The lowest speed the scan of a driven scene starts from, as a fraction of the energy
+/// method's speed ([`simulate`]).
+pub const SCAN_START_OF_GUESS: f64 = 1.0 / 64.0;
+
+/// The smallest commanded tip speed [m/s] at which the largest contact of `scene` reaches
+/// `force` \[N\]: the scan from below ([`scan_up`]) from `guess` × [`SCAN_START_OF_GUESS`]
+/// (at least 1e-4 m/s); if the limit is reached there already, the start is halved (at most
+/// ten times, down to 1/65 536 of the guess) until it is not, and the crossing refined
+/// between; reached even there: 0 (the drive presses harder than the limit at any speed).
+/// A speed the scene cannot be run at (the person placed beyond the link's reach, the drive
+/// unable to arrive in the window) ends the scan: the answer is then the fastest speed run,
+/// a lower bound ([`SceneSpeed::reached`] false, the reason kept).
+fn smallest_scene_speed(
+    scene: &SafetyScene,
+    force: f64,
+    guess: f64,
+    settings: &SimulationSettings,
+    stop: &std::sync::atomic::AtomicBool,
+    peaks: &mut Peaks,
+    trace: Option<&mut Vec<RootStep>>,
+) -> Result<SceneSpeed, Error> {
+    let mut fastest = 0.0_f64;
+    let mut ratio = |v: f64| -> Result<f64, Error> {
+        let p = peaks.at(v, |v| peak_force(scene, v, settings, stop))?;
+        fastest = fastest.max(v);
+        Ok(p / force)
+    };
+    let start = (clamp_guess(guess) * SCAN_START_OF_GUESS).max(1e-4);
+    let found = match scan_up(start, settings.root_rtol, &mut ratio, trace) {
+        Ok(Scan::Crossing(v)) => Ok(v),
+        Ok(Scan::Never) => Ok(f64::INFINITY),
+        Ok(Scan::AtStart) => (|| {
+            let (mut above, mut r_above) = (start, ratio(start)?);
+            for _ in 0..10 {
+                let below = 0.5 * above;
+                let r = ratio(below)?;
+                if r < 1.0 {
+                    return refine((below, r), (above, r_above), settings.root_rtol, &mut ratio);
+                }
+                (above, r_above) = (below, r);
+            }
+            Ok(0.0)
+        })(),
+        Err(e) => Err(e),
+    };
+    match found {
+        Ok(v) => Ok(SceneSpeed {
+            speed: v,
+            reached: v.is_finite(),
+            beyond: None,
+        }),
+        Err(Error::Impact(e @ flexrig_impact::ImpactError::InvalidParameter { .. }))
+            if fastest > 0.0 =>
+        {
+            Ok(SceneSpeed {
+                speed: fastest,
+                reached: false,
+                beyond: Some(e.to_string()),
+            })
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// What the scan of a driven scene found.
+#[derive(Debug, Clone, PartialEq)]
+struct SceneSpeed {
+    /// The smallest speed at which the limit is reached [m/s], or (not reached) the fastest
+    /// speed run: a lower bound.
+    speed: f64,
+    /// The limit was reached (false: not up to `speed`, +∞ or the scene's end).
+    reached: bool,
+    /// Why the scan stopped before reaching the limit: the scene could not be run faster.
+    beyond: Option<String>,
 }
 
 /// The permissible commanded tip speed of `scene` under `limits` (force; pressure through
-/// `energy`'s contact-area model, [`EnergyContact::force_at_pressure`]), the searches started at
-/// `guess_force` and `guess_pressure` [m/s] (the energy method's speeds).
+/// `energy`'s contact-area model, [`EnergyContact::force_at_pressure`]): each the smallest speed
+/// at which the largest contact reaches the limit ([`smallest_scene_speed`]), the scans started
+/// from the energy method's speeds `guess_force` and `guess_pressure` [m/s] scaled down.
 pub fn simulate(
     scene: &SafetyScene,
     limits: &Limits,
@@ -228,35 +353,44 @@ pub fn simulate(
     stop: &std::sync::atomic::AtomicBool,
 ) -> Result<SceneSimulation, Error> {
     settings.validate()?;
-    let mut runs = 0usize;
-    let mut peak = |v: f64| -> Result<f64, Error> {
-        crate::safety::simulation::check_stop(stop)?;
-        runs += 1;
-        peak_force(scene, v, settings)
-    };
+    let mut peaks = Peaks::default();
     let force = limits.force;
     let mut force_search = Vec::new();
-    let by_force = speed_at_ratio(
-        clamp_guess(guess_force),
-        settings.root_rtol,
-        &mut |v| Ok(peak(v)? / force),
+    // both scans start on one grid, from the lower of the energy method's two speeds
+    let start_guess = guess_pressure.map_or(guess_force, |g| g.min(guess_force));
+    let force_scan = smallest_scene_speed(
+        scene,
+        force,
+        start_guess,
+        settings,
+        stop,
+        &mut peaks,
         Some(&mut force_search),
     )?;
+    let by_force = force_scan.speed;
+    let mut pressure_beyond = None;
     let by_pressure = match (limits.pressure, guess_pressure) {
-        (Some(p), Some(g)) => Some(match energy.force_at_pressure(p) {
-            Some(PressureCrossing::AtForce(f)) => speed_at_ratio(
-                clamp_guess(g),
-                settings.root_rtol,
-                &mut |v| Ok(peak(v)? / f),
-                None,
-            )?,
+        (Some(p), Some(_)) => Some(match energy.force_at_pressure(p) {
+            // the same grid as the force's scan: its runs are reused
+            Some(PressureCrossing::AtForce(f)) => {
+                let scan =
+                    smallest_scene_speed(scene, f, start_guess, settings, stop, &mut peaks, None)?;
+                pressure_beyond = scan.beyond.map(|why| (scan.speed, why));
+                scan.speed
+            }
             Some(PressureCrossing::Always) => 0.0,
             Some(PressureCrossing::Never) | None => f64::INFINITY,
         }),
         _ => None,
     };
-    let at_root = scene.run_at(by_force, settings)?;
-    runs += 1;
+    let judged = if by_force.is_finite() && by_force > 0.0 {
+        by_force
+    } else {
+        clamp_guess(guess_force)
+    };
+    let at_root = scene.run_at(judged, settings, stop)?;
+    let runs = peaks.runs + 1;
+    let (governing, largest) = at_root.largest_contact();
     let s = &scene.scene.strike;
     Ok(SceneSimulation {
         scene: scene.origin.clone(),
@@ -271,8 +405,33 @@ pub fn simulate(
         by_force_mps: by_force,
         by_pressure_mps: by_pressure,
         approach_speed_at_root_mps: at_root.approach_speed_mps,
-        peak_force_at_root_n: at_root.contact.peak_force_n,
-        notes: at_root.notes.iter().map(note_text).collect(),
+        peak_force_at_root_n: largest.peak_force_n,
+        contacts_at_root: Some(ContactsAtRoot {
+            contacts: at_root.contacts.len(),
+            governing,
+            time_of_peak_s: largest.time_of_peak_s,
+            ended: at_root.ended,
+            every_contact: scene.every_contact(),
+        }),
+        notes: at_root
+            .notes
+            .iter()
+            .map(note_text)
+            .chain(force_scan.beyond.map(|why| {
+                format!(
+                    "the force limit was not reached up to {} m/s, the fastest commanded speed \
+                     the scene can be run at (faster: {why}); the speed is a lower bound",
+                    flexrig_contact::validate::display(by_force)
+                )
+            }))
+            .chain(pressure_beyond.map(|(v, why)| {
+                format!(
+                    "the pressure limit was not reached up to {} m/s, the fastest commanded \
+                     speed the scene can be run at (faster: {why}); that speed is a lower bound",
+                    flexrig_contact::validate::display(v)
+                )
+            }))
+            .collect(),
         force_search,
         runs,
         run_tol: match s.design {
@@ -282,8 +441,37 @@ pub fn simulate(
         root_rtol: settings.root_rtol,
         link_model: link_model_words(s, settings),
         release_angle_at_root_deg: None,
-        limit_reached: true,
+        limit_reached: force_scan.reached,
     })
+}
+
+/// The contacts of the run at the judged speed, in words: how many, which one governs and
+/// when, how the run ended.
+pub fn contacts_words(c: &crate::safety::simulation::ContactsAtRoot) -> String {
+    use flexrig_impact::RunEnd;
+    let d = flexrig_contact::validate::display;
+    let end = match c.ended {
+        RunEnd::PartedForGood(t) => format!(
+            "the bodies parted for good at {} s (the head beyond the dome's reach, moving away)",
+            d(t)
+        ),
+        RunEnd::Window(t) => format!(
+            "the scene's window closed at {} s (horizon_s; the drive kept its command, no \
+             reaction to the collision)",
+            d(t)
+        ),
+        RunEnd::FirstSeparation | RunEnd::StepBudget(_) => {
+            "the first separation: the driven CL follows the first contact only, a later \
+             contact is not judged"
+                .to_string()
+        }
+    };
+    format!(
+        "the largest peak in contact {} of {}, at {} s; the run ended at {end}",
+        c.governing,
+        c.contacts,
+        d(c.time_of_peak_s)
+    )
 }
 
 /// How the driven strike of `s` simulates its link, in words (the report's method c).

@@ -384,8 +384,37 @@ pub fn smallest_speed_at(
             advice: "use moderate masses, stiffnesses and limits".into(),
         });
     }
-    let mut ratio = |v: f64, trace: &mut Option<&mut Vec<RootStep>>| -> Result<f64, Error> {
-        let r = runs.peak(v, stop)? / force;
+    let mut ratio = |v: f64| -> Result<f64, Error> { Ok(runs.peak(v, stop)? / force) };
+    match scan_up(floor, rtol, &mut ratio, trace.as_deref_mut())? {
+        // the bound is reached at the floor itself (a rigid link): the crossing is there
+        Scan::AtStart => Ok(floor),
+        Scan::Crossing(v) => Ok(v),
+        Scan::Never => Ok(f64::INFINITY),
+    }
+}
+
+/// What a scan from below found.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Scan {
+    /// The ratio is ≥ 1 at the scan's first speed already.
+    AtStart,
+    /// The smallest speed [m/s] above the first at which the ratio reaches 1 (refined).
+    Crossing(f64),
+    /// Not reached up to [`SCAN_TOP_MPS`].
+    Never,
+}
+
+/// The scan from below: `ratio` (peak over limit) at `start` and on the grid v_k = start q^k
+/// (q = [`SCAN_RATIO`]) up to the first speed at which it is ≥ 1, then [`refine`] between that
+/// speed and the one before. Each evaluation goes to `trace` when given.
+pub fn scan_up(
+    start: f64,
+    rtol: f64,
+    ratio: &mut dyn FnMut(f64) -> Result<f64, Error>,
+    mut trace: Option<&mut Vec<RootStep>>,
+) -> Result<Scan, Error> {
+    let mut eval = |v: f64, trace: &mut Option<&mut Vec<RootStep>>| -> Result<f64, Error> {
+        let r = ratio(v)?;
         if let Some(t) = trace.as_deref_mut() {
             t.push(RootStep {
                 speed_mps: v,
@@ -394,28 +423,43 @@ pub fn smallest_speed_at(
         }
         Ok(r)
     };
-    let mut below = floor;
-    let mut r_below = ratio(below, &mut trace)?;
+    let mut below = start;
+    let mut r_below = eval(below, &mut trace)?;
     if r_below >= 1.0 {
-        // the bound is reached at the floor itself (a rigid link): the crossing is there
-        return Ok(floor);
+        return Ok(Scan::AtStart);
     }
     let (above, r_above) = loop {
         let next = below * SCAN_RATIO;
         if next > SCAN_TOP_MPS {
-            return Ok(f64::INFINITY);
+            return Ok(Scan::Never);
         }
-        let r = ratio(next, &mut trace)?;
+        let r = eval(next, &mut trace)?;
         if r >= 1.0 {
             break (next, r);
         }
         below = next;
         r_below = r;
     };
-    // Illinois false position on ln v, g = ln(ratio), g(below) < 0 ≤ g(above)
-    let (mut a, mut b) = (below.ln(), above.ln());
-    let mut ga = r_below.ln();
-    let mut gb = r_above.ln();
+    Ok(Scan::Crossing(refine(
+        (below, r_below),
+        (above, r_above),
+        rtol,
+        &mut |v| eval(v, &mut trace),
+    )?))
+}
+
+/// The Illinois false position on ln v for ln(ratio) = 0 between `below` (ratio < 1) and
+/// `above` (ratio ≥ 1), each (speed [m/s], ratio), to the relative width `rtol`; the upper end
+/// of the final bracket (a speed at which the limit is reached).
+pub fn refine(
+    below: (f64, f64),
+    above: (f64, f64),
+    rtol: f64,
+    ratio: &mut dyn FnMut(f64) -> Result<f64, Error>,
+) -> Result<f64, Error> {
+    let (mut a, mut b) = (below.0.ln(), above.0.ln());
+    let mut ga = below.1.ln();
+    let mut gb = above.1.ln();
     let mut side = 0;
     for _ in 0..200 {
         if (b - a).abs() < rtol || gb == 0.0 {
@@ -426,7 +470,7 @@ pub fn smallest_speed_at(
         } else {
             0.5 * (a + b)
         };
-        let gx = ratio(x.exp(), &mut trace)?.ln();
+        let gx = ratio(x.exp())?.ln();
         if gx >= 0.0 {
             b = x;
             gb = gx;
@@ -558,6 +602,22 @@ pub fn speed_at_ratio(
     Ok(((a + b) / 2.0).exp())
 }
 
+/// The contacts of a driven scene's run at the judged speed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ContactsAtRoot {
+    /// How many contacts the run had.
+    pub contacts: usize,
+    /// The number of the contact with the largest peak force (1 = the first).
+    pub governing: usize,
+    /// The time of that peak from the drive's start \[s\].
+    pub time_of_peak_s: f64,
+    /// How the run ended (the bodies parted for good, the window closed, or the first
+    /// separation when only the first contact is followed).
+    pub ended: flexrig_impact::RunEnd,
+    /// Whether every contact was followed (the CJ) or the first alone (the CL).
+    pub every_contact: bool,
+}
+
 /// The simulated permissible speed of a driven scene, with what the search did.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SceneSimulation {
@@ -582,8 +642,11 @@ pub struct SceneSimulation {
     /// The approach speed δ̇ at the onset of the run at the force root [m/s] (the drive lags its
     /// command).
     pub approach_speed_at_root_mps: f64,
-    /// The peak force of the run at the force root \[N\].
+    /// The largest peak force over the contacts of the run at the force root \[N\].
     pub peak_force_at_root_n: f64,
+    /// The contacts of the run at the force root (a driven scene; absent for a test bed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contacts_at_root: Option<ContactsAtRoot>,
     /// What the drive did in the run at the force root, in words.
     pub notes: Vec<String>,
     /// Every evaluation of the search on the force limit.

@@ -263,6 +263,7 @@ pub fn simulate(
         by_pressure_mps: by_pressure,
         approach_speed_at_root_mps: at_root.impact_velocity_mps,
         peak_force_at_root_n: at_root.peak_force_n,
+        contacts_at_root: None,
         notes,
         force_search,
         runs,
