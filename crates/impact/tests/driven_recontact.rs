@@ -1,0 +1,195 @@
+//! Every contact of the driven CJ with the exact dome geometry against an independent solution
+//! of the same equations, written here from the physics (not from the library's code): a
+//! light link on a soft torsion spring, its hub turned at a constant speed, strikes a heavier
+//! free hand, bounces back, is pulled forward by its spring and strikes again, until the hand
+//! moves away beyond the dome's reach.
+//!
+//! Reference, in the joint angle φ of the link (φ_m = ω t the hub's prescribed angle):
+//!   J φ̈ = k_θ (ω t − φ) − f L λ(u),   J = (m_e + m_r/3) L², k_θ = k_δ L²
+//!   m_h Ẍ = f
+//!   δ = L sin u + d_c (1 − cos u) − X,  λ = cos u + (d_c/L) sin u,  u = φ − φ_c
+//!   f = k_c δⁿ (δ > 0)
+//! with d_c = R − s the dome's centre behind the link's axis. Fixed-step RK4 at 2e-7 s; the
+//! contacts are the stretches with δ > 0, their peaks the largest sampled force refined by a
+//! parabola through the three samples around it.
+
+use flexrig_contact::{DampingSpec, Hertz};
+use flexrig_impact::drive::{
+    Dome, Drive, DriveCommand, HeadSupport, Motor, Person, Placement, Profile,
+};
+use flexrig_impact::driven_cj::{CjSettings, run_exact_cj};
+use flexrig_impact::{DrivenStrike, LinkParams, RunEnd};
+
+const L: f64 = 0.5;
+const M_R: f64 = 0.3;
+const M_E: f64 = 0.02;
+const K_DELTA: f64 = 2e3;
+const M_H: f64 = 0.6;
+const K_C: f64 = 1e6;
+const N_C: f64 = 1.5;
+const PHI_C: f64 = 0.05;
+
+fn strike(omega: f64) -> DrivenStrike {
+    DrivenStrike {
+        link: LinkParams {
+            m_r: M_R,
+            length: L,
+            k_delta: K_DELTA,
+            m_e: M_E,
+        },
+        drive: Drive::new(
+            Motor::new(0.0, 1.0, 0.0).unwrap(),
+            DriveCommand::Trajectory {
+                profile: Profile::Steady { speed: omega },
+            },
+        )
+        .unwrap(),
+        person: Person {
+            m_h: M_H,
+            support: HeadSupport::Free,
+            contact: Hertz::new(K_C, N_C).unwrap(),
+            damping: DampingSpec::NONE,
+            speed: 0.0,
+        },
+        placement: Placement::Angle { angle: PHI_C },
+        horizon_s: 5.0,
+    }
+}
+
+/// (onset, peak force, time of peak, duration) of every contact by the reference, until the
+/// hand is beyond the dome's reach and moving away, or `t_end`.
+fn reference(omega: f64, t_end: f64) -> Vec<(f64, f64, f64, f64)> {
+    let d_c = Dome::TEST_BED.radius_m - Dome::TEST_BED.standoff_m;
+    let j = (M_E + M_R / 3.0) * L * L;
+    let k_theta = K_DELTA * L * L;
+    let geometry = |phi: f64, x: f64| {
+        let u = phi - PHI_C;
+        let delta = L * u.sin() + d_c * (1.0 - u.cos()) - x;
+        let lever = u.cos() + d_c / L * u.sin();
+        (delta, lever)
+    };
+    let force = |delta: f64| {
+        if delta > 0.0 {
+            K_C * delta.powf(N_C)
+        } else {
+            0.0
+        }
+    };
+    // state: φ, φ̇, X, Ẋ
+    let rhs = |t: f64, s: [f64; 4]| {
+        let (delta, lever) = geometry(s[0], s[2]);
+        let f = force(delta);
+        [
+            s[1],
+            (k_theta * (omega * t - s[0]) - f * L * lever) / j,
+            s[3],
+            f / M_H,
+        ]
+    };
+    let h = 2e-7;
+    let reach = L.hypot(d_c) + d_c;
+    // the link turns steadily with its hub up to the contact: φ = ω t, no spring deflection
+    let mut s = [0.0, omega, 0.0, 0.0];
+    let mut t = 0.0;
+    let mut contacts = Vec::new();
+    let mut current: Option<(f64, Vec<(f64, f64)>)> = None;
+    let mut prev_delta = geometry(s[0], s[2]).0;
+    while t < t_end {
+        let k1 = rhs(t, s);
+        let add = |a: [f64; 4], k: [f64; 4], c: f64| std::array::from_fn(|i| a[i] + c * k[i]);
+        let k2 = rhs(t + h / 2.0, add(s, k1, h / 2.0));
+        let k3 = rhs(t + h / 2.0, add(s, k2, h / 2.0));
+        let k4 = rhs(t + h, add(s, k3, h));
+        s = std::array::from_fn(|i| s[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]));
+        t += h;
+        let delta = geometry(s[0], s[2]).0;
+        if prev_delta <= 0.0 && delta > 0.0 {
+            // onset by linear interpolation of δ over the step
+            let onset = t - h * delta / (delta - prev_delta);
+            current = Some((onset, Vec::new()));
+        }
+        if let Some((_, samples)) = current.as_mut() {
+            samples.push((t, force(delta)));
+        }
+        if prev_delta > 0.0 && delta <= 0.0 {
+            let end = t - h * delta / (delta - prev_delta);
+            let (onset, samples) = current.take().unwrap();
+            let i = (0..samples.len())
+                .max_by(|a, b| samples[*a].1.total_cmp(&samples[*b].1))
+                .unwrap();
+            let (tp, fp) = if i > 0 && i + 1 < samples.len() {
+                let (a, b, c) = (samples[i - 1], samples[i], samples[i + 1]);
+                // vertex of the parabola through the three samples (equal spacing h)
+                let den = a.1 - 2.0 * b.1 + c.1;
+                let x = 0.5 * (a.1 - c.1) / den;
+                (b.0 + x * h, b.1 - 0.25 * (a.1 - c.1) * x)
+            } else {
+                samples[i]
+            };
+            contacts.push((onset, fp, tp, end - onset));
+        }
+        prev_delta = delta;
+        if current.is_none() && s[3] >= 0.0 && s[2] > reach {
+            break;
+        }
+    }
+    contacts
+}
+
+#[test]
+fn every_contact_of_a_light_link_striking_a_free_hand_matches_the_independent_solution() {
+    for omega in [2.0, 3.0] {
+        let settings = CjSettings {
+            every_contact: true,
+            ..CjSettings::DEFAULT
+        };
+        let out = run_exact_cj(&strike(omega), &settings, &Dome::TEST_BED).unwrap();
+        let RunEnd::PartedForGood(parted) = out.ended else {
+            panic!(
+                "the run should end with the bodies parted for good: {:?}",
+                out.ended
+            )
+        };
+        let reference = reference(omega, parted + 0.1);
+        assert!(
+            out.contacts.len() >= 2,
+            "the design should strike again: {} contacts",
+            out.contacts.len()
+        );
+        assert_eq!(
+            out.contacts.len(),
+            reference.len(),
+            "ω = {omega}: the number of contacts"
+        );
+        for (k, (c, r)) in out.contacts.iter().zip(&reference).enumerate() {
+            let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+            eprintln!(
+                "ω {omega} contact {}: peak {:.6} N (reference {:.6}), onset {:.6e} s ({:.6e})",
+                k + 1,
+                c.peak_force_n,
+                r.1,
+                c.onset_s,
+                r.0
+            );
+            assert!(rel(c.peak_force_n, r.1) < 1e-4, "peak of contact {}", k + 1);
+            assert!(
+                (c.onset_s - r.0).abs() < 1e-3 * r.3,
+                "onset of contact {}",
+                k + 1
+            );
+            assert!(
+                rel(c.duration_s, r.3) < 1e-3,
+                "duration of contact {}",
+                k + 1
+            );
+        }
+        // the largest contact is not the first one for this light link
+        let (governing, largest) = out.largest_contact();
+        let top = reference.iter().map(|r| r.1).fold(0.0, f64::max);
+        assert!((largest.peak_force_n - top).abs() < 1e-4 * top);
+        eprintln!(
+            "ω {omega}: {} contacts, the largest is contact {governing}",
+            out.contacts.len()
+        );
+    }
+}
