@@ -24,7 +24,7 @@ use std::path::{Path, PathBuf};
 
 use flexrig_contact::{DampingSpec, Hertz};
 use flexrig_impact::drive::{Dome, Drive, Gains, HeadSupport, Motor, Person, Placement, Profile};
-use flexrig_impact::driven_cj::{CjSettings, run_driven_cj, run_exact_cj};
+use flexrig_impact::driven_cj::{CjSettings, run_driven_cj_until, run_exact_cj_until};
 use flexrig_impact::driven_cl::{ClDriveSettings, run_driven_cl};
 use flexrig_impact::exact_link::{ExactSettings, run_exact_cl};
 use flexrig_impact::{DrivenOutcome, DrivenStrike, LinkParams, TraceSample};
@@ -144,7 +144,11 @@ impl StrikeDescription {
     /// sampling the motion every `trace_every` seconds if given (the integrators' default
     /// settings otherwise: [`ExactSettings::DEFAULT`], [`CjSettings::DEFAULT`],
     /// [`ClDriveSettings::DEFAULT`]).
-    pub fn solve(&self, trace_every: Option<f64>) -> Result<DrivenOutcome, Error> {
+    pub fn solve(
+        &self,
+        trace_every: Option<f64>,
+        stop: &std::sync::atomic::AtomicBool,
+    ) -> Result<DrivenOutcome, Error> {
         let strike = self.strike();
         let cj = CjSettings {
             trace_every,
@@ -159,7 +163,9 @@ impl StrikeDescription {
                     ..ExactSettings::DEFAULT
                 },
             )?,
-            (StrikeDesign::Cj, LinkModel::Exact) => run_exact_cj(&strike, &cj, &self.dome)?,
+            (StrikeDesign::Cj, LinkModel::Exact) => {
+                run_exact_cj_until(&strike, &cj, &self.dome, stop)?
+            }
             (StrikeDesign::Cl, LinkModel::Linear) => run_driven_cl(
                 &strike,
                 &ClDriveSettings {
@@ -167,7 +173,7 @@ impl StrikeDescription {
                     ..ClDriveSettings::DEFAULT
                 },
             )?,
-            (StrikeDesign::Cj, LinkModel::Linear) => run_driven_cj(&strike, &cj)?,
+            (StrikeDesign::Cj, LinkModel::Linear) => run_driven_cj_until(&strike, &cj, stop)?,
         })
     }
 
@@ -510,7 +516,8 @@ pub fn run(
         }
     }
     check(cancel)?;
-    let outcome = description.solve(trace_every)?;
+    let flag = cancel.flag();
+    let outcome = description.solve(trace_every, &flag)?;
     check(cancel)?;
     let trace_csv = match (&options.out, trace_every) {
         (Some(dir), Some(_)) => {
