@@ -567,6 +567,7 @@ fn run_cj(
     let separation_rate = system.contact_kinematics(&y_sep).1;
     let mut peak_torque = first.peak_torque.max(torque_on.abs() * l);
     let mut contacts = vec![first.event];
+    let mut pressing_at_window = first.window_closed;
     // ---- every later contact, until the bodies part for good or the window closes ----
     let ended = if first.window_closed {
         RunEnd::Window(strike.horizon_s)
@@ -584,6 +585,7 @@ fn run_cj(
                     peak_torque = peak_torque.max(c.peak_torque);
                     contacts.push(c.event);
                     if c.window_closed {
+                        pressing_at_window = true;
                         break RunEnd::Window(strike.horizon_s);
                     }
                     (t, y) = (c.t_end, c.y_end);
@@ -598,6 +600,11 @@ fn run_cj(
     }
     if let Some(c) = commanded {
         notes.extend(DriveNote::arrival(c, y_on[WD]));
+    }
+    if pressing_at_window {
+        notes.push(DriveNote::StillPressing {
+            window_s: strike.horizon_s,
+        });
     }
     // the tip's vibration speed relative to the hub's line: L (φ̇_l − φ̇_m)
     notes.extend(DriveNote::vibration(y_on[WD] - rd_on, approach));

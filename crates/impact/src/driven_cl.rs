@@ -816,6 +816,23 @@ pub fn run_driven_cl(
     strike: &DrivenStrike,
     settings: &ClDriveSettings,
 ) -> Result<DrivenOutcome, ImpactError> {
+    run_driven_cl_until(strike, settings, &std::sync::atomic::AtomicBool::new(false))
+}
+
+/// [`run_driven_cl`], stopping with [`ImpactError::Interrupted`] within a step once `stop` is
+/// set.
+pub fn run_driven_cl_until(
+    strike: &DrivenStrike,
+    settings: &ClDriveSettings,
+    stop: &std::sync::atomic::AtomicBool,
+) -> Result<DrivenOutcome, ImpactError> {
+    let check_stop = || {
+        if stop.load(std::sync::atomic::Ordering::Relaxed) {
+            Err(ImpactError::Interrupted)
+        } else {
+            Ok(())
+        }
+    };
     strike.validate()?;
     settings.mesh.validate()?;
     for (field, tol) in [
@@ -1051,6 +1068,7 @@ pub fn run_driven_cl(
     let onset_reached = delta0 == 0.0 && rate0 > 0.0;
     if !onset_reached {
         loop {
+            check_stop()?;
             if steps >= settings.max_steps {
                 return Err(ImpactError::NotFinished {
                     design: "driven CL",
@@ -1176,7 +1194,19 @@ pub fn run_driven_cl(
     let mut p_start = int.powers(&int.ports(&s));
     let mut peak_torque = torque_on.abs();
     let h_min = t_c * 1e-9;
+    let mut window_closed = false;
     loop {
+        check_stop()?;
+        if s.t >= strike.horizon_s {
+            // the window closed with the contact on (the drive pressing the person): the force
+            // there counts as well
+            if s.f > peak.0 {
+                peak = (s.f, s.t);
+            }
+            window_closed = true;
+            tracer.offer(s.t, true, || int.sample(&s));
+            break;
+        }
         if steps >= settings.max_steps {
             return Err(ImpactError::NotFinished {
                 design: "driven CL",
@@ -1272,6 +1302,11 @@ pub fn run_driven_cl(
     };
     let commanded = int.command(t_on).map(|c| l * c.1);
     let mut notes = Vec::new();
+    if window_closed {
+        notes.push(DriveNote::StillPressing {
+            window_s: strike.horizon_s,
+        });
+    }
     if let Some(ts) = saturation_at {
         notes.push(DriveNote::TorqueLimitReached { first_s: ts });
     }
@@ -1296,7 +1331,11 @@ pub fn run_driven_cl(
         work: steps,
         trace: tracer.samples,
         contacts: Vec::new(),
-        ended: crate::RunEnd::FirstSeparation,
+        ended: if window_closed {
+            crate::RunEnd::Window(strike.horizon_s)
+        } else {
+            crate::RunEnd::FirstSeparation
+        },
     };
     outcome.contacts.push(outcome.contact);
     crate::driven_cj::finite(outcome)

@@ -804,7 +804,17 @@ pub fn run_exact_cl(
     strike: &DrivenStrike,
     settings: &ExactSettings,
 ) -> Result<DrivenOutcome, ImpactError> {
-    run_exact_cl_meshed(strike, settings).map(|(o, _)| o)
+    run_exact_cl_until(strike, settings, &std::sync::atomic::AtomicBool::new(false))
+}
+
+/// [`run_exact_cl`], stopping with [`ImpactError::Interrupted`] within a step once `stop` is
+/// set.
+pub fn run_exact_cl_until(
+    strike: &DrivenStrike,
+    settings: &ExactSettings,
+    stop: &std::sync::atomic::AtomicBool,
+) -> Result<DrivenOutcome, ImpactError> {
+    run_exact_cl_meshed_until(strike, settings, stop).map(|(o, _)| o)
 }
 
 /// Largest relative change between the strikes on two meshes: peak force, time of peak after
@@ -832,10 +842,20 @@ pub fn run_exact_cl_meshed(
     strike: &DrivenStrike,
     settings: &ExactSettings,
 ) -> Result<(DrivenOutcome, usize), ImpactError> {
+    run_exact_cl_meshed_until(strike, settings, &std::sync::atomic::AtomicBool::new(false))
+}
+
+/// [`run_exact_cl_meshed`], stopping with [`ImpactError::Interrupted`] within a step once
+/// `stop` is set.
+pub fn run_exact_cl_meshed_until(
+    strike: &DrivenStrike,
+    settings: &ExactSettings,
+    stop: &std::sync::atomic::AtomicBool,
+) -> Result<(DrivenOutcome, usize), ImpactError> {
     strike.validate()?;
     settings.validate()?;
     let Some(tol) = settings.mesh_tolerance else {
-        return Ok((run_on_mesh(strike, settings)?, settings.elements));
+        return Ok((run_on_mesh(strike, settings, stop)?, settings.elements));
     };
     let mut n = settings.elements;
     let mut coarse = run_on_mesh(
@@ -844,6 +864,7 @@ pub fn run_exact_cl_meshed(
             trace_every: None,
             ..*settings
         },
+        stop,
     )?;
     let mut work = coarse.work;
     let mut change = f64::INFINITY;
@@ -865,6 +886,7 @@ pub fn run_exact_cl_meshed(
                 elements: m,
                 ..*settings
             },
+            stop,
         )?;
         work += fine.work;
         change = mesh_change(&coarse, &fine);
@@ -882,7 +904,15 @@ pub fn run_exact_cl_meshed(
 fn run_on_mesh(
     strike: &DrivenStrike,
     settings: &ExactSettings,
+    stop: &std::sync::atomic::AtomicBool,
 ) -> Result<DrivenOutcome, ImpactError> {
+    let check_stop = || {
+        if stop.load(std::sync::atomic::Ordering::Relaxed) {
+            Err(ImpactError::Interrupted)
+        } else {
+            Ok(())
+        }
+    };
     let link = strike.link;
     let l = link.length;
     let ei = link.ei();
@@ -1048,6 +1078,7 @@ fn run_on_mesh(
     corners.sort_by(f64::total_cmp);
     let mut steps = 0usize;
     loop {
+        check_stop()?;
         if s.state.t >= strike.horizon_s {
             return Err(ImpactError::NotFinished {
                 design: "exact driven CL",
@@ -1113,6 +1144,12 @@ fn run_on_mesh(
     let delta_max = ((n + 1.0) * mu * v * v / (2.0 * k)).powf(1.0 / (n + 1.0));
     let t_c = 2.0 * delta_max / v * hertz_time_integral(n);
     let h_c = t_c / settings.contact_steps as f64;
+    // the step: h_c through the impact; a contact that outlasts two impact times is the drive
+    // pressing the person, a slow, quasi-static motion: there the step grows by 1.5 while the
+    // force changes by less than 1e-4 of its peak per step, halves (not below h_c) when it
+    // changes by more than 1e-3, and never passes the approach's step or the window's end
+    let mut h = h_c;
+    let h_press = h_a.max(h_c);
     let mut acc = [0.0; 5];
     let mut p0 = powers(&s, &cs, s.joint_torque());
     let mut samples: Vec<(f64, f64)> = vec![(t_on, 0.0)];
@@ -1121,31 +1158,37 @@ fn run_on_mesh(
     // an elastic law (no damping part at the onset's rate): the peak is at δ̇ = 0
     let elastic = s.law.damping(1e-3 * delta_max, v) == 0.0;
     let mut located_peak: Option<(f64, f64)> = None;
+    let mut window_closed = false;
     loop {
+        check_stop()?;
         if steps >= settings.max_steps {
             return Err(ImpactError::NotFinished {
                 design: "exact driven CL",
                 reason: format!("max_steps = {} ran out in the contact", settings.max_steps),
             });
         }
+        if s.state.t >= strike.horizon_s {
+            // the window closed with the contact on (the drive pressing the person): the force
+            // there counts as well
+            if cs.f > peak.0 {
+                peak = (cs.f, s.state.t);
+            }
+            window_closed = true;
+            tracer.offer(s.state.t, true, || s.sample(&cs));
+            break;
+        }
         let from = s.snapshot();
         let (d0, rate0) = (cs.delta, cs.rate);
         let t0 = s.state.t;
-        let mut next = s.step(h_c, true)?;
+        let mut next = s.step(h, true)?;
         steps += 1;
         let finished = next.delta <= 0.0 && s.state.t > t_on + 0.05 * t_c;
         if finished {
-            next = s.locate(
-                &from,
-                (d0.max(1e-300), h_c, next.delta),
-                true,
-                |c| c.delta,
-                l,
-            )?;
+            next = s.locate(&from, (d0.max(1e-300), h, next.delta), true, |c| c.delta, l)?;
             steps += 1;
         } else if elastic && located_peak.is_none() && rate0 > 0.0 && next.rate <= 0.0 {
             // an elastic law peaks where δ̇ = 0: located on the motion, not interpolated
-            next = s.locate(&from, (rate0, h_c, next.rate), true, |c| c.rate, v)?;
+            next = s.locate(&from, (rate0, h, next.rate), true, |c| c.rate, v)?;
             steps += 1;
             located_peak = Some((next.f, s.state.t));
         }
@@ -1167,6 +1210,19 @@ fn run_on_mesh(
                 if v.1 > peak.0 {
                     peak = (v.1, v.0);
                 }
+            }
+        }
+        if s.state.t - t_on > 2.0 * t_c && samples.len() >= 2 {
+            let df = (cs.f - samples[samples.len() - 2].1).abs();
+            let scale = peak.0.max(cs.f).max(f64::MIN_POSITIVE);
+            if df < 1e-4 * scale {
+                h = (1.5 * h).min(h_press);
+            } else if df > 1e-3 * scale {
+                h = (0.5 * h).max(h_c);
+            }
+            let left = strike.horizon_s - s.state.t;
+            if left > 0.0 && h > left {
+                h = left;
             }
         }
         if samples.len() > 8 {
@@ -1199,6 +1255,11 @@ fn run_on_mesh(
         residual_j: motor_work - dissipated - (e1 - e0),
     };
     let mut notes = Vec::new();
+    if window_closed {
+        notes.push(DriveNote::StillPressing {
+            window_s: strike.horizon_s,
+        });
+    }
     if let Some(first_s) = s.saturated_at {
         notes.push(DriveNote::TorqueLimitReached { first_s });
     }
@@ -1224,7 +1285,11 @@ fn run_on_mesh(
         work: steps,
         trace: tracer.samples,
         contacts: Vec::new(),
-        ended: crate::RunEnd::FirstSeparation,
+        ended: if window_closed {
+            crate::RunEnd::Window(strike.horizon_s)
+        } else {
+            crate::RunEnd::FirstSeparation
+        },
     };
     outcome.contacts.push(outcome.contact);
     finite(outcome)

@@ -525,6 +525,12 @@ pub enum DriveNote {
         /// The approach speed at the onset [m/s].
         approach_speed_mps: f64,
     },
+    /// A contact was still on when the strike's window (`horizon_s`) closed: the drive kept
+    /// pressing the person; the largest force up to then counts.
+    StillPressing {
+        /// The window's end \[s\].
+        window_s: f64,
+    },
 }
 
 impl DriveNote {
@@ -588,6 +594,11 @@ impl std::fmt::Display for DriveNote {
                  (the impact depends on the vibration's phase)",
                 vibration_speed_mps,
                 100.0 * (vibration_speed_mps / approach_speed_mps).abs()
+            ),
+            DriveNote::StillPressing { window_s } => write!(
+                f,
+                "the contact was still on when the window closed at {window_s:.6} s (horizon_s): \
+                 the drive kept pressing the person, and the force up to then counts"
             ),
         }
     }

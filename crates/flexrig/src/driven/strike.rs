@@ -25,8 +25,8 @@ use std::path::{Path, PathBuf};
 use flexrig_contact::{DampingSpec, Hertz};
 use flexrig_impact::drive::{Dome, Drive, Gains, HeadSupport, Motor, Person, Placement, Profile};
 use flexrig_impact::driven_cj::{CjSettings, run_driven_cj_until, run_exact_cj_until};
-use flexrig_impact::driven_cl::{ClDriveSettings, run_driven_cl};
-use flexrig_impact::exact_link::{ExactSettings, run_exact_cl};
+use flexrig_impact::driven_cl::{ClDriveSettings, run_driven_cl_until};
+use flexrig_impact::exact_link::{ExactSettings, run_exact_cl_until};
 use flexrig_impact::{DrivenOutcome, DrivenStrike, LinkParams, TraceSample};
 use serde::{Deserialize, Serialize};
 
@@ -155,23 +155,25 @@ impl StrikeDescription {
             ..CjSettings::DEFAULT
         };
         Ok(match (self.design, self.link_model) {
-            (StrikeDesign::Cl, LinkModel::Exact) => run_exact_cl(
+            (StrikeDesign::Cl, LinkModel::Exact) => run_exact_cl_until(
                 &strike,
                 &ExactSettings {
                     trace_every,
                     dome: self.dome,
                     ..ExactSettings::DEFAULT
                 },
+                stop,
             )?,
             (StrikeDesign::Cj, LinkModel::Exact) => {
                 run_exact_cj_until(&strike, &cj, &self.dome, stop)?
             }
-            (StrikeDesign::Cl, LinkModel::Linear) => run_driven_cl(
+            (StrikeDesign::Cl, LinkModel::Linear) => run_driven_cl_until(
                 &strike,
                 &ClDriveSettings {
                     trace_every,
                     ..ClDriveSettings::DEFAULT
                 },
+                stop,
             )?,
             (StrikeDesign::Cj, LinkModel::Linear) => run_driven_cj_until(&strike, &cj, stop)?,
         })

@@ -23,8 +23,8 @@
 
 use flexrig_impact::drive::{Drive, DriveCommand, HeadSupport, Profile};
 use flexrig_impact::driven_cj::{CjSettings, run_driven_cj_until, run_exact_cj_until};
-use flexrig_impact::driven_cl::{ClDriveSettings, run_driven_cl};
-use flexrig_impact::exact_link::{ExactSettings, run_exact_cl};
+use flexrig_impact::driven_cl::{ClDriveSettings, run_driven_cl_until};
+use flexrig_impact::exact_link::{ExactSettings, run_exact_cl_until};
 use flexrig_impact::{DrivenOutcome, DrivenStrike};
 use flexrig_safety::{ContactKind, EnergyContact, Limits, PressureCrossing};
 
@@ -183,12 +183,13 @@ impl SafetyScene {
                 &d.dome,
                 stop,
             )?,
-            (StrikeDesign::Cl, LinkModel::Exact) => run_exact_cl(
+            (StrikeDesign::Cl, LinkModel::Exact) => run_exact_cl_until(
                 &strike,
                 &ExactSettings {
                     dome: d.dome,
                     ..ExactSettings::DEFAULT
                 },
+                stop,
             )?,
             (StrikeDesign::Cj, LinkModel::Linear) => run_driven_cj_until(
                 &strike,
@@ -199,13 +200,14 @@ impl SafetyScene {
                 },
                 stop,
             )?,
-            (StrikeDesign::Cl, LinkModel::Linear) => run_driven_cl(
+            (StrikeDesign::Cl, LinkModel::Linear) => run_driven_cl_until(
                 &strike,
                 &ClDriveSettings {
                     tol: settings.tol,
                     approach_tol: (10.0 * settings.tol).min(1e-3),
                     ..ClDriveSettings::DEFAULT
                 },
+                stop,
             )?,
         })
     }
