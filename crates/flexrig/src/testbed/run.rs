@@ -177,6 +177,25 @@ pub fn summary_json(s: &RunSummary, link: &LinkQuantities) -> serde_json::Value 
     value
 }
 
+/// The notes of a test-bed run with a motor on the robot joint, in words, as `flexrig run` and
+/// a sweep's `notes` column give them: the time the controller spent at its torque limit (the
+/// link then follows its command only where the limit allows). None without a drive or when the
+/// limit was never reached.
+pub fn drive_notes(s: &RunSummary) -> Vec<String> {
+    let Some(d) = &s.drive else {
+        return Vec::new();
+    };
+    let mut notes = Vec::new();
+    if d.time_at_torque_limit_s > 0.0 {
+        notes.push(format!(
+            "the controller was at its torque limit for {:.6} s: the link follows its command \
+             only where the limit allows",
+            d.time_at_torque_limit_s
+        ));
+    }
+    notes
+}
+
 /// A driven run's summary as `flexrig run --json` prints it: the strike's summary
 /// ([`crate::driven::scene::summary_json`]) and the link quantities ([`crate::testbed::link::COLUMNS`]).
 pub fn driven_summary_json(
