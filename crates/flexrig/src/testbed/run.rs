@@ -143,9 +143,10 @@ fn run_rig_text(
     )
 }
 
-/// The plausibility warnings of a scene (a bundled name or a file) with its overrides (what is valid but looks like a
-/// mistake, [`flexrig_rig::plausibility`]), for a front to show before the run starts; none if
-/// the scene cannot be loaded (the run itself then says why).
+/// The plausibility warnings of a scene (a bundled name or a file, the test bed's or a driven
+/// one) with its overrides (what is valid but looks like a mistake, [`flexrig_rig::plausibility`]
+/// and its shared rule for masses, lengths and speeds), for a front to show before the run
+/// starts; none if the scene cannot be loaded (the run itself then says why).
 pub fn scene_warnings(
     path: &Path,
     overrides: &[Override],
@@ -155,6 +156,15 @@ pub fn scene_warnings(
     else {
         return Vec::new();
     };
+    if is_driven_text(&text) {
+        return DrivenScene::with_overrides(&text, overrides)
+            .map(|scene| {
+                scene
+                    .strike
+                    .warnings(crate::driven::strike::FieldNames::File)
+            })
+            .unwrap_or_default();
+    }
     let Ok(materials) = Materials::bundled() else {
         return Vec::new();
     };

@@ -756,7 +756,9 @@ def strike(
     path to TOML, see assets/drives/) or from the keyword arguments (the command's flags; their
     defaults are assets/drives/cl_free_head.toml). Returns the outcome as a dict (``contact``:
     onset_time_s, peak_force_n, time_of_peak_s, duration_s; approach speed, pre-impact deflection,
-    joint torques, ``energy``, ``notes``, ``steps``) and, with ``trace_every`` [s], ``trace``: a
+    joint torques, ``energy``, ``notes``, ``steps``, ``warnings``: the plausibility warnings,
+    each a dict of ``field`` and ``message``, also raised as :class:`PlausibilityWarning`, e.g. a
+    link heavier than 200 kg) and, with ``trace_every`` [s], ``trace``: a
     DataFrame of the motion (columns :data:`STRIKE_TRACE_COLUMNS`; written as strike_trace.csv
     into ``out`` if given). ``link_model`` "exact" (the default: the link bends and turns
     geometrically exactly, the dome of ``dome_radius`` [m] with its apex ``dome_standoff`` [m]
@@ -790,6 +792,9 @@ def strike(
     outcome["design"] = r["design"]
     if r.get("trace_csv") is not None:
         outcome["trace_csv"] = r["trace_csv"]
+    outcome["warnings"] = r["warnings"]
+    for w in r["warnings"]:
+        _warnings.warn(f"{w['field']}: {w['message']}", PlausibilityWarning, stacklevel=2)
     return outcome
 
 
