@@ -318,7 +318,9 @@ fn a_sweep_over_the_drive_speed_runs_every_point() {
         .collect();
     assert!(
         notes.iter().any(|n| n.contains("torque reached its limit"))
-            && notes.iter().any(|n| n.contains("slower than the commanded")),
+            && notes
+                .iter()
+                .any(|n| n.contains("slower than the commanded")),
         "{notes:?}"
     );
     let jsonl = std::fs::read_to_string(out.join("sweep.jsonl")).unwrap();

@@ -223,12 +223,7 @@ fn a_length_and_a_speed_slip_get_the_same_warning_on_every_front() {
     ]);
     assert_eq!(message_of(&found, "--length"), long);
     assert_eq!(message_of(&found, "--speed"), fast);
-    let found = warnings(&[
-        "run",
-        "driven_cj_free_head",
-        "--set",
-        "person.speed=20",
-    ]);
+    let found = warnings(&["run", "driven_cj_free_head", "--set", "person.speed=20"]);
     assert_eq!(message_of(&found, "person.speed"), fast);
     // a joint speed: 20 rad/s on the 1 m link moves the tip at 20 m/s
     let joint = "20 rad/s moves the tip at 20 m/s, faster than robot arms go (up to about 10 \

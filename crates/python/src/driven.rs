@@ -7,8 +7,8 @@ use std::path::PathBuf;
 use flexrig::driven::role_switch::{RoleSwitchOptions, run_with_figures as run_role_switch};
 use flexrig::driven::spin_up::{SpinUpOptions, run_with_figures as run_spin_up};
 use flexrig::driven::strike::{
-    FieldNames, LinkModel, StrikeDescription, StrikeDesign, StrikeFlags, StrikeOptions, parse_support,
-    run as run_strike,
+    FieldNames, LinkModel, StrikeDescription, StrikeDesign, StrikeFlags, StrikeOptions,
+    parse_support, run as run_strike,
 };
 use flexrig::{CancelToken, Error, fronts};
 use flexrig_impact::ImpactError;

@@ -172,7 +172,11 @@ fn the_robots_masses_lengths_and_speeds_follow_the_shared_rule() {
     let w = warned("cj_aluminium", &["robot.payload_kg=412"]);
     assert_eq!(w.len(), 1, "{w:?}");
     assert_eq!(w[0].field, "robot.payload_kg");
-    assert!(w[0].message.contains("412 g is 0.412 kg"), "{}", w[0].message);
+    assert!(
+        w[0].message.contains("412 g is 0.412 kg"),
+        "{}",
+        w[0].message
+    );
     let w = warned(
         "rig_driven_cj",
         &[

@@ -8,7 +8,8 @@ use clap::{Args, ValueEnum};
 use flexrig::driven::drive::HeadSupport;
 use flexrig::driven::scene::note_text;
 use flexrig::driven::strike::{
-    FieldNames, LinkModel, StrikeDescription, StrikeDesign, StrikeFlags, StrikeOptions, run as run_strike,
+    FieldNames, LinkModel, StrikeDescription, StrikeDesign, StrikeFlags, StrikeOptions,
+    run as run_strike,
 };
 use flexrig::{CancelToken, Error};
 

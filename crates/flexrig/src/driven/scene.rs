@@ -631,7 +631,7 @@ mod tests {
                 &StrikeOptions {
                     trace_every: None,
                     out: None,
-                    names: super::strike::FieldNames::File,
+                    names: crate::driven::strike::FieldNames::File,
                 },
                 &CancelToken::new(),
             )
