@@ -377,3 +377,52 @@ fn role_switch_test_bed_rows() {
     assert!(dir.join("role_switch.svg").is_file());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The text table keeps its columns on every row, the Fig. 6 cases' longer names included: each
+/// row as long as the header (in characters) and its design in the same column.
+#[test]
+fn role_switch_text_table_is_aligned_on_every_row() {
+    let dir = scratch_dir("role-text");
+    let out = flexrig(&[
+        "role-switch",
+        "--link-model",
+        "linear",
+        "--kappa",
+        "1",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let header = lines
+        .iter()
+        .position(|l| l.starts_with("case "))
+        .expect("a header");
+    let width = lines[header].chars().count();
+    let rows: Vec<&str> = lines[header + 1..]
+        .iter()
+        .copied()
+        .filter(|l| !l.starts_with("Wrote "))
+        .collect();
+    assert_eq!(rows.len(), 2 * (2 + 16), "{text}");
+    assert!(rows.iter().any(|r| r.starts_with("Fig. 6")), "{text}");
+    let design_column = |row: &str| {
+        let chars: Vec<char> = row.chars().collect();
+        (0..chars.len() - 3).find(|&i| {
+            chars[i] == ' '
+                && matches!(&chars[i + 1..i + 3], ['c', 'j'] | ['c', 'l'])
+                && chars[i + 3] == ' '
+        })
+    };
+    let column = design_column(rows[0]);
+    for row in &rows {
+        assert_eq!(row.chars().count(), width, "{row}\n{text}");
+        assert_eq!(design_column(row), column, "{row}\n{text}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -299,6 +299,35 @@ fn a_sweep_over_the_drive_speed_runs_every_point() {
     // twice the speed: the link arrives about twice as fast and strikes harder
     assert!(value(&rows[1], speed) > 1.9 * value(&rows[0], speed));
     assert!(value(&rows[1], peak) > 1.5 * value(&rows[0], peak));
+    // the driven columns, and the drive's notes as `flexrig run` gives them, in the last column
+    for column in [
+        "pre_impact_deflection_m",
+        "peak_motor_torque_nm",
+        "joint_speed_at_contact_rad_s",
+        "commanded_tip_speed_mps",
+    ] {
+        let i = header.iter().position(|h| *h == column).expect(column);
+        assert!(value(&rows[0], i).is_finite(), "{column}");
+    }
+    assert_eq!(header.last(), Some(&"notes"));
+    let notes: Vec<String> = single["notes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n.as_str().unwrap().to_string())
+        .collect();
+    assert!(
+        notes.iter().any(|n| n.contains("torque reached its limit"))
+            && notes
+                .iter()
+                .any(|n| n.contains("slower than the commanded")),
+        "{notes:?}"
+    );
+    let jsonl = std::fs::read_to_string(out.join("sweep.jsonl")).unwrap();
+    let first: serde_json::Value = serde_json::from_str(jsonl.lines().next().unwrap()).unwrap();
+    assert_eq!(first["notes"], notes.join("; "), "{first}");
+    let quoted = format!("\"{}\"", notes.join("; "));
+    assert!(table.lines().nth(1).unwrap().ends_with(&quoted), "{table}");
     // a value out of range is refused before anything runs, naming the field
     let o = flexrig(&[
         "sweep",
@@ -310,5 +339,45 @@ fn a_sweep_over_the_drive_speed_runs_every_point() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("drive.motor.gear_ratio"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A test-bed scene with a motor on its joint: the sweep's notes are the notes `flexrig run`
+/// prints (the torque limit reached), empty for the point whose controller never reached it.
+#[test]
+fn a_test_bed_sweep_keeps_the_drives_notes_as_run_prints_them() {
+    let dir = scratch("rig-notes");
+    let out = dir.join("sw");
+    let o = flexrig(&[
+        "sweep",
+        "rig_driven_cj",
+        "--set",
+        "robot.drive.command.torque_limit=0.2,0.004",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let jsonl = std::fs::read_to_string(out.join("sweep.jsonl")).unwrap();
+    let rows: Vec<serde_json::Value> = jsonl
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(rows.len(), 2);
+    assert!(rows[0].get("notes").is_none(), "{}", rows[0]);
+    let printed = flexrig(&[
+        "run",
+        "rig_driven_cj",
+        "--set",
+        "robot.drive.command.torque_limit=0.004",
+    ]);
+    let text = String::from_utf8_lossy(&printed.stdout);
+    let notes: Vec<&str> = text
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("note: "))
+        .collect();
+    assert_eq!(notes.len(), 1, "{text}");
+    assert!(notes[0].contains("torque limit"), "{text}");
+    assert_eq!(rows[1]["notes"], notes[0], "{}", rows[1]);
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -7,8 +7,8 @@ use std::path::PathBuf;
 use flexrig::driven::role_switch::{RoleSwitchOptions, run_with_figures as run_role_switch};
 use flexrig::driven::spin_up::{SpinUpOptions, run_with_figures as run_spin_up};
 use flexrig::driven::strike::{
-    LinkModel, StrikeDescription, StrikeDesign, StrikeFlags, StrikeOptions, parse_support,
-    run as run_strike,
+    FieldNames, LinkModel, StrikeDescription, StrikeDesign, StrikeFlags, StrikeOptions,
+    parse_support, run as run_strike,
 };
 use flexrig::{CancelToken, Error, fronts};
 use flexrig_impact::ImpactError;
@@ -96,7 +96,12 @@ pub fn strike<'py>(
     out: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let description = StrikeDescription::parse(text, source).map_err(py_error)?;
-    run_described(py, &description, StrikeOptions { trace_every, out })
+    let options = StrikeOptions {
+        trace_every,
+        out,
+        names: FieldNames::File,
+    };
+    run_described(py, &description, options)
 }
 
 /// One driven strike from the numbers of `flexrig strike`'s flags (the library's
@@ -160,7 +165,12 @@ pub fn strike_flags<'py>(
         Error::InvalidArgument { .. } => flag_error(e),
         _ => py_error(e),
     })?;
-    run_described(py, &description, StrikeOptions { trace_every, out })
+    let options = StrikeOptions {
+        trace_every,
+        out,
+        names: FieldNames::Flags,
+    };
+    run_described(py, &description, options)
 }
 
 /// Runs a described strike with the GIL released (cancellable by Ctrl-C) and returns its
@@ -171,8 +181,13 @@ fn run_described<'py>(
     options: StrikeOptions,
 ) -> PyResult<Bound<'py, PyAny>> {
     let cancel = CancelToken::new();
-    let result =
+    let mut result =
         detached(py, &cancel, || run_strike(description, &options, &cancel))?.map_err(py_error)?;
+    // the flags' warnings name the keyword arguments (`m_r`, not `--m-r`)
+    for w in &mut result.warnings {
+        w.field = crate::keywords(&w.field);
+        w.message = crate::keywords(&w.message);
+    }
     to_object(py, &result)
 }
 

@@ -159,7 +159,7 @@ impl Sweep {
         })
     }
 
-    /// The rows as columns: index, values (one list per path), status, error, summary.
+    /// The rows as columns: index, values (one list per path), status, error, summary, notes.
     fn columns<'py>(&self, py: Python<'py>, rows: &[SweepRow]) -> PyResult<Bound<'py, PyDict>> {
         let out = PyDict::new(py);
         let index: Vec<i64> = rows.iter().map(|r| r.index as i64).collect();
@@ -189,6 +189,8 @@ impl Sweep {
                 .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?
         };
         out.set_item("summary", summary)?;
+        let notes: Vec<&str> = rows.iter().map(|r| r.notes.as_str()).collect();
+        out.set_item("notes", notes)?;
         Ok(out)
     }
 }
@@ -271,7 +273,8 @@ impl Sweep {
 
     /// Runs the points `indices` (all by default) and returns the rows as columns: a dict with
     /// `index` (int64 array), `values` (a list per path), `status` and `error` (lists of str) and
-    /// `summary` (float64 array, one row per point, SUMMARY_COLUMNS; NaN where absent). A run that
+    /// `summary` (float64 array, one row per point, SUMMARY_COLUMNS; NaN where absent) and
+    /// `notes` (a list of str: the drive's notes, `; ` between two, empty without). A run that
     /// fails is a row with status `error` and its message. `threads`: None uses every core
     /// (rayon), 1 runs in the calling thread, k > 1 a pool of k threads. GIL released; Ctrl-C
     /// stops the sweep and raises KeyboardInterrupt.

@@ -118,3 +118,17 @@ def test_spin_up_and_role_switch_take_the_figure_flags(cli, tmp_path):
     assert (tmp_path / "py" / "role_switch.pdf").stat().st_size > 0
     with pytest.raises(flexrig.InputError, match="size"):
         flexrig.spin_up(size="9 feet")
+
+
+def test_a_unit_slip_is_warned_about_naming_the_keyword_or_the_field(cli, tmp_path):
+    # the shared rule (flexrig run, strike, safety, safety-map): 250 kg typed for 250 g
+    with pytest.warns(flexrig.PlausibilityWarning, match=r"m_e: 250 kg is heavier"):
+        r = flexrig.strike(m_e=250.0)
+    assert r["warnings"] == [{"field": "m_e", "message": cli.json("strike", "--m-e", "250")["warnings"][0]["message"]}]
+    text = (DRIVES / "cj_wall.toml").read_text().replace("m_e = 0.1 ", "m_e = 250.0 ")
+    path = tmp_path / "heavy.toml"
+    path.write_text(text)
+    with pytest.warns(flexrig.PlausibilityWarning, match=r"link.m_e: 250 kg"):
+        r = flexrig.strike(path)
+    assert [w["field"] for w in r["warnings"]] == ["link.m_e"]
+    assert flexrig.strike(DRIVES / "cj_wall.toml")["warnings"] == []

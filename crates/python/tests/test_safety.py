@@ -180,3 +180,14 @@ def test_an_area_without_its_unit_is_refused_and_an_implausible_one_warned_about
     with pytest.warns(flexrig.PlausibilityWarning, match="contact_area"):
         r = flexrig.safety("chest", m_eff=3.0, contact_area=1.0)
     assert r["warnings"][0]["field"] == "--contact-area"
+
+
+def test_the_map_warns_about_a_unit_slip_naming_the_keyword(cli, tmp_path):
+    args = dict(m_r=0.051, m_e=250.0, x="k-c=1e7:1e8:2", y="k-delta=10:1e7:2:log", method="energy")
+    with pytest.warns(flexrig.PlausibilityWarning, match=r"m_e: 250 kg is heavier"):
+        got = flexrig.safety_map("chest", **args)
+    expected = cli.json("safety-map", "--region", "chest", "--m-r", "0.051", "--m-e", "250", "--x",
+                        "k-c=1e7:1e8:2", "--y", "k-delta=10:1e7:2:log", "--method", "energy",
+                        "--out", tmp_path)["warnings"]
+    assert [w["field"] for w in expected] == ["--m-e"]
+    assert got["warnings"] == [{"field": "m_e", "message": expected[0]["message"]}]

@@ -1,7 +1,9 @@
 //! Plausibility warnings: a scene that is valid but looks like a mistake (a unit that looks
 //! wrong, a contact law taken outside its fit, an indentation deeper than the bodies, a joint
-//! spring left behind when the link was changed, a swing step too large for the swing). A warning never stops a run; the fronts
-//! print it and list it in their JSON.
+//! spring left behind when the link was changed, a swing step too large for the swing), and the
+//! shared rule for the masses, lengths and speeds typed for a robot ([`mass`], [`length`],
+//! [`speed`], [`joint_speed`]) that every front applies to what it takes. A warning never stops
+//! a run; the fronts print it and list it in their JSON.
 
 use flexrig_contact::Materials;
 use flexrig_contact::validate::display;
@@ -22,9 +24,100 @@ const RADIAN_LIKE_DEG: f64 = std::f64::consts::PI;
 /// Relative mismatch of an explicit CJ spring and 3EI/L beyond which a warning is given.
 const SPRING_MISMATCH: f64 = 0.01;
 
+/// The heaviest plausible mass \[kg\] of a robot's link, payload or moving parts near a person:
+/// collaborative arms move at most a few tens of kilograms (ISO/TS 15066:2016 Annex A's
+/// examples stay below 50 kg); 200 kg leaves room for a mobile base.
+pub const PLAUSIBLE_MASS_KG: f64 = 200.0;
+
+/// The longest plausible robot link \[m\].
+pub const PLAUSIBLE_LENGTH_M: f64 = 5.0;
+
+/// The fastest plausible relative speed of a robot and a person \[m/s\] (industrial arms reach a
+/// few m/s; the standard's transient contacts are studied below 2.5 m/s).
+pub const PLAUSIBLE_SPEED_MPS: f64 = 10.0;
+
+/// The shared rule for the masses, lengths and speeds a user types for a robot: a valid value
+/// that looks like a unit slip (grams typed for kilograms, millimetres for metres, degrees per
+/// second for radians per second) gets the same warning in every front that takes it — scenes
+/// (`flexrig run`, sweeps), `strike`, `safety` and `safety-map` — named by the field or flag
+/// the user typed (`field`).
+///
+/// A warning for the mass `kg` given as `field`, when it is heavier than
+/// [`PLAUSIBLE_MASS_KG`] (with its value in grams read as kilograms).
+pub fn mass(field: &str, kg: f64) -> Option<Warning> {
+    (kg.is_finite() && kg > PLAUSIBLE_MASS_KG).then(|| {
+        warning(
+            field,
+            format!(
+                "{} kg is heavier than a robot near a person moves (up to about {} kg); if \
+                 grams were meant, {} g is {} kg",
+                display(kg),
+                display(PLAUSIBLE_MASS_KG),
+                display(kg),
+                display(kg / 1000.0)
+            ),
+        )
+    })
+}
+
+/// A warning for the length `m` given as `field`, when it is longer than
+/// [`PLAUSIBLE_LENGTH_M`] (the shared rule, see [`mass`]).
+pub fn length(field: &str, m: f64) -> Option<Warning> {
+    (m.is_finite() && m > PLAUSIBLE_LENGTH_M).then(|| {
+        warning(
+            field,
+            format!(
+                "{} m is longer than a robot's link (up to about {} m); if millimetres were \
+                 meant, {} mm is {} m",
+                display(m),
+                display(PLAUSIBLE_LENGTH_M),
+                display(m),
+                display(m / 1000.0)
+            ),
+        )
+    })
+}
+
+/// A warning for the relative speed `mps` given as `field`, when it is faster than
+/// [`PLAUSIBLE_SPEED_MPS`] (the shared rule, see [`mass`]).
+pub fn speed(field: &str, mps: f64) -> Option<Warning> {
+    (mps.is_finite() && mps.abs() > PLAUSIBLE_SPEED_MPS).then(|| {
+        warning(
+            field,
+            format!(
+                "{} m/s is faster than robot arms move near people (up to about {} m/s)",
+                display(mps),
+                display(PLAUSIBLE_SPEED_MPS)
+            ),
+        )
+    })
+}
+
+/// A warning for the joint speed `rad_s` given as `field` on a link of length `length_m` \[m\],
+/// when it moves the tip, v = |ω| L, faster than [`PLAUSIBLE_SPEED_MPS`] (degrees per second
+/// typed for radians per second; the shared rule, see [`mass`]).
+pub fn joint_speed(field: &str, rad_s: f64, length_m: f64) -> Option<Warning> {
+    let tip = rad_s.abs() * length_m;
+    (tip.is_finite() && tip > PLAUSIBLE_SPEED_MPS).then(|| {
+        warning(
+            field,
+            format!(
+                "{} rad/s moves the tip at {} m/s, faster than robot arms go (up to about {} \
+                 m/s); if {} was meant in degrees per second, it is {} rad/s",
+                display(rad_s),
+                display(tip),
+                display(PLAUSIBLE_SPEED_MPS),
+                display(rad_s),
+                display(rad_s.to_radians())
+            ),
+        )
+    })
+}
+
 /// The plausibility warnings of `scene` (validated with `materials`), in field order.
 pub fn warnings(scene: &Scene, materials: &Materials) -> Vec<Warning> {
     let mut out = Vec::new();
+    typed_robot_quantities(scene, &mut out);
     release_angle_in_radians(scene, &mut out);
     exponent_without_its_stiffness(scene, materials, &mut out);
     indentation_deeper_than_the_bodies(scene, &mut out);
@@ -32,6 +125,26 @@ pub fn warnings(scene: &Scene, materials: &Materials) -> Vec<Warning> {
     spring_left_behind_by_the_link(scene, &mut out);
     swing_step_too_large(scene, &mut out);
     out
+}
+
+/// The robot's payload, its link's length and its drive's commanded speed by the shared rule
+/// ([`mass`], [`length`], [`joint_speed`]).
+fn typed_robot_quantities(scene: &Scene, out: &mut Vec<Warning>) {
+    let r = &scene.file.robot;
+    out.extend(mass("robot.payload_kg", r.payload_kg));
+    out.extend(length("robot.length_m", r.length_m));
+    let profile = r.drive.as_ref().and_then(|d| match &d.command {
+        flexrig_impact::drive::DriveCommand::Trajectory { profile }
+        | flexrig_impact::drive::DriveCommand::Controller { profile, .. } => Some(profile),
+        flexrig_impact::drive::DriveCommand::OpenLoop { .. } => None,
+    });
+    if let Some(p) = profile {
+        out.extend(joint_speed(
+            "robot.drive.command.profile.speed",
+            p.final_speed(),
+            r.length_m,
+        ));
+    }
 }
 
 /// Fewest steps of `solver.swing_step_s` over a quarter of the pendulum's small-swing period

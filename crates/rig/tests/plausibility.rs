@@ -163,3 +163,36 @@ fn a_swing_step_too_large_for_the_swing_is_suspected() {
         w[0].message
     );
 }
+
+/// The robot's payload, link length and drive speed by the rule every front shares (a mass
+/// above 200 kg, a length above 5 m, a tip speed |ω| L above 10 m/s): 40 rad/s on the 0.33802 m
+/// link is 13.5208 m/s at the tip, and 40°/s would be 0.698132 rad/s.
+#[test]
+fn the_robots_masses_lengths_and_speeds_follow_the_shared_rule() {
+    let w = warned("cj_aluminium", &["robot.payload_kg=412"]);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!(w[0].field, "robot.payload_kg");
+    assert!(
+        w[0].message.contains("412 g is 0.412 kg"),
+        "{}",
+        w[0].message
+    );
+    let w = warned(
+        "rig_driven_cj",
+        &[
+            "robot.drive.command.profile.speed=40",
+            "robot.drive.command.profile.ramp_time=0.05",
+            "robot.drive.placement.settle=0.02",
+        ],
+    );
+    let speed = w
+        .iter()
+        .find(|w| w.field == "robot.drive.command.profile.speed")
+        .expect("a speed warning");
+    assert!(
+        speed.message.contains("13.5208 m/s") && speed.message.contains("0.698132 rad/s"),
+        "{}",
+        speed.message
+    );
+    assert!(warned("rig_driven_cj", &[]).is_empty());
+}

@@ -66,7 +66,16 @@ pub fn run(args: &RoleSwitchArgs, out: &mut dyn Write, cancel: &CancelToken) -> 
         "Role switch: f_driven/f_test bed (robot at v0 under its drive into the head at rest, over the head at v0 on the held robot)",
     )?;
     let per_case = options.kappas.len() + 2;
-    let mut header = format!("{:<52} {:>3} {:>11}", "case", "", "test bed[N]");
+    // the case column as wide as its longest name (in characters: κ, δ, ⁸ and · are one each)
+    let width = r
+        .rows
+        .iter()
+        .map(|row| row.case.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max("case".len());
+    let pad = |text: &str| format!("{text}{}", " ".repeat(width - text.chars().count()));
+    let mut header = format!("{} {:>3} {:>11}", pad("case"), "", "test bed[N]");
     header.push_str(&format!(" {:>9}", "prescr."));
     for k in &options.kappas {
         header.push_str(&format!(
@@ -78,8 +87,8 @@ pub fn run(args: &RoleSwitchArgs, out: &mut dyn Write, cancel: &CancelToken) -> 
     line(out, header)?;
     for chunk in r.rows.chunks(per_case) {
         let mut text = format!(
-            "{:<52} {:>3} {:>11.1}",
-            chunk[0].case,
+            "{} {:>3} {:>11.1}",
+            pad(&chunk[0].case),
             design_name(chunk[0].design),
             chunk[0].f_test_bed_n
         );

@@ -125,14 +125,8 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
                 d.motor_work_j, d.friction_dissipated_j, d.peak_joint_torque_nm
             ),
         )?;
-        if d.time_at_torque_limit_s > 0.0 {
-            line(
-                out,
-                format!(
-                    "  torque limit        reached: the controller was at it for {:.6} s, and the link follows its command only where the limit allows",
-                    d.time_at_torque_limit_s
-                ),
-            )?;
+        for note in flexrig::testbed::run::drive_notes(s) {
+            line(out, format!("  note: {note}"))?;
         }
         if let (Some(speed), Some(bent)) = (d.link_speed_at_onset_rad_s, d.pre_impact_deflection_m)
         {

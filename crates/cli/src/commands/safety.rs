@@ -350,13 +350,13 @@ fn print_text(out: &mut dyn Write, r: &SafetyReport) -> Result<(), Error> {
             out,
             format!(
                 "  at the force limit: commanded {:.6} m/s, arriving at {:.6} m/s, peak {:.3} N \
-                 ({} driven runs, run tolerance {:e}, root tolerance {:e})",
+                 ({} driven runs, run tolerance {}, root tolerance {})",
                 sc.by_force_mps,
                 sc.approach_speed_at_root_mps,
                 sc.peak_force_at_root_n,
                 sc.runs,
-                sc.run_tol,
-                sc.root_rtol
+                n(sc.run_tol),
+                n(sc.root_rtol)
             ),
         )?;
         if let Some(c) = &sc.contacts_at_root {
@@ -438,7 +438,7 @@ fn print_test_bed(
         out,
         format!(
             "  {}: operator speed {:.6} m/s (released from {:.4}°), run's impact speed {:.6} \
-             m/s, peak {:.3} N ({} test-bed runs, contact step {:e} s, root tolerance {:e})",
+             m/s, peak {:.3} N ({} test-bed runs, contact step {} s, root tolerance {})",
             if sc.limit_reached {
                 "at the force limit"
             } else {
@@ -449,8 +449,8 @@ fn print_test_bed(
             sc.approach_speed_at_root_mps,
             sc.peak_force_at_root_n,
             sc.runs,
-            sc.run_tol,
-            sc.root_rtol
+            n(sc.run_tol),
+            n(sc.root_rtol)
         ),
     )?;
     for note in &sc.notes {

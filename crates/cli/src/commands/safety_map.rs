@@ -147,6 +147,10 @@ impl SafetyMapArgs {
 pub fn run(args: &SafetyMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     let model = load_body_model(args.body_model.as_deref())?;
     let input = args.input()?;
+    // plausibility warnings before the work (on standard error; the JSON lists them too)
+    for w in flexrig::safety::map::typed_warnings(&input) {
+        eprintln!("warning: {w}");
+    }
     let files = SafetyMapFiles {
         out: args.out.clone(),
         figures: args.figure.options()?,
@@ -169,6 +173,7 @@ pub fn run(args: &SafetyMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> R
                 "ratio_cl_cj_range": pair(sum.ratio_cl_cj_range),
                 "seconds": map.seconds,
                 "files": paths,
+                "warnings": map.warnings,
             }),
         );
     }

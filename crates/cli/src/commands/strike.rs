@@ -8,7 +8,8 @@ use clap::{Args, ValueEnum};
 use flexrig::driven::drive::HeadSupport;
 use flexrig::driven::scene::note_text;
 use flexrig::driven::strike::{
-    LinkModel, StrikeDescription, StrikeDesign, StrikeFlags, StrikeOptions, run as run_strike,
+    FieldNames, LinkModel, StrikeDescription, StrikeDesign, StrikeFlags, StrikeOptions,
+    run as run_strike,
 };
 use flexrig::{CancelToken, Error};
 
@@ -250,12 +251,13 @@ impl StrikeArgs {
 /// Runs `flexrig strike`.
 pub fn run(args: &StrikeArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
     let description = args.description()?;
-    let speed_name = if args.file.is_some() {
-        "drive.command.profile.speed"
+    let names = if args.file.is_some() {
+        FieldNames::File
     } else {
-        "--speed"
+        FieldNames::Flags
     };
-    for w in description.warnings(speed_name) {
+    // plausibility warnings before the run (on standard error; the JSON lists them too)
+    for w in description.warnings(names) {
         eprintln!("warning: {w}");
     }
     let r = run_strike(
@@ -263,6 +265,7 @@ pub fn run(args: &StrikeArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resu
         &StrikeOptions {
             trace_every: args.trace_every,
             out: Some(args.out.clone()),
+            names,
         },
         cancel,
     )?;

@@ -234,6 +234,7 @@ impl DrivenScene {
         StrikeOptions {
             trace_every: Some(1.0 / self.sample_rate_hz),
             out: None,
+            names: super::strike::FieldNames::File,
         }
     }
 }
@@ -368,8 +369,9 @@ pub struct DrivenSummary {
     pub duration_s: f64,
     /// Trace samples.
     pub samples: usize,
-    /// Plausibility warnings (none are defined for driven scenes yet: always empty).
-    pub warnings: Vec<String>,
+    /// Plausibility warnings of the scene's values (the shared rule for masses, lengths and
+    /// speeds, [`crate::shared::plausibility`]; empty: none), each naming its field.
+    pub warnings: Vec<crate::shared::plausibility::Warning>,
     /// Severity of the contact ([`crate::shared::severity::of_driven`] over the trace: peak force,
     /// pressure under both dome area models, energy transferred, and for a head that moves
     /// its peak acceleration, HIC15 and HIC36; the struck body is the person's head).
@@ -547,7 +549,7 @@ pub fn run(scene: &DrivenScene, cancel: &CancelToken) -> Result<DrivenRun, Error
         steps: outcome.work,
         duration_s: end,
         samples: outcome.trace.len(),
-        warnings: Vec::new(),
+        warnings: result.warnings,
         severity,
     };
     Ok(DrivenRun {
@@ -629,6 +631,7 @@ mod tests {
                 &StrikeOptions {
                     trace_every: None,
                     out: None,
+                    names: crate::driven::strike::FieldNames::File,
                 },
                 &CancelToken::new(),
             )

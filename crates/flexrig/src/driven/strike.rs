@@ -190,27 +190,31 @@ impl StrikeDescription {
         }
     }
 
-    /// What looks wrong though it is allowed: a commanded tip speed beyond any robot arm's
-    /// (10 m/s) reads like degrees per second typed for radians per second. `speed_name`
-    /// names the speed as the user gave it (`--speed`, `drive.command.profile.speed`).
-    pub fn warnings(&self, speed_name: &str) -> Vec<String> {
-        let mut out = Vec::new();
+    /// What looks wrong though it is allowed, by the shared rule of
+    /// [`crate::shared::plausibility`]: a link or payload heavier than 200 kg (grams typed for
+    /// kilograms), a link longer than 5 m (millimetres for metres), a commanded tip speed beyond
+    /// 10 m/s (degrees per second for radians per second), a person approaching faster than
+    /// 10 m/s. Each names the value as the user gave it (`names`: the file's fields or the
+    /// flags).
+    pub fn warnings(&self, names: FieldNames) -> Vec<crate::shared::plausibility::Warning> {
+        use crate::shared::plausibility::{joint_speed, length, mass, speed};
+        let name = |field: &str| names.of(field);
+        let mut out: Vec<_> = [
+            mass(&name("link.m_r"), self.link.m_r),
+            mass(&name("link.m_e"), self.link.m_e),
+            length(&name("link.length"), self.link.length),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
         if let Some(profile) = self.drive.profile() {
-            let w = profile.final_speed();
-            let tip = w.abs() * self.link.length;
-            if tip > PLAUSIBLE_TIP_SPEED {
-                out.push(format!(
-                    "{speed_name} = {} rad/s moves the tip at {} m/s, faster than robot arms \
-                     go (up to about {} m/s); if {} was meant in degrees per second, it is {} \
-                     rad/s",
-                    flexrig_contact::validate::display(w),
-                    flexrig_contact::validate::display(tip),
-                    PLAUSIBLE_TIP_SPEED,
-                    flexrig_contact::validate::display(w),
-                    flexrig_contact::validate::display(w.to_radians())
-                ));
-            }
+            out.extend(joint_speed(
+                &name("drive.command.profile.speed"),
+                profile.final_speed(),
+                self.link.length,
+            ));
         }
+        out.extend(speed(&name("person.speed"), self.person.speed));
         out
     }
 
@@ -220,9 +224,35 @@ impl StrikeDescription {
     }
 }
 
-/// The fastest plausible tip speed of a robot arm \[m/s\] (industrial arms reach a few m/s;
-/// ISO/TS 15066's transient contacts are studied below 2.5 m/s).
-pub const PLAUSIBLE_TIP_SPEED: f64 = 10.0;
+/// How the user named a description's values: the drive file's fields (`link.m_r`) or
+/// `flexrig strike`'s flags (`--m-r`; Python's keyword arguments are the flags' names).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FieldNames {
+    /// The fields of a drive description or a driven scene file.
+    #[default]
+    File,
+    /// The flags of [`StrikeFlags`].
+    Flags,
+}
+
+impl FieldNames {
+    /// The file field `field` (dotted path) as the user typed it.
+    pub fn of(self, field: &str) -> String {
+        match self {
+            FieldNames::File => field.to_string(),
+            FieldNames::Flags => match field {
+                "link.m_r" => "--m-r",
+                "link.m_e" => "--m-e",
+                "link.length" => "--length",
+                "link.k_delta" => "--k-delta",
+                "drive.command.profile.speed" => "--speed",
+                "person.m_h" => "--m-h",
+                other => other,
+            }
+            .to_string(),
+        }
+    }
+}
 
 /// A strike described by a few numbers instead of a file: the flags of `flexrig strike` and the
 /// keyword arguments of its Python twin. A position PD controller drives the joint on a smooth
@@ -475,6 +505,8 @@ pub struct StrikeOptions {
     pub trace_every: Option<f64>,
     /// Directory for strike_trace.csv (`--out`; only with a trace).
     pub out: Option<PathBuf>,
+    /// How the user named the description's values: the warnings name them so.
+    pub names: FieldNames,
 }
 
 /// The outcome and the file written.
@@ -487,6 +519,8 @@ pub struct StrikeResult {
     /// strike_trace.csv, if written (absent from the JSON otherwise).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub trace_csv: Option<PathBuf>,
+    /// The description's plausibility warnings ([`StrikeDescription::warnings`]; empty: none).
+    pub warnings: Vec<crate::shared::plausibility::Warning>,
 }
 
 /// Runs the strike by the description's link model and dome
@@ -534,6 +568,7 @@ pub fn run(
         design: description.design,
         outcome,
         trace_csv,
+        warnings: description.warnings(options.names),
     })
 }
 

@@ -60,8 +60,23 @@ pub struct CurveAxes<'a> {
 const PLOT_HEIGHT: u32 = 170;
 /// Height of a line of the figure title \[pt\].
 const TITLE_LINE: u32 = 12;
-/// Height of one legend line \[pt\].
+/// Height of one legend line \[pt\], and of one whose labels set subscripts (`m_h`: the
+/// lowered subscript of one line would touch the next).
 const LEGEND_LINE: u32 = 10;
+const LEGEND_LINE_SUBSCRIPTED: u32 = 12;
+
+/// The legend's line height \[pt\] for `panels`: taller when a label sets a subscript.
+fn legend_line(panels: &[CurvePanel]) -> u32 {
+    if panels
+        .iter()
+        .flat_map(|p| &p.curves)
+        .any(|c| super::has_subscript(&c.label))
+    {
+        LEGEND_LINE_SUBSCRIPTED
+    } else {
+        LEGEND_LINE
+    }
+}
 /// Narrowest panel \[pt\].
 const MIN_PANEL_W: f64 = 240.0;
 /// Left edge of the legend and the room of its samples \[pt\].
@@ -124,16 +139,17 @@ pub fn curves_svg(
             .map(Vec::len)
             .sum::<usize>() as u32
     };
+    let line = legend_line(panels);
     let (panel_legend, shared_height) = if shared {
         let rows = legend_rows(&panels[0], width_pt);
-        (0, 6 + LEGEND_LINE * rows)
+        (0, 6 + line * rows)
     } else {
         let rows = panels
             .iter()
             .map(|p| legend_rows(p, panel_w))
             .max()
             .unwrap_or(0);
-        (6 + LEGEND_LINE * rows, 0)
+        (6 + line * rows, 0)
     };
     let title_lines = wrap(title, width_pt - 8.0, TITLE_PT);
     let header = TITLE_LINE * title_lines.len() as u32 + 4;
@@ -146,7 +162,7 @@ pub fn curves_svg(
         let (head, rest) = root.split_vertically(px(header as i32));
         let (body, foot) = rest.split_vertically(px((panel_h * rows as u32) as i32));
         if shared {
-            draw_legend(&foot, &panels[0], width_pt, axes)?;
+            draw_legend(&foot, &panels[0], width_pt, axes, line)?;
         }
         let (w, _) = head.dim_in_pixel();
         for (i, line) in title_lines.iter().enumerate() {
@@ -179,7 +195,7 @@ pub fn curves_svg(
                 })?;
             }
             if !shared {
-                draw_legend(&legend, panel, panel_w, axes)?;
+                draw_legend(&legend, panel, panel_w, axes, line)?;
             }
         }
         Ok(())
@@ -433,17 +449,18 @@ fn legend_lines(panel: &CurvePanel, width_pt: f64, _x_log: bool) -> Vec<Vec<Stri
     lines
 }
 
-/// The legend under a panel `width_pt` wide: per curve its line (and marker) and its label
-/// (wrapped), then the note on the dashed limits if there are any.
+/// The legend under a panel `width_pt` wide, `line` points a line: per curve its line (and
+/// marker) and its label (wrapped), then the note on the dashed limits if there are any.
 fn draw_legend(
     area: &DrawingArea<SVGBackend, Shift>,
     panel: &CurvePanel,
     width_pt: f64,
     axes: &CurveAxes,
+    line: u32,
 ) -> Result<(), String> {
     let entries = legend_lines(panel, width_pt, axes.x_log);
     let x = px(LEGEND_X);
-    let line_y = |i: usize| px(4 + (LEGEND_LINE * i as u32) as i32 + LEGEND_LINE as i32 / 2);
+    let line_y = |i: usize| px(4 + (line * i as u32) as i32 + line as i32 / 2);
     let mut row = 0;
     for (i, lines) in entries.iter().enumerate() {
         let y = line_y(row);
@@ -471,9 +488,9 @@ fn draw_legend(
             }
             GREY
         };
-        for line in lines {
+        for label in lines {
             area.draw(&Text::new(
-                line.clone(),
+                label.clone(),
                 (x + px(LEGEND_SAMPLE), line_y(row)),
                 text(TICK_PT, colour, HPos::Left, VPos::Center),
             ))
@@ -650,5 +667,52 @@ mod tests {
         let x = XLinear::of(&small);
         assert_eq!((x.lo, x.hi), (0.0, 0.4));
         assert_eq!(x.label(0.1), "0.1");
+    }
+
+    /// Legend lines whose labels set subscripts (`m_h`) lie 12 pt apart, so that a lowered
+    /// subscript (80 % of 8 pt, set below the baseline) does not reach the next line's text;
+    /// labels without subscripts keep 10 pt.
+    #[test]
+    fn a_legend_with_subscripts_leaves_room_below_each_line() {
+        let panel = |labels: [&str; 2]| CurvePanel {
+            title: "p".into(),
+            curves: labels
+                .iter()
+                .map(|l| Curve {
+                    label: l.to_string(),
+                    points: vec![(1.0, 0.5), (10.0, 0.7)],
+                    limit: None,
+                })
+                .collect(),
+        };
+        let axes = CurveAxes {
+            x_desc: "x",
+            y_desc: "y",
+            x_log: true,
+            markers: true,
+            reference_band: false,
+        };
+        // the y of the text element holding `label`, in points
+        let y_of = |svg: &str, label: &str| -> f64 {
+            let at = svg.find(label).expect("the label is drawn");
+            let start = svg[..at].rfind("<text").expect("in a text element");
+            let y = svg[start..].find(" y=\"").expect("with a y") + start + 4;
+            let end = y + svg[y..].find('"').unwrap();
+            svg[y..end].parse::<f64>().unwrap() / f64::from(super::super::SCALE)
+        };
+        for (labels, gap) in [
+            (["m_h = 4 kg", "m_h = 1000 kg"], 12.0),
+            (["first", "second"], 10.0),
+        ] {
+            let svg = curves_svg("t", &axes, &[panel(labels)], 252.0).unwrap();
+            // the subscripts written back as `_h`
+            let mut svg = svg.replace("</tspan>", "");
+            while let Some(at) = svg.find("<tspan baseline-shift=\"sub\"") {
+                let end = at + svg[at..].find('>').unwrap();
+                svg.replace_range(at..=end, "_");
+            }
+            let d = y_of(&svg, labels[1]) - y_of(&svg, labels[0]);
+            assert!((d - gap).abs() < 0.5, "{labels:?}: {d} pt apart");
+        }
     }
 }

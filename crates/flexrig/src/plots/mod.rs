@@ -94,12 +94,45 @@ pub(crate) fn stroke(colour: RGBColor, width: f64) -> ShapeStyle {
     colour.stroke_width((width * f64::from(SCALE)).round() as u32)
 }
 
-/// `s` broken at spaces into lines of at most `width_pt` in `size`-point text (a word longer
-/// than the width stands alone on its line).
+/// Units a number keeps on its line (`0.1 kg`, `10⁸ N/m`), after a trailing `,;:).` is cut.
+const UNITS: [&str; 22] = [
+    "kg", "g", "m", "mm", "cm", "s", "ms", "N", "N/m", "N/mⁿ", "m/s", "rad/s", "rad", "Hz", "%",
+    "°", "J", "Pa", "N·m", "N·m/rad", "kg·m²", "in",
+];
+
+/// True when `word` starts a number (`0.1`, `10⁸`, `2·10²`, `-4`).
+fn is_number(word: &str) -> bool {
+    word.trim_start_matches(['-', '−', '(', '+'])
+        .starts_with(|c: char| c.is_ascii_digit())
+}
+
+/// The words of `s` grouped so that no line breaks inside a quantity: around an `=` (`m_e =
+/// 0.1 kg`, one group with its unit) nor between a number and its unit.
+fn unbreakable_groups(s: &str) -> Vec<String> {
+    let mut groups: Vec<String> = Vec::new();
+    let mut last = "";
+    for word in s.split(' ') {
+        let unit = UNITS.contains(&word.trim_end_matches([',', ';', ':', ')', '.']));
+        let glued = !groups.is_empty() && (word == "=" || last == "=" || (unit && is_number(last)));
+        match groups.last_mut() {
+            Some(group) if glued => {
+                group.push(' ');
+                group.push_str(word);
+            }
+            _ => groups.push(word.to_string()),
+        }
+        last = word;
+    }
+    groups
+}
+
+/// `s` broken at spaces into lines of at most `width_pt` in `size`-point text, never inside a
+/// quantity (`m_e = 0.1 kg` stays on one line; [`unbreakable_groups`]); a group longer than the
+/// width stands alone on its line.
 pub(crate) fn wrap(s: &str, width_pt: f64, size: f64) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     let mut current = String::new();
-    for word in s.split(' ') {
+    for word in unbreakable_groups(s) {
         let candidate = if current.is_empty() {
             word.to_string()
         } else {
@@ -176,6 +209,12 @@ const SUBSCRIPTED: [(&str, &str); 23] = [
     ("f_max", "max"),
     ("η_FE", "FE"),
 ];
+
+/// True when `text` holds a symbol the figures set with a subscript ([`SUBSCRIPTED`]): its line
+/// needs room below the baseline for the lowered subscript.
+pub(crate) fn has_subscript(text: &str) -> bool {
+    SUBSCRIPTED.iter().any(|(symbol, _)| text.contains(symbol))
+}
 
 /// `svg` with the [`SUBSCRIPTED`] symbols' subscripts as lowered `tspan`s, smaller than their
 /// text but never below [`MIN_TEXT_PT`].
@@ -302,6 +341,27 @@ mod tests {
         let lines = wrap("aaaa bbbb cccc dddddddddddd e", 50.0, 8.0);
         assert_eq!(lines, ["aaaa bbbb", "cccc", "dddddddddddd", "e"]);
         assert_eq!(wrap("", 50.0, 8.0), [""]);
+    }
+
+    #[test]
+    fn a_quantity_is_never_broken_across_lines() {
+        // the role-switch legend at one column: "m_e =" ended one line and "0.1 kg" began the next
+        let label = "Fig. 6: m_h = 1000 kg, k_δ = 10⁸ N/m, m_e = 0.1 kg, n = 1";
+        for width in [60.0, 120.0, 200.0, 240.0] {
+            let lines = wrap(label, width, 8.0);
+            assert_eq!(lines.join(" "), label);
+            for quantity in ["m_h = 1000 kg,", "k_δ = 10⁸ N/m,", "m_e = 0.1 kg,", "n = 1"] {
+                assert!(
+                    lines.iter().any(|l| l.contains(quantity)),
+                    "{quantity} broken at {width} pt: {lines:?}"
+                );
+            }
+        }
+        // a number keeps its unit; words break as before
+        assert_eq!(
+            wrap("a peak of 250 N here", 60.0, 8.0),
+            ["a peak of", "250 N here"]
+        );
     }
 
     #[test]

@@ -515,6 +515,39 @@ pub struct SafetyMap {
     pub cells: Vec<MapCell>,
     /// Wall-clock time of the computation \[s\].
     pub seconds: f64,
+    /// The plausibility warnings of the masses, length and speed typed ([`typed_warnings`];
+    /// empty: none), each naming its flag.
+    pub warnings: Vec<crate::shared::plausibility::Warning>,
+}
+
+/// The plausibility warnings of the masses, length and speed of `input`, by the rule every
+/// front shares ([`crate::shared::plausibility`]): `--m-r`, `--m-e`, `--length` and `--speed`,
+/// and a mass axis whose largest value is implausible (named `--x (m-e)`: its flag and
+/// parameter).
+pub fn typed_warnings(input: &SafetyMapInput) -> Vec<crate::shared::plausibility::Warning> {
+    use crate::shared::plausibility::{length, mass, speed};
+    let mut out: Vec<_> = [
+        input.m_r.and_then(|m| mass("--m-r", m)),
+        input.m_e.and_then(|m| mass("--m-e", m)),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    for (flag, axis) in [("--x", &input.x), ("--y", &input.y)] {
+        if matches!(
+            axis.parameter,
+            MapParameter::Payload | MapParameter::LinkMass
+        ) {
+            let largest = axis.values.iter().copied().fold(f64::NAN, f64::max);
+            out.extend(mass(
+                &format!("{flag} ({})", axis.parameter.flag_name()),
+                largest,
+            ));
+        }
+    }
+    out.extend(input.simulation.length.and_then(|l| length("--length", l)));
+    out.extend(input.speed.and_then(|v| speed("--speed", v)));
+    out
 }
 
 fn speed(v: f64) -> Speed {
@@ -863,6 +896,7 @@ pub fn safety_map(
         },
         cells,
         seconds: start.elapsed().as_secs_f64(),
+        warnings: typed_warnings(input),
     })
 }
 

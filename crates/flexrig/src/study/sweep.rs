@@ -251,7 +251,15 @@ pub struct SweepRow {
     pub error: String,
     /// [`SUMMARY_COLUMNS`] of an ok run.
     pub summary: Vec<Option<f64>>,
+    /// What the run's drive did that its numbers do not say, as `flexrig run` notes it (the
+    /// torque limit reached, an arrival off the commanded speed; [`NOTES_SEPARATOR`] between
+    /// two), empty for a run without such notes: the table's last column, `notes`.
+    #[serde(default)]
+    pub notes: String,
 }
+
+/// Between two notes of a row's `notes` cell.
+pub const NOTES_SEPARATOR: &str = "; ";
 
 impl Sweep {
     /// A sweep of `base_text` over `dimensions` (grid, or zipped); the base must be a valid
@@ -343,7 +351,7 @@ impl Sweep {
         index: usize,
         overrides: &[Override],
         options: &SweepOptions,
-    ) -> Result<[Option<f64>; SUMMARY_COLUMNS.len()], Error> {
+    ) -> Result<([Option<f64>; SUMMARY_COLUMNS.len()], Vec<String>), Error> {
         let scene = crate::driven::scene::DrivenScene::with_overrides(&self.base_text, overrides)?;
         let run = match &options.mcap_dir {
             None => crate::driven::scene::run(&scene, &options.cancel)?,
@@ -363,9 +371,12 @@ impl Sweep {
                 )?
             }
         };
-        Ok(with_link(
-            driven_values(&run.summary),
-            &crate::testbed::link::of_driven(&scene.strike.link),
+        Ok((
+            with_link(
+                driven_values(&run.summary),
+                &crate::testbed::link::of_driven(&scene.strike.link),
+            ),
+            run.summary.notes,
         ))
     }
 
@@ -416,15 +427,21 @@ impl Sweep {
             self.run_driven(index, &overrides, options)
         } else {
             self.run_overrides(index, &overrides, options)
-                .map(|(s, link)| summary_values(&s, &link))
+                .map(|(s, link)| {
+                    (
+                        summary_values(&s, &link),
+                        crate::testbed::run::drive_notes(&s),
+                    )
+                })
         };
         match result {
-            Ok(s) => SweepRow {
+            Ok((s, notes)) => SweepRow {
                 index,
                 values,
                 status: "ok".into(),
                 error: String::new(),
                 summary: s.to_vec(),
+                notes: notes.join(NOTES_SEPARATOR),
             },
             Err(e) => SweepRow {
                 index,
@@ -440,6 +457,7 @@ impl Sweep {
                 },
                 error: e.to_string(),
                 summary: vec![None; SUMMARY_COLUMNS.len()],
+                notes: String::new(),
             },
         }
     }
@@ -530,6 +548,7 @@ pub fn csv_header(paths: &[&str]) -> String {
     columns.extend(paths.iter().map(|p| csv_field(p)));
     columns.extend(["status".to_string(), "error".to_string()]);
     columns.extend(SUMMARY_COLUMNS.iter().map(|c| c.to_string()));
+    columns.push("notes".into());
     columns.join(",")
 }
 
@@ -545,6 +564,7 @@ pub fn csv_line(row: &SweepRow) -> String {
             .zip(&row.summary)
             .map(|(column, v)| summary_cell(column, *v)),
     );
+    cells.push(csv_field(&row.notes));
     cells.join(",")
 }
 
@@ -576,6 +596,9 @@ pub fn json_line(row: &SweepRow, paths: &[&str]) -> serde_json::Value {
             }
             None => {}
         }
+    }
+    if !row.notes.is_empty() {
+        map.insert("notes".into(), row.notes.clone().into());
     }
     serde_json::Value::Object(map)
 }
@@ -621,13 +644,16 @@ fn read_records(
 /// One record as a row: `None` for a row that did not run to a result or failed for a passing
 /// cause.
 fn parse_record(cells: &[String], paths: usize, whole: bool) -> Result<Option<SweepRow>, String> {
-    let expected = 3 + paths + SUMMARY_COLUMNS.len();
+    // the notes, the last cell, came later: a table written before them has none
+    let expected = 4 + paths + SUMMARY_COLUMNS.len();
     if !whole {
         return Err("the record is not terminated (a torn line)".into());
     }
-    if cells.len() != expected {
+    if cells.len() != expected && cells.len() != expected - 1 {
         return Err(format!("{} cells, expected {expected}", cells.len()));
     }
+    let notes = cells.get(expected - 1).cloned().unwrap_or_default();
+    let cells = &cells[..expected - 1];
     let index: usize = cells[0].parse().map_err(|_| {
         format!(
             "the index \u{201c}{}\u{201d} is not a whole number",
@@ -666,6 +692,7 @@ fn parse_record(cells: &[String], paths: usize, whole: bool) -> Result<Option<Sw
         status,
         error,
         summary,
+        notes,
     }))
 }
 

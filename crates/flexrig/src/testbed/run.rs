@@ -143,9 +143,10 @@ fn run_rig_text(
     )
 }
 
-/// The plausibility warnings of a scene (a bundled name or a file) with its overrides (what is valid but looks like a
-/// mistake, [`flexrig_rig::plausibility`]), for a front to show before the run starts; none if
-/// the scene cannot be loaded (the run itself then says why).
+/// The plausibility warnings of a scene (a bundled name or a file, the test bed's or a driven
+/// one) with its overrides (what is valid but looks like a mistake, [`flexrig_rig::plausibility`]
+/// and its shared rule for masses, lengths and speeds), for a front to show before the run
+/// starts; none if the scene cannot be loaded (the run itself then says why).
 pub fn scene_warnings(
     path: &Path,
     overrides: &[Override],
@@ -155,6 +156,15 @@ pub fn scene_warnings(
     else {
         return Vec::new();
     };
+    if is_driven_text(&text) {
+        return DrivenScene::with_overrides(&text, overrides)
+            .map(|scene| {
+                scene
+                    .strike
+                    .warnings(crate::driven::strike::FieldNames::File)
+            })
+            .unwrap_or_default();
+    }
     let Ok(materials) = Materials::bundled() else {
         return Vec::new();
     };
@@ -175,6 +185,25 @@ pub fn summary_json(s: &RunSummary, link: &LinkQuantities) -> serde_json::Value 
     }
     link.insert_into(&mut value);
     value
+}
+
+/// The notes of a test-bed run with a motor on the robot joint, in words, as `flexrig run` and
+/// a sweep's `notes` column give them: the time the controller spent at its torque limit (the
+/// link then follows its command only where the limit allows). None without a drive or when the
+/// limit was never reached.
+pub fn drive_notes(s: &RunSummary) -> Vec<String> {
+    let Some(d) = &s.drive else {
+        return Vec::new();
+    };
+    let mut notes = Vec::new();
+    if d.time_at_torque_limit_s > 0.0 {
+        notes.push(format!(
+            "the controller was at its torque limit for {:.6} s: the link follows its command \
+             only where the limit allows",
+            d.time_at_torque_limit_s
+        ));
+    }
+    notes
 }
 
 /// A driven run's summary as `flexrig run --json` prints it: the strike's summary

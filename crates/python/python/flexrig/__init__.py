@@ -559,8 +559,10 @@ def sweep(
     order: ``index``, one column per path (tables and arrays as TOML text), ``status`` (``ok``
     or ``error``), ``error`` (the message of a failed run, else empty) and every summary
     quantity of :data:`SUMMARY_COLUMNS` (float64, NaN where absent, e.g. for a failed run; the
-    counts of :data:`INTEGER_SUMMARY_COLUMNS` as nullable Int64, ``<NA>`` where absent).
-    ``df.to_parquet(path)`` writes it (with pyarrow installed).
+    counts of :data:`INTEGER_SUMMARY_COLUMNS` as nullable Int64, ``<NA>`` where absent), then
+    ``notes``: what the run's drive did that the numbers do not say, as ``flexrig run`` notes it
+    (the torque limit reached, an arrival off the commanded speed; ``"; "`` between two; empty
+    for a run without notes). ``df.to_parquet(path)`` writes it (with pyarrow installed).
 
     ``client``: a ``dask.distributed.Client``; the points are then run on its workers in chunks
     of ``chunk_size`` (default: about four chunks per worker thread), each chunk in one thread,
@@ -638,6 +640,8 @@ def _frame(paths: List[str], parts: List[Dict[str, Any]]) -> "pandas.DataFrame":
             columns[name] = pd.array([None if np.isnan(x) else int(x) for x in summary[:, j]], dtype="Int64")
         else:
             columns[name] = summary[:, j]
+    notes = [v for p in parts for v in p["notes"]]
+    columns["notes"] = [notes[i] for i in order]
     return pd.DataFrame(columns)
 
 
@@ -752,7 +756,9 @@ def strike(
     path to TOML, see assets/drives/) or from the keyword arguments (the command's flags; their
     defaults are assets/drives/cl_free_head.toml). Returns the outcome as a dict (``contact``:
     onset_time_s, peak_force_n, time_of_peak_s, duration_s; approach speed, pre-impact deflection,
-    joint torques, ``energy``, ``notes``, ``steps``) and, with ``trace_every`` [s], ``trace``: a
+    joint torques, ``energy``, ``notes``, ``steps``, ``warnings``: the plausibility warnings,
+    each a dict of ``field`` and ``message``, also raised as :class:`PlausibilityWarning`, e.g. a
+    link heavier than 200 kg) and, with ``trace_every`` [s], ``trace``: a
     DataFrame of the motion (columns :data:`STRIKE_TRACE_COLUMNS`; written as strike_trace.csv
     into ``out`` if given). ``link_model`` "exact" (the default: the link bends and turns
     geometrically exactly, the dome of ``dome_radius`` [m] with its apex ``dome_standoff`` [m]
@@ -786,6 +792,9 @@ def strike(
     outcome["design"] = r["design"]
     if r.get("trace_csv") is not None:
         outcome["trace_csv"] = r["trace_csv"]
+    outcome["warnings"] = r["warnings"]
+    for w in r["warnings"]:
+        _warnings.warn(f"{w['field']}: {w['message']}", PlausibilityWarning, stacklevel=2)
     return outcome
 
 

@@ -246,19 +246,22 @@ def safety(
     return report
 
 
+def _keyword(text: str) -> str:
+    """``text`` with each flag ``--some-flag`` written as the keyword argument ``some_flag``."""
+    import re
+
+    return re.sub(r"--([a-z][a-z-]*)", lambda m: m.group(1).replace("-", "_"), text)
+
+
 def _warn(report: Dict[str, Any]) -> None:
     """Each of the report's warnings as a :class:`PlausibilityWarning`, the flags written as the
     keyword arguments."""
-    import re
     import warnings
 
     from . import PlausibilityWarning
 
-    def keyword(text: str) -> str:
-        return re.sub(r"--([a-z][a-z-]*)", lambda m: m.group(1).replace("-", "_"), text)
-
     for w in report.get("warnings", ()):
-        warnings.warn(f"{keyword(w['field'])}: {keyword(w['message'])}", PlausibilityWarning, stacklevel=3)
+        warnings.warn(f"{_keyword(w['field'])}: {_keyword(w['message'])}", PlausibilityWarning, stacklevel=3)
 
 
 def _safety_trace(
@@ -378,7 +381,9 @@ def safety_map(
     ``by_force_cj_mps``, ``by_force_cl_mps``, ``m_eff_cj_kg``, ``m_eff_cl_kg`` (NaN where a cell
     failed, ``inf`` where no limit bounds the speed), ``errors`` (a list of the failed cells'
     messages), ``force_limit_n``, ``pressure_limit_pa`` (None: not assessed), ``region_name``,
-    ``area``, ``seconds``, and ``map`` (the library's full result as a dict). Ctrl-C stops it
+    ``area``, ``seconds``, ``warnings`` (the plausibility warnings, each a dict of ``field`` and
+    ``message``, also raised as :class:`PlausibilityWarning`: a mass above 200 kg, a length above
+    5 m, a speed above 10 m/s) and ``map`` (the library's full result as a dict). Ctrl-C stops it
     (KeyboardInterrupt).
     """
     import numpy as np
@@ -418,6 +423,7 @@ def safety_map(
     }
     text = _body_model_text(body_model)
     result = json.loads(_flexrig.safety_map_json(json.dumps(data, allow_nan=False), text))
+    _warn(result)
     xs = np.asarray(result["input"]["x"]["values"], dtype=float)
     ys = np.asarray(result["input"]["y"]["values"], dtype=float)
     shape = (len(ys), len(xs))
@@ -457,5 +463,6 @@ def safety_map(
         "region_name": result["region_name"],
         "area": result["area"],
         "seconds": result["seconds"],
+        "warnings": [{"field": _keyword(w["field"]), "message": _keyword(w["message"])} for w in result["warnings"]],
         "map": result,
     }

@@ -48,3 +48,31 @@ fn the_table_carries_the_severity_columns_with_their_units() {
         );
     }
 }
+
+/// The notes, the last cell, survive the CSV (commas and quotes inside) and a table written
+/// before the column existed still reads, its notes empty.
+#[test]
+fn the_notes_cell_round_trips_and_an_older_table_reads_without_it() {
+    let mut summary = vec![None; SUMMARY_COLUMNS.len()];
+    summary[0] = Some(3520.79);
+    let row = SweepRow {
+        index: 0,
+        values: vec!["2.0".into()],
+        status: "ok".into(),
+        error: String::new(),
+        summary,
+        notes: "the link arrived at 1.9 m/s, slower than \"commanded\"; a second".into(),
+    };
+    let header = csv_header(&["drive.command.profile.speed"]);
+    assert!(header.ends_with(",notes"), "{header}");
+    let text = format!("{header}\n{}\n", csv_line(&row));
+    let back = read_rows(&text, 1).unwrap();
+    assert_eq!(back[&0], row);
+    // the same table without its notes column
+    let old_header = header.trim_end_matches(",notes");
+    let line = csv_line(&row);
+    let old_line = &line[..line.rfind(",\"").expect("the quoted notes")];
+    let back = read_rows(&format!("{old_header}\n{old_line}\n"), 1).unwrap();
+    assert_eq!(back[&0].notes, "");
+    assert_eq!(back[&0].summary, row.summary);
+}
