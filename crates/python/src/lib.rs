@@ -14,6 +14,7 @@ use pyo3::exceptions::{PyFileNotFoundError, PyKeyboardInterrupt, PyOSError, PyRu
 use pyo3::prelude::*;
 
 mod convert;
+mod arm;
 mod driven;
 mod eta;
 mod experiment;
@@ -209,6 +210,7 @@ fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tools::validate, m)?)?;
     m.add_function(wrap_pyfunction!(tools::bench, m)?)?;
     m.add_function(wrap_pyfunction!(safety::safety_json, m)?)?;
+    m.add_function(wrap_pyfunction!(arm::arm_json, m)?)?;
     m.add_function(wrap_pyfunction!(safety::safety_map_json, m)?)?;
     m.add_function(wrap_pyfunction!(safety::safety_trace_json, m)?)?;
     m.add_function(wrap_pyfunction!(safety::parse_area, m)?)?;

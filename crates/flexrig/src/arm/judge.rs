@@ -59,7 +59,7 @@ use std::collections::BTreeMap;
 
 use flexrig_robot::{ContactPoint, JointModel, Robot, Trajectory};
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::safety::simulation::{FeLink, GAMMA_CJ, GAMMA_CL, SimulationSettings};
 use crate::safety::{
@@ -77,7 +77,7 @@ fn bad(arg: &str, value: impl ToString, allowed: impl Into<String>) -> Error {
 }
 
 /// A candidate contact point: a point fixed on a link, in that link's frame.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ArmPoint {
     /// The URDF link (any link, also one merged into its parent by a fixed joint).
     pub link: String,
@@ -140,7 +140,7 @@ impl ArmPoint {
 }
 
 /// How the arm's joints behave on the impact's time scale.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ArmJoints {
     /// Rigid joints, the links' inertias only.
@@ -164,7 +164,7 @@ impl ArmJoints {
 
 /// The question: which points, how the joints behave, how fast, and the compliant impact's
 /// design, skin and region (the fields of `flexrig safety`).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ArmInput {
     /// Candidate contact points (at least one, at most [`MAX_POINTS`]).
     pub points: Vec<ArmPoint>,
@@ -199,7 +199,7 @@ pub struct ArmInput {
 }
 
 /// The drive during the impact.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ArmDrive {
     /// A stiff drive carries the joint on at its speed (`flexrig safety --joint held`): the
