@@ -158,11 +158,11 @@ pub fn log_bytes(robot: &Robot, report: &ArmReport) -> Result<Vec<u8>, mcap::Mca
             spheres.push(SpherePrimitive {
                 pose: Some(pose_at(origin(b))),
                 size: Some(Vector3 {
-                    x: 0.08,
-                    y: 0.08,
-                    z: 0.08,
+                    x: 0.075,
+                    y: 0.075,
+                    z: 0.075,
                 }),
-                color: rgba(0.3, 0.32, 0.38, 1.0),
+                color: rgba(0.3, 0.32, 0.38, 0.45),
             });
         }
         let mut point_spheres = Vec::new();
@@ -188,33 +188,31 @@ pub fn log_bytes(robot: &Robot, report: &ArmReport) -> Result<Vec<u8>, mcap::Mca
             point_spheres.push(SpherePrimitive {
                 pose: Some(pose_at(pr.position_m)),
                 size: Some(Vector3 {
-                    x: 0.07,
-                    y: 0.07,
-                    z: 0.07,
+                    x: 0.09,
+                    y: 0.09,
+                    z: 0.09,
                 }),
                 color: rgba(r, g, b, 1.0),
             });
             if let Some(u) = pr.direction {
                 arrows.push(arrow(pr.position_m, u, 0.1 + 0.3 * pr.speed_mps.min(2.0)));
             }
+            // labels stacked above the point, one row per point, so that neighbours stay legible
             texts.push(TextPrimitive {
                 pose: Some(pose_at([
                     pr.position_m[0],
                     pr.position_m[1],
-                    pr.position_m[2] + 0.07,
+                    pr.position_m[2] + 0.08 + 0.06 * k as f64,
                 ])),
                 billboard: true,
-                font_size: 13.0,
+                font_size: 12.0,
                 scale_invariant: true,
                 color: rgba(0.1, 0.1, 0.1, 1.0),
                 text: format!(
-                    "{}: {:.2} m/s of {}",
+                    "{}: {:.2} m/s, {:.0} % of its permissible speed",
                     report.points[k].label(),
                     pr.speed_mps,
-                    pr.v_max_mps.map_or("—".into(), |v| match v {
-                        crate::safety::Speed::Finite(v) => format!("{v:.2} m/s"),
-                        crate::safety::Speed::Unlimited(_) => "unlimited".into(),
-                    })
+                    100.0 * pr.ratio
                 ),
             });
             let state = ArmPointState {
@@ -389,7 +387,7 @@ pub fn layout_json(report: &ArmReport) -> Value {
         "configById": {
             "3D!arm": {
                 "cameraState": {
-                    "distance": 2.6,
+                    "distance": 1.9,
                     "perspective": true,
                     "phi": 55,
                     "thetaOffset": 35,
@@ -401,7 +399,7 @@ pub fn layout_json(report: &ArmReport) -> Value {
                     "far": 100
                 },
                 "followMode": "follow-none",
-                "scene": { "enableStats": false, "labelScaleFactor": 0, "transforms": { "showLabel": false, "axisScale": 0.3 } },
+                "scene": { "enableStats": false, "labelScaleFactor": 1, "transforms": { "showLabel": false, "axisScale": 0.3 } },
                 "transforms": {},
                 "topics": { "/scene": { "visible": true } },
                 "layers": {
