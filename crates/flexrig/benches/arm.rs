@@ -2,7 +2,7 @@
 //! performance floor: ≤ 1 s on 2 cores), the bundled UR5 on a minimum-jerk move of 1.5 s with
 //! the swing's end postures, for the default question (rigid, the body's spring, the free drive)
 //! and a compliant one (a CJ of k_δ = 2e4 N/m with the fitted skinned-aluminium skin), on the
-//! 1 % mass grid. `cargo bench -p flexrig --bench arm`.
+//! 1 % mass grid (the compliant one also on the 5 % grid). `cargo bench --workspace --bench arm`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use flexrig::arm::{
@@ -72,6 +72,13 @@ fn bench(c: &mut Criterion) {
         (
             "1000 x 10 x 1, CJ 2e4 N/m, skinned aluminium",
             input(ContactLaw::Material("skinned_aluminium".into()), Some(2e4)),
+        ),
+        (
+            "1000 x 10 x 1, CJ 2e4 N/m, skinned aluminium, 5 % mass grid",
+            ArmInput {
+                mass_step: 0.05,
+                ..input(ContactLaw::Material("skinned_aluminium".into()), Some(2e4))
+            },
         ),
     ] {
         let r = judge(&robot, &traj, &arm, None).unwrap();
