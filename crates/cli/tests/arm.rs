@@ -15,22 +15,42 @@ fn flexrig(args: &[&str]) -> Output {
 
 fn json(args: &[&str]) -> serde_json::Value {
     let out = flexrig(args);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     serde_json::from_slice(&out.stdout).unwrap()
 }
 
 fn refused(args: &[&str]) -> String {
     let out = flexrig(args);
-    assert_eq!(out.status.code(), Some(2), "{args:?}: {}", String::from_utf8_lossy(&out.stdout));
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stdout)
+    );
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
 #[test]
 fn the_bundled_arm_answers_with_no_arguments() {
     let out = flexrig(&["arm"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = String::from_utf8_lossy(&out.stdout);
-    for want in ["verdict", "speed scaling", "ur5", "tool0:0,0,0.1", "forearm_link", "chest"] {
+    for want in [
+        "verdict",
+        "speed scaling",
+        "ur5",
+        "tool0:0,0,0.1",
+        "forearm_link",
+        "chest",
+    ] {
         assert!(text.contains(want), "{want}: {text}");
     }
 }
@@ -38,8 +58,18 @@ fn the_bundled_arm_answers_with_no_arguments() {
 #[test]
 fn the_governing_sample_is_flexrig_safety_bit_for_bit() {
     let arm = json(&[
-        "arm", "--k-delta", "2e4", "--material", "skinned_aluminium", "--mass-step", "0", "--point",
-        "tool0:0,0,0.1", "--speed-scale", "0.5", "--json",
+        "arm",
+        "--k-delta",
+        "2e4",
+        "--material",
+        "skinned_aluminium",
+        "--mass-step",
+        "0",
+        "--point",
+        "tool0:0,0,0.1",
+        "--speed-scale",
+        "0.5",
+        "--json",
     ]);
     let g = &arm["governing"];
     let m = g["effective_mass_kg"].as_f64().unwrap();
@@ -47,33 +77,66 @@ fn the_governing_sample_is_flexrig_safety_bit_for_bit() {
     let m_e = m - m_r / 3.0;
     // the numbers as Rust prints them round-trip exactly
     let safety = json(&[
-        "safety", "--region", "chest", "--link", "cj", "--m-r", &m_r.to_string(), "--m-e",
-        &m_e.to_string(), "--k-delta", "2e4", "--material", "skinned_aluminium", "--joint",
-        "free-hub", "--rotor-inertia", "1e-12", "--length", "1", "--json",
+        "safety",
+        "--region",
+        "chest",
+        "--link",
+        "cj",
+        "--m-r",
+        &m_r.to_string(),
+        "--m-e",
+        &m_e.to_string(),
+        "--k-delta",
+        "2e4",
+        "--material",
+        "skinned_aluminium",
+        "--joint",
+        "free-hub",
+        "--rotor-inertia",
+        "1e-12",
+        "--length",
+        "1",
+        "--json",
     ]);
     assert_eq!(g["v_max_mps"], safety["overall"]["v_max_mps"]);
     assert_eq!(g["method"], safety["overall"]["method"]);
-    assert_eq!(g["safety"]["methods"][0]["v_max_mps"], safety["methods"][0]["v_max_mps"]);
+    assert_eq!(
+        g["safety"]["methods"][0]["v_max_mps"],
+        safety["methods"][0]["v_max_mps"]
+    );
 }
 
 #[test]
 fn bad_flags_are_refused_naming_them() {
     let e = refused(&["arm", "--point", "toool0:0,0,0.1"]);
-    assert!(e.contains("--point") && e.contains("\"toool0\"") && e.contains("wrist_3_link"), "{e}");
+    assert!(
+        e.contains("--point") && e.contains("\"toool0\"") && e.contains("wrist_3_link"),
+        "{e}"
+    );
     let e = refused(&["arm", "--urdf", "assets/robots/ur5.urdf"]);
     assert!(e.contains("--trajectory") && e.contains("(missing)"), "{e}");
     let e = refused(&["arm", "--trajectory", "assets/robots/ur5_swing.csv"]);
     assert!(e.contains("--urdf"), "{e}");
     let e = refused(&[
-        "arm", "--urdf", "assets/robots/panda.urdf", "--trajectory", "assets/robots/ur5_swing.csv",
-        "--point", "panda_hand",
+        "arm",
+        "--urdf",
+        "assets/robots/panda.urdf",
+        "--trajectory",
+        "assets/robots/ur5_swing.csv",
+        "--point",
+        "panda_hand",
     ]);
     assert!(
-        e.contains("ur5_swing.csv") && e.contains("shoulder_pan_joint") && e.contains("panda_joint1"),
+        e.contains("ur5_swing.csv")
+            && e.contains("shoulder_pan_joint")
+            && e.contains("panda_joint1"),
         "{e}"
     );
     let e = refused(&["arm", "--armature", "0.1,0.2"]);
-    assert!(e.contains("--armature") && e.contains("--joints armature"), "{e}");
+    assert!(
+        e.contains("--armature") && e.contains("--joints armature"),
+        "{e}"
+    );
     let e = refused(&["arm", "--joints", "armature", "--armature", "0.1,0.2"]);
     assert!(e.contains("--armature") && e.contains("2 values"), "{e}");
     let e = refused(&["arm", "--mass-step", "2"]);
@@ -89,7 +152,16 @@ fn bad_flags_are_refused_naming_them() {
     let e = refused(&["arm", "--region", "chestt"]);
     assert!(e.contains("--region") && e.contains("chest"), "{e}");
     let e = refused(&["arm", "--link-mass", "50"]);
-    assert!(e.contains("--link-mass") && e.contains("less than a third"), "{e}");
-    let e = refused(&["arm", "--urdf", "no/such.urdf", "--trajectory", "no/such.csv"]);
+    assert!(
+        e.contains("--link-mass") && e.contains("less than a third"),
+        "{e}"
+    );
+    let e = refused(&[
+        "arm",
+        "--urdf",
+        "no/such.urdf",
+        "--trajectory",
+        "no/such.csv",
+    ]);
     assert!(e.contains("no/such.urdf"), "{e}");
 }

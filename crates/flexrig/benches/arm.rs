@@ -68,7 +68,10 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("arm");
     g.sample_size(10);
     for (name, arm) in [
-        ("1000 x 10 x 1, rigid, body spring", input(ContactLaw::BodySpring, None)),
+        (
+            "1000 x 10 x 1, rigid, body spring",
+            input(ContactLaw::BodySpring, None),
+        ),
         (
             "1000 x 10 x 1, CJ 2e4 N/m, skinned aluminium",
             input(ContactLaw::Material("skinned_aluminium".into()), Some(2e4)),
@@ -87,7 +90,9 @@ fn bench(c: &mut Criterion) {
             r.masses.len(),
             r.speed_scale_factor
         );
-        g.bench_function(name, |b| b.iter(|| judge(&robot, &traj, &arm, None).unwrap()));
+        g.bench_function(name, |b| {
+            b.iter(|| judge(&robot, &traj, &arm, None).unwrap())
+        });
     }
     g.finish();
 }

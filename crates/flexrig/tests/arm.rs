@@ -245,7 +245,10 @@ fn the_mass_grid_rounds_up_to_its_nodes() {
     for step in [0.001, 0.01, 0.05, 0.25] {
         for m in [0.013, 0.5, 1.0, 2.6578746899084074, 14.1, 987.0] {
             let (k, node) = effective_mass_node(m, step);
-            assert!(node >= m && node / (1.0 + step) < m * (1.0 + 1e-12), "{m} {step}");
+            assert!(
+                node >= m && node / (1.0 + step) < m * (1.0 + 1e-12),
+                "{m} {step}"
+            );
             assert_eq!(node.to_bits(), (k as f64 * step.ln_1p()).exp().to_bits());
         }
     }
@@ -304,7 +307,10 @@ fn bad_input_names_the_flag_the_value_and_what_is_allowed() {
             speed_scale: bad,
             ..base.clone()
         });
-        assert!(e.contains("--speed-scale") && e.contains("(0, 1000]"), "{e}");
+        assert!(
+            e.contains("--speed-scale") && e.contains("(0, 1000]"),
+            "{e}"
+        );
     }
     let e = err(&ArmInput {
         link_mass: Some(30.0),
@@ -331,7 +337,10 @@ fn bad_input_names_the_flag_the_value_and_what_is_allowed() {
     assert!(e.contains("--k-delta"), "{e}");
     for text in ["", ":1,2,3", "tool0:1,2", "tool0:a,b,c", "tool0:0,0,1e9"] {
         let e = ArmPoint::parse(text).unwrap_err().to_string();
-        assert!(e.contains("--point") && e.contains("LINK:x,y,z"), "{text}: {e}");
+        assert!(
+            e.contains("--point") && e.contains("LINK:x,y,z"),
+            "{text}: {e}"
+        );
     }
     assert_eq!(
         ArmPoint::parse("tool0:0,0,0.1").unwrap(),
@@ -371,7 +380,7 @@ fn the_figure_log_and_report_are_written() {
     let bytes = std::fs::read(dir.join("arm.mcap")).unwrap();
     let count = mcap::MessageStream::new(&bytes)
         .unwrap()
-        .map(|m| m.unwrap())
+        .inspect(|m| assert!(m.is_ok()))
         .count();
     assert_eq!(count, r.samples.len() * (2 + r.points.len()));
     let layout: serde_json::Value =

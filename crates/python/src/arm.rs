@@ -44,9 +44,8 @@ pub fn arm_json(
         for item in items {
             parsed.push(match item.as_str() {
                 Some(text) => flexrig::arm::ArmPoint::parse(text).map_err(to_py)?,
-                None => serde_json::from_value(item).map_err(|e| {
-                    input_error("points", format!("invalid argument points: {e}"))
-                })?,
+                None => serde_json::from_value(item)
+                    .map_err(|e| input_error("points", format!("invalid argument points: {e}")))?,
             });
         }
         value["points"] = serde_json::to_value(&parsed).expect("points serialise");

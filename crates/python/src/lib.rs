@@ -13,8 +13,8 @@ use pyo3::create_exception;
 use pyo3::exceptions::{PyFileNotFoundError, PyKeyboardInterrupt, PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
 
-mod convert;
 mod arm;
+mod convert;
 mod driven;
 mod eta;
 mod experiment;

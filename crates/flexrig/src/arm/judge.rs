@@ -517,9 +517,9 @@ pub fn judge_cancellable(
                 "--point",
                 p.label(),
                 match e {
-                    flexrig_robot::RobotError::UnknownLink { robot, name, known } => format!(
-                        "robot {robot:?} has no link {name:?}; its links are {known}"
-                    ),
+                    flexrig_robot::RobotError::UnknownLink { robot, name, known } => {
+                        format!("robot {robot:?} has no link {name:?}; its links are {known}")
+                    }
                     other => other.to_string(),
                 },
             )

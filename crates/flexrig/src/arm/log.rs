@@ -88,9 +88,9 @@ pub fn log_bytes(robot: &Robot, report: &ArmReport) -> Result<Vec<u8>, mcap::Mca
         .library(format!("flexrig {}", env!("CARGO_PKG_VERSION")))
         .create(std::io::Cursor::new(Vec::new()))?;
     let channel = |w: &mut mcap::Writer<_>,
-                       topic: &str,
-                       schema: Option<foxglove::Schema>,
-                       encoding: String|
+                   topic: &str,
+                   schema: Option<foxglove::Schema>,
+                   encoding: String|
      -> Result<u16, mcap::McapError> {
         let schema = schema.expect("foxglove and derived messages have schemas");
         let id = w.add_schema(&schema.name, &schema.encoding, &schema.data)?;
@@ -218,11 +218,12 @@ pub fn log_bytes(robot: &Robot, report: &ArmReport) -> Result<Vec<u8>, mcap::Mca
             let state = ArmPointState {
                 timestamp: ts,
                 speed_mps: pr.speed_mps,
+                // unlimited (or at rest): NaN, no point plotted
                 v_max_mps: pr
                     .v_max_mps
-                    .map_or(f64::NAN, |v| v.value())
-                    .min(f64::MAX)
-                    .max(f64::MIN),
+                    .map(|v| v.value())
+                    .filter(|v| v.is_finite())
+                    .unwrap_or(f64::NAN),
                 ratio: pr.ratio,
                 reflected_mass_kg: pr.reflected_mass_kg.unwrap_or(f64::NAN),
             };

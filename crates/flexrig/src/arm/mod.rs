@@ -18,6 +18,6 @@ pub mod report;
 
 pub use flexrig_robot::{Robot, Trajectory};
 pub use judge::{
-    ArmDrive, ArmInput, ArmJoints, ArmPoint, ArmReport, Governing, MassAnswer, PointResult, SampleResult,
-    effective_mass_node, judge, judge_cancellable, simulation_settings,
+    ArmDrive, ArmInput, ArmJoints, ArmPoint, ArmReport, Governing, MassAnswer, PointResult,
+    SampleResult, effective_mass_node, judge, judge_cancellable, simulation_settings,
 };

@@ -77,8 +77,12 @@ fn stack(parts: &[String]) -> String {
     let mut width: f64 = 0.0;
     let mut body = String::new();
     for p in parts {
-        let Some(start) = p.find("<svg") else { continue };
-        let Some(end) = p[start..].find('>') else { continue };
+        let Some(start) = p.find("<svg") else {
+            continue;
+        };
+        let Some(end) = p[start..].find('>') else {
+            continue;
+        };
         let root = &p[start..start + end];
         let view_box = root
             .split("viewBox=\"")
@@ -89,7 +93,10 @@ fn stack(parts: &[String]) -> String {
             .split_whitespace()
             .filter_map(|v| v.parse().ok())
             .collect();
-        let (w, h) = (dims.get(2).copied().unwrap_or(504.0), dims.get(3).copied().unwrap_or(300.0));
+        let (w, h) = (
+            dims.get(2).copied().unwrap_or(504.0),
+            dims.get(3).copied().unwrap_or(300.0),
+        );
         body.push_str(&format!(
             "<svg x=\"0\" y=\"{y}\" width=\"{w}\" height=\"{h}\" viewBox=\"{view_box}\">{}",
             &p[start + end + 1..]

@@ -96,8 +96,7 @@ impl Outputs {
                 return Err(Error::InvalidArgument {
                     arg: "--log".into(),
                     value: l.display().to_string(),
-                    allowed: "a file name ending in .mcap (its layout is written beside it)"
-                        .into(),
+                    allowed: "a file name ending in .mcap (its layout is written beside it)".into(),
                 });
             }
             target("--log", l, self.force)?;
@@ -120,7 +119,10 @@ impl Outputs {
         model: Option<&crate::safety::BodyModel>,
     ) -> Result<Vec<PathBuf>, Error> {
         let mut written = Vec::new();
-        for p in [&self.figure, &self.log, &self.report].into_iter().flatten() {
+        for p in [&self.figure, &self.log, &self.report]
+            .into_iter()
+            .flatten()
+        {
             if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
                 crate::shared::output::ensure_dir(dir)?;
             }
@@ -290,7 +292,9 @@ pub fn document(
         Block::Heading(2, "Verdict".into()),
     ];
     for l in summary_lines(r, s) {
-        blocks.push(Block::Paragraph(l.split_whitespace().collect::<Vec<_>>().join(" ")));
+        blocks.push(Block::Paragraph(
+            l.split_whitespace().collect::<Vec<_>>().join(" "),
+        ));
     }
     blocks.push(Block::Heading(2, "What was computed".into()));
     blocks.push(Block::Paragraph(format!(
@@ -364,7 +368,10 @@ pub fn document(
          speed and its permissible speed."
             .into(),
     ));
-    blocks.push(Block::Heading(2, "Permissible speed per effective mass".into()));
+    blocks.push(Block::Heading(
+        2,
+        "Permissible speed per effective mass".into(),
+    ));
     blocks.push(Block::Table(
         vec![
             "effective mass [kg]".into(),
@@ -405,4 +412,3 @@ pub fn document(
     }
     Ok(Document { blocks })
 }
-
