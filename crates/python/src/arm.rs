@@ -6,7 +6,7 @@
 use flexrig::arm::{ArmDrive, ArmInput, Robot, Trajectory, bundled, simulation_settings};
 use pyo3::prelude::*;
 
-use crate::{input_error, to_py};
+use crate::{flag_error, input_error, to_py};
 
 /// The report of [`flexrig::arm::judge`] as JSON. `input_json` is [`ArmInput`]'s serde form
 /// without `simulation`, plus `drive` (`"free"` or `"held"`), `tol` and `root_rtol`; the arm is
@@ -43,7 +43,7 @@ pub fn arm_json(
         let mut parsed = Vec::with_capacity(items.len());
         for item in items {
             parsed.push(match item.as_str() {
-                Some(text) => flexrig::arm::ArmPoint::parse(text).map_err(to_py)?,
+                Some(text) => flexrig::arm::ArmPoint::parse(text).map_err(flag_error)?,
                 None => serde_json::from_value(item)
                     .map_err(|e| input_error("points", format!("invalid argument points: {e}")))?,
             });
@@ -96,7 +96,7 @@ pub fn arm_json(
     let report = crate::detached(py, &cancel, || {
         flexrig::arm::judge_cancellable(&robot, &traj, &input, model.as_ref(), &cancel)
     })?
-    .map_err(to_py)?;
+    .map_err(flag_error)?;
     serde_json::to_string(&report)
         .map_err(|e| input_error("input", format!("the report does not serialise: {e}")))
 }
