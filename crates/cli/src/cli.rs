@@ -89,6 +89,11 @@ pub enum Command {
     /// Permissible speed near a body region (ISO/TS 15066): the standard's formula, the energy
     /// method and the simulated impact side by side.
     Safety(commands::safety::SafetyArgs),
+    /// A real arm from its URDF along a trajectory: at every sample and contact point the
+    /// reflected mass along the point's velocity, the permissible speed of the compliant impact
+    /// into a body region, the speed-scaling factor of the trajectory and the verdict (no
+    /// arguments: the bundled UR5 and its swing).
+    Arm(commands::arm::ArmArgs),
     /// Safe-speed map: the permissible speed of the CJ and the CL design over two design
     /// parameters and their ratio, by the standard's formula, the energy method or simulation.
     SafetyMap(commands::safety_map::SafetyMapArgs),
@@ -131,6 +136,7 @@ pub fn run_cancellable(cli: &Cli, out: &mut dyn Write, cancel: &CancelToken) -> 
         Some(Command::Validate(args)) => commands::validate::run(args, out),
         Some(Command::Bench(args)) => commands::bench::run(args, out, cancel),
         Some(Command::Safety(args)) => commands::safety::run(args, out, cancel),
+        Some(Command::Arm(args)) => commands::arm::run(args, out, cancel),
         Some(Command::SafetyMap(args)) => commands::safety_map::run(args, out, cancel),
         Some(Command::SpinUp(args)) => commands::spin_up::run(args, out, cancel),
         Some(Command::Strike(args)) => commands::strike::run(args, out, cancel),

@@ -25,6 +25,7 @@
 // The library by concept, from the fronts down (docs/architecture.md; the allowed directions
 // between the folders are written once, in `tests/architecture/rules.toml`, and checked by the
 // test beside them):
+pub mod arm;
 pub mod driven;
 pub mod fe;
 pub mod fronts;

@@ -13,6 +13,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::{PyFileNotFoundError, PyKeyboardInterrupt, PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
 
+mod arm;
 mod convert;
 mod driven;
 mod eta;
@@ -209,6 +210,7 @@ fn _flexrig(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tools::validate, m)?)?;
     m.add_function(wrap_pyfunction!(tools::bench, m)?)?;
     m.add_function(wrap_pyfunction!(safety::safety_json, m)?)?;
+    m.add_function(wrap_pyfunction!(arm::arm_json, m)?)?;
     m.add_function(wrap_pyfunction!(safety::safety_map_json, m)?)?;
     m.add_function(wrap_pyfunction!(safety::safety_trace_json, m)?)?;
     m.add_function(wrap_pyfunction!(safety::parse_area, m)?)?;

@@ -1,6 +1,7 @@
 //! One module per `flexrig` command: its clap arguments, their conversion into the library's
 //! inputs, the call, and the printed report.
 
+pub mod arm;
 pub mod beam;
 pub mod bench;
 pub mod eta;

@@ -35,6 +35,10 @@ pub enum Error {
     /// An error from the safety crate (body model, limits, a contact the standard forbids).
     #[error(transparent)]
     Safety(#[from] flexrig_safety::SafetyError),
+    /// An error from the robot crate (a URDF, a trajectory CSV, a contact point, a joint
+    /// vector): it names the file and line or the field.
+    #[error(transparent)]
+    Robot(#[from] flexrig_robot::RobotError),
     /// An input file could not be read.
     #[error("cannot read {path}: {source}")]
     Read {
@@ -130,6 +134,8 @@ impl Error {
             Error::Rig(e) if e.is_input_error() => ErrorKind::Input,
             Error::Impact(e) if e.is_input_error() => ErrorKind::Input,
             Error::Safety(e) if e.is_input_error() => ErrorKind::Input,
+            Error::Robot(flexrig_robot::RobotError::Io { .. }) => ErrorKind::Io,
+            Error::Robot(_) => ErrorKind::Input,
             _ => ErrorKind::Failed,
         }
     }
@@ -141,7 +147,14 @@ impl Error {
         match self.kind() {
             ErrorKind::Interrupted => 130,
             ErrorKind::Input => 2,
-            ErrorKind::Io if matches!(self, Error::Read { .. }) => 2,
+            ErrorKind::Io
+                if matches!(
+                    self,
+                    Error::Read { .. } | Error::Robot(flexrig_robot::RobotError::Io { .. })
+                ) =>
+            {
+                2
+            }
             _ => 1,
         }
     }

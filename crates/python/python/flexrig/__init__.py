@@ -70,6 +70,7 @@ from ._commands import (
 from ._checks import _check_count, _count, _input_error, _number
 from ._commands import impact_report as _impact_report
 from ._safety import safety, safety_map
+from ._arm import ARM_COLUMNS, arm
 from ._flexrig import (
     INTEGER_SUMMARY_COLUMNS as _INTEGER_SUMMARY_COLUMNS,
     LINK_COLUMNS as _LINK_COLUMNS,
@@ -88,7 +89,9 @@ if TYPE_CHECKING:  # pragma: no cover
 __version__: str = _flexrig.__version__
 
 __all__ = [
+    "ARM_COLUMNS",
     "DEFAULT_RTOL",
+    "arm",
     "IMPACT_FIELDS",
     "ImpactPeaks",
     "ImpactReport",

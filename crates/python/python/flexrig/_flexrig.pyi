@@ -158,6 +158,14 @@ def strike_defaults() -> Dict[str, Any]:
 def spin_up_defaults() -> Dict[str, Any]:
     """The defaults of ``flexrig spin-up``'s flags by keyword (the literature case)."""
 
+def arm_json(
+    input_json: str,
+    urdf: Optional[str] = None,
+    trajectory: Optional[str] = None,
+    times: Optional[List[float]] = None,
+    positions: Optional[List[List[float]]] = None,
+    body_model_toml: Optional[str] = None,
+) -> str: ...
 def safety_json(input_json: str, body_model_toml: Optional[str] = None) -> str:
     """The report of ``flexrig safety --json`` for a safety input given as JSON (see
     ``flexrig.safety``)."""

@@ -1,0 +1,431 @@
+//! The arm along its path as an MCAP log for Foxglove, with its layout: at every sample, on
+//! `/scene` (foxglove `SceneUpdate`), the arm as simple shapes — a grey line from each moving
+//! joint to the next (the kinematic chain from the base through every joint to each contact
+//! point's link), a sphere at each joint — and each contact point as a sphere coloured by its
+//! margin 1 − speed/permissible speed (green: far within, yellow: close, red: beyond), its
+//! velocity as an arrow and a label with its ratio; on `/arm/pointK` (K = 0, 1, …, in the order
+//! given) the point's speed, permissible speed, ratio and reflected mass; on `/arm/joints` the
+//! joint positions. Log time is the trajectory's time (ns from its first sample).
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use flexrig_robot::Robot;
+use foxglove::Encode;
+use foxglove::messages::{
+    ArrowPrimitive, Color, JointState, JointStates, LinePrimitive, Point3, Pose, Quaternion,
+    SceneEntity, SceneUpdate, SpherePrimitive, TextPrimitive, Timestamp, Vector3,
+    line_primitive::Type as LineType,
+};
+use serde_json::{Value, json};
+
+use crate::Error;
+use crate::arm::judge::ArmReport;
+
+/// One contact point at one sample.
+#[derive(Debug, Clone, Encode)]
+pub struct ArmPointState {
+    /// Trajectory time.
+    pub timestamp: Timestamp,
+    /// Speed \[m/s\].
+    pub speed_mps: f64,
+    /// Permissible speed \[m/s\] (NaN at rest or unlimited: no point plotted).
+    pub v_max_mps: f64,
+    /// speed / permissible speed.
+    pub ratio: f64,
+    /// Reflected mass along the velocity \[kg\] (NaN at rest).
+    pub reflected_mass_kg: f64,
+}
+
+fn stamp(t: f64) -> Timestamp {
+    let ns = (t.max(0.0) * 1e9).round() as u64;
+    Timestamp::new((ns / 1_000_000_000) as u32, (ns % 1_000_000_000) as u32)
+}
+
+fn p3(v: [f64; 3]) -> Point3 {
+    Point3 {
+        x: v[0],
+        y: v[1],
+        z: v[2],
+    }
+}
+
+fn rgba(r: f64, g: f64, b: f64, a: f64) -> Option<Color> {
+    Some(Color { r, g, b, a })
+}
+
+/// The colour of a margin m = 1 − ratio: green at m ≥ 0.5, through yellow at 0.25, to red at
+/// m ≤ 0 (beyond the limit).
+pub fn margin_colour(ratio: f64) -> (f64, f64, f64) {
+    let m = (1.0 - ratio).clamp(0.0, 0.5) / 0.5;
+    if m >= 0.5 {
+        (2.0 * (1.0 - m), 0.75, 0.2)
+    } else {
+        (0.9, 1.5 * m, 0.15)
+    }
+}
+
+fn io(path: &Path) -> impl Fn(mcap::McapError) -> Error + '_ {
+    move |e| Error::write(path, std::io::Error::other(e.to_string()))
+}
+
+/// Writes the log of `report` (of `robot`) to `path` (atomically: a temporary name renamed
+/// when finished) and its layout beside it (`path_beside`); returns both paths.
+pub fn write_log(robot: &Robot, report: &ArmReport, path: &Path) -> Result<Vec<PathBuf>, Error> {
+    let bytes = log_bytes(robot, report).map_err(io(path))?;
+    crate::shared::output::write_atomic(path, &bytes)?;
+    let layout = crate::log::layout::path_beside(path);
+    let text = serde_json::to_string_pretty(&layout_json(report)).expect("a layout serialises");
+    crate::shared::output::write_atomic(&layout, text.as_bytes())?;
+    Ok(vec![path.to_path_buf(), layout])
+}
+
+/// The MCAP bytes of the log.
+pub fn log_bytes(robot: &Robot, report: &ArmReport) -> Result<Vec<u8>, mcap::McapError> {
+    let mut w = mcap::WriteOptions::new()
+        .compression(None)
+        .profile("")
+        .library(format!("flexrig {}", env!("CARGO_PKG_VERSION")))
+        .create(std::io::Cursor::new(Vec::new()))?;
+    let channel = |w: &mut mcap::Writer<_>,
+                   topic: &str,
+                   schema: Option<foxglove::Schema>,
+                   encoding: String|
+     -> Result<u16, mcap::McapError> {
+        let schema = schema.expect("foxglove and derived messages have schemas");
+        let id = w.add_schema(&schema.name, &schema.encoding, &schema.data)?;
+        w.add_channel(id, topic, &encoding, &BTreeMap::new())
+    };
+    let scene = channel(
+        &mut w,
+        "/scene",
+        SceneUpdate::get_schema(),
+        SceneUpdate::get_message_encoding(),
+    )?;
+    let joints = channel(
+        &mut w,
+        "/arm/joints",
+        JointStates::get_schema(),
+        JointStates::get_message_encoding(),
+    )?;
+    let mut point_channels = Vec::new();
+    for k in 0..report.points.len() {
+        point_channels.push(channel(
+            &mut w,
+            &format!("/arm/point{k}"),
+            ArmPointState::get_schema(),
+            ArmPointState::get_message_encoding(),
+        )?);
+    }
+    let mut ws = robot.workspace();
+    let t0 = report.samples.first().map_or(0.0, |s| s.time_s);
+    let mut seq = 0u32;
+    let mut write = |w: &mut mcap::Writer<_>, ch: u16, t: f64, data: &[u8]| {
+        let ns = ((t - t0).max(0.0) * 1e9).round() as u64;
+        seq += 1;
+        w.write_to_known_channel(
+            &mcap::records::MessageHeader {
+                channel_id: ch,
+                sequence: seq,
+                log_time: ns,
+                publish_time: ns,
+            },
+            data,
+        )
+    };
+    let names: Vec<String> = report.joint_names.clone();
+    for s in &report.samples {
+        let ts = stamp(s.time_s - t0);
+        robot
+            .forward_kinematics(&s.q, &mut ws)
+            .map_err(|e| mcap::McapError::Io(std::io::Error::other(e.to_string())))?;
+        // the chain: a line from each body's parent joint origin to its own
+        let origin = |b: usize| -> [f64; 3] { ws.body_pose(b).translation.vector.into() };
+        let mut lines = Vec::new();
+        let mut spheres = Vec::new();
+        for b in 1..robot.bodies().len() {
+            let parent = robot.parent_body(b);
+            lines.push(LinePrimitive {
+                r#type: LineType::LineStrip as i32,
+                pose: None,
+                thickness: 0.06,
+                scale_invariant: false,
+                points: vec![p3(origin(parent)), p3(origin(b))],
+                color: rgba(0.55, 0.57, 0.62, 1.0),
+                colors: vec![],
+                indices: vec![],
+            });
+            spheres.push(SpherePrimitive {
+                pose: Some(pose_at(origin(b))),
+                size: Some(Vector3 {
+                    x: 0.075,
+                    y: 0.075,
+                    z: 0.075,
+                }),
+                color: rgba(0.3, 0.32, 0.38, 0.45),
+            });
+        }
+        let mut point_spheres = Vec::new();
+        let mut arrows = Vec::new();
+        let mut texts = Vec::new();
+        for (k, pr) in s.points.iter().enumerate() {
+            let (r, g, b) = margin_colour(pr.ratio);
+            // a link to the body origin so the point hangs on the arm
+            let body = robot
+                .link(&report.points[k].link)
+                .map(|l| l.body())
+                .unwrap_or(0);
+            lines.push(LinePrimitive {
+                r#type: LineType::LineStrip as i32,
+                pose: None,
+                thickness: 0.02,
+                scale_invariant: false,
+                points: vec![p3(origin(body)), p3(pr.position_m)],
+                color: rgba(0.55, 0.57, 0.62, 1.0),
+                colors: vec![],
+                indices: vec![],
+            });
+            point_spheres.push(SpherePrimitive {
+                pose: Some(pose_at(pr.position_m)),
+                size: Some(Vector3 {
+                    x: 0.09,
+                    y: 0.09,
+                    z: 0.09,
+                }),
+                color: rgba(r, g, b, 1.0),
+            });
+            if let Some(u) = pr.direction {
+                arrows.push(arrow(pr.position_m, u, 0.1 + 0.3 * pr.speed_mps.min(2.0)));
+            }
+            // labels stacked above the point, one row per point, so that neighbours stay legible
+            texts.push(TextPrimitive {
+                pose: Some(pose_at([
+                    pr.position_m[0],
+                    pr.position_m[1],
+                    pr.position_m[2] + 0.08 + 0.06 * k as f64,
+                ])),
+                billboard: true,
+                font_size: 12.0,
+                scale_invariant: true,
+                color: rgba(0.1, 0.1, 0.1, 1.0),
+                text: format!(
+                    "{}: {:.2} m/s, {:.0} % of its permissible speed",
+                    report.points[k].label(),
+                    pr.speed_mps,
+                    100.0 * pr.ratio
+                ),
+            });
+            let state = ArmPointState {
+                timestamp: ts,
+                speed_mps: pr.speed_mps,
+                // unlimited (or at rest): NaN, no point plotted
+                v_max_mps: pr
+                    .v_max_mps
+                    .map(|v| v.value())
+                    .filter(|v| v.is_finite())
+                    .unwrap_or(f64::NAN),
+                ratio: pr.ratio,
+                reflected_mass_kg: pr.reflected_mass_kg.unwrap_or(f64::NAN),
+            };
+            let mut buf = Vec::new();
+            state
+                .encode(&mut buf)
+                .map_err(|e| mcap::McapError::Io(std::io::Error::other(e.to_string())))?;
+            write(&mut w, point_channels[k], s.time_s, &buf)?;
+        }
+        let update = SceneUpdate {
+            deletions: vec![],
+            entities: vec![
+                SceneEntity {
+                    timestamp: Some(ts),
+                    frame_id: "world".into(),
+                    id: "arm".into(),
+                    lines,
+                    spheres,
+                    ..Default::default()
+                },
+                SceneEntity {
+                    timestamp: Some(ts),
+                    frame_id: "world".into(),
+                    id: "contact_points".into(),
+                    spheres: point_spheres,
+                    arrows,
+                    texts,
+                    ..Default::default()
+                },
+            ],
+        };
+        let mut buf = Vec::new();
+        update
+            .encode(&mut buf)
+            .map_err(|e| mcap::McapError::Io(std::io::Error::other(e.to_string())))?;
+        write(&mut w, scene, s.time_s, &buf)?;
+        let js = JointStates {
+            timestamp: Some(ts),
+            joints: names
+                .iter()
+                .zip(&s.q)
+                .map(|(n, q)| JointState {
+                    name: n.clone(),
+                    position: Some(*q),
+                    ..Default::default()
+                })
+                .collect(),
+        };
+        let mut buf = Vec::new();
+        js.encode(&mut buf)
+            .map_err(|e| mcap::McapError::Io(std::io::Error::other(e.to_string())))?;
+        write(&mut w, joints, s.time_s, &buf)?;
+    }
+    let mut meta = BTreeMap::new();
+    meta.insert("robot".to_string(), report.robot.clone());
+    meta.insert("region".to_string(), report.region.clone());
+    meta.insert(
+        "speed_scale_factor".to_string(),
+        format!("{:?}", report.speed_scale_factor),
+    );
+    w.write_metadata(&mcap::records::Metadata {
+        name: "arm".into(),
+        metadata: meta,
+    })?;
+    w.finish()?;
+    Ok(w.into_inner().into_inner())
+}
+
+fn pose_at(p: [f64; 3]) -> Pose {
+    Pose {
+        position: Some(Vector3 {
+            x: p[0],
+            y: p[1],
+            z: p[2],
+        }),
+        orientation: Some(Quaternion {
+            x: 0.0,
+            y: 0.0,
+            z: 0.0,
+            w: 1.0,
+        }),
+    }
+}
+
+/// An arrow from `at` along the unit `u`, `length` m long.
+fn arrow(at: [f64; 3], u: [f64; 3], length: f64) -> ArrowPrimitive {
+    // the arrow points along its pose's +x: the rotation taking x to u, about x × u
+    let (ay, az) = (-u[2], u[1]);
+    let s_axis = (ay * ay + az * az).sqrt();
+    let angle = u[0].clamp(-1.0, 1.0).acos();
+    let (w, qy, qz) = if s_axis > 1e-12 {
+        let h = 0.5 * angle;
+        (h.cos(), h.sin() * ay / s_axis, h.sin() * az / s_axis)
+    } else if u[0] > 0.0 {
+        (1.0, 0.0, 0.0)
+    } else {
+        (0.0, 0.0, 1.0)
+    };
+    let q = Quaternion {
+        x: 0.0,
+        y: qy,
+        z: qz,
+        w,
+    };
+    ArrowPrimitive {
+        pose: Some(Pose {
+            position: Some(Vector3 {
+                x: at[0],
+                y: at[1],
+                z: at[2],
+            }),
+            orientation: Some(q),
+        }),
+        shaft_length: length * 0.75,
+        shaft_diameter: 0.012,
+        head_length: length * 0.25,
+        head_diameter: 0.03,
+        color: rgba(0.15, 0.35, 0.85, 1.0),
+    }
+}
+
+const COLOURS: [&str; 8] = [
+    "#1d3557", "#e76f51", "#2a9d8f", "#8338ec", "#f4a261", "#457b9d", "#d62828", "#6a994e",
+];
+
+fn plot(title: &str, field: &str, unit: &str, report: &ArmReport) -> Value {
+    let paths: Vec<Value> = report
+        .points
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            json!({
+                "value": format!("/arm/point{k}.{field}"),
+                "enabled": true,
+                "timestampMethod": "receiveTime",
+                "label": format!("{} [{unit}]", p.label()),
+                "color": COLOURS[k % COLOURS.len()],
+                "lineSize": 1.5,
+                "showLine": true,
+            })
+        })
+        .collect();
+    json!({
+        "paths": paths,
+        "showXAxisLabels": true,
+        "showYAxisLabels": true,
+        "showLegend": true,
+        "legendDisplay": "floating",
+        "showPlotValuesInLegend": false,
+        "isSynced": true,
+        "xAxisVal": "timestamp",
+        "sidebarDimension": 240,
+        "foxglovePanelTitle": title,
+        "lichtblickPanelTitle": title,
+    })
+}
+
+/// The layout: the 3D view of the arm beside three plots per point over the path — the ratio of
+/// speed to permissible speed, the speed, and the reflected mass.
+pub fn layout_json(report: &ArmReport) -> Value {
+    json!({
+        "configById": {
+            "3D!arm": {
+                "cameraState": {
+                    "distance": 1.9,
+                    "perspective": true,
+                    "phi": 55,
+                    "thetaOffset": 35,
+                    "targetOffset": [0.0, 0.0, 0.35],
+                    "target": [0, 0, 0],
+                    "targetOrientation": [0, 0, 0, 1],
+                    "fovy": 45,
+                    "near": 0.01,
+                    "far": 100
+                },
+                "followMode": "follow-none",
+                "scene": { "enableStats": false, "labelScaleFactor": 1, "transforms": { "showLabel": false, "axisScale": 0.3 } },
+                "transforms": {},
+                "topics": { "/scene": { "visible": true } },
+                "layers": {
+                    "grid": { "visible": true, "layerId": "foxglove.Grid", "size": 4, "divisions": 20, "position": [0, 0, 0], "rotation": [0, 0, 0], "order": 1 }
+                },
+                "publish": { "type": "point", "poseTopic": "/move_base_simple/goal", "pointTopic": "/clicked_point", "poseEstimateTopic": "/initialpose", "poseEstimateXDeviation": 0.5, "poseEstimateYDeviation": 0.5, "poseEstimateThetaDeviation": 0.26179939 },
+                "imageMode": {}
+            },
+            "Plot!ratio": plot("Speed / permissible speed (1: the limit)", "ratio", "–", report),
+            "Plot!speed": plot("Point speed", "speed_mps", "m/s", report),
+            "Plot!mass": plot("Reflected mass along the velocity", "reflected_mass_kg", "kg", report),
+        },
+        "globalVariables": {},
+        "userNodes": {},
+        "playbackConfig": { "speed": 0.5 },
+        "layout": {
+            "first": "3D!arm",
+            "second": {
+                "first": "Plot!ratio",
+                "second": { "first": "Plot!speed", "second": "Plot!mass", "direction": "column" },
+                "direction": "column",
+                "splitPercentage": 34
+            },
+            "direction": "row",
+            "splitPercentage": 55
+        }
+    })
+}
