@@ -1144,7 +1144,7 @@ fn run_on_mesh(
     let delta_max = ((n + 1.0) * mu * v * v / (2.0 * k)).powf(1.0 / (n + 1.0));
     let t_c = 2.0 * delta_max / v * hertz_time_integral(n);
     let h_c = t_c / settings.contact_steps as f64;
-    // the step: h_c through the impact; a contact that outlasts two impact times is the drive
+    // the step: h_c through the impact; a contact that outlasts fifty impact times is the drive
     // pressing the person, a slow, quasi-static motion: there the step grows by 1.5 while the
     // force changes by less than 1e-4 of its peak per step, halves (not below h_c) when it
     // changes by more than 1e-3, and never passes the approach's step or the window's end
@@ -1212,7 +1212,7 @@ fn run_on_mesh(
                 }
             }
         }
-        if s.state.t - t_on > 2.0 * t_c && samples.len() >= 2 {
+        if s.state.t - t_on > 50.0 * t_c && samples.len() >= 2 {
             let df = (cs.f - samples[samples.len() - 2].1).abs();
             let scale = peak.0.max(cs.f).max(f64::MIN_POSITIVE);
             if df < 1e-4 * scale {
