@@ -374,7 +374,7 @@ pub fn smallest_speed_at(
     force: f64,
     rtol: f64,
     stop: &AtomicBool,
-    mut trace: Option<&mut Vec<RootStep>>,
+    trace: Option<&mut Vec<RootStep>>,
 ) -> Result<f64, Error> {
     let floor = runs.energy_floor(force);
     if !(floor.is_finite() && floor > 0.0) {
@@ -385,7 +385,7 @@ pub fn smallest_speed_at(
         });
     }
     let mut ratio = |v: f64| -> Result<f64, Error> { Ok(runs.peak(v, stop)? / force) };
-    match scan_up(floor, rtol, &mut ratio, trace.as_deref_mut())? {
+    match scan_up(floor, rtol, &mut ratio, trace)? {
         // the bound is reached at the floor itself (a rigid link): the crossing is there
         Scan::AtStart => Ok(floor),
         Scan::Crossing(v) => Ok(v),
