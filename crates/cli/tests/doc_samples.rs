@@ -533,6 +533,82 @@ fn the_verification_report_in_the_docs_is_what_validate_writes() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// The significant digits of a printed number (`7.494788162835072e-6`: 16; `0.000768`: 3).
+fn significant_digits(number: &str) -> usize {
+    let mantissa = number.split(['e', 'E']).next().unwrap_or(number);
+    let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
+    let trimmed = digits.trim_start_matches('0');
+    if mantissa.contains('.') {
+        trimmed.len()
+    } else {
+        // a whole number's trailing zeros are not digits of precision
+        trimmed.trim_end_matches('0').len()
+    }
+}
+
+/// The text reports print numbers to sensible digits (at most 12 significant digits: `impact`
+/// and `validate` print 11 on purpose, to compare methods), never a float's every digit
+/// (`7.494788162835072e-6 s`, `1.0000000199999999 m/s`); the JSON keeps every digit. Checked
+/// on the commands whose reports print computed numbers beside the typed ones.
+#[test]
+fn text_reports_print_numbers_to_sensible_digits() {
+    let dir = scratch("digits");
+    let commands: [&[&str]; 9] = [
+        &["safety", "--scene", "cl_iron", "--region", "abdomen"],
+        &["safety", "--scene", "driven_cl_wall", "--region", "chest"],
+        &["safety", "--scene", "rig_driven_cl", "--region", "hands_and_fingers"],
+        &["run", "driven_cl_wall"],
+        &["run", "rig_driven_cj"],
+        &["run", "cj_aluminium"],
+        &["strike", "assets/drives/cj_free_head.toml"],
+        &["role-switch", "--no-fig6", "--kappa", "1", "--out", "out"],
+        &[
+            "safety",
+            "--region",
+            "chest",
+            "--m-r",
+            "0.051",
+            "--m-e",
+            "0.412",
+            "--gamma",
+            "1",
+            "--k-delta",
+            "1e4",
+            "--material",
+            "skinned_aluminium",
+            "--method",
+            "standard,energy,simulation",
+            "--speed",
+            "1.0000000199999999",
+        ],
+    ];
+    let mut found = Vec::new();
+    for args in commands {
+        let command: Vec<String> = std::iter::once("flexrig")
+            .chain(args.iter().copied())
+            .map(String::from)
+            .collect();
+        let (code, printed) = run(&command, &dir);
+        assert_eq!(code, Some(0), "{args:?}: {printed}");
+        for line in printed.lines() {
+            for token in tokens(line) {
+                if let Token::Number(n) = token
+                    && significant_digits(n) > 12
+                    && !line.contains("1.0000000199999999")
+                {
+                    found.push(format!("{args:?}: {n} in {line}"));
+                }
+            }
+        }
+    }
+    assert!(found.is_empty(), "numbers printed with every digit:\n{}", found.join("\n"));
+    assert_eq!(significant_digits("7.494788162835072e-6"), 16);
+    assert_eq!(significant_digits("0.000768"), 3);
+    assert_eq!(significant_digits("2.2966170056e3"), 11);
+    assert_eq!(significant_digits("5000"), 1);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// The comparison itself: numbers at their printed precision, text exactly, `…` for lines.
 #[test]
 fn the_comparison_reads_numbers_at_their_printed_precision() {

@@ -1,13 +1,14 @@
 //! The figures as a reader gets them: every figure command at one column (3.5 in) and two
 //! columns (7 in) writes SVGs whose text is at least 8 pt at that width (font-size × width
-//! [in] / viewBox width ≥ 8/72 in), PNG and PDF of the printed size; and fig9's text, read back,
+//! [in] / viewBox width ≥ 8/72 in), at one column at most 9 in tall (a page's column; `bench`'s
+//! figures by the unit test of their layout), PNG and PDF of the printed size; and fig9's text, read back,
 //! is the inputs that ran (`--set` of the payload, the block mass and the design), as are the
 //! spin-up's and the role switch's.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use flexrig::plots::inspect::{min_text_pt, printed_width, texts};
+use flexrig::plots::inspect::{min_text_pt, printed_height, printed_width, texts};
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("flexrig-figures-{name}-{}", std::process::id()));
@@ -43,11 +44,20 @@ fn svgs(dir: &Path) -> Vec<PathBuf> {
     v
 }
 
-/// Checks the printed width and the smallest text of the SVG at `path`; returns its text.
+/// Checks the printed width and the smallest text of the SVG at `path`, and that a one-column
+/// figure fits a journal page's column (at most 9 in tall); returns its text.
 fn check_svg(path: &Path, inches: f64) -> String {
     let svg = std::fs::read_to_string(path).unwrap();
     let (w, _) = printed_width(&svg).unwrap();
     assert!((w - inches).abs() < 1e-9, "{}: {w} in", path.display());
+    if inches <= 3.5 {
+        let h = printed_height(&svg).unwrap();
+        assert!(
+            h <= 9.0 + 1e-9,
+            "{}: {h} in tall at one column",
+            path.display()
+        );
+    }
     let min = min_text_pt(&svg).unwrap();
     assert!(
         min >= 8.0 - 1e-3,
@@ -59,7 +69,7 @@ fn check_svg(path: &Path, inches: f64) -> String {
 
 #[test]
 fn every_figure_command_writes_text_of_at_least_8_pt_at_its_width() {
-    let commands: [&[&str]; 9] = [
+    let commands: [&[&str]; 11] = [
         &[
             "spin-up",
             "--elements",
@@ -72,6 +82,23 @@ fn every_figure_command_writes_text_of_at_least_8_pt_at_its_width() {
             "3",
         ],
         &["role-switch", "--no-fig6", "--kappa", "1"],
+        // the Fig. 6 cases too: their legend is the longest of the curve figures
+        &["role-switch", "--link-model", "linear", "--kappa", "1,100"],
+        &[
+            "safety-map",
+            "--region",
+            "hands_and_fingers",
+            "--material",
+            "skinned_aluminium",
+            "--m-r",
+            "0.051",
+            "--x",
+            "m-e=0.01:5:4:log",
+            "--y",
+            "k-delta=10:1e7:4:log",
+            "--method",
+            "energy",
+        ],
         &["fig6"],
         &["prb", "--elements", "16"],
         &["payload", "--points", "3"],

@@ -153,7 +153,15 @@ pub fn curves_svg(
     };
     let title_lines = wrap(title, width_pt - 8.0, TITLE_PT);
     let header = TITLE_LINE * title_lines.len() as u32 + 4;
-    let panel_h = PLOT_HEIGHT + panel_legend;
+    // panels stacked in one column are flattened to stay within a page's column
+    let plot_h = super::page::fitted_chart_height(
+        PLOT_HEIGHT,
+        rows,
+        header + shared_height,
+        panel_legend,
+        120,
+    );
+    let panel_h = plot_h + panel_legend;
     let size = (
         width_pt.round() as u32,
         header + panel_h * rows as u32 + shared_height,
@@ -174,7 +182,7 @@ pub fn curves_svg(
             .map_err(err)?;
         }
         for (area, panel) in body.split_evenly((rows, cols)).iter().zip(panels) {
-            let (plot, legend) = area.split_vertically(px(PLOT_HEIGHT as i32));
+            let (plot, legend) = area.split_vertically(px(plot_h as i32));
             if axes.x_log {
                 let decades = x_decades(panels);
                 let bounds = (10f64.powi(decades.0), 10f64.powi(decades.1));

@@ -28,6 +28,8 @@ const BLUE: RGBColor = RGBColor(31, 119, 180);
 const ORANGE: RGBColor = RGBColor(230, 120, 0);
 /// Height of a panel \[pt\].
 const PANEL_H: u32 = 175;
+/// Flattest panel \[pt\] (with its axes) when the stack is flattened to fit a page's column.
+const MIN_PANEL_H: u32 = 130;
 /// Figures narrower than this put the panels in one column \[pt\].
 const ONE_COLUMN_BELOW: f64 = 400.0;
 /// Height of a title or legend row \[pt\].
@@ -155,9 +157,11 @@ fn draw_figure(
     let cols = if width_pt < ONE_COLUMN_BELOW { 1 } else { 2 };
     let rows = panels.len().div_ceil(cols).max(1);
     let header = Header::new(width_pt, design, points);
+    // four panels stacked in one column are flattened to stay within a page's column
+    let panel_h = super::page::fitted_chart_height(PANEL_H, rows, header.height(), 0, MIN_PANEL_H);
     let size = (
         width_pt.round() as u32,
-        header.height() + PANEL_H * rows as u32,
+        header.height() + panel_h * rows as u32,
     );
     render(size, |root| {
         let (head, body) = root.split_vertically(px(header.height() as i32));
@@ -931,14 +935,19 @@ fn table_geometry(
         }
     };
     let line = px(10);
-    let lines = 1 + rows.len() + notes.len();
-    let height = line * lines as i32 + px(4);
     let c2 = px(60);
     let label_w = rows
         .iter()
         .map(|r| text_width_pt(&format!("m_e = {} kg", r.m_e), TICK_PT))
         .fold(text_width_pt("η(2/3)", TICK_PT), f64::max);
     let table_w = px(label_w.ceil() as i32) + c2 + px(8);
+    // the note broken to the table's width: a narrow table fits the corner under the curves
+    let notes: Vec<String> = notes
+        .iter()
+        .flat_map(|n| super::wrap(n, label_w.ceil() + 60.0, TICK_PT))
+        .collect();
+    let lines = 1 + rows.len() + notes.len();
+    let height = line * lines as i32 + px(4);
     let note_w = notes
         .iter()
         .map(|n| px(text_width_pt(n, TICK_PT).ceil() as i32 + 8))

@@ -73,9 +73,9 @@ pub enum ColorScale {
 const MIN_PANEL_W: f64 = 240.0;
 /// Height of a panel over its width (without its legend rows).
 const PANEL_ASPECT: f64 = 0.85;
-/// Tallest figure \[pt\]: 9 in, what a journal page's column takes; panels stacked in one column
-/// are flattened to fit (down to [`MIN_CHART_H`]).
-const MAX_HEIGHT_PT: f64 = 648.0;
+/// Tallest figure \[pt\]: what a journal page's column takes ([`super::page::MAX_HEIGHT_IN`]);
+/// panels stacked in one column are flattened to fit (down to [`MIN_CHART_H`]).
+const MAX_HEIGHT_PT: f64 = super::page::MAX_HEIGHT_IN * 72.0;
 /// Flattest chart \[pt\] a panel is drawn with.
 const MIN_CHART_H: f64 = 120.0;
 /// Height of one row of a named category axis along y \[pt\].

@@ -14,6 +14,16 @@ pub fn printed_width(svg: &str) -> Option<(f64, f64)> {
     Some((inches, vb_width))
 }
 
+/// The printed height \[in\] of an SVG's root (`height="8.97in"`), if it is there.
+pub fn printed_height(svg: &str) -> Option<f64> {
+    let root = &svg[svg.find("<svg")?..];
+    let root = &root[..root.find('>')?];
+    attribute_text(root, "height")?
+        .strip_suffix("in")?
+        .parse()
+        .ok()
+}
+
 /// The text of attribute `name` of the element text `element`.
 fn attribute_text<'a>(element: &'a str, name: &str) -> Option<&'a str> {
     let key = format!(" {name}=\"");

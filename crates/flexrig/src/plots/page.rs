@@ -25,6 +25,18 @@ pub const MIN_TEXT_PT: f64 = 8.0;
 pub const ONE_COLUMN_IN: f64 = 3.5;
 /// Width of both columns of a two-column journal page \[in\].
 pub const TWO_COLUMN_IN: f64 = 7.0;
+/// Tallest figure \[in\]: what a journal page's column holds. A figure whose panels stack in
+/// one column is flattened to fit ([`fitted_chart_height`]).
+pub const MAX_HEIGHT_IN: f64 = 9.0;
+
+/// The chart height \[pt\] of `rows` stacked panels whose charts would be `natural` points tall,
+/// each with `extra` points beside its chart (its legend), under `header` points: `natural`, or
+/// lower so that the figure stays within [`MAX_HEIGHT_IN`], but never below `min`.
+pub fn fitted_chart_height(natural: u32, rows: usize, header: u32, extra: u32, min: u32) -> u32 {
+    let room = (MAX_HEIGHT_IN * 72.0 - f64::from(header)) / rows.max(1) as f64 - f64::from(extra);
+    natural.min((room.floor().max(f64::from(min))) as u32)
+}
+
 /// Narrowest and widest figure \[in\].
 pub const WIDTH_RANGE_IN: (f64, f64) = (2.5, 20.0);
 /// Lowest and highest PNG resolution \[dots per inch\].
@@ -270,6 +282,18 @@ pub fn write_figure(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_stack_is_flattened_to_nine_inches_and_no_further_than_its_floor() {
+        // 4 panels of 175 pt under a 66 pt header: 766 pt; (648 − 66)/4 = 145.5 pt a panel
+        assert_eq!(fitted_chart_height(175, 4, 66, 0, 120), 145);
+        assert!(66 + 4 * 145 <= 648);
+        // two rows fit as they are; a legend beside each chart counts
+        assert_eq!(fitted_chart_height(175, 2, 66, 0, 120), 175);
+        assert_eq!(fitted_chart_height(175, 3, 40, 60, 120), 142);
+        // never below the floor
+        assert_eq!(fitted_chart_height(175, 8, 66, 0, 120), 120);
+    }
 
     #[test]
     fn widths_parse_and_bad_ones_name_the_flag() {

@@ -22,6 +22,8 @@ use super::{
 const MIN_PANEL_W: f64 = 240.0;
 /// Height of a panel \[pt\].
 const PANEL_H: u32 = 165;
+/// Flattest panel \[pt\] (with its axes) when the stack is flattened to fit a page's column.
+const MIN_PANEL_H: u32 = 120;
 /// Height of a title or legend line \[pt\].
 const LINE: i32 = 12;
 /// Spacing of the held joint's diamonds in their column \[pt\].
@@ -106,9 +108,11 @@ pub fn eta_rotor_svg(
     let subtitle = super::wrap(subtitle, width_pt - 8.0, LABEL_PT);
     let title_lines = 1 + subtitle.len() as i32;
     let header = title_lines * LINE + LINE * legend.rows + 6;
+    // panels stacked in one column are flattened to stay within a page's column
+    let panel_h = super::page::fitted_chart_height(PANEL_H, rows, header as u32, 0, MIN_PANEL_H);
     let size = (
         width_pt.round() as u32,
-        header as u32 + PANEL_H * rows as u32,
+        header as u32 + panel_h * rows as u32,
     );
     render(size, |root| {
         let (head, body) = root.split_vertically(px(header));

@@ -113,7 +113,9 @@ pub fn work_precision_svg(
     let legend_height = 6 + LEGEND_LINE * legend_rows;
     let title_lines = wrap(title, width_pt - 8.0, TITLE_PT);
     let header = TITLE_LINE * title_lines.len() as u32 + 4;
-    let panel_h = PLOT_HEIGHT + legend_height;
+    // panels stacked in one column are flattened to stay within a page's column
+    let plot_h = super::page::fitted_chart_height(PLOT_HEIGHT, rows, header, legend_height, 120);
+    let panel_h = plot_h + legend_height;
     let size = (width_pt.round() as u32, header + panel_h * rows as u32);
     render(size, |root| {
         let (head, body) = root.split_vertically(px(header as i32));
@@ -127,7 +129,7 @@ pub fn work_precision_svg(
             .map_err(err)?;
         }
         for (area, panel) in body.split_evenly((rows, cols)).iter().zip(panels) {
-            let (plot, legend) = area.split_vertically(px(PLOT_HEIGHT as i32));
+            let (plot, legend) = area.split_vertically(px(plot_h as i32));
             let (x_range, own_y) = decade_ranges(std::slice::from_ref(panel));
             let y_range = if share_y { shared_y } else { own_y };
             draw_panel(&plot, panel, y_desc, (x_range, y_range))?;
@@ -362,5 +364,35 @@ mod tests {
             }
         }
         assert_ne!(style(0).0, style(1).0);
+    }
+
+    /// The bench's figure at one column: three panels of four series and a note, as
+    /// bench_lumped.svg, stacked and flattened to fit a page's column (at most 9 in tall).
+    #[test]
+    fn three_stacked_panels_fit_a_page_column() {
+        let series = |i: usize| Series {
+            label: format!("indentation state, n = {}", 1 + i % 2),
+            points: (0..6)
+                .map(|k| (1e-6 * 10f64.powi(k), 1e-14 * 100f64.powi(k)))
+                .collect(),
+        };
+        let panels: Vec<Panel> = (0..3)
+            .map(|p| Panel {
+                title: format!("({}) a panel, k_δ = 10⁸ N/m", ['a', 'b', 'c'][p]),
+                note: Some("scipy peer not run (no numpy and scipy in FLEXRIG_PYTHON)".into()),
+                series: (0..4).map(series).collect(),
+            })
+            .collect();
+        let svg = work_precision_svg(
+            "Work–precision, lumped impact (m_h = 4 kg, n = 1, 2): peak force against the exact solution",
+            "relative error of f_max",
+            &panels,
+            false,
+            252.0,
+        )
+        .unwrap();
+        let h = crate::plots::inspect::printed_height(&svg).unwrap();
+        assert!(h <= 9.0 + 1e-9, "{h} in");
+        assert!(crate::plots::inspect::min_text_pt(&svg).unwrap() >= 8.0 - 1e-3);
     }
 }
