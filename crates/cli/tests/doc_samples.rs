@@ -556,7 +556,13 @@ fn text_reports_print_numbers_to_sensible_digits() {
     let commands: [&[&str]; 9] = [
         &["safety", "--scene", "cl_iron", "--region", "abdomen"],
         &["safety", "--scene", "driven_cl_wall", "--region", "chest"],
-        &["safety", "--scene", "rig_driven_cl", "--region", "hands_and_fingers"],
+        &[
+            "safety",
+            "--scene",
+            "rig_driven_cl",
+            "--region",
+            "hands_and_fingers",
+        ],
         &["run", "driven_cl_wall"],
         &["run", "rig_driven_cj"],
         &["run", "cj_aluminium"],
@@ -601,7 +607,11 @@ fn text_reports_print_numbers_to_sensible_digits() {
             }
         }
     }
-    assert!(found.is_empty(), "numbers printed with every digit:\n{}", found.join("\n"));
+    assert!(
+        found.is_empty(),
+        "numbers printed with every digit:\n{}",
+        found.join("\n")
+    );
     assert_eq!(significant_digits("7.494788162835072e-6"), 16);
     assert_eq!(significant_digits("0.000768"), 3);
     assert_eq!(significant_digits("2.2966170056e3"), 11);
