@@ -96,6 +96,11 @@ pub struct ExactSettings {
     pub max_steps: usize,
     /// `Some(dt)`: sample the motion at the steps, at most every dt \[s\].
     pub trace_every: Option<f64>,
+    /// Follow every contact: after a separation the motion goes on, the drive keeping its
+    /// command, until the next onset, until a free head moving away is beyond the farthest the
+    /// dome can reach (the bodies parted for good), or until the strike's window (`horizon_s`)
+    /// closes. `false`: the run ends at the first separation.
+    pub every_contact: bool,
 }
 
 impl ExactSettings {
@@ -116,6 +121,7 @@ impl ExactSettings {
         mesh_tolerance: Some(5e-6),
         max_steps: 10_000_000,
         trace_every: None,
+        every_contact: false,
     };
 
     /// 8 elements, unchecked, 250 steps per period before the contact and 200 over it: within
@@ -817,20 +823,26 @@ pub fn run_exact_cl_until(
     run_exact_cl_meshed_until(strike, settings, stop).map(|(o, _)| o)
 }
 
-/// Largest relative change between the strikes on two meshes: peak force, time of peak after
-/// the onset (against the duration), duration, onset.
+/// Largest relative change between the strikes on two meshes: the first contact's peak force,
+/// time of peak after the onset (against the duration), duration and onset, and the largest
+/// peak over every contact (the first's when the run ends at the first separation).
 fn mesh_change(a: &DrivenOutcome, b: &DrivenOutcome) -> f64 {
-    let (x, y) = (&a.contact, &b.contact);
     let rel = |p: f64, q: f64| (p - q).abs() / q.abs().max(f64::MIN_POSITIVE);
-    [
-        rel(x.peak_force_n, y.peak_force_n),
-        ((x.time_of_peak_s - x.onset_s) - (y.time_of_peak_s - y.onset_s)).abs()
-            / y.duration_s.max(f64::MIN_POSITIVE),
-        rel(x.duration_s, y.duration_s),
-        rel(x.onset_s, y.onset_s),
-    ]
-    .into_iter()
-    .fold(0.0, f64::max)
+    let change = |x: &ContactEvent, y: &ContactEvent| {
+        [
+            rel(x.peak_force_n, y.peak_force_n),
+            ((x.time_of_peak_s - x.onset_s) - (y.time_of_peak_s - y.onset_s)).abs()
+                / y.duration_s.max(f64::MIN_POSITIVE),
+            rel(x.duration_s, y.duration_s),
+            rel(x.onset_s, y.onset_s),
+        ]
+        .into_iter()
+        .fold(0.0, f64::max)
+    };
+    change(&a.contact, &b.contact).max(rel(
+        a.largest_contact().1.peak_force_n,
+        b.largest_contact().1.peak_force_n,
+    ))
 }
 
 /// [`run_exact_cl`] and the number of elements of the mesh it was solved on. With a
@@ -906,13 +918,6 @@ fn run_on_mesh(
     settings: &ExactSettings,
     stop: &std::sync::atomic::AtomicBool,
 ) -> Result<DrivenOutcome, ImpactError> {
-    let check_stop = || {
-        if stop.load(std::sync::atomic::Ordering::Relaxed) {
-            Err(ImpactError::Interrupted)
-        } else {
-            Ok(())
-        }
-    };
     let link = strike.link;
     let l = link.length;
     let ei = link.ei();
@@ -1025,7 +1030,15 @@ fn run_on_mesh(
             State::in_rigid_rotation(&s.model, [angle0, rate0, 0.0], 0.0, &s.loads)?
         };
     }
-    let mut tracer = Tracer::new(settings.trace_every);
+    let mut pass = Pass {
+        tracer: Tracer::new(settings.trace_every),
+        steps: 0,
+        max_steps: settings.max_steps,
+        horizon: strike.horizon_s,
+        corners: Vec::new(),
+        stop,
+        length: l,
+    };
     let (mut cs, ..) = {
         let (q, v) = s.tip_qv();
         let load = DomeLoad {
@@ -1045,7 +1058,7 @@ fn run_on_mesh(
             "an angle the dome has not yet passed at t = 0 (it already indents the face)",
         ));
     }
-    tracer.offer(0.0, true, || s.sample(&cs));
+    pass.tracer.offer(0.0, true, || s.sample(&cs));
     // the approach: approach_steps per the drive's shortest time scale (a ramp, the loop's
     // period with the rigid link, the arrival) or per a tenth of the link's first period if
     // that is longer: the drive's motion and a soft link's ringing (its period longer than the
@@ -1074,12 +1087,11 @@ fn run_on_mesh(
         drive_scale = drive_scale.min((phi_c - angle0).abs().max(1e-3) / speed_scale);
     }
     let h_a = drive_scale.max(0.1 * period) / settings.approach_steps as f64;
-    let mut corners = strike.drive.breakpoints();
-    corners.sort_by(f64::total_cmp);
-    let mut steps = 0usize;
-    loop {
-        check_stop()?;
-        if s.state.t >= strike.horizon_s {
+    pass.corners = strike.drive.breakpoints();
+    pass.corners.sort_by(f64::total_cmp);
+    match pass.fly(&mut s, &mut cs, h_a, None)? {
+        Flight::Onset => {}
+        Flight::Window(_) | Flight::Parted(_) => {
             return Err(ImpactError::NotFinished {
                 design: "exact driven CL",
                 reason: format!(
@@ -1089,7 +1101,7 @@ fn run_on_mesh(
                 ),
             });
         }
-        if steps >= settings.max_steps {
+        Flight::OutOfSteps => {
             return Err(ImpactError::NotFinished {
                 design: "exact driven CL",
                 reason: format!(
@@ -1098,26 +1110,6 @@ fn run_on_mesh(
                 ),
             });
         }
-        let t = s.state.t;
-        let mut h = h_a;
-        if let Some(c) = corners.iter().find(|c| **c > t * (1.0 + 1e-14) + 1e-15) {
-            if t + h > *c - 1e-3 * h_a {
-                h = c - t;
-            } else if t + 2.0 * h > *c {
-                h = 0.5 * (c - t);
-            }
-        }
-        let from = s.snapshot();
-        let d0 = cs.delta;
-        let next = s.step(h, false)?;
-        steps += 1;
-        if next.delta > 0.0 {
-            cs = s.locate(&from, (d0, h, next.delta), false, |c| c.delta, l)?;
-            steps += 1;
-            break;
-        }
-        cs = next;
-        tracer.offer(s.state.t, false, || s.sample(&cs));
     }
     // the onset
     let t_on = s.state.t;
@@ -1131,121 +1123,23 @@ fn run_on_mesh(
     let torque_on = s.joint_torque();
     let commanded = strike.drive.profile().map(|p| l * p.at(t_on).1);
     let e0 = s.energy(&cs);
-    tracer.offer(t_on, true, || s.sample(&cs));
+    pass.tracer.offer(t_on, true, || s.sample(&cs));
     // the contact
-    let mu = if wall {
-        link.m_e.max(link.m_r / 100.0)
-    } else {
-        let m = link.m_e.max(link.m_r / 100.0);
-        head_m * m / (head_m + m)
+    let setup = Impact {
+        mu: if wall {
+            link.m_e.max(link.m_r / 100.0)
+        } else {
+            let m = link.m_e.max(link.m_r / 100.0);
+            head_m * m / (head_m + m)
+        },
+        k: strike.person.contact.k(),
+        n: strike.person.contact.n(),
+        contact_steps: settings.contact_steps,
+        h_a,
     };
-    let (k, n) = (strike.person.contact.k(), strike.person.contact.n());
-    let v = approach.max(1e-6);
-    let delta_max = ((n + 1.0) * mu * v * v / (2.0 * k)).powf(1.0 / (n + 1.0));
-    let t_c = 2.0 * delta_max / v * hertz_time_integral(n);
-    let h_c = t_c / settings.contact_steps as f64;
-    // the step: h_c through the impact; a contact that outlasts fifty impact times is the drive
-    // pressing the person, a slow, quasi-static motion: there the step grows by 1.5 while the
-    // force changes by less than 1e-4 of its peak per step, halves (not below h_c) when it
-    // changes by more than 1e-3, and never passes the approach's step or the window's end
-    let mut h = h_c;
-    let h_press = h_a.max(h_c);
-    let mut acc = [0.0; 5];
-    let mut p0 = powers(&s, &cs, s.joint_torque());
-    let mut samples: Vec<(f64, f64)> = vec![(t_on, 0.0)];
-    let mut peak = (0.0_f64, t_on);
-    let mut peak_torque = torque_on.abs();
-    // an elastic law (no damping part at the onset's rate): the peak is at δ̇ = 0
-    let elastic = s.law.damping(1e-3 * delta_max, v) == 0.0;
-    let mut located_peak: Option<(f64, f64)> = None;
-    let mut window_closed = false;
-    loop {
-        check_stop()?;
-        if steps >= settings.max_steps {
-            return Err(ImpactError::NotFinished {
-                design: "exact driven CL",
-                reason: format!("max_steps = {} ran out in the contact", settings.max_steps),
-            });
-        }
-        if s.state.t >= strike.horizon_s {
-            // the window closed with the contact on (the drive pressing the person): the force
-            // there counts as well
-            if cs.f > peak.0 {
-                peak = (cs.f, s.state.t);
-            }
-            window_closed = true;
-            tracer.offer(s.state.t, true, || s.sample(&cs));
-            break;
-        }
-        let from = s.snapshot();
-        let (d0, rate0) = (cs.delta, cs.rate);
-        let t0 = s.state.t;
-        let mut next = s.step(h, true)?;
-        steps += 1;
-        let finished = next.delta <= 0.0 && s.state.t > t_on + 0.05 * t_c;
-        if finished {
-            next = s.locate(&from, (d0.max(1e-300), h, next.delta), true, |c| c.delta, l)?;
-            steps += 1;
-        } else if elastic && located_peak.is_none() && rate0 > 0.0 && next.rate <= 0.0 {
-            // an elastic law peaks where δ̇ = 0: located on the motion, not interpolated
-            next = s.locate(&from, (rate0, h, next.rate), true, |c| c.rate, v)?;
-            steps += 1;
-            located_peak = Some((next.f, s.state.t));
-        }
-        cs = next;
-        let tau = s.joint_torque();
-        let p1 = powers(&s, &cs, tau);
-        let dt = s.state.t - t0;
-        for i in 0..5 {
-            acc[i] += 0.5 * dt * (p0[i] + p1[i]);
-        }
-        p0 = p1;
-        peak_torque = peak_torque.max(tau.abs());
-        samples.push((s.state.t, cs.f));
-        let m = samples.len();
-        if m >= 3 {
-            let (a, b, c) = (samples[m - 3], samples[m - 2], samples[m - 1]);
-            if b.1 > a.1 && b.1 >= c.1 {
-                let v = vertex(a, b, c);
-                if v.1 > peak.0 {
-                    peak = (v.1, v.0);
-                }
-            }
-        }
-        if s.state.t - t_on > 50.0 * t_c && samples.len() >= 2 {
-            let df = (cs.f - samples[samples.len() - 2].1).abs();
-            let scale = peak.0.max(cs.f).max(f64::MIN_POSITIVE);
-            if df < 1e-4 * scale {
-                h = (1.5 * h).min(h_press);
-            } else if df > 1e-3 * scale {
-                h = (0.5 * h).max(h_c);
-            }
-            let left = strike.horizon_s - s.state.t;
-            if left > 0.0 && h > left {
-                h = left;
-            }
-        }
-        if samples.len() > 8 {
-            samples.drain(..samples.len() - 3);
-        }
-        tracer.offer(s.state.t, finished, || s.sample(&cs));
-        if finished {
-            break;
-        }
-    }
-    if let Some(p) = located_peak
-        && p.0 >= peak.0
-    {
-        peak = p;
-    }
-    if peak.0 == 0.0 {
-        // a single-step contact: the largest sample
-        peak = samples
-            .iter()
-            .fold((0.0, t_on), |m, x| if x.1 > m.0 { (x.1, x.0) } else { m });
-    }
+    let first = pass.contact(&mut s, &mut cs, &setup, torque_on.abs())?;
     let e1 = s.energy(&cs);
-    let [motor_work, friction, neck, damping, impact] = acc;
+    let [motor_work, friction, neck, damping, impact] = first.acc;
     let dissipated = friction + neck + damping;
     let energy = EnergyBalance {
         impact_energy_j: impact,
@@ -1254,8 +1148,55 @@ fn run_on_mesh(
         mechanical_change_j: e1 - e0,
         residual_j: motor_work - dissipated - (e1 - e0),
     };
+    let separation_rate = cs.rate;
+    let mut contacts = vec![first.event];
+    let mut peak_torque = first.peak_torque;
+    let mut pressing_at_window = first.window_closed;
+    // ---- every later contact, until the bodies part for good or the window closes ----
+    let ended = if first.window_closed {
+        crate::RunEnd::Window(strike.horizon_s)
+    } else if !settings.every_contact {
+        crate::RunEnd::FirstSeparation
+    } else {
+        // between contacts the step resolves a contact as short as an eighth of the first one's
+        // expected duration (a re-contact comes at a closing speed the drive and the link's
+        // ringing give; one shorter than a step could be stepped over)
+        let h_free = h_a.min(first.expected_duration_s / 8.0);
+        let reach = (!wall && s.head.k_n == 0.0 && s.head.c_n == 0.0)
+            .then(|| farthest_reach(l, settings.dome.centre_offset()));
+        loop {
+            match pass.fly(&mut s, &mut cs, h_free, reach)? {
+                Flight::Parted(t) => break crate::RunEnd::PartedForGood(t),
+                Flight::Window(t) => break crate::RunEnd::Window(t),
+                Flight::OutOfSteps => {
+                    return Err(ImpactError::NotFinished {
+                        design: "exact driven CL",
+                        reason: format!(
+                            "max_steps = {} ran out between contacts",
+                            settings.max_steps
+                        ),
+                    });
+                }
+                Flight::Onset => {
+                    s.law = strike
+                        .person
+                        .damping
+                        .law(strike.person.contact, cs.rate.max(1e-9))?;
+                    let torque = s.joint_torque().abs();
+                    pass.tracer.offer(s.state.t, true, || s.sample(&cs));
+                    let c = pass.contact(&mut s, &mut cs, &setup, torque)?;
+                    peak_torque = peak_torque.max(c.peak_torque);
+                    contacts.push(c.event);
+                    if c.window_closed {
+                        pressing_at_window = true;
+                        break crate::RunEnd::Window(strike.horizon_s);
+                    }
+                }
+            }
+        }
+    };
     let mut notes = Vec::new();
-    if window_closed {
+    if pressing_at_window {
         notes.push(DriveNote::StillPressing {
             window_s: strike.horizon_s,
         });
@@ -1267,32 +1208,281 @@ fn run_on_mesh(
         notes.extend(DriveNote::arrival(c, dome_speed));
     }
     notes.extend(DriveNote::vibration(vibration, approach));
-    let mut outcome = DrivenOutcome {
-        contact: ContactEvent {
-            onset_s: t_on,
-            peak_force_n: peak.0,
-            time_of_peak_s: peak.1,
-            duration_s: s.state.t - t_on,
-        },
+    let outcome = DrivenOutcome {
+        contact: first.event,
         approach_speed_mps: approach,
         commanded_tip_speed_mps: commanded,
         pre_impact_deflection_m: deflection,
         joint_torque_at_onset_nm: torque_on,
         peak_joint_torque_nm: peak_torque,
         energy,
-        separation_rate_mps: cs.rate,
+        separation_rate_mps: separation_rate,
         notes,
-        work: steps,
-        trace: tracer.samples,
-        contacts: Vec::new(),
-        ended: if window_closed {
-            crate::RunEnd::Window(strike.horizon_s)
-        } else {
-            crate::RunEnd::FirstSeparation
-        },
+        work: pass.steps,
+        trace: pass.tracer.samples,
+        contacts,
+        ended,
     };
-    outcome.contacts.push(outcome.contact);
     finite(outcome)
+}
+
+/// The farthest the dome's surface can reach along the face's normal from where it first
+/// touches, over every pose of the link \[m\]: the dome's centre lies within |p| + |d_c| of the
+/// hub, the tip's distance |p| within the link's length stretched by [`STRETCH_BOUND`], and
+/// the face at the first touch lies d_c beyond the centre's projection, so
+/// e·c + d_c ≤ (1 + ε) L + |d_c| + d_c.
+fn farthest_reach(length: f64, d_c: f64) -> f64 {
+    (1.0 + STRETCH_BOUND) * length + d_c.abs() + d_c
+}
+
+/// Bound on the link's stretch between contacts used by [`farthest_reach`]: 5 %, far beyond
+/// the elastic strain of any link material (metals yield below 1 %; the beam's axial strain in
+/// a strike is f/EA ≈ 4e-4 at 100 N on the test bed's section).
+const STRETCH_BOUND: f64 = 0.05;
+
+/// What the phases of one exact CL run share: the trace, the work done, the window, the
+/// drive's corners, the stop flag.
+struct Pass<'r> {
+    tracer: Tracer,
+    steps: usize,
+    max_steps: usize,
+    horizon: f64,
+    corners: Vec<f64>,
+    stop: &'r std::sync::atomic::AtomicBool,
+    /// The link's length L \[m\] (the onset's location scale).
+    length: f64,
+}
+
+/// How a flight of the link without contact ended.
+enum Flight {
+    /// The next contact's onset (the solver stands there).
+    Onset,
+    /// A free head moving away beyond [`farthest_reach`] at this time \[s\].
+    Parted(f64),
+    /// The window closed at this time \[s\].
+    Window(f64),
+    /// The step budget ran out.
+    OutOfSteps,
+}
+
+/// The contact's constants: the reduced mass of the impact time estimate, the law's k and n,
+/// the steps per contact and the approach's step.
+struct Impact {
+    /// m_e (or m_r/100) in series with the head \[kg\].
+    mu: f64,
+    k: f64,
+    n: f64,
+    contact_steps: usize,
+    /// The approach's step \[s\] (the largest step of a long press).
+    h_a: f64,
+}
+
+/// One contact from its onset to its separation (or the window).
+struct Struck {
+    event: ContactEvent,
+    /// ∫ power dt over the contact: motor, friction, neck damper, contact damping, impact \[J\].
+    acc: [f64; 5],
+    peak_torque: f64,
+    window_closed: bool,
+    /// The contact duration expected from the onset's closing speed \[s\].
+    expected_duration_s: f64,
+}
+
+impl Pass<'_> {
+    fn check_stop(&self) -> Result<(), ImpactError> {
+        if self.stop.load(std::sync::atomic::Ordering::Relaxed) {
+            Err(ImpactError::Interrupted)
+        } else {
+            Ok(())
+        }
+    }
+
+    /// The link and the head without contact by steps of `h_a` (cut at the drive's corners)
+    /// until the dome touches the face (the onset located on the motion; the solver and `cs`
+    /// left there), the head parts for good (`reach`: a free head moving away beyond it), the
+    /// window closes or the steps run out.
+    fn fly(
+        &mut self,
+        s: &mut Solver<'_>,
+        cs: &mut ContactState,
+        h_a: f64,
+        reach: Option<f64>,
+    ) -> Result<Flight, ImpactError> {
+        loop {
+            self.check_stop()?;
+            if s.state.t >= self.horizon {
+                return Ok(Flight::Window(s.state.t));
+            }
+            if self.steps >= self.max_steps {
+                return Ok(Flight::OutOfSteps);
+            }
+            if let Some(r) = reach
+                && s.head.v >= 0.0
+                && s.head.x > r
+            {
+                return Ok(Flight::Parted(s.state.t));
+            }
+            let t = s.state.t;
+            let mut h = h_a;
+            if let Some(c) = self
+                .corners
+                .iter()
+                .find(|c| **c > t * (1.0 + 1e-14) + 1e-15)
+            {
+                if t + h > *c - 1e-3 * h_a {
+                    h = c - t;
+                } else if t + 2.0 * h > *c {
+                    h = 0.5 * (c - t);
+                }
+            }
+            let from = s.snapshot();
+            // after a separation the located gap may be a rounding error inside the face
+            let d0 = if cs.delta > 0.0 {
+                -f64::MIN_POSITIVE
+            } else {
+                cs.delta
+            };
+            let next = s.step(h, false)?;
+            self.steps += 1;
+            if next.delta > 0.0 {
+                *cs = s.locate(&from, (d0, h, next.delta), false, |c| c.delta, self.length)?;
+                self.steps += 1;
+                return Ok(Flight::Onset);
+            }
+            *cs = next;
+            self.tracer.offer(s.state.t, false, || s.sample(cs));
+        }
+    }
+
+    /// The contact from its onset (the solver and `cs` there, the law set for the onset's
+    /// closing speed) to its separation, located on the motion, or to the window's end.
+    fn contact(
+        &mut self,
+        s: &mut Solver<'_>,
+        cs: &mut ContactState,
+        im: &Impact,
+        torque_on: f64,
+    ) -> Result<Struck, ImpactError> {
+        let t_on = s.state.t;
+        let v = cs.rate.max(1e-6);
+        let delta_max = ((im.n + 1.0) * im.mu * v * v / (2.0 * im.k)).powf(1.0 / (im.n + 1.0));
+        let t_c = 2.0 * delta_max / v * hertz_time_integral(im.n);
+        let h_c = t_c / im.contact_steps as f64;
+        // the step: h_c through the impact; a contact that outlasts fifty impact times is the
+        // drive pressing the person, a slow, quasi-static motion: there the step grows by 1.5
+        // while the force changes by less than 1e-4 of its peak per step, halves (not below
+        // h_c) when it changes by more than 1e-3, and never passes the approach's step or the
+        // window's end
+        let mut h = h_c;
+        let h_press = im.h_a.max(h_c);
+        let mut acc = [0.0; 5];
+        let mut p0 = powers(s, cs, s.joint_torque());
+        let mut samples: Vec<(f64, f64)> = vec![(t_on, 0.0)];
+        let mut peak = (0.0_f64, t_on);
+        let mut peak_torque = torque_on;
+        // an elastic law (no damping part at the onset's rate): the peak is at δ̇ = 0
+        let elastic = s.law.damping(1e-3 * delta_max, v) == 0.0;
+        let mut located_peak: Option<(f64, f64)> = None;
+        let mut window_closed = false;
+        let l = self.length;
+        loop {
+            self.check_stop()?;
+            if self.steps >= self.max_steps {
+                return Err(ImpactError::NotFinished {
+                    design: "exact driven CL",
+                    reason: format!("max_steps = {} ran out in the contact", self.max_steps),
+                });
+            }
+            if s.state.t >= self.horizon {
+                // the window closed with the contact on (the drive pressing the person): the
+                // force there counts as well
+                if cs.f > peak.0 {
+                    peak = (cs.f, s.state.t);
+                }
+                window_closed = true;
+                self.tracer.offer(s.state.t, true, || s.sample(cs));
+                break;
+            }
+            let from = s.snapshot();
+            let (d0, rate0) = (cs.delta, cs.rate);
+            let t0 = s.state.t;
+            let mut next = s.step(h, true)?;
+            self.steps += 1;
+            let finished = next.delta <= 0.0 && s.state.t > t_on + 0.05 * t_c;
+            if finished {
+                next = s.locate(&from, (d0.max(1e-300), h, next.delta), true, |c| c.delta, l)?;
+                self.steps += 1;
+            } else if elastic && located_peak.is_none() && rate0 > 0.0 && next.rate <= 0.0 {
+                // an elastic law peaks where δ̇ = 0: located on the motion, not interpolated
+                next = s.locate(&from, (rate0, h, next.rate), true, |c| c.rate, v)?;
+                self.steps += 1;
+                located_peak = Some((next.f, s.state.t));
+            }
+            *cs = next;
+            let tau = s.joint_torque();
+            let p1 = powers(s, cs, tau);
+            let dt = s.state.t - t0;
+            for i in 0..5 {
+                acc[i] += 0.5 * dt * (p0[i] + p1[i]);
+            }
+            p0 = p1;
+            peak_torque = peak_torque.max(tau.abs());
+            samples.push((s.state.t, cs.f));
+            let m = samples.len();
+            if m >= 3 {
+                let (a, b, c) = (samples[m - 3], samples[m - 2], samples[m - 1]);
+                if b.1 > a.1 && b.1 >= c.1 {
+                    let v = vertex(a, b, c);
+                    if v.1 > peak.0 {
+                        peak = (v.1, v.0);
+                    }
+                }
+            }
+            if s.state.t - t_on > 50.0 * t_c && samples.len() >= 2 {
+                let df = (cs.f - samples[samples.len() - 2].1).abs();
+                let scale = peak.0.max(cs.f).max(f64::MIN_POSITIVE);
+                if df < 1e-4 * scale {
+                    h = (1.5 * h).min(h_press);
+                } else if df > 1e-3 * scale {
+                    h = (0.5 * h).max(h_c);
+                }
+                let left = self.horizon - s.state.t;
+                if left > 0.0 && h > left {
+                    h = left;
+                }
+            }
+            if samples.len() > 8 {
+                samples.drain(..samples.len() - 3);
+            }
+            self.tracer.offer(s.state.t, finished, || s.sample(cs));
+            if finished {
+                break;
+            }
+        }
+        if let Some(p) = located_peak
+            && p.0 >= peak.0
+        {
+            peak = p;
+        }
+        if peak.0 == 0.0 {
+            // a single-step contact: the largest sample
+            peak = samples
+                .iter()
+                .fold((0.0, t_on), |m, x| if x.1 > m.0 { (x.1, x.0) } else { m });
+        }
+        Ok(Struck {
+            event: ContactEvent {
+                onset_s: t_on,
+                peak_force_n: peak.0,
+                time_of_peak_s: peak.1,
+                duration_s: s.state.t - t_on,
+            },
+            acc,
+            peak_torque,
+            window_closed,
+            expected_duration_s: t_c,
+        })
+    }
 }
 
 /// Vertex (t, f) of the parabola through three samples, kept within [a, c].

@@ -110,10 +110,11 @@ impl SafetyScene {
         self.scene.strike.link.length
     }
 
-    /// Whether the runs follow every contact (the CJ) or the first one only (the CL's
-    /// integrators end at the first separation; the verdict says so).
+    /// Whether the runs follow every contact (the CJ, and the CL by the exact link) or the
+    /// first one only (the linear modal CL ends at the first separation; the verdict says so).
     pub fn every_contact(&self) -> bool {
-        self.scene.strike.design == StrikeDesign::Cj
+        let s = &self.scene.strike;
+        s.design == StrikeDesign::Cj || s.link_model == LinkModel::Exact
     }
 
     /// The commanded tip speed L ω_c of the scene as written [m/s].
@@ -159,10 +160,10 @@ impl SafetyScene {
 
     /// The driven strike at commanded tip speed `v` [m/s] by the scene's link model and dome,
     /// with the run tolerances of `settings` (`cj_rtol` for the CJ; the linear CL: `tol` in the
-    /// contact, 10 × `tol` before it). The CJ follows every contact until the bodies part for
-    /// good or the scene's window (`horizon_s`) closes, the drive keeping its command throughout
-    /// (no reaction to the collision); the CL runs to the first separation
-    /// ([`Self::every_contact`]).
+    /// contact, 10 × `tol` before it). The CJ and the exact CL follow every contact until the
+    /// bodies part for good or the scene's window (`horizon_s`) closes, the drive keeping its
+    /// command throughout (no reaction to the collision); the linear CL runs to the first
+    /// separation ([`Self::every_contact`]).
     pub fn run_at(
         &self,
         v: f64,
@@ -187,6 +188,7 @@ impl SafetyScene {
                 &strike,
                 &ExactSettings {
                     dome: d.dome,
+                    every_contact: true,
                     ..ExactSettings::DEFAULT
                 },
                 stop,
@@ -463,8 +465,8 @@ pub fn contacts_words(c: &crate::safety::simulation::ContactsAtRoot) -> String {
             d(t)
         ),
         RunEnd::FirstSeparation | RunEnd::StepBudget(_) => {
-            "the first separation: the driven CL follows the first contact only, a later \
-             contact is not judged"
+            "the first separation: the driven CL by the linear model follows the first \
+             contact only, a later contact is not judged"
                 .to_string()
         }
     };
