@@ -62,7 +62,8 @@ pub fn run_window(
     let end = match fine.ended {
         crate::RunEnd::PartedForGood(t)
         | crate::RunEnd::Window(t)
-        | crate::RunEnd::StepBudget(t) => t,
+        | crate::RunEnd::StepBudget(t)
+        | crate::RunEnd::Rebound(t) => t,
         crate::RunEnd::FirstSeparation => fine.first.duration_s,
     };
     let all_agree = converged == fine.contacts.len() && converged == coarse.contacts.len();

@@ -258,6 +258,10 @@ pub enum RunEnd {
     /// The step budget ran out at this time \[s\] (the contacts so far are exact to the
     /// tolerance; later ones are not known).
     StepBudget(f64),
+    /// The test bed's operator, out of contact and moving away, turned back at the apex of
+    /// its rebound at this time \[s\]: every contact of the swing is in (a later one would
+    /// be the pendulum's return swing under gravity, a new strike).
+    Rebound(f64),
 }
 
 /// The result of a free-mass impact from the onset of the first contact (t = 0).

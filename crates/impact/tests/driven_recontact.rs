@@ -234,7 +234,10 @@ fn every_contact_of_the_exact_cl_matches_the_lumped_limit_of_a_light_beam() {
         )
         .unwrap();
         let RunEnd::PartedForGood(parted) = out.ended else {
-            panic!("the run should end with the bodies parted for good: {:?}", out.ended)
+            panic!(
+                "the run should end with the bodies parted for good: {:?}",
+                out.ended
+            )
         };
         let reference = reference_of(omega, parted + 0.1, m_e + m_r / 3.0, &CENTRED_DOME);
         assert!(
@@ -264,8 +267,16 @@ fn every_contact_of_the_exact_cl_matches_the_lumped_limit_of_a_light_beam() {
         for (k, (c, r)) in out.contacts.iter().zip(&reference).enumerate() {
             let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
             assert!(rel(c.peak_force_n, r.1) < 1e-3, "peak of contact {}", k + 1);
-            assert!((c.onset_s - r.0).abs() < 1e-2 * r.3, "onset of contact {}", k + 1);
-            assert!(rel(c.duration_s, r.3) < 1e-2, "duration of contact {}", k + 1);
+            assert!(
+                (c.onset_s - r.0).abs() < 1e-2 * r.3,
+                "onset of contact {}",
+                k + 1
+            );
+            assert!(
+                rel(c.duration_s, r.3) < 1e-2,
+                "duration of contact {}",
+                k + 1
+            );
         }
         let top = reference.iter().map(|r| r.1).fold(0.0, f64::max);
         assert!((out.largest_contact().1.peak_force_n - top).abs() < 1e-3 * top);

@@ -150,7 +150,7 @@ pub fn check_budget(scene: &Scene) -> Result<Budget, RigError> {
     // Contacts: one per half period at most (the block returns each swing).
     let simulated_s = match file.stop {
         StopSpec::Duration { duration_s } => duration_s,
-        StopSpec::Peak | StopSpec::Separation => match &scene.drive {
+        StopSpec::Peak | StopSpec::Separation | StopSpec::Rebound => match &scene.drive {
             Some(d) => period.max(d.approach_time_estimate()),
             None => period,
         },
@@ -168,7 +168,7 @@ pub fn check_budget(scene: &Scene) -> Result<Budget, RigError> {
     // than one contact per half period, so a run it admits reaches its stop.
     let resting_steps = match file.stop {
         StopSpec::Duration { .. } => simulated_s / contact_step,
-        StopSpec::Peak | StopSpec::Separation => 0.0,
+        StopSpec::Peak | StopSpec::Separation | StopSpec::Rebound => 0.0,
     };
     let steps = (swing_steps + contact_steps).max(resting_steps);
     let max_steps = file.solver.max_steps as f64;

@@ -1178,7 +1178,7 @@ impl<'s> Simulation<'s> {
     fn free_step(&mut self, recorder: &mut dyn Recorder) -> Result<StepOutcome, RigError> {
         let t_limit = match self.scene.file.stop {
             StopSpec::Duration { duration_s } => Some(duration_s),
-            StopSpec::Peak | StopSpec::Separation => None,
+            StopSpec::Peak | StopSpec::Separation | StopSpec::Rebound => None,
         };
         let mut flight = self.flight.take().expect("in free flight");
         let step: FlightStep = match flight.step(t_limit, |y| self.flight_gap(y)) {
@@ -1596,6 +1596,7 @@ impl<'s> Simulation<'s> {
     pub fn run(mut self, recorder: &mut dyn Recorder) -> Result<RunSummary, RigError> {
         let stop = self.scene.file.stop;
         let max_steps = self.scene.file.solver.max_steps;
+        let mut rebound = Rebound::default();
         loop {
             if self.stats.steps >= max_steps {
                 return Err(RigError::NotReached {
@@ -1608,11 +1609,14 @@ impl<'s> Simulation<'s> {
                 StopSpec::Peak => outcome == StepOutcome::Peak,
                 StopSpec::Separation => outcome == StepOutcome::Separation,
                 StopSpec::Duration { duration_s } => self.t >= duration_s,
+                StopSpec::Rebound => {
+                    rebound.turned(outcome, self.now.operator.rate, self.stats.open.is_some())
+                }
             };
             if done {
                 break;
             }
-            if let StopSpec::Peak | StopSpec::Separation = stop
+            if let StopSpec::Peak | StopSpec::Separation | StopSpec::Rebound = stop
                 && self.stats.contacts.is_empty()
                 && self.stats.open.is_none()
                 && self.t > 60.0
@@ -1690,6 +1694,37 @@ impl<'s> Simulation<'s> {
                 commanded_speed_at_onset_rad_s: self.stats.drive_onset.and_then(|o| o.1),
             }),
         })
+    }
+}
+
+/// The watch of [`StopSpec::Rebound`]: the direction the operator swings in at the first
+/// onset, and whether it has moved away from the dome since the last contact.
+#[derive(Debug, Default)]
+struct Rebound {
+    /// The sign of the operator's rate at the first onset (towards the dome).
+    towards: Option<f64>,
+    away: bool,
+}
+
+impl Rebound {
+    /// After a step with `outcome`, the operator's rate `rate` [rad/s] and a contact `open`:
+    /// whether the operator, out of contact, has turned back towards the dome after moving
+    /// away from it (the apex of its rebound).
+    fn turned(&mut self, outcome: StepOutcome, rate: f64, open: bool) -> bool {
+        if open || matches!(outcome, StepOutcome::ContactOnset | StepOutcome::Peak) {
+            self.towards.get_or_insert(rate.signum());
+            self.away = false;
+            return false;
+        }
+        let Some(towards) = self.towards else {
+            return false;
+        };
+        if rate * towards < 0.0 {
+            self.away = true;
+            false
+        } else {
+            self.away
+        }
     }
 }
 

@@ -354,6 +354,10 @@ pub enum StopSpec {
     Peak,
     /// When the dome and the block separate.
     Separation,
+    /// Every contact of the swing: after the last separation, when the operator's block,
+    /// having moved away from the dome, turns back at the apex of its rebound (a later contact
+    /// would be the return swing under gravity, a new strike of the test bed).
+    Rebound,
     /// After a fixed simulated time.
     Duration {
         /// Simulated time \[s\].
@@ -369,6 +373,9 @@ impl StopSpec {
             StopSpec::Peak => "the peak of the first contact (stop.at = \"peak\")".into(),
             StopSpec::Separation => {
                 "the separation of the first contact (stop.at = \"separation\")".into()
+            }
+            StopSpec::Rebound => {
+                "the operator's turn at the apex of its rebound (stop.at = \"rebound\")".into()
             }
             StopSpec::Duration { duration_s } => format!(
                 "t = {} s (stop.duration_s)",

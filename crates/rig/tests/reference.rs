@@ -9,143 +9,12 @@
 //! and the energy through an undamped contact are the physical ones.
 
 mod common;
+#[path = "support/two_hinges.rs"]
+mod two_hinges;
 
-use flexrig_contact::math::{Pose, Vector};
-use flexrig_contact::{BodyKinematics, ContactCallback, ContactSample, DomeBlockContact};
-use flexrig_lumped::ode::dop853::{Dop853, Dop853Options, OdeSystem};
 use flexrig_rig::geometry::RigGeometry;
 use flexrig_rig::{NoRecorder, RunOptions, RunSummary, Scene, Simulation};
-use rapier3d_f64::glamx::DQuat;
-
-/// The rig's two hinges as an ODE, y = (φ, φ̇, ψ, ψ̇).
-struct TwoHinges {
-    geometry: RigGeometry,
-    gravity: f64,
-    spring: f64,
-    contact: DomeBlockContact,
-}
-
-impl TwoHinges {
-    fn new(scene: &Scene) -> Self {
-        let geometry = RigGeometry::of(scene);
-        let op = &geometry.operator;
-        let v_impact = scene
-            .file
-            .operator
-            .start
-            .initial_swing(
-                op.mass,
-                op.com_distance,
-                op.inertia_pivot,
-                scene.file.gravity_mps2,
-            )
-            .rate_at_contact
-            * op.arm_length;
-        let contact = DomeBlockContact::new(
-            geometry.robot.dome_radius,
-            Pose::from_translation(geometry.robot.dome_center_local),
-            op.block_half_extents,
-            Pose::from_translation(op.block_center_local),
-            scene.contact_law(v_impact).unwrap(),
-        )
-        .unwrap();
-        TwoHinges {
-            geometry,
-            gravity: scene.file.gravity_mps2,
-            spring: scene.torsion_spring,
-            contact,
-        }
-    }
-
-    fn bodies(&self, y: &[f64; 4]) -> (BodyKinematics, BodyKinematics) {
-        let pivot = self.geometry.operator.pivot;
-        let block = BodyKinematics {
-            pose: Pose::from_parts(pivot, DQuat::from_axis_angle(Vector::X, y[0])),
-            reference_point: pivot,
-            linvel: Vector::ZERO,
-            angvel: Vector::X * y[1],
-        };
-        let dome = BodyKinematics {
-            pose: Pose::from_parts(Vector::ZERO, DQuat::from_rotation_z(y[2])),
-            reference_point: Vector::ZERO,
-            linvel: Vector::ZERO,
-            angvel: Vector::Z * y[3],
-        };
-        (dome, block)
-    }
-
-    fn contact_at(&self, y: &[f64; 4]) -> Option<ContactSample> {
-        let (dome, block) = self.bodies(y);
-        self.contact.evaluate(&dome, &block)
-    }
-}
-
-impl OdeSystem<4> for TwoHinges {
-    fn rhs(&self, _t: f64, y: &[f64; 4]) -> [f64; 4] {
-        let op = &self.geometry.operator;
-        let mut tau_op = -op.mass * self.gravity * op.com_distance * y[0].sin();
-        let mut tau_rob = -self.spring * y[2];
-        if let Some(c) = self.contact_at(y) {
-            tau_op += (c.point - op.pivot).cross(c.force_on_block()).x;
-            tau_rob += c.point.cross(c.force_on_dome()).z;
-        }
-        [
-            y[1],
-            tau_op / op.inertia_pivot,
-            y[3],
-            tau_rob / self.geometry.robot.inertia_axis,
-        ]
-    }
-}
-
-/// The maximum of `g` on [a, b] by golden-section search: (g, t).
-fn golden_max(g: impl Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
-    let r = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut lo, mut hi) = (a, b);
-    for _ in 0..200 {
-        let (x1, x2) = (hi - r * (hi - lo), lo + r * (hi - lo));
-        if g(x1) < g(x2) {
-            lo = x1;
-        } else {
-            hi = x2;
-        }
-    }
-    let t = 0.5 * (lo + hi);
-    (g(t), t)
-}
-
-/// The reference peak force \[N\] and its time \[s\] from the state `y0` at t = 0: the largest
-/// force on the dense output of the two steps around the first decrease.
-fn reference_peak(system: &TwoHinges, y0: [f64; 4]) -> (f64, f64) {
-    let options = Dop853Options {
-        rtol: 1e-13,
-        atol: [1e-15, 1e-13, 1e-15, 1e-13],
-        first_step: None,
-        max_step: 1e-4,
-        max_steps: 10_000_000,
-    };
-    let mut ode = Dop853::new(system, 0.0, y0, options);
-    let force = |y: &[f64; 4]| system.contact_at(y).map_or(0.0, |c| c.force);
-    let mut previous_force = force(&y0);
-    let mut previous_step = None;
-    loop {
-        ode.step(system).unwrap();
-        let dense = ode.dense_output(system);
-        let f = force(ode.y());
-        if f < previous_force && previous_force > 0.0 {
-            let last = golden_max(|t| force(&dense.eval(t)), dense.t_start(), dense.t_end());
-            let before = previous_step.map_or(
-                (0.0, 0.0),
-                |d: flexrig_lumped::ode::dop853::DenseOutput<4>| {
-                    golden_max(|t| force(&d.eval(t)), d.t_start(), d.t_end())
-                },
-            );
-            return if last.0 >= before.0 { last } else { before };
-        }
-        previous_force = f;
-        previous_step = Some(dense);
-    }
-}
+use two_hinges::{TwoHinges, reference_contacts, reference_peak};
 
 fn run(scene: &Scene) -> RunSummary {
     Simulation::new(scene, RunOptions::default())
@@ -385,5 +254,58 @@ fn a_run_from_release_with_the_adaptive_contact_agrees_with_the_reference() {
                 s.time_of_peak_s
             );
         }
+    }
+}
+
+#[test]
+fn every_contact_of_the_swing_agrees_with_the_reference() {
+    // cj_iron released from 26.45° (near where the hand's 280 N limit is reached): the heavy
+    // block drives on after the first contact while the light link swings back on its spring
+    // and strikes it again harder; the run stops at the apex of the operator's rebound
+    for (contact, tolerance) in [
+        ("", 5e-6),
+        ("contact = \"adaptive\"\ncontact_rtol = 1e-10\n", 2e-8),
+    ] {
+        let solver = format!("{contact}contact_steps = 800");
+        let scene = common::scene(
+            "cj_iron",
+            &[
+                ("release_angle_deg = 30.0", "release_angle_deg = 26.4471"),
+                ("at = \"separation\"", "at = \"rebound\""),
+                ("contact_steps = 800", solver.as_str()),
+            ],
+        );
+        let s = run(&scene);
+        let system = TwoHinges::new(&scene);
+        let reference = reference_contacts(
+            &system,
+            [-26.4471f64.to_radians(), 0.0, 0.0, 0.0],
+            s.duration_s + 0.5,
+        );
+        for (k, (c, r)) in s.contacts.iter().zip(&reference).enumerate() {
+            println!(
+                "{contact:?} contact {}: peak {} N (reference {}, {:+.2e}), at {} s ({})",
+                k + 1,
+                c.peak_force_n,
+                r.1,
+                c.peak_force_n / r.1 - 1.0,
+                c.time_of_peak_s,
+                r.2
+            );
+        }
+        assert!(s.contacts.len() >= 2, "a second contact: {:?}", s.contacts);
+        assert_eq!(s.contacts.len(), reference.len(), "the number of contacts");
+        for (k, (c, r)) in s.contacts.iter().zip(&reference).enumerate() {
+            assert!(
+                (c.peak_force_n / r.1 - 1.0).abs() < tolerance,
+                "contact {}: {} vs {}",
+                k + 1,
+                c.peak_force_n,
+                r.1
+            );
+            assert!((c.time_of_peak_s - r.2).abs() < 1e-5, "contact {}", k + 1);
+        }
+        // the second contact is the larger one
+        assert!(s.contacts[1].peak_force_n > s.contacts[0].peak_force_n);
     }
 }

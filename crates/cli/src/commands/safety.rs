@@ -453,6 +453,15 @@ fn print_test_bed(
             n(sc.root_rtol)
         ),
     )?;
+    if let Some(c) = &sc.contacts_at_root {
+        line(
+            out,
+            format!(
+                "  contacts           {}",
+                flexrig::safety::scene::contacts_words(c)
+            ),
+        )?;
+    }
     for note in &sc.notes {
         line(out, format!("  note: {note}"))?;
     }

@@ -250,13 +250,23 @@ pub fn peak_force(
 /// same grid, so the second reuses the first's runs (the same speed gives the same run bit for
 /// bit).
 #[derive(Debug, Default)]
-struct Peaks {
+pub(crate) struct Peaks {
     known: std::collections::HashMap<u64, f64>,
     runs: usize,
 }
 
 impl Peaks {
-    fn at(&mut self, v: f64, run: impl FnOnce(f64) -> Result<f64, Error>) -> Result<f64, Error> {
+    /// How many runs were made.
+    pub(crate) fn runs(&self) -> usize {
+        self.runs
+    }
+
+    /// The peak at `v` [m/s]: remembered, or `run` and remembered.
+    pub(crate) fn at(
+        &mut self,
+        v: f64,
+        run: impl FnOnce(f64) -> Result<f64, Error>,
+    ) -> Result<f64, Error> {
         if let Some(p) = self.known.get(&v.to_bits()) {
             return Ok(*p);
         }
@@ -464,9 +474,14 @@ pub fn contacts_words(c: &crate::safety::simulation::ContactsAtRoot) -> String {
              reaction to the collision)",
             d(t)
         ),
+        RunEnd::Rebound(t) => format!(
+            "the operator's turn at the apex of its rebound at {} s (every contact of the \
+             swing; a later one would be the pendulum's return swing)",
+            d(t)
+        ),
         RunEnd::FirstSeparation | RunEnd::StepBudget(_) => {
-            "the first separation: the driven CL by the linear model follows the first \
-             contact only, a later contact is not judged"
+            "the first separation: this CL model (the driven link's linear model, the test \
+             bed's beam) follows the first contact only, a later contact is not judged"
                 .to_string()
         }
     };

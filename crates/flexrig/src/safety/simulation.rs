@@ -298,7 +298,7 @@ impl FeRuns {
         let outcome = run_on_modes(&setup, &m, &options)?;
         let parted_at_s = match outcome.ended {
             RunEnd::PartedForGood(t) => t,
-            RunEnd::Window(t) | RunEnd::StepBudget(t) => {
+            RunEnd::Window(t) | RunEnd::StepBudget(t) | RunEnd::Rebound(t) => {
                 return Err(Error::NonFinite {
                     what: format!("simulated impact at {} m/s", display(v)),
                     value: format!(

@@ -7,9 +7,12 @@
 //! swing, where it meets the dome, v = ω_b l (l the arm's length to the block centre); the
 //! operator is released at rest from the angle θ₀ that gives it,
 //! ½ J ω_b² = M g l_c (1 − cos θ₀), so 1 − cos θ₀ = J v²/(2 M g l_c l²). Each speed is one whole
-//! rig run (the swing, the contact to the scene's stop) by flexrig-rig, and the speed at which
-//! the first contact's peak force reaches the region's force limit is found by the same Illinois
-//! root search on ln v as a driven scene's ([`crate::safety::simulation::speed_at_ratio`]).
+//! rig run: the swing and **every contact of the swing** — the rig stops when the operator's
+//! block, out of contact and moving away, turns back at the apex of its rebound (scene stop
+//! `rebound`; a later contact would be the pendulum's return swing under gravity, a new strike
+//! of the test bed) — and the permissible speed is the smallest speed at which the largest
+//! contact's peak force reaches the region's force limit, by the scan from below and the
+//! Illinois refinement on ln v of a driven scene ([`crate::safety::simulation::scan_up`]).
 //!
 //! The release angle is bounded by 170° (the scene's own bound): the largest speed the test bed
 //! can reach. When the peak force there is still below the limit, the search reports that speed
@@ -25,8 +28,10 @@ use flexrig_safety::{EnergyContact, Limits, PressureCrossing};
 
 use crate::Error;
 use crate::driven::strike::StrikeDesign;
-use crate::safety::simulation::SceneSimulation;
-use crate::safety::simulation::{RootStep, SimulationSettings, speed_at_ratio};
+use crate::safety::scene::{Peaks, SCAN_START_OF_GUESS};
+use crate::safety::simulation::{
+    ContactsAtRoot, RootStep, Scan, SceneSimulation, SimulationSettings, refine, scan_up,
+};
 
 /// The largest release angle of the test bed \[deg\] (`operator.start.release_angle_deg`).
 pub const MAX_RELEASE_ANGLE_DEG: f64 = 170.0;
@@ -109,7 +114,18 @@ impl TestBedScene {
         swing.rate_at_contact * op.arm_length
     }
 
-    /// The scene run with the operator released from rest at `angle_deg` \[deg\].
+    /// Whether a run follows every contact of the swing: the CJ (its free flight is solved by
+    /// the adaptive integrator, exactly); the CL's beam rings after the contact at the scene's
+    /// swing step, which does not resolve that ringing (a second contact of `cl_iron` moves by
+    /// 5 % between swing steps of 5e-4 s and 1e-4 s), so a CL run ends at the first separation
+    /// and the verdict says so.
+    pub fn every_contact(&self) -> bool {
+        self.design() == StrikeDesign::Cj
+    }
+
+    /// The scene run with the operator released from rest at `angle_deg` \[deg\]: a CJ to the
+    /// apex of the operator's rebound, every contact of the swing (scene stop `rebound`); a CL
+    /// to the scene's own stop ([`Self::every_contact`]).
     pub fn run_released(&self, angle_deg: f64) -> Result<RunSummary, Error> {
         let start = toml::Value::Table(toml::Table::from_iter([
             ("from".to_string(), toml::Value::String("release".into())),
@@ -118,9 +134,20 @@ impl TestBedScene {
                 toml::Value::Float(angle_deg),
             ),
         ]));
+        let stop = toml::Value::Table(toml::Table::from_iter([(
+            "at".to_string(),
+            toml::Value::String("rebound".into()),
+        )]));
         let scene = flexrig_rig::scene_with_overrides(
             &self.text,
-            &[Override::new("operator.start", start)],
+            &if self.every_contact() {
+                vec![
+                    Override::new("operator.start", start),
+                    Override::new("stop", stop),
+                ]
+            } else {
+                vec![Override::new("operator.start", start)]
+            },
             &Materials::bundled()?,
         )?;
         Ok(Simulation::new(&scene, RunOptions::default())?
@@ -128,8 +155,8 @@ impl TestBedScene {
             .run(&mut NoRecorder)?)
     }
 
-    /// The first contact's peak force \[N\] at speed `v` [m/s] at contact (a release angle up to
-    /// 170°; beyond it an error naming the speed and the largest).
+    /// The largest contact's peak force \[N\] over the swing at speed `v` [m/s] at contact (a
+    /// release angle up to 170°; beyond it an error naming the speed and the largest).
     pub fn peak_force(&self, v: f64) -> Result<f64, Error> {
         let angle = self.release_angle_for(v).ok_or_else(|| Error::InvalidArgument {
             arg: "--speed".into(),
@@ -139,41 +166,81 @@ impl TestBedScene {
                 flexrig_contact::validate::display(self.max_speed())
             ),
         })?;
-        Ok(self.run_released(angle)?.peak_force_n)
+        Ok(largest_contact(&self.run_released(angle)?).1.peak_force_n)
     }
 }
 
-/// The root of `peak(v)/limit = 1` below the test bed's largest speed `v_cap`, or `None` when the
-/// peak at `v_cap` is still below the limit. Above `v_cap` (where the bracket may grow) the ratio
-/// is continued as r(v_cap) v/v_cap without a run: it stays above 1 there, so the root found is
-/// a simulated one.
-fn capped_root(
+/// The contact with the largest peak force of a run and its number (1 = the first).
+pub fn largest_contact(run: &RunSummary) -> (usize, flexrig_rig::ContactEvent) {
+    run.contacts
+        .iter()
+        .enumerate()
+        .fold(
+            None::<(usize, flexrig_rig::ContactEvent)>,
+            |best, (i, c)| match best {
+                Some((_, b)) if b.peak_force_n >= c.peak_force_n => best,
+                _ => Some((i + 1, *c)),
+            },
+        )
+        .expect("a run summary holds its first contact")
+}
+
+/// The smallest speed below the test bed's largest, `v_cap`, at which `peak(v)` reaches
+/// `limit` (the scan from below from `guess` × [`SCAN_START_OF_GUESS`], the start halved up to
+/// ten times when the limit is reached there already), or `None` when the scan reaches `v_cap`
+/// with the peak still below the limit; with the peak at `v_cap` when it was run.
+fn smallest_test_bed_speed(
     v_cap: f64,
     guess: f64,
     rtol: f64,
     limit: f64,
     peak: &mut dyn FnMut(f64) -> Result<f64, Error>,
     trace: Option<&mut Vec<RootStep>>,
-) -> Result<(Option<f64>, f64), Error> {
-    let at_cap = peak(v_cap)?;
-    if at_cap < limit {
-        return Ok((None, at_cap));
-    }
-    let r_cap = at_cap / limit;
-    let guess = clamp_guess(guess).min(v_cap / 1.05);
-    let root = speed_at_ratio(
-        guess,
-        rtol,
-        &mut |v| {
-            if v >= v_cap {
-                Ok(r_cap * v / v_cap)
-            } else {
-                Ok(peak(v)? / limit)
+) -> Result<(Option<f64>, Option<f64>), Error> {
+    let mut at_cap = None;
+    let mut below_at_cap = false;
+    let mut ratio = |v: f64| -> Result<f64, Error> {
+        if v < v_cap {
+            return Ok(peak(v)? / limit);
+        }
+        let p = peak(v_cap)?;
+        at_cap = Some(p);
+        if p < limit {
+            below_at_cap = true;
+            // ends the scan (the error is replaced below): not reached up to the test bed's
+            // largest speed
+            return Err(Error::InvalidArgument {
+                arg: "--speed".into(),
+                value: flexrig_contact::validate::display(v),
+                allowed: "a speed the test bed reaches".into(),
+            });
+        }
+        Ok(p / limit)
+    };
+    let start = (clamp_guess(guess) * SCAN_START_OF_GUESS)
+        .max(1e-4)
+        .min(v_cap);
+    let found = match scan_up(start, rtol, &mut ratio, trace) {
+        Ok(Scan::Crossing(v)) => Ok(Some(v.min(v_cap))),
+        Ok(Scan::Never) => Ok(None),
+        Ok(Scan::AtStart) => (|| {
+            let (mut above, mut r_above) = (start, ratio(start)?);
+            for _ in 0..10 {
+                let below = 0.5 * above;
+                let r = ratio(below)?;
+                if r < 1.0 {
+                    return refine((below, r), (above, r_above), rtol, &mut ratio).map(Some);
+                }
+                (above, r_above) = (below, r);
             }
-        },
-        trace,
-    )?;
-    Ok((Some(root.min(v_cap)), at_cap))
+            Ok(Some(0.0))
+        })(),
+        Err(e) => Err(e),
+    };
+    match found {
+        Err(_) if below_at_cap => Ok((None, at_cap)),
+        other => Ok((other?, at_cap)),
+    }
 }
 
 /// The permissible speed at contact of the test bed `tb` under `limits` (force; pressure
@@ -189,15 +256,14 @@ pub fn simulate(
     stop: &std::sync::atomic::AtomicBool,
 ) -> Result<SceneSimulation, Error> {
     settings.validate()?;
-    let mut runs = 0usize;
+    let mut peaks = Peaks::default();
     let mut peak = |v: f64| -> Result<f64, Error> {
         crate::safety::simulation::check_stop(stop)?;
-        runs += 1;
-        tb.peak_force(v)
+        peaks.at(v, |v| tb.peak_force(v))
     };
     let v_cap = tb.max_speed();
     let mut force_search = Vec::new();
-    let (by_force, peak_at_cap) = capped_root(
+    let (by_force, force_at_cap) = smallest_test_bed_speed(
         v_cap,
         guess_force,
         settings.root_rtol,
@@ -210,7 +276,15 @@ pub fn simulate(
     let by_pressure = match (limits.pressure, guess_pressure) {
         (Some(p), Some(g)) => match energy.force_at_pressure(p) {
             Some(PressureCrossing::AtForce(f)) => {
-                let (root, _) = capped_root(v_cap, g, settings.root_rtol, f, &mut peak, None)?;
+                // the same grid from the lower of the two starts, so the runs are shared
+                let (root, _) = smallest_test_bed_speed(
+                    v_cap,
+                    g.min(guess_force),
+                    settings.root_rtol,
+                    f,
+                    &mut peak,
+                    None,
+                )?;
                 if root.is_none() {
                     pressure_unreached = Some(p);
                 }
@@ -221,6 +295,12 @@ pub fn simulate(
         },
         _ => None,
     };
+    let peak_at_cap = match force_at_cap {
+        Some(p) => p,
+        None if by_force.is_none() => peak(v_cap)?,
+        None => f64::NAN,
+    };
+    let mut runs = peaks.runs();
     let speed = by_force.unwrap_or(v_cap);
     let angle = match by_force {
         Some(v) => tb.release_angle_for(v).unwrap_or(MAX_RELEASE_ANGLE_DEG),
@@ -228,6 +308,7 @@ pub fn simulate(
     };
     let at_root = tb.run_released(angle)?;
     runs += 1;
+    let (governing, largest) = largest_contact(&at_root);
     let g = |v: f64| flexrig_contact::validate::display(v);
     let mut notes = vec![match by_force {
         Some(_) => format!(
@@ -262,8 +343,18 @@ pub fn simulate(
         by_force_mps: speed,
         by_pressure_mps: by_pressure,
         approach_speed_at_root_mps: at_root.impact_velocity_mps,
-        peak_force_at_root_n: at_root.peak_force_n,
-        contacts_at_root: None,
+        peak_force_at_root_n: largest.peak_force_n,
+        contacts_at_root: Some(ContactsAtRoot {
+            contacts: at_root.contacts.len(),
+            governing,
+            time_of_peak_s: largest.time_of_peak_s,
+            ended: if tb.every_contact() {
+                flexrig_impact::RunEnd::Rebound(at_root.duration_s)
+            } else {
+                flexrig_impact::RunEnd::FirstSeparation
+            },
+            every_contact: tb.every_contact(),
+        }),
         notes,
         force_search,
         runs,

@@ -212,7 +212,7 @@ impl Simulation<'_> {
     ) -> Result<StepOutcome, RigError> {
         let t_limit = match self.scene.file.stop {
             StopSpec::Duration { duration_s } => Some(duration_s),
-            StopSpec::Peak | StopSpec::Separation => None,
+            StopSpec::Peak | StopSpec::Separation | StopSpec::Rebound => None,
         };
         let mut flight = self.flight.take().expect("in the adaptive contact");
         let mut search = self.peak_search.take().expect("in the adaptive contact");

@@ -1,0 +1,85 @@
+//! Every contact of the swing counts in a test-bed scene's verdict: on `cj_iron` the heavy
+//! operator's block drives on after the first contact while the light CJ link swings back on its
+//! spring and strikes it again, harder. The permissible speed for the hand (280 N) is set by that
+//! second contact. Checked against the rig's independent reference (its two hinges as an ODE
+//! by DOP853 at 1e-13, no Rapier: crates/rig/tests/support/two_hinges.rs) followed through every
+//! contact of the swing: the reference's largest peak crosses the limit within 1e-3 of the
+//! reported speed, stays below it at every lower speed of a 2 % grid, and its first contact
+//! alone stays well below the limit at the reported speed.
+
+#[path = "../../rig/tests/support/two_hinges.rs"]
+mod two_hinges;
+
+use flexrig::safety::{ContactKind, ContactLaw, SafetyInput, SafetyMethod, safety};
+use flexrig_contact::Materials;
+use flexrig_rig::Scene;
+use flexrig_rig::geometry::RigGeometry;
+use two_hinges::{TwoHinges, reference_contacts};
+
+/// The reference's contacts of `scene` with its operator reaching the dome at `v` [m/s]
+/// (released at rest from the angle the energy gives: J ω² / 2 = M g l_c (1 − cos θ₀)).
+fn reference_at(scene: &Scene, v: f64) -> Vec<two_hinges::ReferenceContact> {
+    let g = RigGeometry::of(scene);
+    let op = &g.operator;
+    let omega = v / op.arm_length;
+    let cos_theta = 1.0
+        - op.inertia_pivot * omega * omega
+            / (2.0 * op.mass * scene.file.gravity_mps2 * op.com_distance);
+    let system = TwoHinges::new(scene);
+    reference_contacts(&system, [-cos_theta.acos(), 0.0, 0.0, 0.0], 5.0)
+}
+
+fn largest(contacts: &[two_hinges::ReferenceContact]) -> f64 {
+    contacts.iter().map(|c| c.1).fold(0.0, f64::max)
+}
+
+#[test]
+fn a_later_contact_of_the_swing_sets_the_test_beds_permissible_speed() {
+    let input = SafetyInput {
+        region: "hands_and_fingers".into(),
+        area: None,
+        contact: ContactKind::Transient,
+        m_eff: None,
+        k_delta: None,
+        law: ContactLaw::BodySpring,
+        area_model: None,
+        moving_mass: None,
+        payload: 0.0,
+        speed: None,
+        methods: vec![SafetyMethod::Simulation],
+        link: None,
+        simulation: None,
+        scene: Some("cj_iron".into()),
+    };
+    let report = safety(&input, None).unwrap();
+    let sim = report.scene.clone().unwrap();
+    let limit = report.force_limit_n;
+    let v = sim.by_force_mps;
+    let at_root = sim.contacts_at_root.unwrap();
+    println!("v = {v} m/s, {at_root:?}");
+    assert!(at_root.every_contact);
+    assert_eq!((at_root.governing, at_root.contacts), (2, 2));
+    assert!(matches!(at_root.ended, flexrig_impact::RunEnd::Rebound(_)));
+
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/scenes/cj_iron.toml"),
+    )
+    .unwrap();
+    let scene = Scene::from_toml_str(&text, &Materials::bundled().unwrap()).unwrap();
+    let below = largest(&reference_at(&scene, v * (1.0 - 1e-3)));
+    let above = largest(&reference_at(&scene, v * (1.0 + 1e-3)));
+    println!("reference: {below} N at 0.999 v, {above} N at 1.001 v");
+    assert!(
+        below < limit && above >= limit,
+        "{below} / {above} N around {limit} N"
+    );
+    // the smallest crossing: below the limit at every lower speed of a 2 % grid
+    for k in 1..50 {
+        let u = v * k as f64 / 50.0;
+        let p = largest(&reference_at(&scene, u));
+        assert!(p < limit, "{p} N at {u} m/s, below the reported {v} m/s");
+    }
+    // the first contact alone would have allowed a faster speed
+    let first = reference_at(&scene, v)[0].1;
+    assert!(first < 0.9 * limit, "first contact {first} N");
+}
