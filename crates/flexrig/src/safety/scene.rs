@@ -466,12 +466,13 @@ pub fn contacts_words(c: &crate::safety::simulation::ContactsAtRoot) -> String {
     let d = flexrig_contact::validate::display;
     let end = match c.ended {
         RunEnd::PartedForGood(t) => format!(
-            "the bodies parted for good at {} s (the head beyond the dome's reach, moving away)",
+            "the bodies' parting for good at {} s (the head beyond the dome's reach, moving \
+             away)",
             d(t)
         ),
         RunEnd::Window(t) => format!(
-            "the scene's window closed at {} s (horizon_s; the drive kept its command, no \
-             reaction to the collision)",
+            "the close of the scene's window at {} s (horizon_s; the drive kept its command, \
+             no reaction to the collision)",
             d(t)
         ),
         RunEnd::Rebound(t) => format!(
