@@ -8,6 +8,9 @@
 
 use std::sync::atomic::AtomicBool;
 
+#[path = "../../impact/tests/support/driven_cj_reference.rs"]
+mod driven_cj_reference;
+
 use flexrig::safety::{ContactKind, ContactLaw, SafetyInput, SafetyMethod, safety};
 
 const LIGHT_CJ_HAND: &str = r#"
@@ -111,5 +114,60 @@ fn the_largest_of_several_driven_contacts_sets_the_permissible_speed() {
             .peak_force_n
     };
     assert!(first(v) < 0.9 * limit, "first contact {} N", first(v));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The largest peak \[N\] of every contact by the independent solution
+/// (crates/impact/tests/support/driven_cj_reference.rs, the same design as LIGHT_CJ_HAND) at
+/// commanded tip speed `v` [m/s].
+fn reference_largest(v: f64) -> f64 {
+    let omega = v / driven_cj_reference::L;
+    driven_cj_reference::reference(omega, 5.0)
+        .iter()
+        .map(|c| c.1)
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn the_driven_permissible_speed_agrees_with_the_independent_solution_of_every_contact() {
+    let dir = std::env::temp_dir().join(format!("flexrig-driven-reference-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("light_cj_hand.toml");
+    std::fs::write(&path, LIGHT_CJ_HAND).unwrap();
+    let input = SafetyInput {
+        region: "hands_and_fingers".into(),
+        area: None,
+        contact: ContactKind::Transient,
+        m_eff: None,
+        k_delta: None,
+        law: ContactLaw::BodySpring,
+        area_model: None,
+        moving_mass: None,
+        payload: 0.0,
+        speed: None,
+        methods: vec![SafetyMethod::Simulation],
+        link: None,
+        simulation: None,
+        scene: Some(path.to_str().unwrap().to_string()),
+    };
+    let report = safety(&input, None).unwrap();
+    let v = report.scene.unwrap().by_force_mps;
+    let limit = report.force_limit_n;
+    // the reference crosses the limit within 1e-3 of the reported speed ...
+    let (below, above) = (
+        reference_largest(v * (1.0 - 1e-3)),
+        reference_largest(v * (1.0 + 1e-3)),
+    );
+    println!("v = {v} m/s: reference {below} N at 0.999 v, {above} N at 1.001 v");
+    assert!(
+        below < limit && above >= limit,
+        "{below} / {above} N around {limit} N"
+    );
+    // ... and stays below it at every lower speed of a 2.5 % grid (the smallest crossing)
+    for k in 1..40 {
+        let u = v * k as f64 / 40.0;
+        let p = reference_largest(u);
+        assert!(p < limit, "{p} N at {u} m/s, below the reported {v} m/s");
+    }
     std::fs::remove_dir_all(&dir).ok();
 }
