@@ -79,6 +79,31 @@ fn a_later_contact_of_the_swing_sets_the_test_beds_permissible_speed() {
         let p = largest(&reference_at(&scene, u));
         assert!(p < limit, "{p} N at {u} m/s, below the reported {v} m/s");
     }
+    // a direct run of the scene released from the reported angle, every contact of the swing,
+    // reaches the limit (1e-4)
+    let angle = sim.release_angle_at_root_deg.unwrap();
+    let direct = flexrig_rig::scene_with_overrides(
+        &text,
+        &[
+            flexrig_rig::Override::new(
+                "operator.start.release_angle_deg",
+                toml::Value::Float(angle),
+            ),
+            flexrig_rig::Override::new("stop.at", toml::Value::String("rebound".into())),
+        ],
+        &Materials::bundled().unwrap(),
+    )
+    .unwrap();
+    let run = flexrig_rig::Simulation::new(&direct, flexrig_rig::RunOptions::default())
+        .unwrap()
+        .run(&mut flexrig_rig::NoRecorder)
+        .unwrap();
+    let top = run
+        .contacts
+        .iter()
+        .map(|c| c.peak_force_n)
+        .fold(0.0, f64::max);
+    assert!((top / limit - 1.0).abs() < 1e-4, "direct run: {top} N");
     // the first contact alone would have allowed a faster speed
     let first = reference_at(&scene, v)[0].1;
     assert!(first < 0.9 * limit, "first contact {first} N");

@@ -820,12 +820,13 @@ fn scene_trace(
     let f = r.force_limit_n;
     d.push(Block::Paragraph(format!(
         "The driven scene {} ({}) is simulated whole at each commanded speed: the drive's ramp, \
-         the approach and the contact with the drive acting, for {}; the struck body ({}, {} kg) \
-         is {}, so the contact is {}. The driven strike ends when the bodies first separate: a \
-         later contact of the driven link is not simulated yet. The commanded tip speed L ω_c \
-         (the scene as written: {} m/s) at which the peak force reaches F_max = {} N is \
-         bracketed by factors of 2 around the energy method's speed and found by the Illinois \
-         false position on ln v until the bracket is narrower than {:e} (relative).",
+         the approach and the contacts with the drive acting, for {}; the struck body ({}, {} kg) \
+         is {}, so the contact is {}. {} The commanded tip speed L ω_c (the scene as written: {} \
+         m/s) at which the largest contact's peak force reaches F_max = {} N is the smallest such \
+         speed: a scan from below on a grid of ratio 2^(1/16) from a 64th of the energy method's \
+         speed, then the Illinois false position on ln v between the first grid speed that \
+         reaches the limit and the one before, until the bracket is narrower than {:e} \
+         (relative).",
         sc.name,
         sc.scene,
         sc.link_model,
@@ -837,6 +838,7 @@ fn scene_trace(
             _ => "free",
         },
         contact_words(r.contact),
+        contacts_sentence(sc),
         g(sc.scene_tip_speed_mps),
         n(f),
         sc.root_rtol
@@ -876,6 +878,22 @@ fn scene_trace(
     }
 }
 
+/// Which contacts each run of a scene follows, and what the run at the root found.
+fn contacts_sentence(sc: &crate::safety::simulation::SceneSimulation) -> String {
+    match &sc.contacts_at_root {
+        Some(c) if c.every_contact => format!(
+            "Every contact counts: each run follows contact after contact, and at the answer {}.",
+            crate::safety::scene::contacts_words(c)
+        ),
+        Some(c) => format!(
+            "Each run ends at the first separation (a later contact is not judged): at the \
+             answer {}.",
+            crate::safety::scene::contacts_words(c)
+        ),
+        None => String::new(),
+    }
+}
+
 /// Method c on a test-bed scene: the scene, the search's every evaluation and the result.
 fn test_bed_trace(
     d: &mut Document,
@@ -892,19 +910,21 @@ fn test_bed_trace(
     d.push(Block::Paragraph(format!(
         "The test-bed scene {} ({}, the {} on its axis) is run whole at each speed: the \
          operator's pendulum is released at rest from the angle whose swing reaches the dome at \
-         that speed (the pendulum's energy, ½ J ω_b² = M g l_c (1 − cos θ₀), v = ω_b l), and the \
-         first contact is integrated with a contact step of {:e} s. The operator's block is the \
-         struck body and its pendulum is free, so the contact is transient. The speed at which \
-         the peak force reaches F_max = {} N is found by the Illinois false position on ln v \
-         until the bracket is narrower than {:e} (relative); release angles are bounded by \
-         170°. Methods a and b use the region's body mass, this one the operator's pendulum.",
+         that speed (the pendulum's energy, ½ J ω_b² = M g l_c (1 − cos θ₀), v = ω_b l), and \
+         the contacts are integrated with a contact step of {} s. The operator's block is the \
+         struck body and its pendulum is free, so the contact is transient. {} The smallest \
+         speed at which the largest contact's peak force reaches F_max = {} N is found by a \
+         scan from below (grid ratio 2^(1/16)) and the Illinois false position on ln v until \
+         the bracket is narrower than {:e} (relative); release angles are bounded by 170°. \
+         Methods a and b use the region's body mass, this one the operator's pendulum.",
         sc.name,
         sc.scene,
         match sc.design {
             crate::driven::strike::StrikeDesign::Cj => "compliant joint",
             crate::driven::strike::StrikeDesign::Cl => "compliant link",
         },
-        sc.run_tol,
+        g(sc.run_tol),
+        contacts_sentence(sc),
         n(f),
         sc.root_rtol
     )));
