@@ -383,6 +383,19 @@ fn run_cj(
     dome_offset: Option<f64>,
     stop: &AtomicBool,
 ) -> Result<DrivenOutcome, ImpactError> {
+    let mut tracer = Tracer::new(settings.trace_every);
+    run_cj_traced(strike, settings, dome_offset, stop, &mut tracer)
+        .map_err(|e| ImpactError::with_trace(e, std::mem::take(&mut tracer.samples)))
+}
+
+/// [`run_cj`], its samples going to `tracer` (kept there when the run fails midway).
+fn run_cj_traced(
+    strike: &DrivenStrike,
+    settings: &CjSettings,
+    dome_offset: Option<f64>,
+    stop: &AtomicBool,
+    tracer: &mut Tracer,
+) -> Result<DrivenOutcome, ImpactError> {
     strike.validate()?;
     if !(settings.rtol.is_finite() && (1e-14..=1e-3).contains(&settings.rtol)) {
         return Err(ImpactError::invalid(
@@ -490,7 +503,7 @@ fn run_cj(
             b
         },
         horizon: strike.horizon_s,
-        tracer: Tracer::new(settings.trace_every),
+        tracer,
         saturation_at: None,
         work: 0,
         stop,
@@ -619,7 +632,7 @@ fn run_cj(
         separation_rate_mps: separation_rate,
         notes,
         work: run.work,
-        trace: run.tracer.samples,
+        trace: std::mem::take(&mut run.tracer.samples),
         contacts,
         ended,
     };
@@ -651,10 +664,10 @@ struct ContactRun {
 
 /// What the phases of one driven CJ run share: the drive's corners, the window, the trace,
 /// the first saturation, the work done, the stop flag.
-struct Run<'s> {
+struct Run<'s, 't> {
     breaks: Vec<f64>,
     horizon: f64,
-    tracer: Tracer,
+    tracer: &'t mut Tracer,
     saturation_at: Option<f64>,
     work: usize,
     stop: &'s AtomicBool,
@@ -662,7 +675,7 @@ struct Run<'s> {
     last_free: Y,
 }
 
-impl Run<'_> {
+impl Run<'_, '_> {
     /// The drive's segment around `t`: sets the branch on which the command is evaluated (the
     /// segment's middle) and returns the segment's end (a corner of the command or the window).
     fn segment(&self, system: &DrivenCj<'_>, t: f64) -> f64 {

@@ -826,6 +826,19 @@ pub fn run_driven_cl_until(
     settings: &ClDriveSettings,
     stop: &std::sync::atomic::AtomicBool,
 ) -> Result<DrivenOutcome, ImpactError> {
+    let mut tracer = Tracer::new(settings.trace_every);
+    run_driven_cl_traced(strike, settings, stop, &mut tracer)
+        .map_err(|e| ImpactError::with_trace(e, std::mem::take(&mut tracer.samples)))
+}
+
+/// [`run_driven_cl_until`], its samples going to `tracer` (kept there when the run fails
+/// midway).
+fn run_driven_cl_traced(
+    strike: &DrivenStrike,
+    settings: &ClDriveSettings,
+    stop: &std::sync::atomic::AtomicBool,
+    tracer: &mut Tracer,
+) -> Result<DrivenOutcome, ImpactError> {
     let check_stop = || {
         if stop.load(std::sync::atomic::Ordering::Relaxed) {
             Err(ImpactError::Interrupted)
@@ -1035,7 +1048,6 @@ pub fn run_driven_cl_until(
     {
         return Err(ImpactError::invalid("trace_every", dt, "a time > 0 s"));
     }
-    let mut tracer = Tracer::new(settings.trace_every);
     tracer.offer(0.0, true, || int.sample(&s));
     let mut breaks = strike.drive.breakpoints();
     breaks.push(strike.horizon_s);
@@ -1329,7 +1341,7 @@ pub fn run_driven_cl_until(
         separation_rate_mps: int.delta(&s).1,
         notes,
         work: steps,
-        trace: tracer.samples,
+        trace: std::mem::take(&mut tracer.samples),
         contacts: Vec::new(),
         ended: if window_closed {
             crate::RunEnd::Window(strike.horizon_s)

@@ -45,6 +45,49 @@ pub enum ImpactError {
     /// Stopped on request (Ctrl-C) before every case was computed.
     #[error("stopped on request before every case was computed")]
     Interrupted,
+    /// A traced run that failed or was stopped midway, with the trace it computed up to then
+    /// (what its log keeps).
+    #[error("{error}")]
+    Partial {
+        /// Why the run ended.
+        error: Box<ImpactError>,
+        /// The samples computed before it ended.
+        trace: Vec<crate::strike::TraceSample>,
+    },
+}
+
+impl ImpactError {
+    /// `error` with the samples `trace` computed before it (unchanged without samples, and
+    /// for bad input: that run never really ran).
+    pub fn with_trace(error: ImpactError, trace: Vec<crate::strike::TraceSample>) -> ImpactError {
+        if trace.is_empty()
+            || error.is_input_error()
+            || matches!(error, ImpactError::Partial { .. })
+        {
+            error
+        } else {
+            ImpactError::Partial {
+                error: Box::new(error),
+                trace,
+            }
+        }
+    }
+
+    /// The error itself, without the samples of a [`ImpactError::Partial`] run.
+    pub fn root(&self) -> &ImpactError {
+        match self {
+            ImpactError::Partial { error, .. } => error.root(),
+            other => other,
+        }
+    }
+
+    /// The samples a run computed before it failed or was stopped (empty: none kept).
+    pub fn partial_trace(&self) -> &[crate::strike::TraceSample] {
+        match self {
+            ImpactError::Partial { trace, .. } => trace,
+            _ => &[],
+        }
+    }
 }
 
 impl ImpactError {
@@ -56,6 +99,7 @@ impl ImpactError {
             ImpactError::Lumped(e) => e.is_input_error(),
             ImpactError::Beam(e) => e.is_input_error(),
             ImpactError::Severity(e) => e.is_input_error(),
+            ImpactError::Partial { error, .. } => error.is_input_error(),
             ImpactError::NotFinished { .. }
             | ImpactError::Unfinished { .. }
             | ImpactError::Interrupted => false,

@@ -870,14 +870,8 @@ pub fn run_exact_cl_meshed_until(
         return Ok((run_on_mesh(strike, settings, stop)?, settings.elements));
     };
     let mut n = settings.elements;
-    let mut coarse = run_on_mesh(
-        strike,
-        &ExactSettings {
-            trace_every: None,
-            ..*settings
-        },
-        stop,
-    )?;
+    // traced as well: a run stopped or failed on this mesh keeps what it computed
+    let mut coarse = run_on_mesh(strike, settings, stop)?;
     let mut work = coarse.work;
     let mut change = f64::INFINITY;
     loop {
@@ -917,6 +911,18 @@ fn run_on_mesh(
     strike: &DrivenStrike,
     settings: &ExactSettings,
     stop: &std::sync::atomic::AtomicBool,
+) -> Result<DrivenOutcome, ImpactError> {
+    let mut tracer = Tracer::new(settings.trace_every);
+    run_on_mesh_traced(strike, settings, stop, &mut tracer)
+        .map_err(|e| ImpactError::with_trace(e, std::mem::take(&mut tracer.samples)))
+}
+
+/// [`run_on_mesh`], its samples going to `tracer` (kept there when the run fails midway).
+fn run_on_mesh_traced(
+    strike: &DrivenStrike,
+    settings: &ExactSettings,
+    stop: &std::sync::atomic::AtomicBool,
+    tracer: &mut Tracer,
 ) -> Result<DrivenOutcome, ImpactError> {
     let link = strike.link;
     let l = link.length;
@@ -1031,7 +1037,7 @@ fn run_on_mesh(
         };
     }
     let mut pass = Pass {
-        tracer: Tracer::new(settings.trace_every),
+        tracer,
         steps: 0,
         max_steps: settings.max_steps,
         horizon: strike.horizon_s,
@@ -1219,7 +1225,7 @@ fn run_on_mesh(
         separation_rate_mps: separation_rate,
         notes,
         work: pass.steps,
-        trace: pass.tracer.samples,
+        trace: std::mem::take(&mut pass.tracer.samples),
         contacts,
         ended,
     };
@@ -1243,7 +1249,7 @@ const STRETCH_BOUND: f64 = 0.05;
 /// What the phases of one exact CL run share: the trace, the work done, the window, the
 /// drive's corners, the stop flag.
 struct Pass<'r> {
-    tracer: Tracer,
+    tracer: &'r mut Tracer,
     steps: usize,
     max_steps: usize,
     horizon: f64,

@@ -218,76 +218,24 @@ pub fn write<W: Write + Seek>(
             ("time", "simulation time from the drive's start (ns)".into()),
         ]),
     )?;
+    let channels = Channels {
+        joint,
+        command,
+        torque,
+        link,
+        contact,
+    };
     match outcome {
         Ok(run) => {
-            let tr = &run.traces;
             let c = run.outcome.contact;
-            let (on, off) = (c.onset_s, c.onset_s + c.duration_s);
-            let mut last: Option<u64> = None;
-            for i in 0..tr.time_s.len() {
-                let t = tr.time_s[i];
-                let ns = nanos(t);
-                let inside = t >= on && t <= off;
-                let first_or_last = i == 0 || i + 1 == tr.time_s.len();
-                if !inside
-                    && !first_or_last
-                    && last.is_some_and(|l| ns < l + rates.scalar_period_ns)
-                {
-                    continue;
-                }
-                last = Some(ns);
-                let ts = stamp(t);
-                w.write(
-                    joint,
-                    t,
-                    &JointMotion {
-                        timestamp: ts,
-                        angle_rad: tr.joint_angle_rad[i],
-                        speed_rad_s: tr.joint_speed_rad_s[i],
-                    },
-                )?;
-                if let Some(command) = command {
-                    w.write(
-                        command,
-                        t,
-                        &JointMotion {
-                            timestamp: ts,
-                            angle_rad: tr.commanded_angle_rad[i],
-                            speed_rad_s: tr.commanded_speed_rad_s[i],
-                        },
-                    )?;
-                }
-                w.write(
-                    torque,
-                    t,
-                    &MotorTorque {
-                        timestamp: ts,
-                        joint_nm: tr.joint_torque_nm[i],
-                        motor_nm: tr.motor_torque_nm[i],
-                    },
-                )?;
-                w.write(
-                    link,
-                    t,
-                    &LinkState {
-                        timestamp: ts,
-                        moment_nm: tr.link_moment_nm[i],
-                        tip_deflection_m: tr.tip_deflection_m[i],
-                        tip_deflection_mm: 1e3 * tr.tip_deflection_m[i],
-                    },
-                )?;
-                w.write(
-                    contact,
-                    t,
-                    &DrivenContact {
-                        timestamp: ts,
-                        force_n: tr.force_n[i],
-                        indentation_m: tr.indentation_m[i],
-                        indentation_mm: 1e3 * tr.indentation_m[i],
-                        head_acceleration_mps2: tr.head_acceleration_mps2[i],
-                    },
-                )?;
-            }
+            write_traces(
+                &mut w,
+                &channels,
+                &run.traces,
+                (c.onset_s, c.onset_s + c.duration_s),
+                rates,
+            )?;
+            let off = c.onset_s + c.duration_s;
             if let Some(severity) = &run.summary.severity {
                 let mut message = serde_json::to_value(severity).unwrap_or_default();
                 if let Some(map) = message.as_object_mut() {
@@ -308,7 +256,16 @@ pub fn write<W: Write + Seek>(
                 .unwrap_or_default();
             w.metadata("summary", items)?;
         }
-        Err(e) => w.metadata("error", pairs(&[("message", e.to_string())]))?,
+        Err(e) => {
+            // what the run computed before it failed or was stopped
+            if let Error::Impact(ie) = e
+                && !ie.partial_trace().is_empty()
+            {
+                let traces = super::scene::traces_of(scene, ie.partial_trace());
+                write_traces(&mut w, &channels, &traces, (f64::NAN, f64::NAN), rates)?;
+            }
+            w.metadata("error", pairs(&[("message", e.to_string())]))?
+        }
     }
     w.metadata(
         "view",
@@ -384,4 +341,95 @@ pub fn run_logged(scene: &DrivenScene, target: &LogTarget<'_>) -> Result<DrivenR
         axes,
     )?;
     outcome
+}
+
+/// The channels of a driven log's motion.
+#[derive(Clone, Copy)]
+struct Channels {
+    joint: u16,
+    command: Option<u16>,
+    torque: u16,
+    link: u16,
+    contact: u16,
+}
+
+/// The motion's messages: every sample inside the contact window `(on, off)` \[s\] (none with
+/// NaN), the first and the last, and elsewhere at most one per `rates.scalar_period_ns`.
+fn write_traces<W: Write + Seek>(
+    w: &mut Writer<W>,
+    ch: &Channels,
+    tr: &super::scene::DrivenTraces,
+    (on, off): (f64, f64),
+    rates: LogRates,
+) -> Result<(), mcap::McapError> {
+    let Channels {
+        joint,
+        command,
+        torque,
+        link,
+        contact,
+    } = *ch;
+    let mut last: Option<u64> = None;
+    for i in 0..tr.time_s.len() {
+        let t = tr.time_s[i];
+        let ns = nanos(t);
+        let inside = t >= on && t <= off;
+        let first_or_last = i == 0 || i + 1 == tr.time_s.len();
+        if !inside && !first_or_last && last.is_some_and(|l| ns < l + rates.scalar_period_ns) {
+            continue;
+        }
+        last = Some(ns);
+        let ts = stamp(t);
+        w.write(
+            joint,
+            t,
+            &JointMotion {
+                timestamp: ts,
+                angle_rad: tr.joint_angle_rad[i],
+                speed_rad_s: tr.joint_speed_rad_s[i],
+            },
+        )?;
+        if let Some(command) = command {
+            w.write(
+                command,
+                t,
+                &JointMotion {
+                    timestamp: ts,
+                    angle_rad: tr.commanded_angle_rad[i],
+                    speed_rad_s: tr.commanded_speed_rad_s[i],
+                },
+            )?;
+        }
+        w.write(
+            torque,
+            t,
+            &MotorTorque {
+                timestamp: ts,
+                joint_nm: tr.joint_torque_nm[i],
+                motor_nm: tr.motor_torque_nm[i],
+            },
+        )?;
+        w.write(
+            link,
+            t,
+            &LinkState {
+                timestamp: ts,
+                moment_nm: tr.link_moment_nm[i],
+                tip_deflection_m: tr.tip_deflection_m[i],
+                tip_deflection_mm: 1e3 * tr.tip_deflection_m[i],
+            },
+        )?;
+        w.write(
+            contact,
+            t,
+            &DrivenContact {
+                timestamp: ts,
+                force_n: tr.force_n[i],
+                indentation_m: tr.indentation_m[i],
+                indentation_mm: 1e3 * tr.indentation_m[i],
+                head_acceleration_mps2: tr.head_acceleration_mps2[i],
+            },
+        )?;
+    }
+    Ok(())
 }

@@ -450,15 +450,14 @@ pub fn note_text(note: &DriveNote) -> String {
     note.to_string()
 }
 
-/// Runs a driven scene (the strike with its trace at the scene's sample rate).
-pub fn run(scene: &DrivenScene, cancel: &CancelToken) -> Result<DrivenRun, Error> {
-    let result = super::strike::run(&scene.strike, &scene.options(), cancel)?;
-    let outcome = result.outcome;
+/// The samples `trace` of a run of `scene` as columns (the commanded motion from the
+/// scene's profile, the motor's torque through its gear).
+pub fn traces_of(scene: &DrivenScene, trace: &[flexrig_impact::TraceSample]) -> DrivenTraces {
     let s = &scene.strike;
     let n = s.drive.motor().gear_ratio;
     let profile = s.drive.profile();
     let mut traces = DrivenTraces::default();
-    for sample in &outcome.trace {
+    for sample in trace {
         traces.time_s.push(sample.t);
         if let Some(p) = profile {
             let (phi, omega, _) = p.at(sample.t);
@@ -477,6 +476,16 @@ pub fn run(scene: &DrivenScene, cancel: &CancelToken) -> Result<DrivenRun, Error
             .head_acceleration_mps2
             .push(sample.head_acceleration_mps2);
     }
+    traces
+}
+
+/// Runs a driven scene (the strike with its trace at the scene's sample rate).
+pub fn run(scene: &DrivenScene, cancel: &CancelToken) -> Result<DrivenRun, Error> {
+    let result = super::strike::run(&scene.strike, &scene.options(), cancel)?;
+    let outcome = result.outcome;
+    let s = &scene.strike;
+    let n = s.drive.motor().gear_ratio;
+    let traces = traces_of(scene, &outcome.trace);
     let c = outcome.contact;
     let end = c.onset_s + c.duration_s;
     let in_contact = |t: f64| t >= c.onset_s && t <= end;

@@ -124,8 +124,10 @@ impl Error {
     pub fn kind(&self) -> ErrorKind {
         match self {
             Error::Rig(flexrig_rig::RigError::Interrupted { .. })
-            | Error::Impact(flexrig_impact::ImpactError::Interrupted)
             | Error::SweepInterrupted { .. } => ErrorKind::Interrupted,
+            Error::Impact(e) if matches!(e.root(), flexrig_impact::ImpactError::Interrupted) => {
+                ErrorKind::Interrupted
+            }
             Error::Read { .. } | Error::Write { .. } => ErrorKind::Io,
             Error::InvalidArgument { .. } | Error::NonFinite { .. } => ErrorKind::Input,
             Error::Contact(e) if e.is_input_error() => ErrorKind::Input,
