@@ -32,7 +32,7 @@ def test_spin_up_equals_the_cli_csv_bit_for_bit(cli, tmp_path):
 
 def test_spin_up_of_kanes_beam_equals_the_cli_json_bit_for_bit(cli, tmp_path):
     # the case's own numbers (its 8 m beam, 4 rad/s): no beam keyword given
-    expected = cli.json("spin-up", "--case", "kane", "--out", tmp_path / "cli", "--json")
+    expected = cli.json("spin-up", "--case", "kane", "--out", tmp_path / "cli")
     df = flexrig.spin_up(case="kane", out=tmp_path / "py")
     for column in ("t", "fe", "reference", "linear"):
         assert np.array_equal(df[column].to_numpy(), np.array(expected[column], dtype=np.float64)), column
@@ -49,7 +49,7 @@ def test_spin_up_of_kanes_beam_equals_the_cli_json_bit_for_bit(cli, tmp_path):
 
 def test_spin_up_keywords_override_the_cases_numbers(cli, tmp_path):
     args = ["--case", "kane", "--density", "2700", "--duration", "6", "--elements", "6", "--modes", "3"]
-    expected = cli.json("spin-up", *args, "--out", tmp_path, "--json")
+    expected = cli.json("spin-up", *args, "--out", tmp_path)
     df = flexrig.spin_up(case="kane", density=2700.0, duration=6.0, elements=6, modes=3)
     assert df.attrs["options"] == expected["options"]
     assert expected["options"]["density"] == 2700.0 and expected["options"]["length"] == 8.0

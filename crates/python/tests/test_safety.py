@@ -203,9 +203,9 @@ def test_a_unit_slip_is_warned_about_naming_the_keyword_as_the_cli_names_the_fla
     # a measured trace: a column it does not read is named by the keyword trace
     path = _pulse(tmp_path / "pulse.csv")
     lines = path.read_text().splitlines()
-    lines = [lines[0] + ", T [K]"] + [line + ", 300" for line in lines[1:]]
+    lines = [lines[0] + ", temperature [K]"] + [line + ", 300" for line in lines[1:]]
     path.write_text("\n".join(lines) + "\n")
-    with pytest.warns(flexrig.PlausibilityWarning, match=r"^trace: columns not used: T \[K\]"):
+    with pytest.warns(flexrig.PlausibilityWarning, match=r"^trace: columns not used: temperature \[K\]"):
         got = flexrig.safety("chest", trace=path)
     expected = cli.json("safety", "--trace", path, "--region", "chest")
     assert [w["field"] for w in expected["warnings"]] == ["--trace"]
