@@ -4,13 +4,17 @@
 # system interpreter.
 #   1. bash scripts/python-env.sh --package   .venv with maturin, numpy, pandas, pytest, dask
 #                                             (skipped with --no-env: .venv already made)
-#   2. cargo test --release --workspace --no-run
-#                                             the README's test build, which holds the CLI the
-#                                             tests compare against (nothing to do after
-#                                             `cargo test --release --workspace`, as in CI)
+#   2. cargo build --release --workspace --bins
+#                                             the CLI the tests compare against, and nothing
+#                                             else: the build of the README's first command
+#                                             (`cargo run --release`), so nothing to do after it
+#                                             or after `cargo test --release --workspace` (as in
+#                                             CI); the whole workspace, so that its features are
+#                                             those of both README commands and the libraries
+#                                             are shared with them
 #   3. maturin develop --release              the extension, on the same release build as
-#                                             `cargo test --release --workspace` (same
-#                                             CARGO_TARGET_DIR, PYO3_PYTHON, the features of
+#                                             both README commands (same CARGO_TARGET_DIR,
+#                                             PYO3_PYTHON, the features of
 #                                             crates/python/Cargo.toml's alignment section and,
 #                                             from .cargo/config.toml, PYO3_BUILD_EXTENSION_MODULE)
 #   4. pytest crates/python/tests             with FLEXRIG_REQUIRE_ALL=1: the comparisons with the
@@ -31,8 +35,8 @@ export PYO3_PYTHON="$VIRTUAL_ENV/bin/python"
 target=${CARGO_TARGET_DIR:-$root/target}
 case "$target" in /*) ;; *) target="$root/$target" ;; esac
 
-echo "== cargo test --release --workspace --no-run (the CLI)"
-cargo test --release --workspace --no-run
+echo "== cargo build --release --workspace --bins (the CLI)"
+cargo build --release --workspace --bins
 echo "== maturin develop --release (crates/python into .venv)"
 (cd crates/python && maturin develop --release)
 echo "== pytest crates/python/tests"

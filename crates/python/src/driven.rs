@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use flexrig::driven::role_switch::{RoleSwitchOptions, run_with_figures as run_role_switch};
-use flexrig::driven::spin_up::{SpinUpOptions, run_with_figures as run_spin_up};
+use flexrig::driven::spin_up::{SpinUpCase, SpinUpFlags, run_with_figures as run_spin_up};
 use flexrig::driven::strike::{
     FieldNames, LinkModel, StrikeDescription, StrikeDesign, StrikeFlags, StrikeOptions,
     parse_support, run as run_strike,
@@ -36,22 +36,24 @@ fn to_object<'py>(py: Python<'py>, value: &impl Serialize) -> PyResult<Bound<'py
     json_to_py(py, &v)
 }
 
-/// The spin-up benchmark as `flexrig spin-up` runs it; writes into `out` (the figure at the
-/// printed width `size`, in `format`s, PNG at `dpi`, as `--size`, `--format`, `--dpi`); returns
-/// the serialised `SpinUpResult` (a dict).
+/// The spin-up benchmark as `flexrig spin-up` runs it: the beam `case` (`simo-vu-quoc` or
+/// `kane`) with each beam or spin-up number given in place of the case's; writes into `out` (the
+/// figure at the printed width `size`, in `format`s, PNG at `dpi`, as `--size`, `--format`,
+/// `--dpi`); returns the serialised `SpinUpResult` (a dict). Errors name the keyword argument.
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (out, length, area, second_moment, youngs_modulus, density, t_s, omega_s, elements, duration, sample_every, max_step, modes, size, format, dpi))]
+#[pyo3(signature = (out, case, length, area, second_moment, youngs_modulus, density, t_s, omega_s, elements, duration, sample_every, max_step, modes, size, format, dpi))]
 pub fn spin_up<'py>(
     py: Python<'py>,
     out: PathBuf,
-    length: f64,
-    area: f64,
-    second_moment: f64,
-    youngs_modulus: f64,
-    density: f64,
-    t_s: f64,
-    omega_s: f64,
+    case: &str,
+    length: Option<f64>,
+    area: Option<f64>,
+    second_moment: Option<f64>,
+    youngs_modulus: Option<f64>,
+    density: Option<f64>,
+    t_s: Option<f64>,
+    omega_s: Option<f64>,
     elements: usize,
     duration: Option<f64>,
     sample_every: f64,
@@ -61,7 +63,8 @@ pub fn spin_up<'py>(
     format: Vec<String>,
     dpi: f64,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let options = SpinUpOptions {
+    let flags = SpinUpFlags {
+        case: SpinUpCase::parse("--case", case).map_err(flag_error)?,
         length,
         area,
         second_moment,
@@ -78,7 +81,7 @@ pub fn spin_up<'py>(
     let figures = fronts::figure_options(size, &format, dpi).map_err(flag_error)?;
     let cancel = CancelToken::new();
     let result = detached(py, &cancel, || {
-        run_spin_up(&options, &out, &figures, &cancel)
+        run_spin_up(&flags.options(), &out, &figures, &cancel)
     })?
     .map_err(py_error)?;
     to_object(py, &result)
@@ -184,10 +187,7 @@ fn run_described<'py>(
     let mut result =
         detached(py, &cancel, || run_strike(description, &options, &cancel))?.map_err(py_error)?;
     // the flags' warnings name the keyword arguments (`m_r`, not `--m-r`)
-    for w in &mut result.warnings {
-        w.field = crate::keywords(&w.field);
-        w.message = crate::keywords(&w.message);
-    }
+    crate::keyword_warnings(&mut result.warnings);
     to_object(py, &result)
 }
 
@@ -218,12 +218,18 @@ pub fn strike_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     json_to_py(py, &v)
 }
 
-/// The defaults of `flexrig spin-up`'s flags (the literature case, [`SpinUpOptions`]'s
-/// `Default`) by keyword argument.
+/// The defaults of `flexrig spin-up`'s flags ([`SpinUpFlags::DEFAULT`]: Simo & Vu-Quoc's
+/// beam, its numbers `None` for the case's) by keyword argument.
 #[pyfunction]
 pub fn spin_up_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
-    let v = serde_json::to_value(SpinUpOptions::default())
-        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+    let d = SpinUpFlags::DEFAULT;
+    let v = serde_json::json!({
+        "case": d.case.name(), "length": d.length, "area": d.area,
+        "second_moment": d.second_moment, "youngs_modulus": d.youngs_modulus,
+        "density": d.density, "t_s": d.t_s, "omega_s": d.omega_s, "elements": d.elements,
+        "duration": d.duration, "sample_every": d.sample_every, "max_step": d.max_step,
+        "modes": d.modes,
+    });
     json_to_py(py, &v)
 }
 

@@ -129,6 +129,16 @@ pub(crate) fn keywords(text: &str) -> String {
     out
 }
 
+/// Each of a report's `warnings` with the flags it names (`--m-r`) written as the keyword
+/// arguments (`m_r`), in its field and its message: the names a Python caller gave the values
+/// by. A file's fields (`link.m_r`) stay as they are.
+pub(crate) fn keyword_warnings(warnings: &mut [flexrig::safety::measured::Warning]) {
+    for w in warnings {
+        w.field = keywords(&w.field);
+        w.message = keywords(&w.message);
+    }
+}
+
 /// The keyword argument of the first flag `text` names.
 fn first_keyword(text: &str) -> Option<String> {
     let i = text.find("--")?;

@@ -1,5 +1,6 @@
 //! The permissible speed near a body region ([`flexrig::safety`]): the input and the report
-//! cross as JSON, so the Python result holds exactly the numbers of `flexrig safety --json`.
+//! cross as JSON, so the Python result holds exactly the numbers of `flexrig safety --json`; its
+//! warnings name the keyword arguments (`m_r`) where the command's name its flags (`--m-r`).
 
 use flexrig::safety::{BodyModel, SafetyInput, safety_cancellable};
 use pyo3::prelude::*;
@@ -20,10 +21,11 @@ pub fn safety_json(
         .map_err(|e| input_error("input", format!("invalid safety input: {e}")))?;
     let model = body_model_toml.map(body_model).transpose()?;
     let cancel = flexrig::CancelToken::new();
-    let report = crate::detached(py, &cancel, || {
+    let mut report = crate::detached(py, &cancel, || {
         safety_cancellable(&input, model.as_ref(), &cancel)
     })?
     .map_err(to_py)?;
+    crate::keyword_warnings(&mut report.warnings);
     serde_json::to_string(&report)
         .map_err(|e| input_error("input", format!("the report does not serialise: {e}")))
 }
@@ -68,10 +70,11 @@ pub fn safety_map_json(
         .map_err(|e| input_error("input", format!("invalid safety map input: {e}")))?;
     let model = body_model_toml.map(body_model).transpose()?;
     let cancel = flexrig::CancelToken::new();
-    let map = crate::detached(py, &cancel, || {
+    let mut map = crate::detached(py, &cancel, || {
         flexrig::safety::map::safety_map(&input, model.as_ref(), &cancel)
     })?
     .map_err(to_py)?;
+    crate::keyword_warnings(&mut map.warnings);
     serde_json::to_string(&map)
         .map_err(|e| input_error("input", format!("the map does not serialise: {e}")))
 }
@@ -93,9 +96,10 @@ pub fn safety_trace_json(
         .map(BodyModel::from_toml_str)
         .transpose()
         .map_err(|e| to_py(flexrig::Error::from(e)))?;
-    let report = py
+    let mut report = py
         .detach(|| flexrig::safety::measured::judge_trace(&input, model.as_ref()))
         .map_err(crate::flag_error)?;
+    crate::keyword_warnings(&mut report.warnings);
     serde_json::to_string(&report)
         .map_err(|e| input_error("input", format!("the report does not serialise: {e}")))
 }

@@ -2,6 +2,7 @@
 for bit, from the command's CSV and JSON."""
 
 import csv
+import json
 from pathlib import Path
 
 import numpy as np
@@ -10,6 +11,8 @@ import pytest
 import flexrig
 
 DRIVES = Path(__file__).resolve().parents[3] / "assets" / "drives"
+#: the spin-up result's file paths (each front its own directory)
+PATHS = ("csv", "json", "svg", "figures")
 
 
 def test_spin_up_equals_the_cli_csv_bit_for_bit(cli, tmp_path):
@@ -25,6 +28,43 @@ def test_spin_up_equals_the_cli_csv_bit_for_bit(cli, tmp_path):
         assert np.array_equal(df[column].to_numpy(), expected), column
     # the FE beam follows the independent elastica: within 1 % of the max at every time
     assert np.max(np.abs(df.fe - df.reference)) <= 0.01 * np.max(np.abs(df.reference))
+
+
+def test_spin_up_of_kanes_beam_equals_the_cli_json_bit_for_bit(cli, tmp_path):
+    # the case's own numbers (its 8 m beam, 4 rad/s): no beam keyword given
+    expected = cli.json("spin-up", "--case", "kane", "--out", tmp_path / "cli")
+    df = flexrig.spin_up(case="kane", out=tmp_path / "py")
+    for column in ("t", "fe", "reference", "linear"):
+        assert np.array_equal(df[column].to_numpy(), np.array(expected[column], dtype=np.float64)), column
+    assert df.attrs["options"] == expected["options"]
+    assert df.attrs["options"]["length"] == 8.0 and df.attrs["options"]["omega_s"] == 4.0
+    for key in ("fe_error_of_max", "reference_max_m"):
+        assert df.attrs[key] == expected[key], key
+    # the JSON file each wrote holds the same numbers, the paths aside
+    on_disk = json.loads(Path(df.attrs["json"]).read_text())
+    assert {k: v for k, v in on_disk.items() if k not in PATHS} == {
+        k: v for k, v in expected.items() if k not in PATHS
+    }
+
+
+def test_spin_up_keywords_override_the_cases_numbers(cli, tmp_path):
+    args = ["--case", "kane", "--density", "2700", "--duration", "6", "--elements", "6", "--modes", "3"]
+    expected = cli.json("spin-up", *args, "--out", tmp_path)
+    df = flexrig.spin_up(case="kane", density=2700.0, duration=6.0, elements=6, modes=3)
+    assert df.attrs["options"] == expected["options"]
+    assert expected["options"]["density"] == 2700.0 and expected["options"]["length"] == 8.0
+    assert np.array_equal(df["fe"].to_numpy(), np.array(expected["fe"], dtype=np.float64))
+
+
+@pytest.mark.parametrize("case", ["kane-ryan", "Kane", "simo_vu_quoc", ""])
+def test_spin_up_refuses_an_unknown_case_naming_the_keyword(case):
+    with pytest.raises(flexrig.InputError) as e:
+        flexrig.spin_up(case=case)
+    assert e.value.field == "case"
+    assert str(e.value) == f"invalid argument case = {case}: one of simo-vu-quoc, kane"
+    with pytest.raises(flexrig.InputError) as e:
+        flexrig.spin_up(case=1)
+    assert e.value.field == "case"
 
 
 @pytest.mark.parametrize("name", ["cj_free_head.toml", "cl_wall.toml"])

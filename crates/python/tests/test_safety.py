@@ -179,7 +179,38 @@ def test_an_area_without_its_unit_is_refused_and_an_implausible_one_warned_about
     assert e.value.field == "contact_area"
     with pytest.warns(flexrig.PlausibilityWarning, match="contact_area"):
         r = flexrig.safety("chest", m_eff=3.0, contact_area=1.0)
-    assert r["warnings"][0]["field"] == "--contact-area"
+    assert r["warnings"][0]["field"] == "contact_area"
+
+
+def _without_warnings(report):
+    return {k: v for k, v in report.items() if k != "warnings"}
+
+
+def test_a_unit_slip_is_warned_about_naming_the_keyword_as_the_cli_names_the_flag(cli, tmp_path):
+    # 1200 kg typed for 1200 g, 600 m for 600 mm: the command's warnings name --m-r and
+    # --length, Python's the keyword arguments, with the same messages and the same report
+    with pytest.warns(flexrig.PlausibilityWarning) as caught:
+        got = flexrig.safety("chest", m_r=1200.0, m_e=0.412, link="cj", length=600.0,
+                             method="standard,energy")
+    expected = cli.json("safety", "--region", "chest", "--m-r", "1200", "--m-e", "0.412", "--link",
+                        "cj", "--length", "600", "--method", "standard,energy")
+    assert [w["field"] for w in expected["warnings"]] == ["--m-r", "--length"]
+    assert got["warnings"] == [
+        {"field": w["field"][2:].replace("-", "_"), "message": w["message"]} for w in expected["warnings"]
+    ]
+    assert [str(w.message) for w in caught] == [f"{w['field']}: {w['message']}" for w in got["warnings"]]
+    assert _without_warnings(got) == _without_warnings(expected)
+    # a measured trace: a column it does not read is named by the keyword trace
+    path = _pulse(tmp_path / "pulse.csv")
+    lines = path.read_text().splitlines()
+    lines = [lines[0] + ", temperature [K]"] + [line + ", 300" for line in lines[1:]]
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.warns(flexrig.PlausibilityWarning, match=r"^trace: columns not used: temperature \[K\]"):
+        got = flexrig.safety("chest", trace=path)
+    expected = cli.json("safety", "--trace", path, "--region", "chest")
+    assert [w["field"] for w in expected["warnings"]] == ["--trace"]
+    assert got["warnings"] == [{"field": "trace", "message": expected["warnings"][0]["message"]}]
+    assert _without_warnings(got) == _without_warnings(expected)
 
 
 def test_the_map_warns_about_a_unit_slip_naming_the_keyword(cli, tmp_path):
@@ -191,3 +222,5 @@ def test_the_map_warns_about_a_unit_slip_naming_the_keyword(cli, tmp_path):
                         "--out", tmp_path)["warnings"]
     assert [w["field"] for w in expected] == ["--m-e"]
     assert got["warnings"] == [{"field": "m_e", "message": expected[0]["message"]}]
+    # the library's whole result too
+    assert got["map"]["warnings"] == got["warnings"]

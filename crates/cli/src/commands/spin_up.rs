@@ -6,13 +6,13 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use flexrig::driven::spin_up::{SpinUpCase, SpinUpOptions, run_with_figures as run_spin_up};
+use flexrig::driven::spin_up::{SpinUpCase, SpinUpFlags, run_with_figures as run_spin_up};
 use flexrig::{CancelToken, Error};
 
 use crate::print::{line, print_json};
 
 /// The flags' defaults (the discretisation; the beam's come from `--case`).
-const D: SpinUpOptions = SpinUpOptions::SIMO_VU_QUOC;
+const D: SpinUpFlags = SpinUpFlags::DEFAULT;
 
 /// The beams by name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -83,23 +83,20 @@ pub struct SpinUpArgs {
 }
 
 impl SpinUpArgs {
-    fn case(&self) -> SpinUpCase {
-        match self.case {
-            CaseArg::SimoVuQuoc => SpinUpCase::SimoVuQuoc,
-            CaseArg::Kane => SpinUpCase::Kane,
-        }
-    }
-
-    fn options(&self) -> SpinUpOptions {
-        let c = self.case().options();
-        SpinUpOptions {
-            length: self.length.unwrap_or(c.length),
-            area: self.area.unwrap_or(c.area),
-            second_moment: self.second_moment.unwrap_or(c.second_moment),
-            youngs_modulus: self.youngs_modulus.unwrap_or(c.youngs_modulus),
-            density: self.density.unwrap_or(c.density),
-            t_s: self.t_s.unwrap_or(c.t_s),
-            omega_s: self.omega_s.unwrap_or(c.omega_s),
+    /// The flags as the library reads them.
+    fn flags(&self) -> SpinUpFlags {
+        SpinUpFlags {
+            case: match self.case {
+                CaseArg::SimoVuQuoc => SpinUpCase::SimoVuQuoc,
+                CaseArg::Kane => SpinUpCase::Kane,
+            },
+            length: self.length,
+            area: self.area,
+            second_moment: self.second_moment,
+            youngs_modulus: self.youngs_modulus,
+            density: self.density,
+            t_s: self.t_s,
+            omega_s: self.omega_s,
             elements: self.elements,
             duration: self.duration,
             sample_every: self.sample_every,
@@ -107,29 +104,12 @@ impl SpinUpArgs {
             modes: self.modes,
         }
     }
-
-    /// The heading's source: the case's, or "edited" when a flag changed its beam.
-    fn source(&self) -> String {
-        let edited = [
-            self.length,
-            self.area,
-            self.second_moment,
-            self.youngs_modulus,
-            self.density,
-        ]
-        .iter()
-        .any(Option::is_some);
-        if edited {
-            format!("{}, edited", self.case().source())
-        } else {
-            self.case().source().to_string()
-        }
-    }
 }
 
 /// Runs `flexrig spin-up`.
 pub fn run(args: &SpinUpArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<(), Error> {
-    let r = run_spin_up(&args.options(), &args.out, &args.figure.options()?, cancel)?;
+    let flags = args.flags();
+    let r = run_spin_up(&flags.options(), &args.out, &args.figure.options()?, cancel)?;
     if args.json {
         let v = serde_json::to_value(&r).map_err(|e| Error::NonFinite {
             what: "spin-up result".into(),
@@ -151,7 +131,7 @@ pub fn run(args: &SpinUpArgs, out: &mut dyn Write, cancel: &CancelToken) -> Resu
         out,
         format!(
             "Spin-up beam ({}): L = {} m, ω_s = {} rad/s, T_s = {} s, to {} s",
-            args.source(),
+            flags.source(),
             r.options.length,
             r.options.omega_s,
             r.options.t_s,

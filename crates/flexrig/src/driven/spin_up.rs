@@ -125,6 +125,123 @@ impl SpinUpCase {
             SpinUpCase::Kane => "Kane, Ryan & Banerjee 1987",
         }
     }
+
+    /// The case's name as `--case` takes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            SpinUpCase::SimoVuQuoc => "simo-vu-quoc",
+            SpinUpCase::Kane => "kane",
+        }
+    }
+
+    /// The case named `word` (`simo-vu-quoc` or `kane`); an error names `flag`, the word and
+    /// the names allowed.
+    pub fn parse(flag: &str, word: &str) -> Result<SpinUpCase, Error> {
+        [SpinUpCase::SimoVuQuoc, SpinUpCase::Kane]
+            .into_iter()
+            .find(|c| c.name() == word)
+            .ok_or_else(|| Error::InvalidArgument {
+                arg: flag.into(),
+                value: word.into(),
+                allowed: "one of simo-vu-quoc, kane".into(),
+            })
+    }
+}
+
+/// The benchmark as `flexrig spin-up`'s flags and its Python twin's keyword arguments describe
+/// it: a named beam ([`SpinUpCase`]) whose numbers a flag may override, and the
+/// discretisation. [`SpinUpFlags::DEFAULT`] is the command without flags.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpinUpFlags {
+    /// The beam and its spin-up (`--case`).
+    pub case: SpinUpCase,
+    /// Beam length L \[m\] (`--length`; `None`: the case's).
+    pub length: Option<f64>,
+    /// Cross-section area A \[m²\] (`--area`; `None`: the case's).
+    pub area: Option<f64>,
+    /// Second moment of area I \[m⁴\] (`--second-moment`; `None`: the case's).
+    pub second_moment: Option<f64>,
+    /// Young's modulus E \[Pa\] (`--youngs-modulus`; `None`: the case's).
+    pub youngs_modulus: Option<f64>,
+    /// Density ρ \[kg/m³\] (`--density`; `None`: the case's).
+    pub density: Option<f64>,
+    /// Spin-up time T_s \[s\] (`--t-s`; `None`: the case's).
+    pub t_s: Option<f64>,
+    /// Final hub speed ω_s \[rad/s\] (`--omega-s`; `None`: the case's).
+    pub omega_s: Option<f64>,
+    /// FE elements (`--elements`).
+    pub elements: usize,
+    /// Run length \[s\] (`--duration`; `None`: T_s + 5 s).
+    pub duration: Option<f64>,
+    /// Reporting interval \[s\] (`--sample-every`).
+    pub sample_every: f64,
+    /// Largest FE time step \[s\] (`--max-step`).
+    pub max_step: f64,
+    /// Modes of the reference and the linear model (`--modes`).
+    pub modes: usize,
+}
+
+impl SpinUpFlags {
+    /// The flags' defaults: Simo & Vu-Quoc's beam as it is, the default discretisation.
+    pub const DEFAULT: SpinUpFlags = SpinUpFlags {
+        case: SpinUpCase::SimoVuQuoc,
+        length: None,
+        area: None,
+        second_moment: None,
+        youngs_modulus: None,
+        density: None,
+        t_s: None,
+        omega_s: None,
+        elements: DEFAULT_ELEMENTS,
+        duration: None,
+        sample_every: 0.1,
+        max_step: DEFAULT_MAX_STEP,
+        modes: DEFAULT_MODES,
+    };
+
+    /// The options to run: the case's beam and spin-up with each number a flag gives in its
+    /// place.
+    pub fn options(&self) -> SpinUpOptions {
+        let c = self.case.options();
+        SpinUpOptions {
+            length: self.length.unwrap_or(c.length),
+            area: self.area.unwrap_or(c.area),
+            second_moment: self.second_moment.unwrap_or(c.second_moment),
+            youngs_modulus: self.youngs_modulus.unwrap_or(c.youngs_modulus),
+            density: self.density.unwrap_or(c.density),
+            t_s: self.t_s.unwrap_or(c.t_s),
+            omega_s: self.omega_s.unwrap_or(c.omega_s),
+            elements: self.elements,
+            duration: self.duration,
+            sample_every: self.sample_every,
+            max_step: self.max_step,
+            modes: self.modes,
+        }
+    }
+
+    /// The heading's source: the case's, or the case's "edited" when a flag changed its beam.
+    pub fn source(&self) -> String {
+        let edited = [
+            self.length,
+            self.area,
+            self.second_moment,
+            self.youngs_modulus,
+            self.density,
+        ]
+        .iter()
+        .any(Option::is_some);
+        if edited {
+            format!("{}, edited", self.case.source())
+        } else {
+            self.case.source().to_string()
+        }
+    }
+}
+
+impl Default for SpinUpFlags {
+    fn default() -> Self {
+        SpinUpFlags::DEFAULT
+    }
 }
 
 impl Default for SpinUpOptions {
@@ -664,5 +781,57 @@ mod tests {
             other => panic!("{other:?}"),
         }
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// Each case by its name, a wrong name refused naming the flag, the word and the names;
+    /// a flag overrides only its own number of the case's beam.
+    #[test]
+    fn cases_are_named_and_a_flag_overrides_only_its_number() {
+        for case in [SpinUpCase::SimoVuQuoc, SpinUpCase::Kane] {
+            assert_eq!(SpinUpCase::parse("--case", case.name()).unwrap(), case);
+            // the name is the serialised one (what a JSON reader sees)
+            assert_eq!(
+                serde_json::to_value(case).unwrap(),
+                serde_json::json!(case.name())
+            );
+        }
+        match SpinUpCase::parse("--case", "kane-ryan") {
+            Err(Error::InvalidArgument {
+                arg,
+                value,
+                allowed,
+            }) => {
+                assert_eq!((arg.as_str(), value.as_str()), ("--case", "kane-ryan"));
+                assert_eq!(allowed, "one of simo-vu-quoc, kane");
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(SpinUpFlags::DEFAULT.options(), SpinUpOptions::SIMO_VU_QUOC);
+        assert_eq!(SpinUpFlags::DEFAULT.source(), "Simo & Vu-Quoc 1986");
+        let kane = SpinUpFlags {
+            case: SpinUpCase::Kane,
+            ..SpinUpFlags::DEFAULT
+        };
+        assert_eq!(kane.options(), SpinUpOptions::KANE_RYAN_BANERJEE);
+        let edited = SpinUpFlags {
+            density: Some(2700.0),
+            omega_s: Some(2.0),
+            ..kane
+        };
+        assert_eq!(
+            edited.options(),
+            SpinUpOptions {
+                density: 2700.0,
+                omega_s: 2.0,
+                ..SpinUpOptions::KANE_RYAN_BANERJEE
+            }
+        );
+        assert_eq!(edited.source(), "Kane, Ryan & Banerjee 1987, edited");
+        // the spin-up's numbers are not the beam's: the heading keeps the case's name
+        let faster = SpinUpFlags {
+            omega_s: Some(2.0),
+            ..kane
+        };
+        assert_eq!(faster.source(), "Kane, Ryan & Banerjee 1987");
     }
 }

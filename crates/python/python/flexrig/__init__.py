@@ -67,7 +67,7 @@ from ._commands import (
     prb,
     validate,
 )
-from ._checks import _check_count, _count, _input_error, _number
+from ._checks import _check_count, _count, _input_error, _number, _word
 from ._commands import impact_report as _impact_report
 from ._safety import safety, safety_map
 from ._arm import ARM_COLUMNS, arm
@@ -661,13 +661,14 @@ def _out_dir(out: Optional[Union[str, "os.PathLike[str]"]]):
 def spin_up(
     *,
     out: Optional[Union[str, "os.PathLike[str]"]] = None,
-    length: float = 10.0,
-    area: float = 4e-4,
-    second_moment: float = 2e-7,
-    youngs_modulus: float = 7e10,
-    density: float = 3000.0,
-    t_s: float = 15.0,
-    omega_s: float = 6.0,
+    case: str = "simo-vu-quoc",
+    length: Optional[float] = None,
+    area: Optional[float] = None,
+    second_moment: Optional[float] = None,
+    youngs_modulus: Optional[float] = None,
+    density: Optional[float] = None,
+    t_s: Optional[float] = None,
+    omega_s: Optional[float] = None,
     elements: int = 16,
     duration: Optional[float] = None,
     sample_every: float = 0.1,
@@ -677,11 +678,14 @@ def spin_up(
     format: Union[str, Sequence[str]] = ("svg",),
     dpi: float = 300.0,
 ) -> "pandas.DataFrame":
-    """The spin-up beam benchmark (Kane, Ryan & Banerjee 1987), as ``flexrig spin-up``: the tip's
-    deflection in the hub frame [m] by the corotational FE beam (``fe``), the independent elastica
-    reference (``reference``) and the linear rotating-frame beam (``linear``, which diverges),
-    one row per reported time ``t`` [s] — the columns of spin_up.csv. Keyword arguments are the
-    command's flags (SI units; defaults: the literature case, run to T_s + 5 s); ``size``,
+    """The spin-up beam benchmark, as ``flexrig spin-up``: the tip's deflection in the hub frame
+    [m] by the corotational FE beam (``fe``), the independent elastica reference (``reference``)
+    and the linear rotating-frame beam (``linear``, which diverges), one row per reported time
+    ``t`` [s] — the columns of spin_up.csv. Keyword arguments are the command's flags (SI units;
+    run to T_s + 5 s unless ``duration`` is given): ``case`` names the beam and its spin-up,
+    ``"simo-vu-quoc"`` (Simo & Vu-Quoc's 10 m beam to 6 rad/s, the default) or ``"kane"`` (Kane,
+    Ryan & Banerjee's 8 m aluminium beam to 4 rad/s); ``length``, ``area``, ``second_moment``,
+    ``youngs_modulus``, ``density``, ``t_s`` and ``omega_s`` left at None are the case's. ``size``,
     ``format`` and ``dpi`` are the figure's printed width (``"1"``, ``"2"`` or e.g. ``"5in"``),
     formats (svg, pdf, png) and PNG resolution, as ``--size``, ``--format``, ``--dpi``. With
     ``out`` the CSV, JSON and the figure are written there. ``df.attrs`` holds
@@ -696,9 +700,10 @@ def spin_up(
     directory, tmp = _out_dir(out)
     try:
         r = _flexrig.spin_up(
-            directory, _number("length", length), _number("area", area),
-            _number("second_moment", second_moment), _number("youngs_modulus", youngs_modulus),
-            _number("density", density), _number("t_s", t_s), _number("omega_s", omega_s),
+            directory, _word("case", case), _number("length", length, True), _number("area", area, True),
+            _number("second_moment", second_moment, True),
+            _number("youngs_modulus", youngs_modulus, True), _number("density", density, True),
+            _number("t_s", t_s, True), _number("omega_s", omega_s, True),
             _count("elements", elements), _number("duration", duration, True),
             _number("sample_every", sample_every), _number("max_step", max_step),
             _count("modes", modes), size, formats, dpi,

@@ -156,7 +156,8 @@ def strike_defaults() -> Dict[str, Any]:
     """The defaults of ``flexrig strike``'s flags by keyword (assets/drives/cl_free_head.toml)."""
 
 def spin_up_defaults() -> Dict[str, Any]:
-    """The defaults of ``flexrig spin-up``'s flags by keyword (the literature case)."""
+    """The defaults of ``flexrig spin-up``'s flags by keyword (``case`` Simo & Vu-Quoc's beam;
+    the beam's numbers None: the case's)."""
 
 def arm_json(
     input_json: str,

@@ -246,22 +246,15 @@ def safety(
     return report
 
 
-def _keyword(text: str) -> str:
-    """``text`` with each flag ``--some-flag`` written as the keyword argument ``some_flag``."""
-    import re
-
-    return re.sub(r"--([a-z][a-z-]*)", lambda m: m.group(1).replace("-", "_"), text)
-
-
 def _warn(report: Dict[str, Any]) -> None:
-    """Each of the report's warnings as a :class:`PlausibilityWarning`, the flags written as the
-    keyword arguments."""
+    """Each of the report's warnings (named by keyword argument, as the extension reports them)
+    as a :class:`PlausibilityWarning`."""
     import warnings
 
     from . import PlausibilityWarning
 
     for w in report.get("warnings", ()):
-        warnings.warn(f"{_keyword(w['field'])}: {_keyword(w['message'])}", PlausibilityWarning, stacklevel=3)
+        warnings.warn(f"{w['field']}: {w['message']}", PlausibilityWarning, stacklevel=3)
 
 
 def _safety_trace(
@@ -463,6 +456,6 @@ def safety_map(
         "region_name": result["region_name"],
         "area": result["area"],
         "seconds": result["seconds"],
-        "warnings": [{"field": _keyword(w["field"]), "message": _keyword(w["message"])} for w in result["warnings"]],
+        "warnings": result["warnings"],
         "map": result,
     }
