@@ -614,8 +614,14 @@ pub fn fe_speeds(
     stop: &AtomicBool,
     trace: Option<&mut Vec<RootStep>>,
 ) -> Result<(f64, Option<f64>, usize), Error> {
-    let (by_force, by_pressure, runs) =
-        fe_search(impact, limits, energy, guess_pressure.is_some(), stop, trace)?;
+    let (by_force, by_pressure, runs) = fe_search(
+        impact,
+        limits,
+        energy,
+        guess_pressure.is_some(),
+        stop,
+        trace,
+    )?;
     Ok((by_force, by_pressure, runs.runs))
 }
 
