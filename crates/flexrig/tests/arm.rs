@@ -376,13 +376,25 @@ fn the_figure_log_and_report_are_written() {
     let md = std::fs::read_to_string(dir.join("arm.md")).unwrap();
     let g = r.governing.as_ref().unwrap();
     assert!(md.contains("Verdict") && md.contains(&g.label) && md.contains("arm_arm.svg"));
-    // the log: one scene, one joint state and one message per point per sample
+    // the log: one scene, one joint state and one message per point per logged sample (at most
+    // 50 a second, the first and the last among them; this 10 Hz move keeps every sample)
     let bytes = std::fs::read(dir.join("arm.mcap")).unwrap();
-    let count = mcap::MessageStream::new(&bytes)
+    let messages: Vec<_> = mcap::MessageStream::new(&bytes)
         .unwrap()
-        .inspect(|m| assert!(m.is_ok()))
-        .count();
-    assert_eq!(count, r.samples.len() * (2 + r.points.len()));
+        .map(|m| m.unwrap())
+        .collect();
+    let times: Vec<f64> = r.samples.iter().map(|s| s.time_s).collect();
+    let logged = flexrig::arm::log::logged_samples(&times, 50.0);
+    assert_eq!(messages.len(), logged.len() * (2 + r.points.len()));
+    let stamps: std::collections::BTreeSet<u64> = messages.iter().map(|m| m.log_time).collect();
+    let ns = |t: f64| ((t - times[0]) * 1e9).round() as u64;
+    assert_eq!(stamps.len(), logged.len());
+    assert!(stamps.contains(&ns(times[0])) && stamps.contains(&ns(*times.last().unwrap())));
+    let stamps: Vec<u64> = stamps.into_iter().collect();
+    assert!(
+        stamps.windows(2).all(|w| w[1] - w[0] >= 19_999_999),
+        "{stamps:?}"
+    );
     let layout: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("arm.layout.json")).unwrap())
             .unwrap();

@@ -168,3 +168,43 @@ fn the_single_point_simulation_is_the_maps_cell() {
         }
     }
 }
+
+/// The pressure's scan may start where the force's found its last speed below the force limit:
+/// a larger force f₂ ≥ F is first reached no lower than F is. Started there, it finds the same
+/// speed, bit for bit, as the scan from f₂'s own energy floor (both on the one grid, the runs at
+/// equal speeds equal), with fewer new runs; and a speed asked again is not run again.
+#[test]
+fn the_larger_forces_scan_from_the_smaller_ones_end_finds_the_same_speed() {
+    use flexrig::safety::simulation::{FeImpact, smallest_speed_on_grid};
+    use std::sync::atomic::AtomicBool;
+    let stop = AtomicBool::new(false);
+    // the hand struck by a light payload on a soft CJ (docs/safety.md, "Every contact counts")
+    let impact = FeImpact {
+        m_h: 0.6,
+        hertz: flexrig_contact::Hertz::new(7.359e7, 2.0).unwrap(),
+        m_r: 0.051,
+        m_e: 0.05,
+        k_delta: 2e4,
+        link: FeLink::CompliantJoint,
+        settings: SimulationSettings::DEFAULT,
+    };
+    let (f1, f2, rtol) = (280.0, 600.0, 1e-6);
+    let mut chained = impact.prepare(1.0).unwrap().against(f1);
+    let first = smallest_speed_on_grid(&mut chained, f1, None, rtol, &stop, None).unwrap();
+    let before = chained.runs;
+    let second = smallest_speed_on_grid(&mut chained, f2, first.below, rtol, &stop, None).unwrap();
+    let chained_new_runs = chained.runs - before;
+    let mut alone = impact.prepare(1.0).unwrap().against(f1);
+    let own = smallest_speed_on_grid(&mut alone, f2, None, rtol, &stop, None).unwrap();
+    assert!(first.speed.is_finite() && first.speed < second.speed);
+    assert_eq!(second.speed.to_bits(), own.speed.to_bits());
+    assert!(
+        chained_new_runs < alone.runs,
+        "{chained_new_runs} new runs after the force's scan, {} alone",
+        alone.runs
+    );
+    let runs = chained.runs;
+    let again = chained.peak(second.speed, &stop).unwrap();
+    assert_eq!(chained.runs, runs);
+    assert!(again >= f2, "the root's run reaches the force: {again} N");
+}

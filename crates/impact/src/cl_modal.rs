@@ -6,7 +6,7 @@
 use crate::ImpactError;
 use crate::chain::Chain;
 use crate::graded::{GradedMesh, cl_tip_modes};
-use crate::modal_run::{Head, ModalOptions, run_modes, run_modes_traced};
+use crate::modal_run::{Head, ModalOptions, run_modes, run_modes_against, run_modes_traced};
 use crate::setup::{FreeMassImpact, ImpactOutcome, Joint};
 use crate::severity::ContactTrace;
 use crate::tip_modes::TipModes;
@@ -37,6 +37,25 @@ pub fn run_on_modes(
         &*setup.law()?,
         setup.payload_contact_time(),
         options,
+    )
+}
+
+/// [`run_on_modes`] with the hold's tolerance against at least `force_scale` \[N\]
+/// ([`run_modes_against`]).
+pub fn run_on_modes_against(
+    setup: &FreeMassImpact,
+    modes: &TipModes,
+    options: &ModalOptions,
+    force_scale: f64,
+) -> Result<ImpactOutcome, ImpactError> {
+    setup.validate()?;
+    run_modes_against(
+        modes,
+        head_at_onset(setup),
+        &*setup.law()?,
+        setup.payload_contact_time(),
+        options,
+        force_scale,
     )
 }
 

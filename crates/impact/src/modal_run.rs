@@ -362,7 +362,25 @@ pub fn run_modes(
     t_scale: f64,
     options: &ModalOptions,
 ) -> Result<ImpactOutcome, ImpactError> {
-    run_modes_inner(modes, head, law, t_scale, options, None)
+    run_modes_inner(modes, head, law, t_scale, options, 0.0, None)
+}
+
+/// [`run_modes`] with the hold's tolerance measured against at least `force_scale` \[N\]
+/// (`tol` × max(largest force so far, `force_scale`)): a run that only has to tell how its
+/// largest peak compares with a known force (a limit) needs its error small against that force,
+/// not against the first milli-newtons of each onset. `force_scale` = 0 is [`run_modes`].
+pub fn run_modes_against(
+    modes: &TipModes,
+    head: Head,
+    law: &dyn ContactLaw,
+    t_scale: f64,
+    options: &ModalOptions,
+    force_scale: f64,
+) -> Result<ImpactOutcome, ImpactError> {
+    if !(force_scale.is_finite() && force_scale >= 0.0) {
+        return Err(ImpactError::invalid("force scale", force_scale, "≥ 0 N"));
+    }
+    run_modes_inner(modes, head, law, t_scale, options, force_scale, None)
 }
 
 /// [`run_modes`] recording the force and indentation at every step of every contact (the
@@ -376,7 +394,7 @@ pub fn run_modes_traced(
     options: &ModalOptions,
 ) -> Result<(ImpactOutcome, ContactTrace), ImpactError> {
     let mut trace = ContactTrace::default();
-    let outcome = run_modes_inner(modes, head, law, t_scale, options, Some(&mut trace))?;
+    let outcome = run_modes_inner(modes, head, law, t_scale, options, 0.0, Some(&mut trace))?;
     Ok((outcome, trace))
 }
 
@@ -386,6 +404,7 @@ fn run_modes_inner(
     law: &dyn ContactLaw,
     t_scale: f64,
     options: &ModalOptions,
+    force_scale: f64,
     mut trace: Option<&mut ContactTrace>,
 ) -> Result<ImpactOutcome, ImpactError> {
     options.validate()?;
@@ -432,7 +451,8 @@ fn run_modes_inner(
     // the hold's allowed deviation over a step h: tol × the largest force, and on steps longer
     // than the contact time scale tol × f × t_scale/h, so that the impulse error of a step stays
     // below tol f t_scale (long low-force tails: a damped law's slow release)
-    let allowed = |f: f64, h: f64| options.tol * f * (t_scale / h).min(1.0);
+    // (and against `force_scale` at least)
+    let allowed = |f: f64, h: f64| options.tol * f.max(force_scale) * (t_scale / h).min(1.0);
     let mut steps = 0usize;
     let window = options.window_s;
     let ended;
@@ -534,8 +554,9 @@ fn run_modes_inner(
                 let ideal = if f2 == 0.0 {
                     2.0 * h
                 } else {
-                    let by_force = (8.0 * options.tol * f_ref / f2.abs()).sqrt();
-                    let by_impulse = (8.0 * options.tol * f_ref * t_scale / f2.abs()).cbrt();
+                    let f_tol = f_ref.max(force_scale);
+                    let by_force = (8.0 * options.tol * f_tol / f2.abs()).sqrt();
+                    let by_impulse = (8.0 * options.tol * f_tol * t_scale / f2.abs()).cbrt();
                     0.9 * by_force.min(by_impulse)
                 };
                 let target = ideal.clamp(0.5 * h, 2.0 * h).max(h_min);

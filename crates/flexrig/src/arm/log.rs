@@ -80,7 +80,36 @@ pub fn write_log(robot: &Robot, report: &ArmReport, path: &Path) -> Result<Vec<P
     Ok(vec![path.to_path_buf(), layout])
 }
 
-/// The MCAP bytes of the log.
+/// The highest rate \[Hz\] the log writes the arm at: Foxglove advises at most 60 Hz for its 3D
+/// scenes.
+pub const MAX_LOG_RATE_HZ: f64 = 50.0;
+
+/// The indices of the samples at `times` \[s\] (ascending) the log writes: the first, then each
+/// one at least 1/`rate` after the last written, and the last (which takes the place of the one
+/// written before it when the two would be closer than 1/`rate`, unless that one is the first).
+pub fn logged_samples(times: &[f64], rate: f64) -> Vec<usize> {
+    let gap = 1.0 / rate;
+    // a sample on the rate's grid up to rounding counts as on it
+    let slack = 1e-9 * gap;
+    let mut kept: Vec<usize> = Vec::new();
+    for (i, &t) in times.iter().enumerate() {
+        match kept.last() {
+            None => kept.push(i),
+            Some(&j) if t - times[j] >= gap - slack => kept.push(i),
+            _ => {}
+        }
+    }
+    let last = times.len().saturating_sub(1);
+    if !times.is_empty() && kept.last() != Some(&last) {
+        if kept.len() > 1 && times[last] - times[kept[kept.len() - 1]] < gap - slack {
+            kept.pop();
+        }
+        kept.push(last);
+    }
+    kept
+}
+
+/// The MCAP bytes of the log: the arm at [`MAX_LOG_RATE_HZ`] at most ([`logged_samples`]).
 pub fn log_bytes(robot: &Robot, report: &ArmReport) -> Result<Vec<u8>, mcap::McapError> {
     let mut w = mcap::WriteOptions::new()
         .compression(None)
@@ -134,7 +163,11 @@ pub fn log_bytes(robot: &Robot, report: &ArmReport) -> Result<Vec<u8>, mcap::Mca
         )
     };
     let names: Vec<String> = report.joint_names.clone();
-    for s in &report.samples {
+    let times: Vec<f64> = report.samples.iter().map(|s| s.time_s).collect();
+    for s in logged_samples(&times, MAX_LOG_RATE_HZ)
+        .into_iter()
+        .map(|i| &report.samples[i])
+    {
         let ts = stamp(s.time_s - t0);
         robot
             .forward_kinematics(&s.q, &mut ws)
@@ -428,4 +461,34 @@ pub fn layout_json(report: &ArmReport) -> Value {
             "splitPercentage": 55
         }
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::logged_samples;
+
+    /// The bundled swing's 100 Hz samples are logged at 50 Hz: every other one, the first and the
+    /// last kept; an uneven series keeps its gaps at 1/50 s at least and its ends.
+    #[test]
+    fn the_log_keeps_the_ends_and_at_most_fifty_samples_a_second() {
+        let even: Vec<f64> = (0..151).map(|i| i as f64 * 0.01).collect();
+        assert_eq!(
+            logged_samples(&even, 50.0),
+            (0..151).step_by(2).collect::<Vec<_>>()
+        );
+        let odd: Vec<f64> = (0..150).map(|i| i as f64 * 0.01).collect();
+        let kept = logged_samples(&odd, 50.0);
+        assert_eq!((kept[0], *kept.last().unwrap()), (0, 149));
+        let gaps: Vec<f64> = kept.windows(2).map(|w| odd[w[1]] - odd[w[0]]).collect();
+        assert!(
+            gaps.iter()
+                .all(|g| *g >= 0.02 - 1e-12 && *g <= 0.04 + 1e-12),
+            "{gaps:?}"
+        );
+        assert_eq!(logged_samples(&[0.0], 50.0), vec![0]);
+        assert!(logged_samples(&[], 50.0).is_empty());
+        // slower than the rate: every sample
+        let slow = [0.0, 0.1, 0.25, 0.3];
+        assert_eq!(logged_samples(&slow, 50.0), vec![0, 1, 2, 3]);
+    }
 }

@@ -949,17 +949,16 @@ fn simulation_traced(
     let impact = fe_impact(s, input)?;
     let contact = energy_contact(s)?;
     let guess = contact.permissible_speed(s.limits)?;
-    let (by_force, by_pressure, _) = crate::safety::simulation::fe_speeds(
+    // the same runs answer the verdict and the governing contact at v_max (the search's own)
+    let (by_force, by_pressure, mut runs) = crate::safety::simulation::fe_search(
         &impact,
         &s.limits,
         &contact,
-        guess.by_force,
-        guess.by_pressure,
+        guess.by_pressure.is_some(),
         stop,
         trace,
     )?;
     let p = PermissibleSpeed::from_parts(by_force, by_pressure, contact.reduced_mass(), s.limits);
-    let mut runs = impact.prepare(crate::safety::simulation::MODES_SPEED)?;
     let mut at_speed = None;
     let verdict = match input.speed {
         Some(v) if v > 0.0 => {

@@ -14,7 +14,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use flexrig_contact::{DampingSpec, Hertz};
 use flexrig_impact::chain::Chain;
-use flexrig_impact::cl_modal::run_on_modes;
+use flexrig_impact::cl_modal::run_on_modes_against;
 use flexrig_impact::graded::{GradedMesh, cl_tip_modes};
 use flexrig_impact::modal_run::ModalOptions;
 use flexrig_impact::{FreeMassImpact, ImpactError, Joint, LinkParams, RunEnd};
@@ -227,6 +227,8 @@ impl FeImpact {
             modes,
             guess,
             runs: 0,
+            force_scale: 0.0,
+            done: Vec::new(),
         })
     }
 }
@@ -238,8 +240,14 @@ pub struct FeRuns {
     impact: FeImpact,
     modes: flexrig_impact::tip_modes::TipModes,
     guess: f64,
-    /// Impacts run so far.
+    /// Impacts run so far (a speed asked again is not run again).
     pub runs: usize,
+    /// The force \[N\] the integrator's tolerance is measured against at least
+    /// ([`FeRuns::against`]; 0: each run's own largest force).
+    force_scale: f64,
+    /// Every impact run so far, by the bits of its speed: a search that asks a speed again (the
+    /// pressure's scan over the force's, the governing contact at the root) gets the same run.
+    done: Vec<(u64, SimulatedPeak)>,
 }
 
 /// The stopping rule of every simulated impact: the run follows contact after contact and ends
@@ -273,6 +281,16 @@ impl FeRuns {
         self.guess
     }
 
+    /// The runs with the integrator's tolerance measured against the force `force` \[N\] at
+    /// least (the smallest limit the searches ask about): each run only has to tell how its
+    /// largest peak compares with that force, so the force's onset need not be resolved to the
+    /// tolerance of its first milli-newtons ([`flexrig_impact::modal_run::run_modes_against`]).
+    pub fn against(mut self, force: f64) -> FeRuns {
+        self.force_scale = force;
+        self.done.clear();
+        self
+    }
+
     /// The largest peak force \[N\] over every contact at speed `v` [m/s].
     pub fn peak(&mut self, v: f64, stop: &AtomicBool) -> Result<f64, Error> {
         Ok(self.impact_at(v, stop)?.peak_force_n)
@@ -283,6 +301,15 @@ impl FeRuns {
         if stop.load(Ordering::Relaxed) {
             return Err(Error::Impact(ImpactError::Interrupted));
         }
+        if let Some((_, done)) = self.done.iter().find(|(bits, _)| *bits == v.to_bits()) {
+            return Ok(*done);
+        }
+        let peak = self.run_at(v)?;
+        self.done.push((v.to_bits(), peak));
+        Ok(peak)
+    }
+
+    fn run_at(&mut self, v: f64) -> Result<SimulatedPeak, Error> {
         self.runs += 1;
         let settings = &self.impact.settings;
         let setup = self.impact.setup_at(v);
@@ -295,7 +322,7 @@ impl FeRuns {
             window_s: Some(PARTING_GUARD_S),
             max_steps: MAX_IMPACT_STEPS,
         };
-        let outcome = run_on_modes(&setup, &m, &options)?;
+        let outcome = run_on_modes_against(&setup, &m, &options, self.force_scale)?;
         let parted_at_s = match outcome.ended {
             RunEnd::PartedForGood(t) => t,
             RunEnd::Window(t) | RunEnd::StepBudget(t) | RunEnd::Rebound(t) => {
@@ -363,12 +390,39 @@ pub const SCAN_RATIO: f64 = 1.044_273_782_427_413_8;
 /// never reached (unlimited).
 pub const SCAN_TOP_MPS: f64 = 1e3;
 
-/// The smallest speed [m/s] at which the largest contact force of `runs` reaches `force` \[N\]:
-/// a scan from below on the grid v_k = v_0 q^k (q = [`SCAN_RATIO`]) from the energy floor v_0
-/// ([`FeRuns::energy_floor`], below which no contact can reach `force`) to the first speed at
-/// which it is reached, then the Illinois false position on ln v between that speed and the one
-/// before (relative width `rtol`). +∞ when no speed up to [`SCAN_TOP_MPS`] reaches it. Each
-/// evaluation goes to `trace` when given.
+/// The k-th speed of the scan's grid, q^k m/s (q = [`SCAN_RATIO`]): one grid for every search
+/// of a design, so that the force's and the pressure's scans ask the same speeds.
+pub fn grid_speed(k: i32) -> f64 {
+    (k as f64 * (std::f64::consts::LN_2 / 16.0)).exp()
+}
+
+/// The index of the largest grid speed at or below `v` [m/s] (v > 0).
+fn grid_index_at_or_below(v: f64) -> i32 {
+    let mut k = (v.ln() / (std::f64::consts::LN_2 / 16.0)).floor() as i32;
+    while grid_speed(k) > v {
+        k -= 1;
+    }
+    while grid_speed(k + 1) <= v {
+        k += 1;
+    }
+    k
+}
+
+/// What [`smallest_speed_on_grid`] found: the smallest speed [m/s] at which the limit is
+/// reached (+∞: not up to [`SCAN_TOP_MPS`]) and the index of the grid's last speed below it, at
+/// which the largest peak stays below the limit (absent when the limit is reached at the scan's
+/// first speed).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GridCrossing {
+    /// The smallest speed at the limit [m/s].
+    pub speed: f64,
+    /// The grid index of the last speed below it.
+    pub below: Option<i32>,
+}
+
+/// The smallest speed [m/s] at which the largest contact force of `runs` reaches `force` \[N\]
+/// ([`smallest_speed_on_grid`] from the energy floor). Each evaluation goes to `trace` when
+/// given.
 pub fn smallest_speed_at(
     runs: &mut FeRuns,
     force: f64,
@@ -376,6 +430,25 @@ pub fn smallest_speed_at(
     stop: &AtomicBool,
     trace: Option<&mut Vec<RootStep>>,
 ) -> Result<f64, Error> {
+    Ok(smallest_speed_on_grid(runs, force, None, rtol, stop, trace)?.speed)
+}
+
+/// The smallest speed [m/s] at which the largest contact force of `runs` reaches `force` \[N\]:
+/// a scan from below on the grid q^k m/s ([`grid_speed`], q = [`SCAN_RATIO`]) from its last
+/// speed at or below the energy floor v_0 ([`FeRuns::energy_floor`], below which no contact can
+/// reach `force`) — or from the grid index `from` when that is higher, a speed already known to
+/// stay below `force` (the scan of a smaller force ended there) — to the first speed at which it
+/// is reached, then the Illinois false position on ln v between that speed and the one before
+/// (relative width `rtol`). +∞ when no speed up to [`SCAN_TOP_MPS`] reaches it. Each evaluation
+/// goes to `trace` when given.
+pub fn smallest_speed_on_grid(
+    runs: &mut FeRuns,
+    force: f64,
+    from: Option<i32>,
+    rtol: f64,
+    stop: &AtomicBool,
+    mut trace: Option<&mut Vec<RootStep>>,
+) -> Result<GridCrossing, Error> {
     let floor = runs.energy_floor(force);
     if !(floor.is_finite() && floor > 0.0) {
         return Err(Error::NonFinite {
@@ -384,13 +457,50 @@ pub fn smallest_speed_at(
             advice: "use moderate masses, stiffnesses and limits".into(),
         });
     }
-    let mut ratio = |v: f64| -> Result<f64, Error> { Ok(runs.peak(v, stop)? / force) };
-    match scan_up(floor, rtol, &mut ratio, trace)? {
-        // the bound is reached at the floor itself (a rigid link): the crossing is there
-        Scan::AtStart => Ok(floor),
-        Scan::Crossing(v) => Ok(v),
-        Scan::Never => Ok(f64::INFINITY),
+    let mut eval = |v: f64, trace: &mut Option<&mut Vec<RootStep>>| -> Result<f64, Error> {
+        let r = runs.peak(v, stop)? / force;
+        if let Some(t) = trace.as_deref_mut() {
+            t.push(RootStep {
+                speed_mps: v,
+                ratio: r,
+            });
+        }
+        Ok(r)
+    };
+    let mut k = grid_index_at_or_below(floor).max(from.unwrap_or(i32::MIN));
+    let mut r_below = eval(grid_speed(k), &mut trace)?;
+    if r_below >= 1.0 {
+        // reached at the first speed (at the floor, within the run's error: a rigid link)
+        return Ok(GridCrossing {
+            speed: grid_speed(k),
+            below: None,
+        });
     }
+    let r_above = loop {
+        let next = grid_speed(k + 1);
+        if next > SCAN_TOP_MPS {
+            return Ok(GridCrossing {
+                speed: f64::INFINITY,
+                below: Some(k),
+            });
+        }
+        let r = eval(next, &mut trace)?;
+        if r >= 1.0 {
+            break r;
+        }
+        k += 1;
+        r_below = r;
+    };
+    let speed = refine(
+        (grid_speed(k), r_below),
+        (grid_speed(k + 1), r_above),
+        rtol,
+        &mut |v| eval(v, &mut trace),
+    )?;
+    Ok(GridCrossing {
+        speed,
+        below: Some(k),
+    })
 }
 
 /// What a scan from below found.
@@ -492,9 +602,9 @@ pub fn refine(
 
 /// The simulated speeds of one design: by force (the largest contact reaches `limits.force`)
 /// and by pressure (it reaches the force f_p at which the mean pressure of `energy`'s area
-/// model reaches the pressure limit), each the smallest such speed ([`smallest_speed_at`]); the
-/// force search's evaluations go to `trace`. Returns (by force, by pressure, impacts run). The
-/// lumped guesses are kept for the callers' signatures; the scan starts at the energy floor.
+/// model reaches the pressure limit), each the smallest such speed ([`smallest_speed_on_grid`]);
+/// the force search's evaluations go to `trace`. Returns (by force, by pressure, impacts run).
+/// The lumped guesses are kept for the callers' signatures; the scan starts at the energy floor.
 pub fn fe_speeds(
     impact: &FeImpact,
     limits: &flexrig_safety::Limits,
@@ -504,20 +614,61 @@ pub fn fe_speeds(
     stop: &AtomicBool,
     trace: Option<&mut Vec<RootStep>>,
 ) -> Result<(f64, Option<f64>, usize), Error> {
-    let mut runs = impact.prepare(MODES_SPEED)?;
-    let root_rtol = impact.settings.root_rtol;
-    let by_force = smallest_speed_at(&mut runs, limits.force, root_rtol, stop, trace)?;
-    let by_pressure = match (limits.pressure, guess_pressure) {
-        (Some(p), Some(_)) => Some(match energy.force_at_pressure(p) {
-            Some(PressureCrossing::AtForce(f)) => {
-                smallest_speed_at(&mut runs, f, root_rtol, stop, None)?
-            }
-            Some(PressureCrossing::Always) => 0.0,
-            Some(PressureCrossing::Never) | None => f64::INFINITY,
-        }),
+    let (by_force, by_pressure, runs) = fe_search(
+        impact,
+        limits,
+        energy,
+        guess_pressure.is_some(),
+        stop,
+        trace,
+    )?;
+    Ok((by_force, by_pressure, runs.runs))
+}
+
+/// [`fe_speeds`] (the pressure searched when `pressure` is true and the limits have one),
+/// returning the runs themselves: a later question at a speed the searches ran (the governing
+/// contact at the permissible speed) is answered by the same run.
+///
+/// Both searches scan one grid. The force f_p of the pressure limit is reached first at a speed
+/// no lower than the force limit's when f_p ≥ F_max (a peak at f_p has passed F_max), so its scan
+/// starts where the force's found its last speed below F_max (and is unlimited when the force's
+/// is); every run is measured against the smaller of the two forces ([`FeRuns::against`]).
+pub fn fe_search(
+    impact: &FeImpact,
+    limits: &flexrig_safety::Limits,
+    energy: &EnergyContact,
+    pressure: bool,
+    stop: &AtomicBool,
+    trace: Option<&mut Vec<RootStep>>,
+) -> Result<(f64, Option<f64>, FeRuns), Error> {
+    let pressure_force = match limits.pressure {
+        Some(p) if pressure => Some(energy.force_at_pressure(p)),
         _ => None,
     };
-    Ok((by_force, by_pressure, runs.runs))
+    let smallest = match pressure_force {
+        Some(Some(PressureCrossing::AtForce(f))) => f.min(limits.force),
+        _ => limits.force,
+    };
+    let mut runs = impact.prepare(MODES_SPEED)?.against(smallest);
+    let root_rtol = impact.settings.root_rtol;
+    let by_force = smallest_speed_on_grid(&mut runs, limits.force, None, root_rtol, stop, trace)?;
+    let by_pressure = match pressure_force {
+        Some(Some(PressureCrossing::AtForce(f))) if f >= limits.force => {
+            if by_force.speed.is_infinite() {
+                Some(f64::INFINITY)
+            } else {
+                let from = by_force.below;
+                Some(smallest_speed_on_grid(&mut runs, f, from, root_rtol, stop, None)?.speed)
+            }
+        }
+        Some(Some(PressureCrossing::AtForce(f))) => {
+            Some(smallest_speed_on_grid(&mut runs, f, None, root_rtol, stop, None)?.speed)
+        }
+        Some(Some(PressureCrossing::Always)) => Some(0.0),
+        Some(Some(PressureCrossing::Never) | None) => Some(f64::INFINITY),
+        None => None,
+    };
+    Ok((by_force.speed, by_pressure, runs))
 }
 
 /// The speed [m/s] at which the link's modes are solved once per design (the free hub's modal
