@@ -32,7 +32,8 @@ use crate::Error;
 use crate::driven::scene::{DrivenScene, note_text};
 use crate::driven::strike::{LinkModel, StrikeDesign};
 use crate::safety::simulation::{
-    ContactsAtRoot, RootStep, Scan, SceneSimulation, SimulationSettings, refine, scan_up,
+    ContactsAtRoot, Peaks, RootStep, SCAN_START_OF_GUESS, Scan, SceneSimulation,
+    SimulationSettings, refine, scan_up,
 };
 
 /// A driven scene loaded for the safety verdict.
@@ -246,41 +247,6 @@ pub fn peak_force(
         .peak_force_n)
 }
 
-/// The largest peak force at each speed run so far: the force and the pressure scans walk the
-/// same grid, so the second reuses the first's runs (the same speed gives the same run bit for
-/// bit).
-#[derive(Debug, Default)]
-pub(crate) struct Peaks {
-    known: std::collections::HashMap<u64, f64>,
-    runs: usize,
-}
-
-impl Peaks {
-    /// How many runs were made.
-    pub(crate) fn runs(&self) -> usize {
-        self.runs
-    }
-
-    /// The peak at `v` [m/s]: remembered, or `run` and remembered.
-    pub(crate) fn at(
-        &mut self,
-        v: f64,
-        run: impl FnOnce(f64) -> Result<f64, Error>,
-    ) -> Result<f64, Error> {
-        if let Some(p) = self.known.get(&v.to_bits()) {
-            return Ok(*p);
-        }
-        let p = run(v)?;
-        self.runs += 1;
-        self.known.insert(v.to_bits(), p);
-        Ok(p)
-    }
-}
-
-/// The lowest speed the scan of a driven scene starts from, as a fraction of the energy
-/// method's speed ([`simulate`]).
-pub const SCAN_START_OF_GUESS: f64 = 1.0 / 64.0;
-
 /// The smallest commanded tip speed [m/s] at which the largest contact of `scene` reaches
 /// `force` \[N\]: the scan from below ([`scan_up`]) from `guess` × [`SCAN_START_OF_GUESS`]
 /// (at least 1e-4 m/s); if the limit is reached there already, the start is halved (at most
@@ -403,7 +369,7 @@ pub fn simulate(
         clamp_guess(guess_force)
     };
     let at_root = scene.run_at(judged, settings, stop)?;
-    let runs = peaks.runs + 1;
+    let runs = peaks.runs() + 1;
     let (governing, largest) = at_root.largest_contact();
     let s = &scene.scene.strike;
     Ok(SceneSimulation {

@@ -819,3 +819,38 @@ pub struct SceneSimulation {
     /// bed released from 170°): `by_force_mps` is then that speed, a lower bound.
     pub limit_reached: bool,
 }
+
+/// The largest peak force at each speed run so far: the force and the pressure scans walk the
+/// same grid, so the second reuses the first's runs (the same speed gives the same run bit for
+/// bit).
+#[derive(Debug, Default)]
+pub(crate) struct Peaks {
+    known: std::collections::HashMap<u64, f64>,
+    runs: usize,
+}
+
+impl Peaks {
+    /// How many runs were made.
+    pub(crate) fn runs(&self) -> usize {
+        self.runs
+    }
+
+    /// The peak at `v` [m/s]: remembered, or `run` and remembered.
+    pub(crate) fn at(
+        &mut self,
+        v: f64,
+        run: impl FnOnce(f64) -> Result<f64, Error>,
+    ) -> Result<f64, Error> {
+        if let Some(p) = self.known.get(&v.to_bits()) {
+            return Ok(*p);
+        }
+        let p = run(v)?;
+        self.runs += 1;
+        self.known.insert(v.to_bits(), p);
+        Ok(p)
+    }
+}
+
+/// The lowest speed the scan of a driven scene starts from, as a fraction of the energy
+/// method's speed (the driven and test-bed scenes' `simulate`).
+pub const SCAN_START_OF_GUESS: f64 = 1.0 / 64.0;

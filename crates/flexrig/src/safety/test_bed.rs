@@ -28,10 +28,10 @@ use flexrig_safety::{EnergyContact, Limits, PressureCrossing};
 
 use crate::Error;
 use crate::driven::strike::StrikeDesign;
-use crate::safety::scene::{Peaks, SCAN_START_OF_GUESS};
 use crate::safety::simulation::{
     ContactsAtRoot, RootStep, Scan, SceneSimulation, SimulationSettings, refine, scan_up,
 };
+use crate::safety::simulation::{Peaks, SCAN_START_OF_GUESS};
 
 /// The largest release angle of the test bed \[deg\] (`operator.start.release_angle_deg`).
 pub const MAX_RELEASE_ANGLE_DEG: f64 = 170.0;
