@@ -13,16 +13,19 @@
 //!   Hertz law and k_δ in series, Eq. 4–9), m_eff = m_e + γ m_r/3 (Eq. 5) with γ = 1 for the CJ
 //!   and γ = 2/3 for the CL. Every cell is [`crate::safety::point::safety`] at the cell's parameters,
 //!   so it equals the single-point answer bit for bit.
-//! - **simulation** (method c): the speed at which the finite-element impact's peak force
-//!   reaches the limit (and the force at which the mean pressure reaches its limit), by a
-//!   bracket and the Illinois root search on ln v ([`speed_at_ratio`]): the CJ as a rigid link on
+//! - **simulation** (method c): the smallest speed at which the largest peak force over every
+//!   contact of the finite-element impact reaches the limit (and the force at which the mean
+//!   pressure reaches its limit), by the scan from below on the grid q^k m/s from the energy floor
+//!   and the Illinois refinement on ln v
+//!   ([`crate::safety::simulation::smallest_speed_on_grid`], the single-point answer's own path,
+//!   so every cell equals it bit for bit): the CJ as a rigid link on
 //!   its torsion spring k_θr = k_δL² (DOP853, [`flexrig_impact::cj`]), the CL as the
 //!   Euler–Bernoulli beam on a mesh graded towards the tip, by its modes and the exact modal
 //!   integrator ([`flexrig_impact::cl_modal`]). So CJ and CL differ by the link's real
 //!   compliance, not by a lumped γ. The joint is held (driven at constant speed, the body region
 //!   arriving at v: the test bed's operator striking the robot) or a free hub with the motor's
 //!   rotor inertia behind it. The CL's modes are solved once per cell at the lumped CL speed and
-//!   reused along the root search (the free hub's initial modal rates scale with v exactly).
+//!   reused along the scan (the free hub's initial modal rates scale with v exactly).
 //!   The modal CL holds for the linear beam (small deflections, no end stop), elastic contact.
 //!
 //! Speeds are in m/s, masses in kg, stiffnesses in N/m (k_c in N/m^n), EI in N·m².

@@ -949,7 +949,7 @@ fn simulation_traced(
     let impact = fe_impact(s, input)?;
     let contact = energy_contact(s)?;
     let guess = contact.permissible_speed(s.limits)?;
-    // the same runs answer the verdict and the governing contact at v_max (the search's own)
+    // the search's runs also answer the governing contact at v_max
     let (by_force, by_pressure, mut runs) = crate::safety::simulation::fe_search(
         &impact,
         &s.limits,
@@ -962,7 +962,11 @@ fn simulation_traced(
     let mut at_speed = None;
     let verdict = match input.speed {
         Some(v) if v > 0.0 => {
-            let peak = runs.impact_at(v, stop)?;
+            // the peak at the user's speed to the run's own tolerance (the searches' runs are
+            // only as accurate as the limits need)
+            let peak = impact
+                .prepare(crate::safety::simulation::MODES_SPEED)?
+                .impact_at(v, stop)?;
             at_speed = Some(peak);
             let force = peak.peak_force_n;
             Some(Verdict::new(
