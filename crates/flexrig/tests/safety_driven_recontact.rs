@@ -48,13 +48,13 @@ radius_m = 0.0715
 standoff_m = 0.030
 "#;
 
-#[test]
-fn the_largest_of_several_driven_contacts_sets_the_permissible_speed() {
-    let dir = std::env::temp_dir().join(format!("flexrig-driven-recontact-{}", std::process::id()));
+/// The safety question of the LIGHT_CJ_HAND scene written to a scratch directory named by
+/// `tag`: the hand region, the simulation method.
+fn hand_scene_input(tag: &str) -> (std::path::PathBuf, SafetyInput) {
+    let dir = std::env::temp_dir().join(format!("flexrig-driven-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("light_cj_hand.toml");
     std::fs::write(&path, LIGHT_CJ_HAND).unwrap();
-    let given = path.to_str().unwrap().to_string();
     let input = SafetyInput {
         region: "hands_and_fingers".into(),
         area: None,
@@ -69,8 +69,15 @@ fn the_largest_of_several_driven_contacts_sets_the_permissible_speed() {
         methods: vec![SafetyMethod::Simulation],
         link: None,
         simulation: None,
-        scene: Some(given.clone()),
+        scene: Some(path.to_str().unwrap().to_string()),
     };
+    (dir, input)
+}
+
+#[test]
+fn the_largest_of_several_driven_contacts_sets_the_permissible_speed() {
+    let (dir, input) = hand_scene_input("recontact");
+    let given = input.scene.clone().unwrap();
     let report = safety(&input, None).unwrap();
     let sim = report.scene.clone().unwrap();
     let limit = report.force_limit_n;
@@ -130,26 +137,7 @@ fn reference_largest(v: f64) -> f64 {
 
 #[test]
 fn the_driven_permissible_speed_agrees_with_the_independent_solution_of_every_contact() {
-    let dir = std::env::temp_dir().join(format!("flexrig-driven-reference-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("light_cj_hand.toml");
-    std::fs::write(&path, LIGHT_CJ_HAND).unwrap();
-    let input = SafetyInput {
-        region: "hands_and_fingers".into(),
-        area: None,
-        contact: ContactKind::Transient,
-        m_eff: None,
-        k_delta: None,
-        law: ContactLaw::BodySpring,
-        area_model: None,
-        moving_mass: None,
-        payload: 0.0,
-        speed: None,
-        methods: vec![SafetyMethod::Simulation],
-        link: None,
-        simulation: None,
-        scene: Some(path.to_str().unwrap().to_string()),
-    };
+    let (dir, input) = hand_scene_input("reference");
     let report = safety(&input, None).unwrap();
     let v = report.scene.unwrap().by_force_mps;
     let limit = report.force_limit_n;

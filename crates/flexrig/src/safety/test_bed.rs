@@ -295,10 +295,11 @@ pub fn simulate(
         },
         _ => None,
     };
-    let peak_at_cap = match force_at_cap {
-        Some(p) => p,
-        None if by_force.is_none() => peak(v_cap)?,
-        None => f64::NAN,
+    // the peak at the test bed's largest speed, for the note when the limit is not reached
+    let peak_at_cap = match (by_force, force_at_cap) {
+        (Some(_), _) => None,
+        (None, Some(p)) => Some(p),
+        (None, None) => Some(peak(v_cap)?),
     };
     let mut runs = peaks.runs();
     let speed = by_force.unwrap_or(v_cap);
@@ -310,13 +311,13 @@ pub fn simulate(
     runs += 1;
     let (governing, largest) = largest_contact(&at_root);
     let g = |v: f64| flexrig_contact::validate::display(v);
-    let mut notes = vec![match by_force {
-        Some(_) => format!(
+    let mut notes = vec![match peak_at_cap {
+        None => format!(
             "the operator released at rest from {}° reaches the dome at {} m/s",
             g(angle),
             g(speed)
         ),
-        None => format!(
+        Some(peak_at_cap) => format!(
             "the force limit is not reached on this test bed: released from the largest angle, \
              {MAX_RELEASE_ANGLE_DEG}°, the operator reaches the dome at {} m/s and the peak force \
              is {} N, below the limit of {} N; the permissible speed is at least {} m/s",
