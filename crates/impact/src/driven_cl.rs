@@ -1145,7 +1145,7 @@ fn run_driven_cl_traced(
     let e0 = int.energy(&s);
     run.tracer.offer(s.t, true, || int.sample(&s));
     let t_c = setup.payload_contact_time() * v_expect / approach;
-    let first = run.contact(&mut int, s, t_c)?;
+    let first = run.contact(&mut int, s, t_c, 1)?;
     let s = first.end;
     let e1 = int.energy(&s);
     let [motor_work, friction, damping, impact] = first.acc;
@@ -1188,7 +1188,7 @@ fn run_driven_cl_traced(
                     run.tracer.offer(p.t, true, || int.sample(&p));
                     // the first contact's time scale starts the step control (a later contact
                     // comes slower, so lasts longer)
-                    let c = run.contact(&mut int, p, t_c)?;
+                    let c = run.contact(&mut int, p, t_c, contacts.len() + 1)?;
                     peak_torque = peak_torque.max(c.peak_torque);
                     if c.event.peak_force_n > 0.0 {
                         contacts.push(c.event);
@@ -1374,15 +1374,16 @@ impl Run<'_> {
         }
     }
 
-    /// The contact from its onset `s` (the law set for its closing speed) to its separation,
-    /// located where the gap closes with the force gone, or to the window's end. The step
-    /// keeps the force's linear hold within `tol` of the largest force so far, starting from
-    /// 1e-4 of the contact time scale `t_c` \[s\].
+    /// Contact `number` (from 1) from its onset `s` (the law set for its closing speed) to its
+    /// separation, located where the gap closes with the force gone, or to the window's end.
+    /// The step keeps the force's linear hold within `tol` of the largest force so far,
+    /// starting from 1e-4 of the contact time scale `t_c` \[s\].
     fn contact(
         &mut self,
         int: &mut Integrator<'_>,
         mut s: Point,
         t_c: f64,
+        number: usize,
     ) -> Result<Pressed, ImpactError> {
         let t_on = s.t;
         let tol = self.tol;
@@ -1413,13 +1414,23 @@ impl Run<'_> {
                 break;
             }
             if self.steps >= self.max_steps {
+                let mut reason = format!(
+                    "the step budget ({}) ran out {:.3e} s into contact {number}",
+                    self.max_steps,
+                    s.t - t_on
+                );
+                if number > 1 {
+                    // a later contact that lasts: the drive pressing the person, the link
+                    // ringing against them
+                    reason.push_str(
+                        ": the linear model resolves every period of the link's ringing in a \
+                         long press; the exact link model (link_model = \"exact\") follows a \
+                         press at the drive's pace",
+                    );
+                }
                 return Err(ImpactError::NotFinished {
                     design: "driven CL",
-                    reason: format!(
-                        "the step budget ({}) ran out {:.3e} s into the contact",
-                        self.max_steps,
-                        s.t - t_on
-                    ),
+                    reason,
                 });
             }
             self.steps += 1;
