@@ -77,7 +77,7 @@ fn refine_max(
 impl Simulation<'_> {
     /// True when the scene's contact is integrated adaptively.
     pub(super) fn adaptive_contact(&self) -> bool {
-        self.scene.file.solver.contact == ContactPolicy::Adaptive
+        self.scene.contact_integration() == ContactPolicy::Adaptive
             && matches!(self.robot, RobotSide::Rigid { .. })
             && self.scene.drive.is_none()
     }
