@@ -214,7 +214,8 @@ pub struct RunSummary {
     pub impulse_n_s: f64,
     /// Steps taken (all), and within contact.
     pub steps: usize,
-    /// Steps taken in contact.
+    /// Steps taken in contact: those that end in contact (the step that ends at or past the
+    /// separation is counted in `steps` only), of either contact integration.
     pub contact_steps: usize,
     /// How the contact was integrated: `"adaptive"` (DOP853 on the two hinges) or `"fixed"`
     /// (Rapier's steps); the scene's `solver.contact` resolved, `"auto"` taking the adaptive
