@@ -72,8 +72,7 @@ impl ContactPolicy {
     pub fn resolved(self, design: crate::scene::Design, swing: SwingPolicy, driven: bool) -> Self {
         match self {
             ContactPolicy::Auto => {
-                if design == crate::scene::Design::Cj && swing == SwingPolicy::Adaptive && !driven
-                {
+                if design == crate::scene::Design::Cj && swing == SwingPolicy::Adaptive && !driven {
                     ContactPolicy::Adaptive
                 } else {
                     ContactPolicy::Fixed

@@ -184,7 +184,10 @@ fn cj_peak_converges_at_second_order_and_conserves_energy() {
         "cj_aluminium",
         &[
             ("from = \"release\"", "from = \"contact\""),
-            ("contact_steps = 800", "contact_steps = 800\ncontact = \"fixed\""),
+            (
+                "contact_steps = 800",
+                "contact_steps = 800\ncontact = \"fixed\"",
+            ),
         ],
     ));
     let (before, after) = rig.energy_through_contact_j.unwrap();

@@ -157,7 +157,10 @@ fn the_bundled_test_bed_scenes_run_bit_identically() {
     for (name, bits, steps) in GOLDEN {
         let scene = common::scene(
             name,
-            &[("contact_steps = 800", "contact_steps = 800\ncontact = \"fixed\"")],
+            &[(
+                "contact_steps = 800",
+                "contact_steps = 800\ncontact = \"fixed\"",
+            )],
         );
         assert!(scene.drive.is_none());
         let s = run(&scene);

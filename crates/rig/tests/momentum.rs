@@ -77,7 +77,10 @@ fn angular_momentum_changes_by_the_applied_impulse() {
             name,
             &[
                 ("from = \"release\"", "from = \"contact\""),
-                ("contact_steps = 800", "contact_steps = 800\ncontact = \"fixed\""),
+                (
+                    "contact_steps = 800",
+                    "contact_steps = 800\ncontact = \"fixed\"",
+                ),
             ],
         );
         let geometry = RigGeometry::of(&scene);

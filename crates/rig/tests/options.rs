@@ -112,7 +112,10 @@ fn damped_laws_dissipate_and_lower_the_restitution() {
 fn after_separation_the_swing_step_returns() {
     // A 1 s run with Rapier's contact: one contact, then the free swing at the swing step
     // (5e-4 s), not at the contact step (6e-6 s): far fewer than 1 s / 6e-6 s steps.
-    let fixed = ("contact_steps = 800", "contact_steps = 800\ncontact = \"fixed\"");
+    let fixed = (
+        "contact_steps = 800",
+        "contact_steps = 800\ncontact = \"fixed\"",
+    );
     let scene = common::scene(
         "cj_aluminium",
         &[

@@ -101,7 +101,11 @@ fn a_run_from_release_agrees_with_the_reference() {
     for (name, solver, tolerance) in [
         ("cj_aluminium", "contact_steps = 800", 5e-7),
         ("cj_iron", "contact_steps = 800", 5e-7),
-        ("cj_aluminium", "contact_steps = 800\ncontact = \"fixed\"", 2e-6),
+        (
+            "cj_aluminium",
+            "contact_steps = 800\ncontact = \"fixed\"",
+            2e-6,
+        ),
         ("cj_iron", "contact_steps = 800\ncontact = \"fixed\"", 2e-6),
     ] {
         let scene = common::scene(name, &[("contact_steps = 800", solver)]);
@@ -295,7 +299,10 @@ fn every_contact_of_the_swing_agrees_with_the_reference() {
             ],
         );
         let s = run(&scene);
-        assert_eq!(s.contact_integration.is_adaptive(), !contact.contains("fixed"));
+        assert_eq!(
+            s.contact_integration.is_adaptive(),
+            !contact.contains("fixed")
+        );
         let system = TwoHinges::new(&scene);
         let reference = reference_contacts(
             &system,
