@@ -82,7 +82,7 @@ use flexrig_impact::modal_run::{ModalOptions, run_modes};
 use flexrig_impact::setup::ContactEvent;
 use flexrig_impact::{FreeMassImpact, Joint, LinkParams, RunEnd};
 use flexrig_rig::geometry::RigGeometry;
-use flexrig_rig::scene::{DampingSpec, Start};
+use flexrig_rig::scene::{ContactPolicy, DampingSpec, Start};
 use flexrig_rig::{
     Design, Frame, Recorder, RigError, RunOptions, Scene, SceneFile, Simulation, StepOutcome,
 };
@@ -137,7 +137,8 @@ fn released_from(mut file: SceneFile, angle_deg: f64) -> SceneFile {
 }
 
 /// `file` started at contact with the swing speed of its release, with `damping` and
-/// `contact_steps` steps per estimated contact time.
+/// `contact_steps` of Rapier's steps per estimated contact time (`solver.contact = "fixed"`:
+/// the convergence under test is that of Rapier's contact).
 fn at_contact(mut file: SceneFile, damping: DampingSpec, contact_steps: usize) -> Scene {
     let Start::Release { release_angle_deg } = file.operator.start else {
         panic!("{}: the bundled scenes start from a release", file.name)
@@ -145,6 +146,7 @@ fn at_contact(mut file: SceneFile, damping: DampingSpec, contact_steps: usize) -
     file.operator.start = Start::Contact { release_angle_deg };
     file.contact.damping = damping;
     file.solver.contact_steps = contact_steps;
+    file.solver.contact = ContactPolicy::Fixed;
     Scene::from_file(file, &Materials::bundled().unwrap()).unwrap()
 }
 
