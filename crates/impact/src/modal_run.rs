@@ -151,7 +151,7 @@ fn mode_coefficients(omega: f64, h: f64) -> [f64; 9] {
     } else {
         ((1.0 - cos) / (x * x), (x - sin) / (x * x * x), sin / x)
     };
-    let quartic = quartic_response(x);
+    let quartic = quartic_response(x, cos);
     let h2 = h * h;
     let beta = h2 * x_minus_sin;
     let alpha = h2 * one_minus_cos - beta;
@@ -172,19 +172,41 @@ fn mode_coefficients(omega: f64, h: f64) -> [f64; 9] {
     ]
 }
 
-/// (x² − 2 + 2 cos x)/x⁴ = Σ_{k≥2} 2(−1)^k x^{2k−4}/(2k)! (1/12 at x = 0), by its series below
-/// x = 0.2 (the closed form loses 12 ε/x² to cancellation; the series' first omitted term is
-/// below 1e-17 there).
-fn quartic_response(x: f64) -> f64 {
-    if x < 0.2 {
+/// [cos x, sin x/ω, ω sin x] of one mode ω over h, x = ωh (the free oscillation's; sin x/ω by
+/// its series below x = 0.01, as in [`mode_coefficients`]).
+fn free_coefficients(omega: f64, h: f64) -> [f64; 3] {
+    let x = omega * h;
+    let (sin, cos) = x.sin_cos();
+    let sinc = if x < 1e-2 {
         let x2 = x * x;
-        1.0 / 12.0
-            + x2 * (-1.0 / 360.0
-                + x2 * (1.0 / 20_160.0 + x2 * (-1.0 / 1_814_400.0 + x2 / 239_500_800.0)))
+        1.0 - x2 / 6.0 + x2 * x2 / 120.0
     } else {
-        // x² − 2(1 − cos x), with 1 − cos x = 2 sin²(x/2) against cancellation
+        sin / x
+    };
+    [cos, h * sinc, omega * sin]
+}
+
+/// (x² − 2 + 2 cos x)/x⁴ = Σ_{k≥2} 2(−1)^k x^{2k−4}/(2k)! (1/12 at x = 0) given cos x: by its
+/// series through x¹⁴ below x = 1 (the first omitted term is below 1e-18 there), else in closed
+/// form (its cancellation loses at most 12 ε/x² ≤ 3e-15).
+fn quartic_response(x: f64, cos: f64) -> f64 {
+    if x < 1.0 {
+        // 2(−1)^k/(2k)! for k = 2 … 9, innermost last
+        const C: [f64; 8] = [
+            1.0 / 12.0,
+            -1.0 / 360.0,
+            1.0 / 20_160.0,
+            -1.0 / 1_814_400.0,
+            1.0 / 239_500_800.0,
+            -1.0 / 43_589_145_600.0,
+            1.0 / 10_461_394_944_000.0,
+            -1.0 / 3_201_186_852_864_000.0,
+        ];
         let x2 = x * x;
-        (x2 - 4.0 * (0.5 * x).sin().powi(2)) / (x2 * x2)
+        C.iter().rev().fold(0.0, |acc, c| acc * x2 + c)
+    } else {
+        let x2 = x * x;
+        (x2 - 2.0 + 2.0 * cos) / (x2 * x2)
     }
 }
 
@@ -413,9 +435,41 @@ impl Integrator<'_> {
                 ..s.clone()
             };
         }
+        if s.f == 0.0 && before.is_none() {
+            return self.free_motion(s, h);
+        }
         let k = StepCoefficients::new(self.modes, h);
         let p = self.predict(s, &k, before);
         self.finish(p, &k, 0.0, s.t + h)
+    }
+
+    /// The motion from `s` over h without a force (free flight): each mode's free oscillation
+    /// and the head's uniform motion — the unloaded step's own numbers, without the load's
+    /// coefficients.
+    fn free_motion(&self, s: &Motion, h: f64) -> Motion {
+        let n = self.modes.len();
+        let (mut q, mut q_dot) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        let (mut w, mut w_dot) = (0.0, 0.0);
+        for i in 0..n {
+            let [cos, sinc_h, w_sin] = free_coefficients(self.modes.omegas[i], h);
+            let b = self.modes.gains[i];
+            let qi = cos * s.q[i] + sinc_h * s.q_dot[i];
+            let vi = -w_sin * s.q[i] + cos * s.q_dot[i];
+            w += b * qi;
+            w_dot += b * vi;
+            q.push(qi);
+            q_dot.push(vi);
+        }
+        let x = s.head.x + h * s.head.v;
+        Motion {
+            t: s.t + h,
+            q,
+            q_dot,
+            head: Head { x, ..s.head },
+            f: 0.0,
+            delta: x - w,
+            delta_dot: s.head.v - w_dot,
+        }
     }
 
     /// Kinetic, modal strain, contact and residual-spring energy \[J\].

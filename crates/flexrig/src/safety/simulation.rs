@@ -14,9 +14,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use flexrig_contact::{DampingSpec, Hertz};
 use flexrig_impact::chain::Chain;
-use flexrig_impact::cl_modal::run_on_modes_against;
+use flexrig_impact::cl_modal::head_at_onset;
 use flexrig_impact::graded::{GradedMesh, cl_tip_modes};
-use flexrig_impact::modal_run::ModalOptions;
+use flexrig_impact::modal_run::{ModalOptions, run_modes_quadratic_against};
 use flexrig_impact::{FreeMassImpact, ImpactError, Joint, LinkParams, RunEnd};
 use flexrig_safety::{EnergyContact, PressureCrossing};
 use serde::{Deserialize, Serialize};
@@ -322,7 +322,17 @@ impl FeRuns {
             window_s: Some(PARTING_GUARD_S),
             max_steps: MAX_IMPACT_STEPS,
         };
-        let outcome = run_on_modes_against(&setup, &m, &options, self.force_scale)?;
+        // the force held quadratic over each step: third order, a tenth of the linear hold's
+        // steps at the same tolerance on the hold's deviation
+        setup.validate()?;
+        let outcome = run_modes_quadratic_against(
+            &m,
+            head_at_onset(&setup),
+            &*setup.law()?,
+            setup.payload_contact_time(),
+            &options,
+            self.force_scale,
+        )?;
         let parted_at_s = match outcome.ended {
             RunEnd::PartedForGood(t) => t,
             RunEnd::Window(t) | RunEnd::StepBudget(t) | RunEnd::Rebound(t) => {
