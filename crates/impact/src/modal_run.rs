@@ -359,10 +359,18 @@ impl Integrator<'_> {
             }
             let slope = 1.0 + p.c * stiffness + p.c_v * self.law.damping(delta, rate);
             let mut next = f - res / slope;
-            if !(next > lo && next < hi) {
+            let newton = next > lo && next < hi;
+            if !newton {
                 next = 0.5 * (lo + hi);
             }
             if (next - f).abs() <= 1e-15 * next.abs() || hi - lo <= 1e-15 * hi {
+                return next;
+            }
+            // with the quadratic hold: a Newton correction below 1e-9 of the force leaves an
+            // error of the order of its square (the residual's curvature is of the order of
+            // the force over δ, and δ ≈ D over a step), far below the last bit: one evaluation
+            // fewer than waiting for a correction of one ulp
+            if self.hold == ForceHold::Quadratic && newton && (next - f).abs() <= 1e-9 * next {
                 return next;
             }
             f = next;
@@ -708,7 +716,7 @@ fn run_modes_inner(
                 f: samples[m - 2].1,
             });
             let guess = match before {
-                Some(b) => (s.f + (s.f - b.f) * k.h / b.h0).max(0.0),
+                Some(_) => extrapolated_force(&samples, k.h),
                 None => s.f,
             };
             let next = int.step(&s, k, before, guess);
@@ -882,6 +890,21 @@ fn hold_deviation(hold: ForceHold, samples: &[(f64, f64)], h1: f64, f1: f64) -> 
             Some(f3 * (h0 + h1) * h1 * h1 / 24.0)
         }
     }
+}
+
+/// The force \[N\] a step of length `h` \[s\] is expected to end at: the polynomial through the
+/// last three samples (two with fewer) extrapolated over h, never below 0 (the Newton
+/// iteration's start; its error is of the order of the hold's deviation).
+fn extrapolated_force(samples: &[(f64, f64)], h: f64) -> f64 {
+    let m = samples.len();
+    let (t0, f0) = samples[m - 1];
+    let (t1, f1) = samples[m - 2];
+    let slope = (f0 - f1) / (t0 - t1);
+    let bend = match m.checked_sub(3).map(|i| samples[i]) {
+        Some((t2, f2)) => (slope - (f1 - f2) / (t1 - t2)) / (t0 - t2),
+        None => 0.0,
+    };
+    (f0 + h * slope + h * (h + t0 - t1) * bend).max(0.0)
 }
 
 /// f‴ \[N/s³\] from four samples (t \[s\], f \[N\]) of any spacing: 6 × their third divided
