@@ -78,7 +78,8 @@ pub struct SimulationSettings {
     /// a map over EI (k_δ = 3EI/L³).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub length: Option<f64>,
-    /// Tolerance of the CL's modal integrator (relative deviation of the force's linear hold).
+    /// Tolerance of the modal integrator of every simulated impact (relative deviation of the
+    /// force's hold per step; the searches hold it quadratic over each step).
     pub tol: f64,
     /// Relative tolerance of the CJ's DOP853 integration.
     pub cj_rtol: f64,
@@ -322,7 +323,7 @@ impl FeRuns {
             window_s: Some(PARTING_GUARD_S),
             max_steps: MAX_IMPACT_STEPS,
         };
-        // the force held quadratic over each step: third order, a tenth of the linear hold's
+        // the force held quadratic over each step: third order, a twentieth of the linear hold's
         // steps at the same tolerance on the hold's deviation
         setup.validate()?;
         let outcome = run_modes_quadratic_against(
