@@ -541,8 +541,7 @@ pub fn run_modes(
         law,
         t_scale,
         options,
-        0.0,
-        ForceHold::Linear,
+        (0.0, ForceHold::Linear),
         None,
     )
 }
@@ -568,8 +567,7 @@ pub fn run_modes_against(
         law,
         t_scale,
         options,
-        force_scale,
-        ForceHold::Linear,
+        (force_scale, ForceHold::Linear),
         None,
     )
 }
@@ -593,8 +591,7 @@ pub fn run_modes_quadratic_against(
         law,
         t_scale,
         options,
-        force_scale,
-        ForceHold::Quadratic,
+        (force_scale, ForceHold::Quadratic),
         None,
     )
 }
@@ -616,21 +613,21 @@ pub fn run_modes_traced(
         law,
         t_scale,
         options,
-        0.0,
-        ForceHold::Linear,
+        (0.0, ForceHold::Linear),
         Some(&mut trace),
     )?;
     Ok((outcome, trace))
 }
 
+/// The run of [`run_modes`] and its variants: `(force_scale, hold)` is the force \[N\] the
+/// tolerance is measured against at least and how the force is held over a step.
 fn run_modes_inner(
     modes: &TipModes,
     head: Head,
     law: &dyn ContactLaw,
     t_scale: f64,
     options: &ModalOptions,
-    force_scale: f64,
-    hold: ForceHold,
+    (force_scale, hold): (f64, ForceHold),
     mut trace: Option<&mut ContactTrace>,
 ) -> Result<ImpactOutcome, ImpactError> {
     options.validate()?;
