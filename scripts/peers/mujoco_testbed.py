@@ -31,6 +31,12 @@ Usage (in the project venv: bash scripts/python-env.sh --peers):
   .venv/bin/python scripts/peers/mujoco_testbed.py [--scene assets/scenes/cj_aluminium.toml]
       [--target 1e-3] [--repeat 21] [--flexrig target/release/examples/work_error]
 Prints one JSON object per line. Exits 0 with a "skipped" line when mujoco is not installed.
+
+For timing whole processes (start-up included) against `flexrig run`:
+  .venv/bin/python scripts/peers/mujoco_testbed.py --once rk4 8e-3 60 [--runs 1]
+builds the model and makes --runs runs (0: the start-up alone: Python, MuJoCo's import, the
+model) at that integrator, swing step [s] and contact steps, and prints the last peak and its
+error against MuJoCo's converged run only with --check (that reference costs ~1 s).
 """
 import argparse
 import json
@@ -272,14 +278,35 @@ def flexrig_point(binary, scene, target, sample_rate):
     return [r for r in rows if r.get("cheapest")]
 
 
+def once(bed, args):
+    """--once: the model built and --runs runs at one setting (for whole-process timings)."""
+    integrator, dt_swing, contact_steps = args.once[0], float(args.once[1]), int(args.once[2])
+    runner = Runner(bed, integrator)
+    peak = None
+    for _ in range(args.runs):
+        peak, steps = runner.run(dt_swing, contact_steps)
+    row = {"code": "mujoco", "integrator": integrator, "dt_swing_s": dt_swing,
+           "contact_steps": contact_steps, "runs": args.runs, "peak_n": peak}
+    if args.check and peak is not None:
+        reference, _ = Runner(bed, "rk4").run(1e-4, 12_800)
+        row["error"] = abs(peak / reference - 1)
+    print(json.dumps(row))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--scene", default=os.path.join(ROOT, "assets", "scenes", "cj_aluminium.toml"))
     ap.add_argument("--target", type=float, default=1e-3)
     ap.add_argument("--repeat", type=int, default=21)
     ap.add_argument("--flexrig", default=os.path.join(ROOT, "target", "release", "examples", "work_error"))
+    ap.add_argument("--once", nargs=3, metavar=("INTEGRATOR", "DT_SWING", "CONTACT_STEPS"))
+    ap.add_argument("--runs", type=int, default=1)
+    ap.add_argument("--check", action="store_true")
     args = ap.parse_args()
     bed = TestBed(args.scene)
+    if args.once:
+        once(bed, args)
+        return
     reference, ref_steps = Runner(bed, "rk4").run(1e-4, 12_800)
     print(json.dumps({"code": "mujoco", "mujoco": mujoco.__version__, "converged_peak_n": reference,
                       "converged_steps": ref_steps, "v_impact_mps": bed.v_impact}))

@@ -1370,7 +1370,13 @@ fn sweep_hostile_grids_zips_and_shards() {
             "start = { from = \"release\", release_angle_deg = 30.0 }",
             "start = { from = \"contact\", release_angle_deg = 30.0 }",
         )
-        .replace("at = \"separation\"", "at = \"peak\"");
+        .replace("at = \"separation\"", "at = \"peak\"")
+        // Rapier's contact: the workloads below are sized by its cost (the adaptive contact,
+        // the CJ's default, finishes the interrupted sweeps before the interrupt)
+        .replace(
+            "contact_steps = 800",
+            "contact_steps = 800\ncontact = \"fixed\"",
+        );
     std::fs::write(&base, text).unwrap();
     let base = base.to_string_lossy().into_owned();
     let paths = [
@@ -1484,7 +1490,13 @@ fn sweep_base(dir: &Path) -> String {
             "start = { from = \"release\", release_angle_deg = 30.0 }",
             "start = { from = \"contact\", release_angle_deg = 30.0 }",
         )
-        .replace("at = \"separation\"", "at = \"peak\"");
+        .replace("at = \"separation\"", "at = \"peak\"")
+        // Rapier's contact: the workloads below are sized by its cost (the adaptive contact,
+        // the CJ's default, finishes the interrupted sweeps before the interrupt)
+        .replace(
+            "contact_steps = 800",
+            "contact_steps = 800\ncontact = \"fixed\"",
+        );
     std::fs::write(&base, text).unwrap();
     base.to_string_lossy().into_owned()
 }

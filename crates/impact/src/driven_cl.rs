@@ -21,10 +21,14 @@
 //! f₁ (Illinois). The step follows the curvature of f and of u (h² |f″|/8 ≤ tol · f_max, the same
 //! for u), lands on the drive's corners, and in free flight is bounded by the gap over the
 //! fastest the gap can close, so no contact is skipped; the onset and the separation are located
-//! on the exact motion. Motor work, friction, damping and impact work by Simpson's rule on each
-//! step (mid-step state exact). The controller's integral ∫e_φ dt by the trapezoidal rule.
+//! on the exact motion. With [`ClDriveSettings::every_contact`] the run goes on after a
+//! separation — the link and the head fly on with the drive acting, by the same free-flight
+//! steps, to the next onset — until the window closes (the run is split into its flights,
+//! [`Run::fly`], and its contacts, [`Run::contact`]). Motor work, friction, damping and impact
+//! work over the first contact by Simpson's rule on each step (mid-step state exact). The
+//! controller's integral ∫e_φ dt by the trapezoidal rule.
 //!
-//! **One file, one concept** (about 1 300 lines): the driven compliant link's two-port modal
+//! **One file, one concept** (about 1 400 lines): the driven compliant link's two-port modal
 //! integrator — the drive's law, the exact modal steps, the contact's force solve, the events and
 //! the energy terms of one step loop.
 
@@ -54,6 +58,11 @@ pub struct ClDriveSettings {
     pub max_steps: usize,
     /// `Some(dt)`: sample the motion at the integrator's steps, at most every dt \[s\].
     pub trace_every: Option<f64>,
+    /// `false`: stop at the first separation; `true`: follow every contact, the drive keeping
+    /// its command, until the window (`horizon_s`) closes. Along the linear model's path (the
+    /// tip and the head on one line) the tip can always come back, so no parting for good is
+    /// declared before the window.
+    pub every_contact: bool,
 }
 
 impl ClDriveSettings {
@@ -68,6 +77,7 @@ impl ClDriveSettings {
         approach_tol: 1e-5,
         max_steps: 1_000_000,
         trace_every: None,
+        every_contact: false,
     };
 }
 
@@ -193,7 +203,8 @@ struct Point {
 struct Integrator<'a> {
     modes: Modes,
     port: Port<'a>,
-    law: Option<&'a dyn ContactLaw>,
+    /// The contact's law (set at each onset for its closing speed).
+    law: Option<Box<dyn ContactLaw>>,
     /// c_j = c_m N² [N·m·s/rad].
     friction: f64,
     l: f64,
@@ -438,7 +449,9 @@ impl Integrator<'_> {
 
     /// f₁ (0 when `unloaded` or out of contact).
     fn solve_force(&self, s: &Point, lin: &Linear, unloaded: bool) -> f64 {
-        let Some(law) = self.law else { return 0.0 };
+        let Some(law) = self.law.as_deref() else {
+            return 0.0;
+        };
         if unloaded {
             return 0.0;
         }
@@ -615,7 +628,7 @@ impl Integrator<'_> {
     /// (motor power, friction power, damping power, impact power) \[W\].
     fn powers(&self, p: &Ports) -> [f64; 4] {
         let (delta, rate) = (p.w - p.xh, p.wv - p.vh);
-        let contact = match self.law {
+        let contact = match self.law.as_deref() {
             Some(law) if delta > 0.0 => (p.f - law.elastic().force(delta, 0.0)) * rate,
             _ => 0.0,
         };
@@ -666,6 +679,7 @@ impl Integrator<'_> {
         let (w, _) = self.tip(p.t, &p.q, &p.qd);
         let contact = self
             .law
+            .as_deref()
             .map_or(0.0, |law| law.elastic_energy((w - p.xh).max(0.0)));
         let head = if self.wall {
             0.0
@@ -681,6 +695,16 @@ impl Integrator<'_> {
     }
 
     /// The gap δ = w − x_h at a point.
+    /// The drive's torque scale at `p` for the approach's step control \[N·m\]: a controller's
+    /// torque (its port load carries K_p φ_cmd, which grows with the angle and says nothing of
+    /// the torque's accuracy), otherwise the port's load.
+    fn torque_scale(&self, p: &Point) -> f64 {
+        match self.port {
+            Port::Feedback { .. } => p.torque.abs(),
+            _ => p.u.abs(),
+        }
+    }
+
     fn delta(&self, p: &Point) -> (f64, f64) {
         let (w, wv) = self.tip(p.t, &p.q, &p.qd);
         (w - p.xh, wv - p.vh)
@@ -839,13 +863,6 @@ fn run_driven_cl_traced(
     stop: &std::sync::atomic::AtomicBool,
     tracer: &mut Tracer,
 ) -> Result<DrivenOutcome, ImpactError> {
-    let check_stop = || {
-        if stop.load(std::sync::atomic::Ordering::Relaxed) {
-            Err(ImpactError::Interrupted)
-        } else {
-            Ok(())
-        }
-    };
     strike.validate()?;
     settings.mesh.validate()?;
     for (field, tol) in [
@@ -1052,22 +1069,19 @@ fn run_driven_cl_traced(
     let mut breaks = strike.drive.breakpoints();
     breaks.push(strike.horizon_s);
     breaks.sort_by(f64::total_cmp);
-    let tol = settings.tol;
-    let mut steps = 0usize;
-    let mut saturation_at: Option<f64> = None;
-    // the hold's allowance is relative to the drive's own torque (a controller's port load
-    // carries K_p φ_cmd, which grows with the angle and says nothing of the torque's accuracy)
-    let scale_of = |p: &Point| match int.port {
-        Port::Feedback { .. } => p.torque.abs(),
-        _ => p.u.abs(),
+    let mut run = Run {
+        tracer,
+        stop,
+        steps: 0,
+        max_steps: settings.max_steps,
+        horizon: strike.horizon_s,
+        breaks,
+        t_link,
+        tol: settings.tol,
+        approach_tol: settings.approach_tol,
+        saturation_at: None,
+        u_ref: int.torque_scale(&s),
     };
-    let mut u_ref = scale_of(&s);
-    let mut levels = Levels {
-        h_ref: t_link * 1e-4,
-        levels: std::collections::HashMap::new(),
-    };
-    let mut level = 0_i32;
-    let mut history: Vec<(f64, f64)> = vec![(s.t, s.u)];
     // ---- approach ----
     let (delta0, rate0) = int.delta(&s);
     if delta0 > 0.0 {
@@ -1079,25 +1093,25 @@ fn run_driven_cl_traced(
     }
     let onset_reached = delta0 == 0.0 && rate0 > 0.0;
     if !onset_reached {
-        loop {
-            check_stop()?;
-            if steps >= settings.max_steps {
+        s = match run.fly(&mut int, s)? {
+            Flight::Onset(p) => p,
+            Flight::OutOfSteps(p) => {
                 return Err(ImpactError::NotFinished {
                     design: "driven CL",
                     reason: format!(
                         "the step budget ({}) ran out in the approach at t = {:.6e} s",
-                        settings.max_steps, s.t
+                        settings.max_steps, p.t
                     ),
                 });
             }
-            if s.t >= strike.horizon_s {
+            Flight::Window(p) => {
                 let mut reason = format!(
                     "the link did not reach the person within horizon_s = {} s (gap {:.6e} m \
                      at the end)",
                     strike.horizon_s,
-                    -int.delta(&s).0
+                    -int.delta(&p).0
                 );
-                if let Some(ts) = saturation_at {
+                if let Some(ts) = run.saturation_at {
                     reason.push_str(&format!(
                         "; the torque limit was reached at {ts:.6e} s and cannot hold the speed"
                     ));
@@ -1107,24 +1121,213 @@ fn run_driven_cl_traced(
                     reason,
                 });
             }
-            steps += 1;
-            let next_break = breaks
+        };
+    }
+    // ---- the first contact ----
+    let t_on = s.t;
+    let (_, approach) = int.delta(&s);
+    if !(approach > 0.0) {
+        return Err(ImpactError::NotFinished {
+            design: "driven CL",
+            reason: format!("the link touched the person without approaching (δ̇ = {approach})"),
+        });
+    }
+    int.law = Some(strike.person.damping.law(strike.person.contact, approach)?);
+    int.branch = t_on;
+    let (w_on, _) = int.tip(s.t, &s.q, &s.qd);
+    let hub_on = match &int.port {
+        Port::Prescribed { .. } => int.command(t_on).expect("a profile").0,
+        _ => int.hub(&s.q, &s.qd).0,
+    };
+    let deflection = w_on - l * hub_on;
+    let (_, tip_speed_on) = int.tip(t_on, &s.q, &s.qd);
+    let torque_on = int.torque(&int.ports(&s));
+    let e0 = int.energy(&s);
+    run.tracer.offer(s.t, true, || int.sample(&s));
+    let t_c = setup.payload_contact_time() * v_expect / approach;
+    let first = run.contact(&mut int, s, t_c, 1)?;
+    let s = first.end;
+    let e1 = int.energy(&s);
+    let [motor_work, friction, damping, impact] = first.acc;
+    let dissipated = friction + damping;
+    let energy = EnergyBalance {
+        impact_energy_j: impact,
+        motor_work_j: motor_work,
+        dissipated_j: dissipated,
+        mechanical_change_j: e1 - e0,
+        residual_j: motor_work - dissipated - (e1 - e0),
+    };
+    let separation_rate = int.delta(&s).1;
+    let mut peak_torque = first.peak_torque.max(torque_on.abs());
+    let mut contacts = vec![first.event];
+    let mut pressing_at_window = first.window_closed;
+    // ---- every later contact, until the window closes ----
+    let ended = if first.window_closed {
+        crate::RunEnd::Window(strike.horizon_s)
+    } else if !settings.every_contact {
+        crate::RunEnd::FirstSeparation
+    } else {
+        let mut s = s;
+        loop {
+            match run.fly(&mut int, s)? {
+                Flight::Window(p) => break crate::RunEnd::Window(p.t),
+                Flight::OutOfSteps(p) => {
+                    return Err(ImpactError::NotFinished {
+                        design: "driven CL",
+                        reason: format!(
+                            "the step budget ({}) ran out between contacts at t = {:.6e} s",
+                            settings.max_steps, p.t
+                        ),
+                    });
+                }
+                Flight::Onset(p) => {
+                    // a later onset may graze (its located closing speed a rounding error)
+                    let rate = int.delta(&p).1.max(1e-9);
+                    int.law = Some(strike.person.damping.law(strike.person.contact, rate)?);
+                    int.branch = p.t;
+                    run.tracer.offer(p.t, true, || int.sample(&p));
+                    // the first contact's time scale starts the step control (a later contact
+                    // comes slower, so lasts longer)
+                    let c = run.contact(&mut int, p, t_c, contacts.len() + 1)?;
+                    peak_torque = peak_torque.max(c.peak_torque);
+                    if c.event.peak_force_n > 0.0 {
+                        contacts.push(c.event);
+                    }
+                    if c.window_closed {
+                        pressing_at_window = true;
+                        break crate::RunEnd::Window(strike.horizon_s);
+                    }
+                    s = c.end;
+                }
+            }
+        }
+    };
+    let commanded = int.command(t_on).map(|c| l * c.1);
+    let mut notes = Vec::new();
+    if pressing_at_window {
+        notes.push(DriveNote::StillPressing {
+            window_s: strike.horizon_s,
+        });
+    }
+    if let Some(ts) = run.saturation_at {
+        notes.push(DriveNote::TorqueLimitReached { first_s: ts });
+    }
+    if let Some(c) = commanded {
+        notes.extend(DriveNote::arrival(c, tip_speed_on));
+    }
+    let outcome = DrivenOutcome {
+        contact: contacts[0],
+        approach_speed_mps: approach,
+        commanded_tip_speed_mps: commanded,
+        pre_impact_deflection_m: deflection,
+        joint_torque_at_onset_nm: torque_on,
+        peak_joint_torque_nm: peak_torque,
+        energy,
+        separation_rate_mps: separation_rate,
+        notes,
+        work: run.steps,
+        trace: std::mem::take(&mut run.tracer.samples),
+        contacts,
+        ended,
+    };
+    crate::driven_cj::finite(outcome)
+}
+
+/// What the phases of one linear CL run share: the trace, the work done, the window, the
+/// drive's breakpoints, the tolerances, the stop flag.
+struct Run<'r> {
+    tracer: &'r mut Tracer,
+    stop: &'r std::sync::atomic::AtomicBool,
+    steps: usize,
+    max_steps: usize,
+    /// The window's end \[s\].
+    horizon: f64,
+    /// The drive's breakpoints and the window's end, sorted \[s\].
+    breaks: Vec<f64>,
+    /// The lumped link's period 2π √(m_e/k_δ) \[s\] (the free flight's step scale).
+    t_link: f64,
+    /// Relative deviation of the force's hold in a contact, and of the drive's torque out of it.
+    tol: f64,
+    approach_tol: f64,
+    /// When the drive's torque first reached its limit \[s\].
+    saturation_at: Option<f64>,
+    /// The drive's largest torque scale so far (the approach's step control) \[N·m\].
+    u_ref: f64,
+}
+
+/// How a flight of the link without contact ended.
+enum Flight {
+    /// The next contact's onset, located on the motion (the point there).
+    Onset(Point),
+    /// The window closed (the point at its end).
+    Window(Point),
+    /// The step budget ran out (the last point).
+    OutOfSteps(Point),
+}
+
+/// One contact from its onset to its separation (or the window).
+struct Pressed {
+    event: ContactEvent,
+    /// The point at the separation (or the window's end).
+    end: Point,
+    /// ∫ power dt over the contact: motor, friction, damping, impact \[J\].
+    acc: [f64; 4],
+    peak_torque: f64,
+    window_closed: bool,
+}
+
+impl Run<'_> {
+    fn check_stop(&self) -> Result<(), ImpactError> {
+        if self.stop.load(std::sync::atomic::Ordering::Relaxed) {
+            Err(ImpactError::Interrupted)
+        } else {
+            Ok(())
+        }
+    }
+
+    /// The link and the head without contact from `s` until the tip touches the head (the onset
+    /// located on the exact motion), the window closes or the steps run out. The step follows
+    /// the drive's torque (its linear hold within `approach_tol`, the structure being exact for
+    /// any step) and never passes the time the gap could close at the fastest it can close
+    /// ([`Integrator::closing_speed_bound`]), so no contact is stepped over.
+    fn fly(&mut self, int: &mut Integrator<'_>, mut s: Point) -> Result<Flight, ImpactError> {
+        let t_link = self.t_link;
+        let mut levels = Levels {
+            h_ref: t_link * 1e-4,
+            levels: std::collections::HashMap::new(),
+        };
+        let mut level = 0_i32;
+        let mut history: Vec<(f64, f64)> = vec![(s.t, s.u)];
+        loop {
+            self.check_stop()?;
+            if self.steps >= self.max_steps {
+                return Ok(Flight::OutOfSteps(s));
+            }
+            if s.t >= self.horizon {
+                return Ok(Flight::Window(s));
+            }
+            self.steps += 1;
+            let next_break = self
+                .breaks
                 .iter()
                 .copied()
                 .find(|b| *b > s.t * (1.0 + 1e-15))
-                .unwrap_or(strike.horizon_s);
-            let last_break = breaks
+                .unwrap_or(self.horizon);
+            let last_break = self
+                .breaks
                 .iter()
                 .copied()
                 .filter(|b| *b <= s.t * (1.0 + 1e-15))
                 .fold(0.0, f64::max);
             int.branch = 0.5 * (last_break + next_break);
-            let gap = -int.delta(&s).0;
+            // after a separation the located gap may be a rounding error inside the face
+            let d0 = int.delta(&s).0.min(-f64::MIN_POSITIVE);
+            let gap = -d0;
             let bound = (gap / int.closing_speed_bound(&s).max(1e-300)).max(t_link * 1e-6);
             let limit = bound.min(next_break - s.t);
             let h_level = levels.h_ref * 2f64.powf(level as f64 / 4.0);
             let (sc, h_try) = if h_level <= limit {
-                (levels.get(&int, level), h_level)
+                (levels.get(int, level), h_level)
             } else {
                 (std::rc::Rc::new(int.coefficients_for(limit)), limit)
             };
@@ -1135,10 +1338,11 @@ fn run_driven_cl_traced(
                 let (tb, ub) = history[history.len() - 1];
                 let (h0, h1) = (tb - ta, h_try);
                 let u2 = 2.0 * ((next.u - ub) / h1 - (ub - ua) / h0) / (h0 + h1);
-                let allowed = settings.approach_tol * u_ref.max(scale_of(&next)).max(1e-300);
+                let allowed =
+                    self.approach_tol * self.u_ref.max(int.torque_scale(&next)).max(1e-300);
                 if h1 * h1 * u2.abs() / 8.0 > 4.0 * allowed && h_try > t_link * 1e-9 {
                     level = levels.level_for(h_try) - 4;
-                    steps -= 1;
+                    self.steps -= 1;
                     continue;
                 }
                 let ideal = if u2 == 0.0 {
@@ -1154,203 +1358,167 @@ fn run_driven_cl_traced(
             if int.delta(&next).0 >= 0.0 {
                 // the onset within this step
                 let g = |hh: f64| int.delta(&int.step_any(&s, hh, true)).0;
-                let h_on = illinois(g, 0.0, -gap, h_try, int.delta(&next).0, 1e-14 * h_try);
-                s = int.step_any(&s, h_on, true);
-                break;
+                let h_on = illinois(g, 0.0, d0, h_try, int.delta(&next).0, 1e-14 * h_try);
+                return Ok(Flight::Onset(int.step_any(&s, h_on, true)));
             }
-            if next.saturated && saturation_at.is_none() {
-                saturation_at = Some(next.t);
+            if next.saturated && self.saturation_at.is_none() {
+                self.saturation_at = Some(next.t);
             }
-            u_ref = u_ref.max(scale_of(&next));
+            self.u_ref = self.u_ref.max(int.torque_scale(&next));
             s = next;
-            tracer.offer(s.t, false, || int.sample(&s));
+            self.tracer.offer(s.t, false, || int.sample(&s));
             history.push((s.t, s.u));
             if history.len() > 4 {
                 history.remove(0);
             }
         }
     }
-    // ---- the contact ----
-    let t_on = s.t;
-    let (_, approach) = int.delta(&s);
-    if !(approach > 0.0) {
-        return Err(ImpactError::NotFinished {
-            design: "driven CL",
-            reason: format!("the link touched the person without approaching (δ̇ = {approach})"),
-        });
-    }
-    let law = strike.person.damping.law(strike.person.contact, approach)?;
-    int.law = Some(&*law);
-    int.branch = t_on;
-    let (w_on, _) = int.tip(s.t, &s.q, &s.qd);
-    let hub_on = match &int.port {
-        Port::Prescribed { .. } => int.command(t_on).expect("a profile").0,
-        _ => int.hub(&s.q, &s.qd).0,
-    };
-    let deflection = w_on - l * hub_on;
-    let (_, tip_speed_on) = int.tip(t_on, &s.q, &s.qd);
-    let torque_on = int.torque(&int.ports(&s));
-    let e0 = int.energy(&s);
-    tracer.offer(s.t, true, || int.sample(&s));
-    let t_c = setup.payload_contact_time() * v_expect / approach;
-    let mut levels = Levels {
-        h_ref: t_c * 1e-4,
-        levels: std::collections::HashMap::new(),
-    };
-    let mut level = 0_i32;
-    let mut samples: Vec<(f64, f64)> = vec![(s.t, 0.0)];
-    let mut peak = (0.0_f64, s.t);
-    let mut f_ref = 0.0_f64;
-    let mut acc = [0.0_f64; 4];
-    // the powers at the step's start (the last step's end)
-    let mut p_start = int.powers(&int.ports(&s));
-    let mut peak_torque = torque_on.abs();
-    let h_min = t_c * 1e-9;
-    let mut window_closed = false;
-    loop {
-        check_stop()?;
-        if s.t >= strike.horizon_s {
-            // the window closed with the contact on (the drive pressing the person): the force
-            // there counts as well
-            if s.f > peak.0 {
-                peak = (s.f, s.t);
-            }
-            window_closed = true;
-            tracer.offer(s.t, true, || int.sample(&s));
-            break;
-        }
-        if steps >= settings.max_steps {
-            return Err(ImpactError::NotFinished {
-                design: "driven CL",
-                reason: format!(
-                    "the step budget ({}) ran out {:.3e} s into the contact",
-                    settings.max_steps,
-                    s.t - t_on
-                ),
-            });
-        }
-        steps += 1;
-        let sc = levels.get(&int, level);
-        let h = sc.h;
-        let next = int.step(&s, &sc, false);
-        // reject a step whose force bends far beyond the tolerance
-        if samples.len() >= 2 && h > h_min {
-            let (ta, fa) = samples[samples.len() - 2];
-            let (tb, fb) = samples[samples.len() - 1];
-            let (h0, h1) = (tb - ta, h);
-            let f2 = 2.0 * ((next.f - fb) / h1 - (fb - fa) / h0) / (h0 + h1);
-            if h1 * h1 * f2.abs() / 8.0 > 4.0 * tol * f_ref.max(next.f) {
-                level -= 4;
-                continue;
-            }
-        }
-        let (finished, e, half) = if next.f == 0.0 && int.delta(&next).0 <= 0.0 {
-            // separation within the step: shorten it to where the gap closes under f → 0
-            let g = |hh: f64| {
-                let lin = int.linear(&s, &int.coefficients_for(hh));
-                let (u, _, _) = int.port_load(&s, &lin, 0.0);
-                int.gap(&lin, 0.0, u).0
-            };
-            let h_sep = illinois(g, 0.0, int.delta(&s).0, h, g(h), 1e-14 * h);
-            (
-                true,
-                int.step_any(&s, h_sep, true),
-                std::rc::Rc::new(int.coefficients_for(0.5 * h_sep)),
-            )
-        } else {
-            (false, next, levels.get(&int, level - 4))
+
+    /// Contact `number` (from 1) from its onset `s` (the law set for its closing speed) to its
+    /// separation, located where the gap closes with the force gone, or to the window's end.
+    /// The step keeps the force's linear hold within `tol` of the largest force so far,
+    /// starting from 1e-4 of the contact time scale `t_c` \[s\].
+    fn contact(
+        &mut self,
+        int: &mut Integrator<'_>,
+        mut s: Point,
+        t_c: f64,
+        number: usize,
+    ) -> Result<Pressed, ImpactError> {
+        let t_on = s.t;
+        let tol = self.tol;
+        let mut levels = Levels {
+            h_ref: t_c * 1e-4,
+            levels: std::collections::HashMap::new(),
         };
-        let mid = int.mid_ports(&s, &e, &half);
-        let end = int.ports(&e);
-        let (p0, pm, p1) = (p_start, int.powers(&mid), int.powers(&end));
-        p_start = p1;
-        let dt = e.t - s.t;
-        for k in 0..4 {
-            acc[k] += dt / 6.0 * (p0[k] + 4.0 * pm[k] + p1[k]);
-        }
-        if e.saturated && saturation_at.is_none() {
-            saturation_at = Some(e.t);
-        }
-        peak_torque = peak_torque.max(int.torque(&end).abs());
-        s = e;
-        tracer.offer(s.t, finished, || int.sample(&s));
-        samples.push((s.t, s.f));
-        f_ref = f_ref.max(s.f);
-        if samples.len() >= 3 {
-            let m = samples.len();
-            let (a, b, c) = (samples[m - 3], samples[m - 2], samples[m - 1]);
-            if b.1 > a.1 && b.1 >= c.1 {
-                let v = vertex(a, b, c);
-                if v.1 > peak.0 {
-                    peak = (v.1, v.0);
+        let mut level = 0_i32;
+        let mut samples: Vec<(f64, f64)> = vec![(s.t, 0.0)];
+        let mut peak = (0.0_f64, s.t);
+        let mut f_ref = 0.0_f64;
+        let mut acc = [0.0_f64; 4];
+        // the powers at the step's start (the last step's end)
+        let mut p_start = int.powers(&int.ports(&s));
+        let mut peak_torque = 0.0_f64;
+        let h_min = t_c * 1e-9;
+        let mut window_closed = false;
+        loop {
+            self.check_stop()?;
+            if s.t >= self.horizon {
+                // the window closed with the contact on (the drive pressing the person): the
+                // force there counts as well
+                if s.f > peak.0 {
+                    peak = (s.f, s.t);
+                }
+                window_closed = true;
+                self.tracer.offer(s.t, true, || int.sample(&s));
+                break;
+            }
+            if self.steps >= self.max_steps {
+                let mut reason = format!(
+                    "the step budget ({}) ran out {:.3e} s into contact {number}",
+                    self.max_steps,
+                    s.t - t_on
+                );
+                if number > 1 {
+                    // a later contact that lasts: the drive pressing the person, the link
+                    // ringing against them
+                    reason.push_str(
+                        ": the linear model resolves every period of the link's ringing in a \
+                         long press; the exact link model (link_model = \"exact\") follows a \
+                         press at the drive's pace",
+                    );
+                }
+                return Err(ImpactError::NotFinished {
+                    design: "driven CL",
+                    reason,
+                });
+            }
+            self.steps += 1;
+            let sc = levels.get(int, level);
+            let h = sc.h;
+            let next = int.step(&s, &sc, false);
+            // reject a step whose force bends far beyond the tolerance
+            if samples.len() >= 2 && h > h_min {
+                let (ta, fa) = samples[samples.len() - 2];
+                let (tb, fb) = samples[samples.len() - 1];
+                let (h0, h1) = (tb - ta, h);
+                let f2 = 2.0 * ((next.f - fb) / h1 - (fb - fa) / h0) / (h0 + h1);
+                if h1 * h1 * f2.abs() / 8.0 > 4.0 * tol * f_ref.max(next.f) {
+                    level -= 4;
+                    continue;
                 }
             }
-            let (h0, h1) = (b.0 - a.0, c.0 - b.0);
-            let f2 = 2.0 * ((c.1 - b.1) / h1 - (b.1 - a.1) / h0) / (h0 + h1);
-            let ideal = if f2 == 0.0 {
-                2.0 * h1
+            let (finished, e, half) = if next.f == 0.0 && int.delta(&next).0 <= 0.0 {
+                // separation within the step: shorten it to where the gap closes under f → 0
+                let g = |hh: f64| {
+                    let lin = int.linear(&s, &int.coefficients_for(hh));
+                    let (u, _, _) = int.port_load(&s, &lin, 0.0);
+                    int.gap(&lin, 0.0, u).0
+                };
+                let h_sep = illinois(g, 0.0, int.delta(&s).0, h, g(h), 1e-14 * h);
+                (
+                    true,
+                    int.step_any(&s, h_sep, true),
+                    std::rc::Rc::new(int.coefficients_for(0.5 * h_sep)),
+                )
             } else {
-                0.9 * (8.0 * tol * f_ref / f2.abs()).sqrt()
+                (false, next, levels.get(int, level - 4))
             };
-            let target = ideal.clamp(0.5 * h1, 2.0 * h1).max(h_min);
-            level = levels.level_for(target).min(level + 4);
+            let mid = int.mid_ports(&s, &e, &half);
+            let end = int.ports(&e);
+            let (p0, pm, p1) = (p_start, int.powers(&mid), int.powers(&end));
+            p_start = p1;
+            let dt = e.t - s.t;
+            for k in 0..4 {
+                acc[k] += dt / 6.0 * (p0[k] + 4.0 * pm[k] + p1[k]);
+            }
+            if e.saturated && self.saturation_at.is_none() {
+                self.saturation_at = Some(e.t);
+            }
+            peak_torque = peak_torque.max(int.torque(&end).abs());
+            s = e;
+            self.tracer.offer(s.t, finished, || int.sample(&s));
+            samples.push((s.t, s.f));
+            f_ref = f_ref.max(s.f);
+            if samples.len() >= 3 {
+                let m = samples.len();
+                let (a, b, c) = (samples[m - 3], samples[m - 2], samples[m - 1]);
+                if b.1 > a.1 && b.1 >= c.1 {
+                    let v = vertex(a, b, c);
+                    if v.1 > peak.0 {
+                        peak = (v.1, v.0);
+                    }
+                }
+                let (h0, h1) = (b.0 - a.0, c.0 - b.0);
+                let f2 = 2.0 * ((c.1 - b.1) / h1 - (b.1 - a.1) / h0) / (h0 + h1);
+                let ideal = if f2 == 0.0 {
+                    2.0 * h1
+                } else {
+                    0.9 * (8.0 * tol * f_ref / f2.abs()).sqrt()
+                };
+                let target = ideal.clamp(0.5 * h1, 2.0 * h1).max(h_min);
+                level = levels.level_for(target).min(level + 4);
+            }
+            if samples.len() > 8 {
+                samples.drain(..samples.len() - 3);
+            }
+            if finished {
+                break;
+            }
         }
-        if samples.len() > 8 {
-            samples.drain(..samples.len() - 3);
-        }
-        if finished {
-            break;
-        }
+        Ok(Pressed {
+            event: ContactEvent {
+                onset_s: t_on,
+                peak_force_n: peak.0,
+                time_of_peak_s: peak.1,
+                duration_s: s.t - t_on,
+            },
+            end: s,
+            acc,
+            peak_torque,
+            window_closed,
+        })
     }
-    let e1 = int.energy(&s);
-    let [motor_work, friction, damping, impact] = acc;
-    let dissipated = friction + damping;
-    let energy = EnergyBalance {
-        impact_energy_j: impact,
-        motor_work_j: motor_work,
-        dissipated_j: dissipated,
-        mechanical_change_j: e1 - e0,
-        residual_j: motor_work - dissipated - (e1 - e0),
-    };
-    let commanded = int.command(t_on).map(|c| l * c.1);
-    let mut notes = Vec::new();
-    if window_closed {
-        notes.push(DriveNote::StillPressing {
-            window_s: strike.horizon_s,
-        });
-    }
-    if let Some(ts) = saturation_at {
-        notes.push(DriveNote::TorqueLimitReached { first_s: ts });
-    }
-    if let Some(c) = commanded {
-        notes.extend(DriveNote::arrival(c, tip_speed_on));
-    }
-    let mut outcome = DrivenOutcome {
-        contact: ContactEvent {
-            onset_s: t_on,
-            peak_force_n: peak.0,
-            time_of_peak_s: peak.1,
-            duration_s: s.t - t_on,
-        },
-        approach_speed_mps: approach,
-        commanded_tip_speed_mps: commanded,
-        pre_impact_deflection_m: deflection,
-        joint_torque_at_onset_nm: torque_on,
-        peak_joint_torque_nm: peak_torque,
-        energy,
-        separation_rate_mps: int.delta(&s).1,
-        notes,
-        work: steps,
-        trace: std::mem::take(&mut tracer.samples),
-        contacts: Vec::new(),
-        ended: if window_closed {
-            crate::RunEnd::Window(strike.horizon_s)
-        } else {
-            crate::RunEnd::FirstSeparation
-        },
-    };
-    outcome.contacts.push(outcome.contact);
-    crate::driven_cj::finite(outcome)
 }
 
 /// Vertex (t, f) of the parabola through three samples, kept within [a, c].

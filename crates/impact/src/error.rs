@@ -42,8 +42,8 @@ pub enum ImpactError {
         /// What happened, and what to change.
         reason: String,
     },
-    /// Stopped on request (Ctrl-C) before every case was computed.
-    #[error("stopped on request before every case was computed")]
+    /// Stopped on request (Ctrl-C) before the run, search or map finished.
+    #[error("stopped on request before the computation finished")]
     Interrupted,
     /// A traced run that failed or was stopped midway, with the trace it computed up to then
     /// (what its log keeps).

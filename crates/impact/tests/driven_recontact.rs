@@ -158,3 +158,86 @@ fn every_contact_of_the_exact_cl_matches_the_lumped_limit_of_a_light_beam() {
         assert!((out.largest_contact().1.peak_force_n - top).abs() < 1e-3 * top);
     }
 }
+
+/// The linear models (`link_model = "linear"`: the tip and the hand on one straight path, the
+/// link's deflection linear) following every contact, against the independent solution along
+/// the same path: the CJ (a rigid link on the torsion spring, the reference's own model) and
+/// the CL in its lumped limit (a beam of 0.1 g under a 0.12 kg tip: a tip mass on the lateral
+/// spring 3EI/L³ = k_δ, the beam's mass 1e-4 of the tip's). Along a straight path the tip can
+/// always come back, so both runs go on to the window; every contact in it is compared.
+#[test]
+fn every_contact_of_the_linear_models_matches_the_solution_along_their_path() {
+    use flexrig_impact::driven_cj::run_driven_cj;
+    use flexrig_impact::driven_cl::{ClDriveSettings, run_driven_cl};
+    let horizon = 1.5;
+    for omega in [2.0, 3.0] {
+        for (model, m_r, m_e, bar) in [("CJ", M_R, M_E, 1e-6), ("CL", 1e-4, 0.12, 3e-4)] {
+            let mut strike = strike_of(omega, m_r, m_e);
+            strike.horizon_s = horizon;
+            let out = if model == "CJ" {
+                run_driven_cj(
+                    &strike,
+                    &CjSettings {
+                        every_contact: true,
+                        ..CjSettings::DEFAULT
+                    },
+                )
+            } else {
+                run_driven_cl(
+                    &strike,
+                    &ClDriveSettings {
+                        every_contact: true,
+                        ..ClDriveSettings::DEFAULT
+                    },
+                )
+            }
+            .unwrap();
+            assert_eq!(
+                out.ended,
+                RunEnd::Window(horizon),
+                "{model}: the run goes on to the window"
+            );
+            let reference = reference_along(omega, horizon, m_e + m_r / 3.0, None);
+            assert!(
+                reference.len() >= 2,
+                "the design should strike again: {} contacts",
+                reference.len()
+            );
+            for (k, (c, r)) in out.contacts.iter().zip(&reference).enumerate() {
+                eprintln!(
+                    "linear {model} ω {omega} contact {}: peak {:.6} N (reference {:.6}, \
+                     {:+.2e}), onset {:.6e} s ({:.6e}), duration {:.6e} s ({:.6e})",
+                    k + 1,
+                    c.peak_force_n,
+                    r.1,
+                    c.peak_force_n / r.1 - 1.0,
+                    c.onset_s,
+                    r.0,
+                    c.duration_s,
+                    r.3
+                );
+            }
+            assert_eq!(
+                out.contacts.len(),
+                reference.len(),
+                "linear {model} ω = {omega}: the number of contacts"
+            );
+            for (k, (c, r)) in out.contacts.iter().zip(&reference).enumerate() {
+                let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+                assert!(rel(c.peak_force_n, r.1) < bar, "peak of contact {}", k + 1);
+                assert!(
+                    (c.onset_s - r.0).abs() < 10.0 * bar * r.3,
+                    "onset of contact {}",
+                    k + 1
+                );
+                assert!(
+                    rel(c.duration_s, r.3) < 10.0 * bar,
+                    "duration of contact {}",
+                    k + 1
+                );
+            }
+            let top = reference.iter().map(|r| r.1).fold(0.0, f64::max);
+            assert!((out.largest_contact().1.peak_force_n - top).abs() < bar * top);
+        }
+    }
+}

@@ -139,6 +139,14 @@ pub(crate) fn keyword_warnings(warnings: &mut [flexrig::safety::measured::Warnin
     }
 }
 
+/// [`keyword_warnings`] for the beam's plausibility warnings (`beam_modal`, `beam_static`).
+pub(crate) fn keyword_beam_warnings(warnings: &mut [flexrig::fe::beam::Warning]) {
+    for w in warnings {
+        w.field = keywords(&w.field);
+        w.message = keywords(&w.message);
+    }
+}
+
 /// The keyword argument of the first flag `text` names.
 fn first_keyword(text: &str) -> Option<String> {
     let i = text.find("--")?;

@@ -76,7 +76,8 @@ pub fn beam_modal<'py>(
     let frequencies = py
         .detach(|| fronts::beam_modal(&input, modes))
         .map_err(flag_error)?;
-    let warnings = flexrig::fe::beam::beam_warnings(&input);
+    let mut warnings = flexrig::fe::beam::beam_warnings(&input);
+    crate::keyword_beam_warnings(&mut warnings);
     json_to_py(
         py,
         &fronts::beam_modal_report(&frequencies, &warnings, origin.as_deref()),
@@ -112,9 +113,10 @@ pub fn beam_static<'py>(
     let (input, origin) = beam(
         scene, length, youngs, density, width, thickness, elements, tip_mass, root, k_theta,
     )?;
-    let (sol, warnings) = py
+    let (sol, mut warnings) = py
         .detach(|| fronts::beam_static(&input, &load, yield_strength))
         .map_err(flag_error)?;
+    crate::keyword_beam_warnings(&mut warnings);
     json_to_py(
         py,
         &fronts::beam_static_report(&sol, model, &warnings, origin.as_deref(), yield_strength),

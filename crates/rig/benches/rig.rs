@@ -1,7 +1,8 @@
 //! Whole scenes from release to separation, with the adaptive free flight (the default) and the
 //! fixed-step swing (`solver.swing = "fixed"`):
 //!
-//! - the bundled settings (800 steps per contact) and 100 steps per contact;
+//! - Rapier's contact (`solver.contact = "fixed"`, set here: the bundled CJ takes the adaptive
+//!   contact by default) at the bundled 800 steps per contact and at 100;
 //! - the cheapest contact steps at a peak error ≤ 1e-3 and ≤ 1e-4 against a converged run
 //!   (12 800 steps per contact; `cargo run --release -p flexrig-rig --example work_error`):
 //!   CJ 40 (6.8e-4) and 140 (5.6e-5), CL (16 corotational elements) 25 (8.7e-4) and 100
@@ -30,7 +31,7 @@ fn scene(name: &str, contact_steps: usize, extra: &str) -> Scene {
     );
     let text = std::fs::read_to_string(path).unwrap().replace(
         "contact_steps = 800",
-        &format!("contact_steps = {contact_steps}{extra}"),
+        &format!("contact_steps = {contact_steps}\ncontact = \"fixed\"{extra}"),
     );
     Scene::from_toml_str(&text, &Materials::bundled().unwrap()).unwrap()
 }
@@ -95,7 +96,7 @@ fn bench_adaptive_contact(c: &mut Criterion) {
     bench_scene(
         c,
         "cj_aluminium_release_to_separation_40_sensors1hz",
-        &cj("contact_steps = 40", true),
+        &cj("contact_steps = 40\ncontact = \"fixed\"", true),
     );
     for rtol in ["1e-4", "1e-8"] {
         let solver = format!("contact_steps = 800\ncontact = \"adaptive\"\ncontact_rtol = {rtol}");

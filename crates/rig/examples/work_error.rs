@@ -9,8 +9,9 @@ use std::time::Instant;
 use flexrig_contact::Materials;
 use flexrig_rig::{NoRecorder, RunOptions, RunSummary, Scene, Simulation};
 
+/// The scene with Rapier's contact at `contact_steps` per contact.
 fn scene(name: &str, swing: &str, contact_steps: usize) -> Scene {
-    scene_with(name, swing, contact_steps, "")
+    scene_with(name, swing, contact_steps, "\ncontact = \"fixed\"")
 }
 
 /// The scene with the adaptive contact at relative tolerance `rtol`.

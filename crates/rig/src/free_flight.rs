@@ -37,9 +37,14 @@ pub enum SwingPolicy {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ContactPolicy {
-    /// Rapier's steps, `solver.contact_steps` per Hertz contact time, made velocity Verlet by
-    /// the synchronised coupling (the default).
+    /// The adaptive contact wherever it applies — a CJ without a drive on its robot joint and
+    /// with the adaptive swing, for every stop — and Rapier's fixed steps otherwise (a CL, a
+    /// drive, the fixed swing): the cheaper and, on the CJ, the more accurate of the two (the
+    /// default; [`ContactPolicy::resolved`]).
     #[default]
+    Auto,
+    /// Rapier's steps, `solver.contact_steps` per Hertz contact time, made velocity Verlet by
+    /// the synchronised coupling.
     Fixed,
     /// The two hinges in reduced coordinates with the contact force in the right-hand side,
     /// integrated by DOP853 at `solver.contact_rtol` from the located onset to the located
@@ -50,8 +55,40 @@ pub enum ContactPolicy {
 
 impl ContactPolicy {
     /// True for the default.
-    pub fn is_fixed(&self) -> bool {
-        *self == ContactPolicy::Fixed
+    pub fn is_auto(&self) -> bool {
+        *self == ContactPolicy::Auto
+    }
+
+    /// True for the adaptive contact.
+    pub fn is_adaptive(&self) -> bool {
+        *self == ContactPolicy::Adaptive
+    }
+
+    /// The integration that runs ([`ContactPolicy::Fixed`] or [`ContactPolicy::Adaptive`]) for
+    /// a scene of `design` with the swing policy `swing`, with or without a drive on the robot
+    /// joint (`driven`): "auto" takes the adaptive contact for an undriven CJ with the adaptive
+    /// swing, the fixed steps otherwise; "fixed" and "adaptive" are taken as written (the
+    /// scene's validation refuses "adaptive" where it does not apply).
+    pub fn resolved(self, design: crate::scene::Design, swing: SwingPolicy, driven: bool) -> Self {
+        match self {
+            ContactPolicy::Auto => {
+                if design == crate::scene::Design::Cj && swing == SwingPolicy::Adaptive && !driven {
+                    ContactPolicy::Adaptive
+                } else {
+                    ContactPolicy::Fixed
+                }
+            }
+            written => written,
+        }
+    }
+
+    /// The policy's name as written in a scene.
+    pub fn name(&self) -> &'static str {
+        match self {
+            ContactPolicy::Auto => "auto",
+            ContactPolicy::Fixed => "fixed",
+            ContactPolicy::Adaptive => "adaptive",
+        }
     }
 }
 

@@ -23,7 +23,7 @@ use crate::geometry::RigGeometry;
 use crate::hinge::HingeState;
 use crate::joint_drive::{DriveFrame, DriveSummary, RotorSync};
 use crate::limits::CONTACT_TIME_FACTOR;
-use crate::scene::{Design, Scene, StopSpec};
+use crate::scene::{ContactPolicy, Design, Scene, StopSpec};
 use crate::sensors::{Reading, Sampler, SensorSample};
 use crate::world::RapierRig;
 
@@ -214,10 +214,15 @@ pub struct RunSummary {
     pub impulse_n_s: f64,
     /// Steps taken (all), and within contact.
     pub steps: usize,
-    /// Steps taken in contact.
+    /// Steps taken in contact: those that end in contact (the step that ends at or past the
+    /// separation is counted in `steps` only), of either contact integration.
     pub contact_steps: usize,
+    /// How the contact was integrated: `"adaptive"` (DOP853 on the two hinges) or `"fixed"`
+    /// (Rapier's steps); the scene's `solver.contact` resolved, `"auto"` taking the adaptive
+    /// contact for a CJ without a drive and with the adaptive swing.
+    pub contact_integration: ContactPolicy,
     /// Step size used in the first contact \[s\] (each later contact is sized by its own
-    /// impact speed); with `solver.contact = "adaptive"` the Hertz contact time over
+    /// impact speed); with the adaptive contact the Hertz contact time over
     /// `solver.contact_steps`, which the adaptive steps do not use (`contact_steps` counts
     /// those).
     pub contact_step_s: f64,
@@ -1644,6 +1649,11 @@ impl<'s> Simulation<'s> {
                 ),
             });
         };
+        let contact_integration = if self.adaptive_contact() {
+            ContactPolicy::Adaptive
+        } else {
+            ContactPolicy::Fixed
+        };
         let dome = self.scene.file.robot.dome_radius_m;
         let (samples, sample_count, severity) = if self.sampler.is_lean() {
             let severity = crate::severity::of_sampler(&self.sampler, dome).ok();
@@ -1674,6 +1684,7 @@ impl<'s> Simulation<'s> {
             impulse_n_s: first.impulse_n_s,
             steps: self.stats.steps,
             contact_steps: self.stats.contact_steps,
+            contact_integration,
             contact_step_s: self.first_contact_step,
             energy_initial_j: self.stats.energy_initial,
             energy_final_j: self.stats.energy,

@@ -284,10 +284,12 @@ pub struct SolverSpec {
     /// as an event) or `"fixed"` (Rapier steps of `swing_step_s`).
     #[serde(default)]
     pub swing: SwingPolicy,
-    /// How the CJ's contact is integrated: `"fixed"` (default; Rapier's steps, `contact_steps`
-    /// per contact) or `"adaptive"` (the two hinges with the contact force by DOP853 at
-    /// `contact_rtol`, peak and separation located on its dense output).
-    #[serde(default, skip_serializing_if = "ContactPolicy::is_fixed")]
+    /// How the contact is integrated: `"auto"` (default: `"adaptive"` for a CJ without a drive
+    /// on its robot joint and with the adaptive swing, whatever the stop; `"fixed"` otherwise),
+    /// `"fixed"` (Rapier's steps, `contact_steps` per contact) or `"adaptive"` (the CJ's two
+    /// hinges with the contact force by DOP853 at `contact_rtol`, peak and separation located
+    /// on its dense output). [`crate::RunSummary::contact_integration`] says which ran.
+    #[serde(default, skip_serializing_if = "ContactPolicy::is_auto")]
     pub contact: ContactPolicy,
     /// Relative tolerance of the adaptive contact (of the indentation and the approach speed;
     /// default [`crate::free_flight::CONTACT_RTOL`]).
@@ -460,5 +462,13 @@ impl Scene {
     /// The contact law for an impact at approach speed `v0` [m/s] (damping models need it).
     pub fn contact_law(&self, v0: f64) -> Result<Box<dyn ContactLaw>, RigError> {
         Ok(self.file.contact.damping.law(self.hertz, v0)?)
+    }
+
+    /// How the contact of this scene is integrated: `solver.contact` resolved
+    /// ([`ContactPolicy::resolved`]), [`ContactPolicy::Adaptive`] or [`ContactPolicy::Fixed`].
+    pub fn contact_integration(&self) -> ContactPolicy {
+        let s = &self.file.solver;
+        s.contact
+            .resolved(self.file.robot.design, s.swing, self.drive.is_some())
     }
 }

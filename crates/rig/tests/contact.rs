@@ -1,5 +1,6 @@
 //! The contact phase of the rig against the lumped two-mass model, its convergence in the step,
-//! energy and the paper's qualitative result.
+//! energy and the paper's qualitative result: Rapier's contact (`solver.contact = "fixed"`; the
+//! adaptive contact, the CJ's default, is tested in contact_flight.rs and reference.rs).
 
 mod common;
 
@@ -17,8 +18,12 @@ fn run(scene: &Scene) -> RunSummary {
         .unwrap()
 }
 
+/// Rapier's contact (`solver.contact = "fixed"`, what this file tests) at `n` steps per contact.
 fn steps(n: usize) -> (String, String) {
-    ("contact_steps = 800".into(), format!("contact_steps = {n}"))
+    (
+        "contact_steps = 800".into(),
+        format!("contact_steps = {n}\ncontact = \"fixed\""),
+    )
 }
 
 fn edit(from: &str, to: &str) -> (String, String) {
@@ -177,7 +182,13 @@ fn cj_peak_converges_at_second_order_and_conserves_energy() {
     // the swing step adds the swing's own O(dt) energy oscillation (1.5e-6 at dt = 5e-4 s).
     let rig = run(&common::scene(
         "cj_aluminium",
-        &[("from = \"release\"", "from = \"contact\"")],
+        &[
+            ("from = \"release\"", "from = \"contact\""),
+            (
+                "contact_steps = 800",
+                "contact_steps = 800\ncontact = \"fixed\"",
+            ),
+        ],
     ));
     let (before, after) = rig.energy_through_contact_j.unwrap();
     let lost = (before - after).abs() / before;
@@ -212,14 +223,14 @@ fn light_payload_favours_the_compliant_link() {
 
 #[test]
 fn stop_at_peak_and_sensors() {
-    let list = [edit("at = \"separation\"", "at = \"peak\"")];
+    let list = [edit("at = \"separation\"", "at = \"peak\""), steps(800)];
     let scene = common::scene("cj_iron", &edits(&list));
     let rig = run(&scene);
     assert!(rig.contact_duration_s.is_none());
     assert!(rig.duration_s < rig.time_of_peak_s + 10.0 * rig.contact_step_s);
     // Sensors: ≥ 20 samples across the pulse at the default rate, force sensor peak close to
     // the peak force, a monotone time base.
-    let full = run(&common::scene("cj_iron", &[]));
+    let full = run(&common::scene("cj_iron", &edits(&[steps(800)])));
     let onset = full.onset_time_s;
     let end = onset + full.contact_duration_s.unwrap();
     let in_pulse: Vec<_> = full

@@ -110,11 +110,18 @@ fn damped_laws_dissipate_and_lower_the_restitution() {
 
 #[test]
 fn after_separation_the_swing_step_returns() {
-    // A 1 s run: one contact, then the free swing at the swing step (5e-4 s), not at the
-    // contact step (6e-6 s): far fewer than 1 s / 6e-6 s steps.
+    // A 1 s run with Rapier's contact: one contact, then the free swing at the swing step
+    // (5e-4 s), not at the contact step (6e-6 s): far fewer than 1 s / 6e-6 s steps.
+    let fixed = (
+        "contact_steps = 800",
+        "contact_steps = 800\ncontact = \"fixed\"",
+    );
     let scene = common::scene(
         "cj_aluminium",
-        &[("at = \"separation\"", "at = \"duration\"\nduration_s = 1.0")],
+        &[
+            ("at = \"separation\"", "at = \"duration\"\nduration_s = 1.0"),
+            fixed,
+        ],
     );
     let s = run(&scene);
     assert!(s.duration_s >= 1.0);
@@ -126,7 +133,7 @@ fn after_separation_the_swing_step_returns() {
     );
     assert!(s.contact_steps >= 700, "{} contact steps", s.contact_steps);
     // A second contact follows within the second; the summary keeps the first one.
-    let first = run(&common::scene("cj_aluminium", &[]));
+    let first = run(&common::scene("cj_aluminium", &[fixed]));
     assert_eq!(s.contact_duration_s, first.contact_duration_s);
     assert_eq!(s.peak_force_n, first.peak_force_n);
 }

@@ -110,11 +110,16 @@ pub fn run(args: &RunArgs, out: &mut dyn Write, cancel: &CancelToken) -> Result<
         out,
         format!("  impulse             {:.6e} N·s", s.impulse_n_s),
     )?;
+    let in_contact = if s.contact_integration.is_adaptive() {
+        "adaptive contact".to_string()
+    } else {
+        format!("at {:.3e} s", s.contact_step_s)
+    };
     line(
         out,
         format!(
-            "  steps               {} ({} in contact at {:.3e} s), {} sensor samples",
-            s.steps, s.contact_steps, s.contact_step_s, s.sample_count
+            "  steps               {} ({} in contact, {in_contact}), {} sensor samples",
+            s.steps, s.contact_steps, s.sample_count
         ),
     )?;
     if let Some(d) = &s.drive {

@@ -3,7 +3,8 @@
 //! joint to the next (the kinematic chain from the base through every joint to each contact
 //! point's link), a sphere at each joint — and each contact point as a sphere coloured by its
 //! margin 1 − speed/permissible speed (green: far within, yellow: close, red: beyond), its
-//! velocity as an arrow and a label with its ratio; on `/arm/pointK` (K = 0, 1, …, in the order
+//! velocity as an arrow and a short tag (P1, P2, …), spelled out with each point's speed and
+//! ratio in a caption above the arm; on `/arm/pointK` (K = 0, 1, …, in the order
 //! given) the point's speed, permissible speed, ratio and reflected mass; on `/arm/joints` the
 //! joint positions. Log time is the trajectory's time (ns from its first sample).
 
@@ -164,6 +165,7 @@ pub fn log_bytes(robot: &Robot, report: &ArmReport) -> Result<Vec<u8>, mcap::Mca
     };
     let names: Vec<String> = report.joint_names.clone();
     let times: Vec<f64> = report.samples.iter().map(|s| s.time_s).collect();
+    let caption_anchor = caption_anchor(report);
     for s in logged_samples(&times, MAX_LOG_RATE_HZ)
         .into_iter()
         .map(|i| &report.samples[i])
@@ -201,6 +203,7 @@ pub fn log_bytes(robot: &Robot, report: &ArmReport) -> Result<Vec<u8>, mcap::Mca
         let mut point_spheres = Vec::new();
         let mut arrows = Vec::new();
         let mut texts = Vec::new();
+        let mut caption = Vec::new();
         for (k, pr) in s.points.iter().enumerate() {
             let (r, g, b) = margin_colour(pr.ratio);
             // a link to the body origin so the point hangs on the arm
@@ -230,24 +233,40 @@ pub fn log_bytes(robot: &Robot, report: &ArmReport) -> Result<Vec<u8>, mcap::Mca
             if let Some(u) = pr.direction {
                 arrows.push(arrow(pr.position_m, u, 0.1 + 0.3 * pr.speed_mps.min(2.0)));
             }
-            // labels stacked above the point, one row per point, so that neighbours stay legible
+            // a short tag over the point, staggered by the point's number so that neighbours'
+            // tags stand apart (long labels would overlap); the caption above the arm spells
+            // each tag out
+            let tag_at = [
+                pr.position_m[0],
+                pr.position_m[1],
+                pr.position_m[2] + tag_height(k + 1),
+            ];
+            // a leader from the point to its tag
+            lines.push(LinePrimitive {
+                r#type: LineType::LineStrip as i32,
+                pose: None,
+                thickness: 1.0,
+                scale_invariant: true,
+                points: vec![p3(pr.position_m), p3(tag_at)],
+                color: rgba(0.1, 0.1, 0.1, 1.0),
+                colors: vec![],
+                indices: vec![],
+            });
             texts.push(TextPrimitive {
-                pose: Some(pose_at([
-                    pr.position_m[0],
-                    pr.position_m[1],
-                    pr.position_m[2] + 0.08 + 0.06 * k as f64,
-                ])),
+                pose: Some(pose_at(tag_at)),
                 billboard: true,
-                font_size: 12.0,
+                font_size: 14.0,
                 scale_invariant: true,
                 color: rgba(0.1, 0.1, 0.1, 1.0),
-                text: format!(
-                    "{}: {:.2} m/s, {:.0} % of its permissible speed",
-                    report.points[k].label(),
-                    pr.speed_mps,
-                    100.0 * pr.ratio
-                ),
+                text: point_tag(k),
             });
+            caption.push(format!(
+                "{} {}: {:.2} m/s, {:.0} % of its permissible speed",
+                point_tag(k),
+                report.points[k].label(),
+                pr.speed_mps,
+                100.0 * pr.ratio
+            ));
             let state = ArmPointState {
                 timestamp: ts,
                 speed_mps: pr.speed_mps,
@@ -266,6 +285,14 @@ pub fn log_bytes(robot: &Robot, report: &ArmReport) -> Result<Vec<u8>, mcap::Mca
                 .map_err(|e| mcap::McapError::Io(std::io::Error::other(e.to_string())))?;
             write(&mut w, point_channels[k], s.time_s, &buf)?;
         }
+        texts.push(TextPrimitive {
+            pose: Some(pose_at(caption_anchor)),
+            billboard: true,
+            font_size: 12.0,
+            scale_invariant: true,
+            color: rgba(0.1, 0.1, 0.1, 1.0),
+            text: caption.join("\n"),
+        });
         let update = SceneUpdate {
             deletions: vec![],
             entities: vec![
@@ -378,21 +405,45 @@ fn arrow(at: [f64; 3], u: [f64; 3], length: f64) -> ArrowPrimitive {
     }
 }
 
+/// The short tag of contact point `k` in the 3D view and the plots' legends: P1, P2, …
+fn point_tag(k: usize) -> String {
+    format!("P{}", k + 1)
+}
+
+/// Where the 3D view's caption stands \[m\]: over the base, 0.25 m above the highest tag along
+/// the path (fixed for the whole log, so it does not jump).
+fn caption_anchor(report: &ArmReport) -> [f64; 3] {
+    let top = report
+        .samples
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.position_m[2]))
+        .filter(|z| z.is_finite())
+        .fold(0.0_f64, f64::max);
+    [0.0, 0.0, top + tag_height(report.points.len()) + 0.25]
+}
+
+/// How high the tag of the `k`-th point (from 1) stands above it \[m\]: staggered, 4 cm a point.
+fn tag_height(k: usize) -> f64 {
+    0.04 + 0.04 * k as f64
+}
+
 const COLOURS: [&str; 8] = [
     "#1d3557", "#e76f51", "#2a9d8f", "#8338ec", "#f4a261", "#457b9d", "#d62828", "#6a994e",
 ];
 
+/// A plot of `field` over the path, one line per point, its legend on the left naming each by
+/// its tag (the 3D view's caption spells the tags out: a point's full name would be cut there).
 fn plot(title: &str, field: &str, unit: &str, report: &ArmReport) -> Value {
     let paths: Vec<Value> = report
         .points
         .iter()
         .enumerate()
-        .map(|(k, p)| {
+        .map(|(k, _)| {
             json!({
                 "value": format!("/arm/point{k}.{field}"),
                 "enabled": true,
                 "timestampMethod": "receiveTime",
-                "label": format!("{} [{unit}]", p.label()),
+                "label": format!("{} [{unit}]", point_tag(k)),
                 "color": COLOURS[k % COLOURS.len()],
                 "lineSize": 1.5,
                 "showLine": true,
@@ -404,11 +455,11 @@ fn plot(title: &str, field: &str, unit: &str, report: &ArmReport) -> Value {
         "showXAxisLabels": true,
         "showYAxisLabels": true,
         "showLegend": true,
-        "legendDisplay": "floating",
+        "legendDisplay": "left",
         "showPlotValuesInLegend": false,
         "isSynced": true,
         "xAxisVal": "timestamp",
-        "sidebarDimension": 240,
+        "sidebarDimension": 200,
         "foxglovePanelTitle": title,
         "lichtblickPanelTitle": title,
     })

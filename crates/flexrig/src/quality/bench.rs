@@ -559,6 +559,16 @@ fn run_scene_full(s: &Scene, options: RunOptions) -> Result<flexrig_rig::RunSumm
     Ok(Simulation::new(s, options)?.run(&mut NoRecorder)?)
 }
 
+/// The setting of a bundled scene's row: its contact integration (the adaptive contact or
+/// Rapier's steps per contact).
+fn bundled_setting(run: &flexrig_rig::RunSummary) -> String {
+    if run.contact_integration.is_adaptive() {
+        "bundled (adaptive contact)".into()
+    } else {
+        "bundled (800 steps/contact)".into()
+    }
+}
+
 /// Release → separation with the MCAP recorder writing to memory at `rates`: (summary, bytes).
 fn run_logged(s: &Scene, rates: LogRates) -> Result<(flexrig_rig::RunSummary, usize), Error> {
     let mut log = McapRecorder::new(Cursor::new(Vec::new()), s, "")
@@ -589,7 +599,10 @@ fn rig(rows: &mut Vec<Row>, quick: bool, cancel: &crate::CancelToken) -> Result<
         let reference = run_scene(
             &scene(
                 name,
-                &[("contact_steps = 800", "contact_steps = 6400".into())],
+                &[(
+                    "contact_steps = 800",
+                    "contact_steps = 6400\ncontact = \"fixed\"".into(),
+                )],
             )?,
             RunOptions::default(),
         )?
@@ -651,7 +664,7 @@ fn rig(rows: &mut Vec<Row>, quick: bool, cancel: &crate::CancelToken) -> Result<
             for (label, mut edits, suffix, options) in variants {
                 edits.push((
                     "contact_steps = 800",
-                    format!("contact_steps = {n}{suffix}"),
+                    format!("contact_steps = {n}\ncontact = \"fixed\"{suffix}"),
                 ));
                 let s = scene(name, &edits)?;
                 // Too coarse a contact step is caught by the energy check: no row for it. Any
@@ -714,10 +727,11 @@ fn rig(rows: &mut Vec<Row>, quick: bool, cancel: &crate::CancelToken) -> Result<
         // The bundled scene with every sensor sample computed (before lean sampling).
         let s = scene(name, &[])?;
         let full = run_scene_full(&s, RunOptions::DEFAULT)?;
+        let bundled = bundled_setting(&full);
         rows.push(Row {
             model: "rig".into(),
             method: format!("{name}: release to separation, every sensor sample computed"),
-            setting: "800 steps/contact".into(),
+            setting: bundled.clone(),
             error: (full.peak_force_n / reference - 1.0).abs(),
             seconds: median_seconds(samples, 1, || run_scene_full(&s, RunOptions::DEFAULT)),
             evaluations: None,
@@ -734,7 +748,7 @@ fn rig(rows: &mut Vec<Row>, quick: bool, cancel: &crate::CancelToken) -> Result<
                     "{name}: release to separation, MCAP log {label} ({:.2} MB)",
                     bytes as f64 / 1e6
                 ),
-                setting: "800 steps/contact".into(),
+                setting: bundled.clone(),
                 error: (summary.peak_force_n / reference - 1.0).abs(),
                 seconds: median_seconds(samples, 1, || run_logged(&s, rates)),
                 evaluations: None,

@@ -376,7 +376,10 @@ fn rig_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), Error> {
         "cj_iron",
         &[
             ("from = \"release\"", "from = \"contact\""),
-            ("contact_steps = 800", "contact_steps = 1600"),
+            (
+                "contact_steps = 800",
+                "contact_steps = 1600\ncontact = \"fixed\"",
+            ),
         ],
     )?;
     let fe = run(
@@ -427,7 +430,10 @@ fn rig_cases(cases: &mut Vec<Case>, quick: bool) -> Result<(), Error> {
             .map(|n| {
                 let s = bundled_scene(
                     "cj_aluminium",
-                    &[("contact_steps = 800", &format!("contact_steps = {n}"))],
+                    &[(
+                        "contact_steps = 800",
+                        &format!("contact_steps = {n}\ncontact = \"fixed\""),
+                    )],
                 )?;
                 Ok(run(&s, RunOptions::default())?.peak_force_n)
             })

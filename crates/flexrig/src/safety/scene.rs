@@ -111,13 +111,6 @@ impl SafetyScene {
         self.scene.strike.link.length
     }
 
-    /// Whether the runs follow every contact (the CJ, and the CL by the exact link) or the
-    /// first one only (the linear modal CL ends at the first separation; the verdict says so).
-    pub fn every_contact(&self) -> bool {
-        let s = &self.scene.strike;
-        s.design == StrikeDesign::Cj || s.link_model == LinkModel::Exact
-    }
-
     /// The commanded tip speed L ω_c of the scene as written [m/s].
     pub fn commanded_tip_speed(&self) -> f64 {
         let omega = self
@@ -161,10 +154,11 @@ impl SafetyScene {
 
     /// The driven strike at commanded tip speed `v` [m/s] by the scene's link model and dome,
     /// with the run tolerances of `settings` (`cj_rtol` for the CJ; the linear CL: `tol` in the
-    /// contact, 10 × `tol` before it). The CJ and the exact CL follow every contact until the
-    /// bodies part for good or the scene's window (`horizon_s`) closes, the drive keeping its
-    /// command throughout (no reaction to the collision); the linear CL runs to the first
-    /// separation ([`Self::every_contact`]).
+    /// contact, 10 × `tol` before it). Every model follows every contact until the bodies part
+    /// for good (the CJ and the exact CL: a free head beyond the dome's reach) or the scene's
+    /// window (`horizon_s`) closes, the drive keeping its command throughout (no reaction to the
+    /// collision); along the linear models' straight path the tip can always come back, so
+    /// those runs go on to the window.
     pub fn run_at(
         &self,
         v: f64,
@@ -208,6 +202,7 @@ impl SafetyScene {
                 &ClDriveSettings {
                     tol: settings.tol,
                     approach_tol: (10.0 * settings.tol).min(1e-3),
+                    every_contact: true,
                     ..ClDriveSettings::DEFAULT
                 },
                 stop,
@@ -391,7 +386,7 @@ pub fn simulate(
             governing,
             time_of_peak_s: largest.time_of_peak_s,
             ended: at_root.ended,
-            every_contact: scene.every_contact(),
+            every_contact: true,
         }),
         notes: at_root
             .notes
@@ -447,8 +442,8 @@ pub fn contacts_words(c: &crate::safety::simulation::ContactsAtRoot) -> String {
             d(t)
         ),
         RunEnd::FirstSeparation | RunEnd::StepBudget(_) => {
-            "the first separation: this CL model (the driven link's linear model, the test \
-             bed's beam) follows the first contact only, a later contact is not judged"
+            "the first separation: this CL model (the test bed's beam) follows the first \
+             contact only, a later contact is not judged"
                 .to_string()
         }
     };

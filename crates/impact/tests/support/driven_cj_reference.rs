@@ -75,14 +75,31 @@ pub fn reference_of(
     m_lumped: f64,
     dome: &Dome,
 ) -> Vec<(f64, f64, f64, f64)> {
-    let d_c = dome.radius_m - dome.standoff_m;
+    reference_along(omega, t_end, m_lumped, Some(dome))
+}
+
+/// [`reference_of`] with the contact on the dome (`Some`), or along the linear models' straight
+/// path (`None`): the tip at arc length L φ and the hand on the same line,
+/// δ = L (φ − φ_c) − X, λ = 1, where the tip can always come back (no reach: to `t_end`).
+pub fn reference_along(
+    omega: f64,
+    t_end: f64,
+    m_lumped: f64,
+    dome: Option<&Dome>,
+) -> Vec<(f64, f64, f64, f64)> {
     let j = m_lumped * L * L;
     let k_theta = K_DELTA * L * L;
     let geometry = |phi: f64, x: f64| {
         let u = phi - PHI_C;
-        let delta = L * u.sin() + d_c * (1.0 - u.cos()) - x;
-        let lever = u.cos() + d_c / L * u.sin();
-        (delta, lever)
+        match dome {
+            Some(dome) => {
+                let d_c = dome.radius_m - dome.standoff_m;
+                let delta = L * u.sin() + d_c * (1.0 - u.cos()) - x;
+                let lever = u.cos() + d_c / L * u.sin();
+                (delta, lever)
+            }
+            None => (L * u - x, 1.0),
+        }
     };
     let force = |delta: f64| {
         if delta > 0.0 {
@@ -103,7 +120,10 @@ pub fn reference_of(
         ]
     };
     let h = 2e-7;
-    let reach = L.hypot(d_c) + d_c;
+    let reach = dome.map_or(f64::INFINITY, |d| {
+        let d_c = d.radius_m - d.standoff_m;
+        L.hypot(d_c) + d_c
+    });
     // the link turns steadily with its hub up to the contact: φ = ω t, no spring deflection
     let mut s = [0.0, omega, 0.0, 0.0];
     let mut t = 0.0;

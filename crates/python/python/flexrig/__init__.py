@@ -238,6 +238,10 @@ class RunResult:
     impulse_n_s: float
     steps: int
     contact_steps: int
+    #: How the contact was integrated: ``"adaptive"`` or ``"fixed"`` (Rapier's steps); the
+    #: scene's ``solver.contact`` resolved (``"auto"``, the default, is adaptive for a CJ without
+    #: a drive). ``None`` for a driven run.
+    contact_integration: Optional[str]
     contact_step_s: float
     energy_initial_j: float
     energy_final_j: float
@@ -283,6 +287,7 @@ class RunResult:
             impulse_n_s=summary["impulse_n_s"],
             steps=summary["steps"],
             contact_steps=summary.get("contact_steps"),
+            contact_integration=summary.get("contact_integration"),
             contact_step_s=summary.get("contact_step_s"),
             energy_initial_j=summary.get("energy_initial_j"),
             energy_final_j=summary.get("energy_final_j"),

@@ -77,7 +77,7 @@ fn refine_max(
 impl Simulation<'_> {
     /// True when the scene's contact is integrated adaptively.
     pub(super) fn adaptive_contact(&self) -> bool {
-        self.scene.file.solver.contact == ContactPolicy::Adaptive
+        self.scene.contact_integration() == ContactPolicy::Adaptive
             && matches!(self.robot, RobotSide::Rigid { .. })
             && self.scene.drive.is_none()
     }
@@ -275,7 +275,13 @@ impl Simulation<'_> {
         self.sampler.record_exact(step.t_start, step.t_end, |t| {
             system.sensors(t, &at(t), arm, link)
         });
-        let end_contact = system.sample(&step.y);
+        // At the located separation the contact has closed (as after Rapier's separation step,
+        // which is not counted in contact and logs no contact).
+        let end_contact = if step.onset {
+            None
+        } else {
+            system.sample(&step.y)
+        };
         let parting = -system.approach(&step.y).1;
         let impulse = simpson(step.t_start, step.t_end, &forces);
         // The new state.
@@ -283,7 +289,9 @@ impl Simulation<'_> {
         self.h_prev = 0.0;
         self.now = self.contact_synced(&step.y, end_contact);
         self.stats.steps += 1;
-        self.stats.contact_steps += 1;
+        if !step.onset {
+            self.stats.contact_steps += 1;
+        }
         let energy = self.energy();
         self.check_health(energy)?;
         self.stats.energy = energy;
