@@ -104,6 +104,17 @@ impl ContactLaw for Hertz {
         }
     }
 
+    /// k δ^n and n k δ^{n−1} from the one power δ^{n−1} (each within a few ulps of
+    /// [`Self::force`] and [`Self::stiffness`]).
+    fn force_and_stiffness(&self, delta: f64, _delta_dot: f64) -> (f64, f64) {
+        if delta > 0.0 {
+            let k_pow = self.k * delta.powf(self.n - 1.0);
+            (k_pow * delta, self.n * k_pow)
+        } else {
+            (0.0, 0.0)
+        }
+    }
+
     fn elastic(&self) -> Hertz {
         *self
     }

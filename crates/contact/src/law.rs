@@ -15,6 +15,15 @@ pub trait ContactLaw: Send + Sync + std::fmt::Debug {
     /// Tangent stiffness ∂f/∂δ [N/m] at (δ, δ̇); 0 where the force is clamped to 0.
     fn stiffness(&self, delta: f64, delta_dot: f64) -> f64;
 
+    /// Force f(δ, δ̇) \[N\] and tangent stiffness ∂f/∂δ [N/m] together ([`Self::force`],
+    /// [`Self::stiffness`]); a law may share their work (Hertz: one power of δ).
+    fn force_and_stiffness(&self, delta: f64, delta_dot: f64) -> (f64, f64) {
+        (
+            self.force(delta, delta_dot),
+            self.stiffness(delta, delta_dot),
+        )
+    }
+
     /// Tangent damping ∂f/∂δ̇ [N·s/m] at (δ, δ̇); 0 for an elastic law.
     fn damping(&self, _delta: f64, _delta_dot: f64) -> f64 {
         0.0
