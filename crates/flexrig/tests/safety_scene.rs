@@ -228,8 +228,10 @@ fn test_bed(
 }
 
 fn test_bed_converged(scene: &str, region: &str) {
-    // Halving the root tolerance and the rig's contact step (twice the contact steps) and its
-    // swing step moves the operator's speed at the limit by less than 1e-4.
+    // Halving the root tolerance and refining the rig's contact — twice the contact steps of
+    // Rapier's contact (the CL), the adaptive contact's tolerance 100× tighter (the CJ, the
+    // default there) — and its swing step moves the operator's speed at the limit by less than
+    // 1e-4.
     let r = test_bed(scene, region, 1e-6, None, None);
     let half = test_bed(
         scene,
@@ -237,7 +239,7 @@ fn test_bed_converged(scene: &str, region: &str) {
         5e-7,
         Some((
             "swing_step_s = 5e-4\ncontact_steps = 800",
-            "swing_step_s = 2.5e-4\ncontact_steps = 1600",
+            "swing_step_s = 2.5e-4\ncontact_steps = 1600\ncontact_rtol = 1e-10",
         )),
         None,
     );

@@ -438,7 +438,7 @@ fn print_test_bed(
         out,
         format!(
             "  {}: operator speed {:.6} m/s (released from {:.4}°), run's impact speed {:.6} \
-             m/s, peak {:.3} N ({} test-bed runs, contact step {} s, root tolerance {})",
+             m/s, peak {:.3} N ({} runs of {}, root tolerance {})",
             if sc.limit_reached {
                 "at the force limit"
             } else {
@@ -449,7 +449,7 @@ fn print_test_bed(
             sc.approach_speed_at_root_mps,
             sc.peak_force_at_root_n,
             sc.runs,
-            n(sc.run_tol),
+            sc.link_model,
             n(sc.root_rtol)
         ),
     )?;

@@ -911,7 +911,7 @@ fn test_bed_trace(
         "The test-bed scene {} ({}, the {} on its axis) is run whole at each speed: the \
          operator's pendulum is released at rest from the angle whose swing reaches the dome at \
          that speed (the pendulum's energy, ½ J ω_b² = M g l_c (1 − cos θ₀), v = ω_b l), and \
-         the contacts are integrated with a contact step of {} s. The operator's block is the \
+         the contacts are integrated by {}. The operator's block is the \
          struck body and its pendulum is free, so the contact is transient. {} The smallest \
          speed at which the largest contact's peak force reaches F_max = {} N is found by a \
          scan from below (grid ratio 2^(1/16)) and the Illinois false position on ln v until \
@@ -923,7 +923,7 @@ fn test_bed_trace(
             crate::driven::strike::StrikeDesign::Cj => "compliant joint",
             crate::driven::strike::StrikeDesign::Cl => "compliant link",
         },
-        g(sc.run_tol),
+        sc.link_model,
         contacts_sentence(sc),
         n(f),
         sc.root_rtol

@@ -827,7 +827,8 @@ pub struct SceneSimulation {
     /// Driven strikes simulated (both searches).
     pub runs: usize,
     /// The run tolerance: DOP853's relative tolerance (CJ) or the modal integrator's (CL); a test
-    /// bed: the rig's contact step \[s\].
+    /// bed: the adaptive contact's relative tolerance, or Rapier's contact step \[s\] when the
+    /// rig steps the contact (the CL).
     pub run_tol: f64,
     /// How each run simulates the link, in words (the model and its accuracy setting).
     pub link_model: String,

@@ -359,15 +359,15 @@ pub fn simulate(
         notes,
         force_search,
         runs,
-        run_tol: at_root.contact_step_s,
+        run_tol: contact_accuracy(tb, &at_root),
         root_rtol: settings.root_rtol,
         link_model: format!(
-            "the test bed's rig ({} link) with its contact step {} s",
+            "the test bed's rig ({} link) with {}",
             match tb.design() {
                 StrikeDesign::Cj => "CJ",
                 StrikeDesign::Cl => "CL",
             },
-            flexrig_contact::validate::display(at_root.contact_step_s)
+            contact_integration_words(tb, &at_root)
         ),
         release_angle_at_root_deg: Some(angle),
         limit_reached: by_force.is_some(),
@@ -375,6 +375,30 @@ pub fn simulate(
 }
 
 /// A search's starting speed within [1e-4, 50] m/s.
+/// The accuracy setting of the rig's contact in `run`: the adaptive contact's relative
+/// tolerance, or Rapier's contact step \[s\].
+fn contact_accuracy(tb: &TestBedScene, run: &RunSummary) -> f64 {
+    if run.contact_integration.is_adaptive() {
+        tb.scene
+            .file
+            .solver
+            .contact_rtol
+            .unwrap_or(flexrig_rig::free_flight::CONTACT_RTOL)
+    } else {
+        run.contact_step_s
+    }
+}
+
+/// How the rig integrated the contact of `run`, in words.
+fn contact_integration_words(tb: &TestBedScene, run: &RunSummary) -> String {
+    let accuracy = flexrig_contact::validate::display(contact_accuracy(tb, run));
+    if run.contact_integration.is_adaptive() {
+        format!("the adaptive contact (DOP853 at relative tolerance {accuracy})")
+    } else {
+        format!("its contact step {accuracy} s")
+    }
+}
+
 fn clamp_guess(v: f64) -> f64 {
     if v.is_finite() {
         v.clamp(1e-4, 50.0)
