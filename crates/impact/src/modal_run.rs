@@ -558,17 +558,13 @@ pub fn run_modes_against(
     options: &ModalOptions,
     force_scale: f64,
 ) -> Result<ImpactOutcome, ImpactError> {
-    if !(force_scale.is_finite() && force_scale >= 0.0) {
-        return Err(ImpactError::invalid("force scale", force_scale, "≥ 0 N"));
-    }
-    run_modes_inner(
+    run_held_against(
         modes,
         head,
         law,
         t_scale,
         options,
         (force_scale, ForceHold::Linear),
-        None,
     )
 }
 
@@ -582,18 +578,31 @@ pub fn run_modes_quadratic_against(
     options: &ModalOptions,
     force_scale: f64,
 ) -> Result<ImpactOutcome, ImpactError> {
-    if !(force_scale.is_finite() && force_scale >= 0.0) {
-        return Err(ImpactError::invalid("force scale", force_scale, "≥ 0 N"));
-    }
-    run_modes_inner(
+    run_held_against(
         modes,
         head,
         law,
         t_scale,
         options,
         (force_scale, ForceHold::Quadratic),
-        None,
     )
+}
+
+/// The run with the hold `hold.1`, its tolerance measured against at least `hold.0` \[N\]
+/// (checked: finite, ≥ 0).
+fn run_held_against(
+    modes: &TipModes,
+    head: Head,
+    law: &dyn ContactLaw,
+    t_scale: f64,
+    options: &ModalOptions,
+    hold: (f64, ForceHold),
+) -> Result<ImpactOutcome, ImpactError> {
+    let force_scale = hold.0;
+    if !(force_scale.is_finite() && force_scale >= 0.0) {
+        return Err(ImpactError::invalid("force scale", force_scale, "≥ 0 N"));
+    }
+    run_modes_inner(modes, head, law, t_scale, options, hold, None)
 }
 
 /// [`run_modes`] recording the force and indentation at every step of every contact (the

@@ -41,37 +41,9 @@ fn every_contact_of_a_light_link_striking_a_free_hand_matches_the_independent_so
             "the design should strike again: {} contacts",
             out.contacts.len()
         );
-        assert_eq!(
-            out.contacts.len(),
-            reference.len(),
-            "ω = {omega}: the number of contacts"
-        );
-        for (k, (c, r)) in out.contacts.iter().zip(&reference).enumerate() {
-            let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
-            eprintln!(
-                "ω {omega} contact {}: peak {:.6} N (reference {:.6}), onset {:.6e} s ({:.6e})",
-                k + 1,
-                c.peak_force_n,
-                r.1,
-                c.onset_s,
-                r.0
-            );
-            assert!(rel(c.peak_force_n, r.1) < 1e-4, "peak of contact {}", k + 1);
-            assert!(
-                (c.onset_s - r.0).abs() < 1e-3 * r.3,
-                "onset of contact {}",
-                k + 1
-            );
-            assert!(
-                rel(c.duration_s, r.3) < 1e-3,
-                "duration of contact {}",
-                k + 1
-            );
-        }
+        assert_contacts_match(&format!("ω {omega}"), &out, &reference, 1e-4);
         // the largest contact is not the first one for this light link
-        let (governing, largest) = out.largest_contact();
-        let top = reference.iter().map(|r| r.1).fold(0.0, f64::max);
-        assert!((largest.peak_force_n - top).abs() < 1e-4 * top);
+        let (governing, _) = out.largest_contact();
         eprintln!(
             "ω {omega}: {} contacts, the largest is contact {governing}",
             out.contacts.len()
@@ -121,41 +93,7 @@ fn every_contact_of_the_exact_cl_matches_the_lumped_limit_of_a_light_beam() {
             "the design should strike again: {} contacts",
             out.contacts.len()
         );
-        for (k, (c, r)) in out.contacts.iter().zip(&reference).enumerate() {
-            eprintln!(
-                "CL ω {omega} contact {}: peak {:.6} N (reference {:.6}, {:+.2e}), onset {:.6e} s \
-                 ({:.6e}), duration {:.6e} s ({:.6e})",
-                k + 1,
-                c.peak_force_n,
-                r.1,
-                c.peak_force_n / r.1 - 1.0,
-                c.onset_s,
-                r.0,
-                c.duration_s,
-                r.3
-            );
-        }
-        assert_eq!(
-            out.contacts.len(),
-            reference.len(),
-            "ω = {omega}: the number of contacts"
-        );
-        for (k, (c, r)) in out.contacts.iter().zip(&reference).enumerate() {
-            let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
-            assert!(rel(c.peak_force_n, r.1) < 1e-3, "peak of contact {}", k + 1);
-            assert!(
-                (c.onset_s - r.0).abs() < 1e-2 * r.3,
-                "onset of contact {}",
-                k + 1
-            );
-            assert!(
-                rel(c.duration_s, r.3) < 1e-2,
-                "duration of contact {}",
-                k + 1
-            );
-        }
-        let top = reference.iter().map(|r| r.1).fold(0.0, f64::max);
-        assert!((out.largest_contact().1.peak_force_n - top).abs() < 1e-3 * top);
+        assert_contacts_match(&format!("CL ω {omega}"), &out, &reference, 1e-3);
     }
 }
 
@@ -203,41 +141,53 @@ fn every_contact_of_the_linear_models_matches_the_solution_along_their_path() {
                 "the design should strike again: {} contacts",
                 reference.len()
             );
-            for (k, (c, r)) in out.contacts.iter().zip(&reference).enumerate() {
-                eprintln!(
-                    "linear {model} ω {omega} contact {}: peak {:.6} N (reference {:.6}, \
-                     {:+.2e}), onset {:.6e} s ({:.6e}), duration {:.6e} s ({:.6e})",
-                    k + 1,
-                    c.peak_force_n,
-                    r.1,
-                    c.peak_force_n / r.1 - 1.0,
-                    c.onset_s,
-                    r.0,
-                    c.duration_s,
-                    r.3
-                );
-            }
-            assert_eq!(
-                out.contacts.len(),
-                reference.len(),
-                "linear {model} ω = {omega}: the number of contacts"
-            );
-            for (k, (c, r)) in out.contacts.iter().zip(&reference).enumerate() {
-                let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
-                assert!(rel(c.peak_force_n, r.1) < bar, "peak of contact {}", k + 1);
-                assert!(
-                    (c.onset_s - r.0).abs() < 10.0 * bar * r.3,
-                    "onset of contact {}",
-                    k + 1
-                );
-                assert!(
-                    rel(c.duration_s, r.3) < 10.0 * bar,
-                    "duration of contact {}",
-                    k + 1
-                );
-            }
-            let top = reference.iter().map(|r| r.1).fold(0.0, f64::max);
-            assert!((out.largest_contact().1.peak_force_n - top).abs() < bar * top);
+            assert_contacts_match(&format!("linear {model} ω {omega}"), &out, &reference, bar);
         }
     }
+}
+
+/// Every contact of `out` against the reference's (onset, peak, time of peak, duration), printed
+/// and held: as many contacts, each peak within `bar`, each onset within 10 `bar` of the
+/// contact's duration, each duration within 10 `bar`, and the largest peak within `bar`.
+fn assert_contacts_match(
+    label: &str,
+    out: &flexrig_impact::DrivenOutcome,
+    reference: &[(f64, f64, f64, f64)],
+    bar: f64,
+) {
+    for (k, (c, r)) in out.contacts.iter().zip(reference).enumerate() {
+        eprintln!(
+            "{label} contact {}: peak {:.6} N (reference {:.6}, {:+.2e}), onset {:.6e} s \
+             ({:.6e}), duration {:.6e} s ({:.6e})",
+            k + 1,
+            c.peak_force_n,
+            r.1,
+            c.peak_force_n / r.1 - 1.0,
+            c.onset_s,
+            r.0,
+            c.duration_s,
+            r.3
+        );
+    }
+    assert_eq!(
+        out.contacts.len(),
+        reference.len(),
+        "{label}: the number of contacts"
+    );
+    let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+    for (k, (c, r)) in out.contacts.iter().zip(reference).enumerate() {
+        assert!(rel(c.peak_force_n, r.1) < bar, "peak of contact {}", k + 1);
+        assert!(
+            (c.onset_s - r.0).abs() < 10.0 * bar * r.3,
+            "onset of contact {}",
+            k + 1
+        );
+        assert!(
+            rel(c.duration_s, r.3) < 10.0 * bar,
+            "duration of contact {}",
+            k + 1
+        );
+    }
+    let top = reference.iter().map(|r| r.1).fold(0.0, f64::max);
+    assert!((out.largest_contact().1.peak_force_n - top).abs() < bar * top);
 }

@@ -12,7 +12,7 @@ use flexrig_impact::graded::{GradedMesh, cl_matrices, cl_tip_modes};
 use flexrig_impact::horizon::run_window;
 use flexrig_impact::modal_run::{ModalOptions, run_modes_quadratic_against};
 use flexrig_impact::tip_modes::TipModes;
-use flexrig_impact::{ClSolver, FreeMassImpact, Joint, RunEnd};
+use flexrig_impact::{ClSolver, FreeMassImpact, ImpactOutcome, Joint, RunEnd};
 
 mod common;
 use common::setup;
@@ -71,31 +71,7 @@ fn later_contacts_of_the_cj_match_rk4() {
         },
     )
     .unwrap();
-    let RunEnd::PartedForGood(parted) = ours.ended else {
-        panic!("{:?}", ours.ended)
-    };
-    let contacts = rk4_contacts(&s, parted * 1.2);
-    assert_eq!(
-        contacts.len(),
-        ours.contacts.len(),
-        "{contacts:?} vs {:?}",
-        ours.contacts
-    );
-    assert!(contacts.len() >= 2, "a chattering case: {contacts:?}");
-    for (r, o) in contacts.iter().zip(&ours.contacts) {
-        // the RK4 peak is the largest sample: within (ω h)²/8 ≈ 1e-7 of the true peak
-        assert!(rel(o.peak_force_n, r.1) <= 1e-6, "{o:?} vs {r:?}");
-        assert!(
-            (o.onset_s - r.0).abs() <= 1e-6 * parted.max(1e-3),
-            "{o:?} vs {r:?}"
-        );
-    }
-    // the energy through all contacts
-    assert!(
-        rel(ours.energy_j.1, ours.energy_j.0) <= 1e-8,
-        "{:?}",
-        ours.energy_j
-    );
+    assert_matches_rk4(&s, &ours);
 }
 
 /// Every contact (onset \[s\], peak \[N\]) of the held CJ `s` by a fixed-step RK4 of (x_h, v_h,
@@ -469,29 +445,7 @@ fn later_contacts_of_the_quadratic_hold_match_rk4() {
             max_steps: 10_000_000,
         },
     );
-    let RunEnd::PartedForGood(parted) = ours.ended else {
-        panic!("{:?}", ours.ended)
-    };
-    let contacts = rk4_contacts(&s, parted * 1.2);
-    assert_eq!(
-        contacts.len(),
-        ours.contacts.len(),
-        "{contacts:?} vs {:?}",
-        ours.contacts
-    );
-    assert!(contacts.len() >= 2, "a chattering case: {contacts:?}");
-    for (r, o) in contacts.iter().zip(&ours.contacts) {
-        assert!(rel(o.peak_force_n, r.1) <= 1e-6, "{o:?} vs {r:?}");
-        assert!(
-            (o.onset_s - r.0).abs() <= 1e-6 * parted.max(1e-3),
-            "{o:?} vs {r:?}"
-        );
-    }
-    assert!(
-        rel(ours.energy_j.1, ours.energy_j.0) <= 1e-8,
-        "{:?}",
-        ours.energy_j
-    );
+    assert_matches_rk4(&s, &ours);
 }
 
 /// The order of each hold: the first contact's peak and duration error against DOP853 (rtol
@@ -529,5 +483,35 @@ fn the_linear_hold_is_second_order_and_the_quadratic_third() {
     assert!(
         (2.7..=3.5).contains(&p_quad),
         "quadratic hold: order {p_quad}"
+    );
+}
+
+/// Every contact of `ours` (a run that parted for good) against the RK4 reference of the same
+/// setup `s`: as many contacts (two at least: a chattering case), each peak within 1e-6 (the RK4
+/// peak is the largest sample: within (ω h)²/8 ≈ 1e-7 of the true peak), each onset within 1e-6
+/// of the run's length, and the energy through all contacts within 1e-8.
+fn assert_matches_rk4(s: &FreeMassImpact, ours: &ImpactOutcome) {
+    let RunEnd::PartedForGood(parted) = ours.ended else {
+        panic!("{:?}", ours.ended)
+    };
+    let contacts = rk4_contacts(s, parted * 1.2);
+    assert_eq!(
+        contacts.len(),
+        ours.contacts.len(),
+        "{contacts:?} vs {:?}",
+        ours.contacts
+    );
+    assert!(contacts.len() >= 2, "a chattering case: {contacts:?}");
+    for (r, o) in contacts.iter().zip(&ours.contacts) {
+        assert!(rel(o.peak_force_n, r.1) <= 1e-6, "{o:?} vs {r:?}");
+        assert!(
+            (o.onset_s - r.0).abs() <= 1e-6 * parted.max(1e-3),
+            "{o:?} vs {r:?}"
+        );
+    }
+    assert!(
+        rel(ours.energy_j.1, ours.energy_j.0) <= 1e-8,
+        "{:?}",
+        ours.energy_j
     );
 }

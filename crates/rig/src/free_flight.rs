@@ -65,14 +65,14 @@ impl ContactPolicy {
     }
 
     /// The integration that runs ([`ContactPolicy::Fixed`] or [`ContactPolicy::Adaptive`]) for
-    /// a scene of `design` with the swing policy `swing`, with or without a drive on the robot
-    /// joint (`driven`): "auto" takes the adaptive contact for an undriven CJ with the adaptive
-    /// swing, the fixed steps otherwise; "fixed" and "adaptive" are taken as written (the
-    /// scene's validation refuses "adaptive" where it does not apply).
-    pub fn resolved(self, design: crate::scene::Design, swing: SwingPolicy, driven: bool) -> Self {
+    /// a scene whose robot is a CJ (`cj`) or not, with the swing policy `swing`, with or without
+    /// a drive on the robot joint (`driven`): "auto" takes the adaptive contact for an undriven
+    /// CJ with the adaptive swing, the fixed steps otherwise; "fixed" and "adaptive" are taken
+    /// as written (the scene's validation refuses "adaptive" where it does not apply).
+    pub fn resolved(self, cj: bool, swing: SwingPolicy, driven: bool) -> Self {
         match self {
             ContactPolicy::Auto => {
-                if design == crate::scene::Design::Cj && swing == SwingPolicy::Adaptive && !driven {
+                if cj && swing == SwingPolicy::Adaptive && !driven {
                     ContactPolicy::Adaptive
                 } else {
                     ContactPolicy::Fixed

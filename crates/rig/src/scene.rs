@@ -468,7 +468,10 @@ impl Scene {
     /// ([`ContactPolicy::resolved`]), [`ContactPolicy::Adaptive`] or [`ContactPolicy::Fixed`].
     pub fn contact_integration(&self) -> ContactPolicy {
         let s = &self.file.solver;
-        s.contact
-            .resolved(self.file.robot.design, s.swing, self.drive.is_some())
+        s.contact.resolved(
+            self.file.robot.design == Design::Cj,
+            s.swing,
+            self.drive.is_some(),
+        )
     }
 }
