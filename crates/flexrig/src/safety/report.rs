@@ -881,13 +881,8 @@ fn scene_trace(
 /// Which contacts each run of a scene follows, and what the run at the root found.
 fn contacts_sentence(sc: &crate::safety::simulation::SceneSimulation) -> String {
     match &sc.contacts_at_root {
-        Some(c) if c.every_contact => format!(
-            "Every contact counts: each run follows contact after contact, and at the answer {}.",
-            crate::safety::scene::contacts_words(c)
-        ),
         Some(c) => format!(
-            "Each run ends at the first separation (a later contact is not judged): at the \
-             answer {}.",
+            "Every contact counts: each run follows contact after contact, and at the answer {}.",
             crate::safety::scene::contacts_words(c)
         ),
         None => String::new(),

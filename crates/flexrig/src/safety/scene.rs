@@ -386,7 +386,6 @@ pub fn simulate(
             governing,
             time_of_peak_s: largest.time_of_peak_s,
             ended: at_root.ended,
-            every_contact: true,
         }),
         notes: at_root
             .notes
@@ -441,11 +440,8 @@ pub fn contacts_words(c: &crate::safety::simulation::ContactsAtRoot) -> String {
              swing; a later one would be the pendulum's return swing)",
             d(t)
         ),
-        RunEnd::FirstSeparation | RunEnd::StepBudget(_) => {
-            "the first separation: this CL model (the test bed's beam) follows the first \
-             contact only, a later contact is not judged"
-                .to_string()
-        }
+        RunEnd::FirstSeparation => "the first separation".to_string(),
+        RunEnd::StepBudget(t) => format!("the run's step budget at {} s", d(t)),
     };
     format!(
         "the largest peak in contact {} of {}, at {} s; the run ended at {end}",

@@ -419,7 +419,7 @@ pub fn grid_speed(k: i32) -> f64 {
 }
 
 /// The index of the largest grid speed at or below `v` [m/s] (v > 0).
-fn grid_index_at_or_below(v: f64) -> i32 {
+pub fn grid_index_at_or_below(v: f64) -> i32 {
     let mut k = (v.ln() / (std::f64::consts::LN_2 / 16.0)).floor() as i32;
     while grid_speed(k) > v {
         k -= 1;
@@ -784,11 +784,9 @@ pub struct ContactsAtRoot {
     pub governing: usize,
     /// The time of that peak from the drive's start \[s\].
     pub time_of_peak_s: f64,
-    /// How the run ended (the bodies parted for good, the window closed, or the first
-    /// separation when only the first contact is followed).
+    /// How the run ended (the bodies parted for good, the window closed, the operator's
+    /// rebound).
     pub ended: flexrig_impact::RunEnd,
-    /// Whether every contact was followed (the CJ) or the first alone (the CL).
-    pub every_contact: bool,
 }
 
 /// The simulated permissible speed of a driven scene, with what the search did.
