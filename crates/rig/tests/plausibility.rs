@@ -196,3 +196,36 @@ fn the_robots_masses_lengths_and_speeds_follow_the_shared_rule() {
     );
     assert!(warned("rig_driven_cj", &[]).is_empty());
 }
+
+#[test]
+fn a_cl_run_past_its_first_contact_at_the_swing_step_of_one_contact_is_warned() {
+    // the second contact of cl_iron (30°) is 126.6 N at the bundled 5e-4 s and 137.2 N at
+    // 5e-6 s; 2e-5 s resolves it to 4e-4
+    let flight = |w: &[Warning]| {
+        w.iter()
+            .filter(|w| w.field == "solver.swing_step_s")
+            .map(|w| w.message.clone())
+            .collect::<Vec<_>>()
+    };
+    let w = warned("cl_iron", &["stop.at=rebound"]);
+    let m = flight(&w);
+    assert_eq!(m.len(), 1, "{w:?}");
+    assert!(
+        m[0].contains("0.0005 s") && m[0].contains("at most 2e-5 s"),
+        "{}",
+        m[0]
+    );
+    assert_eq!(
+        flight(&warned(
+            "cl_iron",
+            &["stop.at=rebound", "solver.swing_step_s=2e-5"]
+        )),
+        Vec::<String>::new()
+    );
+    // the first contact alone (the bundled stop) and the CJ, whose swing is adaptive: nothing
+    assert_eq!(flight(&warned("cl_iron", &[])), Vec::<String>::new());
+    assert_eq!(
+        flight(&warned("cj_iron", &["stop.at=rebound"])),
+        Vec::<String>::new()
+    );
+}

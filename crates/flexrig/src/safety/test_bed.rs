@@ -36,15 +36,11 @@ use crate::safety::simulation::{Peaks, SCAN_START_OF_GUESS, grid_index_at_or_bel
 /// The largest release angle of the test bed \[deg\] (`operator.start.release_angle_deg`).
 pub const MAX_RELEASE_ANGLE_DEG: f64 = 170.0;
 
-/// The CL's swing step after a contact \[s\] (at most; a scene's finer `solver.swing_step_s`
-/// is kept). After a contact the payload flies off on the soft beam and the beam rings in its
-/// higher modes, whose phase at the next onset sets that contact's peak: on `cl_iron` released
-/// from 30° the second contact's peak is 126.6 / 133.6 / 137.11 / 137.17 / 137.22 / 137.24 N at
-/// steps of 5e-4 / 1e-4 / 5e-5 / 2e-5 / 1e-5 / 5e-6 s (the scene's own 5e-4 s is 8 % off), and
-/// the third of `cl_light_load` 38.2 / 41.1 / 42.2 / 42.4 N at 5e-5 / 2e-5 / 1e-5 / 5e-6 s. The
-/// verdict reruns its answer at half this step and says how far the later contacts moved
-/// ([`simulate`]).
-pub const CL_FLIGHT_STEP_S: f64 = 2e-5;
+/// The CL's swing step after a contact \[s\] at most (a scene's finer `solver.swing_step_s` is
+/// kept): the step that resolves the beam's ringing
+/// ([`flexrig_rig::plausibility::CL_FLIGHT_STEP_S`]). The verdict reruns its answer at half
+/// this step and says how far the later contacts moved ([`simulate`]).
+pub use flexrig_rig::plausibility::CL_FLIGHT_STEP_S;
 
 /// A test-bed scene loaded for the safety verdict.
 #[derive(Debug, Clone)]
