@@ -12,7 +12,10 @@
 //! `rebound`; a later contact would be the pendulum's return swing under gravity, a new strike
 //! of the test bed) — and the permissible speed is the smallest speed at which the largest
 //! contact's peak force reaches the region's force limit, by the scan from below and the
-//! Illinois refinement on ln v of a driven scene ([`crate::safety::simulation::scan_up`]).
+//! Illinois refinement on ln v of a driven scene ([`crate::safety::simulation::scan_up`]),
+//! started at the test bed's energy floor ([`TestBedScene::energy_floor`]). A CL's beam rings
+//! after a contact: its swing is stepped at [`CL_FLIGHT_STEP_S`] at most, and the answer is run
+//! again at half that step to say how far the later contacts move.
 //!
 //! The release angle is bounded by 170° (the scene's own bound): the largest speed the test bed
 //! can reach. When the peak force there is still below the limit, the search reports that speed
