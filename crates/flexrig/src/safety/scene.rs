@@ -256,17 +256,20 @@ fn smallest_scene_speed(
     guess: f64,
     settings: &SimulationSettings,
     stop: &std::sync::atomic::AtomicBool,
-    peaks: &mut Peaks,
+    peaks: &Peaks,
     trace: Option<&mut Vec<RootStep>>,
 ) -> Result<SceneSpeed, Error> {
     let mut fastest = 0.0_f64;
+    let run = |v: f64| peak_force(scene, v, settings, stop);
     let mut ratio = |v: f64| -> Result<f64, Error> {
-        let p = peaks.at(v, |v| peak_force(scene, v, settings, stop))?;
+        let p = peaks.at(v, run)?;
         fastest = fastest.max(v);
         Ok(p / force)
     };
+    // the scan's next speeds side by side (the answer does not depend on it)
+    let mut ahead = |speeds: &[f64]| peaks.prefetch(speeds, run);
     let start = (clamp_guess(guess) * SCAN_START_OF_GUESS).max(1e-4);
-    let found = match scan_up(start, settings.root_rtol, &mut ratio, trace) {
+    let found = match scan_up(start, settings.root_rtol, &mut ratio, &mut ahead, trace) {
         Ok(Scan::Crossing(v)) => Ok(v),
         Ok(Scan::Never) => Ok(f64::INFINITY),
         Ok(Scan::AtStart) => (|| {
@@ -328,7 +331,7 @@ pub fn simulate(
     stop: &std::sync::atomic::AtomicBool,
 ) -> Result<SceneSimulation, Error> {
     settings.validate()?;
-    let mut peaks = Peaks::default();
+    let peaks = Peaks::default();
     let force = limits.force;
     let mut force_search = Vec::new();
     // both scans start on one grid, from the lower of the energy method's two speeds
@@ -339,7 +342,7 @@ pub fn simulate(
         start_guess,
         settings,
         stop,
-        &mut peaks,
+        &peaks,
         Some(&mut force_search),
     )?;
     let by_force = force_scan.speed;
@@ -349,7 +352,7 @@ pub fn simulate(
             // the same grid as the force's scan: its runs are reused
             Some(PressureCrossing::AtForce(f)) => {
                 let scan =
-                    smallest_scene_speed(scene, f, start_guess, settings, stop, &mut peaks, None)?;
+                    smallest_scene_speed(scene, f, start_guess, settings, stop, &peaks, None)?;
                 pressure_beyond = scan.beyond.map(|why| (scan.speed, why));
                 scan.speed
             }

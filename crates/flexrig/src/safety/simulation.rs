@@ -538,11 +538,15 @@ pub enum Scan {
 
 /// The scan from below: `ratio` (peak over limit) at `start` and on the grid v_k = start q^k
 /// (q = [`SCAN_RATIO`]) up to the first speed at which it is ≥ 1, then [`refine`] between that
-/// speed and the one before. Each evaluation goes to `trace` when given.
+/// speed and the one before. Each evaluation goes to `trace` when given. Before each speed of
+/// the grid, `ahead` is handed that speed and the next ones, one per thread of the pool
+/// ([`scan_ahead`]): a caller may run them side by side ([`Peaks::prefetch`]) — the scan still
+/// asks them in order and stops at the same speed, so its answer does not depend on it.
 pub fn scan_up(
     start: f64,
     rtol: f64,
     ratio: &mut dyn FnMut(f64) -> Result<f64, Error>,
+    ahead: &mut dyn FnMut(&[f64]),
     mut trace: Option<&mut Vec<RootStep>>,
 ) -> Result<Scan, Error> {
     let mut eval = |v: f64, trace: &mut Option<&mut Vec<RootStep>>| -> Result<f64, Error> {
@@ -556,6 +560,7 @@ pub fn scan_up(
         Ok(r)
     };
     let mut below = start;
+    ahead(&scan_ahead(start));
     let mut r_below = eval(below, &mut trace)?;
     if r_below >= 1.0 {
         return Ok(Scan::AtStart);
@@ -565,6 +570,7 @@ pub fn scan_up(
         if next > SCAN_TOP_MPS {
             return Ok(Scan::Never);
         }
+        ahead(&scan_ahead(next));
         let r = eval(next, &mut trace)?;
         if r >= 1.0 {
             break (next, r);
@@ -578,6 +584,15 @@ pub fn scan_up(
         rtol,
         &mut |v| eval(v, &mut trace),
     )?))
+}
+
+/// The speeds of [`scan_up`]'s grid from `v` on, as it computes them (v, v q, v q², …), one
+/// per thread of the rayon pool (just `v` on one thread), none above [`SCAN_TOP_MPS`].
+pub fn scan_ahead(v: f64) -> Vec<f64> {
+    std::iter::successors(Some(v), |&u| Some(u * SCAN_RATIO))
+        .take(rayon::current_num_threads().max(1))
+        .take_while(|&u| u <= SCAN_TOP_MPS)
+        .collect()
 }
 
 /// The Illinois false position on ln v for ln(ratio) = 0 between `below` (ratio < 1) and
@@ -843,32 +858,65 @@ pub struct SceneSimulation {
 
 /// The largest peak force at each speed run so far: the force and the pressure scans walk the
 /// same grid, so the second reuses the first's runs (the same speed gives the same run bit for
-/// bit).
+/// bit). Interior mutability, so that a scan's evaluation and its look-ahead
+/// ([`Peaks::prefetch`]) share it.
 #[derive(Debug, Default)]
 pub(crate) struct Peaks {
-    known: std::collections::HashMap<u64, f64>,
-    runs: usize,
+    known: std::cell::RefCell<std::collections::HashMap<u64, f64>>,
+    /// Peaks run ahead of the scan and not yet asked for.
+    ahead: std::cell::RefCell<std::collections::HashMap<u64, f64>>,
+    runs: std::cell::Cell<usize>,
 }
 
 impl Peaks {
-    /// How many runs were made.
+    /// How many runs the searches used (runs made ahead and never asked for are not counted,
+    /// so the count does not depend on the number of threads).
     pub(crate) fn runs(&self) -> usize {
-        self.runs
+        self.runs.get()
     }
 
-    /// The peak at `v` [m/s]: remembered, or `run` and remembered.
+    /// The peak at `v` [m/s]: remembered, run ahead, or `run` and remembered.
     pub(crate) fn at(
-        &mut self,
+        &self,
         v: f64,
         run: impl FnOnce(f64) -> Result<f64, Error>,
     ) -> Result<f64, Error> {
-        if let Some(p) = self.known.get(&v.to_bits()) {
+        if let Some(p) = self.known.borrow().get(&v.to_bits()) {
             return Ok(*p);
         }
-        let p = run(v)?;
-        self.runs += 1;
-        self.known.insert(v.to_bits(), p);
+        let p = match self.ahead.borrow_mut().remove(&v.to_bits()) {
+            Some(p) => p,
+            None => run(v)?,
+        };
+        self.runs.set(self.runs.get() + 1);
+        self.known.borrow_mut().insert(v.to_bits(), p);
         Ok(p)
+    }
+
+    /// Runs the speeds `speeds` [m/s] not known yet side by side on the rayon pool and keeps
+    /// their peaks for [`Peaks::at`] (the same run at the same speed: the same bits). A speed
+    /// whose run fails is left to be run again in order, where its error counts (a run past the
+    /// crossing may fail without the scan ever asking it); nothing to do for fewer than two.
+    pub(crate) fn prefetch(&self, speeds: &[f64], run: impl Fn(f64) -> Result<f64, Error> + Sync) {
+        use rayon::prelude::*;
+        let todo: Vec<f64> = speeds
+            .iter()
+            .copied()
+            .filter(|v| {
+                !self.known.borrow().contains_key(&v.to_bits())
+                    && !self.ahead.borrow().contains_key(&v.to_bits())
+            })
+            .collect();
+        if todo.len() < 2 {
+            return;
+        }
+        let done: Vec<(f64, Result<f64, Error>)> = todo.par_iter().map(|&v| (v, run(v))).collect();
+        let mut ahead = self.ahead.borrow_mut();
+        for (v, p) in done {
+            if let Ok(p) = p {
+                ahead.insert(v.to_bits(), p);
+            }
+        }
     }
 }
 

@@ -221,22 +221,29 @@ pub fn largest_contact(run: &RunSummary) -> (usize, flexrig_rig::ContactEvent) {
         .expect("a run summary holds its first contact")
 }
 
-/// The smallest speed below the test bed's largest, `v_cap`, at which `peak(v)` reaches
-/// `limit` (the scan from below from `start`, halved up to ten times when the limit is reached
-/// there already), or `None` when the scan reaches `v_cap` with the peak still below the limit
-/// or starts above it (`start` a proven floor: nothing to run); with the peak at `v_cap` when
-/// it was run.
+/// The smallest speed below the test bed's largest, `v_cap`, at which the largest peak force
+/// `run(v)` reaches `limit` (the scan from below from `start`, halved up to ten times when the
+/// limit is reached there already; the scan's next speeds run side by side, [`Peaks::prefetch`],
+/// each run kept in `peaks`), or `None` when the scan reaches `v_cap` with the peak still below
+/// the limit or starts above it (`start` a proven floor: nothing to run); with the peak at
+/// `v_cap` when it was run.
 fn smallest_test_bed_speed(
     v_cap: f64,
     start: f64,
     rtol: f64,
     limit: f64,
-    peak: &mut dyn FnMut(f64) -> Result<f64, Error>,
+    peaks: &Peaks,
+    run: &(dyn Fn(f64) -> Result<f64, Error> + Sync),
     trace: Option<&mut Vec<RootStep>>,
 ) -> Result<(Option<f64>, Option<f64>), Error> {
     if start > v_cap {
         return Ok((None, None));
     }
+    let peak = |v: f64| peaks.at(v, run);
+    let mut ahead = |speeds: &[f64]| {
+        let below_cap: Vec<f64> = speeds.iter().copied().filter(|&v| v < v_cap).collect();
+        peaks.prefetch(&below_cap, run);
+    };
     let mut at_cap = None;
     let mut below_at_cap = false;
     let mut ratio = |v: f64| -> Result<f64, Error> {
@@ -257,7 +264,7 @@ fn smallest_test_bed_speed(
         }
         Ok(p / limit)
     };
-    let found = match scan_up(start, rtol, &mut ratio, trace) {
+    let found = match scan_up(start, rtol, &mut ratio, &mut ahead, trace) {
         Ok(Scan::Crossing(v)) => Ok(Some(v.min(v_cap))),
         Ok(Scan::Never) => Ok(None),
         Ok(Scan::AtStart) => (|| {
@@ -293,10 +300,10 @@ pub fn simulate(
     stop: &std::sync::atomic::AtomicBool,
 ) -> Result<SceneSimulation, Error> {
     settings.validate()?;
-    let mut peaks = Peaks::default();
-    let mut peak = |v: f64| -> Result<f64, Error> {
+    let peaks = Peaks::default();
+    let run = |v: f64| -> Result<f64, Error> {
         crate::safety::simulation::check_stop(stop)?;
-        peaks.at(v, |v| tb.peak_force(v))
+        tb.peak_force(v)
     };
     let v_cap = tb.max_speed();
     let mut force_search = Vec::new();
@@ -305,7 +312,8 @@ pub fn simulate(
         scan_start(tb, limits.force, guess_force),
         settings.root_rtol,
         limits.force,
-        &mut peak,
+        &peaks,
+        &run,
         Some(&mut force_search),
     )?;
     // the pressure's speed; the test bed's largest when its limit is not reached there (a note
@@ -320,7 +328,8 @@ pub fn simulate(
                     scan_start(tb, f, g.min(guess_force)),
                     settings.root_rtol,
                     f,
-                    &mut peak,
+                    &peaks,
+                    &run,
                     None,
                 )?;
                 if root.is_none() {
@@ -339,7 +348,7 @@ pub fn simulate(
     let peak_at_cap = match (by_force, force_at_cap) {
         (Some(_), _) => None,
         (None, Some(p)) => Some(p),
-        (None, None) => Some(peak(v_cap)?),
+        (None, None) => Some(peaks.at(v_cap, run)?),
     };
     let mut runs = peaks.runs();
     let speed = by_force.unwrap_or(v_cap);
@@ -347,8 +356,18 @@ pub fn simulate(
         Some(v) => tb.release_angle_for(v).unwrap_or(MAX_RELEASE_ANGLE_DEG),
         None => MAX_RELEASE_ANGLE_DEG,
     };
-    let at_root = tb.run_released(angle)?;
-    runs += 1;
+    // the answer's run and, for a CL, the same at half the swing step after a contact (how far
+    // the step moves the later contacts), side by side
+    let (at_root, at_half_step) = rayon::join(
+        || tb.run_released(angle),
+        || {
+            tb.flight_step()
+                .map(|h| tb.run_released_with(angle, Some(0.5 * h)).map(|r| (h, r)))
+                .transpose()
+        },
+    );
+    let (at_root, at_half_step) = (at_root?, at_half_step?);
+    runs += 1 + usize::from(at_half_step.is_some());
     let (governing, largest) = largest_contact(&at_root);
     let g = |v: f64| flexrig_contact::validate::display(v);
     let mut notes = vec![match peak_at_cap {
@@ -367,11 +386,8 @@ pub fn simulate(
             g(v_cap)
         ),
     }];
-    if let Some(h) = tb.flight_step() {
-        // the CL's later contacts again at half the swing step: how far the step moves them
-        let half = tb.run_released_with(angle, Some(0.5 * h))?;
-        runs += 1;
-        notes.push(flight_step_note(h, &at_root, &half, limits.force));
+    if let Some((h, half)) = &at_half_step {
+        notes.push(flight_step_note(*h, &at_root, half, limits.force));
     }
     if let Some(p) = pressure_unreached {
         notes.push(format!(
