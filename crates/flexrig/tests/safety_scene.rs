@@ -365,3 +365,30 @@ fn a_test_bed_scene_on_the_face_is_refused_and_an_unreachable_limit_is_said() {
     assert!(sc.by_force_mps.is_finite() && sc.by_force_mps > 0.0);
     assert!(sc.notes[0].contains("not reached"), "{:?}", sc.notes);
 }
+
+#[test]
+fn a_scene_verdict_is_the_same_on_one_thread_and_on_several() {
+    // The scan runs its next grid speeds side by side; it still asks them in order, so the
+    // answer, the search and the count of runs are the same bit for bit on any pool.
+    for (scene, region) in [
+        ("cj_iron", "hands_and_fingers"),
+        ("driven_cj_free_head", "hands_and_fingers"),
+    ] {
+        let on = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| {
+                    safety(&input(scene, region, vec![SafetyMethod::Simulation]), None)
+                        .unwrap()
+                        .scene
+                        .unwrap()
+                })
+        };
+        let (one, three) = (on(1), on(3));
+        assert_eq!(one, three, "{scene}");
+        assert_eq!(one.by_force_mps.to_bits(), three.by_force_mps.to_bits());
+        assert!(one.runs > 10, "{scene}: {} runs", one.runs);
+    }
+}

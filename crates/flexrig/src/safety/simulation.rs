@@ -893,20 +893,22 @@ impl Peaks {
         Ok(p)
     }
 
-    /// Runs the speeds `speeds` [m/s] not known yet side by side on the rayon pool and keeps
-    /// their peaks for [`Peaks::at`] (the same run at the same speed: the same bits). A speed
-    /// whose run fails is left to be run again in order, where its error counts (a run past the
-    /// crossing may fail without the scan ever asking it); nothing to do for fewer than two.
+    /// When the first of `speeds` [m/s] (the one the scan asks next) is not known yet: runs it
+    /// and the others not known yet side by side on the rayon pool and keeps their peaks for
+    /// [`Peaks::at`] (the same run at the same speed: the same bits), so that the scan's next
+    /// steps find them. A speed whose run fails is left to be run again in order, where its
+    /// error counts (a run past the crossing may fail without the scan ever asking it); nothing
+    /// to do for fewer than two.
     pub(crate) fn prefetch(&self, speeds: &[f64], run: impl Fn(f64) -> Result<f64, Error> + Sync) {
         use rayon::prelude::*;
-        let todo: Vec<f64> = speeds
-            .iter()
-            .copied()
-            .filter(|v| {
-                !self.known.borrow().contains_key(&v.to_bits())
-                    && !self.ahead.borrow().contains_key(&v.to_bits())
-            })
-            .collect();
+        let unknown = |v: &f64| {
+            !self.known.borrow().contains_key(&v.to_bits())
+                && !self.ahead.borrow().contains_key(&v.to_bits())
+        };
+        if !speeds.first().is_some_and(unknown) {
+            return;
+        }
+        let todo: Vec<f64> = speeds.iter().copied().filter(unknown).collect();
         if todo.len() < 2 {
             return;
         }
