@@ -910,8 +910,12 @@ fn test_bed_trace(
          struck body and its pendulum is free, so the contact is transient. {} The smallest \
          speed at which the largest contact's peak force reaches F_max = {} N is found by a \
          scan from below (grid ratio 2^(1/16)) and the Illinois false position on ln v until \
-         the bracket is narrower than {:e} (relative); release angles are bounded by 170°. \
-         Methods a and b use the region's body mass, this one the operator's pendulum.",
+         the bracket is narrower than {:e} (relative); the scan starts at the test bed's energy \
+         floor, the speed below which no contact can store the energy that force needs (the \
+         pendulum's energy above its lowest point, ½ m_op v², bounds every contact of an \
+         undamped swing; with a damped contact, a 64th of the energy method's speed), and \
+         release angles are bounded by 170°. Methods a and b use the \
+         region's body mass, this one the operator's pendulum.",
         sc.name,
         sc.scene,
         match sc.design {
