@@ -613,8 +613,7 @@ pub fn run_modes(
         law,
         t_scale,
         options,
-        (0.0, ForceHold::Linear),
-        false,
+        (0.0, ForceHold::Linear, false),
         None,
     )?;
     Ok(outcome)
@@ -718,11 +717,19 @@ fn run_held_against(
     hold: (f64, ForceHold),
     settle: bool,
 ) -> Result<(ImpactOutcome, Option<f64>), ImpactError> {
-    let force_scale = hold.0;
+    let (force_scale, hold) = hold;
     if !(force_scale.is_finite() && force_scale >= 0.0) {
         return Err(ImpactError::invalid("force scale", force_scale, "≥ 0 N"));
     }
-    run_modes_inner(modes, head, law, t_scale, options, hold, settle, None)
+    run_modes_inner(
+        modes,
+        head,
+        law,
+        t_scale,
+        options,
+        (force_scale, hold, settle),
+        None,
+    )
 }
 
 /// [`run_modes`] recording the force and indentation at every step of every contact (the
@@ -742,15 +749,14 @@ pub fn run_modes_traced(
         law,
         t_scale,
         options,
-        (0.0, ForceHold::Linear),
-        false,
+        (0.0, ForceHold::Linear, false),
         Some(&mut trace),
     )?;
     Ok((outcome, trace))
 }
 
-/// The run of [`run_modes`] and its variants: `(force_scale, hold)` is the force \[N\] the
-/// tolerance is measured against at least and how the force is held over a step; `settle`:
+/// The run of [`run_modes`] and its variants: `(force_scale, hold, settle)` are the force \[N\]
+/// the tolerance is measured against at least, how the force is held over a step, and whether to
 /// stop in free flight once no later contact can pass the largest peak (an elastic law only;
 /// [`largest_peak_quadratic_against`]), returning when it stopped.
 fn run_modes_inner(
@@ -759,8 +765,7 @@ fn run_modes_inner(
     law: &dyn ContactLaw,
     t_scale: f64,
     options: &ModalOptions,
-    (force_scale, hold): (f64, ForceHold),
-    settle: bool,
+    (force_scale, hold, settle): (f64, ForceHold, bool),
     mut trace: Option<&mut ContactTrace>,
 ) -> Result<(ImpactOutcome, Option<f64>), ImpactError> {
     options.validate()?;
