@@ -515,3 +515,93 @@ fn assert_matches_rk4(s: &FreeMassImpact, ours: &ImpactOutcome) {
         ours.energy_j
     );
 }
+
+/// The hand's design of the safe-speed map (m_h = 0.6 kg, skinned aluminium k_c = 7.359e7,
+/// n = 1.961, m_r = 0.051 kg, L = 1 m) with payload `m_e` \[kg\], stiffness `k_delta` \[N/m\] and
+/// speed `v0` [m/s].
+fn hand(m_e: f64, k_delta: f64, v0: f64, joint: Joint) -> FreeMassImpact {
+    FreeMassImpact {
+        m_h: 0.6,
+        v0,
+        link: flexrig_impact::LinkParams {
+            m_r: 0.051,
+            length: 1.0,
+            k_delta,
+            m_e,
+        },
+        joint,
+        contact: flexrig_contact::Hertz::new(7.359e7, 1.961).unwrap(),
+        damping: flexrig_contact::DampingSpec::NONE,
+    }
+}
+
+/// A run for its largest peak alone stops once no later contact can pass the largest so far:
+/// on held CJs and CLs of the map's hand (the rattling corner, m_e = 0.01 kg on k_δ = 10 N/m,
+/// included) at speeds across its limits, the largest peak is the full run's bit for bit, the
+/// contacts it followed are the full run's first ones, most runs stop early (the bound is not
+/// idle), and a free hub (rigid modes) is always followed to its end.
+#[test]
+fn a_settled_run_keeps_the_full_runs_largest_peak() {
+    use flexrig_impact::modal_run::{PeakRunEnd, largest_peak_quadratic_against};
+    let options = ModalOptions {
+        tol: 1e-7,
+        window_s: Some(1e6),
+        max_steps: 20_000_000,
+    };
+    let (mut runs, mut settled) = (0, 0);
+    for joint in [
+        Joint::Held,
+        Joint::FreeHub {
+            rotor_inertia: 1e-3,
+        },
+    ] {
+        for (m_e, k_delta) in [
+            (0.01, 10.0),
+            (0.01, 2e4),
+            (0.1, 2e3),
+            (1.0, 1e5),
+            (5.0, 1e7),
+        ] {
+            for v0 in [0.8, 1.5, 3.0] {
+                let s = hand(m_e, k_delta, v0, joint);
+                for cl in [false, true] {
+                    let modes = if cl {
+                        cl_tip_modes(&s, &GradedMesh::DEFAULT).unwrap()
+                    } else {
+                        Chain::cj(&s).tip_modes(&s, 0.0).unwrap()
+                    };
+                    let (head, t_scale) = (head_at_onset(&s), s.payload_contact_time());
+                    let full = run_modes_quadratic_against(
+                        &modes, head, &s.contact, t_scale, &options, 280.0,
+                    )
+                    .unwrap();
+                    let ours = largest_peak_quadratic_against(
+                        &modes, head, &s.contact, t_scale, &options, 280.0,
+                    )
+                    .unwrap();
+                    let largest = |c: &[flexrig_impact::setup::ContactEvent]| {
+                        c.iter().map(|c| c.peak_force_n).fold(0.0, f64::max)
+                    };
+                    let at = format!("{joint:?} cl {cl} m_e {m_e} k {k_delta} v {v0}");
+                    assert_eq!(largest(&ours.contacts), largest(&full.contacts), "{at}");
+                    assert_eq!(
+                        ours.contacts[..],
+                        full.contacts[..ours.contacts.len()],
+                        "{at}"
+                    );
+                    runs += 1;
+                    match ours.end {
+                        PeakRunEnd::Settled(t) => {
+                            assert!(matches!(joint, Joint::Held), "{at}");
+                            assert!(ours.contacts.len() <= full.contacts.len(), "{at}: {t}");
+                            settled += 1;
+                        }
+                        PeakRunEnd::Ended(end) => assert_eq!(end, full.ended, "{at}"),
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("{settled} of {runs} runs stopped at their settled peak");
+    assert!(settled >= runs / 4, "{settled} of {runs}");
+}

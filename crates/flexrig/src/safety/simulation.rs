@@ -16,7 +16,9 @@ use flexrig_contact::{DampingSpec, Hertz};
 use flexrig_impact::chain::Chain;
 use flexrig_impact::cl_modal::head_at_onset;
 use flexrig_impact::graded::{GradedMesh, cl_tip_modes};
-use flexrig_impact::modal_run::{ModalOptions, run_modes_quadratic_against};
+use flexrig_impact::modal_run::{
+    ModalOptions, PeakRunEnd, largest_peak_quadratic_against, run_modes_quadratic_against,
+};
 use flexrig_impact::{FreeMassImpact, ImpactError, Joint, LinkParams, RunEnd};
 use flexrig_safety::{EnergyContact, PressureCrossing};
 use serde::{Deserialize, Serialize};
@@ -249,8 +251,9 @@ pub struct FeRuns {
     /// ([`FeRuns::against`]; 0: each run's own largest force).
     force_scale: f64,
     /// Every impact run so far, by the bits of its speed: a search that asks a speed again (the
-    /// pressure's scan over the force's, the governing contact at the root) gets the same run.
-    done: Vec<(u64, SimulatedPeak)>,
+    /// pressure's scan over the force's, the governing contact at the root) gets the same run;
+    /// the flag: followed until the bodies parted for good (else stopped at its settled peak).
+    done: Vec<(u64, SimulatedPeak, bool)>,
 }
 
 /// The stopping rule of every simulated impact: the run follows contact after contact and ends
@@ -303,25 +306,47 @@ impl FeRuns {
         self
     }
 
-    /// The largest peak force \[N\] over every contact at speed `v` [m/s].
+    /// The largest peak force \[N\] over every contact at speed `v` [m/s]: the run stops once no
+    /// later contact can pass its largest peak so far (a held joint;
+    /// [`flexrig_impact::modal_run::largest_peak_quadratic_against`]), which leaves that peak
+    /// bit for bit the full run's.
     pub fn peak(&mut self, v: f64, stop: &AtomicBool) -> Result<f64, Error> {
-        Ok(self.impact_at(v, stop)?.peak_force_n)
+        Ok(self.run_cached(v, false, stop)?.peak_force_n)
     }
 
     /// Every contact at speed `v` [m/s] until the bodies part for good, and the largest.
     pub fn impact_at(&mut self, v: f64, stop: &AtomicBool) -> Result<SimulatedPeak, Error> {
+        self.run_cached(v, true, stop)
+    }
+
+    /// The run at `v` [m/s], remembered by the bits of its speed; `whole`: followed until the
+    /// bodies part for good (a run that stopped at its settled peak is run again).
+    fn run_cached(
+        &mut self,
+        v: f64,
+        whole: bool,
+        stop: &AtomicBool,
+    ) -> Result<SimulatedPeak, Error> {
         if stop.load(Ordering::Relaxed) {
             return Err(Error::Impact(ImpactError::Interrupted));
         }
-        if let Some((_, done)) = self.done.iter().find(|(bits, _)| *bits == v.to_bits()) {
-            return Ok(*done);
+        let known = self.done.iter().position(|(bits, ..)| *bits == v.to_bits());
+        if let Some(i) = known
+            && (self.done[i].2 || !whole)
+        {
+            return Ok(self.done[i].1);
         }
-        let peak = self.run_at(v)?;
-        self.done.push((v.to_bits(), peak));
+        let (peak, complete) = self.run_at(v, !whole)?;
+        match known {
+            Some(i) => self.done[i] = (v.to_bits(), peak, complete),
+            None => self.done.push((v.to_bits(), peak, complete)),
+        }
         Ok(peak)
     }
 
-    fn run_at(&mut self, v: f64) -> Result<SimulatedPeak, Error> {
+    /// The run at `v` [m/s] (`settle`: stopped once its largest peak is known) and whether it
+    /// was followed until the bodies parted for good.
+    fn run_at(&mut self, v: f64, settle: bool) -> Result<(SimulatedPeak, bool), Error> {
         self.runs += 1;
         let settings = &self.impact.settings;
         let setup = self.impact.setup_at(v);
@@ -337,22 +362,32 @@ impl FeRuns {
         // the force held quadratic over each step: third order, far fewer steps than the linear
         // hold at the same accuracy of the answer
         setup.validate()?;
-        let outcome = run_modes_quadratic_against(
-            &m,
-            head_at_onset(&setup),
-            &*setup.law()?,
-            setup.payload_contact_time(),
-            &options,
-            self.force_scale,
-        )?;
-        let parted_at_s = match outcome.ended {
-            RunEnd::PartedForGood(t) => t,
-            RunEnd::Window(t) | RunEnd::StepBudget(t) | RunEnd::Rebound(t) => {
+        let (head, t_scale) = (head_at_onset(&setup), setup.payload_contact_time());
+        let (contacts, end) = if settle {
+            // an undamped law (the searches' damping is none): the energy bound holds
+            let run = largest_peak_quadratic_against(
+                &m,
+                head,
+                &setup.contact,
+                t_scale,
+                &options,
+                self.force_scale,
+            )?;
+            (run.contacts, run.end)
+        } else {
+            let law = setup.law()?;
+            let outcome =
+                run_modes_quadratic_against(&m, head, &*law, t_scale, &options, self.force_scale)?;
+            (outcome.contacts, PeakRunEnd::Ended(outcome.ended))
+        };
+        let parted_at_s = match end {
+            PeakRunEnd::Ended(RunEnd::PartedForGood(t)) | PeakRunEnd::Settled(t) => t,
+            PeakRunEnd::Ended(RunEnd::Window(t) | RunEnd::StepBudget(t) | RunEnd::Rebound(t)) => {
                 return Err(Error::NonFinite {
                     what: format!("simulated impact at {} m/s", display(v)),
                     value: format!(
                         "the bodies had not parted for good after {} contacts ({} s)",
-                        outcome.contacts.len(),
+                        contacts.len(),
                         display(t)
                     ),
                     advice: "a body that keeps meeting the link has no last contact to judge; \
@@ -360,27 +395,28 @@ impl FeRuns {
                         .into(),
                 });
             }
-            RunEnd::FirstSeparation => outcome.first.duration_s,
+            PeakRunEnd::Ended(RunEnd::FirstSeparation) => contacts[0].duration_s,
         };
+        let complete = !matches!(end, PeakRunEnd::Settled(_));
         let (index, top) =
-            outcome
-                .contacts
+            contacts
                 .iter()
                 .enumerate()
-                .fold((0, outcome.first), |(i, best), (j, c)| {
+                .fold((0, contacts[0]), |(i, best), (j, c)| {
                     if c.peak_force_n > best.peak_force_n {
                         (j, *c)
                     } else {
                         (i, best)
                     }
                 });
-        Ok(SimulatedPeak {
+        let peak = SimulatedPeak {
             peak_force_n: top.peak_force_n,
             contact: index + 1,
             time_of_peak_s: top.time_of_peak_s,
-            contacts: outcome.contacts.len(),
+            contacts: contacts.len(),
             parted_at_s,
-        })
+        };
+        Ok((peak, complete))
     }
 
     /// The speed [m/s] below which no contact can reach the force `f` \[N\], from energy: a
