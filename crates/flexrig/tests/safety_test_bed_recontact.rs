@@ -35,14 +35,10 @@ fn reference_at(scene: &Scene, v: f64) -> Vec<two_hinges::ReferenceContact> {
     reference_contacts(&system, [-cos_theta.acos(), 0.0, 0.0, 0.0], 5.0)
 }
 
-fn largest(contacts: &[two_hinges::ReferenceContact]) -> f64 {
-    contacts.iter().map(|c| c.1).fold(0.0, f64::max)
-}
-
-#[test]
-fn a_later_contact_of_the_swing_sets_the_test_beds_permissible_speed() {
-    let input = SafetyInput {
-        region: "hands_and_fingers".into(),
+/// The simulation method alone on the test-bed scene `scene` for the body region `region`.
+fn simulated(scene: &str, region: &str) -> SafetyInput {
+    SafetyInput {
+        region: region.into(),
         area: None,
         contact: ContactKind::Transient,
         m_eff: None,
@@ -55,9 +51,17 @@ fn a_later_contact_of_the_swing_sets_the_test_beds_permissible_speed() {
         methods: vec![SafetyMethod::Simulation],
         link: None,
         simulation: None,
-        scene: Some("cj_iron".into()),
-    };
-    let report = safety(&input, None).unwrap();
+        scene: Some(scene.into()),
+    }
+}
+
+fn largest(contacts: &[two_hinges::ReferenceContact]) -> f64 {
+    contacts.iter().map(|c| c.1).fold(0.0, f64::max)
+}
+
+#[test]
+fn a_later_contact_of_the_swing_sets_the_test_beds_permissible_speed() {
+    let report = safety(&simulated("cj_iron", "hands_and_fingers"), None).unwrap();
     let sim = report.scene.clone().unwrap();
     let limit = report.force_limit_n;
     let v = sim.by_force_mps;
@@ -155,23 +159,7 @@ fn cl_run(
 
 #[test]
 fn the_cl_test_beds_permissible_speed_holds_over_every_contact_with_the_other_beam_element() {
-    let input = SafetyInput {
-        region: "chest".into(),
-        area: None,
-        contact: ContactKind::Transient,
-        m_eff: None,
-        k_delta: None,
-        law: ContactLaw::BodySpring,
-        area_model: None,
-        moving_mass: None,
-        payload: 0.0,
-        speed: None,
-        methods: vec![SafetyMethod::Simulation],
-        link: None,
-        simulation: None,
-        scene: Some("cl_light_load".into()),
-    };
-    let report = safety(&input, None).unwrap();
+    let report = safety(&simulated("cl_light_load", "chest"), None).unwrap();
     let sim = report.scene.clone().unwrap();
     let limit = report.force_limit_n;
     let v = sim.by_force_mps;

@@ -156,17 +156,17 @@ impl StepCoefficients {
 fn mode_coefficients(omega: f64, h: f64) -> [f64; 9] {
     let x = omega * h;
     let (sin, cos) = x.sin_cos();
-    // (1 − cos x)/x², (x − sin x)/x³, sin x/x, by series for small x
-    let (one_minus_cos, x_minus_sin, sinc) = if x < 1e-2 {
+    // (1 − cos x)/x², (x − sin x)/x³, by series for small x
+    let (one_minus_cos, x_minus_sin) = if x < SERIES_BELOW {
         let x2 = x * x;
         (
             0.5 - x2 / 24.0 + x2 * x2 / 720.0,
             1.0 / 6.0 - x2 / 120.0 + x2 * x2 / 5040.0,
-            1.0 - x2 / 6.0 + x2 * x2 / 120.0,
         )
     } else {
-        ((1.0 - cos) / (x * x), (x - sin) / (x * x * x), sin / x)
+        ((1.0 - cos) / (x * x), (x - sin) / (x * x * x))
     };
+    let sinc = sinc(x, sin);
     let quartic = quartic_response(x, cos);
     let h2 = h * h;
     let beta = h2 * x_minus_sin;
@@ -193,13 +193,20 @@ fn mode_coefficients(omega: f64, h: f64) -> [f64; 9] {
 fn free_coefficients(omega: f64, h: f64) -> [f64; 3] {
     let x = omega * h;
     let (sin, cos) = x.sin_cos();
-    let sinc = if x < 1e-2 {
+    [cos, h * sinc(x, sin), omega * sin]
+}
+
+/// Below this x = ωh the step's coefficients are taken from their series.
+const SERIES_BELOW: f64 = 1e-2;
+
+/// sin x/x given sin x, by its series below [`SERIES_BELOW`].
+fn sinc(x: f64, sin: f64) -> f64 {
+    if x < SERIES_BELOW {
         let x2 = x * x;
         1.0 - x2 / 6.0 + x2 * x2 / 120.0
     } else {
         sin / x
-    };
-    [cos, h * sinc, omega * sin]
+    }
 }
 
 /// (x² − 2 + 2 cos x)/x⁴ = Σ_{k≥2} 2(−1)^k x^{2k−4}/(2k)! (1/12 at x = 0) given cos x: by its

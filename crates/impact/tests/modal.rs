@@ -24,6 +24,15 @@ fn opts(tol: f64) -> ModalOptions {
     }
 }
 
+/// (m_h \[kg\], k_δ \[N/m\], m_e \[kg\], n) of the tests against DOP853: light and heavy head,
+/// stiff and soft link, linear and n = 2 contact.
+const DOP853_CASES: [(f64, f64, f64, f64); 4] = [
+    (4.0, 1e8, 0.1, 1.0),
+    (4.0, 2e2, 10.0, 2.0),
+    (1000.0, 1e8, 0.1, 1.0),
+    (1000.0, 2e2, 0.1, 2.0),
+];
+
 fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs()
 }
@@ -34,12 +43,7 @@ fn rel(a: f64, b: f64) -> f64 {
 fn the_modal_cj_matches_dop853() {
     let mut worst: f64 = 0.0;
     for joint in [Joint::Held, Joint::FreeHub { rotor_inertia: 0.3 }] {
-        for (m_h, k, m_e, n) in [
-            (4.0, 1e8, 0.1, 1.0),
-            (4.0, 2e2, 10.0, 2.0),
-            (1000.0, 1e8, 0.1, 1.0),
-            (1000.0, 2e2, 0.1, 2.0),
-        ] {
+        for (m_h, k, m_e, n) in DOP853_CASES {
             let s = setup(m_h, k, m_e, n, joint);
             let reference = run_cj(&s, 1e-12).unwrap().first;
             let ours = run_cj_modal(&s, &opts(1e-9)).unwrap().first;
@@ -403,12 +407,7 @@ fn run_cj_quadratic(s: &FreeMassImpact, options: &ModalOptions) -> flexrig_impac
 fn the_quadratic_hold_matches_dop853_with_fewer_steps() {
     let mut worst: f64 = 0.0;
     for joint in [Joint::Held, Joint::FreeHub { rotor_inertia: 0.3 }] {
-        for (m_h, k, m_e, n) in [
-            (4.0, 1e8, 0.1, 1.0),
-            (4.0, 2e2, 10.0, 2.0),
-            (1000.0, 1e8, 0.1, 1.0),
-            (1000.0, 2e2, 0.1, 2.0),
-        ] {
+        for (m_h, k, m_e, n) in DOP853_CASES {
             let s = setup(m_h, k, m_e, n, joint);
             let reference = run_cj(&s, 1e-12).unwrap().first;
             let quadratic = run_cj_quadratic(&s, &opts(1e-9));

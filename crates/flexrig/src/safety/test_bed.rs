@@ -222,17 +222,22 @@ impl TestBedScene {
 
 /// The contact with the largest peak force of a run and its number (1 = the first).
 pub fn largest_contact(run: &RunSummary) -> (usize, flexrig_rig::ContactEvent) {
-    run.contacts
-        .iter()
-        .enumerate()
-        .fold(
-            None::<(usize, flexrig_rig::ContactEvent)>,
-            |best, (i, c)| match best {
-                Some((_, b)) if b.peak_force_n >= c.peak_force_n => best,
-                _ => Some((i + 1, *c)),
-            },
-        )
-        .expect("a run summary holds its first contact")
+    largest_contact_from(run, 0).expect("a run summary holds its first contact")
+}
+
+/// The contact with the largest peak force among those of `run` after the first `skip`, and
+/// its number (1 = the first); `None` when there is none.
+fn largest_contact_from(
+    run: &RunSummary,
+    skip: usize,
+) -> Option<(usize, flexrig_rig::ContactEvent)> {
+    run.contacts.iter().enumerate().skip(skip).fold(
+        None::<(usize, flexrig_rig::ContactEvent)>,
+        |best, (i, c)| match best {
+            Some((_, b)) if b.peak_force_n >= c.peak_force_n => best,
+            _ => Some((i + 1, *c)),
+        },
+    )
 }
 
 /// The smallest speed below the test bed's largest, `v_cap`, at which the largest peak force
@@ -445,19 +450,6 @@ pub fn simulate(
     })
 }
 
-/// The largest peak force \[N\] after the first contact of `run` and its contact's number.
-fn largest_later_contact(run: &RunSummary) -> Option<(usize, f64)> {
-    run.contacts
-        .iter()
-        .enumerate()
-        .skip(1)
-        .map(|(i, c)| (i + 1, c.peak_force_n))
-        .fold(None, |best, (i, p)| match best {
-            Some((_, b)) if b >= p => best,
-            _ => Some((i, p)),
-        })
-}
-
 /// What the CL's answer run at the swing step `h` \[s\] after a contact and the same run at
 /// `h`/2 (`half`) say of the later contacts, the force limit `limit` \[N\]: their largest peak
 /// at both steps, and a warning when at half the step any contact exceeds the limit by more
@@ -470,7 +462,8 @@ fn flight_step_note(h: f64, run: &RunSummary, half: &RunSummary, limit: f64) -> 
         g(h),
         g(CL_FLIGHT_STEP_S)
     );
-    let later = match (largest_later_contact(run), largest_later_contact(half)) {
+    let later_of = |r: &RunSummary| largest_contact_from(r, 1).map(|(i, c)| (i, c.peak_force_n));
+    let later = match (later_of(run), later_of(half)) {
         (None, None) => "no later contact at this speed, nor at half that step".to_string(),
         (a, b) => {
             let say = |c: Option<(usize, f64)>| {
