@@ -108,63 +108,99 @@ fn clamping_needs_the_free_hub_and_the_link_must_be_known() {
 }
 
 /// The single-point simulation at a design of a simulated map equals the map's cell bit for
-/// bit (CJ and CL, by force and by pressure): the same finite-element impact, the same lumped
-/// start, the same search.
+/// bit (CJ and CL): the same finite-element impact, the same lumped start, the same search of
+/// the governing limit. The map searches only the limit that governs (the smaller of F_max and
+/// the pressure's force f_p) and reports the other as at least the governing speed; the
+/// single point searches both, and its other speed is indeed no lower. Both ways: the dome's
+/// Hertz sphere (f_p above the hand's 280 N: the force governs) and a fixed 0.5 cm² (f_p =
+/// 380 N/cm² × 0.5 cm² = 190 N: the pressure governs).
 #[test]
 fn the_single_point_simulation_is_the_maps_cell() {
-    let map_input = SafetyMapInput {
-        region: "hands_and_fingers".into(),
-        area: None,
-        contact: ContactKind::Transient,
-        m_r: Some(0.051),
-        m_e: None,
-        k_delta: None,
-        law: ContactLaw::Material("skinned_aluminium".into()),
-        area_model: None,
-        x: MapAxis {
-            parameter: MapParameter::Payload,
-            values: vec![0.412, 0.6],
-            names: Vec::new(),
-        },
-        y: MapAxis {
-            parameter: MapParameter::LinkStiffness,
-            values: vec![1e4, 3e4],
-            names: Vec::new(),
-        },
-        method: MapMethod::Simulation,
-        simulation: SimulationSettings::DEFAULT,
-        speed: None,
-    };
-    let map = safety_map(&map_input, None, &CancelToken::new()).unwrap();
-    for cell in &map.cells {
-        for (link, gamma, design) in [
-            (FeLink::CompliantJoint, 1.0, cell.cj.unwrap()),
-            (FeLink::CompliantLink, 2.0 / 3.0, cell.cl.unwrap()),
-        ] {
-            let single = SafetyInput {
-                region: "hands_and_fingers".into(),
-                area: None,
-                contact: ContactKind::Transient,
-                m_eff: Some(RobotEffectiveMass::Prb {
-                    gamma,
-                    m_r: cell.m_r_kg,
-                    m_e: cell.m_e_kg,
-                }),
-                k_delta: cell.k_delta_n_per_m,
-                law: ContactLaw::Material("skinned_aluminium".into()),
-                area_model: None,
-                moving_mass: None,
-                payload: 0.0,
-                speed: None,
-                methods: vec![SafetyMethod::Simulation],
-                link: Some(link),
-                simulation: None,
-                scene: None,
-            };
-            let m = safety(&single, None).unwrap().methods[0];
-            assert_eq!(m.by_force_mps, design.by_force_mps, "{link:?} {cell:?}");
-            assert_eq!(m.by_pressure_mps, design.by_pressure_mps, "{link:?}");
-            assert_eq!(m.v_max_mps, design.v_max_mps, "{link:?}");
+    use flexrig::safety::ContactAreaModel;
+    use flexrig::safety::map::LimitSpeed;
+    use flexrig_safety::GoverningLimit;
+    for (area_model, governs) in [
+        (None, GoverningLimit::Force),
+        (
+            Some(ContactAreaModel::Fixed { area_m2: 0.5e-4 }),
+            GoverningLimit::Pressure,
+        ),
+    ] {
+        let map_input = SafetyMapInput {
+            region: "hands_and_fingers".into(),
+            area: None,
+            contact: ContactKind::Transient,
+            m_r: Some(0.051),
+            m_e: None,
+            k_delta: None,
+            law: ContactLaw::Material("skinned_aluminium".into()),
+            area_model,
+            x: MapAxis {
+                parameter: MapParameter::Payload,
+                values: vec![0.412, 0.6],
+                names: Vec::new(),
+            },
+            y: MapAxis {
+                parameter: MapParameter::LinkStiffness,
+                values: vec![1e4, 3e4],
+                names: Vec::new(),
+            },
+            method: MapMethod::Simulation,
+            simulation: SimulationSettings::DEFAULT,
+            speed: None,
+        };
+        let map = safety_map(&map_input, None, &CancelToken::new()).unwrap();
+        for cell in &map.cells {
+            for (link, gamma, design) in [
+                (FeLink::CompliantJoint, 1.0, cell.cj.unwrap()),
+                (FeLink::CompliantLink, 2.0 / 3.0, cell.cl.unwrap()),
+            ] {
+                let single = SafetyInput {
+                    region: "hands_and_fingers".into(),
+                    area: None,
+                    contact: ContactKind::Transient,
+                    m_eff: Some(RobotEffectiveMass::Prb {
+                        gamma,
+                        m_r: cell.m_r_kg,
+                        m_e: cell.m_e_kg,
+                    }),
+                    k_delta: cell.k_delta_n_per_m,
+                    law: ContactLaw::Material("skinned_aluminium".into()),
+                    area_model,
+                    moving_mass: None,
+                    payload: 0.0,
+                    speed: None,
+                    methods: vec![SafetyMethod::Simulation],
+                    link: Some(link),
+                    simulation: None,
+                    scene: None,
+                };
+                let m = safety(&single, None).unwrap().methods[0];
+                assert_eq!(m.v_max_mps, design.v_max_mps, "{link:?} {cell:?}");
+                assert_eq!(m.governing, governs, "{link:?} {cell:?}");
+                assert_eq!(design.governing, governs, "{link:?} {cell:?}");
+                let v_max = m.v_max_mps.value();
+                let bound = LimitSpeed::AtLeast { at_least: v_max };
+                let (searched, other, single_other) = match governs {
+                    GoverningLimit::Force => (
+                        design.by_force_mps,
+                        design.by_pressure_mps.unwrap(),
+                        m.by_pressure_mps.unwrap().value(),
+                    ),
+                    GoverningLimit::Pressure => (
+                        design.by_pressure_mps.unwrap(),
+                        design.by_force_mps,
+                        m.by_force_mps.value(),
+                    ),
+                };
+                assert_eq!(
+                    searched,
+                    LimitSpeed::Known(m.v_max_mps),
+                    "{link:?} {cell:?}"
+                );
+                assert_eq!(other, bound, "{link:?} {cell:?}");
+                assert!(single_other >= v_max, "{link:?}: {single_other} < {v_max}");
+            }
         }
     }
 }

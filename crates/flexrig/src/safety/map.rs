@@ -48,9 +48,9 @@ use crate::safety::point::{
 };
 pub use crate::safety::simulation::{
     CLAMPED_HUMAN_MASS, FE_RIGID_LINK_STIFFNESS, FeImpact, FeLink, FeRuns, GAMMA_CJ, GAMMA_CL,
-    MapJoint, RootStep, SimulationSettings, fe_speeds, speed_at_ratio,
+    MapJoint, RootStep, SimulationSettings, speed_at_ratio,
 };
-use crate::safety::simulation::{bad, display};
+use crate::safety::simulation::{LimitSearch, bad, display, fe_search};
 use crate::{CancelToken, Error};
 
 /// Most points along one axis.
@@ -434,6 +434,31 @@ pub struct SafetyMapInput {
     pub speed: Option<f64>,
 }
 
+/// The speed at which one limit is reached, as a cell knows it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum LimitSpeed {
+    /// Found: the speed, or unlimited (serialises as a number or `"unlimited"`).
+    Known(Speed),
+    /// Not searched, the other limit governing: the limit is reached at this speed or above
+    /// (serialises as `{"at_least": v}`). The simulation method searches only the limit that
+    /// governs ([`crate::safety::simulation::LimitSearch::Governing`]).
+    AtLeast {
+        /// The governing limit's speed [m/s].
+        at_least: f64,
+    },
+}
+
+impl LimitSpeed {
+    /// The speed [m/s] (+∞: unlimited; the bound when known only from below).
+    pub fn value(&self) -> f64 {
+        match self {
+            LimitSpeed::Known(s) => s.value(),
+            LimitSpeed::AtLeast { at_least } => *at_least,
+        }
+    }
+}
+
 /// The permissible speed of one design (CJ or CL) of a cell.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct DesignSpeed {
@@ -441,11 +466,13 @@ pub struct DesignSpeed {
     pub m_eff_kg: f64,
     /// v_max = min(by force, by pressure) [m/s].
     pub v_max_mps: Speed,
-    /// The speed at which the peak force reaches the force limit [m/s].
-    pub by_force_mps: Speed,
-    /// The speed at which the mean pressure reaches its limit [m/s] (absent: not assessed).
+    /// The speed at which the peak force reaches the force limit [m/s] (the simulation method:
+    /// a lower bound when the pressure governs).
+    pub by_force_mps: LimitSpeed,
+    /// The speed at which the mean pressure reaches its limit [m/s] (absent: not assessed; the
+    /// simulation method: a lower bound when the force governs).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub by_pressure_mps: Option<Speed>,
+    pub by_pressure_mps: Option<LimitSpeed>,
     /// The limit that sets v_max.
     pub governing: GoverningLimit,
     /// Impact runs of the root searches (simulation method only).
@@ -641,8 +668,8 @@ fn from_method(m: &MethodResult, runs: Option<usize>) -> DesignSpeed {
     DesignSpeed {
         m_eff_kg: m.robot_mass_kg,
         v_max_mps: m.v_max_mps,
-        by_force_mps: m.by_force_mps,
-        by_pressure_mps: m.by_pressure_mps,
+        by_force_mps: LimitSpeed::Known(m.by_force_mps),
+        by_pressure_mps: m.by_pressure_mps.map(LimitSpeed::Known),
         governing: m.governing,
         runs,
     }
@@ -1050,26 +1077,32 @@ fn simulated(
         link,
         settings: input.simulation,
     };
-    let (by_force, by_pressure, runs) = fe_speeds(
+    let found = fe_search(
         &impact,
         &limits,
         &energy,
-        lumped.by_force_mps.value(),
-        lumped.by_pressure_mps.map(|s| s.value()),
+        lumped.by_pressure_mps.is_some(),
+        LimitSearch::Governing,
         stop,
         None,
     )?;
-    let (v_max, governing) = match by_pressure {
-        Some(vp) if vp < by_force => (vp, GoverningLimit::Pressure),
-        _ => (by_force, GoverningLimit::Force),
+    let v_max = match (found.governing, found.by_pressure) {
+        (GoverningLimit::Pressure, Some(vp)) => vp,
+        _ => found.by_force,
+    };
+    let as_searched = |v: f64, limit: GoverningLimit| match found.bound {
+        Some(b) if b == limit && v.is_finite() => LimitSpeed::AtLeast { at_least: v },
+        _ => LimitSpeed::Known(speed(v)),
     };
     Ok(DesignSpeed {
         m_eff_kg: d.m_e + gamma * d.m_r / 3.0,
         v_max_mps: speed(v_max),
-        by_force_mps: speed(by_force),
-        by_pressure_mps: by_pressure.map(speed),
-        governing,
-        runs: Some(runs),
+        by_force_mps: as_searched(found.by_force, GoverningLimit::Force),
+        by_pressure_mps: found
+            .by_pressure
+            .map(|v| as_searched(v, GoverningLimit::Pressure)),
+        governing: found.governing,
+        runs: Some(found.runs.runs),
     })
 }
 

@@ -950,15 +950,22 @@ fn simulation_traced(
     let contact = energy_contact(s)?;
     let guess = contact.permissible_speed(s.limits)?;
     // the search's runs also answer the governing contact at v_max
-    let (by_force, by_pressure, mut runs) = crate::safety::simulation::fe_search(
+    let found = crate::safety::simulation::fe_search(
         &impact,
         &s.limits,
         &contact,
         guess.by_pressure.is_some(),
+        crate::safety::simulation::LimitSearch::Both,
         stop,
         trace,
     )?;
-    let p = PermissibleSpeed::from_parts(by_force, by_pressure, contact.reduced_mass(), s.limits);
+    let mut runs = found.runs;
+    let p = PermissibleSpeed::from_parts(
+        found.by_force,
+        found.by_pressure,
+        contact.reduced_mass(),
+        s.limits,
+    );
     let mut at_speed = None;
     let verdict = match input.speed {
         Some(v) if v > 0.0 => {

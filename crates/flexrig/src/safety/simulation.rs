@@ -20,7 +20,7 @@ use flexrig_impact::modal_run::{
     ModalOptions, PeakRunEnd, largest_peak_quadratic_against, run_modes_quadratic_against,
 };
 use flexrig_impact::{FreeMassImpact, ImpactError, Joint, LinkParams, RunEnd};
-use flexrig_safety::{EnergyContact, PressureCrossing};
+use flexrig_safety::{EnergyContact, GoverningLimit, PressureCrossing};
 use serde::{Deserialize, Serialize};
 
 use crate::Error;
@@ -673,75 +673,126 @@ pub fn refine(
     Ok(b.exp())
 }
 
-/// The simulated speeds of one design: by force (the largest contact reaches `limits.force`)
-/// and by pressure (it reaches the force f_p at which the mean pressure of `energy`'s area
-/// model reaches the pressure limit), each the smallest such speed ([`smallest_speed_on_grid`]);
-/// the force search's evaluations go to `trace`. Returns (by force, by pressure, impacts run).
-/// The lumped guesses are kept for the callers' signatures; the scan starts at the energy floor.
-pub fn fe_speeds(
-    impact: &FeImpact,
-    limits: &flexrig_safety::Limits,
-    energy: &EnergyContact,
-    _guess_force: f64,
-    guess_pressure: Option<f64>,
-    stop: &AtomicBool,
-    trace: Option<&mut Vec<RootStep>>,
-) -> Result<(f64, Option<f64>, usize), Error> {
-    let (by_force, by_pressure, runs) = fe_search(
-        impact,
-        limits,
-        energy,
-        guess_pressure.is_some(),
-        stop,
-        trace,
-    )?;
-    Ok((by_force, by_pressure, runs.runs))
+/// Which limits' speeds a design's searches find ([`fe_search`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LimitSearch {
+    /// Both: the force limit's speed and the pressure limit's (`flexrig safety`, which prints
+    /// both).
+    Both,
+    /// Only the limit that governs, which the two forces decide without a run: the other
+    /// limit's speed is reported as a lower bound, the governing one's (the safe-speed map,
+    /// which shows the permissible speed).
+    Governing,
 }
 
-/// [`fe_speeds`] (the pressure searched when `pressure` is true and the limits have one),
-/// returning the runs themselves: a later question at a speed the searches ran (the governing
-/// contact at the permissible speed) is answered by the same run.
+/// What a design's searches found ([`fe_search`]).
+#[derive(Debug, Clone)]
+pub struct FeSearch {
+    /// The smallest speed at which the largest contact reaches the force limit [m/s] (+∞:
+    /// never; a lower bound when [`FeSearch::bound`] names the force).
+    pub by_force: f64,
+    /// The smallest speed at which it reaches the force f_p of the pressure limit [m/s]
+    /// (absent: pressure not assessed; a lower bound when [`FeSearch::bound`] names the
+    /// pressure).
+    pub by_pressure: Option<f64>,
+    /// The limit that sets the permissible speed min(by force, by pressure).
+    pub governing: GoverningLimit,
+    /// The limit whose speed was not searched ([`LimitSearch::Governing`]): its speed is only
+    /// known to be at least the governing one's.
+    pub bound: Option<GoverningLimit>,
+    /// Every run of the searches: a later question at a speed they ran (the governing contact
+    /// at the permissible speed) is answered by the same run.
+    pub runs: FeRuns,
+}
+
+/// The simulated speeds of one design: by force (the largest contact reaches `limits.force`)
+/// and by pressure (it reaches the force f_p at which the mean pressure of `energy`'s area
+/// model reaches the pressure limit; searched when `pressure` is true and the limits have
+/// one), each the smallest such speed ([`smallest_speed_on_grid`]); the search on the force
+/// limit goes to `trace` (with [`LimitSearch::Governing`] and the pressure governing: the
+/// search on f_p).
 ///
-/// Both searches scan one grid. The force f_p of the pressure limit is reached first at a speed
-/// no lower than the force limit's when f_p ≥ F_max (a peak at f_p has passed F_max), so its scan
-/// starts where the force's found its last speed below F_max (and is unlimited when the force's
-/// is); every run is measured against the smaller of the two forces ([`FeRuns::against`]).
+/// Which limit governs follows from the two forces alone: a contact that reaches the larger of
+/// F_max and f_p has passed the smaller, so the smallest speed that reaches the larger is no
+/// lower than the smallest that reaches the smaller. With [`LimitSearch::Governing`] only the
+/// smaller force is searched and the other speed is reported as at least the governing one
+/// ([`FeSearch::bound`]); with [`LimitSearch::Both`] both are searched on one grid, the larger
+/// force's scan starting where the smaller's found its last speed below (and unlimited when the
+/// smaller's is). Every run is measured against the smaller force ([`FeRuns::against`]).
 pub fn fe_search(
     impact: &FeImpact,
     limits: &flexrig_safety::Limits,
     energy: &EnergyContact,
     pressure: bool,
+    search: LimitSearch,
     stop: &AtomicBool,
     trace: Option<&mut Vec<RootStep>>,
-) -> Result<(f64, Option<f64>, FeRuns), Error> {
+) -> Result<FeSearch, Error> {
     let pressure_force = match limits.pressure {
         Some(p) if pressure => Some(energy.force_at_pressure(p)),
         _ => None,
     };
-    let smallest = match pressure_force {
-        Some(Some(PressureCrossing::AtForce(f))) => f.min(limits.force),
-        _ => limits.force,
+    let f_p = match pressure_force {
+        Some(Some(PressureCrossing::AtForce(f))) => Some(f),
+        _ => None,
     };
+    let smallest = f_p.map_or(limits.force, |f| f.min(limits.force));
     let mut runs = impact.prepare(MODES_SPEED)?.against(smallest);
     let root_rtol = impact.settings.root_rtol;
-    let by_force = smallest_speed_on_grid(&mut runs, limits.force, None, root_rtol, stop, trace)?;
-    let by_pressure = match pressure_force {
-        Some(Some(PressureCrossing::AtForce(f))) if f >= limits.force => {
-            if by_force.speed.is_infinite() {
-                Some(f64::INFINITY)
-            } else {
-                let from = by_force.below;
-                Some(smallest_speed_on_grid(&mut runs, f, from, root_rtol, stop, None)?.speed)
+    let scan = |runs: &mut FeRuns, force, from, trace| {
+        smallest_speed_on_grid(runs, force, from, root_rtol, stop, trace)
+    };
+    let (by_force, by_pressure, bound) = match (pressure_force, f_p) {
+        // the pressure's force below the force limit: the pressure governs
+        (_, Some(f)) if f < limits.force => match search {
+            LimitSearch::Both => {
+                let by_force = scan(&mut runs, limits.force, None, trace)?.speed;
+                let by_pressure = scan(&mut runs, f, None, None)?.speed;
+                (by_force, Some(by_pressure), None)
+            }
+            LimitSearch::Governing => {
+                let by_pressure = scan(&mut runs, f, None, trace)?.speed;
+                (by_pressure, Some(by_pressure), Some(GoverningLimit::Force))
+            }
+        },
+        (_, Some(f)) => {
+            let by_force = scan(&mut runs, limits.force, None, trace)?;
+            match (search, by_force.speed.is_finite()) {
+                (LimitSearch::Both, true) => {
+                    let by_pressure = scan(&mut runs, f, by_force.below, None)?.speed;
+                    (by_force.speed, Some(by_pressure), None)
+                }
+                (LimitSearch::Governing, true) => (
+                    by_force.speed,
+                    Some(by_force.speed),
+                    Some(GoverningLimit::Pressure),
+                ),
+                (_, false) => (f64::INFINITY, Some(f64::INFINITY), None),
             }
         }
-        Some(Some(PressureCrossing::AtForce(f))) => {
-            Some(smallest_speed_on_grid(&mut runs, f, None, root_rtol, stop, None)?.speed)
+        (pressure_force, None) => {
+            let by_force = scan(&mut runs, limits.force, None, trace)?.speed;
+            let by_pressure = match pressure_force {
+                Some(Some(PressureCrossing::Always)) => Some(0.0),
+                Some(Some(PressureCrossing::Never) | None) => Some(f64::INFINITY),
+                _ => None,
+            };
+            (by_force, by_pressure, None)
         }
-        Some(Some(PressureCrossing::Always)) => Some(0.0),
-        Some(Some(PressureCrossing::Never) | None) => Some(f64::INFINITY),
-        None => None,
     };
-    Ok((by_force.speed, by_pressure, runs))
+    let governing = match (bound, by_pressure) {
+        (Some(GoverningLimit::Force), _) => GoverningLimit::Pressure,
+        (Some(GoverningLimit::Pressure), _) => GoverningLimit::Force,
+        (None, Some(vp)) if vp < by_force => GoverningLimit::Pressure,
+        (None, _) => GoverningLimit::Force,
+    };
+    Ok(FeSearch {
+        by_force,
+        by_pressure,
+        governing,
+        bound,
+        runs,
+    })
 }
 
 /// The speed [m/s] at which the link's modes are solved once per design (the free hub's modal

@@ -372,7 +372,9 @@ def safety_map(
     Returns a dict: ``x``, ``y`` (1-D NumPy arrays), the names ``x_parameter``, ``y_parameter``,
     and 2-D arrays indexed ``[iy, ix]``: ``v_max_cj_mps``, ``v_max_cl_mps``, ``ratio_cl_cj``,
     ``by_force_cj_mps``, ``by_force_cl_mps``, ``m_eff_cj_kg``, ``m_eff_cl_kg`` (NaN where a cell
-    failed, ``inf`` where no limit bounds the speed), ``errors`` (a list of the failed cells'
+    failed, ``inf`` where no limit bounds the speed; the simulation searches only the limit that
+    governs, so a force speed where the pressure governs is NaN, and ``map`` gives it as
+    ``{"at_least": v}``), ``errors`` (a list of the failed cells'
     messages), ``force_limit_n``, ``pressure_limit_pa`` (None: not assessed), ``region_name``,
     ``area``, ``seconds``, ``warnings`` (the plausibility warnings, each a dict of ``field`` and
     ``message``, also raised as :class:`PlausibilityWarning`: a mass above 200 kg, a length above
@@ -422,6 +424,9 @@ def safety_map(
     shape = (len(ys), len(xs))
 
     def speed_of(value: Any) -> float:
+        # a limit that does not govern, not searched by the simulation: {"at_least": v}
+        if isinstance(value, dict):
+            return float("nan")
         return float("inf") if value == "unlimited" else float(value)
 
     def grid(design: str, key: str) -> Any:

@@ -12,8 +12,19 @@ fn num(v: f64) -> String {
     }
 }
 
+/// A limit's speed as the CSV writes it: the number, `unlimited`, or `>=` and the number when
+/// only its lower bound is known (a limit that does not govern, not searched).
+fn limit_speed(s: LimitSpeed) -> String {
+    match s {
+        LimitSpeed::Known(v) => num(v.value()),
+        LimitSpeed::AtLeast { at_least } => format!(">={}", num(at_least)),
+    }
+}
+
 /// The map's CSV: one row per cell, units in the header; a speed no limit bounds is
-/// `unlimited`, a pressure not assessed an empty field, a failed cell carries its error.
+/// `unlimited`, a limit's speed known only from below (it does not govern and the simulation
+/// did not search it) `>=` and the governing speed, a pressure not assessed an empty field, a
+/// failed cell carries its error.
 pub fn csv(map: &SafetyMap) -> String {
     let x = map.input.x.parameter.column();
     let y = map.input.y.parameter.column();
@@ -44,8 +55,7 @@ pub fn csv(map: &SafetyMap) -> String {
         );
         match (&c.cj, &c.cl, c.ratio_cl_cj) {
             (Some(cj), Some(cl), Some(r)) => {
-                let p =
-                    |d: &DesignSpeed| d.by_pressure_mps.map_or(String::new(), |v| num(v.value()));
+                let p = |d: &DesignSpeed| d.by_pressure_mps.map_or(String::new(), limit_speed);
                 let runs = |d: &DesignSpeed| d.runs.map_or(String::new(), |r| r.to_string());
                 let _ = writeln!(
                     s,
@@ -55,10 +65,10 @@ pub fn csv(map: &SafetyMap) -> String {
                     num(cj.v_max_mps.value()),
                     num(cl.v_max_mps.value()),
                     num(r),
-                    num(cj.by_force_mps.value()),
+                    limit_speed(cj.by_force_mps),
                     p(cj),
                     gov(cj.governing),
-                    num(cl.by_force_mps.value()),
+                    limit_speed(cl.by_force_mps),
                     p(cl),
                     gov(cl.governing),
                     runs(cj),
