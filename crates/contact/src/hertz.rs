@@ -96,6 +96,15 @@ impl ContactLaw for Hertz {
         }
     }
 
+    /// k δ^n > 0 for δ ≥ 1e-20 and k ≥ 1e-100 without the power (n ≤ 10: δ^n ≥ 1e-200, the
+    /// product ≥ 1e-300, far from underflow); the force itself decides below.
+    fn pushes(&self, delta: f64, delta_dot: f64) -> bool {
+        if delta >= 1e-20 && self.k >= 1e-100 {
+            return true;
+        }
+        !(-self.force(delta, delta_dot) >= 0.0)
+    }
+
     fn stiffness(&self, delta: f64, _delta_dot: f64) -> f64 {
         if delta > 0.0 {
             self.n * self.k * delta.powf(self.n - 1.0)

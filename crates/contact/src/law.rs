@@ -24,6 +24,13 @@ pub trait ContactLaw: Send + Sync + std::fmt::Debug {
         )
     }
 
+    /// True unless the force at (δ, δ̇) is ≤ 0 (a NaN force counts as pushing): the same
+    /// answer as testing [`Self::force`], which a law may give without computing the force
+    /// (Hertz: any indentation at which k δ^n cannot underflow).
+    fn pushes(&self, delta: f64, delta_dot: f64) -> bool {
+        !(-self.force(delta, delta_dot) >= 0.0)
+    }
+
     /// Tangent damping ∂f/∂δ̇ [N·s/m] at (δ, δ̇); 0 for an elastic law.
     fn damping(&self, _delta: f64, _delta_dot: f64) -> f64 {
         0.0

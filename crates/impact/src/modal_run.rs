@@ -286,6 +286,23 @@ struct Prediction {
     kappa_f: f64,
 }
 
+/// The modal coordinates' storage of a spent motion, reused by the next step.
+#[derive(Default)]
+struct Buffers {
+    q: Vec<f64>,
+    q_dot: Vec<f64>,
+}
+
+impl Buffers {
+    /// The storage of `m`, which is spent.
+    fn of(m: Motion) -> Buffers {
+        Buffers {
+            q: m.q,
+            q_dot: m.q_dot,
+        }
+    }
+}
+
 /// The sample before the step's start, for the quadratic hold: how long before \[s\] and the
 /// force then \[N\].
 #[derive(Debug, Clone, Copy)]
@@ -318,6 +335,18 @@ impl Integrator<'_> {
     /// The step from `s` over `k.h` with the force held from s.f to f₁ (linear, or bent
     /// through the sample `before` with the quadratic hold), up to f₁.
     fn predict(&self, s: &Motion, k: &StepCoefficients, before: Option<Before>) -> Prediction {
+        self.predict_into(s, k, before, Buffers::default())
+    }
+
+    /// [`Self::predict`] into the storage of `buffers` (a spent motion's, so that a step
+    /// allocates nothing).
+    fn predict_into(
+        &self,
+        s: &Motion,
+        k: &StepCoefficients,
+        before: Option<Before>,
+        buffers: Buffers,
+    ) -> Prediction {
         let (h, f0, r) = (k.h, s.f, self.modes.residual);
         // the quadratic through (−h₀, f₋₁), (0, f₀), (h, f₁) is the linear hold plus κ τ(τ − h),
         // κ = ((f₁ − f₀)/h − (f₀ − f₋₁)/h₀)/(h + h₀) = κ_f f₁ + κ₀
@@ -329,7 +358,9 @@ impl Integrator<'_> {
             _ => (0.0, 0.0),
         };
         let n = self.modes.len();
-        let (mut q, mut q_dot) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        let Buffers { mut q, mut q_dot } = buffers;
+        q.clear();
+        q_dot.clear();
         let (mut w, mut w_dot) = (0.0, 0.0);
         for i in 0..n {
             let [cos, sinc_h, w_sin, alpha, _, alpha_v, _, gamma, gamma_v] = k.per_mode[i];
@@ -365,8 +396,8 @@ impl Integrator<'_> {
 
     /// The end-of-step force: f₁ = F(D − C f₁, E − C′ f₁), the unique root in [0, D/C].
     fn solve_force(&self, p: &Prediction, guess: f64) -> f64 {
-        let r = |f: f64| f - self.law.force(p.d - p.c * f, p.e - p.c_v * f);
-        if p.d <= 0.0 || r(0.0) >= 0.0 {
+        // the residual f − F(D − C f, E − C′ f) at f = 0 is ≥ 0 unless the law pushes there
+        if p.d <= 0.0 || !self.law.pushes(p.d, p.e) {
             return 0.0;
         }
         let (mut lo, mut hi) = (0.0, p.d / p.c);
@@ -375,6 +406,11 @@ impl Integrator<'_> {
             let (delta, rate) = (p.d - p.c * f, p.e - p.c_v * f);
             let (force, stiffness) = self.force_and_stiffness(delta, rate);
             let res = f - force;
+            if res == 0.0 {
+                // the root itself: bisecting on from it (its Newton step lands on the bracket's
+                // end) only wanders back to it, some forty evaluations later
+                return f;
+            }
             if res < 0.0 {
                 lo = f;
             } else {
@@ -448,8 +484,15 @@ impl Integrator<'_> {
 
     /// One contact step over `k.h` from `s` (`before`: the sample before it, for the
     /// quadratic hold), the end-of-step force solved from `guess`.
-    fn step(&self, s: &Motion, k: &StepCoefficients, before: Option<Before>, guess: f64) -> Motion {
-        let p = self.predict(s, k, before);
+    fn step(
+        &self,
+        s: &Motion,
+        k: &StepCoefficients,
+        before: Option<Before>,
+        guess: f64,
+        buffers: Buffers,
+    ) -> Motion {
+        let p = self.predict_into(s, k, before, buffers);
         let f1 = self.solve_force(&p, guess);
         self.finish(p, k, f1, s.t + k.h)
     }
@@ -828,6 +871,8 @@ fn run_modes_inner(
     // the largest stepped force so far and its indentation, and when the run settled
     let mut top = (0.0_f64, 0.0_f64);
     let mut settled = None;
+    // the storage of the last spent motion, for the next contact step
+    let mut spare: Option<Buffers> = None;
     'run: loop {
         // ---- a contact, from its onset at s.t ----
         let onset = s.t;
@@ -876,7 +921,7 @@ fn run_modes_inner(
                 Some(_) => extrapolated_force(&samples, k.h),
                 None => s.f,
             };
-            let next = int.step(&s, k, before, guess);
+            let next = int.step(&s, k, before, guess, spare.take().unwrap_or_default());
             if !(next.t > s.t && next.f.is_finite() && next.delta_dot.is_finite()) {
                 return Err(ImpactError::NotFinished {
                     design: "modal",
@@ -892,6 +937,7 @@ fn run_modes_inner(
                 && deviation > 4.0 * allowed(f_ref.max(next.f), k.h)
             {
                 level -= 4;
+                spare = Some(Buffers::of(next));
                 continue;
             }
             // a damped law can hold the force at 0 while the bodies still overlap (damping
@@ -899,6 +945,7 @@ fn run_modes_inner(
             // over the force's return
             if s.f == 0.0 && next.f == 0.0 && level > -200 && int.engages_within(&s, k.h) {
                 level -= 4;
+                spare = Some(Buffers::of(next));
                 continue;
             }
             if next.f == 0.0 && next.delta <= 0.0 {
@@ -916,7 +963,7 @@ fn run_modes_inner(
                 }
                 break;
             }
-            s = next;
+            spare = Some(Buffers::of(std::mem::replace(&mut s, next)));
             if s.f > top.0 {
                 top = (s.f, s.delta);
             }
@@ -938,6 +985,12 @@ fn run_modes_inner(
                     let f3 = third_derivative(&samples[m - 4..]).abs();
                     (f3 > 0.0).then(|| {
                         let by_force = (12.0 * options.tol * f_tol / f3).cbrt();
+                        // X^{1/4} t_s^{1/4} ≥ X^{1/3} exactly when X^{1/3} ≤ t_s (X = 12 tol
+                        // f/f‴): below t_scale (less a margin far above both roots' rounding)
+                        // the impulse's step is the longer, and its power is not needed
+                        if by_force <= t_scale * (1.0 - 1e-12) {
+                            return 0.9 * by_force;
+                        }
                         let by_impulse = (12.0 * options.tol * f_tol * t_scale / f3).powf(0.25);
                         0.9 * by_force.min(by_impulse)
                     })
