@@ -10,7 +10,9 @@ use flexrig_impact::cl_modal::{head_at_onset, run_cj_modal, run_cl_modal, run_on
 use flexrig_impact::eta::{EtaSettings, case_setup};
 use flexrig_impact::graded::{GradedMesh, cl_matrices, cl_tip_modes};
 use flexrig_impact::horizon::run_window;
-use flexrig_impact::modal_run::{ModalOptions, run_modes_quadratic_against};
+use flexrig_impact::modal_run::{
+    ModalOptions, run_modes_cubic_against, run_modes_quadratic_against,
+};
 use flexrig_impact::tip_modes::TipModes;
 use flexrig_impact::{ClSolver, FreeMassImpact, ImpactOutcome, Joint, RunEnd};
 
@@ -386,10 +388,20 @@ fn bad_modal_settings_name_the_field() {
     }
 }
 
-/// The CJ's modal run with the force held quadratic over each step.
-fn run_cj_quadratic(s: &FreeMassImpact, options: &ModalOptions) -> flexrig_impact::ImpactOutcome {
+/// One of the modal runs against a force scale (a hold of [`flexrig_impact::modal_run`]).
+type HeldRun = fn(
+    &flexrig_impact::tip_modes::TipModes,
+    flexrig_impact::modal_run::Head,
+    &dyn flexrig_contact::ContactLaw,
+    f64,
+    &ModalOptions,
+    f64,
+) -> Result<ImpactOutcome, flexrig_impact::ImpactError>;
+
+/// The CJ's modal run with the force held by `run`'s hold over each step.
+fn run_cj_held(s: &FreeMassImpact, options: &ModalOptions, run: HeldRun) -> ImpactOutcome {
     let modes = Chain::cj(s).tip_modes(s, 0.0).unwrap();
-    run_modes_quadratic_against(
+    run(
         &modes,
         head_at_onset(s),
         &*s.law().unwrap(),
@@ -398,6 +410,16 @@ fn run_cj_quadratic(s: &FreeMassImpact, options: &ModalOptions) -> flexrig_impac
         0.0,
     )
     .unwrap()
+}
+
+/// The CJ's modal run with the force held quadratic over each step.
+fn run_cj_quadratic(s: &FreeMassImpact, options: &ModalOptions) -> ImpactOutcome {
+    run_cj_held(s, options, run_modes_quadratic_against)
+}
+
+/// The CJ's modal run with the force held cubic over each step.
+fn run_cj_cubic(s: &FreeMassImpact, options: &ModalOptions) -> ImpactOutcome {
+    run_cj_held(s, options, run_modes_cubic_against)
 }
 
 /// The quadratic hold on the cases of the linear hold's DOP853 test (held and free hub, linear
@@ -431,6 +453,58 @@ fn the_quadratic_hold_matches_dop853_with_fewer_steps() {
     eprintln!("quadratic-hold CJ vs DOP853: worst relative difference {worst:.1e}");
 }
 
+/// The cubic hold on the same cases: peak and duration within the same 1e-6 of DOP853 (rtol
+/// 1e-12) at the same tolerance, with fewer steps than the quadratic hold.
+#[test]
+fn the_cubic_hold_matches_dop853_with_fewer_steps_than_the_quadratic() {
+    let mut worst: f64 = 0.0;
+    let (mut cubic_steps, mut quadratic_steps) = (0, 0);
+    for joint in [Joint::Held, Joint::FreeHub { rotor_inertia: 0.3 }] {
+        for (m_h, k, m_e, n) in DOP853_CASES {
+            let s = setup(m_h, k, m_e, n, joint);
+            let reference = run_cj(&s, 1e-12).unwrap().first;
+            let cubic = run_cj_cubic(&s, &opts(1e-9));
+            let quadratic = run_cj_quadratic(&s, &opts(1e-9));
+            let ours = cubic.first;
+            let e = rel(ours.peak_force_n, reference.peak_force_n)
+                .max(rel(ours.duration_s, reference.duration_s));
+            worst = worst.max(e);
+            assert!(
+                e <= 1e-6,
+                "{joint:?} {m_h} {k} {m_e} {n}: {ours:?} vs {reference:?}"
+            );
+            assert!(
+                cubic.work < quadratic.work,
+                "{joint:?} {m_h} {k} {m_e} {n}: {} steps against the quadratic hold's {}",
+                cubic.work,
+                quadratic.work
+            );
+            cubic_steps += cubic.work;
+            quadratic_steps += quadratic.work;
+        }
+    }
+    eprintln!(
+        "cubic-hold CJ vs DOP853: worst relative difference {worst:.1e}, {cubic_steps} steps \
+         against the quadratic hold's {quadratic_steps}"
+    );
+}
+
+/// The chattering CJ of the RK4 test with the cubic hold: every onset and peak within the same
+/// bars, the energy through all contacts, the bodies parted for good.
+#[test]
+fn later_contacts_of_the_cubic_hold_match_rk4() {
+    let s = setup(4.0, 2e2, 0.1, 1.0, Joint::Held);
+    let ours = run_cj_cubic(
+        &s,
+        &ModalOptions {
+            tol: 1e-10,
+            window_s: Some(2.0),
+            max_steps: 10_000_000,
+        },
+    );
+    assert_matches_rk4(&s, &ours);
+}
+
 /// The chattering CJ of the RK4 test with the quadratic hold: every onset and peak within the
 /// same bars, the energy through all contacts, the bodies parted for good.
 #[test]
@@ -448,10 +522,11 @@ fn later_contacts_of_the_quadratic_hold_match_rk4() {
 }
 
 /// The order of each hold: the first contact's peak and duration error against DOP853 (rtol
-/// 1e-13) over the tolerances 1e-5 … 1e-8 falls as steps⁻² with the linear hold and steps⁻³ with
-/// the quadratic one (least-squares slopes of ln error on ln steps, n = 2 contact on a soft CJ).
+/// 1e-13) over the tolerances 1e-5 … 1e-8 falls as steps⁻² with the linear hold, steps⁻³ with
+/// the quadratic one and steps⁻⁴ with the cubic one (least-squares slopes of ln error on ln
+/// steps, n = 2 contact on a soft CJ).
 #[test]
-fn the_linear_hold_is_second_order_and_the_quadratic_third() {
+fn the_linear_hold_is_second_order_the_quadratic_third_and_the_cubic_fourth() {
     let s = setup(4.0, 2e2, 10.0, 2.0, Joint::Held);
     let reference = run_cj(&s, 1e-13).unwrap().first;
     let error = |o: &flexrig_impact::ImpactOutcome| {
@@ -467,17 +542,22 @@ fn the_linear_hold_is_second_order_and_the_quadratic_third() {
         let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
         sxy / sxx
     };
-    let (mut linear, mut quadratic) = (Vec::new(), Vec::new());
+    let (mut linear, mut quadratic, mut cubic) = (Vec::new(), Vec::new(), Vec::new());
     for tol in [1e-5, 1e-6, 1e-7, 1e-8] {
         let l = run_cj_modal(&s, &opts(tol)).unwrap();
         let q = run_cj_quadratic(&s, &opts(tol));
+        let c = run_cj_cubic(&s, &opts(tol));
         linear.push(((l.work as f64).ln(), error(&l).ln()));
         quadratic.push(((q.work as f64).ln(), error(&q).ln()));
+        cubic.push(((c.work as f64).ln(), error(&c).ln()));
     }
-    let (p_lin, p_quad) = (-slope(&linear), -slope(&quadratic));
+    let (p_lin, p_quad, p_cub) = (-slope(&linear), -slope(&quadratic), -slope(&cubic));
     eprintln!(
-        "order: linear hold {p_lin:.2}, quadratic hold {p_quad:.2}; {linear:?} {quadratic:?}"
+        "order: linear hold {p_lin:.2}, quadratic hold {p_quad:.2}, cubic hold {p_cub:.2}; \
+         {linear:?} {quadratic:?} {cubic:?}"
     );
+    // the four points scatter about the slope (5.1 measured): at least fourth order, not third
+    assert!((3.5..=5.5).contains(&p_cub), "cubic hold: order {p_cub}");
     assert!((1.7..=2.4).contains(&p_lin), "linear hold: order {p_lin}");
     assert!(
         (2.7..=3.5).contains(&p_quad),

@@ -17,7 +17,7 @@ use flexrig_impact::chain::Chain;
 use flexrig_impact::cl_modal::head_at_onset;
 use flexrig_impact::graded::{GradedMesh, cl_tip_modes};
 use flexrig_impact::modal_run::{
-    ModalOptions, PeakRunEnd, largest_peak_quadratic_against, run_modes_quadratic_against,
+    ModalOptions, PeakRunEnd, largest_peak_cubic_against, run_modes_cubic_against,
 };
 use flexrig_impact::{FreeMassImpact, ImpactError, Joint, LinkParams, RunEnd};
 use flexrig_safety::{EnergyContact, GoverningLimit, PressureCrossing};
@@ -81,9 +81,9 @@ pub struct SimulationSettings {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub length: Option<f64>,
     /// Tolerance of the modal integrator of every simulated impact (relative deviation of the
-    /// force's linear hold per step; the searches hold the force quadratic over each step, at
-    /// [`QUADRATIC_HOLD_TOL`] × this deviation, so that their speeds are as close to converged as
-    /// the linear hold's at this tolerance).
+    /// force's linear hold per step; the searches hold the force cubic over each step, at
+    /// [`SEARCH_HOLD_TOL`] × this deviation, so that their speeds are at least as close to
+    /// converged as the linear hold's at this tolerance).
     pub tol: f64,
     /// Relative tolerance of the CJ's DOP853 integration.
     pub cj_rtol: f64,
@@ -263,14 +263,17 @@ pub struct FeRuns {
 /// guards against a run that never parts; reaching it is an error, not a verdict.
 pub const PARTING_GUARD_S: f64 = 1e6;
 
-/// The quadratic force hold's tolerance as a fraction of the run tolerance
-/// ([`SimulationSettings::tol`]). Its step control bounds the hold's per-step deviation as the
-/// linear hold's does, but its answers sit farther from converged at the same tolerance: against
-/// runs at tol 1e-9 and root tolerance 1e-10, the map's rattling corner (CJ, m_e = 0.01 kg,
-/// k_δ = 10 N/m) 6.9e-6 at 1e-6 and 6.9e-7 at 1e-7 (the linear hold at 1e-6: 6.7e-7), the hand
-/// sample of docs/safety.md 1.2e-6 and 1.0e-7 (linear: 2.0e-7). A tenth keeps the answers as
-/// close to converged as the linear hold's were, so a default does not change their accuracy.
-pub const QUADRATIC_HOLD_TOL: f64 = 0.1;
+/// The searches' force hold's tolerance as a fraction of the run tolerance
+/// ([`SimulationSettings::tol`]). The step control bounds the hold's per-step deviation as the
+/// linear hold's does, but the higher holds' answers sit farther from converged at the same
+/// tolerance: against runs at tol 1e-9 and root tolerance 1e-10, the quadratic hold put the map's
+/// rattling corner (CJ, m_e = 0.01 kg, k_δ = 10 N/m) 6.9e-6 away at 1e-6 and 6.9e-7 at 1e-7
+/// (the linear hold at 1e-6: 6.7e-7), the hand sample of docs/safety.md 1.2e-6 and 1.0e-7
+/// (linear: 2.0e-7). A tenth kept the answers as close to converged as the linear hold's were;
+/// the cubic hold the searches run now is as close or closer at the same tenth (six designs of
+/// the hand map: ≤ 7.5e-8 from converged, the quadratic ≤ 4.6e-7), so a default does not change
+/// their accuracy.
+pub const SEARCH_HOLD_TOL: f64 = 0.1;
 
 /// Most integration steps of one simulated impact (contacts and free flights together).
 pub const MAX_IMPACT_STEPS: usize = 20_000_000;
@@ -308,7 +311,7 @@ impl FeRuns {
 
     /// The largest peak force \[N\] over every contact at speed `v` [m/s]: the run stops once no
     /// later contact can pass its largest peak so far (a held joint;
-    /// [`flexrig_impact::modal_run::largest_peak_quadratic_against`]), which leaves that peak
+    /// [`flexrig_impact::modal_run::largest_peak_cubic_against`]), which leaves that peak
     /// bit for bit the full run's.
     pub fn peak(&mut self, v: f64, stop: &AtomicBool) -> Result<f64, Error> {
         Ok(self.run_cached(v, false, stop)?.peak_force_n)
@@ -355,17 +358,17 @@ impl FeRuns {
         let scale = v / self.guess;
         m.rates.iter_mut().for_each(|r| *r *= scale);
         let options = ModalOptions {
-            tol: settings.tol * QUADRATIC_HOLD_TOL,
+            tol: settings.tol * SEARCH_HOLD_TOL,
             window_s: Some(PARTING_GUARD_S),
             max_steps: MAX_IMPACT_STEPS,
         };
-        // the force held quadratic over each step: third order, far fewer steps than the linear
-        // hold at the same accuracy of the answer
+        // the force held cubic over each step: fourth order, far fewer steps than the linear
+        // and the quadratic hold at the same accuracy of the answer
         setup.validate()?;
         let (head, t_scale) = (head_at_onset(&setup), setup.payload_contact_time());
         let (contacts, end) = if settle {
             // an undamped law (the searches' damping is none): the energy bound holds
-            let run = largest_peak_quadratic_against(
+            let run = largest_peak_cubic_against(
                 &m,
                 head,
                 &setup.contact,
@@ -377,7 +380,7 @@ impl FeRuns {
         } else {
             let law = setup.law()?;
             let outcome =
-                run_modes_quadratic_against(&m, head, &*law, t_scale, &options, self.force_scale)?;
+                run_modes_cubic_against(&m, head, &*law, t_scale, &options, self.force_scale)?;
             (outcome.contacts, PeakRunEnd::Ended(outcome.ended))
         };
         let parted_at_s = match end {
