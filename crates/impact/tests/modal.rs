@@ -556,8 +556,7 @@ fn the_linear_hold_is_second_order_the_quadratic_third_and_the_cubic_fourth() {
         "order: linear hold {p_lin:.2}, quadratic hold {p_quad:.2}, cubic hold {p_cub:.2}; \
          {linear:?} {quadratic:?} {cubic:?}"
     );
-    // the four points scatter about the slope (5.1 measured): at least fourth order, not third
-    assert!((3.5..=5.5).contains(&p_cub), "cubic hold: order {p_cub}");
+    assert!((3.5..=4.6).contains(&p_cub), "cubic hold: order {p_cub}");
     assert!((1.7..=2.4).contains(&p_lin), "linear hold: order {p_lin}");
     assert!(
         (2.7..=3.5).contains(&p_quad),
