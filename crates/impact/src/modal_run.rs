@@ -130,7 +130,9 @@ pub struct Head {
 /// [`mode_coefficients`]).
 struct StepCoefficients {
     h: f64,
-    per_mode: Vec<[f64; 11]>,
+    /// The coefficients by column (column j: the j-th of the list above, one entry per mode),
+    /// so that the step's loops over the modes run on contiguous slices.
+    cols: [Vec<f64>; 11],
     /// Σ bᵢ² βᵢ and Σ bᵢ² β_v,i.
     sum_beta: f64,
     sum_beta_v: f64,
@@ -144,7 +146,7 @@ struct StepCoefficients {
 
 impl StepCoefficients {
     fn new(modes: &TipModes, h: f64) -> StepCoefficients {
-        let mut per_mode = Vec::with_capacity(modes.len());
+        let mut cols: [Vec<f64>; 11] = std::array::from_fn(|_| Vec::with_capacity(modes.len()));
         let (mut sum_beta, mut sum_beta_v) = (0.0, 0.0);
         let (mut sum_gamma, mut sum_gamma_v) = (0.0, 0.0);
         let (mut sum_eps, mut sum_eps_v) = (0.0, 0.0);
@@ -156,11 +158,13 @@ impl StepCoefficients {
             sum_gamma_v += b * b * c[8];
             sum_eps += b * b * c[9];
             sum_eps_v += b * b * c[10];
-            per_mode.push(c);
+            for (col, value) in cols.iter_mut().zip(c) {
+                col.push(value);
+            }
         }
         StepCoefficients {
             h,
-            per_mode,
+            cols,
             sum_beta,
             sum_beta_v,
             sum_gamma,
@@ -454,30 +458,39 @@ impl Integrator<'_> {
         let Buffers { mut q, mut q_dot } = buffers;
         q.clear();
         q_dot.clear();
+        q.resize(n, 0.0);
+        q_dot.resize(n, 0.0);
+        let [
+            cos,
+            sinc_h,
+            w_sin,
+            alpha,
+            _,
+            alpha_v,
+            _,
+            gamma,
+            gamma_v,
+            eps,
+            eps_v,
+        ] = &k.cols;
+        let (cos, sinc_h, w_sin) = (&cos[..n], &sinc_h[..n], &w_sin[..n]);
+        let (alpha, alpha_v, gamma, gamma_v) =
+            (&alpha[..n], &alpha_v[..n], &gamma[..n], &gamma_v[..n]);
+        let (eps, eps_v, gains) = (&eps[..n], &eps_v[..n], &self.modes.gains[..n]);
+        let (q0, v0) = (&s.q[..n], &s.q_dot[..n]);
+        let (q1, v1) = (&mut q[..n], &mut q_dot[..n]);
+        // each mode on its own (contiguous columns: the loop vectorises), then the tip's sums in
+        // the modes' order
+        for i in 0..n {
+            let load = alpha[i] * f0 + gamma[i] * kappa_0 + eps[i] * lambda_0;
+            let load_v = alpha_v[i] * f0 + gamma_v[i] * kappa_0 + eps_v[i] * lambda_0;
+            q1[i] = cos[i] * q0[i] + sinc_h[i] * v0[i] + gains[i] * load;
+            v1[i] = -w_sin[i] * q0[i] + cos[i] * v0[i] + gains[i] * load_v;
+        }
         let (mut w, mut w_dot) = (0.0, 0.0);
         for i in 0..n {
-            let [
-                cos,
-                sinc_h,
-                w_sin,
-                alpha,
-                _,
-                alpha_v,
-                _,
-                gamma,
-                gamma_v,
-                eps,
-                eps_v,
-            ] = k.per_mode[i];
-            let b = self.modes.gains[i];
-            let load = alpha * f0 + gamma * kappa_0 + eps * lambda_0;
-            let load_v = alpha_v * f0 + gamma_v * kappa_0 + eps_v * lambda_0;
-            let qi = cos * s.q[i] + sinc_h * s.q_dot[i] + b * load;
-            let vi = -w_sin * s.q[i] + cos * s.q_dot[i] + b * load_v;
-            w += b * qi;
-            w_dot += b * vi;
-            q.push(qi);
-            q_dot.push(vi);
+            w += gains[i] * q1[i];
+            w_dot += gains[i] * v1[i];
         }
         // the head (ω = 0): γ = −h⁴/12, γ_v = −h³/6, ε = −h⁵/30, ε_v = −h⁴/12, and ẍ = −f/m_h
         let (h2, m) = (h * h, self.m_h);
@@ -574,11 +587,15 @@ impl Integrator<'_> {
         let (h, m) = (k.h, self.m_h);
         let mut q = p.q;
         let mut q_dot = p.q_dot;
-        for i in 0..q.len() {
-            let b = self.modes.gains[i];
-            let c = &k.per_mode[i];
-            q[i] += b * (c[4] + p.kappa_f * c[7] + p.lambda_f * c[9]) * f1;
-            q_dot[i] += b * (c[6] + p.kappa_f * c[8] + p.lambda_f * c[10]) * f1;
+        let n = q.len();
+        let [_, _, _, _, beta, _, beta_v, gamma, gamma_v, eps, eps_v] = &k.cols;
+        let (beta, beta_v, gamma, gamma_v) = (&beta[..n], &beta_v[..n], &gamma[..n], &gamma_v[..n]);
+        let (eps, eps_v, gains) = (&eps[..n], &eps_v[..n], &self.modes.gains[..n]);
+        let (kf, lf) = (p.kappa_f, p.lambda_f);
+        let (q1, v1) = (&mut q[..n], &mut q_dot[..n]);
+        for i in 0..n {
+            q1[i] += gains[i] * (beta[i] + kf * gamma[i] + lf * eps[i]) * f1;
+            v1[i] += gains[i] * (beta_v[i] + kf * gamma_v[i] + lf * eps_v[i]) * f1;
         }
         let (bend, twist) = (p.kappa_f * f1, p.lambda_f * f1);
         Motion {
