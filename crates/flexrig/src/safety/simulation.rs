@@ -270,9 +270,10 @@ pub const PARTING_GUARD_S: f64 = 1e6;
 /// rattling corner (CJ, m_e = 0.01 kg, k_δ = 10 N/m) 6.9e-6 away at 1e-6 and 6.9e-7 at 1e-7
 /// (the linear hold at 1e-6: 6.7e-7), the hand sample of docs/safety.md 1.2e-6 and 1.0e-7
 /// (linear: 2.0e-7). A tenth kept the answers as close to converged as the linear hold's were;
-/// the cubic hold the searches run now is as close or closer at the same tenth (six designs of
-/// the hand map: ≤ 7.5e-8 from converged, the quadratic ≤ 4.6e-7), so a default does not change
-/// their accuracy.
+/// the cubic hold the searches run now is closer at the same tenth (the hand map of
+/// docs/performance.md outside its rattling corner: 1 599 of 1 728 speeds within 1e-7 of the
+/// converged map, the worst 2.5e-6; the quadratic hold 1 059 and 6.3e-6), so a default does not
+/// change their accuracy.
 pub const SEARCH_HOLD_TOL: f64 = 0.1;
 
 /// Most integration steps of one simulated impact (contacts and free flights together).
