@@ -205,7 +205,13 @@ fn simulated_speeds_converge_to_1e_4() {
     let fine = dir.join("fine");
     let mut a = base.to_vec();
     a.extend(["--out", coarse.to_str().unwrap()]);
-    ok(&a);
+    let text = ok(&a);
+    // the dome spreads the hand's 280 N far below 380 N/cm²: the force governs every design,
+    // and the pressure's speed is written as a bound, not searched
+    assert!(
+        text.contains("governs    force in 8 designs, pressure in 0 (the other limit not searched"),
+        "{text}"
+    );
     let mut b = base.to_vec();
     b.extend([
         "--tol",
@@ -229,6 +235,12 @@ fn simulated_speeds_converge_to_1e_4() {
         }
         // the FE CJ and CL differ by the link's own compliance: not the lumped γ's ratio
         assert!(f(x, "runs_cj") >= 3.0 && f(x, "runs_cl") >= 3.0);
+        for link in ["cj", "cl"] {
+            let v_max = &x[&format!("v_max_{link}_mps")];
+            assert_eq!(x[&format!("by_pressure_{link}_mps")], format!(">={v_max}"));
+            assert_eq!(&x[&format!("by_force_{link}_mps")], v_max);
+            assert_eq!(x[&format!("governing_{link}")], "force");
+        }
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -171,6 +171,9 @@ pub fn run(args: &SafetyMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> R
                 "v_max_cj_mps_range": pair(sum.v_max_cj_mps_range),
                 "v_max_cl_mps_range": pair(sum.v_max_cl_mps_range),
                 "ratio_cl_cj_range": pair(sum.ratio_cl_cj_range),
+                "governed_by_force": sum.governed_by_force,
+                "governed_by_pressure": sum.governed_by_pressure,
+                "other_limit_bounded": sum.other_limit_bounded,
                 "seconds": map.seconds,
                 "files": paths,
                 "warnings": map.warnings,
@@ -202,6 +205,21 @@ pub fn run(args: &SafetyMapArgs, out: &mut dyn Write, cancel: &CancelToken) -> R
         format!("v_max CL   {} m/s", show(sum.v_max_cl_mps_range)),
     )?;
     line(out, format!("CL/CJ      {}", show(sum.ratio_cl_cj_range)))?;
+    if map.area_model.is_some() {
+        line(
+            out,
+            format!(
+                "governs    force in {} designs, pressure in {}{}",
+                sum.governed_by_force,
+                sum.governed_by_pressure,
+                if sum.other_limit_bounded > 0 {
+                    " (the other limit not searched: its speed is at least v_max)"
+                } else {
+                    ""
+                }
+            ),
+        )?;
+    }
     line(
         out,
         format!(

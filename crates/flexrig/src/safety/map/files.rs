@@ -105,18 +105,37 @@ pub struct MapSummary {
     pub v_max_cl_mps_range: Option<(f64, f64)>,
     /// The same for the ratio CL/CJ.
     pub ratio_cl_cj_range: Option<(f64, f64)>,
+    /// Designs (CJ and CL of every computed cell) whose v_max the force limit sets.
+    pub governed_by_force: usize,
+    /// Designs whose v_max the pressure limit sets.
+    pub governed_by_pressure: usize,
+    /// Designs whose other limit's speed is only a lower bound (the simulation searched the
+    /// governing limit alone).
+    pub other_limit_bounded: usize,
 }
 
-/// The summary of `map`: cell counts and the ranges of v_max and of the ratio.
+/// The summary of `map`: cell counts, the ranges of v_max and of the ratio, and which limit
+/// governs how many designs.
 pub fn summary(map: &SafetyMap) -> MapSummary {
     let ok: Vec<&MapCell> = map.cells.iter().filter(|c| c.error.is_none()).collect();
     let speed = |d: Option<DesignSpeed>| d.map_or(f64::NAN, |d| d.v_max_mps.value());
+    let designs: Vec<&DesignSpeed> = ok
+        .iter()
+        .flat_map(|c| c.cj.iter().chain(c.cl.iter()))
+        .collect();
+    let count = |f: &dyn Fn(&DesignSpeed) -> bool| designs.iter().filter(|d| f(d)).count();
+    let bounded = |l: &LimitSpeed| matches!(l, LimitSpeed::AtLeast { .. });
     MapSummary {
         cells: map.cells.len(),
         failed: map.cells.len() - ok.len(),
         v_max_cj_mps_range: finite_range(ok.iter().map(|c| speed(c.cj))),
         v_max_cl_mps_range: finite_range(ok.iter().map(|c| speed(c.cl))),
         ratio_cl_cj_range: finite_range(ok.iter().map(|c| c.ratio_cl_cj.unwrap_or(f64::NAN))),
+        governed_by_force: count(&|d| d.governing == GoverningLimit::Force),
+        governed_by_pressure: count(&|d| d.governing == GoverningLimit::Pressure),
+        other_limit_bounded: count(&|d| {
+            bounded(&d.by_force_mps) || d.by_pressure_mps.as_ref().is_some_and(bounded)
+        }),
     }
 }
 
