@@ -422,33 +422,43 @@ fn run_cj_cubic(s: &FreeMassImpact, options: &ModalOptions) -> ImpactOutcome {
     run_cj_held(s, options, run_modes_cubic_against)
 }
 
+/// Every DOP853 case, held and free hub, both runs at tol 1e-9: the case, the first contact's
+/// relative peak and duration error of `ours` against DOP853 (rtol 1e-12), and the steps of
+/// `ours` and of `other`.
+fn first_contacts_against_dop853(
+    ours: impl Fn(&FreeMassImpact, &ModalOptions) -> ImpactOutcome,
+    other: impl Fn(&FreeMassImpact, &ModalOptions) -> ImpactOutcome,
+) -> Vec<(String, f64, usize, usize)> {
+    let mut out = Vec::new();
+    for joint in [Joint::Held, Joint::FreeHub { rotor_inertia: 0.3 }] {
+        for (m_h, k, m_e, n) in DOP853_CASES {
+            let s = setup(m_h, k, m_e, n, joint);
+            let reference = run_cj(&s, 1e-12).unwrap().first;
+            let (run, other_run) = (ours(&s, &opts(1e-9)), other(&s, &opts(1e-9)));
+            let first = run.first;
+            let e = rel(first.peak_force_n, reference.peak_force_n)
+                .max(rel(first.duration_s, reference.duration_s));
+            let case = format!("{joint:?} {m_h} {k} {m_e} {n}: {first:?} vs {reference:?}");
+            out.push((case, e, run.work, other_run.work));
+        }
+    }
+    out
+}
+
 /// The quadratic hold on the cases of the linear hold's DOP853 test (held and free hub, linear
 /// and n = 2 contact, light and heavy head): peak and duration within the same 1e-6 at the same
 /// tolerance, with fewer than a third of the linear hold's steps.
 #[test]
 fn the_quadratic_hold_matches_dop853_with_fewer_steps() {
     let mut worst: f64 = 0.0;
-    for joint in [Joint::Held, Joint::FreeHub { rotor_inertia: 0.3 }] {
-        for (m_h, k, m_e, n) in DOP853_CASES {
-            let s = setup(m_h, k, m_e, n, joint);
-            let reference = run_cj(&s, 1e-12).unwrap().first;
-            let quadratic = run_cj_quadratic(&s, &opts(1e-9));
-            let linear = run_cj_modal(&s, &opts(1e-9)).unwrap();
-            let ours = quadratic.first;
-            let e = rel(ours.peak_force_n, reference.peak_force_n)
-                .max(rel(ours.duration_s, reference.duration_s));
-            worst = worst.max(e);
-            assert!(
-                e <= 1e-6,
-                "{joint:?} {m_h} {k} {m_e} {n}: {ours:?} vs {reference:?}"
-            );
-            assert!(
-                3 * quadratic.work < linear.work,
-                "{joint:?} {m_h} {k} {m_e} {n}: {} steps against the linear hold's {}",
-                quadratic.work,
-                linear.work
-            );
-        }
+    let linear = |s: &FreeMassImpact, o: &ModalOptions| run_cj_modal(s, o).unwrap();
+    for (case, e, quadratic, linear) in first_contacts_against_dop853(run_cj_quadratic, linear) {
+        worst = worst.max(e);
+        assert!(e <= 1e-6, "{case}");
+        assert!(
+            3 * quadratic < linear,
+            "{case}: {quadratic} steps against the linear hold's {linear}"
+        );
     }
     eprintln!("quadratic-hold CJ vs DOP853: worst relative difference {worst:.1e}");
 }
@@ -459,29 +469,16 @@ fn the_quadratic_hold_matches_dop853_with_fewer_steps() {
 fn the_cubic_hold_matches_dop853_with_fewer_steps_than_the_quadratic() {
     let mut worst: f64 = 0.0;
     let (mut cubic_steps, mut quadratic_steps) = (0, 0);
-    for joint in [Joint::Held, Joint::FreeHub { rotor_inertia: 0.3 }] {
-        for (m_h, k, m_e, n) in DOP853_CASES {
-            let s = setup(m_h, k, m_e, n, joint);
-            let reference = run_cj(&s, 1e-12).unwrap().first;
-            let cubic = run_cj_cubic(&s, &opts(1e-9));
-            let quadratic = run_cj_quadratic(&s, &opts(1e-9));
-            let ours = cubic.first;
-            let e = rel(ours.peak_force_n, reference.peak_force_n)
-                .max(rel(ours.duration_s, reference.duration_s));
-            worst = worst.max(e);
-            assert!(
-                e <= 1e-6,
-                "{joint:?} {m_h} {k} {m_e} {n}: {ours:?} vs {reference:?}"
-            );
-            assert!(
-                cubic.work < quadratic.work,
-                "{joint:?} {m_h} {k} {m_e} {n}: {} steps against the quadratic hold's {}",
-                cubic.work,
-                quadratic.work
-            );
-            cubic_steps += cubic.work;
-            quadratic_steps += quadratic.work;
-        }
+    for (case, e, cubic, quadratic) in first_contacts_against_dop853(run_cj_cubic, run_cj_quadratic)
+    {
+        worst = worst.max(e);
+        assert!(e <= 1e-6, "{case}");
+        assert!(
+            cubic < quadratic,
+            "{case}: {cubic} steps against the quadratic hold's {quadratic}"
+        );
+        cubic_steps += cubic;
+        quadratic_steps += quadratic;
     }
     eprintln!(
         "cubic-hold CJ vs DOP853: worst relative difference {worst:.1e}, {cubic_steps} steps \
@@ -489,36 +486,30 @@ fn the_cubic_hold_matches_dop853_with_fewer_steps_than_the_quadratic() {
     );
 }
 
+/// The chattering CJ of the RK4 test run by `run` at tol 1e-10 over a 2 s window, against RK4
+/// ([`assert_matches_rk4`]).
+fn chattering_cj_matches_rk4(run: impl Fn(&FreeMassImpact, &ModalOptions) -> ImpactOutcome) {
+    let s = setup(4.0, 2e2, 0.1, 1.0, Joint::Held);
+    let options = ModalOptions {
+        tol: 1e-10,
+        window_s: Some(2.0),
+        max_steps: 10_000_000,
+    };
+    assert_matches_rk4(&s, &run(&s, &options));
+}
+
 /// The chattering CJ of the RK4 test with the cubic hold: every onset and peak within the same
 /// bars, the energy through all contacts, the bodies parted for good.
 #[test]
 fn later_contacts_of_the_cubic_hold_match_rk4() {
-    let s = setup(4.0, 2e2, 0.1, 1.0, Joint::Held);
-    let ours = run_cj_cubic(
-        &s,
-        &ModalOptions {
-            tol: 1e-10,
-            window_s: Some(2.0),
-            max_steps: 10_000_000,
-        },
-    );
-    assert_matches_rk4(&s, &ours);
+    chattering_cj_matches_rk4(run_cj_cubic);
 }
 
 /// The chattering CJ of the RK4 test with the quadratic hold: every onset and peak within the
 /// same bars, the energy through all contacts, the bodies parted for good.
 #[test]
 fn later_contacts_of_the_quadratic_hold_match_rk4() {
-    let s = setup(4.0, 2e2, 0.1, 1.0, Joint::Held);
-    let ours = run_cj_quadratic(
-        &s,
-        &ModalOptions {
-            tol: 1e-10,
-            window_s: Some(2.0),
-            max_steps: 10_000_000,
-        },
-    );
-    assert_matches_rk4(&s, &ours);
+    chattering_cj_matches_rk4(run_cj_quadratic);
 }
 
 /// The order of each hold: the first contact's peak and duration error against DOP853 (rtol
