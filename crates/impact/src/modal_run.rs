@@ -405,22 +405,10 @@ struct Integrator<'a> {
 }
 
 impl Integrator<'_> {
-    /// The step from `s` over `k.h` with the force held from s.f to f₁ (linear, or bent
-    /// through the sample `before` with the quadratic hold), up to f₁.
-    fn predict(&self, s: &Motion, k: &StepCoefficients, before: Option<Before>) -> Prediction {
-        self.predict_into(s, k, before, Buffers::default())
-    }
-
-    /// [`Self::predict`] into the storage of `buffers` (a spent motion's, so that a step
-    /// allocates nothing).
-    fn predict_into(
-        &self,
-        s: &Motion,
-        k: &StepCoefficients,
-        before: Option<Before>,
-        buffers: Buffers,
-    ) -> Prediction {
-        let (h, f0, r) = (k.h, s.f, self.modes.residual);
+    /// The hold's bend and twist over a step of length h from the force f₀ (`before`: the
+    /// samples before the step): κ = κ_f f₁ + κ₀ and λ = λ_f f₁ + λ₀ as (κ_f, κ₀, λ_f, λ₀), all 0
+    /// for the linear hold.
+    fn hold_terms(&self, h: f64, f0: f64, before: Option<Before>) -> (f64, f64, f64, f64) {
         // the quadratic through (−h₀, f₋₁), (0, f₀), (h, f₁) is the linear hold plus κ τ(τ − h),
         // κ = ((f₁ − f₀)/h − (f₀ − f₋₁)/h₀)/(h + h₀) = κ_f f₁ + κ₀
         let quadratic = |b: Before| {
@@ -444,7 +432,7 @@ impl Integrator<'_> {
                 lambda_0,
             )
         };
-        let (kappa_f, kappa_0, lambda_f, lambda_0) = match (self.hold, before) {
+        match (self.hold, before) {
             (
                 ForceHold::Cubic,
                 Some(
@@ -458,7 +446,26 @@ impl Integrator<'_> {
                 (kappa_f, kappa_0, 0.0, 0.0)
             }
             _ => (0.0, 0.0, 0.0, 0.0),
-        };
+        }
+    }
+
+    /// The step from `s` over `k.h` with the force held from s.f to f₁ (linear, or bent
+    /// through the sample `before` with the quadratic hold), up to f₁.
+    fn predict(&self, s: &Motion, k: &StepCoefficients, before: Option<Before>) -> Prediction {
+        self.predict_into(s, k, before, Buffers::default())
+    }
+
+    /// [`Self::predict`] into the storage of `buffers` (a spent motion's, so that a step
+    /// allocates nothing).
+    fn predict_into(
+        &self,
+        s: &Motion,
+        k: &StepCoefficients,
+        before: Option<Before>,
+        buffers: Buffers,
+    ) -> Prediction {
+        let (h, f0, r) = (k.h, s.f, self.modes.residual);
+        let (kappa_f, kappa_0, lambda_f, lambda_0) = self.hold_terms(h, f0, before);
         let n = self.modes.len();
         let Buffers { mut q, mut q_dot } = buffers;
         q.clear();
@@ -686,6 +693,41 @@ impl Integrator<'_> {
         }
     }
 
+    /// The indentation δ \[m\] after a free jump h from `s` ([`Self::free_motion`]'s, bit for
+    /// bit, without its modal coordinates).
+    fn free_gap(&self, s: &Motion, h: f64) -> f64 {
+        let mut w = 0.0;
+        for i in 0..self.modes.len() {
+            let [cos, sinc_h, _] = free_coefficients(self.modes.omegas[i], h);
+            let qi = cos * s.q[i] + sinc_h * s.q_dot[i];
+            w += self.modes.gains[i] * qi;
+        }
+        let x = s.head.x + h * s.head.v;
+        x - w
+    }
+
+    /// The indentation δ \[m\] at the end of a step h from `s` with the force falling to 0
+    /// (held through `before`): [`Self::predict`]'s D, bit for bit, without the step's
+    /// coefficient set or its modal coordinates.
+    fn unloaded_gap(&self, s: &Motion, h: f64, before: Option<Before>) -> f64 {
+        let f0 = s.f;
+        let (_, kappa_0, _, lambda_0) = self.hold_terms(h, f0, before);
+        let mut w = 0.0;
+        for i in 0..self.modes.len() {
+            let c = mode_coefficients(self.modes.omegas[i], h);
+            let (cos, sinc_h, alpha, gamma, eps) = (c[0], c[1], c[3], c[7], c[9]);
+            let b = self.modes.gains[i];
+            let load = alpha * f0 + gamma * kappa_0 + eps * lambda_0;
+            let qi = cos * s.q[i] + sinc_h * s.q_dot[i] + b * load;
+            w += b * qi;
+        }
+        let (h2, m) = (h * h, self.m_h);
+        let x = s.head.x + h * s.head.v - h2 * f0 / (3.0 * m)
+            + h2 * h2 * kappa_0 / (12.0 * m)
+            + h2 * h2 * h * lambda_0 / (30.0 * m);
+        x - w
+    }
+
     /// Kinetic, modal strain, contact and residual-spring energy \[J\].
     fn energy(&self, s: &Motion) -> f64 {
         let modal: f64 = (0..s.q.len())
@@ -803,7 +845,7 @@ pub fn run_modes(
         law,
         t_scale,
         options,
-        (0.0, ForceHold::Linear, false),
+        (0.0, ForceHold::Linear, EarlyStop::Never),
         None,
     )?;
     Ok(outcome)
@@ -822,7 +864,7 @@ pub fn run_modes_against(
     force_scale: f64,
 ) -> Result<ImpactOutcome, ImpactError> {
     let hold = (force_scale, ForceHold::Linear);
-    Ok(run_held_against(modes, head, law, t_scale, options, hold, false)?.0)
+    Ok(run_held_against(modes, head, law, t_scale, options, hold, EarlyStop::Never)?.0)
 }
 
 /// [`run_modes_against`] with the force held quadratic over each step ([`ForceHold::Quadratic`]:
@@ -836,7 +878,7 @@ pub fn run_modes_quadratic_against(
     force_scale: f64,
 ) -> Result<ImpactOutcome, ImpactError> {
     let hold = (force_scale, ForceHold::Quadratic);
-    Ok(run_held_against(modes, head, law, t_scale, options, hold, false)?.0)
+    Ok(run_held_against(modes, head, law, t_scale, options, hold, EarlyStop::Never)?.0)
 }
 
 /// The margin [`largest_peak_quadratic_against`] keeps between the energy bound on every later
@@ -857,7 +899,7 @@ pub fn run_modes_cubic_against(
     force_scale: f64,
 ) -> Result<ImpactOutcome, ImpactError> {
     let hold = (force_scale, ForceHold::Cubic);
-    Ok(run_held_against(modes, head, law, t_scale, options, hold, false)?.0)
+    Ok(run_held_against(modes, head, law, t_scale, options, hold, EarlyStop::Never)?.0)
 }
 
 /// A run for its largest peak force ([`largest_peak_quadratic_against`]).
@@ -879,6 +921,23 @@ pub enum PeakRunEnd {
     /// so far (the energy bound of [`largest_peak_quadratic_against`]), so the contacts after
     /// it were not followed.
     Settled(f64),
+    /// Stopped at the end of the contact that reached the threshold force
+    /// ([`threshold_cubic_against`]), at this time \[s\].
+    Reached(f64),
+    /// Stopped in free flight at this time \[s\]: every contact so far stayed below the
+    /// threshold force and no later contact can reach it ([`threshold_cubic_against`]).
+    StaysBelow(f64),
+}
+
+/// When a run may stop before the bodies part for good.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum EarlyStop {
+    /// Never: every contact is followed.
+    Never,
+    /// Once no later contact can pass the largest peak so far.
+    LargestKnown,
+    /// Once a contact has reached this force \[N\], or no later contact can.
+    Threshold(f64),
 }
 
 /// [`run_modes_quadratic_against`] for its largest peak alone, with the elastic law `law`: the
@@ -929,6 +988,34 @@ pub fn largest_peak_cubic_against(
     )
 }
 
+/// [`run_modes_cubic_against`] asked only whether any contact reaches the force `threshold`
+/// \[N\] (> 0), with the elastic law `law`: the run stops at the end of the first contact whose
+/// peak reaches it ([`PeakRunEnd::Reached`]), or in free flight once no later contact can reach
+/// it ([`PeakRunEnd::StaysBelow`]: the energy bound of [`largest_peak_quadratic_against`] below
+/// the threshold's energy U_c(δ(F)) + ½ R F² by [`SETTLE_MARGIN`]), else at the run's own end.
+/// The contacts followed are the full run's first ones bit for bit, so the answer is the full
+/// run's: it reaches the threshold exactly when its largest peak does.
+pub fn threshold_cubic_against(
+    modes: &TipModes,
+    head: Head,
+    law: &Hertz,
+    t_scale: f64,
+    options: &ModalOptions,
+    force_scale: f64,
+    threshold: f64,
+) -> Result<LargestPeakRun, ImpactError> {
+    if !(threshold.is_finite() && threshold > 0.0) {
+        return Err(ImpactError::invalid("threshold", threshold, "> 0 N"));
+    }
+    let hold = (force_scale, ForceHold::Cubic);
+    let stop = EarlyStop::Threshold(threshold);
+    let (outcome, stopped) = run_held_against(modes, head, law, t_scale, options, hold, stop)?;
+    Ok(LargestPeakRun {
+        contacts: outcome.contacts,
+        end: stopped.unwrap_or(PeakRunEnd::Ended(outcome.ended)),
+    })
+}
+
 /// The largest-peak run with the hold `hold.1` against `hold.0` \[N\].
 fn largest_peak_held_against(
     modes: &TipModes,
@@ -938,18 +1025,16 @@ fn largest_peak_held_against(
     options: &ModalOptions,
     hold: (f64, ForceHold),
 ) -> Result<LargestPeakRun, ImpactError> {
-    let (outcome, settled) = run_held_against(modes, head, law, t_scale, options, hold, true)?;
+    let stop = EarlyStop::LargestKnown;
+    let (outcome, stopped) = run_held_against(modes, head, law, t_scale, options, hold, stop)?;
     Ok(LargestPeakRun {
         contacts: outcome.contacts,
-        end: match settled {
-            Some(t) => PeakRunEnd::Settled(t),
-            None => PeakRunEnd::Ended(outcome.ended),
-        },
+        end: stopped.unwrap_or(PeakRunEnd::Ended(outcome.ended)),
     })
 }
 
 /// The run with the hold `hold.1`, its tolerance measured against at least `hold.0` \[N\]
-/// (checked: finite, ≥ 0); `settle`: stop once no later contact can pass the largest peak.
+/// (checked: finite, ≥ 0), stopped early by `stop`; how it stopped, when it did.
 fn run_held_against(
     modes: &TipModes,
     head: Head,
@@ -957,8 +1042,8 @@ fn run_held_against(
     t_scale: f64,
     options: &ModalOptions,
     hold: (f64, ForceHold),
-    settle: bool,
-) -> Result<(ImpactOutcome, Option<f64>), ImpactError> {
+    stop: EarlyStop,
+) -> Result<(ImpactOutcome, Option<PeakRunEnd>), ImpactError> {
     let (force_scale, hold) = hold;
     if !(force_scale.is_finite() && force_scale >= 0.0) {
         return Err(ImpactError::invalid("force scale", force_scale, "≥ 0 N"));
@@ -969,7 +1054,7 @@ fn run_held_against(
         law,
         t_scale,
         options,
-        (force_scale, hold, settle),
+        (force_scale, hold, stop),
         None,
     )
 }
@@ -991,25 +1076,25 @@ pub fn run_modes_traced(
         law,
         t_scale,
         options,
-        (0.0, ForceHold::Linear, false),
+        (0.0, ForceHold::Linear, EarlyStop::Never),
         Some(&mut trace),
     )?;
     Ok((outcome, trace))
 }
 
-/// The run of [`run_modes`] and its variants: `(force_scale, hold, settle)` are the force \[N\]
-/// the tolerance is measured against at least, how the force is held over a step, and whether to
-/// stop in free flight once no later contact can pass the largest peak (an elastic law only;
-/// [`largest_peak_quadratic_against`]), returning when it stopped.
+/// The run of [`run_modes`] and its variants: `(force_scale, hold, stop)` are the force \[N\]
+/// the tolerance is measured against at least, how the force is held over a step, and when the
+/// run may stop early (an elastic law only; [`largest_peak_quadratic_against`],
+/// [`threshold_cubic_against`]), returning how it stopped when it did.
 fn run_modes_inner(
     modes: &TipModes,
     head: Head,
     law: &dyn ContactLaw,
     t_scale: f64,
     options: &ModalOptions,
-    (force_scale, hold, settle): (f64, ForceHold, bool),
+    (force_scale, hold, stop): (f64, ForceHold, EarlyStop),
     mut trace: Option<&mut ContactTrace>,
-) -> Result<(ImpactOutcome, Option<f64>), ImpactError> {
+) -> Result<(ImpactOutcome, Option<PeakRunEnd>), ImpactError> {
     options.validate()?;
     if !(t_scale.is_finite() && t_scale > 0.0) {
         return Err(ImpactError::invalid("contact time scale", t_scale, "> 0 s"));
@@ -1060,9 +1145,9 @@ fn run_modes_inner(
     let mut steps = 0usize;
     let window = options.window_s;
     let ended;
-    // the largest stepped force so far and its indentation, and when the run settled
+    // the largest stepped force so far and its indentation, and how the run stopped early
     let mut top = (0.0_f64, 0.0_f64);
-    let mut settled = None;
+    let mut stopped = None;
     // the storage of the last spent motion, for the next contact step
     let mut spare: Option<Buffers> = None;
     'run: loop {
@@ -1234,12 +1319,26 @@ fn run_modes_inner(
             ended = RunEnd::FirstSeparation;
             break;
         }
-        // no later contact can pass the largest peak so far: the run's largest is known
-        if settle
-            && let Some(later) = int.later_peak_energy(&s)
-            && later < (1.0 - SETTLE_MARGIN) * int.peak_energy(top)
-        {
-            settled = Some(s.t);
+        stopped = match stop {
+            EarlyStop::Never => None,
+            // no later contact can pass the largest peak so far: the run's largest is known
+            EarlyStop::LargestKnown => int
+                .later_peak_energy(&s)
+                .is_some_and(|later| later < (1.0 - SETTLE_MARGIN) * int.peak_energy(top))
+                .then_some(PeakRunEnd::Settled(s.t)),
+            // a contact reached the threshold, or no later contact can
+            EarlyStop::Threshold(f) => {
+                if contacts.last().is_some_and(|c| c.peak_force_n >= f) {
+                    Some(PeakRunEnd::Reached(s.t))
+                } else {
+                    let at_f = int.peak_energy((f, law.elastic().indentation(f)));
+                    int.later_peak_energy(&s)
+                        .is_some_and(|later| later < (1.0 - SETTLE_MARGIN) * at_f)
+                        .then_some(PeakRunEnd::StaysBelow(s.t))
+                }
+            }
+        };
+        if stopped.is_some() {
             ended = RunEnd::Window(s.t);
             break;
         }
@@ -1302,7 +1401,7 @@ fn run_modes_inner(
             reason: "the integration lost finiteness".into(),
         });
     }
-    Ok((out, settled))
+    Ok((out, stopped))
 }
 
 /// The first τ > 0 \[s\] at which c₀ + c₁ τ + c₂ τ² (c₂ ≥ 0) reaches 0, when it starts at or
@@ -1505,10 +1604,7 @@ fn cubic_vertex(z: (f64, f64), a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> (
 /// The h′ ∈ (0, h] at which the gap closes, the force falling linearly from f₀ to 0 over h′
 /// (Illinois regula falsi on δ(h′)).
 fn separation_step(int: &Integrator<'_>, s: &Motion, h: f64, before: Option<Before>) -> f64 {
-    let gap = |h: f64| {
-        let k = StepCoefficients::new(int.modes, h);
-        int.predict(s, &k, before).d
-    };
+    let gap = |h: f64| int.unloaded_gap(s, h, before);
     illinois(gap, 0.0, s.delta, h, gap(h), 1e-13 * h)
 }
 
@@ -1519,7 +1615,7 @@ fn separation_step(int: &Integrator<'_>, s: &Motion, h: f64, before: Option<Befo
 /// probe 1e-9 of the jump in finds. A gap already closing at the probe is a contact that never
 /// opened: its onset is the probe, so the run advances.
 fn onset_in(int: &Integrator<'_>, s: &Motion, jump: f64) -> Motion {
-    let gap = |h: f64| int.step_unloaded(s, h, None).delta;
+    let gap = |h: f64| int.free_gap(s, h);
     let (mut a, mut ga) = (0.0, s.delta);
     if ga >= 0.0 {
         a = 1e-9 * jump;

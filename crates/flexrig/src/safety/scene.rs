@@ -32,7 +32,8 @@ use crate::Error;
 use crate::driven::scene::{DrivenScene, note_text};
 use crate::driven::strike::{LinkModel, StrikeDesign};
 use crate::safety::simulation::{
-    ContactsAtRoot, Peaks, RootStep, SCAN_START_OF_GUESS, Scan, SceneSimulation,
+    ContactsAtRoot, Peaks, RootStep, SCAN_START_OF_GUESS, SCENE_REFINE_RUNS, Scan,
+    SceneSimulation,
     SimulationSettings, refine, scan_up,
 };
 
@@ -278,7 +279,13 @@ fn smallest_scene_speed(
                 let below = 0.5 * above;
                 let r = ratio(below)?;
                 if r < 1.0 {
-                    return refine((below, r), (above, r_above), settings.root_rtol, &mut ratio);
+                    return refine(
+                        (below, r),
+                        (above, r_above),
+                        settings.root_rtol,
+                        SCENE_REFINE_RUNS,
+                        &mut ratio,
+                    );
                 }
                 (above, r_above) = (below, r);
             }

@@ -18,6 +18,7 @@ use flexrig_impact::cl_modal::head_at_onset;
 use flexrig_impact::graded::{GradedMesh, cl_tip_modes};
 use flexrig_impact::modal_run::{
     ModalOptions, PeakRunEnd, largest_peak_cubic_against, run_modes_cubic_against,
+    threshold_cubic_against,
 };
 use flexrig_impact::{FreeMassImpact, ImpactError, Joint, LinkParams, RunEnd};
 use flexrig_safety::{EnergyContact, GoverningLimit, PressureCrossing};
@@ -256,6 +257,17 @@ pub struct FeRuns {
     done: Vec<(u64, SimulatedPeak, bool)>,
 }
 
+/// What a run is asked ([`FeRuns::run_at`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Ask {
+    /// Every contact until the bodies part for good.
+    Whole,
+    /// The largest peak: stopped once no later contact can pass the largest so far.
+    Largest,
+    /// The screen: at the screen's tolerance, whether any contact reaches this force \[N\].
+    Below(f64),
+}
+
 /// The stopping rule of every simulated impact: the run follows contact after contact and ends
 /// when the bodies have **parted for good** — their rigid motions carry them apart and the gap is
 /// larger than the most the link's vibrating tip can ever reach (the sum over the flexible modes
@@ -340,7 +352,8 @@ impl FeRuns {
         {
             return Ok(self.done[i].1);
         }
-        let (peak, complete) = self.run_at(v, !whole)?;
+        let ask = if whole { Ask::Whole } else { Ask::Largest };
+        let (peak, complete) = self.run_at(v, ask)?;
         match known {
             Some(i) => self.done[i] = (v.to_bits(), peak, complete),
             None => self.done.push((v.to_bits(), peak, complete)),
@@ -348,9 +361,27 @@ impl FeRuns {
         Ok(peak)
     }
 
-    /// The run at `v` [m/s] (`settle`: stopped once its largest peak is known) and whether it
-    /// was followed until the bodies parted for good.
-    fn run_at(&mut self, v: f64, settle: bool) -> Result<(SimulatedPeak, bool), Error> {
+    /// The screen at `v` [m/s]: a run at the screen's looser tolerance
+    /// ([`SCREEN_TOL_FACTOR`] × the searches') asked only whether a contact reaches `threshold`
+    /// \[N\] ([`flexrig_impact::modal_run::threshold_cubic_against`]). The largest peak of its
+    /// contacts \[N\] when none does, `None` when one does. Not remembered: the searches' own
+    /// runs at `v` are a different run.
+    pub fn screen(
+        &mut self,
+        v: f64,
+        threshold: f64,
+        stop: &AtomicBool,
+    ) -> Result<Option<f64>, Error> {
+        if stop.load(Ordering::Relaxed) {
+            return Err(Error::Impact(ImpactError::Interrupted));
+        }
+        let (peak, _) = self.run_at(v, Ask::Below(threshold))?;
+        Ok((peak.peak_force_n < threshold).then_some(peak.peak_force_n))
+    }
+
+    /// The run at `v` [m/s] asked `ask`, and whether it was followed until the bodies parted
+    /// for good.
+    fn run_at(&mut self, v: f64, ask: Ask) -> Result<(SimulatedPeak, bool), Error> {
         self.runs += 1;
         let settings = &self.impact.settings;
         let setup = self.impact.setup_at(v);
@@ -358,8 +389,12 @@ impl FeRuns {
         // the free hub's initial modal rates are linear in v (a held joint's are 0)
         let scale = v / self.guess;
         m.rates.iter_mut().for_each(|r| *r *= scale);
+        let hold_tol = match ask {
+            Ask::Below(_) => SEARCH_HOLD_TOL * SCREEN_TOL_FACTOR,
+            Ask::Whole | Ask::Largest => SEARCH_HOLD_TOL,
+        };
         let options = ModalOptions {
-            tol: settings.tol * SEARCH_HOLD_TOL,
+            tol: settings.tol * hold_tol,
             window_s: Some(PARTING_GUARD_S),
             max_steps: MAX_IMPACT_STEPS,
         };
@@ -367,25 +402,30 @@ impl FeRuns {
         // and the quadratic hold at the same accuracy of the answer
         setup.validate()?;
         let (head, t_scale) = (head_at_onset(&setup), setup.payload_contact_time());
-        let (contacts, end) = if settle {
-            // an undamped law (the searches' damping is none): the energy bound holds
-            let run = largest_peak_cubic_against(
-                &m,
-                head,
-                &setup.contact,
-                t_scale,
-                &options,
-                self.force_scale,
-            )?;
-            (run.contacts, run.end)
-        } else {
-            let law = setup.law()?;
-            let outcome =
-                run_modes_cubic_against(&m, head, &*law, t_scale, &options, self.force_scale)?;
-            (outcome.contacts, PeakRunEnd::Ended(outcome.ended))
+        // an undamped law (the searches' damping is none): the energy bounds hold
+        let (law, force_scale) = (&setup.contact, self.force_scale);
+        let (contacts, end) = match ask {
+            Ask::Largest => {
+                let run = largest_peak_cubic_against(&m, head, law, t_scale, &options, force_scale)?;
+                (run.contacts, run.end)
+            }
+            Ask::Below(f) => {
+                let run =
+                    threshold_cubic_against(&m, head, law, t_scale, &options, force_scale, f)?;
+                (run.contacts, run.end)
+            }
+            Ask::Whole => {
+                let law = setup.law()?;
+                let outcome =
+                    run_modes_cubic_against(&m, head, &*law, t_scale, &options, force_scale)?;
+                (outcome.contacts, PeakRunEnd::Ended(outcome.ended))
+            }
         };
         let parted_at_s = match end {
-            PeakRunEnd::Ended(RunEnd::PartedForGood(t)) | PeakRunEnd::Settled(t) => t,
+            PeakRunEnd::Ended(RunEnd::PartedForGood(t))
+            | PeakRunEnd::Settled(t)
+            | PeakRunEnd::Reached(t)
+            | PeakRunEnd::StaysBelow(t) => t,
             PeakRunEnd::Ended(RunEnd::Window(t) | RunEnd::StepBudget(t) | RunEnd::Rebound(t)) => {
                 return Err(Error::NonFinite {
                     what: format!("simulated impact at {} m/s", display(v)),
@@ -401,7 +441,7 @@ impl FeRuns {
             }
             PeakRunEnd::Ended(RunEnd::FirstSeparation) => contacts[0].duration_s,
         };
-        let complete = !matches!(end, PeakRunEnd::Settled(_));
+        let complete = matches!(end, PeakRunEnd::Ended(_));
         let (index, top) =
             contacts
                 .iter()
@@ -501,8 +541,16 @@ pub fn smallest_speed_at(
 /// reach `force`) — or from the grid index `from` when that is higher, a speed already known to
 /// stay below `force` (the scan of a smaller force ended there) — to the first speed at which it
 /// is reached, then the Illinois false position on ln v between that speed and the one before
-/// (relative width `rtol`). +∞ when no speed up to [`SCAN_TOP_MPS`] reaches it. Each evaluation
-/// goes to `trace` when given.
+/// (relative width `rtol`, at most [`REFINE_RUNS`] runs; [`refine`]). +∞ when no speed up to
+/// [`SCAN_TOP_MPS`] reaches it. Each evaluation goes to `trace` when given.
+///
+/// **The screen.** Each grid speed is first run at the screen's looser tolerance
+/// ([`FeRuns::screen`]): when every contact stays below [`SCREEN_MARGIN`] × `force` the speed is
+/// below the limit, and the search's own run is not needed. Only speeds whose screen reaches
+/// that fraction are run at the search's tolerance, and the last speed below the limit is run at
+/// it too before the refinement, so the answer is the unscreened scan's. Should that run reach
+/// the limit after all (a screen and a search run more than 1/[`SCREEN_MARGIN`] apart), the scan
+/// is done again without the screen.
 pub fn smallest_speed_on_grid(
     runs: &mut FeRuns,
     force: f64,
@@ -511,6 +559,26 @@ pub fn smallest_speed_on_grid(
     stop: &AtomicBool,
     mut trace: Option<&mut Vec<RootStep>>,
 ) -> Result<GridCrossing, Error> {
+    let screened = scan_grid(runs, force, from, rtol, stop, trace.as_deref_mut(), true)?;
+    match screened {
+        Some(crossing) => Ok(crossing),
+        None => Ok(scan_grid(runs, force, from, rtol, stop, trace, false)?
+            .expect("an unscreened scan always answers")),
+    }
+}
+
+/// The scan of [`smallest_speed_on_grid`], each grid speed screened first when `screen` is
+/// true; `None` when the search's run at the last screened speed below reaches the limit (the
+/// screen disagreed with the search: the caller scans again without it).
+fn scan_grid(
+    runs: &mut FeRuns,
+    force: f64,
+    from: Option<i32>,
+    rtol: f64,
+    stop: &AtomicBool,
+    mut trace: Option<&mut Vec<RootStep>>,
+    screen: bool,
+) -> Result<Option<GridCrossing>, Error> {
     let floor = runs.energy_floor(force);
     if !(floor.is_finite() && floor > 0.0) {
         return Err(Error::NonFinite {
@@ -519,51 +587,96 @@ pub fn smallest_speed_on_grid(
             advice: "use moderate masses, stiffnesses and limits".into(),
         });
     }
-    let mut eval = |v: f64, trace: &mut Option<&mut Vec<RootStep>>| -> Result<f64, Error> {
-        let r = runs.peak(v, stop)? / force;
+    let note = |trace: &mut Option<&mut Vec<RootStep>>, v: f64, r: f64, screened: bool| {
         if let Some(t) = trace.as_deref_mut() {
             t.push(RootStep {
                 speed_mps: v,
                 ratio: r,
+                screened,
             });
         }
-        Ok(r)
+    };
+    // the search's run at v: its largest peak over the limit
+    let eval = |runs: &mut FeRuns, v: f64, trace: &mut Option<&mut Vec<RootStep>>| {
+        let r = runs.peak(v, stop)? / force;
+        note(trace, v, r, false);
+        Ok::<f64, Error>(r)
+    };
+    // a grid speed: screened first; (ratio, whether the screen decided it)
+    let grid = |runs: &mut FeRuns, v: f64, trace: &mut Option<&mut Vec<RootStep>>| {
+        if screen && let Some(peak) = runs.screen(v, SCREEN_MARGIN * force, stop)? {
+            note(trace, v, peak / force, true);
+            return Ok::<(f64, bool), Error>((peak / force, true));
+        }
+        Ok((eval(runs, v, trace)?, false))
     };
     let mut k = grid_index_at_or_below(floor).max(from.unwrap_or(i32::MIN));
-    let mut r_below = eval(grid_speed(k), &mut trace)?;
+    let (mut r_below, mut below_screened) = grid(runs, grid_speed(k), &mut trace)?;
     if r_below >= 1.0 {
         // reached at the first speed (at the floor, within the run's error: a rigid link)
-        return Ok(GridCrossing {
+        return Ok(Some(GridCrossing {
             speed: grid_speed(k),
             below: None,
-        });
+        }));
     }
     let r_above = loop {
         let next = grid_speed(k + 1);
         if next > SCAN_TOP_MPS {
-            return Ok(GridCrossing {
+            return Ok(Some(GridCrossing {
                 speed: f64::INFINITY,
                 below: Some(k),
-            });
+            }));
         }
-        let r = eval(next, &mut trace)?;
+        let (r, screened) = grid(runs, next, &mut trace)?;
         if r >= 1.0 {
             break r;
         }
         k += 1;
-        r_below = r;
+        (r_below, below_screened) = (r, screened);
     };
+    if below_screened {
+        // the refinement starts from the search's own run at the last speed below
+        r_below = eval(runs, grid_speed(k), &mut trace)?;
+        if r_below >= 1.0 {
+            return Ok(None);
+        }
+    }
     let speed = refine(
         (grid_speed(k), r_below),
         (grid_speed(k + 1), r_above),
         rtol,
-        &mut |v| eval(v, &mut trace),
+        REFINE_RUNS,
+        &mut |v| eval(runs, v, &mut trace),
     )?;
-    Ok(GridCrossing {
+    Ok(Some(GridCrossing {
         speed,
         below: Some(k),
-    })
+    }))
 }
+
+/// The most runs of a simulated search's refinement ([`refine`]): on the 30 × 30 hand map of
+/// docs/performance.md, 1 702 of its 1 800 refinements needed 3 runs or fewer and 39 needed 5 or
+/// 6; the 59 that needed 7 to 22 were rattles whose largest contact jumps between speeds closer
+/// than the root tolerance. With this budget those return the highest speed run below the limit,
+/// at most 0.93 % below the unbudgeted answer.
+pub const REFINE_RUNS: usize = 6;
+
+/// The most runs of the scenes' and the test bed's refinements ([`scan_up`], [`refine`]): a
+/// guard only, their ratios (one smooth scene run per speed) converge in a few.
+pub const SCENE_REFINE_RUNS: usize = 200;
+
+/// The screen's tolerance as a multiple of the searches' ([`FeRuns::screen`]): 1e-4 at the
+/// default `--tol`, about a fifth of the search's steps per contact.
+pub const SCREEN_TOL_FACTOR: f64 = 1000.0;
+
+/// A grid speed whose screen keeps every contact below this fraction of the limit is below the
+/// limit without the search's run ([`smallest_speed_on_grid`]). Over the 18 433 grid speeds of
+/// the 30 × 30 hand map of docs/performance.md, the search's largest peak was within 1e-3 of the
+/// screen's at most speeds and at most 1.64 times it at any (a rattle whose largest contact
+/// depends on round-off: any change of step moves it that much); 0.6 < 1/1.64, so no screen
+/// there passed a speed whose search reaches the limit, and the map is the unscreened one bit
+/// for bit.
+pub const SCREEN_MARGIN: f64 = 0.6;
 
 /// What a scan from below found.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -595,6 +708,7 @@ pub fn scan_up(
             t.push(RootStep {
                 speed_mps: v,
                 ratio: r,
+                screened: false,
             });
         }
         Ok(r)
@@ -622,6 +736,7 @@ pub fn scan_up(
         (below, r_below),
         (above, r_above),
         rtol,
+        SCENE_REFINE_RUNS,
         &mut |v| eval(v, &mut trace),
     )?))
 }
@@ -636,21 +751,29 @@ pub fn scan_ahead(v: f64) -> Vec<f64> {
 }
 
 /// The Illinois false position on ln v for ln(ratio) = 0 between `below` (ratio < 1) and
-/// `above` (ratio ≥ 1), each (speed [m/s], ratio), to the relative width `rtol`; the upper end
-/// of the final bracket (a speed at which the limit is reached).
+/// `above` (ratio ≥ 1), each (speed [m/s], ratio), to the relative width `rtol`: the upper end
+/// of the final bracket (a speed at which the limit is reached). A ratio smooth on the bracket
+/// gets there in a few runs; one that has not after `max_runs` is not smooth there (a rattle
+/// whose largest contact changes from one speed to the next), and the lower end is returned:
+/// the highest speed run below the limit, every speed run above it having reached the limit —
+/// the conservative end of what the runs showed.
 pub fn refine(
     below: (f64, f64),
     above: (f64, f64),
     rtol: f64,
+    max_runs: usize,
     ratio: &mut dyn FnMut(f64) -> Result<f64, Error>,
 ) -> Result<f64, Error> {
     let (mut a, mut b) = (below.0.ln(), above.0.ln());
     let mut ga = below.1.ln();
     let mut gb = above.1.ln();
     let mut side = 0;
-    for _ in 0..200 {
+    for run in 0.. {
         if (b - a).abs() < rtol || gb == 0.0 {
             break;
+        }
+        if run == max_runs {
+            return Ok(a.exp());
         }
         let x = if gb.is_finite() && ga.is_finite() && gb != ga {
             (a * gb - b * ga) / (gb - ga)
@@ -810,6 +933,9 @@ pub struct RootStep {
     pub speed_mps: f64,
     /// Peak over limit at that speed.
     pub ratio: f64,
+    /// True for a screen ([`FeRuns::screen`]): a run at the screen's looser tolerance whose
+    /// every contact stayed below [`SCREEN_MARGIN`] × the limit.
+    pub screened: bool,
 }
 
 /// The speed at which `ratio(v)` (peak over limit, increasing in v) equals 1: a bracket grown by
@@ -827,6 +953,7 @@ pub fn speed_at_ratio(
             t.push(RootStep {
                 speed_mps: x.exp(),
                 ratio: r,
+                screened: false,
             });
         }
         Ok(r.ln())

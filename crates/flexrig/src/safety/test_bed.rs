@@ -32,7 +32,8 @@ use flexrig_safety::{EnergyContact, Limits, PressureCrossing};
 use crate::Error;
 use crate::driven::strike::StrikeDesign;
 use crate::safety::simulation::{
-    ContactsAtRoot, RootStep, Scan, SceneSimulation, SimulationSettings, refine, scan_up,
+    ContactsAtRoot, RootStep, SCENE_REFINE_RUNS, Scan, SceneSimulation, SimulationSettings, refine,
+    scan_up,
 };
 use crate::safety::simulation::{Peaks, SCAN_START_OF_GUESS, grid_index_at_or_below, grid_speed};
 
@@ -292,7 +293,7 @@ fn smallest_test_bed_speed(
                 let below = 0.5 * above;
                 let r = ratio(below)?;
                 if r < 1.0 {
-                    return refine((below, r), (above, r_above), rtol, &mut ratio).map(Some);
+                    return refine((below, r), (above, r_above), rtol, SCENE_REFINE_RUNS, &mut ratio).map(Some);
                 }
                 (above, r_above) = (below, r);
             }
