@@ -208,7 +208,9 @@ fn the_single_point_simulation_is_the_maps_cell() {
 /// The pressure's scan may start where the force's found its last speed below the force limit:
 /// a larger force f₂ ≥ F is first reached no lower than F is. Started there, it finds the same
 /// speed, bit for bit, as the scan from f₂'s own energy floor (both on the one grid, the runs at
-/// equal speeds equal), with fewer new runs; and a speed asked again is not run again.
+/// equal speeds equal), with no more new search runs (fewer before the screen, which now
+/// decides the low speeds the chained scan skips at a tenth of a run each); and a speed asked
+/// again is not run again.
 #[test]
 fn the_larger_forces_scan_from_the_smaller_ones_end_finds_the_same_speed() {
     use flexrig::safety::simulation::{FeImpact, smallest_speed_on_grid};
@@ -227,20 +229,174 @@ fn the_larger_forces_scan_from_the_smaller_ones_end_finds_the_same_speed() {
     let (f1, f2, rtol) = (280.0, 600.0, 1e-6);
     let mut chained = impact.prepare(1.0).unwrap().against(f1);
     let first = smallest_speed_on_grid(&mut chained, f1, None, rtol, &stop, None).unwrap();
-    let before = chained.runs;
+    // the searches' own runs (the screens' are a tenth of the work each)
+    let searches = |r: &flexrig::safety::simulation::FeRuns| r.runs - r.screens;
+    let before = searches(&chained);
     let second = smallest_speed_on_grid(&mut chained, f2, first.below, rtol, &stop, None).unwrap();
-    let chained_new_runs = chained.runs - before;
+    let chained_new_runs = searches(&chained) - before;
     let mut alone = impact.prepare(1.0).unwrap().against(f1);
     let own = smallest_speed_on_grid(&mut alone, f2, None, rtol, &stop, None).unwrap();
     assert!(first.speed.is_finite() && first.speed < second.speed);
     assert_eq!(second.speed.to_bits(), own.speed.to_bits());
     assert!(
-        chained_new_runs < alone.runs,
+        chained_new_runs <= searches(&alone),
         "{chained_new_runs} new runs after the force's scan, {} alone",
-        alone.runs
+        searches(&alone)
     );
     let runs = chained.runs;
     let again = chained.peak(second.speed, &stop).unwrap();
     assert_eq!(chained.runs, runs);
     assert!(again >= f2, "the root's run reaches the force: {again} N");
+}
+
+/// The screen changes how many runs a search takes, never its answer: on the hand's designs (a
+/// soft CJ, a CL of the map's rattling corner, a middling and a stiff CL) the screened search
+/// finds the speed, bit for bit, of the scan written out here without it — the search's own run
+/// at every grid speed from the energy floor up to the first that reaches the limit, then the
+/// refinement — and the screen decided speeds on the way (it is not idle).
+#[test]
+fn the_screen_leaves_the_searchs_speed_bit_for_bit() {
+    use flexrig::safety::simulation::{
+        FeImpact, REFINE_RUNS, grid_index_at_or_below, grid_speed, refine, smallest_speed_on_grid,
+    };
+    use std::sync::atomic::AtomicBool;
+    let stop = AtomicBool::new(false);
+    let (force, rtol) = (280.0, 1e-6);
+    let mut screened_steps = 0;
+    for (m_e, k_delta, link) in [
+        (0.05, 2e4, FeLink::CompliantJoint),
+        (0.01, 16.102_620_275_609_397, FeLink::CompliantLink),
+        (0.1, 2e3, FeLink::CompliantLink),
+        (1.0, 1e5, FeLink::CompliantLink),
+    ] {
+        let impact = FeImpact {
+            m_h: 0.6,
+            hertz: flexrig_contact::Hertz::new(7.359e7, 1.961).unwrap(),
+            m_r: 0.051,
+            m_e,
+            k_delta,
+            link,
+            settings: SimulationSettings::DEFAULT,
+        };
+        let mut runs = impact.prepare(1.0).unwrap().against(force);
+        let mut trace = Vec::new();
+        let ours =
+            smallest_speed_on_grid(&mut runs, force, None, rtol, &stop, Some(&mut trace)).unwrap();
+        screened_steps += trace.iter().filter(|s| s.screened).count();
+        // the unscreened scan, on runs of its own
+        let mut plain = impact.prepare(1.0).unwrap().against(force);
+        let mut k = grid_index_at_or_below(plain.energy_floor(force));
+        let mut ratio =
+            |v: f64| -> Result<f64, flexrig::Error> { Ok(plain.peak(v, &stop)? / force) };
+        let mut r_below = ratio(grid_speed(k)).unwrap();
+        assert!(r_below < 1.0, "{m_e} {k_delta}");
+        let r_above = loop {
+            let r = ratio(grid_speed(k + 1)).unwrap();
+            if r >= 1.0 {
+                break r;
+            }
+            k += 1;
+            r_below = r;
+        };
+        let theirs = refine(
+            (grid_speed(k), r_below),
+            (grid_speed(k + 1), r_above),
+            rtol,
+            REFINE_RUNS,
+            &mut ratio,
+        )
+        .unwrap();
+        assert_eq!(
+            ours.speed.to_bits(),
+            theirs.to_bits(),
+            "{m_e} {k_delta} {link:?}"
+        );
+        assert_eq!(ours.below, Some(k), "{m_e} {k_delta} {link:?}");
+    }
+    assert!(screened_steps >= 20, "{screened_steps} speeds screened");
+}
+
+/// A screen that passes a speed the search does not is caught at the last speed below the
+/// limit, and the scan is done again without it: on a ratio v/2.05 whose screen wrongly says
+/// "below" up to 2.2 m/s, the screened scan finds the unscreened scan's speed, 2.05 m/s, not
+/// the 2.28 m/s the wrong screen alone would give; a truthful screen finds it with fewer
+/// searches.
+#[test]
+fn a_screen_that_errs_never_sets_the_speed() {
+    use flexrig::safety::simulation::{GridRun, grid_index_at_or_below, scan_grid};
+    // the ratio v/2.05 (searches counted); the liar's screen says "below" up to 2.2 m/s
+    fn run(
+        liar: bool,
+        searches: &mut usize,
+    ) -> impl FnMut(f64, GridRun) -> Result<Option<f64>, flexrig::Error> + '_ {
+        move |v, run| {
+            let truth = v / 2.05;
+            Ok(match run {
+                GridRun::Search => {
+                    *searches += 1;
+                    Some(truth)
+                }
+                GridRun::Screen(_) if liar && v < 2.2 => Some(0.1),
+                GridRun::Screen(margin) => (truth < margin).then_some(truth),
+            })
+        }
+    }
+    let start = grid_index_at_or_below(1.0);
+    let (mut searches, rtol) = (0, 1e-9);
+    let plain = scan_grid(start, rtol, None, &mut run(false, &mut searches)).unwrap();
+    let plain_searches = std::mem::take(&mut searches);
+    let wrong = scan_grid(start, rtol, Some(0.65), &mut run(true, &mut searches)).unwrap();
+    searches = 0;
+    let truthful = scan_grid(start, rtol, Some(0.65), &mut run(false, &mut searches)).unwrap();
+    assert!((plain.speed / 2.05 - 1.0).abs() < 1e-8, "{plain:?}");
+    assert_eq!(wrong, plain);
+    assert_eq!(truthful, plain);
+    assert!(searches < plain_searches, "{searches} vs {plain_searches}");
+}
+
+/// The refinement stops after its budget of runs on a ratio that is not smooth on the bracket,
+/// at the conservative end: the highest speed run below the limit, below every speed run that
+/// reached it. A smooth ratio converges well within the budget, at its crossing.
+#[test]
+fn the_refinement_keeps_to_its_budget_at_the_conservative_end() {
+    use flexrig::safety::simulation::{REFINE_RUNS, refine};
+    // smooth: ln ratio linear in ln v, the crossing at 1.02 m/s
+    let mut runs = 0;
+    let smooth = refine(
+        (1.0, 1.0 / 1.02),
+        (1.05, 1.05 / 1.02),
+        1e-6,
+        REFINE_RUNS,
+        &mut |v| {
+            runs += 1;
+            Ok(v / 1.02)
+        },
+    )
+    .unwrap();
+    assert!(runs <= 3, "{runs}");
+    assert!(
+        (1.02 * (1.0 - 1e-12)..=1.02 * (1.0 + 1e-6)).contains(&smooth),
+        "{smooth}"
+    );
+    // a rattle-like ratio: above or below the limit by ±20 % at speeds 1e-7 apart
+    let mut tried: Vec<(f64, f64)> = Vec::new();
+    let rough = refine((1.0, 0.9), (1.05, 1.1), 1e-6, REFINE_RUNS, &mut |v: f64| {
+        let r = 1.0 + 0.2 * (1e7 * v).sin();
+        tried.push((v, r));
+        Ok(r)
+    })
+    .unwrap();
+    assert_eq!(tried.len(), REFINE_RUNS);
+    let below = tried
+        .iter()
+        .filter(|t| t.1 < 1.0)
+        .map(|t| t.0)
+        .fold(1.0, f64::max);
+    let reached = tried
+        .iter()
+        .filter(|t| t.1 >= 1.0)
+        .map(|t| t.0)
+        .fold(1.05, f64::min);
+    assert_eq!(rough.to_bits(), below.to_bits(), "{tried:?}");
+    assert!(rough < reached, "{rough} vs {tried:?}");
 }

@@ -179,10 +179,17 @@ impl FreeMassImpact {
     /// ½ μ v0² = k δ_max^{n+1}/(n+1), μ the reduced mass of m_h and m_e (m_e + m_r/100 when the
     /// payload is 0).
     pub fn payload_contact_time(&self) -> f64 {
+        self.payload_contact_time_with(hertz_time_integral(self.contact.n()))
+    }
+
+    /// [`Self::payload_contact_time`] from the law's time integral ∫₀¹ ds/√(1 − s^{n+1})
+    /// ([`hertz_time_integral`] of its n), which a caller running many speeds of one design
+    /// computes once: the same number.
+    pub fn payload_contact_time_with(&self, time_integral: f64) -> f64 {
         let mu = self.payload_reduced_mass();
         let (k, n) = (self.contact.k(), self.contact.n());
         let delta_max = ((n + 1.0) * mu * self.v0 * self.v0 / (2.0 * k)).powf(1.0 / (n + 1.0));
-        2.0 * delta_max / self.v0 * hertz_time_integral(n)
+        2.0 * delta_max / self.v0 * time_integral
     }
 }
 
@@ -201,7 +208,7 @@ impl FreeMassImpact {
 
 /// ∫₀¹ ds/√(1 − s^{n+1}), by s = 1 − u² (a smooth integrand 2u/√(1 − (1 − u²)^{n+1})) and
 /// composite Simpson on 400 panels (error < 1e-9; π/2 for n = 1).
-pub(crate) fn hertz_time_integral(n: f64) -> f64 {
+pub fn hertz_time_integral(n: f64) -> f64 {
     let g = |u: f64| {
         if u == 0.0 {
             2.0 / (n + 1.0).sqrt()

@@ -666,6 +666,7 @@ fn a_settled_run_keeps_the_full_runs_largest_peak() {
                             settled += 1;
                         }
                         PeakRunEnd::Ended(end) => assert_eq!(end, full.ended, "{at}"),
+                        other => panic!("{at}: a largest-peak run ended as {other:?}"),
                     }
                 }
             }
@@ -673,4 +674,108 @@ fn a_settled_run_keeps_the_full_runs_largest_peak() {
     }
     eprintln!("{settled} of {runs} runs stopped at their settled peak");
     assert!(settled >= runs / 4, "{settled} of {runs}");
+}
+
+/// A run asked only whether a contact reaches a threshold force answers as the full run does:
+/// on held CJs and CLs of the map's hand (the rattling corner included) and a free hub, at
+/// speeds across its limits and thresholds on both sides of each run's largest peak, the
+/// contacts it followed are the full run's first ones bit for bit; it stops at the first contact
+/// whose peak reaches the threshold exactly when the full run has one (and at that contact),
+/// else it keeps every peak below it; it stops early often (the energy bound is not idle), and
+/// only with a held joint when below.
+#[test]
+fn a_threshold_run_answers_as_the_full_run() {
+    use flexrig_impact::modal_run::{PeakRunEnd, threshold_cubic_against};
+    let options = ModalOptions {
+        tol: 1e-6,
+        window_s: Some(1e6),
+        max_steps: 20_000_000,
+    };
+    let (mut runs, mut early) = (0, 0);
+    for joint in [
+        Joint::Held,
+        Joint::FreeHub {
+            rotor_inertia: 1e-3,
+        },
+    ] {
+        for (m_e, k_delta) in [(0.01, 10.0), (0.01, 2e4), (0.1, 2e3), (1.0, 1e5)] {
+            for v0 in [0.8, 3.0] {
+                let s = hand(m_e, k_delta, v0, joint);
+                for cl in [false, true] {
+                    let modes = if cl {
+                        cl_tip_modes(&s, &GradedMesh::DEFAULT).unwrap()
+                    } else {
+                        Chain::cj(&s).tip_modes(&s, 0.0).unwrap()
+                    };
+                    let (head, t_scale) = (head_at_onset(&s), s.payload_contact_time());
+                    let full =
+                        run_modes_cubic_against(&modes, head, &s.contact, t_scale, &options, 280.0)
+                            .unwrap();
+                    let largest = full
+                        .contacts
+                        .iter()
+                        .map(|c| c.peak_force_n)
+                        .fold(0.0, f64::max);
+                    for threshold in [0.5 * largest, largest, 1.01 * largest, 280.0] {
+                        let ours = threshold_cubic_against(
+                            &modes, head, &s.contact, t_scale, &options, 280.0, threshold,
+                        )
+                        .unwrap();
+                        let at =
+                            format!("{joint:?} cl {cl} m_e {m_e} k {k_delta} v {v0} F {threshold}");
+                        let n = ours.contacts.len();
+                        assert_eq!(ours.contacts[..], full.contacts[..n], "{at}");
+                        let first_reaching = full
+                            .contacts
+                            .iter()
+                            .position(|c| c.peak_force_n >= threshold);
+                        runs += 1;
+                        match ours.end {
+                            PeakRunEnd::Reached(_) => {
+                                assert_eq!(first_reaching, Some(n - 1), "{at}");
+                                early += usize::from(n < full.contacts.len());
+                            }
+                            PeakRunEnd::StaysBelow(_) => {
+                                assert_eq!(first_reaching, None, "{at}");
+                                assert!(matches!(joint, Joint::Held), "{at}");
+                                assert!(n <= full.contacts.len(), "{at}");
+                                early += usize::from(n < full.contacts.len());
+                            }
+                            PeakRunEnd::Ended(end) => {
+                                assert_eq!(first_reaching, None, "{at}");
+                                assert_eq!(end, full.ended, "{at}");
+                                assert_eq!(n, full.contacts.len(), "{at}");
+                            }
+                            PeakRunEnd::Settled(_) => panic!("{at}: a threshold run never settles"),
+                        }
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("{early} of {runs} threshold runs stopped early");
+    assert!(early >= runs / 4, "{early} of {runs}");
+}
+
+/// A threshold must be a positive force: the error names it.
+#[test]
+fn a_threshold_run_refuses_a_threshold_that_is_not_a_force() {
+    use flexrig_impact::modal_run::threshold_cubic_against;
+    let s = hand(0.1, 2e3, 1.0, Joint::Held);
+    let modes = Chain::cj(&s).tip_modes(&s, 0.0).unwrap();
+    let (head, t_scale) = (head_at_onset(&s), s.payload_contact_time());
+    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let e = threshold_cubic_against(
+            &modes,
+            head,
+            &s.contact,
+            t_scale,
+            &ModalOptions::DEFAULT,
+            0.0,
+            bad,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("threshold"), "{e}");
+    }
 }

@@ -27,6 +27,7 @@ use crate::safety::point::{
     SafetyReport, safety_cancellable, simulated_peak_forces_until,
     simulation_trace_until as traced_simulation_until,
 };
+use crate::safety::simulation::{REFINE_RUNS, SCREEN_MARGIN, SCREEN_TOL_FACTOR};
 
 mod document;
 mod escape;
@@ -768,7 +769,14 @@ fn simulation_trace(
          F_max = {} N: a scan upward in steps of 4.4 % from the energy floor (the speed below \
          which no contact can store the energy of that force) to the first speed that reaches \
          it, then the Illinois false position on ln v between the last two speeds of the scan \
-         until they are closer than {:e} (relative). The rows below are the scan and the \
+         until they are closer than {:e} (relative). Each speed of the scan is first screened \
+         by a run at a tolerance {} times looser: a speed whose every contact stays below {} \
+         F_max there is below the limit (over every speed of a 30 × 30 map, a search run's \
+         largest peak was at most 1.51 times its screen's), and only the others, and the last speed below the limit, \
+         are run at the search's tolerance, so the speed found is the unscreened scan's. The \
+         refinement takes at most {} runs: a ratio not resolved by then is not smooth there (a \
+         rattle whose largest contact changes from one speed to the next), and the permissible \
+         speed is the highest speed run below the limit. The rows below are the scan and the \
          refinement ({} evaluations).",
         if fe.m_h >= crate::safety::point::CLAMPED_HUMAN_MASS {
             format!("{} kg (clamped body)", g(fe.m_h))
@@ -779,6 +787,9 @@ fn simulation_trace(
         g(fe.m_r),
         n(f),
         settings.root_rtol,
+        g(SCREEN_TOL_FACTOR),
+        g(SCREEN_MARGIN),
+        REFINE_RUNS,
         trace.len(),
     )));
     d.push(search_table(&trace, f, "speed v [m/s]"));
@@ -1049,29 +1060,36 @@ pub fn figure_svg_until(
 }
 
 /// The table of a root search's evaluations: each speed (its column named `speed_column`), the
-/// simulated peak force and its distance from the force limit `f` \[N\].
+/// simulated peak force and its distance from the force limit `f` \[N\]; when the search
+/// screened speeds, which run answered each (the screen's looser one, or the search's).
 fn search_table(steps: &[RootStep], f: f64, speed_column: &str) -> Block {
+    let screened = steps.iter().any(|s| s.screened);
     let rows = steps
         .iter()
         .enumerate()
         .map(|(i, s)| {
-            vec![
+            let mut row = vec![
                 (i + 1).to_string(),
                 format!("{:.12}", s.speed_mps),
                 format!("{:.9}", s.ratio * f),
                 format!("{:+.3e}", s.ratio - 1.0),
-            ]
+            ];
+            if screened {
+                row.push(if s.screened { "screen" } else { "search" }.into());
+            }
+            row
         })
         .collect();
-    Block::Table(
-        vec![
-            "iteration".into(),
-            speed_column.into(),
-            "simulated peak force [N]".into(),
-            "peak/F_max − 1".into(),
-        ],
-        rows,
-    )
+    let mut head: Vec<String> = vec![
+        "iteration".into(),
+        speed_column.into(),
+        "simulated peak force [N]".into(),
+        "peak/F_max − 1".into(),
+    ];
+    if screened {
+        head.push("run".into());
+    }
+    Block::Table(head, rows)
 }
 
 /// The report figure's force axis ends at this multiple of the force limit, so that every

@@ -32,8 +32,7 @@ use crate::Error;
 use crate::driven::scene::{DrivenScene, note_text};
 use crate::driven::strike::{LinkModel, StrikeDesign};
 use crate::safety::simulation::{
-    ContactsAtRoot, Peaks, RootStep, SCAN_START_OF_GUESS, SCENE_REFINE_RUNS, Scan,
-    SceneSimulation,
+    ContactsAtRoot, Peaks, RootStep, SCAN_START_OF_GUESS, SCENE_REFINE_RUNS, Scan, SceneSimulation,
     SimulationSettings, refine, scan_up,
 };
 

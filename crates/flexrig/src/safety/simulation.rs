@@ -20,6 +20,7 @@ use flexrig_impact::modal_run::{
     ModalOptions, PeakRunEnd, largest_peak_cubic_against, run_modes_cubic_against,
     threshold_cubic_against,
 };
+use flexrig_impact::setup::hertz_time_integral;
 use flexrig_impact::{FreeMassImpact, ImpactError, Joint, LinkParams, RunEnd};
 use flexrig_safety::{EnergyContact, GoverningLimit, PressureCrossing};
 use serde::{Deserialize, Serialize};
@@ -231,8 +232,10 @@ impl FeImpact {
         Ok(FeRuns {
             impact: *self,
             modes,
+            time_integral: hertz_time_integral(self.hertz.n()),
             guess,
             runs: 0,
+            screens: 0,
             force_scale: 0.0,
             done: Vec::new(),
         })
@@ -245,9 +248,13 @@ impl FeImpact {
 pub struct FeRuns {
     impact: FeImpact,
     modes: flexrig_impact::tip_modes::TipModes,
+    /// The skin law's contact-time integral (each run's time scale from it).
+    time_integral: f64,
     guess: f64,
-    /// Impacts run so far (a speed asked again is not run again).
+    /// Impacts run so far, screens included (a speed asked again is not run again).
     pub runs: usize,
+    /// How many of them were screens ([`FeRuns::screen`]).
+    pub screens: usize,
     /// The force \[N\] the integrator's tolerance is measured against at least
     /// ([`FeRuns::against`]; 0: each run's own largest force).
     force_scale: f64,
@@ -375,6 +382,7 @@ impl FeRuns {
         if stop.load(Ordering::Relaxed) {
             return Err(Error::Impact(ImpactError::Interrupted));
         }
+        self.screens += 1;
         let (peak, _) = self.run_at(v, Ask::Below(threshold))?;
         Ok((peak.peak_force_n < threshold).then_some(peak.peak_force_n))
     }
@@ -389,24 +397,27 @@ impl FeRuns {
         // the free hub's initial modal rates are linear in v (a held joint's are 0)
         let scale = v / self.guess;
         m.rates.iter_mut().for_each(|r| *r *= scale);
-        let hold_tol = match ask {
-            Ask::Below(_) => SEARCH_HOLD_TOL * SCREEN_TOL_FACTOR,
-            Ask::Whole | Ask::Largest => SEARCH_HOLD_TOL,
+        let tol = match ask {
+            // (within the integrator's range at any `--tol`)
+            Ask::Below(_) => (settings.tol * SEARCH_HOLD_TOL * SCREEN_TOL_FACTOR).min(0.1),
+            Ask::Whole | Ask::Largest => settings.tol * SEARCH_HOLD_TOL,
         };
         let options = ModalOptions {
-            tol: settings.tol * hold_tol,
+            tol,
             window_s: Some(PARTING_GUARD_S),
             max_steps: MAX_IMPACT_STEPS,
         };
         // the force held cubic over each step: fourth order, far fewer steps than the linear
         // and the quadratic hold at the same accuracy of the answer
         setup.validate()?;
-        let (head, t_scale) = (head_at_onset(&setup), setup.payload_contact_time());
+        let t_scale = setup.payload_contact_time_with(self.time_integral);
+        let head = head_at_onset(&setup);
         // an undamped law (the searches' damping is none): the energy bounds hold
         let (law, force_scale) = (&setup.contact, self.force_scale);
         let (contacts, end) = match ask {
             Ask::Largest => {
-                let run = largest_peak_cubic_against(&m, head, law, t_scale, &options, force_scale)?;
+                let run =
+                    largest_peak_cubic_against(&m, head, law, t_scale, &options, force_scale)?;
                 (run.contacts, run.end)
             }
             Ask::Below(f) => {
@@ -550,7 +561,7 @@ pub fn smallest_speed_at(
 /// that fraction are run at the search's tolerance, and the last speed below the limit is run at
 /// it too before the refinement, so the answer is the unscreened scan's. Should that run reach
 /// the limit after all (a screen and a search run more than 1/[`SCREEN_MARGIN`] apart), the scan
-/// is done again without the screen.
+/// is done again without the screen ([`scan_grid`]).
 pub fn smallest_speed_on_grid(
     runs: &mut FeRuns,
     force: f64,
@@ -559,26 +570,6 @@ pub fn smallest_speed_on_grid(
     stop: &AtomicBool,
     mut trace: Option<&mut Vec<RootStep>>,
 ) -> Result<GridCrossing, Error> {
-    let screened = scan_grid(runs, force, from, rtol, stop, trace.as_deref_mut(), true)?;
-    match screened {
-        Some(crossing) => Ok(crossing),
-        None => Ok(scan_grid(runs, force, from, rtol, stop, trace, false)?
-            .expect("an unscreened scan always answers")),
-    }
-}
-
-/// The scan of [`smallest_speed_on_grid`], each grid speed screened first when `screen` is
-/// true; `None` when the search's run at the last screened speed below reaches the limit (the
-/// screen disagreed with the search: the caller scans again without it).
-fn scan_grid(
-    runs: &mut FeRuns,
-    force: f64,
-    from: Option<i32>,
-    rtol: f64,
-    stop: &AtomicBool,
-    mut trace: Option<&mut Vec<RootStep>>,
-    screen: bool,
-) -> Result<Option<GridCrossing>, Error> {
     let floor = runs.energy_floor(force);
     if !(floor.is_finite() && floor > 0.0) {
         return Err(Error::NonFinite {
@@ -587,47 +578,84 @@ fn scan_grid(
             advice: "use moderate masses, stiffnesses and limits".into(),
         });
     }
-    let note = |trace: &mut Option<&mut Vec<RootStep>>, v: f64, r: f64, screened: bool| {
-        if let Some(t) = trace.as_deref_mut() {
+    let start = grid_index_at_or_below(floor).max(from.unwrap_or(i32::MIN));
+    // the search's run (its largest peak over the limit), or the screen's (that ratio when it
+    // stays below the margin); each evaluation to the trace
+    let mut eval = |v: f64, run: GridRun| -> Result<Option<f64>, Error> {
+        let (ratio, screened) = match run {
+            GridRun::Search => (Some(runs.peak(v, stop)? / force), false),
+            GridRun::Screen(margin) => {
+                let below = runs.screen(v, margin * force, stop)?;
+                (below.map(|peak| peak / force), true)
+            }
+        };
+        if let (Some(t), Some(r)) = (trace.as_deref_mut(), ratio) {
             t.push(RootStep {
                 speed_mps: v,
                 ratio: r,
                 screened,
             });
         }
+        Ok(ratio)
     };
-    // the search's run at v: its largest peak over the limit
-    let eval = |runs: &mut FeRuns, v: f64, trace: &mut Option<&mut Vec<RootStep>>| {
-        let r = runs.peak(v, stop)? / force;
-        note(trace, v, r, false);
-        Ok::<f64, Error>(r)
+    scan_grid(start, rtol, Some(SCREEN_MARGIN), &mut eval)
+}
+
+/// One evaluation of [`scan_grid`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum GridRun {
+    /// The search's own run: its ratio (largest peak over the limit).
+    Search,
+    /// The screen with this margin (< 1): the ratio when every contact stays below the margin
+    /// × the limit, `None` otherwise.
+    Screen(f64),
+}
+
+/// The scan of [`smallest_speed_on_grid`] from the grid index `start`, `eval` answering each
+/// speed [m/s] ([`GridRun`]), each grid speed screened first with `screen`'s margin when given.
+/// The last speed below the limit is run by the search before the refinement; should its ratio
+/// reach 1 (the screen passed a speed the search does not), the scan is done again without the
+/// screen, so a screen that errs on that speed never sets the answer.
+pub fn scan_grid(
+    start: i32,
+    rtol: f64,
+    screen: Option<f64>,
+    eval: &mut dyn FnMut(f64, GridRun) -> Result<Option<f64>, Error>,
+) -> Result<GridCrossing, Error> {
+    let search = |v: f64, eval: &mut dyn FnMut(f64, GridRun) -> Result<Option<f64>, Error>| {
+        eval(v, GridRun::Search)?.ok_or_else(|| Error::NonFinite {
+            what: format!("simulated peak at {} m/s", display(v)),
+            value: "none".into(),
+            advice: "a search run always has a peak".into(),
+        })
     };
     // a grid speed: screened first; (ratio, whether the screen decided it)
-    let grid = |runs: &mut FeRuns, v: f64, trace: &mut Option<&mut Vec<RootStep>>| {
-        if screen && let Some(peak) = runs.screen(v, SCREEN_MARGIN * force, stop)? {
-            note(trace, v, peak / force, true);
-            return Ok::<(f64, bool), Error>((peak / force, true));
+    let grid = |v: f64, eval: &mut dyn FnMut(f64, GridRun) -> Result<Option<f64>, Error>| {
+        if let Some(margin) = screen
+            && let Some(r) = eval(v, GridRun::Screen(margin))?
+        {
+            return Ok::<(f64, bool), Error>((r, true));
         }
-        Ok((eval(runs, v, trace)?, false))
+        Ok((search(v, eval)?, false))
     };
-    let mut k = grid_index_at_or_below(floor).max(from.unwrap_or(i32::MIN));
-    let (mut r_below, mut below_screened) = grid(runs, grid_speed(k), &mut trace)?;
+    let mut k = start;
+    let (mut r_below, mut below_screened) = grid(grid_speed(k), eval)?;
     if r_below >= 1.0 {
         // reached at the first speed (at the floor, within the run's error: a rigid link)
-        return Ok(Some(GridCrossing {
+        return Ok(GridCrossing {
             speed: grid_speed(k),
             below: None,
-        }));
+        });
     }
     let r_above = loop {
         let next = grid_speed(k + 1);
         if next > SCAN_TOP_MPS {
-            return Ok(Some(GridCrossing {
+            return Ok(GridCrossing {
                 speed: f64::INFINITY,
                 below: Some(k),
-            }));
+            });
         }
-        let (r, screened) = grid(runs, next, &mut trace)?;
+        let (r, screened) = grid(next, eval)?;
         if r >= 1.0 {
             break r;
         }
@@ -636,9 +664,9 @@ fn scan_grid(
     };
     if below_screened {
         // the refinement starts from the search's own run at the last speed below
-        r_below = eval(runs, grid_speed(k), &mut trace)?;
+        r_below = search(grid_speed(k), eval)?;
         if r_below >= 1.0 {
-            return Ok(None);
+            return scan_grid(start, rtol, None, eval);
         }
     }
     let speed = refine(
@@ -646,37 +674,39 @@ fn scan_grid(
         (grid_speed(k + 1), r_above),
         rtol,
         REFINE_RUNS,
-        &mut |v| eval(runs, v, &mut trace),
+        &mut |v| search(v, eval),
     )?;
-    Ok(Some(GridCrossing {
+    Ok(GridCrossing {
         speed,
         below: Some(k),
-    }))
+    })
 }
 
 /// The most runs of a simulated search's refinement ([`refine`]): on the 30 × 30 hand map of
-/// docs/performance.md, 1 702 of its 1 800 refinements needed 3 runs or fewer and 39 needed 5 or
-/// 6; the 59 that needed 7 to 22 were rattles whose largest contact jumps between speeds closer
-/// than the root tolerance. With this budget those return the highest speed run below the limit,
-/// at most 0.93 % below the unbudgeted answer.
+/// docs/performance.md, 1 662 of its 1 800 refinements needed 3 runs or fewer and 75 needed 4 to
+/// 6; the 63 that needed 7 to 22 were CL rattles whose largest contact jumps between speeds
+/// closer than the root tolerance. With this budget those return the highest speed run below the
+/// limit, at most 0.93 % below the unbudgeted answer.
 pub const REFINE_RUNS: usize = 6;
 
 /// The most runs of the scenes' and the test bed's refinements ([`scan_up`], [`refine`]): a
 /// guard only, their ratios (one smooth scene run per speed) converge in a few.
 pub const SCENE_REFINE_RUNS: usize = 200;
 
-/// The screen's tolerance as a multiple of the searches' ([`FeRuns::screen`]): 1e-4 at the
-/// default `--tol`, about a fifth of the search's steps per contact.
-pub const SCREEN_TOL_FACTOR: f64 = 1000.0;
+/// The screen's tolerance as a multiple of the searches' ([`FeRuns::screen`]): 1e-3 at the
+/// default `--tol` (at most 0.1, the integrator's loosest), about a tenth of the search's steps
+/// per contact.
+pub const SCREEN_TOL_FACTOR: f64 = 1e4;
 
 /// A grid speed whose screen keeps every contact below this fraction of the limit is below the
-/// limit without the search's run ([`smallest_speed_on_grid`]). Over the 18 433 grid speeds of
-/// the 30 × 30 hand map of docs/performance.md, the search's largest peak was within 1e-3 of the
-/// screen's at most speeds and at most 1.64 times it at any (a rattle whose largest contact
-/// depends on round-off: any change of step moves it that much); 0.6 < 1/1.64, so no screen
-/// there passed a speed whose search reaches the limit, and the map is the unscreened one bit
-/// for bit.
-pub const SCREEN_MARGIN: f64 = 0.6;
+/// limit without the search's run ([`smallest_speed_on_grid`]). Over the 18 433 grid speeds the
+/// unscreened scans of the 30 × 30 hand map of docs/performance.md ran, the screen's largest
+/// peak was within 1.5e-3 of the search's at half of them and within 1.9 % at nine in ten; at
+/// most the search's was 1.51 times the screen's (a rattle whose largest contact depends on
+/// round-off: any change of step moves it that much), and no speed whose search reached the
+/// limit had a screen below 0.81 of it. 0.65 < 1/1.51, so there no screen passed a speed the
+/// search does not, and the map is the unscreened scans' bit for bit.
+pub const SCREEN_MARGIN: f64 = 0.65;
 
 /// What a scan from below found.
 #[derive(Debug, Clone, Copy, PartialEq)]

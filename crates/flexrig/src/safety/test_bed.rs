@@ -293,7 +293,14 @@ fn smallest_test_bed_speed(
                 let below = 0.5 * above;
                 let r = ratio(below)?;
                 if r < 1.0 {
-                    return refine((below, r), (above, r_above), rtol, SCENE_REFINE_RUNS, &mut ratio).map(Some);
+                    return refine(
+                        (below, r),
+                        (above, r_above),
+                        rtol,
+                        SCENE_REFINE_RUNS,
+                        &mut ratio,
+                    )
+                    .map(Some);
                 }
                 (above, r_above) = (below, r);
             }
