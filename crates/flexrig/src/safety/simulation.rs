@@ -633,6 +633,7 @@ pub fn scan_grid(
     let grid = |v: f64, eval: &mut dyn FnMut(f64, GridRun) -> Result<Option<f64>, Error>| {
         if let Some(margin) = screen
             && let Some(r) = eval(v, GridRun::Screen(margin))?
+            && r < 1.0
         {
             return Ok::<(f64, bool), Error>((r, true));
         }
@@ -798,12 +799,14 @@ pub fn refine(
     let mut ga = below.1.ln();
     let mut gb = above.1.ln();
     let mut side = 0;
+    // the lower end as the speed run there
+    let mut a_speed = below.0;
     for run in 0.. {
         if (b - a).abs() < rtol || gb == 0.0 {
             break;
         }
         if run == max_runs {
-            return Ok(a.exp());
+            return Ok(a_speed);
         }
         let x = if gb.is_finite() && ga.is_finite() && gb != ga {
             (a * gb - b * ga) / (gb - ga)
@@ -820,6 +823,7 @@ pub fn refine(
             side = 1;
         } else {
             a = x;
+            a_speed = x.exp();
             ga = gx;
             if side == -1 {
                 gb /= 2.0;
