@@ -787,8 +787,8 @@ fn simulation_trace(
         g(fe.m_r),
         n(f),
         settings.root_rtol,
-        g(SCREEN_TOL_FACTOR),
-        g(SCREEN_MARGIN),
+        SCREEN_TOL_FACTOR,
+        SCREEN_MARGIN,
         REFINE_RUNS,
         trace.len(),
     )));
