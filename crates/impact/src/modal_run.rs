@@ -959,13 +959,15 @@ pub fn largest_peak_quadratic_against(
     options: &ModalOptions,
     force_scale: f64,
 ) -> Result<LargestPeakRun, ImpactError> {
-    largest_peak_held_against(
+    let hold = (force_scale, ForceHold::Quadratic);
+    peak_run_held_against(
         modes,
         head,
         law,
         t_scale,
         options,
-        (force_scale, ForceHold::Quadratic),
+        hold,
+        EarlyStop::LargestKnown,
     )
 }
 
@@ -978,13 +980,15 @@ pub fn largest_peak_cubic_against(
     options: &ModalOptions,
     force_scale: f64,
 ) -> Result<LargestPeakRun, ImpactError> {
-    largest_peak_held_against(
+    let hold = (force_scale, ForceHold::Cubic);
+    peak_run_held_against(
         modes,
         head,
         law,
         t_scale,
         options,
-        (force_scale, ForceHold::Cubic),
+        hold,
+        EarlyStop::LargestKnown,
     )
 }
 
@@ -1009,23 +1013,20 @@ pub fn threshold_cubic_against(
     }
     let hold = (force_scale, ForceHold::Cubic);
     let stop = EarlyStop::Threshold(threshold);
-    let (outcome, stopped) = run_held_against(modes, head, law, t_scale, options, hold, stop)?;
-    Ok(LargestPeakRun {
-        contacts: outcome.contacts,
-        end: stopped.unwrap_or(PeakRunEnd::Ended(outcome.ended)),
-    })
+    peak_run_held_against(modes, head, law, t_scale, options, hold, stop)
 }
 
-/// The largest-peak run with the hold `hold.1` against `hold.0` \[N\].
-fn largest_peak_held_against(
+/// The run with the hold `hold.1` against `hold.0` \[N\], stopped early by `stop`, and how it
+/// ended.
+fn peak_run_held_against(
     modes: &TipModes,
     head: Head,
     law: &Hertz,
     t_scale: f64,
     options: &ModalOptions,
     hold: (f64, ForceHold),
+    stop: EarlyStop,
 ) -> Result<LargestPeakRun, ImpactError> {
-    let stop = EarlyStop::LargestKnown;
     let (outcome, stopped) = run_held_against(modes, head, law, t_scale, options, hold, stop)?;
     Ok(LargestPeakRun {
         contacts: outcome.contacts,

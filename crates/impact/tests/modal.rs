@@ -604,6 +604,21 @@ fn hand(m_e: f64, k_delta: f64, v0: f64, joint: Joint) -> FreeMassImpact {
     }
 }
 
+/// The hand's link by its modes: the CL's on the graded mesh, or the CJ's rigid link on its
+/// spring.
+fn hand_modes(s: &FreeMassImpact, cl: bool) -> TipModes {
+    if cl {
+        cl_tip_modes(s, &GradedMesh::DEFAULT).unwrap()
+    } else {
+        Chain::cj(s).tip_modes(s, 0.0).unwrap()
+    }
+}
+
+/// The largest peak force \[N\] over `contacts`.
+fn largest_peak(contacts: &[flexrig_impact::setup::ContactEvent]) -> f64 {
+    contacts.iter().map(|c| c.peak_force_n).fold(0.0, f64::max)
+}
+
 /// A run for its largest peak alone stops once no later contact can pass the largest so far:
 /// on held CJs and CLs of the map's hand (the rattling corner, m_e = 0.01 kg on k_δ = 10 N/m,
 /// included) at speeds across its limits, the largest peak is the full run's bit for bit, the
@@ -634,11 +649,7 @@ fn a_settled_run_keeps_the_full_runs_largest_peak() {
             for v0 in [0.8, 1.5, 3.0] {
                 let s = hand(m_e, k_delta, v0, joint);
                 for cl in [false, true] {
-                    let modes = if cl {
-                        cl_tip_modes(&s, &GradedMesh::DEFAULT).unwrap()
-                    } else {
-                        Chain::cj(&s).tip_modes(&s, 0.0).unwrap()
-                    };
+                    let modes = hand_modes(&s, cl);
                     let (head, t_scale) = (head_at_onset(&s), s.payload_contact_time());
                     let full = run_modes_quadratic_against(
                         &modes, head, &s.contact, t_scale, &options, 280.0,
@@ -648,11 +659,12 @@ fn a_settled_run_keeps_the_full_runs_largest_peak() {
                         &modes, head, &s.contact, t_scale, &options, 280.0,
                     )
                     .unwrap();
-                    let largest = |c: &[flexrig_impact::setup::ContactEvent]| {
-                        c.iter().map(|c| c.peak_force_n).fold(0.0, f64::max)
-                    };
                     let at = format!("{joint:?} cl {cl} m_e {m_e} k {k_delta} v {v0}");
-                    assert_eq!(largest(&ours.contacts), largest(&full.contacts), "{at}");
+                    assert_eq!(
+                        largest_peak(&ours.contacts),
+                        largest_peak(&full.contacts),
+                        "{at}"
+                    );
                     assert_eq!(
                         ours.contacts[..],
                         full.contacts[..ours.contacts.len()],
@@ -702,20 +714,12 @@ fn a_threshold_run_answers_as_the_full_run() {
             for v0 in [0.8, 3.0] {
                 let s = hand(m_e, k_delta, v0, joint);
                 for cl in [false, true] {
-                    let modes = if cl {
-                        cl_tip_modes(&s, &GradedMesh::DEFAULT).unwrap()
-                    } else {
-                        Chain::cj(&s).tip_modes(&s, 0.0).unwrap()
-                    };
+                    let modes = hand_modes(&s, cl);
                     let (head, t_scale) = (head_at_onset(&s), s.payload_contact_time());
                     let full =
                         run_modes_cubic_against(&modes, head, &s.contact, t_scale, &options, 280.0)
                             .unwrap();
-                    let largest = full
-                        .contacts
-                        .iter()
-                        .map(|c| c.peak_force_n)
-                        .fold(0.0, f64::max);
+                    let largest = largest_peak(&full.contacts);
                     for threshold in [0.5 * largest, largest, 1.01 * largest, 280.0] {
                         let ours = threshold_cubic_against(
                             &modes, head, &s.contact, t_scale, &options, 280.0, threshold,

@@ -695,8 +695,8 @@ pub const REFINE_RUNS: usize = 6;
 pub const SCENE_REFINE_RUNS: usize = 200;
 
 /// The screen's tolerance as a multiple of the searches' ([`FeRuns::screen`]): 1e-3 at the
-/// default `--tol` (at most 0.1, the integrator's loosest), about a tenth of the search's steps
-/// per contact.
+/// default `--tol` (at most 0.1, the integrator's loosest); the cubic hold's steps grow as the
+/// tolerance's fourth root, so a smooth contact takes about a tenth of the search's steps.
 pub const SCREEN_TOL_FACTOR: f64 = 1e4;
 
 /// A grid speed whose screen keeps every contact below this fraction of the limit is below the
